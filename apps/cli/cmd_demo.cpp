@@ -1,0 +1,13 @@
+// Placeholder: the `demo` subcommand is being implemented; it reports that plainly.
+#include "cli_common.h"
+#include "adaptex/core/errors.h"
+
+namespace adaptex::cli {
+
+void add_demo_command(CLI::App& app, Context&) {
+  auto* sub = app.add_subcommand("demo", "(not implemented yet)");
+  sub->allow_extras();
+  sub->callback([] { throw Error("'demo' is not implemented yet"); });
+}
+
+}  // namespace adaptex::cli

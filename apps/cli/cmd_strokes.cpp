@@ -1,0 +1,13 @@
+// Placeholder: the `strokes` subcommand is being implemented; it reports that plainly.
+#include "cli_common.h"
+#include "adaptex/core/errors.h"
+
+namespace adaptex::cli {
+
+void add_strokes_command(CLI::App& app, Context&) {
+  auto* sub = app.add_subcommand("strokes", "(not implemented yet)");
+  sub->allow_extras();
+  sub->callback([] { throw Error("'strokes' is not implemented yet"); });
+}
+
+}  // namespace adaptex::cli

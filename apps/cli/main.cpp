@@ -1,0 +1,42 @@
+// adaptex command-line tool. Exit codes: 0 success, 2 bad input (one line on stderr, no partial
+// output), 1 internal failure.
+#include <exception>
+#include <iostream>
+
+#include "adaptex/core/errors.h"
+#include "cli_common.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"adaptex: signal-adaptive parameterization for painting on 3-D meshes"};
+  app.require_subcommand(1);
+  adaptex::cli::Context ctx;
+  app.add_flag("-q,--quiet", ctx.quiet, "No progress or warning lines on stderr");
+  adaptex::cli::add_info_command(app, ctx);
+  adaptex::cli::add_unwrap_command(app, ctx);
+  adaptex::cli::add_paint_command(app, ctx);
+  adaptex::cli::add_eval_command(app, ctx);
+  adaptex::cli::add_strokes_command(app, ctx);
+  adaptex::cli::add_reparam_command(app, ctx);
+  adaptex::cli::add_demo_command(app, ctx);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // One line, exit code 2, like every other bad input.
+    std::cerr << "adaptex: error: " << e.what() << " (see --help)\n";
+    return 2;
+  } catch (const adaptex::CancelledError& e) {
+    std::cerr << "adaptex: error: cancelled\n";
+    return 1;
+  } catch (const adaptex::InvalidInputError& e) {
+    std::cerr << "adaptex: error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "adaptex: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

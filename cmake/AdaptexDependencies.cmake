@@ -1,0 +1,23 @@
+# All dependencies are Debian 12 packages (installed by scripts/setup.sh).
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(TBB REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(assimp REQUIRED)
+find_package(tinyobjloader REQUIRED)
+find_package(TinyGLTF REQUIRED)
+find_package(embree 3 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(Threads REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+
+# SuiteSparse (CHOLMOD) ships no CMake config on Debian 12: locate it by hand.
+find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
+find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
+find_library(SUITESPARSE_CONFIG_LIBRARY suitesparseconfig REQUIRED)
+if(NOT TARGET adaptex_cholmod)
+  add_library(adaptex_cholmod INTERFACE)
+  target_include_directories(adaptex_cholmod SYSTEM INTERFACE ${CHOLMOD_INCLUDE_DIR})
+  target_link_libraries(adaptex_cholmod INTERFACE ${CHOLMOD_LIBRARY} ${SUITESPARSE_CONFIG_LIBRARY})
+  target_compile_definitions(adaptex_cholmod INTERFACE ADAPTEX_HAVE_CHOLMOD=1)
+endif()

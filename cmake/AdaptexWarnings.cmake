@@ -1,0 +1,14 @@
+# adaptex_set_warnings(<target>): warnings on for our own targets only (no global flags).
+function(adaptex_set_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local
+                         -Wno-missing-field-initializers)
+  if(ADAPTEX_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(ADAPTEX_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
+                           -fno-sanitize-recover=undefined)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+  target_compile_features(${target} PUBLIC cxx_std_20)
+endfunction()

@@ -1,0 +1,65 @@
+#pragma once
+/// \file mesh_io.h
+/// Reading meshes (OBJ, OFF/COFF, PLY incl. tristrips, STL ascii/binary, glTF/GLB) with validation,
+/// and writing OBJ with UVs. Readers are well-kept libraries (tinyobjloader, assimp, tinygltf).
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+
+namespace adaptex {
+
+/// Options of read_mesh().
+struct ReadOptions {
+  /// Split non-manifold vertices and drop duplicate faces instead of rejecting the mesh.
+  bool repair = false;
+};
+
+/// What read_mesh() changed or noticed. Every non-zero count also produced a warning line.
+struct ReadReport {
+  std::string format;                 ///< Detected format ("obj", "off", "ply", "stl", "gltf", "glb").
+  int dropped_degenerate_faces = 0;   ///< Zero-area faces removed.
+  int dropped_unreferenced_vertices = 0;  ///< Vertices used by no face, removed.
+  int dropped_duplicate_faces = 0;    ///< Faces with the same vertex set as an earlier one (repair).
+  int split_nonmanifold_vertices = 0; ///< Vertices duplicated to make the mesh manifold (repair).
+  int welded_vertices = 0;            ///< Vertices merged because the format split them.
+  std::vector<std::string> warnings;  ///< Human-readable warning lines (file name included).
+};
+
+/// Reads and validates a triangle mesh (polygons are fan-triangulated).
+/// Positions keep the file's units and values; vertex order follows the file where the format has
+/// shared vertices. Vertices split by the format (STL, OBJ with separate v/vn/vt indices, assimp's
+/// per-corner output) are welded by identical position.
+/// \throw IoError unreadable, corrupt or truncated file, unknown format
+/// \throw InvalidInputError no faces, NaN/inf coordinates, indices out of range
+/// \throw TopologyError non-manifold edges or vertices (unless options.repair)
+TriMesh read_mesh(const std::filesystem::path& path, const ReadOptions& options = {},
+                  ReadReport* report = nullptr);
+
+/// Validates an in-memory mesh the same way read_mesh() does (degenerate/unreferenced are dropped,
+/// the rest throws); \p name is used in messages in place of a file name.
+TriMesh validate_mesh(TriMesh mesh, const std::string& name, const ReadOptions& options = {},
+                      ReadReport* report = nullptr);
+
+/// A mesh with its UV layout, as stored in an OBJ with `vt` and `f v/vt`.
+struct TexturedMesh {
+  TriMesh mesh;
+  Parameterization param;
+  std::string texture_path;  ///< map_Kd of the OBJ's material, if any (resolved to an absolute path).
+};
+
+/// Reads an OBJ with texture coordinates. Charts are the connected components of the UV faces.
+/// \throw IoError, InvalidInputError (as read_mesh; also faces without vt)
+TexturedMesh read_textured_obj(const std::filesystem::path& path);
+
+/// Writes `v` (input positions, full precision), `vt` and `f v/vt` (1-based). If \p mtllib is set,
+/// writes `mtllib` + `usemtl` lines referring to it. Writes to \p path directly: wrap with
+/// AtomicOutput for all-or-nothing behaviour. \throw IoError
+void write_obj(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization* param,
+               const std::optional<std::string>& mtllib = std::nullopt,
+               const std::string& material = "adaptex_paint");
+
+}  // namespace adaptex

@@ -1,0 +1,61 @@
+#pragma once
+/// \file painter.h
+/// Texture-space painting: every dab is evaluated exactly (stroke-file contract) at the 3-D point of
+/// each texel it can touch, found through a spatial index of the texel points.
+#include <memory>
+
+#include "adaptex/core/image.h"
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+#include "adaptex/paint/strokes.h"
+#include "adaptex/paint/texel_map.h"
+
+namespace adaptex {
+
+/// Settings of a Painter.
+struct PainterOptions {
+  int width = 1024;   ///< Texture width in texels (any size, power of two not required).
+  int height = 1024;  ///< Texture height in texels.
+  int padding = 4;    ///< Seam padding P in texels (dilation of chart texels), 0 = none.
+};
+
+/// Paints strokes into the texture of one parameterization. Keeps an exact floating-point colour
+/// per texel (so 8-bit rounding never accumulates) and the RGBA8 texture derived from it.
+/// Usage: whole strokes with paint_stroke(), or interactively begin_stroke/add_dab/end_stroke.
+class Painter {
+ public:
+  /// \pre mesh and param stay alive and unchanged while the painter is used
+  Painter(const TriMesh& mesh, const Parameterization& param, const PainterOptions& options,
+          const Vec3& background = Vec3(1, 1, 1));
+  ~Painter();
+  Painter(Painter&&) noexcept;
+  Painter& operator=(Painter&&) noexcept;
+
+  /// Paints a whole stroke (brush or decal).
+  void paint_stroke(const Stroke& stroke);
+  /// Paints every stroke of a file in order (the background of \p file replaces the current one
+  /// only if nothing was painted yet).
+  void paint_all(const StrokeFile& file);
+
+  /// Interactive: starts a brush stroke with the colour/radius/hardness/opacity of \p style
+  /// (its dabs are ignored).
+  void begin_stroke(const Stroke& style);
+  /// Interactive: adds one dab to the open stroke (max coverage within the stroke).
+  /// \return the texel rectangle touched, as (i0, j0, i1, j1) inclusive; empty if i1 < i0.
+  std::array<int, 4> add_dab(const Vec3& centre);
+  /// Interactive: closes the open stroke.
+  void end_stroke();
+
+  /// The texture (with seam padding applied to texels outside the charts).
+  const ImageRGBA8& texture();
+  /// The texel -> surface map of this parameterization.
+  const TexelMap& texel_map() const;
+  /// Number of texel evaluations done so far (for throughput measurements).
+  long long texel_updates() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace adaptex

@@ -1,0 +1,48 @@
+#pragma once
+/// \file stretch.h
+/// Sander et al. 2001 ("Texture mapping progressive meshes") L2 and L-infinity stretch (thesis
+/// §2.1.3), normalized so that 1.0 is ideal, plus other distortion measures.
+#include <vector>
+
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+
+namespace adaptex {
+
+/// Singular values of the Jacobian of the map from the UV triangle to the 3-D triangle.
+struct FaceStretch {
+  double gamma_max = 0;  ///< Γ, largest singular value (L∞ stretch of the face).
+  double gamma_min = 0;  ///< γ, smallest singular value.
+  double l2() const;     ///< sqrt((Γ² + γ²) / 2).
+};
+
+/// Stretch of one triangle given its 3-D corners and UV corners.
+/// Returns +inf singular values for a degenerate or flipped UV triangle.
+FaceStretch face_stretch(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec2& t0,
+                         const Vec2& t1, const Vec2& t2);
+
+/// Summary metrics of a parameterization.
+struct StretchStats {
+  double l2 = 0;            ///< √(ΣA₃·L2²/ΣA₃) · √(ΣA₂/ΣA₃): 1.0 is ideal (isometry up to scale).
+  double linf = 0;          ///< max_f Γ_f · √(ΣA₂/ΣA₃): 1.0 is ideal.
+  double area_distortion = 0;   ///< Area-weighted mean of max(a,1/a), a = (A₂/ΣA₂)/(A₃/ΣA₃).
+  double angle_distortion = 0;  ///< Area-weighted mean of Γ/γ (1.0 = conformal).
+  int flipped = 0;          ///< UV triangles with negative signed area.
+  int degenerate = 0;       ///< UV triangles with (near-)zero area.
+};
+
+/// Per-face L2 stretch, normalized like StretchStats::l2 (F values; +inf for flipped/degenerate).
+std::vector<double> face_l2_stretch(const TriMesh& mesh, const Parameterization& param);
+
+/// Computes all summary metrics. \pre param.uv_faces.size() == mesh.faces.size()
+StretchStats measure_stretch(const TriMesh& mesh, const Parameterization& param);
+
+/// Number of pairs of UV triangles whose interiors overlap (exact orientation predicates on a
+/// uniform grid of buckets; independent of how the layout was made). Shared edges/vertices do not
+/// count. \param max_pairs stop counting after this many.
+long count_overlapping_triangles(const Parameterization& param, long max_pairs = 1000);
+
+/// Fraction of the texels of a \p res x \p res texture whose centre lies inside some UV triangle.
+double texel_utilization(const Parameterization& param, int res);
+
+}  // namespace adaptex

@@ -1,0 +1,67 @@
+#pragma once
+/// \file unwrap.h
+/// The whole initial parameterization pipeline: cut every component to a disk (§3.2), Floater
+/// parameterization onto the square (§2.2), Yoshizawa–Belyaev–Seidel stretch minimization (§3.3),
+/// cut augmentation, and chart packing into [0,1]^2.
+#include <string>
+#include <vector>
+
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+#include "adaptex/core/progress.h"
+
+namespace adaptex {
+
+/// Barycentric weights of the initial (Tutte-type) embedding.
+enum class EmbeddingWeights {
+  ShapePreserving,  ///< Floater 1997 shape-preserving weights (the thesis' choice).
+  MeanValue,        ///< Floater 2003 mean-value coordinates.
+};
+
+/// Settings of unwrap().
+struct UnwrapOptions {
+  /// Weights of the initial embedding.
+  EmbeddingWeights weights = EmbeddingWeights::ShapePreserving;
+  /// Yoshizawa exponent η: weights are divided by σ^η. 1.0 as in the paper.
+  double yoshizawa_eta = 1.0;
+  /// Maximum Yoshizawa re-weighting iterations (stops earlier when L2 stops improving).
+  int yoshizawa_max_iterations = 30;
+  /// Maximum number of cut augmentations (Gu et al. 2002) per chart; 0 disables augmentation.
+  int max_augmentations = 8;
+  /// Gap between packed charts, as a fraction of the unit square.
+  double chart_padding = 0.01;
+  /// Progress / cancel callback (phases "cut", "floater", "yoshizawa", "augment", "pack").
+  ProgressCallback progress;
+};
+
+/// Figures about one unwrap() run (everything the `unwrap --report` JSON needs).
+struct UnwrapReport {
+  int num_components = 0;
+  int num_charts = 0;
+  int genus = 0;                 ///< Total genus over the components.
+  int boundary_loops = 0;        ///< Boundary loops of the input.
+  int augmentations = 0;         ///< Cut paths added by augmentation, over all charts.
+  double cut_length = 0;         ///< Total 3-D length of the cut edges (original boundary excluded).
+  double floater_l2 = 0;         ///< Mesh L2 stretch of the Floater embedding (before Yoshizawa).
+  double floater_linf = 0;
+  double final_l2 = 0;           ///< Mesh L2 stretch of the result.
+  double final_linf = 0;
+  int yoshizawa_iterations = 0;  ///< Re-weighting iterations performed (summed over charts).
+  double time_cut = 0, time_floater = 0, time_yoshizawa = 0, time_augment = 0, time_pack = 0;  ///< s
+  double time_total = 0;         ///< s
+};
+
+/// Result of unwrap().
+struct UnwrapResult {
+  Parameterization param;
+  UnwrapReport report;
+};
+
+/// Parameterizes every connected component as one chart, packed into [0,1]^2 without overlap.
+/// \pre mesh is manifold with valid indices and no degenerate faces (as read_mesh() returns it)
+/// \throw TopologyError non-manifold input
+/// \throw SolverError the sparse solve failed
+/// \throw CancelledError the progress callback returned false
+UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options = {});
+
+}  // namespace adaptex

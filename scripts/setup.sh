@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages adaptex needs (only the missing ones; sudo only when not root).
+set -euo pipefail
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config ccache git
+  libeigen3-dev libsuitesparse-dev libtbb-dev
+  libassimp-dev libtinyobjloader-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev
+  libembree-dev libcgal-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri mesa-utils
+  xvfb xdotool x11-utils
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#PACKAGES[@]} packages present"
+  exit 0
+fi
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+echo "setup: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

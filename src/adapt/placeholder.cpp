@@ -1,0 +1,2 @@
+// Placeholder translation unit; replaced as the adapt area lands.
+namespace adaptex {}

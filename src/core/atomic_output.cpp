@@ -1,0 +1,46 @@
+#include "adaptex/core/atomic_output.h"
+
+#include <random>
+#include <system_error>
+
+#include "adaptex/core/errors.h"
+
+namespace adaptex {
+
+namespace fs = std::filesystem;
+
+AtomicOutput::~AtomicOutput() {
+  if (committed_) return;
+  std::error_code ec;
+  for (auto& [tmp, final_path] : files_) fs::remove(tmp, ec);
+  for (auto it = created_dirs_.rbegin(); it != created_dirs_.rend(); ++it) fs::remove(*it, ec);
+}
+
+fs::path AtomicOutput::add(const fs::path& final_path) {
+  fs::path dir = final_path.parent_path();
+  if (!dir.empty() && !fs::exists(dir)) {
+    // Remember every directory level we create so that a failure removes them again.
+    std::vector<fs::path> missing;
+    for (fs::path d = dir; !d.empty() && !fs::exists(d); d = d.parent_path()) missing.push_back(d);
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw IoError(dir.string() + ": cannot create directory: " + ec.message());
+    created_dirs_.insert(created_dirs_.end(), missing.rbegin(), missing.rend());
+  }
+  static thread_local std::mt19937_64 rng{std::random_device{}()};
+  fs::path tmp = final_path;
+  tmp += ".tmp-" + std::to_string(rng() % 1000000000ULL);
+  files_.emplace_back(tmp, final_path);
+  return tmp;
+}
+
+void AtomicOutput::commit() {
+  for (auto& [tmp, final_path] : files_) {
+    std::error_code ec;
+    fs::rename(tmp, final_path, ec);
+    if (ec) throw IoError(final_path.string() + ": cannot write: " + ec.message());
+  }
+  committed_ = true;
+}
+
+}  // namespace adaptex

@@ -1,0 +1,301 @@
+#include "adaptex/core/shapes.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <unordered_map>
+
+namespace adaptex::shapes {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+double signed_volume(const TriMesh& m) {
+  double vol = 0;
+  for (const Face& t : m.faces)
+    vol += m.positions[t[0]].dot(m.positions[t[1]].cross(m.positions[t[2]]));
+  return vol / 6.0;
+}
+
+// Closed shapes: make the faces counter-clockwise seen from outside.
+void orient_outward(TriMesh& m) {
+  if (signed_volume(m) < 0)
+    for (Face& t : m.faces) std::swap(t[1], t[2]);
+}
+
+// Grid surface P(i, j), i in [0, nu], j in [0, nv]; wrap_u / wrap_v identify the last row/column
+// with the first. Quads are split along alternating diagonals.
+TriMesh grid_surface(int nu, int nv, bool wrap_u, bool wrap_v,
+                     const std::function<Vec3(double, double)>& P) {
+  TriMesh m;
+  const int cu = wrap_u ? nu : nu + 1, cv = wrap_v ? nv : nv + 1;
+  for (int j = 0; j < cv; ++j)
+    for (int i = 0; i < cu; ++i) m.positions.push_back(P(double(i) / nu, double(j) / nv));
+  auto id = [&](int i, int j) { return (j % cv) * cu + (i % cu); };
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if ((i + j) % 2 == 0) {
+        m.faces.push_back({a, b, c});
+        m.faces.push_back({a, c, d});
+      } else {
+        m.faces.push_back({a, b, d});
+        m.faces.push_back({b, c, d});
+      }
+    }
+  return m;
+}
+
+TriMesh merge(const TriMesh& a, const TriMesh& b) {
+  TriMesh m = a;
+  const int off = a.num_vertices();
+  m.positions.insert(m.positions.end(), b.positions.begin(), b.positions.end());
+  for (Face t : b.faces) m.faces.push_back({t[0] + off, t[1] + off, t[2] + off});
+  return m;
+}
+
+// Marching tetrahedra of f < 0 on a regular grid (Kuhn subdivision: 6 tetrahedra per cube,
+// consistent across cubes, so the output is a closed manifold when no sample is exactly 0).
+TriMesh marching_tetrahedra(const std::function<double(const Vec3&)>& f, const Vec3& lo,
+                            const Vec3& hi, int res) {
+  const Vec3 ext = hi - lo;
+  const double h = ext.maxCoeff() / res;
+  const int nx = int(std::ceil(ext.x() / h)) + 1, ny = int(std::ceil(ext.y() / h)) + 1,
+            nz = int(std::ceil(ext.z() / h)) + 1;
+  auto gid = [&](int i, int j, int k) { return (long(k) * (ny + 1) + j) * (nx + 1) + i; };
+  auto gpos = [&](int i, int j, int k) { return Vec3(lo + h * Vec3(i, j, k)); };
+  std::vector<double> val(size_t(nx + 1) * (ny + 1) * (nz + 1));
+  for (int k = 0; k <= nz; ++k)
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) {
+        double v = f(gpos(i, j, k));
+        if (v == 0.0) v = 1e-12;  // never exactly on the surface
+        val[gid(i, j, k)] = v;
+      }
+  TriMesh m;
+  std::map<std::pair<long, long>, int> edge_vertex;
+  auto crossing = [&](long a, const Vec3& pa, long b, const Vec3& pb) {
+    auto key = std::minmax(a, b);
+    auto it = edge_vertex.find(key);
+    if (it != edge_vertex.end()) return it->second;
+    const double t = val[a] / (val[a] - val[b]);
+    m.positions.push_back(pa + t * (pb - pa));
+    const int id = m.num_vertices() - 1;
+    edge_vertex.emplace(key, id);
+    return id;
+  };
+  static const int corner[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0},
+                                   {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  static const int tets[6][4] = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6},
+                                 {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        for (const auto& tet : tets) {
+          long id[4];
+          Vec3 p[4];
+          for (int c = 0; c < 4; ++c) {
+            const int* o = corner[tet[c]];
+            id[c] = gid(i + o[0], j + o[1], k + o[2]);
+            p[c] = gpos(i + o[0], j + o[1], k + o[2]);
+          }
+          std::vector<int> in, out;
+          for (int c = 0; c < 4; ++c) (val[id[c]] < 0 ? in : out).push_back(c);
+          if (in.empty() || out.empty()) continue;
+          Vec3 dir = Vec3::Zero();  // from inside to outside
+          for (int c : out) dir += p[c] / double(out.size());
+          for (int c : in) dir -= p[c] / double(in.size());
+          auto emit = [&](int a, int b, int c) {
+            const Vec3 n = (m.positions[b] - m.positions[a]).cross(m.positions[c] - m.positions[a]);
+            if (n.dot(dir) < 0) std::swap(b, c);
+            m.faces.push_back({a, b, c});
+          };
+          auto X = [&](int a, int b) { return crossing(id[a], p[a], id[b], p[b]); };
+          if (in.size() == 1 || out.size() == 1) {
+            const int s = in.size() == 1 ? in[0] : out[0];
+            const auto& o = in.size() == 1 ? out : in;
+            emit(X(s, o[0]), X(s, o[1]), X(s, o[2]));
+          } else {
+            const int a = X(in[0], out[0]), b = X(in[0], out[1]), c = X(in[1], out[1]),
+                      d = X(in[1], out[0]);
+            emit(a, b, c);
+            emit(a, c, d);
+          }
+        }
+  return m;
+}
+
+}  // namespace
+
+TriMesh plane(int n, double size) {
+  return grid_surface(n, n, false, false,
+                      [&](double u, double v) { return Vec3(u * size, v * size, 0.0); });
+}
+
+TriMesh sphere(int slices, int stacks, double r) {
+  TriMesh m;
+  m.positions.push_back(Vec3(0, 0, r));
+  for (int j = 1; j < stacks; ++j) {
+    const double th = kPi * j / stacks;
+    for (int i = 0; i < slices; ++i) {
+      const double ph = 2 * kPi * i / slices;
+      m.positions.push_back(r * Vec3(std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph),
+                                     std::cos(th)));
+    }
+  }
+  m.positions.push_back(Vec3(0, 0, -r));
+  const int south = m.num_vertices() - 1;
+  auto ring = [&](int j, int i) { return 1 + (j - 1) * slices + (i % slices); };
+  for (int i = 0; i < slices; ++i) m.faces.push_back({0, ring(1, i), ring(1, i + 1)});
+  for (int j = 1; j < stacks - 1; ++j)
+    for (int i = 0; i < slices; ++i) {
+      m.faces.push_back({ring(j, i), ring(j + 1, i), ring(j + 1, i + 1)});
+      m.faces.push_back({ring(j, i), ring(j + 1, i + 1), ring(j, i + 1)});
+    }
+  for (int i = 0; i < slices; ++i) m.faces.push_back({south, ring(stacks - 1, i + 1), ring(stacks - 1, i)});
+  orient_outward(m);
+  return m;
+}
+
+TriMesh icosphere(int subdivisions, double r) {
+  const double t = (1.0 + std::sqrt(5.0)) / 2.0;
+  TriMesh m;
+  m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                 {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  m.faces = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+             {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+             {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+  for (Vec3& p : m.positions) p.normalize();
+  for (int s = 0; s < subdivisions; ++s) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      auto key = std::minmax(a, b);
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      m.positions.push_back((m.positions[a] + m.positions[b]).normalized());
+      return mid[key] = m.num_vertices() - 1;
+    };
+    std::vector<Face> faces;
+    for (const Face& f : m.faces) {
+      const int a = midpoint(f[0], f[1]), b = midpoint(f[1], f[2]), c = midpoint(f[2], f[0]);
+      faces.insert(faces.end(), {{f[0], a, c}, {f[1], b, a}, {f[2], c, b}, {a, b, c}});
+    }
+    m.faces = std::move(faces);
+  }
+  for (Vec3& p : m.positions) p *= r;
+  orient_outward(m);
+  return m;
+}
+
+TriMesh torus(int major_segments, int minor_segments, double R, double r) {
+  TriMesh m = grid_surface(major_segments, minor_segments, true, true, [&](double u, double v) {
+    const double a = 2 * kPi * u, b = 2 * kPi * v;
+    return Vec3((R + r * std::cos(b)) * std::cos(a), (R + r * std::cos(b)) * std::sin(a),
+                r * std::sin(b));
+  });
+  orient_outward(m);
+  return m;
+}
+
+TriMesh double_torus(int resolution) {
+  auto torus_sdf = [](const Vec3& p, double cx) {
+    const Vec3 q = p - Vec3(cx, 0, 0);
+    const double d = std::hypot(q.x(), q.y()) - 1.0;
+    return std::hypot(d, q.z()) - 0.4;
+  };
+  auto f = [&](const Vec3& p) {
+    const double a = torus_sdf(p, -1.05), b = torus_sdf(p, 1.05), k = 0.25;
+    const double hh = std::clamp(0.5 + 0.5 * (b - a) / k, 0.0, 1.0);  // smooth union
+    return b + (a - b) * hh - k * hh * (1 - hh);
+  };
+  TriMesh m = marching_tetrahedra(f, Vec3(-2.7, -1.7, -0.7), Vec3(2.7, 1.7, 0.7), resolution);
+  orient_outward(m);
+  return m;
+}
+
+TriMesh open_cylinder(int segments, int rings, double r, double h) {
+  return grid_surface(segments, rings, true, false, [&](double u, double v) {
+    const double a = 2 * kPi * u;
+    return Vec3(r * std::cos(a), r * std::sin(a), h * v);
+  });
+}
+
+TriMesh disk_with_holes(int holes, int resolution) {
+  // A square grid with `holes` square holes (whole quads removed, separated by kept quads so that
+  // no vertex is pinched), vertices then pushed onto a disk-like shape.
+  const int n = std::max(resolution, 4 * holes + 4);
+  TriMesh full = plane(n, 1.0);
+  std::vector<char> removed(size_t(n) * n, 0);
+  const int side = std::max(1, n / (2 * holes + 2));
+  for (int h = 0; h < holes; ++h) {
+    const int i0 = (2 * h + 1) * n / (2 * holes + 1) - side / 2;
+    const int j0 = n / 2 - side / 2;
+    for (int j = j0; j < j0 + side; ++j)
+      for (int i = i0; i < i0 + side; ++i) removed[size_t(j) * n + i] = 1;
+  }
+  TriMesh m;
+  m.positions = full.positions;
+  for (int q = 0; q < n * n; ++q)
+    if (!removed[q]) {
+      m.faces.push_back(full.faces[2 * q]);
+      m.faces.push_back(full.faces[2 * q + 1]);
+    }
+  // Drop unused vertices (hole interiors) and squash the square into a rounded disk.
+  std::vector<int> remap(m.num_vertices(), -1);
+  std::vector<Vec3> pos;
+  for (Face& t : m.faces)
+    for (int& v : t) {
+      if (remap[v] < 0) {
+        remap[v] = int(pos.size());
+        const Vec3 p = m.positions[v] - Vec3(0.5, 0.5, 0);
+        const double s = std::max(std::abs(p.x()), std::abs(p.y())), l = std::hypot(p.x(), p.y());
+        const double k = l > 0 ? 0.5 * s / l + 0.5 : 1.0;  // halfway between square and disk
+        pos.push_back(Vec3(p.x() * k, p.y() * k, 0.1 * std::sin(3 * p.x()) * std::cos(2 * p.y())));
+      }
+      v = remap[v];
+    }
+  m.positions = std::move(pos);
+  return m;
+}
+
+TriMesh two_components() {
+  TriMesh a = icosphere(2, 0.8);
+  TriMesh b = torus(32, 12, 1.0, 0.3);
+  for (Vec3& p : b.positions) p += Vec3(3, 0, 0);
+  return merge(a, b);
+}
+
+TriMesh nonmanifold_fan() {
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {0, 0, 1}, {1, 0, 0.5}, {-1, 0.5, 0.5}, {0, -1, 0.5}};
+  m.faces = {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}};
+  return m;
+}
+
+TriMesh bowtie_vertex() {
+  TriMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, -1, 0}, {0, 0, -1}};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 5, 4}, {0, 4, 6}, {0, 6, 5}, {4, 5, 6}};
+  return m;
+}
+
+TriMesh trefoil_knot(int segments, int sides, double tube) {
+  auto curve = [](double t) {
+    return Vec3(std::sin(t) + 2 * std::sin(2 * t), std::cos(t) - 2 * std::cos(2 * t), -std::sin(3 * t));
+  };
+  TriMesh m = grid_surface(segments, sides, true, true, [&](double u, double v) {
+    const double t = 2 * kPi * u, a = 2 * kPi * v;
+    const Vec3 c = curve(t);
+    const Vec3 T = (curve(t + 1e-4) - curve(t - 1e-4)).normalized();
+    const Vec3 N = T.cross(Vec3::UnitZ()).normalized();
+    const Vec3 B = T.cross(N);
+    return Vec3(c + tube * 3.0 * (std::cos(a) * N + std::sin(a) * B) * 0.3);
+  });
+  orient_outward(m);
+  return m;
+}
+
+}  // namespace adaptex::shapes

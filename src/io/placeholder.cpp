@@ -1,0 +1,2 @@
+// Placeholder translation unit; replaced as the io area lands.
+namespace adaptex {}

@@ -1,0 +1,2 @@
+// Placeholder translation unit; replaced as the paint area lands.
+namespace adaptex {}

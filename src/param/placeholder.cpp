@@ -1,0 +1,2 @@
+// Placeholder translation unit; replaced as the param area lands.
+namespace adaptex {}
