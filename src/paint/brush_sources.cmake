@@ -1,0 +1,1 @@
+target_sources(adaptex_paint PRIVATE placeholder.cpp)

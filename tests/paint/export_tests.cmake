@@ -1,0 +1,1 @@
+# adaptex_add_test(...) calls go here
