@@ -3,6 +3,7 @@
 /// PNG input/output through stb. Files store the top row first; ImageRGBA8 stores v = 0 first,
 /// so both functions flip rows.
 #include <filesystem>
+#include <vector>
 
 #include "adaptex/core/image.h"
 
@@ -12,7 +13,7 @@ namespace adaptex {
 ImageRGBA8 read_image(const std::filesystem::path& path);
 /// Writes a PNG. \throw IoError
 void write_png(const std::filesystem::path& path, const ImageRGBA8& img);
-/// Encodes a PNG into memory (for embedding in .glb).
+/// Encodes a PNG into memory (for embedding in .glb). \throw IoError empty image
 std::vector<unsigned char> encode_png(const ImageRGBA8& img);
 
 }  // namespace adaptex
