@@ -9,7 +9,6 @@ scripts/setup.sh
 jobs=$(nproc)
 BUILD_DIR=build scripts/build.sh -DADAPTEX_WERROR=ON
 ( cd build && ctest --output-on-failure -j "$jobs" )
-tests/consumer/run.sh build
 if [ "$sanitize" = 1 ]; then
   echo "== again under AddressSanitizer + UndefinedBehaviorSanitizer =="
   BUILD_DIR=build-asan scripts/build.sh -DADAPTEX_WERROR=ON -DADAPTEX_SANITIZE=ON \
