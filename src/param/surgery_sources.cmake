@@ -1,1 +1,4 @@
-# target_sources(adaptex_param PRIVATE ...) for cut / pack / unwrap
+# Surgery part of adaptex_param (owner: param-surgery): topological surgery (§3.2), chart packing,
+# the unwrap() pipeline.
+target_sources(adaptex_param PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/cut.cpp)

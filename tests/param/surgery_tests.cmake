@@ -1,1 +1,2 @@
-# adaptex_add_test(...) calls go here
+# Tests of the §3.2 surgery, packing and unwrap().
+adaptex_add_test(test_param_cut SOURCES test_cut.cpp LIBS adaptex::adaptex)
