@@ -1,1 +1,3 @@
-# target_sources(adaptex_paint PRIVATE ...) for decal / export
+# Decals and export (owned by the paint-export helper).
+target_sources(adaptex_paint PRIVATE
+  decal.cpp)
