@@ -1,1 +1,17 @@
-target_sources(adaptex_param PRIVATE placeholder.cpp)
+# Solver part of adaptex_param (owner: param-solver): stretch metrics, Floater, Yoshizawa (§2.1.3, §2.2, §3.3).
+target_sources(adaptex_param PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/stretch.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/floater.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/yoshizawa.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/disk_param.cpp)
+# UMFPACK (SuiteSparse, Debian libsuitesparse-dev) for the non-symmetric Tutte system; Eigen's SparseLU
+# is used when it is missing.
+find_path(ADAPTEX_UMFPACK_INCLUDE_DIR umfpack.h PATH_SUFFIXES suitesparse)
+find_library(ADAPTEX_UMFPACK_LIBRARY umfpack)
+find_library(ADAPTEX_AMD_LIBRARY amd)
+if(ADAPTEX_UMFPACK_INCLUDE_DIR AND ADAPTEX_UMFPACK_LIBRARY AND ADAPTEX_AMD_LIBRARY)
+  target_include_directories(adaptex_param SYSTEM PRIVATE ${ADAPTEX_UMFPACK_INCLUDE_DIR})
+  target_link_libraries(adaptex_param PRIVATE ${ADAPTEX_UMFPACK_LIBRARY} ${ADAPTEX_AMD_LIBRARY})
+  set_source_files_properties(${CMAKE_CURRENT_LIST_DIR}/floater.cpp PROPERTIES
+    COMPILE_DEFINITIONS ADAPTEX_HAVE_UMFPACK=1)
+endif()

@@ -37,6 +37,14 @@ std::vector<double> face_l2_stretch(const TriMesh& mesh, const Parameterization&
 /// Computes all summary metrics. \pre param.uv_faces.size() == mesh.faces.size()
 StretchStats measure_stretch(const TriMesh& mesh, const Parameterization& param);
 
+/// Per-face L2 stretch of a single-chart map given per vertex (disk parameterizations):
+/// \p vertex_uv has size V and face f uses mesh.faces[f] as UV indices. Normalized like
+/// StretchStats::l2; +inf for flipped/degenerate faces.
+std::vector<double> face_l2_stretch(const TriMesh& mesh, const std::vector<Vec2>& vertex_uv);
+
+/// measure_stretch() for a per-vertex UV array (size V, indexed like mesh.positions).
+StretchStats measure_stretch(const TriMesh& mesh, const std::vector<Vec2>& vertex_uv);
+
 /// Number of pairs of UV triangles whose interiors overlap (exact orientation predicates on a
 /// uniform grid of buckets; independent of how the layout was made). Shared edges/vertices do not
 /// count. \param max_pairs stop counting after this many.

@@ -9,14 +9,9 @@
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
 #include "adaptex/core/progress.h"
+#include "adaptex/param/disk_param.h"  // EmbeddingWeights
 
 namespace adaptex {
-
-/// Barycentric weights of the initial (Tutte-type) embedding.
-enum class EmbeddingWeights {
-  ShapePreserving,  ///< Floater 1997 shape-preserving weights (the thesis' choice).
-  MeanValue,        ///< Floater 2003 mean-value coordinates.
-};
 
 /// Settings of unwrap().
 struct UnwrapOptions {
@@ -28,6 +23,16 @@ struct UnwrapOptions {
   int yoshizawa_max_iterations = 30;
   /// Maximum number of cut augmentations (Gu et al. 2002) per chart; 0 disables augmentation.
   int max_augmentations = 8;
+  /// Augmentation budget in faces: every augmentation step re-solves its whole chart, and stops once
+  /// the faces re-solved so far (over all charts) would exceed this. Deterministic; bounds the cost
+  /// on large meshes (a chart larger than the budget is not augmented). See docs/surgery.md.
+  long augment_face_budget = 2000000;
+  /// Augmentation budget in seconds of wall time from the start of unwrap(); no new augmentation
+  /// step starts after it (<= 0: no augmentation). Bounds the cost on slow machines.
+  double augment_time_budget = 8.0;
+  /// An augmentation is kept only if it lowers the chart's L2 stretch by this relative amount;
+  /// the first one that does not stops the augmentation of that chart.
+  double augment_min_improvement = 0.005;
   /// Gap between packed charts, as a fraction of the unit square.
   double chart_padding = 0.01;
   /// Progress / cancel callback (phases "cut", "floater", "yoshizawa", "augment", "pack").

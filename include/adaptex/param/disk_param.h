@@ -1,0 +1,59 @@
+#pragma once
+/// \file disk_param.h
+/// Initial parameterization of one disk (thesis §2.2 and §3.3): Floater embedding onto the unit
+/// square, then Yoshizawa–Belyaev–Seidel 2004 stretch minimization ("A fast and simple
+/// stretch-minimizing mesh parameterization", SMI 2004). See docs/parameterization.md.
+#include <vector>
+
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/progress.h"
+#include "adaptex/param/floater.h"
+
+namespace adaptex {
+
+/// Settings of parameterize_disk().
+struct DiskParamOptions {
+  /// Weights of the initial Tutte-type embedding.
+  EmbeddingWeights weights = EmbeddingWeights::ShapePreserving;
+  /// Run Yoshizawa stretch minimization after the Floater embedding.
+  bool yoshizawa = true;
+  /// Exponent η on the vertex stretch σ: λ_vw ← λ_vw / σ_w^η (1.0 as in the paper).
+  double eta = 1.0;
+  /// Cap on the Yoshizawa re-weighting iterations (the loop stops earlier when L2 stops improving).
+  int max_iterations = 30;
+  /// An iterate must lower the mesh L2 stretch by at least this relative amount, otherwise η is halved
+  /// (restarting from the best weights so far).
+  double min_improvement = 1e-3;
+  /// Stop after this many halvings of η (0: stop at the first iterate that does not improve enough).
+  int max_halvings = 4;
+  /// Sparse solver backend.
+  TutteSolver::Backend backend = TutteSolver::Backend::Umfpack;
+  /// Progress / cancel callback (phases "floater", "yoshizawa").
+  ProgressCallback progress;
+};
+
+/// Result of parameterize_disk().
+struct DiskParamResult {
+  /// V_disk coordinates (indexed like disk.positions); the boundary lies on the unit square [0,1]²
+  /// (on the inscribed circle when boundary.on_square is false), interior strictly inside.
+  std::vector<Vec2> uv;
+  double floater_l2 = 0, floater_linf = 0;  ///< Mesh stretch of the Floater embedding (1 = ideal).
+  double final_l2 = 0, final_linf = 0;      ///< Mesh stretch of the returned uv.
+  int iterations = 0;                       ///< Yoshizawa re-weighting iterations performed.
+  double time_floater = 0, time_yoshizawa = 0;  ///< Seconds.
+  bool on_square = true;                    ///< See DiskBoundary::on_square.
+};
+
+/// Parameterizes a disk onto the unit square without flipped triangles.
+/// \param disk a TriMesh homeomorphic to a disk (exactly one boundary loop), manifold, no degenerate
+///   faces, faces oriented consistently (CCW or CW globally). Every UV triangle of the result has the
+///   same orientation as its face's vertex order (uv signed area > 0), whatever the 3-D winding.
+/// \param boundary_loop the boundary vertex cycle (either direction, as analyze_topology() gives it);
+///   empty to compute it.
+/// \throw TopologyError not a disk (no boundary, several loops, several components, non-manifold)
+/// \throw SolverError sparse solve failure
+/// \throw CancelledError the progress callback returned false
+DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& boundary_loop,
+                                  const DiskParamOptions& options = {});
+
+}  // namespace adaptex

@@ -1,0 +1,101 @@
+#pragma once
+/// \file floater.h
+/// Tutte-type barycentric embedding of a disk onto a convex domain (thesis §2.2): Floater 1997
+/// shape-preserving weights ("Parametrization and smooth approximation of surface triangulations",
+/// CAGD 14), Floater 2003 mean-value weights ("Mean value coordinates", CAGD 20), the boundary
+/// mapped to the unit square by arc length, and a reusable sparse solver for the linear system
+///   ψ(v) - Σ_{w∈N_v∩V_I} λ_vw ψ(w) = Σ_{w∈N_v∩V_B} λ_vw ψ(w),   v ∈ V_I.
+#include <array>
+#include <memory>
+#include <vector>
+
+#include "adaptex/core/mesh.h"
+
+namespace adaptex {
+
+/// Barycentric weights of the initial (Tutte-type) embedding.
+enum class EmbeddingWeights {
+  ShapePreserving,  ///< Floater 1997 shape-preserving weights (the thesis' choice).
+  MeanValue,        ///< Floater 2003 mean-value coordinates.
+};
+
+/// Strictly positive convex weights λ_vw (each interior row sums to 1), in CSR form by vertex.
+/// Boundary vertices have empty rows.
+struct ConvexWeights {
+  std::vector<int> offsets;     ///< V+1 row offsets into neighbors / values.
+  std::vector<int> neighbors;   ///< Neighbour vertex w of each entry (one-ring order, CCW by face order).
+  std::vector<double> values;   ///< λ_vw of each entry, > 0.
+  int num_vertices() const { return static_cast<int>(offsets.size()) - 1; }
+};
+
+/// The disk boundary placed on a convex domain.
+struct DiskBoundary {
+  std::vector<int> loop;        ///< Boundary vertex cycle, ordered like the face winding (disk on the left).
+  std::vector<Vec2> uv;         ///< Position of loop[i] (same size as loop).
+  std::array<int, 4> corners{}; ///< Indices into loop of the square's corners (0,0),(1,0),(1,1),(0,1).
+  bool on_square = true;        ///< False: no valid corner choice exists (more than 4 "ear" triangles
+                                ///< or chords); the boundary was put on the circle inscribed in [0,1]².
+};
+
+/// Orients \p loop like the faces of \p disk (so that a counter-clockwise image of the loop gives
+/// positively oriented UV triangles) and maps it to the boundary of [0,1]² by arc length.
+/// Corner choice: for many start positions s along the loop, the four corners are the boundary
+/// vertices nearest to arc length s, s+L/4, s+L/2, s+3L/4; a choice is valid when no edge that is not a
+/// boundary edge joins two vertices of the same side (such a "chord" would collapse the triangles
+/// between them: Floater 2003 one-to-one condition for weakly convex boundaries) and every "ear"
+/// (boundary vertex with a single face) is a corner. Among valid choices the one whose corners have the
+/// smallest summed 3-D boundary angle (the most corner-like vertices) wins. If none is valid the loop is
+/// mapped to the inscribed circle (strictly convex: always valid).
+/// \pre \p loop is the only boundary cycle of \p disk (either direction), disk is a manifold disk.
+/// \throw TopologyError the loop is shorter than 3 vertices or is not a boundary cycle of \p disk
+DiskBoundary map_boundary_to_square(const TriMesh& disk, const std::vector<int>& loop);
+
+/// Embedding weights for every vertex not flagged in \p is_boundary (size V).
+/// ShapePreserving: Floater's local geodesic polar map of the one-ring (angles scaled to sum 2π,
+/// lengths kept), then for each neighbour w_i the barycentric coordinates of v in the triangle
+/// (p_i, p_r, p_{r+1}) containing v, averaged over the d neighbours (thesis §2.2). Where the polar map
+/// has an angle ≥ π (coordinates would not be positive) the vertex falls back to mean-value weights.
+/// MeanValue: λ_i ∝ (tan(α_{i-1}/2) + tan(α_i/2)) / |w_i - v| with the 3-D angles α.
+/// \pre disk is manifold; every non-boundary vertex has a closed one-ring.
+/// \throw TopologyError an interior vertex has an open or non-manifold one-ring
+ConvexWeights compute_embedding_weights(const TriMesh& disk, const std::vector<char>& is_boundary,
+                                        EmbeddingWeights weights);
+
+/// Sparse solver of the Tutte system for a fixed sparsity pattern. The symbolic analysis (fill-reducing
+/// ordering) is done once; solve() refactorizes numerically for new weights with the same pattern, so
+/// the Yoshizawa iterations only pay the numeric factorization (after geometry-central's
+/// PositiveDefiniteSolver / SquareSolver).
+class TutteSolver {
+ public:
+  /// Linear-algebra backend.
+  enum class Backend {
+    Umfpack,   ///< SuiteSparse UMFPACK LU (default: fastest measured, see docs/parameterization.md).
+    SparseLU,  ///< Eigen::SparseLU (supernodal LU, no extra library).
+    BiCgStab,  ///< Eigen::BiCGSTAB with incomplete-LU preconditioner, warm-started from the current uv.
+  };
+  /// \param pattern weights whose sparsity pattern every later solve() uses.
+  /// \param is_boundary V flags; boundary vertices are fixed.
+  TutteSolver(const ConvexWeights& pattern, const std::vector<char>& is_boundary,
+              Backend backend = Backend::Umfpack);
+  ~TutteSolver();
+  TutteSolver(const TutteSolver&) = delete;
+  TutteSolver& operator=(const TutteSolver&) = delete;
+
+  /// Solves for the interior positions. \p uv (size V): boundary entries are read (the fixed boundary),
+  /// interior entries are overwritten (and used as the initial guess by BiCgStab).
+  /// \pre weights has the pattern given at construction.
+  /// \throw SolverError factorization or convergence failure
+  void solve(const ConvexWeights& weights, std::vector<Vec2>& uv);
+
+  Backend backend() const { return backend_; }
+  int num_interior() const { return static_cast<int>(interior_.size()); }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  Backend backend_;
+  std::vector<int> interior_;   ///< Interior vertex of each unknown.
+  std::vector<int> unknown_;    ///< V: unknown index of each vertex (-1 on the boundary).
+};
+
+}  // namespace adaptex

@@ -1,0 +1,457 @@
+/// \file floater.cpp
+/// Floater shape-preserving / mean-value weights, square boundary, Tutte system solver (§2.2).
+#include "adaptex/param/floater.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <unordered_map>
+
+#include "adaptex/core/errors.h"
+
+#ifdef ADAPTEX_HAVE_UMFPACK
+#include <Eigen/UmfPackSupport>
+#endif
+
+namespace adaptex {
+
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+/// For every vertex, the pairs (b, c) of its incident faces (v, b, c) in face order, CSR.
+struct CornerPairs {
+  std::vector<int> offsets;
+  std::vector<std::array<int, 2>> pairs;
+};
+
+CornerPairs corner_pairs(const TriMesh& m) {
+  CornerPairs cp;
+  const int nv = m.num_vertices();
+  cp.offsets.assign(nv + 1, 0);
+  for (const Face& f : m.faces)
+    for (int k = 0; k < 3; ++k) ++cp.offsets[f[k] + 1];
+  for (int v = 0; v < nv; ++v) cp.offsets[v + 1] += cp.offsets[v];
+  cp.pairs.resize(cp.offsets.back());
+  std::vector<int> fill(cp.offsets.begin(), cp.offsets.end() - 1);
+  for (const Face& f : m.faces)
+    for (int k = 0; k < 3; ++k) cp.pairs[fill[f[k]]++] = {f[(k + 1) % 3], f[(k + 2) % 3]};
+  return cp;
+}
+
+/// The closed one-ring of interior vertex v in face order (w_{i+1} follows w_i around v).
+/// Returns false if the fan is not a single closed cycle.
+bool ordered_ring(const CornerPairs& cp, int v, std::vector<int>& ring) {
+  const int b = cp.offsets[v], e = cp.offsets[v + 1];
+  const int d = e - b;
+  ring.clear();
+  if (d < 3) return false;
+  int cur = cp.pairs[b][0];
+  for (int step = 0; step < d; ++step) {
+    ring.push_back(cur);
+    int nxt = -1;
+    for (int k = b; k < e; ++k)
+      if (cp.pairs[k][0] == cur) {
+        if (nxt != -1) return false;
+        nxt = cp.pairs[k][1];
+      }
+    if (nxt == -1) return false;
+    cur = nxt;
+  }
+  return cur == ring.front();
+}
+
+/// tan(α/2) of the angle between a and b, stable form |a×b| / (|a||b| + a·b).
+double tan_half(const Vec3& a, const Vec3& b) {
+  const double cr = a.cross(b).norm();
+  const double den = a.norm() * b.norm() + a.dot(b);
+  return den > 0 ? cr / den : std::numeric_limits<double>::infinity();
+}
+
+bool mean_value_row(const TriMesh& m, int v, const std::vector<int>& ring, double* out) {
+  const int d = static_cast<int>(ring.size());
+  const Vec3& p = m.positions[v];
+  double sum = 0;
+  for (int i = 0; i < d; ++i) {
+    const Vec3 e = m.positions[ring[i]] - p;
+    const Vec3 eprev = m.positions[ring[(i + d - 1) % d]] - p;
+    const Vec3 enext = m.positions[ring[(i + 1) % d]] - p;
+    const double len = e.norm();
+    out[i] = (tan_half(eprev, e) + tan_half(e, enext)) / len;
+    sum += out[i];
+  }
+  if (!(sum > 0) || !std::isfinite(sum)) return false;
+  for (int i = 0; i < d; ++i) out[i] /= sum;
+  return true;
+}
+
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// Floater 1997 shape-preserving row. False when the polar map has an angle >= π or a coordinate
+/// would not be strictly positive (the caller falls back to mean-value weights).
+bool shape_preserving_row(const TriMesh& m, int v, const std::vector<int>& ring, double* out,
+                          std::vector<Vec2>& polar, std::vector<double>& phi) {
+  const int d = static_cast<int>(ring.size());
+  const Vec3& p = m.positions[v];
+  phi.assign(d + 1, 0.0);
+  for (int i = 0; i < d; ++i) {
+    const Vec3 a = m.positions[ring[i]] - p, b = m.positions[ring[(i + 1) % d]] - p;
+    phi[i + 1] = phi[i] + std::atan2(a.cross(b).norm(), a.dot(b));
+  }
+  const double total = phi[d];
+  if (!(total > 0)) return false;
+  const double scale = 2 * std::numbers::pi / total;
+  polar.resize(d);
+  for (int i = 0; i < d; ++i) {
+    const double ang = phi[i] * scale;
+    if ((phi[i + 1] - phi[i]) * scale >= std::numbers::pi) return false;
+    const double r = (m.positions[ring[i]] - p).norm();
+    polar[i] = Vec2(r * std::cos(ang), r * std::sin(ang));
+  }
+  std::fill(out, out + d, 0.0);
+  if (d == 3) {
+    const double area = cross2(polar[1] - polar[0], polar[2] - polar[0]);
+    for (int i = 0; i < 3; ++i)
+      out[i] = cross2(polar[(i + 1) % 3], polar[(i + 2) % 3]) / area;  // area(O, p_{i+1}, p_{i+2})
+  } else {
+    for (int i = 0; i < d; ++i) {
+      // Find r with the origin in triangle (p_i, p_r, p_{r+1}): the ray from p_i through O leaves the
+      // polygon between p_r and p_{r+1}, i.e. cross(p_r, -p_i) >= 0 > cross(p_{r+1}, -p_i) ... scan.
+      const Vec2 dir = -polar[i];
+      int r = -1;
+      for (int k = 1; k < d - 1; ++k) {
+        const int a = (i + k) % d, b = (i + k + 1) % d;
+        if (cross2(polar[a], dir) >= 0 && cross2(dir, polar[b]) > 0) {
+          r = a;
+          break;
+        }
+      }
+      if (r < 0) return false;
+      const int r1 = (r + 1) % d;
+      const Vec2 &A = polar[i], &B = polar[r], &C = polar[r1];
+      const double area = cross2(B - A, C - A);
+      if (!(area > 0)) return false;
+      const double la = cross2(B, C) / area;  // area(O,B,C)/area(A,B,C)
+      const double lb = cross2(C, A) / area;
+      const double lc = cross2(A, B) / area;
+      if (la < 0 || lb < 0 || lc < 0) return false;
+      out[i] += la;
+      out[r] += lb;
+      out[r1] += lc;
+    }
+    for (int i = 0; i < d; ++i) out[i] /= d;
+  }
+  double sum = 0;
+  for (int i = 0; i < d; ++i) {
+    if (!(out[i] > 0)) return false;
+    sum += out[i];
+  }
+  for (int i = 0; i < d; ++i) out[i] /= sum;
+  return true;
+}
+
+}  // namespace
+
+ConvexWeights compute_embedding_weights(const TriMesh& disk, const std::vector<char>& is_boundary,
+                                        EmbeddingWeights weights) {
+  const int nv = disk.num_vertices();
+  const CornerPairs cp = corner_pairs(disk);
+  ConvexWeights w;
+  w.offsets.assign(nv + 1, 0);
+  for (int v = 0; v < nv; ++v)
+    w.offsets[v + 1] = w.offsets[v] + (is_boundary[v] ? 0 : cp.offsets[v + 1] - cp.offsets[v]);
+  w.neighbors.assign(w.offsets.back(), -1);
+  w.values.assign(w.offsets.back(), 0.0);
+  std::atomic<int> bad_vertex{-1};
+  tbb::parallel_for(tbb::blocked_range<int>(0, nv, 2048), [&](const tbb::blocked_range<int>& r) {
+    std::vector<int> ring;
+    std::vector<Vec2> polar;
+    std::vector<double> phi;
+    for (int v = r.begin(); v != r.end(); ++v) {
+      if (is_boundary[v]) continue;
+      if (cp.offsets[v + 1] == cp.offsets[v]) continue;  // isolated vertex: empty row
+      if (!ordered_ring(cp, v, ring)) {
+        bad_vertex = v;
+        continue;
+      }
+      double* out = w.values.data() + w.offsets[v];
+      std::copy(ring.begin(), ring.end(), w.neighbors.begin() + w.offsets[v]);
+      bool ok = weights == EmbeddingWeights::ShapePreserving &&
+                shape_preserving_row(disk, v, ring, out, polar, phi);
+      if (!ok) ok = mean_value_row(disk, v, ring, out);
+      if (!ok) {  // only for degenerate geometry: uniform (Tutte) weights
+        for (size_t i = 0; i < ring.size(); ++i) out[i] = 1.0 / static_cast<double>(ring.size());
+      }
+    }
+  });
+  if (bad_vertex >= 0)
+    throw TopologyError("interior vertex " + std::to_string(bad_vertex.load()) +
+                        " has an open or non-manifold one-ring; the mesh is not a disk");
+  return w;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Boundary on the square.
+
+DiskBoundary map_boundary_to_square(const TriMesh& disk, const std::vector<int>& loop_in) {
+  const int n = static_cast<int>(loop_in.size());
+  if (n < 3)
+    throw TopologyError("disk boundary loop has " + std::to_string(n) + " vertices (need at least 3)");
+  const int nv = disk.num_vertices();
+  // Directed face edges a->b, to orient the loop and to find chords and ears.
+  std::unordered_map<long long, int> directed;  // key a*nv+b -> count
+  directed.reserve(disk.faces.size() * 3);
+  auto key = [nv](int a, int b) { return static_cast<long long>(a) * nv + b; };
+  for (const Face& f : disk.faces)
+    for (int k = 0; k < 3; ++k) ++directed[key(f[k], f[(k + 1) % 3])];
+  DiskBoundary out;
+  out.loop = loop_in;
+  const bool fwd = directed.count(key(loop_in[0], loop_in[1])) > 0;
+  const bool bwd = directed.count(key(loop_in[1], loop_in[0])) > 0;
+  if (fwd == bwd)
+    throw TopologyError("boundary loop edge (" + std::to_string(loop_in[0]) + "," +
+                        std::to_string(loop_in[1]) + ") is not a boundary edge of the disk");
+  if (!fwd) std::reverse(out.loop.begin(), out.loop.end());
+  const auto& loop = out.loop;
+
+  std::vector<int> pos(nv, -1);
+  for (int i = 0; i < n; ++i) pos[loop[i]] = i;
+  // Arc length.
+  std::vector<double> arc(n + 1, 0.0);
+  for (int i = 0; i < n; ++i)
+    arc[i + 1] = arc[i] + (disk.positions[loop[(i + 1) % n]] - disk.positions[loop[i]]).norm();
+  const double total = arc[n];
+  // Chords: edges between two boundary vertices that are not consecutive on the loop.
+  std::vector<std::array<int, 2>> chords;
+  std::vector<int> faces_at(n, 0);
+  std::vector<double> angle_at(n, 0.0);
+  for (const Face& f : disk.faces)
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[k], b = f[(k + 1) % 3];
+      if (pos[a] >= 0) {
+        ++faces_at[pos[a]];
+        const Vec3 e1 = disk.positions[b] - disk.positions[a];
+        const Vec3 e2 = disk.positions[f[(k + 2) % 3]] - disk.positions[a];
+        angle_at[pos[a]] += std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+      }
+      if (pos[a] < 0 || pos[b] < 0 || a > b) continue;
+      const int d = std::abs(pos[a] - pos[b]);
+      if (d == 1 || d == n - 1) {
+        // Consecutive on the loop: a chord only if the edge is interior (two faces).
+        if (!(directed.count(key(a, b)) && directed.count(key(b, a)))) continue;
+      }
+      chords.push_back({pos[a], pos[b]});
+    }
+  std::vector<int> ears;
+  for (int i = 0; i < n; ++i)
+    if (faces_at[i] == 1) ears.push_back(i);
+
+  // Validity of a corner set c0 < c1 < c2 < c3 (loop indices, sorted cyclically from c0).
+  auto side_of = [&](const std::array<int, 4>& c, int i) {  // side index in [0,4) of a non-corner
+    const int rel = (i - c[0] + n) % n;
+    int s = 0;
+    while (s < 3 && rel > (c[s + 1] - c[0] + n) % n) ++s;
+    return s;
+  };
+  auto valid = [&](const std::array<int, 4>& c) {
+    for (int k = 0; k < 4; ++k)
+      if (c[k] == c[(k + 1) % 4]) return false;
+    for (int e : ears)
+      if (std::find(c.begin(), c.end(), e) == c.end()) return false;
+    auto sides = [&](int i) {  // bitmask of the sides containing loop index i
+      for (int k = 0; k < 4; ++k)
+        if (c[k] == i) return (1 << k) | (1 << ((k + 3) % 4));
+      return 1 << side_of(c, i);
+    };
+    for (const auto& ch : chords)
+      if (sides(ch[0]) & sides(ch[1])) return false;
+    return true;
+  };
+  auto nearest_vertex = [&](double s) {
+    s = std::fmod(s, total);
+    if (s < 0) s += total;
+    const int i = static_cast<int>(std::upper_bound(arc.begin(), arc.end(), s) - arc.begin()) - 1;
+    const int j = std::min(i, n - 1);
+    return (s - arc[j] <= arc[j + 1] - s) ? j : (j + 1) % n;
+  };
+  std::array<int, 4> best{};
+  double best_score = std::numeric_limits<double>::infinity();
+  const int trials = std::min(n, 256);
+  for (int t = 0; t < trials; ++t) {
+    const double s0 = arc[static_cast<int>(static_cast<long long>(t) * n / trials)];
+    std::array<int, 4> c;
+    for (int k = 0; k < 4; ++k) c[k] = nearest_vertex(s0 + k * total / 4);
+    // With at most 4 ears, snap each ear to the nearest quarter slot.
+    if (!ears.empty() && ears.size() <= 4) {
+      std::array<bool, 4> used{};
+      for (int e : ears) {
+        int bk = -1;
+        double bd = 1e300;
+        for (int k = 0; k < 4; ++k) {
+          if (used[k]) continue;
+          double dist = std::abs(arc[e] - arc[c[k]]);
+          dist = std::min(dist, total - dist);
+          if (dist < bd) bd = dist, bk = k;
+        }
+        used[bk] = true;
+        c[bk] = e;
+      }
+    }
+    // Sort cyclically starting at c[0].
+    std::array<int, 4> sorted = c;
+    std::sort(sorted.begin(), sorted.end(), [&](int a, int b) { return (a - c[0] + n) % n < (b - c[0] + n) % n; });
+    if (!valid(sorted)) continue;
+    double score = 0;  // smallest summed interior angle = most corner-like; plus arc-length balance
+    for (int k = 0; k < 4; ++k) {
+      const double len = std::fmod(arc[sorted[(k + 1) % 4]] - arc[sorted[k]] + total, total);
+      score += angle_at[sorted[k]] + 2.0 * std::abs(len / total - 0.25);
+    }
+    if (score < best_score) best_score = score, best = sorted;
+  }
+  out.uv.resize(n);
+  if (std::isfinite(best_score)) {
+    // Rotate so that corner 0 of the square is at the start of the list.
+    out.corners = best;
+    static const Vec2 sq[5] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0, 0}};
+    for (int k = 0; k < 4; ++k) {
+      const int a = best[k], b = best[(k + 1) % 4];
+      const double len = std::fmod(arc[b] - arc[a] + total, total);
+      for (int i = a;; i = (i + 1) % n) {
+        const double s = std::fmod(arc[i] - arc[a] + total, total);
+        const double t = (i == a || len <= 0) ? 0.0 : std::min(1.0, s / len);
+        out.uv[i] = (1 - t) * sq[k] + t * sq[k + 1];
+        if ((i + 1) % n == b) break;
+      }
+    }
+  } else {
+    out.on_square = false;
+    out.corners = {0, n / 4, n / 2, 3 * n / 4};
+    for (int i = 0; i < n; ++i) {
+      const double ang = 2 * std::numbers::pi * arc[i] / total;
+      out.uv[i] = Vec2(0.5 + 0.5 * std::cos(ang), 0.5 + 0.5 * std::sin(ang));
+    }
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Solver.
+
+struct TutteSolver::Impl {
+  SpMat A;
+#ifdef ADAPTEX_HAVE_UMFPACK
+  Eigen::UmfPackLU<SpMat> umf;
+#endif
+  Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu;
+  Eigen::BiCGSTAB<SpMat, Eigen::IncompleteLUT<double>> bicg;
+  bool analyzed = false;
+};
+
+TutteSolver::TutteSolver(const ConvexWeights& pattern, const std::vector<char>& is_boundary,
+                         Backend backend)
+    : impl_(std::make_unique<Impl>()), backend_(backend) {
+#ifndef ADAPTEX_HAVE_UMFPACK
+  if (backend_ == Backend::Umfpack) backend_ = Backend::SparseLU;
+#endif
+  const int nv = pattern.num_vertices();
+  unknown_.assign(nv, -1);
+  for (int v = 0; v < nv; ++v)
+    if (!is_boundary[v]) {
+      unknown_[v] = static_cast<int>(interior_.size());
+      interior_.push_back(v);
+    }
+  const int n = num_interior();
+  // Pattern: diagonal + interior neighbours, compressed column storage of A^T rows... build directly.
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(pattern.values.size() + n);
+  for (int i = 0; i < n; ++i) {
+    const int v = interior_[i];
+    trip.emplace_back(i, i, 1.0);
+    for (int k = pattern.offsets[v]; k < pattern.offsets[v + 1]; ++k)
+      if (unknown_[pattern.neighbors[k]] >= 0) trip.emplace_back(i, unknown_[pattern.neighbors[k]], 0.0);
+  }
+  impl_->A.resize(n, n);
+  impl_->A.setFromTriplets(trip.begin(), trip.end());
+  impl_->A.makeCompressed();
+}
+
+TutteSolver::~TutteSolver() = default;
+
+void TutteSolver::solve(const ConvexWeights& w, std::vector<Vec2>& uv) {
+  const int n = num_interior();
+  if (n == 0) return;
+  SpMat& A = impl_->A;
+  // Fill values: A(i,i) = 1, A(i,j) = -λ; rhs = Σ_boundary λ ψ(w).
+  std::fill(A.valuePtr(), A.valuePtr() + A.nonZeros(), 0.0);
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2);
+  // Column-major storage: set entry (i, j) via coeffRef is O(log) per entry; use a row->col lookup.
+  // A is column-major, so A(i, j) lives in column j. Build values by scanning rows via the transposed
+  // pattern would be faster; coeffRef on a compressed matrix with sorted inner indices is a binary
+  // search, fine for our valences.
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 4096), [&](const tbb::blocked_range<int>& r) {
+    for (int i = r.begin(); i != r.end(); ++i) {
+      const int v = interior_[i];
+      for (int k = w.offsets[v]; k < w.offsets[v + 1]; ++k) {
+        const int nb = w.neighbors[k];
+        if (unknown_[nb] < 0) rhs.row(i) += w.values[k] * uv[nb].transpose();
+      }
+    }
+  });
+  for (int i = 0; i < n; ++i) {
+    const int v = interior_[i];
+    A.coeffRef(i, i) = 1.0;
+    for (int k = w.offsets[v]; k < w.offsets[v + 1]; ++k) {
+      const int j = unknown_[w.neighbors[k]];
+      if (j >= 0) A.coeffRef(i, j) -= w.values[k];
+    }
+  }
+  Eigen::MatrixX2d x(n, 2);
+  auto fail = [](const char* what) {
+    throw SolverError(std::string("Tutte system: ") + what);
+  };
+  switch (backend_) {
+#ifdef ADAPTEX_HAVE_UMFPACK
+    case Backend::Umfpack: {
+      if (!impl_->analyzed) impl_->umf.analyzePattern(A), impl_->analyzed = true;
+      impl_->umf.factorize(A);
+      if (impl_->umf.info() != Eigen::Success) fail("UMFPACK factorization failed");
+      x = impl_->umf.solve(rhs);
+      break;
+    }
+#else
+    case Backend::Umfpack:
+#endif
+    case Backend::SparseLU: {
+      if (!impl_->analyzed) impl_->lu.analyzePattern(A), impl_->analyzed = true;
+      impl_->lu.factorize(A);
+      if (impl_->lu.info() != Eigen::Success) fail("SparseLU factorization failed");
+      x = impl_->lu.solve(rhs);
+      break;
+    }
+    case Backend::BiCgStab: {
+      impl_->bicg.setTolerance(1e-10);
+      impl_->bicg.setMaxIterations(std::max(1000, n));
+      impl_->bicg.compute(A);
+      if (impl_->bicg.info() != Eigen::Success) fail("incomplete LU failed");
+      for (int c = 0; c < 2; ++c) {
+        Eigen::VectorXd x0(n);
+        for (int i = 0; i < n; ++i) x0[i] = uv[interior_[i]][c];
+        x.col(c) = impl_->bicg.solveWithGuess(rhs.col(c), x0);
+        if (impl_->bicg.info() != Eigen::Success) fail("BiCGSTAB did not converge");
+      }
+      break;
+    }
+  }
+  if (!x.allFinite()) fail("solution is not finite");
+  for (int i = 0; i < n; ++i) uv[interior_[i]] = x.row(i).transpose();
+}
+
+}  // namespace adaptex

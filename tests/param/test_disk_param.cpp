@@ -1,0 +1,128 @@
+// parameterize_disk(): Floater + Yoshizawa on disks built in code (and the two open shared meshes).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/core/shapes.h"
+#include "adaptex/core/topology.h"
+#include "adaptex/param/disk_param.h"
+#include "adaptex/param/stretch.h"
+#include "disk_fixtures.h"
+
+using namespace adaptex;
+using adaptex::test::as_param;
+
+namespace {
+
+/// Every property a valid disk parameterization has.
+void expect_valid_layout(const std::string& name, const TriMesh& m, const DiskParamResult& r) {
+  SCOPED_TRACE(name);
+  ASSERT_EQ(r.uv.size(), m.positions.size());
+  const Parameterization p = as_param(m, r.uv);
+  const StretchStats st = measure_stretch(m, p);
+  EXPECT_EQ(st.flipped, 0);
+  EXPECT_EQ(st.degenerate, 0);
+  for (int f = 0; f < m.num_faces(); ++f) ASSERT_GT(uv_signed_area(p, f), 0.0) << "face " << f;
+  EXPECT_EQ(count_overlapping_triangles(p), 0);
+  EXPECT_TRUE(std::isfinite(r.final_l2));
+  EXPECT_GE(r.final_l2, 1.0 - 1e-9);
+  EXPECT_LE(r.final_l2, r.floater_l2);
+  // Boundary on the square (or the inscribed circle), interior strictly inside.
+  const MeshTopology topo = analyze_topology(m);
+  std::vector<char> on_b(m.positions.size(), 0);
+  for (int v : topo.boundary_loops.at(0)) on_b[v] = 1;
+  for (size_t v = 0; v < r.uv.size(); ++v) {
+    const Vec2& t = r.uv[v];
+    ASSERT_TRUE(t.x() >= -1e-12 && t.x() <= 1 + 1e-12 && t.y() >= -1e-12 && t.y() <= 1 + 1e-12)
+        << "vertex " << v << " at " << t.transpose();
+    if (!on_b[v]) continue;
+    if (r.on_square) {
+      const double d = std::min({t.x(), 1 - t.x(), t.y(), 1 - t.y()});
+      EXPECT_NEAR(d, 0.0, 1e-12) << "boundary vertex " << v;
+    } else {
+      EXPECT_NEAR((t - Vec2(0.5, 0.5)).norm(), 0.5, 1e-12) << "boundary vertex " << v;
+    }
+  }
+}
+
+}  // namespace
+
+TEST(DiskParam, FloaterAndYoshizawaOnEveryTestDisk) {
+  for (const auto& d : adaptex::test::test_disks()) {
+    for (EmbeddingWeights w : {EmbeddingWeights::ShapePreserving, EmbeddingWeights::MeanValue}) {
+      DiskParamOptions opt;
+      opt.weights = w;
+      opt.yoshizawa = false;
+      const DiskParamResult floater = parameterize_disk(d.mesh, {}, opt);
+      expect_valid_layout(d.name + (w == EmbeddingWeights::MeanValue ? "/mvc" : "/floater"), d.mesh,
+                          floater);
+      EXPECT_EQ(floater.iterations, 0);
+      opt.yoshizawa = true;
+      const DiskParamResult yosh = parameterize_disk(d.mesh, {}, opt);
+      expect_valid_layout(d.name + "/yoshizawa", d.mesh, yosh);
+      EXPECT_DOUBLE_EQ(yosh.floater_l2, floater.final_l2) << d.name;
+      if (d.curved) {
+        EXPECT_LT(yosh.final_l2, yosh.floater_l2 * 0.999) << d.name;
+        EXPECT_GE(yosh.iterations, 1) << d.name;
+      }
+    }
+  }
+}
+
+TEST(DiskParam, PlaneIsReproducedIsometrically) {
+  // The unit plane's own coordinates are an embedding onto the square with identical shape: the
+  // shape-preserving weights reproduce it exactly (linear precision), so L2 = 1.
+  const TriMesh m = shapes::plane(10);
+  DiskParamOptions opt;
+  opt.yoshizawa = false;
+  const DiskParamResult r = parameterize_disk(m, {}, opt);
+  EXPECT_NEAR(r.final_l2, 1.0, 1e-9);
+  EXPECT_TRUE(r.on_square);
+}
+
+TEST(DiskParam, SixEarsFallsBackToCircle) {
+  const DiskParamResult r = parameterize_disk(adaptex::test::six_ears(), {});
+  EXPECT_FALSE(r.on_square);
+}
+
+TEST(DiskParam, GivenLoopInEitherDirection) {
+  const TriMesh m = adaptex::test::hemisphere(16);
+  std::vector<int> loop = analyze_topology(m).boundary_loops.at(0);
+  DiskParamOptions opt;
+  opt.yoshizawa = false;
+  const DiskParamResult a = parameterize_disk(m, loop, opt);
+  std::reverse(loop.begin(), loop.end());
+  const DiskParamResult b = parameterize_disk(m, loop, opt);
+  expect_valid_layout("forward", m, a);
+  expect_valid_layout("backward", m, b);
+  EXPECT_NEAR(a.final_l2, b.final_l2, 1e-9);
+}
+
+TEST(DiskParam, BackendsAgree) {
+  const TriMesh m = adaptex::test::bump(12);
+  DiskParamOptions opt;
+  opt.max_iterations = 3;
+  opt.min_improvement = 0;
+  opt.backend = TutteSolver::Backend::Umfpack;
+  const DiskParamResult a = parameterize_disk(m, {}, opt);
+  for (auto b : {TutteSolver::Backend::SparseLU, TutteSolver::Backend::BiCgStab}) {
+    opt.backend = b;
+    const DiskParamResult r = parameterize_disk(m, {}, opt);
+    ASSERT_EQ(r.uv.size(), a.uv.size());
+    for (size_t v = 0; v < r.uv.size(); ++v) EXPECT_NEAR((r.uv[v] - a.uv[v]).norm(), 0.0, 1e-7);
+  }
+}
+
+TEST(DiskParam, RejectsNonDisks) {
+  EXPECT_THROW(parameterize_disk(shapes::sphere(8, 6), {}), TopologyError);
+  EXPECT_THROW(parameterize_disk(shapes::open_cylinder(8, 3), {}), TopologyError);
+  EXPECT_THROW(parameterize_disk(shapes::disk_with_holes(2, 12), {}), TopologyError);
+  EXPECT_THROW(parameterize_disk(TriMesh{}, {}), TopologyError);
+}
+
+TEST(DiskParam, CancelThrows) {
+  DiskParamOptions opt;
+  opt.progress = [](std::string_view phase, double) { return phase != "yoshizawa"; };
+  EXPECT_THROW(parameterize_disk(adaptex::test::bump(8), {}, opt), CancelledError);
+}
