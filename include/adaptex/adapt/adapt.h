@@ -1,0 +1,97 @@
+#pragma once
+/// \file adapt.h
+/// Signal-adaptive re-parameterization, the whole of thesis §3.5–§3.8 in one call, including the
+/// two-stage framework of §3.8: a coarse grid (default 16 cells) first gathers points in low-signal
+/// regions (shrinking them), then a fine grid (default 256 cells), relaxed in the domain already
+/// warped by the coarse stage, spreads points around high-signal detail (expanding it). The warps
+/// compose: new uv = fine(coarse(old uv)). The remap is flip-, degeneracy- and overlap-free
+/// (remap.h). Texture update: texture_update.h; the painting loop with history: session.h.
+#include <string>
+#include <vector>
+
+#include "adaptex/adapt/grid.h"
+#include "adaptex/adapt/importance.h"
+#include "adaptex/adapt/ls2.h"
+#include "adaptex/adapt/relax.h"
+#include "adaptex/adapt/remap.h"
+#include "adaptex/core/image.h"
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+#include "adaptex/core/progress.h"
+#include "adaptex/paint/texel_map.h"
+
+namespace adaptex {
+
+/// Which re-parameterization to run.
+enum class AdaptMode {
+  None,      ///< Keep the parameterization (the baseline of every comparison).
+  Single,    ///< One grid of fine_grid cells (thesis §3.7).
+  TwoStage,  ///< coarse_grid then fine_grid (thesis §3.8). Default.
+};
+
+/// Settings of adapt_parameterization(). Defaults are justified in docs/adaptive.md.
+struct AdaptOptions {
+  AdaptMode mode = AdaptMode::TwoStage;  ///< Single / two-stage / none.
+  int coarse_grid = 16;   ///< Cells per side of the coarse stage (two-stage only).
+  int fine_grid = 256;    ///< Cells per side of the fine stage (and of the single stage).
+  double alpha = 0.5;     ///< L_s² weight α of the geometry stretch where there is signal (§3.6).
+  double beta = 0.95;     ///< L_s² weight β of the signal stretch E_h (§3.6).
+  double min_weight = 0.02;  ///< Strictly positive lower clamp of L_s².
+  bool use_geometry_stretch = true;  ///< false: L2 = 0 everywhere (signal only, thesis Fig. 3.9e).
+  ImportanceOptions importance;      ///< Normalization of the Sobel importance map.
+  PoolMode pool = PoolMode::Mean;    ///< Sampling of L_s² at each grid's scale.
+  GridRing ring = GridRing::Eight;   ///< 1-ring of the relaxation.
+  double epsilon_texels = 0.05;      ///< Stop a stage when the largest move < this many texels.
+  int max_iterations = 300;          ///< Sweep cap of each stage.
+  SafeRemapOptions remap;            ///< Flip / degeneracy / overlap guarantees of the remap.
+  /// Only when there is no signal at all (importance map zero): keep the result only if it lowers the
+  /// mesh L2 stretch, else try it damped by half, else keep the input (report.accepted = false).
+  bool geometry_safeguard = true;
+  ProgressCallback progress;  ///< Phases "importance", "stretch", "ls2", "coarse", "fine", "remap".
+};
+
+/// Timings (seconds) and figures of one re-parameterization. The texel-map / texture-update times are
+/// filled by the caller that updates the texture (PaintSession, `adaptex reparam`).
+struct AdaptReport {
+  AdaptMode mode = AdaptMode::TwoStage;
+  double time_importance = 0, time_stretch_map = 0, time_ls2 = 0;
+  double time_coarse = 0, time_fine = 0, time_remap = 0;
+  double time_texel_map = 0, time_texture_update = 0, time_safeguard = 0;
+  double time_total = 0;       ///< Everything above.
+  double l2_before = 0, l2_after = 0;  ///< Mesh L2 stretch (measure_stretch().l2, 1 = ideal).
+  double damping = 1;          ///< Blend factor of the applied warp: 1 = full warp, 0 = none.
+  int coarse_iterations = 0, fine_iterations = 0;  ///< Relaxation sweeps per stage.
+  int remap_checks = 0;        ///< Candidate layouts checked by safe_remap().
+  int flipped_after = 0, degenerate_after = 0;  ///< Always 0 (guaranteed by safe_remap()).
+  double signal_fraction = 0;  ///< Fraction of chart texels with E_h > 0.
+  bool accepted = true;        ///< false: a safeguard kept the previous parameterization.
+  double error_before = -1, error_after = -1;  ///< Safeguard error estimates (MSE), -1 if not run.
+};
+
+/// Result of adapt_parameterization().
+struct AdaptResult {
+  Parameterization param;  ///< The new parameterization (== input when not accepted / mode None).
+  AdaptReport report;
+  ImageF importance;       ///< E_h at texture resolution (§3.5).
+  ImageF stretch;          ///< Normalized geometry stretch map at texture resolution (Fig. 3.8).
+  ImageF ls2;              ///< L_s² at texture resolution (§3.6), before pooling.
+  GridWarp coarse;         ///< Optimized coarse grid (empty for Single / None).
+  GridWarp fine;           ///< Optimized fine grid (in the coarse-warped domain for TwoStage).
+  std::vector<const GridWarp*> warps() const;  ///< The non-empty warps in application order.
+};
+
+/// Re-parameterizes \p current from the signal of \p texture (drawn with \p current; \p current_map
+/// is its texel map, same size as the texture).
+/// \pre mesh, current and current_map are consistent; texture non-empty
+/// \throw InvalidInputError inconsistent sizes, bad options (grid < 1, α/β < 0, ...)
+/// \throw CancelledError the progress callback returned false
+AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current,
+                                   const ImageRGBA8& texture, const TexelMap& current_map,
+                                   const AdaptOptions& options = {});
+
+/// Name of a mode as used on the command line: "none", "single", "two-stage".
+const char* to_string(AdaptMode mode);
+/// Parses "none" / "single" / "two-stage". \throw InvalidInputError otherwise
+AdaptMode parse_adapt_mode(const std::string& name);
+
+}  // namespace adaptex

@@ -1,0 +1,40 @@
+#pragma once
+/// \file grid.h
+/// The uniform grid G of thesis §3.7.1 and the warp it defines (§3.7.2): an (n+1) x (n+1) lattice of
+/// points over [0,1]^2 whose point (i, j) starts at (i/n, j/n). After optimization the points have
+/// moved; the warp maps a point of uniform cell (i, j) to the bilinear interpolation of that cell's four
+/// moved corners. n counts *cells* per side, so a 16-cell coarse grid nests in a 256-cell fine grid.
+#include <vector>
+
+#include "adaptex/core/image.h"
+#include "adaptex/core/types.h"
+
+namespace adaptex {
+
+/// A grid warp of [0,1]^2. points has (n+1)^2 entries, row-major: index j * (n+1) + i.
+struct GridWarp {
+  int n = 0;                 ///< Cells per side (>= 1).
+  std::vector<Vec2> points;  ///< (n+1)^2 optimized point positions, in [0,1]^2.
+
+  /// The identity warp with \p cells cells per side. \pre cells >= 1 \throw InvalidInputError
+  static GridWarp uniform(int cells);
+  int side() const { return n + 1; }
+  Vec2& at(int i, int j) { return points[static_cast<size_t>(j) * (n + 1) + i]; }
+  const Vec2& at(int i, int j) const { return points[static_cast<size_t>(j) * (n + 1) + i]; }
+  /// Bilinear interpolation, in the uniform cell containing \p uv (clamped to [0,1]^2), of the cell's
+  /// four moved corners (thesis §3.7.2). The identity for a uniform grid.
+  Vec2 apply(const Vec2& uv) const;
+  /// (1 - t) * identity + t * this: the damped warp (t = 1 full warp, t = 0 identity).
+  GridWarp blended(double t) const;
+  /// Largest distance of a point from its uniform position.
+  double max_displacement() const;
+};
+
+/// Inverse of a grid warp sampled on a res x res raster: for each texel centre q
+/// ((i+0.5)/res, (j+0.5)/res), finds p with warp.apply(p) = q (Newton on the bilinear cell map) and
+/// returns field sampled bilinearly at p. Used to pull a weight field back into the domain warped by
+/// the coarse stage (two-stage composition, §3.8). Texels no cell covers (only possible for a folded
+/// warp) keep the value at q itself. Parallel over rows.
+/// \pre res >= 1; warp points inside [0,1]^2
+ImageF pull_back_field(const ImageF& field, const GridWarp& warp, int res);
+}  // namespace adaptex

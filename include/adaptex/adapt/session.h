@@ -1,0 +1,111 @@
+#pragma once
+/// \file session.h
+/// A painting session with signal-adaptive re-parameterization (the thesis' interactive loop,
+/// Fig. 3.1): the mesh, its current parameterization, the exact stroke history, a Painter for the
+/// current texture, and the re-parameterization policy. Used by `adaptex paint` and by the studio.
+///
+///   PaintSession s(mesh, unwrap(mesh).param, opts, history.background);
+///   for (auto& st : history.strokes) s.add_stroke(st);   // each-stroke mode re-parameterizes here
+///   s.finish();                                          // end mode re-parameterizes once here
+///   write(s.param(), s.texture());  json["adapt"] = adapt_reports_json(s.reports());
+///
+/// Never worse (safeguard): with a history, each candidate parameterization is judged by the
+/// reconstruction error of its replayed texture against the exact stroke signal on a fixed set of
+/// surface samples (uniform by area); the candidate, else the candidate damped by half, is kept only
+/// if its error is lower than the current one's; otherwise the session keeps its parameterization
+/// (report.accepted = false).
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "adaptex/adapt/adapt.h"
+#include "adaptex/adapt/texture_update.h"
+#include "adaptex/core/image.h"
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+#include "adaptex/paint/painter.h"
+#include "adaptex/paint/strokes.h"
+
+namespace adaptex {
+
+/// When a session re-parameterizes.
+enum class ReparamSchedule {
+  EachStroke,  ///< After every stroke (as the interactive app does).
+  End,         ///< Once, in finish().
+};
+
+/// Settings of a PaintSession.
+struct PaintSessionOptions {
+  int texture_size = 1024;  ///< Texture width = height in texels.
+  int padding = 4;          ///< Seam padding in texels.
+  AdaptOptions adapt;       ///< Re-parameterization settings; adapt.mode = None disables it.
+  ReparamSchedule schedule = ReparamSchedule::End;  ///< each-stroke | end.
+  TextureUpdate update = TextureUpdate::Replay;     ///< replay | resample.
+  bool safeguard = true;       ///< The "never worse" check described above (needs the history).
+  int safeguard_samples = 60000;  ///< Surface samples of the safeguard's error estimate.
+  /// Accept a candidate only if its estimated MSE is below (1 - margin) x the current one.
+  double safeguard_margin = 0.0;
+  std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
+};
+
+/// Parses "each-stroke" / "end". \throw InvalidInputError
+ReparamSchedule parse_reparam_schedule(const std::string& name);
+/// Parses "replay" / "resample". \throw InvalidInputError
+TextureUpdate parse_texture_update(const std::string& name);
+
+class PaintSession {
+ public:
+  /// \param mesh the surface (moved into the session)
+  /// \param initial its initial parameterization (e.g. unwrap(mesh).param)
+  /// \param background colour of unpainted surface (the history's background)
+  /// \throw InvalidInputError bad options or param/mesh mismatch
+  PaintSession(TriMesh mesh, Parameterization initial, const PaintSessionOptions& options,
+               const Vec3& background = Vec3(1, 1, 1));
+  ~PaintSession();
+  PaintSession(const PaintSession&) = delete;
+  PaintSession& operator=(const PaintSession&) = delete;
+
+  /// Paints a whole stroke, records it in the history, and in each-stroke mode re-parameterizes.
+  void add_stroke(const Stroke& stroke);
+  /// Interactive painting (studio): begin / dabs / end; end_stroke() records the stroke (with all its
+  /// dabs) and in each-stroke mode re-parameterizes. add_dab returns the touched texel rectangle.
+  void begin_stroke(const Stroke& style);
+  std::array<int, 4> add_dab(const Vec3& centre);
+  void end_stroke();
+  /// End mode: re-parameterizes once (no-op in each-stroke mode or with mode None).
+  void finish();
+  /// Re-parameterizes now, whatever the schedule. \return the report (also appended to reports()).
+  const AdaptReport& reparameterize();
+
+  const TriMesh& mesh() const;
+  const Parameterization& param() const;   ///< Current parameterization.
+  const ImageRGBA8& texture();             ///< Current texture (padded).
+  const TexelMap& texel_map() const;       ///< Texel map of the current parameterization.
+  const StrokeFile& history() const;       ///< Every stroke painted so far.
+  const std::vector<AdaptReport>& reports() const;  ///< One per re-parameterization.
+  const AdaptResult* last_result() const;  ///< Maps / grids of the last re-parameterization (or null).
+  const PaintSessionOptions& options() const;
+  Painter& painter();                      ///< The painter of the current parameterization.
+  /// Estimated reconstruction MSE of the current texture against the exact history signal on the
+  /// safeguard's surface samples (0 without strokes).
+  double estimate_error();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// JSON of one report (phase times in ms, stretch before/after, damping, iterations, accepted).
+void to_json(nlohmann::json& j, const AdaptReport& report);
+/// JSON array of reports plus totals: {"count", "total_ms", "reports": [...]}.
+nlohmann::json adapt_reports_json(const std::vector<AdaptReport>& reports);
+
+/// Writes the debug pictures of one re-parameterization into \p dir with file prefix \p prefix:
+/// importance, stretch, ls2 (grey levels), coarse/fine grids drawn over the L_s² map (thesis
+/// Figs. 3.8, 3.9). \throw IoError
+void write_debug_maps(const std::filesystem::path& dir, const std::string& prefix,
+                      const AdaptResult& result);
+
+}  // namespace adaptex

@@ -1,0 +1,114 @@
+// Grid warp of thesis §3.7.1/§3.7.2 and its sampled inverse (two-stage composition, §3.8).
+#include "adaptex/adapt/grid.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <string>
+
+#include "adaptex/core/errors.h"
+
+namespace adaptex {
+
+GridWarp GridWarp::uniform(int cells) {
+  if (cells < 1) throw InvalidInputError("grid must have at least 1 cell per side, got " + std::to_string(cells));
+  GridWarp g;
+  g.n = cells;
+  g.points.resize(static_cast<size_t>(cells + 1) * (cells + 1));
+  for (int j = 0; j <= cells; ++j)
+    for (int i = 0; i <= cells; ++i) g.at(i, j) = Vec2(double(i) / cells, double(j) / cells);
+  return g;
+}
+
+namespace {
+// Uniform cell of uv and local coordinates in it.
+inline void locate(int n, const Vec2& uv, int& ci, int& cj, double& s, double& t) {
+  const double x = std::clamp(uv.x(), 0.0, 1.0) * n, y = std::clamp(uv.y(), 0.0, 1.0) * n;
+  ci = std::min(static_cast<int>(x), n - 1);
+  cj = std::min(static_cast<int>(y), n - 1);
+  s = x - ci;
+  t = y - cj;
+}
+}  // namespace
+
+Vec2 GridWarp::apply(const Vec2& uv) const {
+  int ci, cj;
+  double s, t;
+  locate(n, uv, ci, cj, s, t);
+  const Vec2& p00 = at(ci, cj);
+  const Vec2& p10 = at(ci + 1, cj);
+  const Vec2& p01 = at(ci, cj + 1);
+  const Vec2& p11 = at(ci + 1, cj + 1);
+  return (1 - t) * ((1 - s) * p00 + s * p10) + t * ((1 - s) * p01 + s * p11);
+}
+
+GridWarp GridWarp::blended(double t) const {
+  GridWarp g = uniform(n);
+  for (size_t k = 0; k < points.size(); ++k) g.points[k] = (1 - t) * g.points[k] + t * points[k];
+  return g;
+}
+
+double GridWarp::max_displacement() const {
+  double m = 0;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      m = std::max(m, (at(i, j) - Vec2(double(i) / n, double(j) / n)).norm());
+  return m;
+}
+
+ImageF pull_back_field(const ImageF& field, const GridWarp& warp, int res) {
+  ImageF out(res, res, -1.0f);
+  const int n = warp.n;
+  // Rasterize every warped cell: for texel centres in its bounding box, invert the bilinear map by
+  // Newton from the cell centre; accept local coordinates inside [0,1]^2 (small tolerance).
+  tbb::parallel_for(0, n, [&](int cj) {
+    for (int ci = 0; ci < n; ++ci) {
+      const Vec2 p00 = warp.at(ci, cj), p10 = warp.at(ci + 1, cj);
+      const Vec2 p01 = warp.at(ci, cj + 1), p11 = warp.at(ci + 1, cj + 1);
+      const double xmin = std::min({p00.x(), p10.x(), p01.x(), p11.x()});
+      const double xmax = std::max({p00.x(), p10.x(), p01.x(), p11.x()});
+      const double ymin = std::min({p00.y(), p10.y(), p01.y(), p11.y()});
+      const double ymax = std::max({p00.y(), p10.y(), p01.y(), p11.y()});
+      const int i0 = std::max(0, static_cast<int>(std::ceil(xmin * res - 0.5)));
+      const int i1 = std::min(res - 1, static_cast<int>(std::floor(xmax * res - 0.5)));
+      const int j0 = std::max(0, static_cast<int>(std::ceil(ymin * res - 0.5)));
+      const int j1 = std::min(res - 1, static_cast<int>(std::floor(ymax * res - 0.5)));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          const Vec2 q((i + 0.5) / res, (j + 0.5) / res);
+          double s = 0.5, t = 0.5;
+          bool ok = false;
+          for (int it = 0; it < 12; ++it) {
+            const Vec2 f = (1 - t) * ((1 - s) * p00 + s * p10) + t * ((1 - s) * p01 + s * p11) - q;
+            const Vec2 ds = (1 - t) * (p10 - p00) + t * (p11 - p01);
+            const Vec2 dt = (1 - s) * (p01 - p00) + s * (p11 - p10);
+            const double det = ds.x() * dt.y() - ds.y() * dt.x();
+            if (std::abs(det) < 1e-300) break;
+            const double es = (f.x() * dt.y() - f.y() * dt.x()) / det;
+            const double et = (ds.x() * f.y() - ds.y() * f.x()) / det;
+            s -= es;
+            t -= et;
+            if (std::abs(es) + std::abs(et) < 1e-10) {
+              ok = true;
+              break;
+            }
+          }
+          const double tol = 1e-7;
+          if (!ok || s < -tol || s > 1 + tol || t < -tol || t > 1 + tol) continue;
+          const Vec2 p((ci + std::clamp(s, 0.0, 1.0)) / n, (cj + std::clamp(t, 0.0, 1.0)) / n);
+          // Cells share edges: any covering cell gives the same p up to round-off.
+          std::atomic_ref<float>(out.at(i, j))
+              .store(static_cast<float>(sample_bilinear(field, p.x(), p.y())), std::memory_order_relaxed);
+        }
+    }
+  });
+  for (int j = 0; j < res; ++j)
+    for (int i = 0; i < res; ++i)
+      if (out.at(i, j) < 0.0f)
+        out.at(i, j) = static_cast<float>(sample_bilinear(field, (i + 0.5) / res, (j + 0.5) / res));
+  return out;
+}
+
+}  // namespace adaptex

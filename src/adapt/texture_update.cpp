@@ -1,0 +1,47 @@
+// Texture update after a re-parameterization (thesis §3.7.3): resample and replay.
+#include "adaptex/adapt/texture_update.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/paint/padding.h"
+
+namespace adaptex {
+
+ImageRGBA8 resample_texture(const Parameterization& old_param, const ImageRGBA8& old_texture,
+                            const TexelMap& new_map, int padding, std::array<std::uint8_t, 4> outside) {
+  if (old_texture.empty()) throw InvalidInputError("resample_texture: empty old texture");
+  if (new_map.width <= 0 || new_map.height <= 0) throw InvalidInputError("resample_texture: empty texel map");
+  ImageRGBA8 out(new_map.width, new_map.height, outside);
+  const int F = static_cast<int>(old_param.uv_faces.size());
+  tbb::parallel_for(size_t(0), new_map.inside.size(), [&](size_t k) {
+    const int t = new_map.inside[k];
+    const int f = new_map.face[t];
+    if (f >= F) return;
+    const auto& b = new_map.bary[t];
+    const Face& w = old_param.uv_faces[f];
+    // Same face, same barycentrics, old UVs: the old texture coordinate of the same surface point.
+    const Vec2 uv = b.x() * old_param.uv[w[0]] + b.y() * old_param.uv[w[1]] +
+                    (1.0 - b.x() - b.y()) * old_param.uv[w[2]];
+    const Vec3 c = sample_bilinear(old_texture, uv.x(), uv.y());
+    std::uint8_t* px = out.data.data() + static_cast<size_t>(t) * 4;
+    for (int ch = 0; ch < 3; ++ch)
+      px[ch] = static_cast<std::uint8_t>(std::lround(std::clamp(c[ch], 0.0, 1.0) * 255.0));
+    px[3] = 255;
+  });
+  if (padding > 0) apply_seam_padding(out, build_seam_padding(new_map, padding));
+  return out;
+}
+
+Painter replay_texture(const TriMesh& mesh, const Parameterization& new_param, const StrokeFile& history,
+                       const PainterOptions& options) {
+  Painter p(mesh, new_param, options, history.background);
+  for (const Stroke& s : history.strokes) p.paint_stroke(s);
+  return p;
+}
+
+}  // namespace adaptex
