@@ -44,6 +44,11 @@ TriMesh read_mesh(const std::filesystem::path& path, const ReadOptions& options 
 TriMesh validate_mesh(TriMesh mesh, const std::string& name, const ReadOptions& options = {},
                       ReadReport* report = nullptr);
 
+/// Signed volume enclosed by the faces (divergence theorem, origin-independent only for closed
+/// meshes): positive when the faces are wound counter-clockwise seen from outside, negative when
+/// clockwise (e.g. the shared horse.ply and bunny.ply). Nothing is ever flipped by the readers.
+double signed_volume(const TriMesh& mesh);
+
 /// A mesh with its UV layout, as stored in an OBJ with `vt` and `f v/vt`.
 struct TexturedMesh {
   TriMesh mesh;
@@ -51,9 +56,14 @@ struct TexturedMesh {
   std::string texture_path;  ///< map_Kd of the OBJ's material, if any (resolved to an absolute path).
 };
 
-/// Reads an OBJ with texture coordinates. Charts are the connected components of the UV faces.
-/// \throw IoError, InvalidInputError (as read_mesh; also faces without vt)
-TexturedMesh read_textured_obj(const std::filesystem::path& path);
+/// Reads an OBJ with texture coordinates. Charts are the connected components of the UV faces
+/// (faces sharing a wedge). Wedges are the distinct (vertex, vt) pairs, ordered by vt index, so that
+/// for the usual file (every vt used with one vertex) wedge w is the file's vt number w+1.
+/// Validation as read_mesh() (degenerate faces / unreferenced vertices dropped, the UV faces with them).
+/// \throw IoError, InvalidInputError (as read_mesh; also a face without vt, a vt index out of range or a
+/// non-finite vt)
+TexturedMesh read_textured_obj(const std::filesystem::path& path, const ReadOptions& options = {},
+                               ReadReport* report = nullptr);
 
 /// Writes `v` (input positions, full precision), `vt` and `f v/vt` (1-based). If \p mtllib is set,
 /// writes `mtllib` + `usemtl` lines referring to it. Writes to \p path directly: wrap with

@@ -1,0 +1,66 @@
+#pragma once
+/// \file mesh_soup.h
+/// Internal to the io area: the polygon soup every format reader produces, and the shared step that
+/// turns it into a validated TriMesh (finite check, index check, fan triangulation, welding, then
+/// validate_mesh()). Not installed.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "adaptex/core/mesh.h"
+#include "adaptex/io/mesh_io.h"
+
+namespace adaptex::io_detail {
+
+/// Polygons as read from a file, before any validation. Indices are 0-based but unchecked.
+struct PolygonSoup {
+  std::string format;               ///< "obj", "off", "ply", "stl", "gltf", "glb".
+  std::vector<Vec3> positions;      ///< V positions in file order.
+  std::vector<std::int64_t> offsets{0};  ///< P+1 offsets into indices.
+  std::vector<std::int64_t> indices;     ///< Polygon corners (0-based, unchecked).
+  std::vector<std::int64_t> tex_indices; ///< Optional: per-corner vt index (OBJ), -1 when absent.
+  bool weld = false;                ///< The format splits vertices: weld identical positions.
+  int welded_by_reader = 0;         ///< Corners the reader itself merged (CGAL's STL reader welds).
+  int index_base = 0;               ///< Base used in the file (1 for OBJ), for messages only.
+  std::string element = "face";     ///< What a polygon is called in messages ("face", "triangle").
+  std::vector<std::string> warnings;  ///< Reader warnings (file name included), copied to the report.
+
+  std::int64_t num_polygons() const { return static_cast<std::int64_t>(offsets.size()) - 1; }
+  void end_polygon() { offsets.push_back(static_cast<std::int64_t>(indices.size())); }
+};
+
+/// Result of soup_to_mesh(): the mesh plus where every face and vertex came from (read_textured_obj
+/// needs the per-corner vt of the source polygon).
+struct SoupMesh {
+  TriMesh mesh;
+  std::vector<std::array<std::int64_t, 3>> face_corners;  ///< F: soup corner (index into indices).
+  std::vector<int> vertex_source;  ///< V: the soup vertex (after welding: first occurrence) of each vertex.
+};
+
+/// validate_mesh() with provenance: \p face_source / \p vertex_source are updated in step with the
+/// faces and vertices that are dropped, split or compacted (vertex_source of a split copy is the
+/// source of the original). Both may be empty (then they are not tracked).
+TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOptions& options,
+                         ReadReport& report, std::vector<int>& face_source,
+                         std::vector<int>& vertex_source);
+
+/// Validates and triangulates \p soup (see read_mesh() for the rules). \p name is the file name.
+SoupMesh soup_to_mesh(PolygonSoup soup, const std::string& name, const ReadOptions& options,
+                      ReadReport* report);
+
+/// Format readers (io/read_*.cpp). Each throws IoError for unreadable, corrupt or truncated files.
+PolygonSoup read_obj_soup(const std::filesystem::path& path);
+PolygonSoup read_off_soup(const std::filesystem::path& path);
+PolygonSoup read_ply_soup(const std::filesystem::path& path);
+PolygonSoup read_stl_soup(const std::filesystem::path& path);
+PolygonSoup read_gltf_soup(const std::filesystem::path& path);
+
+/// Whole file as bytes. \throw IoError missing, a directory, unreadable or empty.
+std::string read_file_text(const std::filesystem::path& path);
+
+/// "x, y, z" with shortest round-trip digits, for messages.
+std::string format_point(const Vec3& p);
+
+}  // namespace adaptex::io_detail
