@@ -1,13 +1,156 @@
-// Placeholder: the `unwrap` subcommand is being implemented; it reports that plainly.
-#include "cli_common.h"
+// `adaptex unwrap`: cut every component to a disk (§3.2), parameterize it (Floater + Yoshizawa,
+// §2.2/§3.3), pack the charts into [0,1]^2, and write the OBJ (+ report JSON, + layout PNG).
+#include <chrono>
+#include <fstream>
+#include <iomanip>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/io/image_io.h"
+#include "adaptex/io/mesh_io.h"
+#include "adaptex/param/layout_image.h"
+#include "adaptex/param/stretch.h"
+#include "adaptex/param/unwrap.h"
+#include "cli_common.h"
 
 namespace adaptex::cli {
 
-void add_unwrap_command(CLI::App& app, Context&) {
-  auto* sub = app.add_subcommand("unwrap", "(not implemented yet)");
-  sub->allow_extras();
-  sub->callback([] { throw Error("'unwrap' is not implemented yet"); });
+namespace {
+
+struct UnwrapArgs {
+  std::string input, output, report, layout;
+  bool repair = false;
+  int layout_size = 1024;
+  int max_augmentations = UnwrapOptions{}.max_augmentations;
+  int yoshizawa_iterations = UnwrapOptions{}.yoshizawa_max_iterations;
+  bool mean_value = false;
+};
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
+  const auto t_start = Clock::now();
+  // Read.
+  ReadOptions ro;
+  ro.repair = a.repair;
+  ReadReport rr;
+  auto t0 = Clock::now();
+  const TriMesh mesh = read_mesh(a.input, ro, &rr);
+  const double time_read = since(t0);
+  for (const std::string& w : rr.warnings) ctx.warn(w);
+  ctx.info("unwrap: " + a.input + ": " + std::to_string(mesh.num_vertices()) + " vertices, " +
+           std::to_string(mesh.num_faces()) + " faces");
+
+  // Unwrap, with one progress line per phase (not per chart or per iteration).
+  UnwrapOptions opt;
+  opt.max_augmentations = a.max_augmentations;
+  opt.yoshizawa_max_iterations = a.yoshizawa_iterations;
+  if (a.mean_value) opt.weights = EmbeddingWeights::MeanValue;
+  std::set<std::string, std::less<>> seen;
+  opt.progress = [&](std::string_view phase, double) {
+    if (seen.find(phase) == seen.end()) {
+      seen.emplace(phase);
+      std::ostringstream line;
+      line << "unwrap: " << phase << " (" << std::fixed << std::setprecision(2) << since(t_start)
+           << " s)";
+      ctx.info(line.str());
+    }
+    return true;
+  };
+  const UnwrapResult res = unwrap(mesh, opt);
+  const UnwrapReport& r = res.report;
+  const StretchStats stats = measure_stretch(mesh, res.param);
+
+  // Write every output through one AtomicOutput: all or nothing.
+  t0 = Clock::now();
+  AtomicOutput out;
+  write_obj(out.add(a.output), mesh, &res.param);
+  if (!a.layout.empty()) {
+    LayoutImageOptions lo;
+    lo.size = a.layout_size;
+    write_png(out.add(a.layout), render_layout(res.param, face_l2_stretch(mesh, res.param), lo));
+  }
+  const double time_write = since(t0);
+  if (!a.report.empty()) {
+    nlohmann::ordered_json j;
+    j["input"] = a.input;
+    j["format"] = rr.format;
+    j["vertices"] = mesh.num_vertices();
+    j["faces"] = mesh.num_faces();
+    j["components"] = r.num_components;
+    j["genus"] = r.genus;
+    j["boundary_loops"] = r.boundary_loops;
+    j["charts"] = r.num_charts;
+    j["wedges"] = res.param.num_wedges();
+    j["cut_length"] = r.cut_length;
+    j["augmentations"] = r.augmentations;
+    j["yoshizawa_iterations"] = r.yoshizawa_iterations;
+    j["floater_l2"] = r.floater_l2;
+    j["floater_linf"] = r.floater_linf;
+    j["final_l2"] = r.final_l2;
+    j["final_linf"] = r.final_linf;
+    j["area_distortion"] = stats.area_distortion;
+    j["angle_distortion"] = stats.angle_distortion;
+    j["flipped"] = stats.flipped;
+    j["degenerate"] = stats.degenerate;
+    j["repair"] = {{"dropped_degenerate_faces", rr.dropped_degenerate_faces},
+                   {"dropped_unreferenced_vertices", rr.dropped_unreferenced_vertices},
+                   {"dropped_duplicate_faces", rr.dropped_duplicate_faces},
+                   {"split_nonmanifold_vertices", rr.split_nonmanifold_vertices},
+                   {"welded_vertices", rr.welded_vertices}};
+    j["time"] = {{"read", time_read},         {"cut", r.time_cut},
+                 {"floater", r.time_floater}, {"yoshizawa", r.time_yoshizawa},
+                 {"augment", r.time_augment}, {"pack", r.time_pack},
+                 {"unwrap", r.time_total},    {"write", time_write},
+                 {"total", since(t_start)}};
+    const auto tmp = out.add(a.report);
+    std::ofstream f(tmp);
+    f << j.dump(2) << "\n";
+    if (!f) throw IoError(a.report + ": cannot write the report");
+  }
+  out.commit();
+  std::ostringstream line;
+  line << std::setprecision(4) << "unwrap: " << r.num_charts << " chart(s), genus " << r.genus
+       << ", " << r.boundary_loops << " boundary loop(s), cut length " << r.cut_length
+       << ", L2 stretch " << r.floater_l2 << " (Floater) -> " << r.final_l2 << ", L-inf "
+       << r.final_linf << ", " << std::setprecision(3) << since(t_start) << " s";
+  ctx.info(line.str());
+}
+
+}  // namespace
+
+void add_unwrap_command(CLI::App& app, Context& ctx) {
+  auto args = std::make_shared<UnwrapArgs>();
+  auto* sub = app.add_subcommand(
+      "unwrap",
+      "Cut every component into a disk (thesis §3.2), parameterize it (Floater + Yoshizawa) and "
+      "pack the charts into [0,1]^2; writes an OBJ with the input positions, vt and f v/vt");
+  sub->add_option("input", args->input, "Input mesh (OBJ, OFF, PLY, STL, glTF/GLB)")->required();
+  sub->add_option("-o,--output", args->output, "Output OBJ")->required();
+  sub->add_option("--report", args->report,
+                  "Write a JSON report (counts, genus, loops, cut length, stretch, times)");
+  sub->add_option("--layout", args->layout, "Write a PNG of the UV layout coloured by L2 stretch");
+  sub->add_option("--layout-size", args->layout_size, "Size of the layout PNG in pixels")
+      ->check(CLI::Range(16, 16384))
+      ->capture_default_str();
+  sub->add_flag("--repair", args->repair,
+                "Split non-manifold vertices and drop duplicate faces instead of failing");
+  sub->add_option("--max-augmentations", args->max_augmentations,
+                  "Cut augmentations per chart (0 = off)")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  sub->add_option("--yoshizawa-iterations", args->yoshizawa_iterations,
+                  "Yoshizawa stretch-minimization iterations (0 = Floater only)")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  sub->add_flag("--mean-value", args->mean_value,
+                "Mean-value weights for the initial embedding instead of shape-preserving");
+  sub->callback([args, &ctx] { run_unwrap(*args, ctx); });
 }
 
 }  // namespace adaptex::cli

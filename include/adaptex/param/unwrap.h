@@ -23,10 +23,14 @@ struct UnwrapOptions {
   int yoshizawa_max_iterations = 30;
   /// Maximum number of cut augmentations (Gu et al. 2002) per chart; 0 disables augmentation.
   int max_augmentations = 8;
-  /// Augmentation budget in faces: every augmentation step re-solves its whole chart, and stops once
-  /// the faces re-solved so far (over all charts) would exceed this. Deterministic; bounds the cost
-  /// on large meshes (a chart larger than the budget is not augmented). See docs/surgery.md.
-  long augment_face_budget = 2000000;
+  /// Yoshizawa iterations of the cheaper parameterization that compares the augmentation candidates
+  /// (the thesis §3.2 uses Yoshizawa instead of full stretch minimization here for speed).
+  int augment_yoshizawa_iterations = 3;
+  /// Augmentation budget in faces: every augmentation step re-solves its whole chart (the cheap
+  /// solve above); a chart is augmented only if two such solves fit in what is left of the budget
+  /// (over all charts), and stops when the next would not fit. Deterministic; bounds the cost on
+  /// large meshes (charts over half the budget are not augmented). See docs/surgery.md.
+  long augment_face_budget = 1000000;
   /// Augmentation budget in seconds of wall time from the start of unwrap(); no new augmentation
   /// step starts after it (<= 0: no augmentation). Bounds the cost on slow machines.
   double augment_time_budget = 8.0;

@@ -1,0 +1,32 @@
+#pragma once
+/// \file pack.h
+/// Chart packing (thesis §3.2, the last step of the surgery: one chart per connected component,
+/// all in the unit square). Every chart arrives as a square (its UVs in [0,1]^2, as the disk
+/// parameterization returns them); the squares are sized in proportion to the square root of the
+/// chart's 3-D area (so that all charts get the same texel density), shelf-packed, and the whole
+/// layout is scaled uniformly into [0,1]^2. Charts cannot overlap: the squares are disjoint by
+/// construction, and each chart stays inside its square.
+#include <vector>
+
+#include "adaptex/core/types.h"
+
+namespace adaptex {
+
+/// Placement of one chart: uv' = offset + scale * uv, for uv in [0,1]^2.
+struct ChartPlacement {
+  Vec2 offset = Vec2::Zero();  ///< Lower-left corner of the chart's square in [0,1]^2.
+  double scale = 1.0;          ///< Side of the chart's square.
+};
+
+/// Packs one unit square per chart into [0,1]^2.
+/// \param areas 3-D surface area of every chart (C values, > 0; zero/negative areas get the
+///        smallest positive size)
+/// \param padding minimum gap between two squares and between a square and the border of the
+///        unit square, as a fraction of the unit square, in [0, 0.25). A single chart fills the
+///        whole unit square (no padding): the adaptive re-parameterization keeps the square boundary.
+/// \return C placements; the squares [offset, offset + scale]^2 are pairwise disjoint, at least
+///         \p padding apart, and inside [0,1]^2
+/// \throw InvalidInputError padding out of range or no charts
+std::vector<ChartPlacement> pack_charts(const std::vector<double>& areas, double padding);
+
+}  // namespace adaptex

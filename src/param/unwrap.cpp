@@ -1,0 +1,269 @@
+/// \file unwrap.cpp
+/// The initial parameterization pipeline (thesis §3.2 + §3.3): per connected component, the initial
+/// cut and slicing (cut.h), the disk parameterization (disk_param.h: Floater + Yoshizawa), the
+/// Gu–Gortler–Hoppe cut augmentation, then chart packing (pack.h). See docs/surgery.md.
+#include "adaptex/param/unwrap.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/core/topology.h"
+#include "adaptex/param/cut.h"
+#include "adaptex/param/disk_param.h"
+#include "adaptex/param/pack.h"
+#include "adaptex/param/stretch.h"
+#include "adaptex/param/yoshizawa.h"
+
+namespace adaptex {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+/// One connected component, extracted with compact vertex ids.
+struct Component {
+  TriMesh mesh;
+  std::vector<int> faces;     ///< Local face -> input face.
+  std::vector<int> vertices;  ///< Local vertex -> input vertex.
+  double area = 0;            ///< 3-D surface area.
+};
+
+std::vector<Component> split_components(const TriMesh& mesh, const MeshTopology& topo) {
+  const int nc = topo.num_components;
+  std::vector<Component> comps(nc);
+  std::vector<int> local(mesh.num_vertices(), -1);
+  for (int f = 0; f < mesh.num_faces(); ++f) comps[topo.face_component[f]].faces.push_back(f);
+  for (Component& c : comps) {
+    c.mesh.faces.reserve(c.faces.size());
+    for (int f : c.faces) {
+      Face t;
+      for (int k = 0; k < 3; ++k) {
+        const int v = mesh.faces[f][k];
+        if (local[v] < 0) {
+          local[v] = static_cast<int>(c.vertices.size());
+          c.vertices.push_back(v);
+          c.mesh.positions.push_back(mesh.positions[v]);
+        }
+        t[k] = local[v];
+      }
+      c.mesh.faces.push_back(t);
+    }
+    for (int v : c.vertices) local[v] = -1;
+    c.area = surface_area(c.mesh);
+  }
+  return comps;
+}
+
+/// A cut of one component with its disk and parameterization.
+struct CutState {
+  std::vector<char> cut;
+  SlicedDisk disk;
+  DiskParamResult param;
+};
+
+/// The chart of one component after the surgery and augmentation.
+struct Chart {
+  CutState state;
+  double cut_length = 0;
+  int augmentations = 0;
+  double domain_area = 1;  ///< UV area of the chart in its own [0,1]^2 frame.
+};
+
+/// Input vertex (of the component) with the largest stretch that is not on the cut yet: the
+/// per-wedge stretch σ (yoshizawa.h: area-weighted face L2 around the wedge), maximum over wedges.
+int worst_vertex(const Component& comp, const CutState& s, const std::vector<char>& on_cut) {
+  const std::vector<double> sigma = vertex_stretch(s.disk.disk, s.param.uv);
+  std::vector<double> per_vertex(comp.mesh.num_vertices(), 0.0);
+  for (size_t w = 0; w < sigma.size(); ++w) {
+    double& x = per_vertex[s.disk.wedge_vertex[w]];
+    x = std::max(x, std::isfinite(sigma[w]) ? sigma[w] : std::numeric_limits<double>::max());
+  }
+  int best = -1;
+  for (int v = 0; v < comp.mesh.num_vertices(); ++v)
+    if (!on_cut[v] && (best < 0 || per_vertex[v] > per_vertex[best])) best = v;
+  return best;
+}
+
+}  // namespace
+
+UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
+  const auto t_start = Clock::now();
+  UnwrapResult result;
+  UnwrapReport& rep = result.report;
+  if (mesh.faces.empty()) throw TopologyError("unwrap: the mesh has no faces");
+  if (!(options.chart_padding >= 0 && options.chart_padding < 0.25))
+    throw InvalidInputError("unwrap: chart_padding " + std::to_string(options.chart_padding) +
+                            " is outside [0, 0.25)");
+  if (options.max_augmentations < 0 || options.yoshizawa_max_iterations < 0 ||
+      options.augment_yoshizawa_iterations < 0)
+    throw InvalidInputError("unwrap: iteration and augmentation counts must be >= 0");
+
+  auto t0 = Clock::now();
+  report_progress(options.progress, "cut", 0.0);
+  const MeshTopology topo = analyze_topology(mesh);
+  if (!topo.is_manifold())
+    throw TopologyError("unwrap: the mesh is not manifold (" +
+                        std::to_string(topo.nonmanifold_edges.size()) + " non-manifold edges, " +
+                        std::to_string(topo.nonmanifold_vertices.size()) +
+                        " non-manifold vertices); repair it first");
+  rep.num_components = topo.num_components;
+  rep.genus = topo.total_genus();
+  rep.boundary_loops = topo.total_loops();
+  std::vector<Component> comps = split_components(mesh, topo);
+  rep.time_cut += seconds_since(t0);
+
+  DiskParamOptions dopt;
+  dopt.weights = options.weights;
+  dopt.eta = options.yoshizawa_eta;
+  dopt.max_iterations = options.yoshizawa_max_iterations;
+  dopt.yoshizawa = options.yoshizawa_max_iterations > 0;
+
+  // Augmentation budget (see docs/surgery.md): every re-solve costs about as much as the initial
+  // solve, so the number of augmentation solves is limited by the face budget and the time budget.
+  long augment_faces_left = options.augment_face_budget;
+  const auto augment_deadline =
+      t_start + std::chrono::duration_cast<Clock::duration>(
+                         std::chrono::duration<double>(std::max(0.0, options.augment_time_budget)));
+
+  const int nc = static_cast<int>(comps.size());
+  std::vector<Chart> charts(nc);
+  for (int c = 0; c < nc; ++c) {
+    const Component& comp = comps[c];
+    Chart& chart = charts[c];
+    const double frac0 = static_cast<double>(c) / nc, frac1 = static_cast<double>(c + 1) / nc;
+    // Initial cut and slicing.
+    t0 = Clock::now();
+    report_progress(options.progress, "cut", frac0);
+    const EdgeConnectivity ec = build_edges(comp.mesh);
+    const EdgeGraph graph = build_edge_graph(comp.mesh, ec);
+    CutState cur;
+    cur.cut = initial_cut(comp.mesh, ec, graph);
+    cur.disk = slice_along_cut(comp.mesh, ec, cur.cut);
+    rep.time_cut += seconds_since(t0);
+
+    // Cut augmentation (GGH 2002 §3.2): add the shortest path from the vertex of highest stretch
+    // to the cut while the L2 stretch improves; keep the best. As in the thesis, the candidates are
+    // compared with a cheaper parameterization (Floater + a few Yoshizawa iterations); the full
+    // Yoshizawa solve runs once, on the chosen cut.
+    const long chart_faces = comp.mesh.num_faces();
+    if (options.max_augmentations > 0 && augment_faces_left >= 2 * chart_faces &&
+        Clock::now() < augment_deadline) {
+      t0 = Clock::now();
+      DiskParamOptions cheap = dopt;
+      cheap.max_iterations = std::min(dopt.max_iterations, options.augment_yoshizawa_iterations);
+      cheap.yoshizawa = cheap.max_iterations > 0;
+      cheap.progress = [&](std::string_view, double) {
+        return !options.progress || options.progress("augment", frac0);
+      };
+      report_progress(options.progress, "augment", frac0);
+      cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap);
+      augment_faces_left -= chart_faces;
+      for (int a = 0; a < options.max_augmentations; ++a) {
+        if (augment_faces_left < chart_faces || Clock::now() >= augment_deadline) break;
+        report_progress(options.progress, "augment",
+                        frac0 + (frac1 - frac0) * a / options.max_augmentations);
+        const std::vector<char> on_cut = cut_vertices(comp.mesh, ec, cur.cut);
+        const int from = worst_vertex(comp, cur, on_cut);
+        if (from < 0) break;
+        CutState cand;
+        cand.cut = cur.cut;
+        for (int e : shortest_path_to_cut(graph, on_cut, from)) cand.cut[e] = 1;
+        cand.disk = slice_along_cut(comp.mesh, ec, cand.cut);
+        cand.param = parameterize_disk(cand.disk.disk, cand.disk.boundary_loop, cheap);
+        augment_faces_left -= chart_faces;
+        if (!(cand.param.final_l2 < cur.param.final_l2 * (1.0 - options.augment_min_improvement)))
+          break;
+        cur = std::move(cand);
+        ++chart.augmentations;
+      }
+      rep.time_augment += seconds_since(t0);
+    }
+
+    // The parameterization of the disk (Floater, then Yoshizawa).
+    DiskParamOptions full = dopt;
+    full.progress = [&](std::string_view phase, double f) {
+      return !options.progress || options.progress(phase, frac0 + f * (frac1 - frac0));
+    };
+    cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, full);
+    rep.time_floater += cur.param.time_floater;
+    rep.time_yoshizawa += cur.param.time_yoshizawa;
+    chart.cut_length = cut_length(graph, cur.cut);
+    chart.state = std::move(cur);
+    double area2 = 0;
+    for (const Face& t : chart.state.disk.disk.faces) {
+      const Vec2 e1 = chart.state.param.uv[t[1]] - chart.state.param.uv[t[0]];
+      const Vec2 e2 = chart.state.param.uv[t[2]] - chart.state.param.uv[t[0]];
+      area2 += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+    }
+    chart.domain_area = area2 > 0 ? area2 : 1.0;
+  }
+
+  // Packing.
+  t0 = Clock::now();
+  report_progress(options.progress, "pack", 0.0);
+  std::vector<double> areas(nc);
+  for (int c = 0; c < nc; ++c) areas[c] = comps[c].area;
+  const std::vector<ChartPlacement> place = pack_charts(areas, options.chart_padding);
+  Parameterization& param = result.param;
+  param.num_charts = nc;
+  param.uv_faces.resize(mesh.faces.size());
+  param.face_chart.resize(mesh.faces.size());
+  for (int c = 0; c < nc; ++c) {
+    const Chart& chart = charts[c];
+    const Component& comp = comps[c];
+    const int offset = param.num_wedges();
+    for (size_t w = 0; w < chart.state.param.uv.size(); ++w) {
+      Vec2 uv = place[c].offset + place[c].scale * chart.state.param.uv[w];
+      uv = uv.cwiseMax(0.0).cwiseMin(1.0);
+      param.uv.push_back(uv);
+      param.wedge_vertex.push_back(comp.vertices[chart.state.disk.wedge_vertex[w]]);
+    }
+    for (size_t lf = 0; lf < comp.faces.size(); ++lf) {
+      const Face& t = chart.state.disk.disk.faces[lf];
+      param.uv_faces[comp.faces[lf]] = {offset + t[0], offset + t[1], offset + t[2]};
+      param.face_chart[comp.faces[lf]] = c;
+    }
+    rep.cut_length += chart.cut_length;
+    rep.augmentations += chart.augmentations;
+    rep.yoshizawa_iterations += chart.state.param.iterations;
+  }
+  rep.num_charts = nc;
+  report_progress(options.progress, "pack", 1.0);
+  rep.time_pack = seconds_since(t0);
+
+  // Mesh-level stretch. The final figures are measured on the packed layout; the Floater figures
+  // are combined from the per-chart ones (the chart's L2 and L∞ are normalized in its own frame
+  // of UV area A2_c and 3-D area A3_c; scaling a chart by k divides its stretch by k).
+  const StretchStats final_stats = measure_stretch(mesh, param);
+  rep.final_l2 = final_stats.l2;
+  rep.final_linf = final_stats.linf;
+  if (nc == 1) {
+    rep.floater_l2 = charts[0].state.param.floater_l2;
+    rep.floater_linf = charts[0].state.param.floater_linf;
+  } else {
+    double a3 = 0, sum_r = 0, sum_a2 = 0, max_gamma = 0;
+    for (int c = 0; c < nc; ++c) {
+      const double k = place[c].scale, A3 = std::max(comps[c].area, 1e-300);
+      const double A2 = charts[c].domain_area;
+      const DiskParamResult& r = charts[c].state.param;
+      a3 += A3;
+      sum_r += r.floater_l2 * r.floater_l2 * A3 * A3 / (A2 * k * k);
+      sum_a2 += k * k * A2;
+      max_gamma = std::max(max_gamma, r.floater_linf * std::sqrt(A3 / A2) / k);
+    }
+    rep.floater_l2 = std::sqrt(sum_r / a3) * std::sqrt(sum_a2 / a3);
+    rep.floater_linf = max_gamma * std::sqrt(sum_a2 / a3);
+  }
+  rep.time_total = seconds_since(t_start);
+  return result;
+}
+
+}  // namespace adaptex

@@ -1,0 +1,196 @@
+// unwrap() (§3.2 surgery + packing) on meshes built in code: one test body, many meshes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/core/shapes.h"
+#include "adaptex/core/topology.h"
+#include "adaptex/param/pack.h"
+#include "adaptex/param/stretch.h"
+#include "adaptex/param/unwrap.h"
+
+namespace adaptex {
+namespace {
+
+/// Flips the winding of every face (as the CW-wound shared meshes are).
+TriMesh flipped(TriMesh m) {
+  for (Face& t : m.faces) std::swap(t[1], t[2]);
+  return m;
+}
+
+/// Every property unwrap() promises, checked independently of how it was made.
+void check_unwrap(const std::string& name, const TriMesh& mesh, const UnwrapOptions& opt = {}) {
+  SCOPED_TRACE(name);
+  const MeshTopology topo = analyze_topology(mesh);
+  const UnwrapResult r = unwrap(mesh, opt);
+  const Parameterization& p = r.param;
+  ASSERT_EQ(p.uv_faces.size(), mesh.faces.size());
+  ASSERT_EQ(p.face_chart.size(), mesh.faces.size());
+  ASSERT_EQ(p.wedge_vertex.size(), p.uv.size());
+  EXPECT_EQ(p.num_charts, topo.num_components);
+  EXPECT_EQ(r.report.num_charts, topo.num_components);
+  EXPECT_EQ(r.report.num_components, topo.num_components);
+  EXPECT_EQ(r.report.genus, topo.total_genus());
+  EXPECT_EQ(r.report.boundary_loops, topo.total_loops());
+  // wedge_vertex is consistent with the mesh faces; UVs are in [0,1]^2.
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_GE(p.uv_faces[f][k], 0);
+      ASSERT_LT(p.uv_faces[f][k], p.num_wedges());
+      ASSERT_EQ(p.wedge_vertex[p.uv_faces[f][k]], mesh.faces[f][k]);
+    }
+  for (const Vec2& t : p.uv) {
+    ASSERT_TRUE(t.x() >= 0 && t.x() <= 1 && t.y() >= 0 && t.y() <= 1) << t.transpose();
+  }
+  // Every chart is a topological disk: the mesh of wedges, chart by chart.
+  for (int c = 0; c < p.num_charts; ++c) {
+    TriMesh chart;
+    chart.positions.resize(p.num_wedges(), Vec3::Zero());
+    for (int f = 0; f < mesh.num_faces(); ++f)
+      if (p.face_chart[f] == c) chart.faces.push_back(p.uv_faces[f]);
+    const MeshTopology ct = analyze_topology(chart);
+    EXPECT_EQ(ct.num_components, 1) << "chart " << c;
+    EXPECT_EQ(ct.total_genus(), 0) << "chart " << c;
+    EXPECT_EQ(ct.total_loops(), 1) << "chart " << c;
+    EXPECT_TRUE(ct.is_manifold()) << "chart " << c;
+  }
+  // No flipped, degenerate or overlapping UV triangles.
+  const StretchStats s = measure_stretch(mesh, p);
+  EXPECT_EQ(s.flipped, 0);
+  EXPECT_EQ(s.degenerate, 0);
+  for (int f = 0; f < mesh.num_faces(); ++f) ASSERT_GT(uv_signed_area(p, f), 0.0) << "face " << f;
+  EXPECT_EQ(count_overlapping_triangles(p), 0);
+  // Stretch figures: finite, Yoshizawa (and augmentation) never make it worse than Floater.
+  EXPECT_TRUE(std::isfinite(r.report.final_l2));
+  EXPECT_GE(r.report.final_l2, 1.0 - 1e-9);
+  EXPECT_LE(r.report.final_l2, r.report.floater_l2 * (1 + 1e-9));
+  EXPECT_NEAR(r.report.final_l2, s.l2, 1e-9 * s.l2);
+  EXPECT_GE(r.report.final_linf, r.report.final_l2 * (1 - 1e-9));
+  // Cut length: zero only for a single disk.
+  if (topo.num_components == 1 && topo.total_genus() == 0 && topo.total_loops() == 1 &&
+      r.report.augmentations == 0) {
+    EXPECT_EQ(r.report.cut_length, 0.0);
+  } else if (topo.total_loops() == 0 || topo.total_genus() > 0) {
+    EXPECT_GT(r.report.cut_length, 0.0);
+  }
+  EXPECT_GE(r.report.time_total, 0.0);
+}
+
+TEST(Unwrap, EveryShapeBecomesNonOverlappingDisks) {
+  check_unwrap("sphere", shapes::sphere(32, 16));
+  check_unwrap("icosphere", shapes::icosphere(3));
+  check_unwrap("torus", shapes::torus(48, 16));
+  check_unwrap("double_torus", shapes::double_torus(32));
+  check_unwrap("open_cylinder", shapes::open_cylinder(32, 12));
+  check_unwrap("disk_with_holes", shapes::disk_with_holes(3, 32));
+  check_unwrap("two_components", shapes::two_components());
+  check_unwrap("trefoil_knot", shapes::trefoil_knot(120, 16));
+  check_unwrap("plane", shapes::plane(12));
+}
+
+TEST(Unwrap, ClockwiseWindingGivesPositiveUvAreas) {
+  check_unwrap("sphere CW", flipped(shapes::sphere(24, 12)));
+  check_unwrap("torus CW", flipped(shapes::torus(32, 12)));
+  check_unwrap("disk_with_holes CW", flipped(shapes::disk_with_holes(2, 24)));
+}
+
+TEST(Unwrap, WithoutAugmentationOrYoshizawa) {
+  UnwrapOptions opt;
+  opt.max_augmentations = 0;
+  check_unwrap("torus no augmentation", shapes::torus(32, 12), opt);
+  opt.yoshizawa_max_iterations = 0;
+  check_unwrap("torus Floater only", shapes::torus(32, 12), opt);
+  opt.weights = EmbeddingWeights::MeanValue;
+  check_unwrap("two components mean value", shapes::two_components(), opt);
+}
+
+TEST(Unwrap, AugmentationLowersStretchOnTheSphere) {
+  UnwrapOptions none;
+  none.max_augmentations = 0;
+  const TriMesh mesh = shapes::sphere(32, 16);
+  const UnwrapResult a = unwrap(mesh, none);
+  const UnwrapResult b = unwrap(mesh);
+  EXPECT_EQ(a.report.augmentations, 0);
+  EXPECT_LE(b.report.final_l2, a.report.final_l2 * (1 + 1e-12));
+  if (b.report.augmentations > 0) {
+    EXPECT_GT(b.report.cut_length, a.report.cut_length);
+  }
+}
+
+TEST(Unwrap, ManyComponentsArePacked) {
+  // Five tori of different sizes: five charts, sized by their area, no overlap.
+  TriMesh m;
+  for (int i = 0; i < 5; ++i) {
+    TriMesh t = shapes::torus(16 + 4 * i, 8, 1.0 + i, 0.3 + 0.1 * i);
+    const int off = m.num_vertices();
+    for (const Vec3& p : t.positions) m.positions.push_back(p + Vec3(10.0 * i, 0, 0));
+    for (Face f : t.faces) m.faces.push_back({f[0] + off, f[1] + off, f[2] + off});
+  }
+  check_unwrap("five tori", m);
+}
+
+TEST(Unwrap, ProgressAndCancel) {
+  std::vector<std::string> phases;
+  UnwrapOptions opt;
+  opt.progress = [&](std::string_view ph, double f) {
+    EXPECT_GE(f, 0.0);
+    EXPECT_LE(f, 1.0);
+    if (phases.empty() || phases.back() != ph) phases.emplace_back(ph);
+    return true;
+  };
+  unwrap(shapes::torus(24, 8), opt);
+  EXPECT_NE(std::find(phases.begin(), phases.end(), "cut"), phases.end());
+  EXPECT_NE(std::find(phases.begin(), phases.end(), "pack"), phases.end());
+  opt.progress = [](std::string_view, double) { return false; };
+  EXPECT_THROW(unwrap(shapes::torus(24, 8), opt), CancelledError);
+}
+
+TEST(Unwrap, RejectsNonManifoldAndEmptyInput) {
+  EXPECT_THROW(unwrap(shapes::nonmanifold_fan()), TopologyError);
+  EXPECT_THROW(unwrap(shapes::bowtie_vertex()), TopologyError);
+  EXPECT_THROW(unwrap(TriMesh{}), TopologyError);
+  UnwrapOptions bad;
+  bad.chart_padding = 0.5;
+  EXPECT_THROW(unwrap(shapes::plane(2), bad), InvalidInputError);
+}
+
+TEST(Pack, SquaresAreDisjointPaddedAndInside) {
+  for (int n : {1, 2, 3, 7, 40, 500}) {
+    std::vector<double> areas(n);
+    for (int i = 0; i < n; ++i) areas[i] = 1.0 + (i * 37 % 11);
+    const double pad = 0.01;
+    const auto pl = pack_charts(areas, pad);
+    ASSERT_EQ(static_cast<int>(pl.size()), n);
+    if (n == 1) {
+      EXPECT_EQ(pl[0].scale, 1.0);
+      continue;
+    }
+    double used = 0;
+    for (int i = 0; i < n; ++i) {
+      EXPECT_GE(pl[i].offset.x(), 0.0);
+      EXPECT_GE(pl[i].offset.y(), 0.0);
+      EXPECT_LE(pl[i].offset.x() + pl[i].scale, 1.0);
+      EXPECT_LE(pl[i].offset.y() + pl[i].scale, 1.0);
+      used += pl[i].scale * pl[i].scale;
+      for (int j = 0; j < i; ++j) {
+        const bool apart = pl[i].offset.x() + pl[i].scale <= pl[j].offset.x() ||
+                           pl[j].offset.x() + pl[j].scale <= pl[i].offset.x() ||
+                           pl[i].offset.y() + pl[i].scale <= pl[j].offset.y() ||
+                           pl[j].offset.y() + pl[j].scale <= pl[i].offset.y();
+        EXPECT_TRUE(apart) << i << " " << j;
+      }
+    }
+    // Sizes follow sqrt(area).
+    for (int i = 1; i < n; ++i)
+      EXPECT_NEAR(pl[i].scale / pl[0].scale, std::sqrt(areas[i] / areas[0]), 1e-9);
+    if (n <= 40) {
+      EXPECT_GT(used, 0.3) << "packing wastes too much of the square";
+    }
+  }
+  EXPECT_THROW(pack_charts({}, 0.01), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace adaptex
