@@ -1,0 +1,199 @@
+// Tests of §3.6 (L_s²), §3.7.1 (grid relaxation), §3.7.2 (remap with the no-flip guarantee).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "adaptex/adapt/grid.h"
+#include "adaptex/adapt/importance.h"
+#include "adaptex/adapt/ls2.h"
+#include "adaptex/adapt/relax.h"
+#include "adaptex/adapt/remap.h"
+#include "adaptex/core/errors.h"
+#include "adaptex/core/shapes.h"
+
+namespace adaptex {
+namespace {
+
+double cell_area(const GridWarp& g, int i, int j) {
+  const Vec2 a = g.at(i, j), b = g.at(i + 1, j), c = g.at(i + 1, j + 1), d = g.at(i, j + 1);
+  auto cross = [](const Vec2& p, const Vec2& q) { return p.x() * q.y() - p.y() * q.x(); };
+  return 0.5 * (cross(a, b) + cross(b, c) + cross(c, d) + cross(d, a));
+}
+
+// Weight field 1 everywhere except a disc of radius r around (cx, cy) with weight w_in.
+ImageF blob_field(int res, double cx, double cy, double r, float w_in, float w_out = 1.0f) {
+  ImageF f(res, res, w_out);
+  for (int j = 0; j < res; ++j)
+    for (int i = 0; i < res; ++i) {
+      const double x = (i + 0.5) / res - cx, y = (j + 0.5) / res - cy;
+      if (x * x + y * y < r * r) f.at(i, j) = w_in;
+    }
+  return f;
+}
+
+TEST(Ls2, FollowsThesisFormulaAndStaysStrictlyPositive) {
+  ImageF e(4, 1, 0.0f), s(4, 1, 0.0f);
+  e.data = {0.0f, 0.5f, 1.0f, 1.0f};
+  s.data = {0.3f, 0.2f, 1.0f, 0.0f};
+  Ls2Options o;
+  o.alpha = 0.5;
+  o.beta = 0.9;
+  o.min_weight = 0.05;
+  const ImageF w = compute_ls2(e, s, o);
+  EXPECT_NEAR(w.data[0], 1.0 - 0.3, 1e-6);                 // E_h = 0: 1 - L2
+  EXPECT_NEAR(w.data[1], 1.0 - (0.5 * 0.2 + 0.9 * 0.5), 1e-6);  // 1 - (αL2 + βE)
+  EXPECT_FLOAT_EQ(w.data[2], 0.05f);                       // negative -> clamped to min_weight
+  EXPECT_NEAR(w.data[3], 0.1, 1e-6);
+  for (float x : w.data) EXPECT_GT(x, 0.0f);
+  o.min_weight = 0;
+  EXPECT_THROW(compute_ls2(e, s, o), InvalidInputError);
+  o.min_weight = 0.05;
+  o.beta = -1;
+  EXPECT_THROW(compute_ls2(e, s, o), InvalidInputError);
+}
+
+TEST(Ls2, PoolingKeepsThinLinesVisibleToCoarseGrids) {
+  ImageF m(256, 256, 1.0f);
+  for (int j = 0; j < 256; ++j) m.at(100, j) = 0.1f;  // one-texel line
+  const ImageF mean = pool_for_grid(m, 16, PoolMode::Mean);
+  const ImageF mn = pool_for_grid(m, 16, PoolMode::Min);
+  EXPECT_EQ(mean.width, 32);
+  // Pooled cell containing column 100 (100 / 8 = 12): mean dips by 0.9/8, min sees the full line.
+  EXPECT_NEAR(mean.at(12, 5), 1.0 - 0.9 / 8, 1e-5);
+  EXPECT_NEAR(mn.at(12, 5), 0.1, 1e-6);
+  EXPECT_NEAR(mean.at(3, 5), 1.0, 1e-6);
+}
+
+TEST(Importance, SobelMagnitudeNormalizedAndMaskedAtChartBorders) {
+  ImageRGBA8 tex(16, 16, {255, 255, 255, 255});
+  for (int j = 0; j < 16; ++j)
+    for (int i = 8; i < 16; ++i) {
+      auto* p = tex.texel(i, j);
+      p[0] = p[1] = p[2] = 0;
+    }
+  const ImageF e = compute_importance(tex, nullptr);
+  EXPECT_NEAR(e.at(7, 5), 1.0, 1e-5);  // full-contrast step edge = 1
+  EXPECT_NEAR(e.at(8, 5), 1.0, 1e-5);
+  EXPECT_NEAR(e.at(3, 5), 0.0, 1e-6);
+  // Mask: columns >= 8 are outside every chart (black padding): no importance at the border.
+  TexelMap map;
+  map.width = map.height = 16;
+  map.face.assign(256, -1);
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 8; ++i) {
+      map.face[j * 16 + i] = 0;
+      map.inside.push_back(j * 16 + i);
+    }
+  const ImageF em = compute_importance(tex, &map);
+  for (float x : em.data) EXPECT_EQ(x, 0.0f);
+}
+
+TEST(Relax, ConstantWeightsKeepTheGridUniform) {
+  GridWarp g = GridWarp::uniform(32);
+  const RelaxStats st = relax_grid(g, ImageF(64, 64, 0.7f));
+  EXPECT_TRUE(st.converged);
+  EXPECT_LT(g.max_displacement(), 1e-9);
+  RelaxOptions four;
+  four.ring = GridRing::Four;
+  relax_grid(g, ImageF(64, 64, 0.3f), four);
+  EXPECT_LT(g.max_displacement(), 1e-9);
+}
+
+TEST(Relax, LowWeightBlobGrowsItsCells) {
+  for (GridRing ring : {GridRing::Four, GridRing::Eight}) {
+    const ImageF field = blob_field(128, 0.5, 0.5, 0.15, 0.1f);
+    GridWarp g = GridWarp::uniform(16);
+    RelaxOptions o;
+    o.ring = ring;
+    o.max_iterations = 2000;
+    o.epsilon = 1e-7;
+    relax_grid(g, field, o);
+    // The four cells around the blob centre (uniform area 1/256 each) grow.
+    const double centre = (cell_area(g, 7, 7) + cell_area(g, 8, 7) + cell_area(g, 7, 8) + cell_area(g, 8, 8)) / 4;
+    EXPECT_GT(centre, 1.5 / 256.0) << (ring == GridRing::Four ? "4-ring" : "8-ring");
+    const double corner = cell_area(g, 0, 0);
+    EXPECT_LT(corner, 1.0 / 256.0);
+    // Inverted weighting (blob of high weight) must do the opposite.
+    GridWarp h = GridWarp::uniform(16);
+    relax_grid(h, blob_field(128, 0.5, 0.5, 0.15, 1.0f, 0.1f), o);
+    const double centre_inv = (cell_area(h, 7, 7) + cell_area(h, 8, 7) + cell_area(h, 7, 8) + cell_area(h, 8, 8)) / 4;
+    EXPECT_LT(centre_inv, 1.0 / 256.0);
+    // Every cell stays positively oriented.
+    for (int j = 0; j < 16; ++j)
+      for (int i = 0; i < 16; ++i) EXPECT_GT(cell_area(g, i, j), 0.0);
+  }
+}
+
+TEST(Relax, ParallelAndSerialGiveIdenticalResults) {
+  const ImageF field = blob_field(256, 0.3, 0.6, 0.1, 0.05f);
+  GridWarp a = GridWarp::uniform(128), b = GridWarp::uniform(128);
+  RelaxOptions o;
+  o.max_iterations = 30;
+  o.parallel = true;
+  relax_grid(a, field, o);
+  o.parallel = false;
+  relax_grid(b, field, o);
+  for (size_t k = 0; k < a.points.size(); ++k) EXPECT_EQ(a.points[k], b.points[k]);
+}
+
+TEST(Grid, ApplyIsIdentityForUniformAndPullBackInvertsAWarp) {
+  GridWarp g = GridWarp::uniform(8);
+  EXPECT_LT((g.apply(Vec2(0.33, 0.71)) - Vec2(0.33, 0.71)).norm(), 1e-12);
+  relax_grid(g, blob_field(64, 0.4, 0.4, 0.2, 0.1f), RelaxOptions{});
+  ASSERT_GT(g.max_displacement(), 0.01);
+  // Field = x coordinate; pulled back through g, at q it must equal the x of g^{-1}(q).
+  ImageF fx(256, 256);
+  for (int j = 0; j < 256; ++j)
+    for (int i = 0; i < 256; ++i) fx.at(i, j) = static_cast<float>((i + 0.5) / 256);
+  const ImageF pb = pull_back_field(fx, g, 64);
+  for (double x : {0.2, 0.45, 0.8})
+    for (double y : {0.3, 0.6}) {
+      const Vec2 q = g.apply(Vec2(x, y));
+      const int i = std::clamp(static_cast<int>(q.x() * 64), 0, 63), j = std::clamp(static_cast<int>(q.y() * 64), 0, 63);
+      EXPECT_NEAR(pb.at(i, j), x, 0.03);
+    }
+}
+
+Parameterization plane_param(const TriMesh& mesh) {
+  Parameterization p;
+  const BoundingBox bb = bounding_box(mesh);
+  for (const Vec3& v : mesh.positions)
+    p.uv.push_back(Vec2((v.x() - bb.min.x()) / (bb.max.x() - bb.min.x()), (v.y() - bb.min.y()) / (bb.max.y() - bb.min.y())));
+  p.uv_faces = mesh.faces;
+  for (int k = 0; k < mesh.num_vertices(); ++k) p.wedge_vertex.push_back(k);
+  p.face_chart.assign(mesh.faces.size(), 0);
+  p.num_charts = 1;
+  return p;
+}
+
+TEST(Remap, AdversarialWarpIsDampedAndNeverFlips) {
+  const TriMesh mesh = shapes::plane(40);
+  const Parameterization param = plane_param(mesh);
+  // A folding warp: interior points pushed past their neighbours.
+  GridWarp w = GridWarp::uniform(8);
+  w.at(3, 4) = Vec2(0.9, 0.5);
+  w.at(5, 4) = Vec2(0.1, 0.5);
+  w.at(4, 2) = Vec2(0.5, 0.95);
+  const Parameterization raw = remap_parameterization(param, {&w});
+  ASSERT_GT(check_remap(param, raw, SafeRemapOptions{}).flipped, 0);  // really adversarial
+  const SafeRemapResult r = safe_remap(param, {&w});
+  EXPECT_LT(r.damping, 1.0);
+  EXPECT_GT(r.damping, 0.0);
+  const RemapCheck c = check_remap(param, r.param);
+  EXPECT_EQ(c.flipped, 0);
+  EXPECT_EQ(c.degenerate, 0);
+  EXPECT_EQ(c.overlaps, 0);
+  for (const Vec2& uv : r.param.uv) {
+    EXPECT_GE(uv.minCoeff(), 0.0);
+    EXPECT_LE(uv.maxCoeff(), 1.0);
+  }
+  // A valid warp is applied in full.
+  GridWarp ok = GridWarp::uniform(8);
+  relax_grid(ok, blob_field(64, 0.5, 0.5, 0.2, 0.2f));
+  const SafeRemapResult r2 = safe_remap(param, {&ok});
+  EXPECT_EQ(r2.damping, 1.0);
+  EXPECT_TRUE(check_remap(param, r2.param).ok());
+}
+
+}  // namespace
+}  // namespace adaptex
