@@ -1,0 +1,28 @@
+#pragma once
+/// \file gl_renderer.h
+/// OpenGL 3.3 core implementation of Renderer: lit textured mesh, wireframe overlay, brush cursor
+/// circles. Needs a current GL context (created by the window layer) for its whole life.
+#include <map>
+#include <memory>
+
+#include "renderer.h"
+
+namespace adaptex::studio {
+
+class GlRenderer : public Renderer {
+ public:
+  GlRenderer();
+  ~GlRenderer() override;
+  void set_mesh(const TriMesh& mesh, const Parameterization& param) override;
+  void set_texture(const ImageRGBA8& tex) override;
+  void update_texture(const ImageRGBA8& tex, const std::array<int, 4>& rect) override;
+  void draw(const FrameView& view) override;
+  ImageRGBA8 read_pixels(int width, int height) override;
+  void* ui_image(int slot, const ImageRGBA8& img) override;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace adaptex::studio

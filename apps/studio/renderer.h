@@ -1,0 +1,80 @@
+#pragma once
+/// \file renderer.h
+/// Rendering interface of adaptex-studio. The App talks only to this interface; GlRenderer draws
+/// with OpenGL 3.3, NullRenderer records the calls so the app logic is testable without a GPU.
+#include <array>
+#include <string>
+#include <vector>
+
+#include "adaptex/core/image.h"
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+#include "camera.h"
+
+namespace adaptex::studio {
+
+/// A circle drawn on the surface (the brush cursor).
+struct CursorCircle {
+  Vec3 centre = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+  double radius = 0;
+};
+
+/// What one frame of the 3-D view shows.
+struct FrameView {
+  Camera camera;
+  bool has_mesh = false;
+  bool wireframe = false;
+  Vec3 background = Vec3(0.22, 0.22, 0.25);
+  std::vector<CursorCircle> cursors;
+};
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  /// Uploads the geometry (one vertex per UV wedge, triangles = param.uv_faces).
+  virtual void set_mesh(const TriMesh& mesh, const Parameterization& param) = 0;
+  /// Uploads the whole texture.
+  virtual void set_texture(const ImageRGBA8& tex) = 0;
+  /// Uploads the texel rectangle (i0, j0, i1, j1), inclusive, of \p tex.
+  virtual void update_texture(const ImageRGBA8& tex, const std::array<int, 4>& rect) = 0;
+  /// Draws the 3-D view into the current framebuffer.
+  virtual void draw(const FrameView& view) = 0;
+  /// Reads the framebuffer back (rows bottom-up, like ImageRGBA8).
+  virtual ImageRGBA8 read_pixels(int width, int height) = 0;
+  /// Uploads a picture for the UI (inspect panel); \return an ImGui texture id (nullptr if none).
+  virtual void* ui_image(int slot, const ImageRGBA8& img) = 0;
+};
+
+/// Records what was asked of it; draws nothing.
+class NullRenderer : public Renderer {
+ public:
+  void set_mesh(const TriMesh& mesh, const Parameterization& param) override {
+    ++mesh_uploads;
+    last_faces = mesh.num_faces();
+    last_wedges = param.num_wedges();
+  }
+  void set_texture(const ImageRGBA8& tex) override {
+    ++texture_uploads;
+    last_texture = tex;
+  }
+  void update_texture(const ImageRGBA8& tex, const std::array<int, 4>& rect) override {
+    ++texture_updates;
+    last_rect = rect;
+    last_texture = tex;
+  }
+  void draw(const FrameView& view) override {
+    ++draws;
+    last_view = view;
+  }
+  ImageRGBA8 read_pixels(int width, int height) override { return ImageRGBA8(width, height, {0, 0, 0, 255}); }
+  void* ui_image(int, const ImageRGBA8&) override { return nullptr; }
+
+  int mesh_uploads = 0, texture_uploads = 0, texture_updates = 0, draws = 0;
+  int last_faces = 0, last_wedges = 0;
+  std::array<int, 4> last_rect{0, 0, -1, -1};
+  ImageRGBA8 last_texture;
+  FrameView last_view;
+};
+
+}  // namespace adaptex::studio

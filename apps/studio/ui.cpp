@@ -1,0 +1,241 @@
+/// \file ui.cpp
+/// Dear ImGui panels (see ui.h).
+#include "ui.h"
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace adaptex::studio {
+namespace {
+
+void draw_line(ImageRGBA8& img, double x0, double y0, double x1, double y1, std::array<uint8_t, 3> c) {
+  const int n = int(std::ceil(std::max(std::abs(x1 - x0), std::abs(y1 - y0)))) + 1;
+  for (int k = 0; k <= n; ++k) {
+    const double t = double(k) / n;
+    const int i = int(x0 + (x1 - x0) * t), j = int(y0 + (y1 - y0) * t);
+    if (i < 0 || j < 0 || i >= img.width || j >= img.height) continue;
+    uint8_t* p = img.texel(i, j);
+    p[0] = c[0];
+    p[1] = c[1];
+    p[2] = c[2];
+  }
+}
+
+}  // namespace
+
+void StudioUi::draw(App& app) {
+  if (!app.view().show_ui) return;
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("adaptex studio");
+  if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) file_panel(app);
+  if (ImGui::CollapsingHeader("Brush", ImGuiTreeNodeFlags_DefaultOpen)) brush_panel(app);
+  if (ImGui::CollapsingHeader("View")) view_panel(app);
+  if (ImGui::CollapsingHeader("Adapt")) adapt_panel(app);
+  ImGui::Checkbox("Inspect panel", &show_inspect_);
+  ImGui::End();
+  if (show_inspect_) inspect_window(app);
+  popups(app);
+  status_bar(app);
+}
+
+void StudioUi::file_panel(App& app) {
+  ImGui::InputText("##path", &open_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Open") && !open_path_.empty()) app.open_mesh(open_path_);
+  if (!app.recent_files().empty() && ImGui::BeginCombo("Recent", "recent files...")) {
+    for (const auto& r : app.recent_files())
+      if (ImGui::Selectable(r.c_str())) {
+        open_path_ = r;
+        app.open_mesh(r);
+      }
+    ImGui::EndCombo();
+  }
+  ImGui::InputText("Project", &project_path_);
+  if (ImGui::Button("Save project")) app.save_project(project_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Open project")) app.open_project(project_path_);
+  ImGui::InputText("OBJ dir", &export_dir_);
+  ImGui::SameLine();
+  if (ImGui::Button("Export OBJ")) app.export_obj(export_dir_);
+  ImGui::InputText("GLB", &glb_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Export GLB")) app.export_glb(glb_path_);
+  ImGui::InputText("PNG", &screenshot_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Screenshot")) app.screenshot(screenshot_path_);
+  ImGui::InputText("Decal", &decal_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Load")) app.load_decal(decal_path_);
+  if (app.decal_image()) {
+    float op = float(decal_opacity_);
+    ImGui::SliderFloat("Decal opacity", &op, 0.f, 1.f);
+    decal_opacity_ = op;
+    if (ImGui::Button("Project decal from this view")) app.project_decal(decal_opacity_);
+  }
+  ImGui::BeginDisabled(!app.history().can_undo());
+  if (ImGui::Button("Undo")) app.undo();
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(!app.history().can_redo());
+  if (ImGui::Button("Redo")) app.redo();
+  ImGui::EndDisabled();
+}
+
+void StudioUi::brush_panel(App& app) {
+  BrushSettings& b = app.brush();
+  int tool = int(b.tool);
+  ImGui::RadioButton("Brush (B)", &tool, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("Eraser (E)", &tool, 1);
+  ImGui::SameLine();
+  ImGui::RadioButton("Pick (I)", &tool, 2);
+  b.tool = Tool(tool);
+  float c[3] = {float(b.color.x()), float(b.color.y()), float(b.color.z())};
+  if (ImGui::ColorEdit3("Colour", c)) b.color = Vec3(c[0], c[1], c[2]);
+  float r = float(b.radius), h = float(b.hardness), o = float(b.opacity), s = float(b.spacing);
+  if (ImGui::SliderFloat("Radius ([ ])", &r, 0.001f, 0.25f, "%.4f", ImGuiSliderFlags_Logarithmic)) b.radius = r;
+  ImGui::Text("  = %.4g world units", app.world_radius());
+  if (ImGui::SliderFloat("Hardness", &h, 0.f, 1.f)) b.hardness = h;
+  if (ImGui::SliderFloat("Opacity", &o, 0.f, 1.f)) b.opacity = o;
+  if (ImGui::SliderFloat("Spacing", &s, 0.02f, 2.f, "%.2f")) b.spacing = s;
+  const char* axes[] = {"off", "X", "Y", "Z"};
+  int ax = b.symmetry_axis + 1;
+  if (ImGui::Combo("Symmetry", &ax, axes, 4)) b.symmetry_axis = ax - 1;
+  Vec3 bg = app.history().background();
+  float pb[3] = {float(bg.x()), float(bg.y()), float(bg.z())};
+  if (ImGui::ColorEdit3("Paper", pb, ImGuiColorEditFlags_NoInputs)) app.set_background_colour(Vec3(pb[0], pb[1], pb[2]));
+}
+
+void StudioUi::view_panel(App& app) {
+  ViewSettings& v = app.view();
+  ImGui::Checkbox("Wireframe (W)", &v.wireframe);
+  float c[3] = {float(v.background.x()), float(v.background.y()), float(v.background.z())};
+  if (ImGui::ColorEdit3("Background", c)) v.background = Vec3(c[0], c[1], c[2]);
+  if (ImGui::Button("Frame (F)")) app.frame_model();
+  ImGui::TextWrapped("Left drag paints. Right/middle drag or Alt+left orbits, Shift+middle pans, wheel zooms.");
+}
+
+void StudioUi::adapt_panel(App& app) {
+  AdaptSettings& a = app.adapt();
+  if (!adapt_available()) ImGui::TextDisabled("(adaptive library not linked in this build)");
+  const char* modes[] = {"none", "single", "two-stage"};
+  int m = int(a.mode);
+  if (ImGui::Combo("Mode", &m, modes, 3)) a.mode = AdaptMode(m);
+  float al = float(a.alpha), be = float(a.beta);
+  if (ImGui::SliderFloat("alpha", &al, 0.f, 1.f)) a.alpha = al;
+  if (ImGui::SliderFloat("beta", &be, 0.f, 1.f)) a.beta = be;
+  ImGui::InputInt("Coarse grid", &a.coarse_grid);
+  ImGui::InputInt("Fine grid", &a.fine_grid);
+  a.coarse_grid = std::clamp(a.coarse_grid, 2, 4096);
+  a.fine_grid = std::clamp(a.fine_grid, 2, 4096);
+  const char* sizes[] = {"256", "512", "1024", "2048", "4096"};
+  int si = std::clamp(int(std::lround(std::log2(a.texture_size))) - 8, 0, 4);
+  if (ImGui::Combo("Texture size", &si, sizes, 5)) a.texture_size = 256 << si;
+  if (ImGui::Button("Re-parameterize now")) app.request_adapt();
+}
+
+void StudioUi::inspect_window(App& app) {
+  ImGui::SetNextWindowSize(ImVec2(420, 470), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - 430, 8), ImGuiCond_FirstUseEver);
+  if (!ImGui::Begin("Inspect", &show_inspect_)) return ImGui::End();
+  const char* modes[] = {"texture", "texture + UV", "importance", "stretch", "L_s^2"};
+  ImGui::Combo("Show", &inspect_mode_, modes, 5);
+  ImGui::SameLine();
+  ImGui::Checkbox("grid", &inspect_grid_);
+  const ImageRGBA8* tex = app.texture();
+  const Parameterization* p = app.param();
+  if (tex && p) {
+    const std::uint64_t key = (app.surface_serial() << 20) ^ (app.history().version() << 4) ^ std::uint64_t(inspect_mode_);
+    if (key != inspect_key_ && (++inspect_frames_ % 10 == 1 || app.idle())) {
+      inspect_key_ = key;
+      inspect_img_ = *tex;
+      if (inspect_mode_ >= 2) {
+        ImGui::TextDisabled("map not available (needs the adaptive library)");
+      }
+      if (inspect_mode_ == 1 && p->uv_faces.size() < 400000) {
+        const double W = inspect_img_.width, H = inspect_img_.height;
+        for (const Face& f : p->uv_faces)
+          for (int k = 0; k < 3; ++k) {
+            const Vec2 a = p->uv[f[k]], b = p->uv[f[(k + 1) % 3]];
+            draw_line(inspect_img_, a.x() * W, a.y() * H, b.x() * W, b.y() * H, {40, 40, 60});
+          }
+      }
+      inspect_tex_ = app.renderer().ui_image(0, inspect_img_);
+    }
+    const float w = std::max(64.f, ImGui::GetContentRegionAvail().x);
+    // ImageRGBA8 rows start at v = 0 (bottom): flip vertically for display.
+    if (inspect_tex_) ImGui::Image(inspect_tex_, ImVec2(w, w), ImVec2(0, 1), ImVec2(1, 0));
+  } else {
+    ImGui::TextDisabled("no texture yet");
+  }
+  ImGui::End();
+}
+
+void StudioUi::popups(App& app) {
+  if (auto rec = app.pending_recovery()) {
+    ImGui::OpenPopup("Recover session?");
+    if (ImGui::BeginPopupModal("Recover session?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::Text("adaptex-studio did not exit cleanly last time.\nAn autosaved session was found:\n%s",
+                  rec->string().c_str());
+      if (ImGui::Button("Recover")) {
+        app.accept_recovery();
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::SameLine();
+      if (ImGui::Button("Discard")) {
+        app.discard_recovery();
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::EndPopup();
+    }
+  }
+  const auto& msgs = app.messages();
+  if (msgs.size() < shown_messages_) shown_messages_ = 0;
+  for (; shown_messages_ < msgs.size(); ++shown_messages_)
+    if (msgs[shown_messages_].error) error_text_ = msgs[shown_messages_].text;
+  if (!error_text_.empty()) {
+    ImGui::OpenPopup("Error");
+    if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::PushTextWrapPos(520);
+      ImGui::TextUnformatted(error_text_.c_str());
+      ImGui::PopTextWrapPos();
+      if (ImGui::Button("OK")) {
+        error_text_.clear();
+        ImGui::CloseCurrentPopup();
+      }
+      ImGui::EndPopup();
+    }
+  }
+  if (auto pr = app.progress(); pr && app.load_running()) {
+    ImGui::SetNextWindowPos(ImVec2(app.camera().width * 0.5f, app.camera().height * 0.5f), ImGuiCond_Always,
+                            ImVec2(0.5f, 0.5f));
+    ImGui::Begin("Working", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
+    ImGui::TextUnformatted(pr->first.c_str());
+    ImGui::ProgressBar(float(pr->second), ImVec2(360, 0));
+    if (ImGui::Button("Cancel")) app.cancel_load();
+    ImGui::End();
+  }
+}
+
+void StudioUi::status_bar(App& app) {
+  const float h = ImGui::GetFrameHeight() + 8;
+  ImGui::SetNextWindowPos(ImVec2(0, float(app.camera().height) - h));
+  ImGui::SetNextWindowSize(ImVec2(float(app.camera().width), h));
+  ImGui::Begin("##status", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoBringToFrontOnFocus);
+  std::string s = app.status_line();
+  if (auto pr = app.progress(); pr && !app.load_running()) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, " (%.0f%%)", pr->second * 100);
+    s += " | " + pr->first + buf;
+  }
+  ImGui::TextUnformatted(s.c_str());
+  ImGui::End();
+}
+
+}  // namespace adaptex::studio

@@ -1,0 +1,42 @@
+#pragma once
+/// \file ui.h
+/// The Dear ImGui panels of adaptex-studio (File, Brush, View, Adapt, Inspect, status line,
+/// progress + Cancel, recovery and error pop-ups). Only UI-local state lives here; everything else
+/// is read from and changed through the App.
+#include <cstdint>
+#include <string>
+
+#include "adaptex/core/image.h"
+#include "app.h"
+
+namespace adaptex::studio {
+
+class StudioUi {
+ public:
+  /// Builds this frame's panels (between ImGui::NewFrame and ImGui::Render).
+  void draw(App& app);
+
+ private:
+  void file_panel(App& app);
+  void brush_panel(App& app);
+  void view_panel(App& app);
+  void adapt_panel(App& app);
+  void inspect_window(App& app);
+  void popups(App& app);
+  void status_bar(App& app);
+
+  std::string open_path_, project_path_ = "project.adaptex.json", export_dir_ = "export",
+              glb_path_ = "export/model.glb", screenshot_path_ = "screenshot.png", decal_path_;
+  bool show_inspect_ = false;
+  int inspect_mode_ = 1;       // 0 texture, 1 texture + UV wireframe, 2 importance, 3 stretch, 4 L_s^2
+  bool inspect_grid_ = true;
+  std::uint64_t inspect_key_ = ~0ull;  // what the uploaded inspect image shows
+  int inspect_frames_ = 0;
+  void* inspect_tex_ = nullptr;
+  ImageRGBA8 inspect_img_;
+  size_t shown_messages_ = 0;
+  std::string error_text_;
+  double decal_opacity_ = 1.0;
+};
+
+}  // namespace adaptex::studio
