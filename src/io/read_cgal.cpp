@@ -8,7 +8,7 @@
 /// not its float32 rounding, is kept (see docs/io.md, "Precision").
 #include <CGAL/IO/OFF/File_scanner_OFF.h>
 #include <CGAL/IO/PLY/PLY_reader.h>
-#include <CGAL/IO/STL.h>
+#include <CGAL/IO/STL/STL_reader.h>
 
 #include <cstring>
 #include <sstream>
@@ -59,16 +59,16 @@ PolygonSoup read_off_soup(const std::filesystem::path& path) {
     }
     scanner.skip_to_next_vertex(v);
     if (in.fail())
-      throw IoError(name + ": vertex " + std::to_string(v) + " is missing or not numeric: file truncated or " +
-                    "fewer vertex lines than the header says" + counts);
+      throw IoError(name + ": vertex " + std::to_string(v) + " is missing or not numeric (NaN/inf are not " +
+                    "accepted): file truncated, or fewer vertex lines than the header says" + counts);
     soup.positions.emplace_back(x / w, y / w, z / w);
   }
   for (std::size_t f = 0; f < nf; ++f) {
     std::size_t no = static_cast<std::size_t>(-1);
     scanner.scan_facet(no, f);
     if (in.fail() || no == static_cast<std::size_t>(-1) || (in.eof() && no == 0))
-      throw IoError(name + ": face " + std::to_string(f) + " is missing or unreadable: file truncated or fewer " +
-                    "face lines than the header says" + counts);
+      throw IoError(name + ": face " + std::to_string(f) + " is missing or unreadable: file truncated, or fewer " +
+                    "vertex or face lines than the header says" + counts);
     for (std::size_t j = 0; j < no; ++j) {
       std::size_t idx = 0;
       scanner.scan_facet_vertex_index(idx, j + 1, f);
@@ -250,7 +250,9 @@ PolygonSoup read_stl_soup(const std::filesystem::path& path) {
   std::vector<std::array<double, 3>> points;
   std::vector<std::array<int, 3>> triangles;
   std::istringstream in(binary ? text.substr(0, 84 + 50ull * declared) : text);
-  const bool ok = CGAL::IO::read_STL(in, points, triangles, CGAL::parameters::verbose(false));
+  // The format is decided above; CGAL's read_STL() would fall back from one to the other on errors.
+  const bool ok = binary ? CGAL::IO::internal::parse_binary_STL(in, points, triangles, false)
+                         : CGAL::IO::internal::parse_ASCII_STL(in, points, triangles, false);
   if (!ok)
     throw IoError(name + ": corrupt " + (binary ? std::string("binary") : std::string("ASCII")) +
                   " STL: could not parse " + (binary ? "the triangle records" : "the facet/vertex lines") +
