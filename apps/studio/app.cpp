@@ -59,6 +59,7 @@ struct App::LoadResult {
 struct App::RebuildResult {
   std::unique_ptr<Surface> surface;
   std::vector<std::pair<std::string, double>> phase_ms;
+  std::shared_ptr<const AdaptMaps> maps;
   bool adapted = false;
 };
 
@@ -259,7 +260,7 @@ bool App::idle() const {
   if (load_job_ || rebuild_job_ || !pending_strokes_.empty()) return false;
   if (!surface_) return true;
   if (surface_->generation != history_.generation() || surface_->painted != history_.strokes().size()) return false;
-  if (adapt_pending_ && adapt_.mode != AdaptMode::None && adapt_available()) return false;
+  if (adapt_pending_ && adapt_.mode != AdaptMode::None) return false;
   return true;
 }
 
@@ -568,35 +569,42 @@ void App::start_rebuild(bool adapt) {
   req.coarse_grid = adapt_.coarse_grid;
   req.fine_grid = adapt_.fine_grid;
   req.texture_size = size;
-  std::shared_ptr<ImageRGBA8> tex;
-  if (adapt) tex = std::make_shared<ImageRGBA8>(surface_->canvas->texture());
   if (adapt) adapt_pending_ = false;
   rebuild_job_ = std::make_unique<Job<RebuildResult>>(
-      [model, param, gen, file = std::move(file), size, req, tex, adapt](Job<RebuildResult>& job) {
+      [model, param, gen, file = std::move(file), size, req, adapt](Job<RebuildResult>& job) {
         RebuildResult r;
-        auto t0 = Clock::now();
-        std::shared_ptr<const Parameterization> p = param;
-        if (adapt) {
-          AdaptOutcome o = adapt_step(model->mesh, *param, *tex, file, req,
-                                      [&job](std::string_view ph, double f) { return job.progress(ph, f); });
-          p = std::make_shared<Parameterization>(std::move(o.param));
-          r.phase_ms = o.phase_ms;
-          r.adapted = true;
-        }
-        t0 = Clock::now();
-        job.progress("texture", 0.0);
+        const auto t0 = Clock::now();
         auto s = std::make_unique<Surface>();
         s->model = model;
-        s->param = p;
         s->generation = gen;
         s->size = size;
-        s->canvas = std::make_unique<Canvas>(model->mesh, *p, size, size, file.background);
-        for (size_t i = 0; i < file.strokes.size(); ++i) {
-          if (!job.progress("replay", double(i) / file.strokes.size())) throw CancelledError();
-          s->canvas->paint_stroke(file.strokes[i]);
+        const ProgressCallback progress = [&job](std::string_view ph, double f) { return job.progress(ph, f); };
+        if (adapt) {
+          AdaptOutcome o = adapt_and_replay(model->mesh, *param, file, req, progress);
+          s->param = o.param;
+          s->canvas = std::move(o.canvas);
+          r.phase_ms = std::move(o.phase_ms);
+          r.phase_ms.emplace_back("total", ms_since(t0));
+          auto maps = std::make_shared<AdaptMaps>();
+          maps->importance = std::move(o.importance);
+          maps->stretch = std::move(o.stretch);
+          maps->ls2 = std::move(o.ls2);
+          maps->coarse = std::move(o.coarse);
+          maps->fine = std::move(o.fine);
+          maps->accepted = o.accepted;
+          maps->damping = o.damping;
+          r.maps = std::move(maps);
+          r.adapted = true;
+        } else {
+          s->param = param;
+          s->canvas = std::make_unique<Canvas>(model->mesh, *param, size, size, file.background);
+          for (size_t i = 0; i < file.strokes.size(); ++i) {
+            if (!job.progress("replay", double(i) / file.strokes.size())) throw CancelledError();
+            s->canvas->paint_stroke(file.strokes[i]);
+          }
+          r.phase_ms.emplace_back("replay", ms_since(t0));
         }
         s->painted = file.strokes.size();
-        r.phase_ms.emplace_back("replay", ms_since(t0));
         r.surface = std::move(s);
         return r;
       });
@@ -608,7 +616,7 @@ void App::maybe_start_rebuild() {
   if (rebuild_job_) {
     return;  // poll_jobs() discards a result of an old generation and we start again then
   }
-  const bool want_adapt = adapt_pending_ && adapt_.mode != AdaptMode::None && adapt_available();
+  const bool want_adapt = adapt_pending_ && adapt_.mode != AdaptMode::None;
   if (stale || (want_adapt && !stroke_open_)) {
     start_rebuild(want_adapt && !stroke_open_);
     return;
@@ -675,7 +683,10 @@ void App::poll_jobs() {
           s.canvas->begin_stroke(current_);
           for (const Vec3& d : current_.dabs) s.canvas->add_dab(d);
         }
-        if (r.adapted) last_cycle_ = r.phase_ms;
+        if (r.adapted) {
+          last_cycle_ = r.phase_ms;
+          maps_ = r.maps;
+        }
         swap_surface(std::move(r.surface));
       }
     } catch (const CancelledError&) {
@@ -829,7 +840,6 @@ void App::export_glb(const std::filesystem::path& path) {
 
 void App::request_adapt() {
   if (adapt_.mode == AdaptMode::None) return add_message("choose an adaptation mode first", true);
-  if (!adapt_available()) return add_message("adaptive re-parameterization is not available in this build", true);
   adapt_pending_ = true;
 }
 

@@ -42,6 +42,14 @@ struct Message {
   bool error = false;
 };
 
+/// Maps of the last adaptive re-parameterization (Inspect panel).
+struct AdaptMaps {
+  ImageF importance, stretch, ls2;  ///< Over the previous parameterization's domain.
+  GridWarp coarse, fine;            ///< Optimized grids (empty when not used).
+  bool accepted = true;             ///< false: the safeguard kept the previous parameterization.
+  double damping = 1;
+};
+
 /// Timing statistics (frame time, dab-to-screen latency).
 struct Stats {
   std::vector<double> frame_ms;       ///< CPU+GPU time of each frame (end_frame to end_frame).
@@ -140,6 +148,8 @@ class App {
   const std::optional<ImageRGBA8>& decal_image() const { return decal_image_; }
   /// Phase times of the last re-parameterization cycle (name, ms).
   const std::vector<std::pair<std::string, double>>& last_cycle() const { return last_cycle_; }
+  /// Maps of the last re-parameterization (null before the first one).
+  const AdaptMaps* adapt_maps() const { return maps_.get(); }
   /// Canvas (texture) generation counter: changes whenever a new texture is swapped in.
   std::uint64_t surface_serial() const { return surface_serial_; }
   std::filesystem::path recovery_path() const;
@@ -213,6 +223,7 @@ class App {
 
   std::deque<Message> messages_;
   std::vector<std::pair<std::string, double>> last_cycle_;
+  std::shared_ptr<const AdaptMaps> maps_;
   std::uint64_t surface_serial_ = 0;
   Stats stats_;
   Clock::time_point last_frame_end_ = Clock::now();

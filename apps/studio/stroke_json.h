@@ -12,7 +12,7 @@ namespace adaptex::studio {
 /// The stroke-file JSON object ("format": "adaptex.strokes", "version": 1). Decal image paths are
 /// written as stored in Stroke::image_path.
 nlohmann::json strokes_to_json(const StrokeFile& file);
-/// Parses a stroke-file object (same checks as the contract: fields, ranges, finite numbers).
+/// Parses a stroke-file object strictly (adaptex::parse_strokes).
 /// Decal images are loaded relative to \p base_dir. \throw InvalidInputError naming \p name
 StrokeFile strokes_from_json(const nlohmann::json& j, const std::string& name,
                              const std::filesystem::path& base_dir);

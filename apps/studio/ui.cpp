@@ -121,7 +121,6 @@ void StudioUi::view_panel(App& app) {
 
 void StudioUi::adapt_panel(App& app) {
   AdaptSettings& a = app.adapt();
-  if (!adapt_available()) ImGui::TextDisabled("(adaptive library not linked in this build)");
   const char* modes[] = {"none", "single", "two-stage"};
   int m = int(a.mode);
   if (ImGui::Combo("Mode", &m, modes, 3)) a.mode = AdaptMode(m);
