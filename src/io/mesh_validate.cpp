@@ -247,30 +247,29 @@ TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOption
     }
   }
 
-  // 3. Duplicate faces (same vertex set).
+  // 3. Duplicate faces (same vertex set): sort the faces by their sorted corner triple.
   {
-    std::unordered_map<std::uint64_t, std::vector<int>> seen;
-    std::vector<char> keep(mesh.faces.size(), 1);
-    int dropped = 0, first = -1, first_of = -1;
-    auto sorted = [&](int f) {
+    std::vector<std::pair<Face, int>> keys(mesh.faces.size());
+    for (int f = 0; f < mesh.num_faces(); ++f) {
       Face t = mesh.faces[f];
       std::sort(t.begin(), t.end());
-      return t;
-    };
-    for (int f = 0; f < mesh.num_faces(); ++f) {
-      const Face t = sorted(f);
-      const std::uint64_t h = (static_cast<std::uint64_t>(t[0]) * 0x9E3779B97F4A7C15ull) ^
-                              (static_cast<std::uint64_t>(t[1]) * 0xC2B2AE3D27D4EB4Full) ^
-                              (static_cast<std::uint64_t>(t[2]) * 0x165667B19E3779F9ull);
-      auto& bucket = seen[h];
-      for (int g : bucket)
-        if (sorted(g) == t) {
-          keep[f] = 0;
-          if (first < 0) first = f, first_of = g;
-          ++dropped;
-          break;
-        }
-      if (keep[f]) bucket.push_back(f);
+      keys[f] = {t, f};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<char> keep(mesh.faces.size(), 1);
+    int dropped = 0, first = -1, first_of = -1;
+    for (size_t k = 1; k < keys.size(); ++k) {
+      if (keys[k].first != keys[k - 1].first) continue;
+      // keys[k] repeats an earlier face of the same run; within a run faces are sorted by index.
+      const int f = keys[k].second;
+      keep[f] = 0;
+      ++dropped;
+      if (first < 0 || f < first) {
+        size_t r = k;
+        while (r > 0 && keys[r - 1].first == keys[k].first) --r;
+        first = f;
+        first_of = keys[r].second;
+      }
     }
     if (dropped > 0) {
       if (!options.repair)

@@ -20,7 +20,15 @@ std::string read_file_text(const std::filesystem::path& path) {
   if (std::filesystem::is_directory(status)) throw IoError(name + ": cannot read: is a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(name + ": cannot read: cannot open the file (permissions?)");
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string text;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) {
+    text.resize(static_cast<std::size_t>(size));
+    in.read(text.data(), static_cast<std::streamsize>(size));
+    text.resize(static_cast<std::size_t>(in.gcount()));
+  } else {
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
   if (in.bad()) throw IoError(name + ": cannot read: I/O error while reading");
   if (text.empty()) throw IoError(name + ": cannot read: file is empty (0 bytes)");
   return text;
