@@ -1,1 +1,11 @@
-target_sources(adaptex_paint PRIVATE placeholder.cpp)
+# Sources of the paint area owned by the brush work: stroke file, texel map, painter, signal,
+# seam padding, evaluation, stroke generation.
+target_sources(adaptex_paint PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/strokes.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/texel_map.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/texel_grid.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/padding.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/painter.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/signal.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/eval.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/generate.cpp)

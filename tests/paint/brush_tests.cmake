@@ -1,1 +1,3 @@
-# adaptex_add_test(...) calls go here
+# Tests of the brush part of the paint area (strokes, texel map, painter, padding, signal, eval,
+# generate, their CLI commands).
+adaptex_add_test(test_paint_strokes SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_strokes.cpp LIBS adaptex::paint)

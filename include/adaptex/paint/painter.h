@@ -41,7 +41,8 @@ class Painter {
   /// (its dabs are ignored).
   void begin_stroke(const Stroke& style);
   /// Interactive: adds one dab to the open stroke (max coverage within the stroke).
-  /// \return the texel rectangle touched, as (i0, j0, i1, j1) inclusive; empty if i1 < i0.
+  /// \return the texel rectangle touched, as (i0, j0, i1, j1) inclusive, grown by the padding P
+  ///         (padded texels next to the touched ones change too); empty if i1 < i0.
   std::array<int, 4> add_dab(const Vec3& centre);
   /// Interactive: closes the open stroke.
   void end_stroke();

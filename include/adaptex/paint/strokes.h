@@ -39,6 +39,12 @@ struct Stroke {
 struct StrokeFile {
   Vec3 background = Vec3(1, 1, 1);  ///< Colour of unpainted surface.
   std::vector<Stroke> strokes;       ///< Composited in this order.
+  /// Filled by read_strokes()/parse_strokes(): one line per ignored unknown field
+  /// (e.g. `s.json: stroke 2: unknown field "hardnes" ignored`). Never written.
+  std::vector<std::string> warnings;
+
+  /// Total number of brush dabs over all strokes.
+  long long num_dabs() const;
 };
 
 /// Parses a stroke file strictly (unknown format, wrong version, missing fields, NaN/inf, values out
@@ -51,6 +57,11 @@ StrokeFile parse_strokes(const std::string& json, const std::string& name,
                          const std::filesystem::path& base_dir);
 /// Writes a stroke file (decal image paths are written as stored). \throw IoError
 void write_strokes(const std::filesystem::path& path, const StrokeFile& strokes);
+
+/// Checks a stroke in memory against the same rules as the parser (for strokes built in code, e.g.
+/// by the desktop app). \p where prefixes the message (e.g. "stroke 3").
+/// \throw InvalidInputError first violated rule, one line naming the field
+void validate_stroke(const Stroke& stroke, const std::string& where);
 
 /// The contract's falloff: 1 for t <= h, 0 for t >= 1, 1 - smoothstep in between.
 double brush_falloff(double t, double hardness);
