@@ -256,7 +256,7 @@ PolygonSoup read_stl_soup(const std::filesystem::path& path) {
   if (!ok)
     throw IoError(name + ": corrupt " + (binary ? std::string("binary") : std::string("ASCII")) +
                   " STL: could not parse " + (binary ? "the triangle records" : "the facet/vertex lines") +
-                  " (read " + std::to_string(triangles.size()) + " triangles before the error)");
+                  " (read " + count_str(triangles.size(), "triangle", "triangles") + " before the error)");
   PolygonSoup soup;
   soup.format = "stl";
   soup.element = "triangle";
