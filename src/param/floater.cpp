@@ -5,7 +5,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <algorithm>
@@ -16,6 +15,7 @@
 #include <unordered_map>
 
 #include "adaptex/core/errors.h"
+#include "amg.h"
 
 #ifdef ADAPTEX_HAVE_UMFPACK
 #include <Eigen/UmfPackSupport>
@@ -26,6 +26,8 @@ namespace adaptex {
 namespace {
 
 using SpMat = Eigen::SparseMatrix<double>;
+using RowMat = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+constexpr int kAutoDirectLimit = 20000;  // unknowns; see docs/parameterization.md
 
 /// For every vertex, the pairs (b, c) of its incident faces (v, b, c) in face order, CSR.
 struct CornerPairs {
@@ -346,41 +348,54 @@ DiskBoundary map_boundary_to_square(const TriMesh& disk, const std::vector<int>&
 // Solver.
 
 struct TutteSolver::Impl {
-  SpMat A;
+  RowMat A;                   ///< Master matrix (row-major), pattern fixed at construction.
+  std::vector<int> entry_pos; ///< Weight entry -> position in A's values (-1: boundary neighbour).
+  std::vector<int> diag_pos;  ///< Unknown -> position of its diagonal entry.
 #ifdef ADAPTEX_HAVE_UMFPACK
   Eigen::UmfPackLU<SpMat> umf;
 #endif
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu;
-  Eigen::BiCGSTAB<SpMat, Eigen::IncompleteLUT<double>> bicg;
+  detail::AmgPreconditioner amg;
   bool analyzed = false;
 };
 
 TutteSolver::TutteSolver(const ConvexWeights& pattern, const std::vector<char>& is_boundary,
                          Backend backend)
     : impl_(std::make_unique<Impl>()), backend_(backend) {
-#ifndef ADAPTEX_HAVE_UMFPACK
-  if (backend_ == Backend::Umfpack) backend_ = Backend::SparseLU;
-#endif
   const int nv = pattern.num_vertices();
   unknown_.assign(nv, -1);
   for (int v = 0; v < nv; ++v)
-    if (!is_boundary[v]) {
+    if (!is_boundary[v] && pattern.offsets[v + 1] > pattern.offsets[v]) {
       unknown_[v] = static_cast<int>(interior_.size());
       interior_.push_back(v);
     }
   const int n = num_interior();
-  // Pattern: diagonal + interior neighbours, compressed column storage of A^T rows... build directly.
+  if (backend_ == Backend::Auto) backend_ = n <= kAutoDirectLimit ? Backend::Umfpack : Backend::Multigrid;
+#ifndef ADAPTEX_HAVE_UMFPACK
+  if (backend_ == Backend::Umfpack) backend_ = Backend::SparseLU;
+#endif
+  // Build the pattern with each entry's id as its value, then read the ids back as positions.
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(pattern.values.size() + n);
+  const double diag_tag = -1.0;
   for (int i = 0; i < n; ++i) {
     const int v = interior_[i];
-    trip.emplace_back(i, i, 1.0);
+    trip.emplace_back(i, i, diag_tag - i);
     for (int k = pattern.offsets[v]; k < pattern.offsets[v + 1]; ++k)
-      if (unknown_[pattern.neighbors[k]] >= 0) trip.emplace_back(i, unknown_[pattern.neighbors[k]], 0.0);
+      if (unknown_[pattern.neighbors[k]] >= 0)
+        trip.emplace_back(i, unknown_[pattern.neighbors[k]], static_cast<double>(k));
   }
-  impl_->A.resize(n, n);
-  impl_->A.setFromTriplets(trip.begin(), trip.end());
-  impl_->A.makeCompressed();
+  RowMat& A = impl_->A;
+  A.resize(n, n);
+  A.setFromTriplets(trip.begin(), trip.end());
+  A.makeCompressed();
+  impl_->entry_pos.assign(pattern.values.size(), -1);
+  impl_->diag_pos.assign(n, -1);
+  for (int p = 0; p < A.nonZeros(); ++p) {
+    const double tag = A.valuePtr()[p];
+    if (tag < 0) impl_->diag_pos[static_cast<int>(diag_tag - tag)] = p;
+    else impl_->entry_pos[static_cast<size_t>(tag)] = p;
+  }
 }
 
 TutteSolver::~TutteSolver() = default;
@@ -388,40 +403,29 @@ TutteSolver::~TutteSolver() = default;
 void TutteSolver::solve(const ConvexWeights& w, std::vector<Vec2>& uv) {
   const int n = num_interior();
   if (n == 0) return;
-  SpMat& A = impl_->A;
-  // Fill values: A(i,i) = 1, A(i,j) = -λ; rhs = Σ_boundary λ ψ(w).
-  std::fill(A.valuePtr(), A.valuePtr() + A.nonZeros(), 0.0);
+  RowMat& A = impl_->A;
+  // A(i,i) = 1, A(i,j) = -λ_vw (w interior); rhs_i = Σ_{w boundary} λ_vw ψ(w).
   Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2);
-  // Column-major storage: set entry (i, j) via coeffRef is O(log) per entry; use a row->col lookup.
-  // A is column-major, so A(i, j) lives in column j. Build values by scanning rows via the transposed
-  // pattern would be faster; coeffRef on a compressed matrix with sorted inner indices is a binary
-  // search, fine for our valences.
+  double* val = A.valuePtr();
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 4096), [&](const tbb::blocked_range<int>& r) {
     for (int i = r.begin(); i != r.end(); ++i) {
       const int v = interior_[i];
+      val[impl_->diag_pos[i]] = 1.0;
       for (int k = w.offsets[v]; k < w.offsets[v + 1]; ++k) {
-        const int nb = w.neighbors[k];
-        if (unknown_[nb] < 0) rhs.row(i) += w.values[k] * uv[nb].transpose();
+        const int p = impl_->entry_pos[k];
+        if (p >= 0) val[p] = -w.values[k];
+        else rhs.row(i) += w.values[k] * uv[w.neighbors[k]].transpose();
       }
     }
   });
-  for (int i = 0; i < n; ++i) {
-    const int v = interior_[i];
-    A.coeffRef(i, i) = 1.0;
-    for (int k = w.offsets[v]; k < w.offsets[v + 1]; ++k) {
-      const int j = unknown_[w.neighbors[k]];
-      if (j >= 0) A.coeffRef(i, j) -= w.values[k];
-    }
-  }
   Eigen::MatrixX2d x(n, 2);
-  auto fail = [](const char* what) {
-    throw SolverError(std::string("Tutte system: ") + what);
-  };
+  auto fail = [](const char* what) { throw SolverError(std::string("Tutte system: ") + what); };
   switch (backend_) {
 #ifdef ADAPTEX_HAVE_UMFPACK
     case Backend::Umfpack: {
-      if (!impl_->analyzed) impl_->umf.analyzePattern(A), impl_->analyzed = true;
-      impl_->umf.factorize(A);
+      const SpMat Ac(A);
+      if (!impl_->analyzed) impl_->umf.analyzePattern(Ac), impl_->analyzed = true;
+      impl_->umf.factorize(Ac);
       if (impl_->umf.info() != Eigen::Success) fail("UMFPACK factorization failed");
       x = impl_->umf.solve(rhs);
       break;
@@ -429,24 +433,22 @@ void TutteSolver::solve(const ConvexWeights& w, std::vector<Vec2>& uv) {
 #else
     case Backend::Umfpack:
 #endif
+    case Backend::Auto:
     case Backend::SparseLU: {
-      if (!impl_->analyzed) impl_->lu.analyzePattern(A), impl_->analyzed = true;
-      impl_->lu.factorize(A);
+      const SpMat Ac(A);
+      if (!impl_->analyzed) impl_->lu.analyzePattern(Ac), impl_->analyzed = true;
+      impl_->lu.factorize(Ac);
       if (impl_->lu.info() != Eigen::Success) fail("SparseLU factorization failed");
       x = impl_->lu.solve(rhs);
       break;
     }
-    case Backend::BiCgStab: {
-      impl_->bicg.setTolerance(1e-10);
-      impl_->bicg.setMaxIterations(std::max(1000, n));
-      impl_->bicg.compute(A);
-      if (impl_->bicg.info() != Eigen::Success) fail("incomplete LU failed");
-      for (int c = 0; c < 2; ++c) {
-        Eigen::VectorXd x0(n);
-        for (int i = 0; i < n; ++i) x0[i] = uv[interior_[i]][c];
-        x.col(c) = impl_->bicg.solveWithGuess(rhs.col(c), x0);
-        if (impl_->bicg.info() != Eigen::Success) fail("BiCGSTAB did not converge");
-      }
+    case Backend::Multigrid: {
+      if (!impl_->analyzed) impl_->amg.setup(A), impl_->analyzed = true;
+      else impl_->amg.update(A);
+      detail::AmgPreconditioner::Block xb(n, 2), bb = rhs;
+      for (int i = 0; i < n; ++i) xb.row(i) = uv[interior_[i]].transpose();
+      last_iterations_ += detail::bicgstab(A, impl_->amg, bb, xb, tolerance_, 500);
+      x = xb;
       break;
     }
   }

@@ -2,6 +2,7 @@
 target_sources(adaptex_param PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/stretch.cpp
   ${CMAKE_CURRENT_LIST_DIR}/floater.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/amg.cpp
   ${CMAKE_CURRENT_LIST_DIR}/yoshizawa.cpp
   ${CMAKE_CURRENT_LIST_DIR}/disk_param.cpp)
 # UMFPACK (SuiteSparse, Debian libsuitesparse-dev) for the non-symmetric Tutte system; Eigen's SparseLU

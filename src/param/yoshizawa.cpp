@@ -32,13 +32,15 @@ std::vector<double> vertex_stretch(const TriMesh& mesh, const std::vector<Vec2>&
 
 void yoshizawa_reweight(ConvexWeights& w, const std::vector<double>& sigma, double eta) {
   const int nv = w.num_vertices();
+  std::vector<double> factor(sigma.size());
+  for (size_t v = 0; v < sigma.size(); ++v) factor[v] = eta == 1.0 ? 1.0 / sigma[v] : std::pow(sigma[v], -eta);
   tbb::parallel_for(tbb::blocked_range<int>(0, nv, 4096), [&](const tbb::blocked_range<int>& r) {
     for (int v = r.begin(); v != r.end(); ++v) {
       const int b = w.offsets[v], e = w.offsets[v + 1];
       if (b == e) continue;
       double sum = 0;
       for (int k = b; k < e; ++k) {
-        w.values[k] /= std::pow(sigma[w.neighbors[k]], eta);
+        w.values[k] *= factor[w.neighbors[k]];
         sum += w.values[k];
       }
       for (int k = b; k < e; ++k) w.values[k] /= sum;

@@ -106,7 +106,7 @@ TEST(DiskParam, BackendsAgree) {
   opt.min_improvement = 0;
   opt.backend = TutteSolver::Backend::Umfpack;
   const DiskParamResult a = parameterize_disk(m, {}, opt);
-  for (auto b : {TutteSolver::Backend::SparseLU, TutteSolver::Backend::BiCgStab}) {
+  for (auto b : {TutteSolver::Backend::SparseLU, TutteSolver::Backend::Multigrid}) {
     opt.backend = b;
     const DiskParamResult r = parameterize_disk(m, {}, opt);
     ASSERT_EQ(r.uv.size(), a.uv.size());
@@ -125,4 +125,21 @@ TEST(DiskParam, CancelThrows) {
   DiskParamOptions opt;
   opt.progress = [](std::string_view phase, double) { return phase != "yoshizawa"; };
   EXPECT_THROW(parameterize_disk(adaptex::test::bump(8), {}, opt), CancelledError);
+}
+
+TEST(DiskParam, MultigridMatchesDirectOnLargerDisk) {
+  // ~8k unknowns: the AMG hierarchy has several levels (coarsest level is below 2000 unknowns).
+  const TriMesh m = adaptex::test::bump(64);
+  DiskParamOptions opt;
+  opt.max_iterations = 2;
+  opt.min_improvement = 0;
+  opt.backend = TutteSolver::Backend::Umfpack;
+  const DiskParamResult a = parameterize_disk(m, {}, opt);
+  opt.backend = TutteSolver::Backend::Multigrid;
+  const DiskParamResult b = parameterize_disk(m, {}, opt);
+  EXPECT_EQ(a.iterations, b.iterations);
+  double max_diff = 0;
+  for (size_t v = 0; v < a.uv.size(); ++v) max_diff = std::max(max_diff, (a.uv[v] - b.uv[v]).norm());
+  EXPECT_LT(max_diff, 1e-7);
+  EXPECT_NEAR(a.final_l2, b.final_l2, 1e-8);
 }

@@ -27,7 +27,7 @@ struct DiskParamOptions {
   /// Stop after this many halvings of η (0: stop at the first iterate that does not improve enough).
   int max_halvings = 4;
   /// Sparse solver backend.
-  TutteSolver::Backend backend = TutteSolver::Backend::Umfpack;
+  TutteSolver::Backend backend = TutteSolver::Backend::Auto;
   /// Progress / cancel callback (phases "floater", "yoshizawa").
   ProgressCallback progress;
 };

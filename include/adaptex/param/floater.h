@@ -69,14 +69,16 @@ class TutteSolver {
  public:
   /// Linear-algebra backend.
   enum class Backend {
-    Umfpack,   ///< SuiteSparse UMFPACK LU (default: fastest measured, see docs/parameterization.md).
-    SparseLU,  ///< Eigen::SparseLU (supernodal LU, no extra library).
-    BiCgStab,  ///< Eigen::BiCGSTAB with incomplete-LU preconditioner, warm-started from the current uv.
+    Auto,       ///< Umfpack up to 20k unknowns, Multigrid above (see docs/parameterization.md).
+    Umfpack,    ///< SuiteSparse UMFPACK LU, symbolic analysis reused (SparseLU if not built with it).
+    SparseLU,   ///< Eigen::SparseLU (supernodal LU, no extra library), symbolic analysis reused.
+    Multigrid,  ///< BiCGSTAB preconditioned by smoothed-aggregation AMG (aggregates reused),
+                ///< warm-started from the current uv. Scales linearly; for 100k+ faces.
   };
   /// \param pattern weights whose sparsity pattern every later solve() uses.
   /// \param is_boundary V flags; boundary vertices are fixed.
   TutteSolver(const ConvexWeights& pattern, const std::vector<char>& is_boundary,
-              Backend backend = Backend::Umfpack);
+              Backend backend = Backend::Auto);
   ~TutteSolver();
   TutteSolver(const TutteSolver&) = delete;
   TutteSolver& operator=(const TutteSolver&) = delete;
@@ -87,13 +89,20 @@ class TutteSolver {
   /// \throw SolverError factorization or convergence failure
   void solve(const ConvexWeights& weights, std::vector<Vec2>& uv);
 
+  /// The backend in use (Auto resolved).
   Backend backend() const { return backend_; }
+  /// Relative residual tolerance of the iterative backend (default 1e-10).
+  void set_tolerance(double tol) { tolerance_ = tol; }
+  /// BiCGSTAB iterations summed over all solves so far (iterative backend only).
+  int iterations() const { return last_iterations_; }
   int num_interior() const { return static_cast<int>(interior_.size()); }
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
   Backend backend_;
+  double tolerance_ = 1e-10;
+  int last_iterations_ = 0;
   std::vector<int> interior_;   ///< Interior vertex of each unknown.
   std::vector<int> unknown_;    ///< V: unknown index of each vertex (-1 on the boundary).
 };
