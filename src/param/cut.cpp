@@ -299,6 +299,16 @@ std::vector<int> shortest_path_to_cut(const EdgeGraph& g, const std::vector<char
   return path;
 }
 
+std::vector<double> distance_to_cut(const EdgeGraph& g, const std::vector<char>& on_cut) {
+  std::vector<int> sources;
+  for (size_t v = 0; v < on_cut.size(); ++v)
+    if (on_cut[v]) sources.push_back(static_cast<int>(v));
+  std::vector<double> dist;
+  std::vector<int> parent;
+  dijkstra(g, sources, dist, parent, [](int) { return false; });
+  return dist;
+}
+
 double cut_length(const EdgeGraph& g, const std::vector<char>& cut) {
   double len = 0;
   for (size_t e = 0; e < cut.size(); ++e)

@@ -79,17 +79,43 @@ struct Chart {
 
 /// Input vertex (of the component) with the largest stretch that is not on the cut yet: the
 /// per-wedge stretch σ (yoshizawa.h: area-weighted face L2 around the wedge), maximum over wedges.
-int worst_vertex(const Component& comp, const CutState& s, const std::vector<char>& on_cut) {
+/// Vertices next to a degenerate UV triangle (σ = inf: an extremity squeezed to nothing by the
+/// Tutte embedding) come first, the one farthest from the cut (the tip of the extremity) first.
+int worst_vertex(const Component& comp, const EdgeGraph& graph, const CutState& s,
+                 const std::vector<char>& on_cut) {
   const std::vector<double> sigma = vertex_stretch(s.disk.disk, s.param.uv);
-  std::vector<double> per_vertex(comp.mesh.num_vertices(), 0.0);
+  const int nv = comp.mesh.num_vertices();
+  std::vector<double> per_vertex(nv, 0.0);
+  bool any_inf = false;
   for (size_t w = 0; w < sigma.size(); ++w) {
     double& x = per_vertex[s.disk.wedge_vertex[w]];
-    x = std::max(x, std::isfinite(sigma[w]) ? sigma[w] : std::numeric_limits<double>::max());
+    x = std::max(x, std::isfinite(sigma[w]) ? sigma[w] : std::numeric_limits<double>::infinity());
+    any_inf |= !std::isfinite(sigma[w]) && !on_cut[s.disk.wedge_vertex[w]];
+  }
+  if (any_inf) {
+    const std::vector<double> dist = distance_to_cut(graph, on_cut);
+    for (int v = 0; v < nv; ++v)
+      per_vertex[v] = std::isfinite(per_vertex[v]) ? 0.0 : 1.0 + dist[v];
   }
   int best = -1;
-  for (int v = 0; v < comp.mesh.num_vertices(); ++v)
+  for (int v = 0; v < nv; ++v)
     if (!on_cut[v] && (best < 0 || per_vertex[v] > per_vertex[best])) best = v;
   return best;
+}
+
+/// How good a cut is, from its (cheap) parameterization: fewer degenerate/flipped UV triangles
+/// first, then lower L2 stretch.
+struct CutScore {
+  long bad = 0;
+  double l2 = 0;
+};
+CutScore score(const CutState& s) {
+  const StretchStats st = measure_stretch(s.disk.disk, s.param.uv);
+  return {static_cast<long>(st.degenerate) + st.flipped, std::isfinite(st.l2) ? st.l2 : 0.0};
+}
+bool better(const CutScore& a, const CutScore& b, double min_improvement) {
+  if (a.bad != b.bad) return a.bad < b.bad;
+  return a.l2 < b.l2 * (1.0 - min_improvement);
 }
 
 }  // namespace
@@ -154,8 +180,9 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
     // compared with a cheaper parameterization (Floater + a few Yoshizawa iterations); the full
     // Yoshizawa solve runs once, on the chosen cut.
     const long chart_faces = comp.mesh.num_faces();
-    if (options.max_augmentations > 0 && augment_faces_left >= 2 * chart_faces &&
-        Clock::now() < augment_deadline) {
+    const long eval_cost = chart_faces * (1 + std::max(0, std::min(dopt.max_iterations,
+                                                               options.augment_yoshizawa_iterations)));
+    if (options.max_augmentations > 0) {
       t0 = Clock::now();
       DiskParamOptions cheap = dopt;
       cheap.max_iterations = std::min(dopt.max_iterations, options.augment_yoshizawa_iterations);
@@ -163,25 +190,37 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
       cheap.progress = [&](std::string_view, double) {
         return !options.progress || options.progress("augment", frac0);
       };
-      report_progress(options.progress, "augment", frac0);
-      cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap);
-      augment_faces_left -= chart_faces;
-      for (int a = 0; a < options.max_augmentations; ++a) {
-        if (augment_faces_left < chart_faces || Clock::now() >= augment_deadline) break;
+      // The budgets apply to charts whose cheap parameterization is valid; a chart with degenerate
+      // UV triangles (squeezed extremities) is always augmented, up to max_augmentations.
+      auto within_budget = [&] {
+        return augment_faces_left >= eval_cost && Clock::now() < augment_deadline;
+      };
+      bool evaluated = false;
+      CutScore cur_score;
+      if (augment_faces_left >= 2 * eval_cost && Clock::now() < augment_deadline) {
+        report_progress(options.progress, "augment", frac0);
+        cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap);
+        augment_faces_left -= eval_cost;
+        cur_score = score(cur);
+        evaluated = true;
+      }
+      for (int a = 0; evaluated && a < options.max_augmentations; ++a) {
+        if (cur_score.bad == 0 && !within_budget()) break;
         report_progress(options.progress, "augment",
                         frac0 + (frac1 - frac0) * a / options.max_augmentations);
         const std::vector<char> on_cut = cut_vertices(comp.mesh, ec, cur.cut);
-        const int from = worst_vertex(comp, cur, on_cut);
+        const int from = worst_vertex(comp, graph, cur, on_cut);
         if (from < 0) break;
         CutState cand;
         cand.cut = cur.cut;
         for (int e : shortest_path_to_cut(graph, on_cut, from)) cand.cut[e] = 1;
         cand.disk = slice_along_cut(comp.mesh, ec, cand.cut);
         cand.param = parameterize_disk(cand.disk.disk, cand.disk.boundary_loop, cheap);
-        augment_faces_left -= chart_faces;
-        if (!(cand.param.final_l2 < cur.param.final_l2 * (1.0 - options.augment_min_improvement)))
-          break;
+        augment_faces_left -= eval_cost;
+        const CutScore cand_score = score(cand);
+        if (!better(cand_score, cur_score, options.augment_min_improvement)) break;
         cur = std::move(cand);
+        cur_score = cand_score;
         ++chart.augmentations;
       }
       rep.time_augment += seconds_since(t0);

@@ -70,6 +70,10 @@ std::vector<char> cut_vertices(const TriMesh& mesh, const EdgeConnectivity& ec,
 std::vector<int> shortest_path_to_cut(const EdgeGraph& graph, const std::vector<char>& on_cut,
                                       int from);
 
+/// Geodesic (Dijkstra) distance of every vertex to the nearest vertex flagged in \p on_cut
+/// (+inf where unreachable).
+std::vector<double> distance_to_cut(const EdgeGraph& graph, const std::vector<char>& on_cut);
+
 /// Total 3-D length of the flagged edges.
 double cut_length(const EdgeGraph& graph, const std::vector<char>& cut);
 

@@ -25,14 +25,16 @@ struct UnwrapOptions {
   int max_augmentations = 8;
   /// Yoshizawa iterations of the cheaper parameterization that compares the augmentation candidates
   /// (the thesis §3.2 uses Yoshizawa instead of full stretch minimization here for speed).
-  int augment_yoshizawa_iterations = 3;
-  /// Augmentation budget in faces: every augmentation step re-solves its whole chart (the cheap
-  /// solve above); a chart is augmented only if two such solves fit in what is left of the budget
-  /// (over all charts), and stops when the next would not fit. Deterministic; bounds the cost on
-  /// large meshes (charts over half the budget are not augmented). See docs/surgery.md.
-  long augment_face_budget = 1000000;
+  int augment_yoshizawa_iterations = 1;
+  /// Augmentation budget in face-solves: one candidate costs (1 + augment_yoshizawa_iterations)
+  /// sparse solves of its chart's size. A chart is augmented only if its first two evaluations fit
+  /// in what is left of the budget (over all charts); augmentation stops when the next would not
+  /// fit. Deterministic; bounds the cost on large meshes. Exception: a chart whose cheap
+  /// parameterization still has degenerate UV triangles (an extremity squeezed by the Tutte
+  /// embedding) is augmented regardless of both budgets, up to max_augmentations. docs/surgery.md.
+  long augment_face_budget = 2000000;
   /// Augmentation budget in seconds of wall time from the start of unwrap(); no new augmentation
-  /// step starts after it (<= 0: no augmentation). Bounds the cost on slow machines.
+  /// step starts after it (<= 0: none, except as above). Bounds the cost on slow machines.
   double augment_time_budget = 8.0;
   /// An augmentation is kept only if it lowers the chart's L2 stretch by this relative amount;
   /// the first one that does not stops the augmentation of that chart.

@@ -1,0 +1,151 @@
+// `adaptex unwrap`: outputs (OBJ with the input positions unchanged, vt in [0,1]^2, report JSON,
+// layout PNG) and bad input (exit 2, one line on stderr, no partial output).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "adaptex/core/shapes.h"
+#include "adaptex/io/image_io.h"
+#include "test_support.h"
+
+namespace adaptex {
+namespace {
+
+using test::run_cli;
+using test::TempDir;
+
+/// Writes \p mesh as OFF with 17 significant digits, offset and scaled to odd units so that any
+/// recentring or rescaling would show.
+TriMesh write_off(const std::filesystem::path& path, TriMesh mesh) {
+  for (Vec3& p : mesh.positions) p = p * 123.456789 + Vec3(1e3 / 3, -7.25, 0.1);
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  std::fprintf(f, "OFF\n%d %d 0\n", mesh.num_vertices(), mesh.num_faces());
+  for (const Vec3& p : mesh.positions) std::fprintf(f, "%.17g %.17g %.17g\n", p.x(), p.y(), p.z());
+  for (const Face& t : mesh.faces) std::fprintf(f, "3 %d %d %d\n", t[0], t[1], t[2]);
+  std::fclose(f);
+  return mesh;
+}
+
+std::string q(const std::filesystem::path& p) {
+  std::string s(1, '\'');
+  s += p.string();
+  s += '\'';
+  return s;
+}
+
+int count_lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+TEST(UnwrapCli, WritesObjReportAndLayout) {
+  TempDir dir;
+  const TriMesh mesh = write_off(dir.path / "in.off", shapes::torus(40, 12));
+  const auto out = dir.path / "out.obj", rep = dir.path / "r.json", lay = dir.path / "l.png";
+  const auto r = run_cli("unwrap " + q(dir.path / "in.off") + " -o " + q(out) + " --report " +
+                         q(rep) + " --layout " + q(lay) + " --layout-size 256");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // OBJ: v lines are exactly the input positions, vt in [0,1]^2, f v/vt with valid indices.
+  std::ifstream in(out);
+  std::string line;
+  std::vector<Vec3> v;
+  std::vector<Vec2> vt;
+  int faces = 0;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      std::string x, y, z;
+      ls >> x >> y >> z;
+      v.emplace_back(std::strtod(x.c_str(), nullptr), std::strtod(y.c_str(), nullptr),
+                     std::strtod(z.c_str(), nullptr));
+    } else if (tag == "vt") {
+      double a, b;
+      ls >> a >> b;
+      vt.emplace_back(a, b);
+    } else if (tag == "f") {
+      ++faces;
+      for (int k = 0; k < 3; ++k) {
+        std::string c;
+        ls >> c;
+        int vi = 0, ti = 0;
+        ASSERT_EQ(std::sscanf(c.c_str(), "%d/%d", &vi, &ti), 2) << line;
+        ASSERT_EQ(vi - 1, mesh.faces[faces - 1][k]);
+        ASSERT_GE(ti, 1);
+      }
+    }
+  }
+  ASSERT_EQ(v.size(), mesh.positions.size());
+  for (size_t i = 0; i < v.size(); ++i) ASSERT_EQ(v[i], mesh.positions[i]) << "vertex " << i;
+  EXPECT_EQ(faces, mesh.num_faces());
+  ASSERT_GT(vt.size(), v.size());  // the cut duplicates vertices
+  for (const Vec2& t : vt) ASSERT_TRUE(t.x() >= 0 && t.x() <= 1 && t.y() >= 0 && t.y() <= 1);
+  // Report.
+  std::ifstream rf(rep);
+  const nlohmann::json j = nlohmann::json::parse(rf);
+  for (const char* key : {"vertices", "faces", "components", "genus", "boundary_loops", "charts",
+                          "cut_length", "augmentations", "floater_l2", "floater_linf", "final_l2",
+                          "final_linf", "time"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["faces"].get<int>(), mesh.num_faces());
+  EXPECT_EQ(j["vertices"].get<int>(), mesh.num_vertices());
+  EXPECT_EQ(j["genus"].get<int>(), 1);
+  EXPECT_EQ(j["boundary_loops"].get<int>(), 0);
+  EXPECT_EQ(j["charts"].get<int>(), 1);
+  EXPECT_GT(j["cut_length"].get<double>(), 0.0);
+  EXPECT_LE(j["final_l2"].get<double>(), j["floater_l2"].get<double>());
+  EXPECT_EQ(j["flipped"].get<int>(), 0);
+  for (const char* key : {"read", "cut", "floater", "yoshizawa", "augment", "pack", "write", "total"})
+    EXPECT_TRUE(j["time"].contains(key)) << key;
+  // Layout.
+  const ImageRGBA8 img = read_image(lay);
+  EXPECT_EQ(img.width, 256);
+  EXPECT_EQ(img.height, 256);
+}
+
+TEST(UnwrapCli, BadInputExitsWithTwoAndLeavesNoFile) {
+  TempDir dir;
+  const auto out = dir.path / "out.obj", rep = dir.path / "r.json";
+  auto expect_bad = [&](const std::string& args, const std::string& what) {
+    SCOPED_TRACE(args);
+    std::string cmd = "-q ";
+    cmd += args;
+    const auto r = run_cli(cmd);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(count_lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    EXPECT_FALSE(std::filesystem::exists(rep));
+  };
+  // Missing, corrupt, non-manifold input.
+  expect_bad("unwrap " + q(dir.path / "missing.off") + " -o " + q(out), "missing.off");
+  {
+    std::ofstream(dir.path / "bad.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n";  // truncated
+  }
+  expect_bad("unwrap " + q(dir.path / "bad.off") + " -o " + q(out) + " --report " + q(rep), "bad.off");
+  write_off(dir.path / "bowtie.off", shapes::bowtie_vertex());
+  expect_bad("unwrap " + q(dir.path / "bowtie.off") + " -o " + q(out), "manifold");
+  // A failing second output (layout in an impossible place) leaves no OBJ or report behind.
+  write_off(dir.path / "ok.off", shapes::sphere(12, 6));
+  const auto r = run_cli("-q unwrap " + q(dir.path / "ok.off") + " -o " + q(out) + " --report " +
+                         q(rep) + " --layout /proc/adaptex-no-such-dir/l.png");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+  EXPECT_FALSE(std::filesystem::exists(rep));
+  // Bad options.
+  expect_bad("unwrap " + q(dir.path / "ok.off") + " -o " + q(out) + " --layout-size 2", "layout-size");
+  // --repair makes the bow-tie usable: two charts.
+  const auto ok = run_cli("-q unwrap " + q(dir.path / "bowtie.off") + " --repair -o " + q(out) +
+                          " --report " + q(rep));
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+}  // namespace
+}  // namespace adaptex
