@@ -1,3 +1,4 @@
 # Decals and export (owned by the paint-export helper).
 target_sources(adaptex_paint PRIVATE
-  decal.cpp)
+  decal.cpp
+  export.cpp)

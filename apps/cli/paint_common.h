@@ -1,0 +1,185 @@
+#pragma once
+/// \file paint_common.h
+/// Shared by `adaptex paint` and `adaptex demo`: unwrap with progress lines, paint the strokes, and
+/// the report.json they write. Header-only (inline) so the CLI target needs no new source file.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "adaptex/core/atomic_output.h"
+#include "adaptex/core/errors.h"
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+#include "adaptex/paint/export.h"
+#include "adaptex/paint/painter.h"
+#include "adaptex/paint/strokes.h"
+#include "adaptex/param/unwrap.h"
+#include "cli_common.h"
+
+namespace adaptex::cli {
+
+/// Wall-clock stopwatch: lap() returns the seconds since the previous lap (or construction).
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double s = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return s;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+/// A progress callback that prints one line per phase ("unwrap: cut") on stderr unless quiet.
+inline ProgressCallback phase_printer(const Context& ctx, const std::string& prefix) {
+  auto last = std::make_shared<std::string>();
+  return [&ctx, prefix, last](std::string_view phase, double) {
+    if (phase != *last) {
+      *last = std::string(phase);
+      ctx.info(prefix + ": " + *last);
+    }
+    return true;
+  };
+}
+
+/// Settings of the adaptive re-parameterization (issue 4, `--adapt` and friends). Parsed and
+/// validated by `adaptex paint`; only mode "none" is implemented so far.
+struct AdaptSettings {
+  std::string mode = "none";         ///< none | single | two-stage
+  std::vector<int> grid;             ///< --grid: 1 (single) or 2 (coarse, fine) grid sizes; empty = default
+  std::optional<double> alpha, beta; ///< --alpha / --beta L_s^2 weights; unset = the adaptive defaults
+  std::string reparam = "end";       ///< each-stroke | end
+  std::string update = "replay";     ///< replay | resample
+  std::filesystem::path debug_maps;  ///< --debug-maps DIR (empty = none)
+};
+
+/// Largest accepted texture size (an N x N painter keeps ~40 bytes per texel).
+inline constexpr int kMaxTextureSize = 8192;
+
+/// Adds the `--size N` option (texture width = height, 1..kMaxTextureSize) to \p sub.
+inline CLI::Option* add_size_option(CLI::App* sub, int& size) {
+  return sub->add_option("--size", size, "Texture width = height in texels")
+      ->check(CLI::Range(1, kMaxTextureSize))
+      ->capture_default_str();
+}
+
+/// Settings of one unwrap + paint run.
+struct PaintRunOptions {
+  int size = 1024;     ///< Texture width = height.
+  int padding = 4;     ///< Seam padding in texels.
+  AdaptSettings adapt; ///< Adaptive re-parameterization (mode "none": plain painting).
+};
+
+/// What one unwrap + paint run produced.
+struct PaintRun {
+  Parameterization param;
+  UnwrapReport unwrap;
+  ImageRGBA8 texture;
+  long long texel_updates = 0;
+  long long chart_texels = 0;  ///< Texels inside a chart at the final parameterization.
+  double time_unwrap = 0, time_paint = 0;  ///< Seconds.
+};
+
+/// Unwraps \p mesh (progress lines on stderr) and paints every stroke of \p strokes.
+/// The adaptive step of issue 4 plugs in here, in the "paint" phase (see the comment there).
+inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
+                                 const PaintRunOptions& options, const Context& ctx) {
+  PaintRun run;
+  Stopwatch sw;
+  UnwrapOptions uo;
+  uo.progress = phase_printer(ctx, "unwrap");
+  UnwrapResult ur = unwrap(mesh, uo);
+  run.param = std::move(ur.param);
+  run.unwrap = ur.report;
+  run.time_unwrap = sw.lap();
+
+  ctx.info("paint: " + std::to_string(strokes.strokes.size()) + " strokes at " +
+           std::to_string(options.size) + "x" + std::to_string(options.size));
+  PainterOptions po;
+  po.width = po.height = options.size;
+  po.padding = options.padding;
+  Painter painter(mesh, run.param, po, strokes.background);
+  if (options.adapt.mode == "none") {
+    painter.paint_all(strokes);
+  } else {
+    // ---- Adaptive re-parameterization hook (issue 4) ----------------------------------------
+    // `single` / `two-stage`: paint with re-parameterization (after each stroke or at the end,
+    // per options.adapt.reparam) and replace run.param and the texture with the adapted ones.
+    // cmd_paint.cpp rejects these modes before any work is done until they are implemented.
+    throw InvalidInputError("--adapt " + options.adapt.mode + " is not available yet");
+  }
+  run.texture = painter.texture();
+  run.texel_updates = painter.texel_updates();
+  run.chart_texels = static_cast<long long>(painter.texel_map().inside.size());
+  run.time_paint = sw.lap();
+  return run;
+}
+
+/// The JSON object of report.json shared by paint and demo (the caller adds command-specific keys).
+inline nlohmann::json paint_report(const TriMesh& mesh, const StrokeFile& strokes, const PaintRun& run,
+                                   const PaintRunOptions& options, const ExportedFiles& files) {
+  using nlohmann::json;
+  long long decals = 0;
+  for (const Stroke& s : strokes.strokes) decals += s.type == Stroke::Type::Decal;
+  const double n = static_cast<double>(run.texture.width) * run.texture.height;
+  json files_json = json::object();
+  auto put = [&](const char* key, const std::filesystem::path& p) {
+    if (!p.empty()) files_json[key] = p.filename().string();
+  };
+  put("obj", files.obj);
+  put("mtl", files.mtl);
+  put("png", files.png);
+  put("glb", files.glb);
+  const UnwrapReport& u = run.unwrap;
+  return json{
+      {"mesh", {{"vertices", mesh.num_vertices()},
+                {"faces", mesh.num_faces()},
+                {"wedges", run.param.num_wedges()},
+                {"charts", run.param.num_charts},
+                {"components", u.num_components},
+                {"genus", u.genus},
+                {"boundary_loops", u.boundary_loops}}},
+      {"texture", {{"width", run.texture.width},
+                   {"height", run.texture.height},
+                   {"padding", options.padding},
+                   {"chart_texels", run.chart_texels},
+                   {"utilization", n > 0 ? run.chart_texels / n : 0.0}}},
+      {"strokes", {{"count", strokes.strokes.size()},
+                   {"brush", static_cast<long long>(strokes.strokes.size()) - decals},
+                   {"decals", decals},
+                   {"dabs", strokes.num_dabs()}}},
+      {"paint", {{"texel_updates", run.texel_updates},
+                 {"texel_updates_per_s", run.time_paint > 0 ? run.texel_updates / run.time_paint : 0.0}}},
+      {"adapt", {{"mode", options.adapt.mode}}},
+      {"unwrap", {{"floater_l2", u.floater_l2},
+                  {"final_l2", u.final_l2},
+                  {"final_linf", u.final_linf},
+                  {"cut_length", u.cut_length},
+                  {"augmentations", u.augmentations},
+                  {"yoshizawa_iterations", u.yoshizawa_iterations},
+                  {"times_s", {{"cut", u.time_cut},
+                               {"floater", u.time_floater},
+                               {"yoshizawa", u.time_yoshizawa},
+                               {"augment", u.time_augment},
+                               {"pack", u.time_pack}}}}},
+      {"files", files_json}};
+}
+
+/// Writes \p text to a file registered in \p out (committed with the rest). \throw IoError
+inline void write_text(AtomicOutput& out, const std::filesystem::path& path, const std::string& text) {
+  const std::filesystem::path tmp = out.add(path);
+  std::ofstream f(tmp, std::ios::binary);
+  if (!f) throw IoError(path.string() + ": cannot open for writing");
+  f << text;
+  f.close();
+  if (!f) throw IoError(path.string() + ": write error");
+}
+
+}  // namespace adaptex::cli

@@ -1,0 +1,69 @@
+#pragma once
+/// \file export.h
+/// Export of a painted mesh to the formats artists use (issue 3 item 5): Wavefront OBJ + MTL + PNG
+/// and a binary glTF 2.0 (.glb) with the PNG embedded as baseColorTexture. Conventions (OBJ v = 0
+/// bottom, glTF v flipped, one glTF vertex per wedge) are described in docs/export.md.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "adaptex/core/atomic_output.h"
+#include "adaptex/core/image.h"
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+
+namespace adaptex {
+
+/// Settings of export_textured_mesh() and encode_glb().
+struct ExportOptions {
+  bool obj = true;       ///< Write NAME.obj, NAME.mtl and NAME.png.
+  bool glb = true;       ///< Write NAME.glb (glTF 2.0 binary, texture embedded).
+  bool normals = true;   ///< Add a NORMAL attribute to the .glb (area-weighted vertex normals,
+                         ///< smooth across UV seams); the material is double-sided either way.
+  std::string material = "adaptex_paint";  ///< Material name in the MTL / glTF.
+};
+
+/// The files export_textured_mesh() registered (empty paths for formats not written).
+struct ExportedFiles {
+  std::filesystem::path obj, mtl, png, glb;
+};
+
+/// Checks that \p name can be used as the base name of the exported files: non-empty, no path
+/// separator, no whitespace (OBJ's `mtllib` / `map_Kd` cannot hold it portably), not "." or "..".
+/// \throw InvalidInputError naming the problem
+void check_export_name(const std::string& name);
+
+/// \p stem with every character that check_export_name() rejects replaced by '_' ("mesh" if empty).
+std::string sanitize_export_name(const std::string& stem);
+
+/// Registers and writes DIR/NAME.obj (input positions unchanged, `vt`, `f v/vt`, `mtllib NAME.mtl`,
+/// `usemtl`), DIR/NAME.mtl (`Kd 1 1 1`, `map_Kd NAME.png`), DIR/NAME.png (the texture; PNG top row =
+/// v = 1) and DIR/NAME.glb through \p out. Nothing is visible until the caller runs out.commit(), so
+/// the caller can add more files (a report) to the same all-or-nothing commit.
+/// \pre param.uv_faces.size() == mesh.faces.size(), !texture.empty()
+/// \throw InvalidInputError bad name or inconsistent input; IoError a file cannot be written
+ExportedFiles export_textured_mesh(AtomicOutput& out, const std::filesystem::path& dir,
+                                   const std::string& name, const TriMesh& mesh,
+                                   const Parameterization& param, const ImageRGBA8& texture,
+                                   const ExportOptions& options = {});
+
+/// Encodes a glTF 2.0 binary (.glb) with tinygltf: one mesh, one triangle primitive with POSITION
+/// (float32, with min/max), optional NORMAL, TEXCOORD_0 = (u, 1 - v) and uint32 indices; one glTF
+/// vertex per wedge (glTF has per-vertex UVs only); a material whose pbrMetallicRoughness
+/// baseColorTexture is the PNG of \p texture embedded in a bufferView (sampler: linear magnification,
+/// trilinear minification, clamp-to-edge).
+/// \throw InvalidInputError inconsistent input; IoError encoding failed
+std::vector<unsigned char> encode_glb(const TriMesh& mesh, const Parameterization& param,
+                                      const ImageRGBA8& texture, const ExportOptions& options = {});
+
+/// Writes a one-material MTL file (`newmtl`, `Kd 1 1 1`, `map_Kd`). Writes \p path directly.
+/// \throw IoError
+void write_mtl(const std::filesystem::path& path, const std::string& material,
+               const std::string& texture_file);
+
+/// A picture of the UV layout: the texture (or white when \p texture is null / empty) scaled to
+/// size x size by nearest lookup, with every UV triangle edge blended 40% towards dark grey on top.
+/// Rows from v = 0 (write it with write_png). \pre size > 0
+ImageRGBA8 draw_uv_layout(const Parameterization& param, const ImageRGBA8* texture, int size);
+
+}  // namespace adaptex

@@ -1,0 +1,328 @@
+/// \file export.cpp
+/// OBJ/MTL/PNG and glTF 2.0 binary export of a painted mesh (issue 3 item 5; docs/export.md).
+#include "adaptex/paint/export.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/io/image_io.h"
+#include "adaptex/io/mesh_io.h"
+
+namespace adaptex {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+bool bad_name_char(char c) {
+  return c == '/' || c == '\\' || std::isspace(static_cast<unsigned char>(c)) || c == '\0' ||
+         std::iscntrl(static_cast<unsigned char>(c));
+}
+
+void check_inputs(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture) {
+  if (mesh.faces.empty()) throw InvalidInputError("export: the mesh has no faces");
+  if (param.uv_faces.size() != mesh.faces.size())
+    throw InvalidInputError("export: the parameterization has " + std::to_string(param.uv_faces.size()) +
+                            " faces, the mesh " + std::to_string(mesh.faces.size()));
+  if (texture.empty() ||
+      texture.data.size() != static_cast<size_t>(texture.width) * texture.height * 4)
+    throw InvalidInputError("export: the texture is empty or its size is inconsistent");
+  for (const Face& f : param.uv_faces)
+    for (int w : f)
+      if (w < 0 || w >= param.num_wedges())
+        throw InvalidInputError("export: a UV face refers to wedge " + std::to_string(w) + " of " +
+                                std::to_string(param.num_wedges()));
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int v = mesh.faces[f][k];
+      if (v < 0 || v >= mesh.num_vertices())
+        throw InvalidInputError("export: face " + std::to_string(f) + " refers to vertex " +
+                                std::to_string(v) + " of " + std::to_string(mesh.num_vertices()));
+    }
+}
+
+/// Appends \p bytes to \p buf (padded to 4 bytes first) and returns the bufferView index.
+int add_buffer_view(tinygltf::Model& model, std::vector<unsigned char>& buf, const void* bytes,
+                    size_t size, int target) {
+  while (buf.size() % 4) buf.push_back(0);
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = buf.size();
+  view.byteLength = size;
+  if (target) view.target = target;
+  const auto* p = static_cast<const unsigned char*>(bytes);
+  buf.insert(buf.end(), p, p + size);
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+int add_accessor(tinygltf::Model& model, int view, int component, int type, size_t count,
+                 std::vector<double> min = {}, std::vector<double> max = {}) {
+  tinygltf::Accessor acc;
+  acc.bufferView = view;
+  acc.byteOffset = 0;
+  acc.componentType = component;
+  acc.type = type;
+  acc.count = count;
+  acc.minValues = std::move(min);
+  acc.maxValues = std::move(max);
+  model.accessors.push_back(acc);
+  return static_cast<int>(model.accessors.size()) - 1;
+}
+
+/// Area-weighted vertex normals (per original vertex, so smooth across UV seams); unit length.
+std::vector<Vec3> vertex_normals(const TriMesh& mesh) {
+  std::vector<Vec3> n(mesh.positions.size(), Vec3::Zero());
+  for (const Face& f : mesh.faces) {
+    const Vec3 a = (mesh.positions[f[1]] - mesh.positions[f[0]])
+                       .cross(mesh.positions[f[2]] - mesh.positions[f[0]]);
+    for (int v : f) n[v] += a;
+  }
+  for (Vec3& v : n) {
+    const double len = v.norm();
+    v = len > 0 && std::isfinite(len) ? Vec3(v / len) : Vec3(0, 0, 1);
+  }
+  return n;
+}
+
+}  // namespace
+
+void check_export_name(const std::string& name) {
+  if (name.empty()) throw InvalidInputError("output name is empty");
+  if (name == "." || name == "..")
+    throw InvalidInputError("output name '" + name + "' is not a file name");
+  for (char c : name)
+    if (bad_name_char(c))
+      throw InvalidInputError("output name '" + name +
+                              "' must not contain whitespace, control characters or path separators");
+}
+
+std::string sanitize_export_name(const std::string& stem) {
+  std::string s = stem;
+  for (char& c : s)
+    if (bad_name_char(c)) c = '_';
+  if (s.empty() || s == "." || s == "..") s = "mesh";
+  return s;
+}
+
+namespace {
+
+/// encode_glb() with the texture already encoded as \p png (shared with NAME.png by the exporter).
+std::vector<unsigned char> encode_glb_png(const TriMesh& mesh, const Parameterization& param,
+                                          const std::vector<unsigned char>& png,
+                                          const ExportOptions& options) {
+  const int nw = param.num_wedges();
+  std::vector<float> pos(3 * static_cast<size_t>(nw)), uv(2 * static_cast<size_t>(nw));
+  std::vector<double> pmin(3, std::numeric_limits<double>::infinity()),
+      pmax(3, -std::numeric_limits<double>::infinity());
+  // Wedge -> 3-D vertex through the faces (authoritative even if wedge_vertex were missing).
+  std::vector<int> wv(nw, -1);
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) wv[param.uv_faces[f][k]] = mesh.faces[f][k];
+  for (int w = 0; w < nw; ++w) {
+    const int v = wv[w] >= 0 ? wv[w]
+                  : w < static_cast<int>(param.wedge_vertex.size()) ? param.wedge_vertex[w]
+                                                                   : 0;
+    for (int k = 0; k < 3; ++k) {
+      const float x = static_cast<float>(mesh.positions[v][k]);
+      pos[3 * w + k] = x;
+      pmin[k] = std::min(pmin[k], static_cast<double>(x));
+      pmax[k] = std::max(pmax[k], static_cast<double>(x));
+    }
+    uv[2 * w] = static_cast<float>(param.uv[w].x());
+    uv[2 * w + 1] = static_cast<float>(1.0 - param.uv[w].y());  // glTF: v = 0 is the image's top
+  }
+  std::vector<std::uint32_t> idx;
+  idx.reserve(3 * param.uv_faces.size());
+  for (const Face& f : param.uv_faces)
+    for (int w : f) idx.push_back(static_cast<std::uint32_t>(w));
+
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "adaptex";
+  std::vector<unsigned char> buf;
+
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  const int v_pos = add_buffer_view(model, buf, pos.data(), pos.size() * sizeof(float),
+                                    TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["POSITION"] = add_accessor(model, v_pos, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                             TINYGLTF_TYPE_VEC3, nw, pmin, pmax);
+  if (options.normals) {
+    const std::vector<Vec3> vn = vertex_normals(mesh);
+    std::vector<float> nrm(3 * static_cast<size_t>(nw));
+    for (int w = 0; w < nw; ++w)
+      for (int k = 0; k < 3; ++k) nrm[3 * w + k] = static_cast<float>(vn[std::max(wv[w], 0)][k]);
+    const int v_nrm = add_buffer_view(model, buf, nrm.data(), nrm.size() * sizeof(float),
+                                      TINYGLTF_TARGET_ARRAY_BUFFER);
+    prim.attributes["NORMAL"] =
+        add_accessor(model, v_nrm, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nw);
+  }
+  const int v_uv = add_buffer_view(model, buf, uv.data(), uv.size() * sizeof(float),
+                                   TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["TEXCOORD_0"] =
+      add_accessor(model, v_uv, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, nw);
+  const int v_idx = add_buffer_view(model, buf, idx.data(), idx.size() * sizeof(std::uint32_t),
+                                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  prim.indices = add_accessor(model, v_idx, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                              TINYGLTF_TYPE_SCALAR, idx.size());
+
+  tinygltf::Image image;
+  image.name = options.material + "_texture";
+  image.mimeType = "image/png";
+  image.bufferView = add_buffer_view(model, buf, png.data(), png.size(), 0);
+  model.images.push_back(image);
+
+  tinygltf::Sampler sampler;
+  sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+  sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+  sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  model.samplers.push_back(sampler);
+
+  tinygltf::Texture tex;
+  tex.source = 0;
+  tex.sampler = 0;
+  model.textures.push_back(tex);
+
+  tinygltf::Material mat;
+  mat.name = options.material;
+  mat.pbrMetallicRoughness.baseColorTexture.index = 0;
+  mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+  // Input meshes may be wound either way: double-sided so no viewer culls the painted side.
+  mat.doubleSided = true;
+  model.materials.push_back(mat);
+  prim.material = 0;
+
+  tinygltf::Mesh gmesh;
+  gmesh.name = options.material;
+  gmesh.primitives.push_back(prim);
+  model.meshes.push_back(gmesh);
+
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.name = options.material;
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+
+  while (buf.size() % 4) buf.push_back(0);
+  tinygltf::Buffer buffer;
+  buffer.data = std::move(buf);
+  model.buffers.push_back(std::move(buffer));
+
+  tinygltf::TinyGLTF writer;
+  std::ostringstream os;
+  if (!writer.WriteGltfSceneToStream(&model, os, false, true))
+    throw IoError("glTF encoder: tinygltf could not write the model");
+  const std::string s = os.str();
+  return std::vector<unsigned char>(s.begin(), s.end());
+}
+
+void write_bytes(AtomicOutput& out, const fs::path& path, const std::vector<unsigned char>& bytes) {
+  const fs::path tmp = out.add(path);
+  std::ofstream f(tmp, std::ios::binary);
+  if (!f) throw IoError(path.string() + ": cannot open for writing");
+  f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  f.close();
+  if (!f) throw IoError(path.string() + ": write error");
+}
+
+}  // namespace
+
+std::vector<unsigned char> encode_glb(const TriMesh& mesh, const Parameterization& param,
+                                      const ImageRGBA8& texture, const ExportOptions& options) {
+  check_inputs(mesh, param, texture);
+  return encode_glb_png(mesh, param, encode_png(texture), options);
+}
+
+void write_mtl(const fs::path& path, const std::string& material, const std::string& texture_file) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw IoError(path.string() + ": cannot open for writing");
+  out << "# adaptex painted material\n"
+      << "newmtl " << material << "\n"
+      << "Ka 0 0 0\n"
+      << "Kd 1 1 1\n"
+      << "Ks 0 0 0\n"
+      << "d 1\n"
+      << "illum 1\n"
+      << "map_Kd " << texture_file << "\n";
+  out.close();
+  if (!out) throw IoError(path.string() + ": write error");
+}
+
+ExportedFiles export_textured_mesh(AtomicOutput& out, const fs::path& dir, const std::string& name,
+                                   const TriMesh& mesh, const Parameterization& param,
+                                   const ImageRGBA8& texture, const ExportOptions& options) {
+  check_export_name(name);
+  check_export_name(options.material);
+  check_inputs(mesh, param, texture);
+  ExportedFiles files;
+  if (options.obj) {
+    files.obj = dir / (name + ".obj");
+    files.mtl = dir / (name + ".mtl");
+    files.png = dir / (name + ".png");
+    write_obj(out.add(files.obj), mesh, &param, name + ".mtl", options.material);
+    write_mtl(out.add(files.mtl), options.material, name + ".png");
+  }
+  // The texture is PNG-encoded once, for NAME.png and the .glb alike (same bytes).
+  const std::vector<unsigned char> png = encode_png(texture);
+  if (options.obj) write_bytes(out, files.png, png);
+  if (options.glb) {
+    files.glb = dir / (name + ".glb");
+    write_bytes(out, files.glb, encode_glb_png(mesh, param, png, options));
+  }
+  return files;
+}
+
+ImageRGBA8 draw_uv_layout(const Parameterization& param, const ImageRGBA8* texture, int size) {
+  if (size <= 0) throw InvalidInputError("layout picture: size must be > 0");
+  ImageRGBA8 img(size, size, {255, 255, 255, 255});
+  if (texture && !texture->empty())
+    for (int j = 0; j < size; ++j)
+      for (int i = 0; i < size; ++i) {
+        const int ti = std::min(texture->width - 1, static_cast<int>((i + 0.5) / size * texture->width));
+        const int tj = std::min(texture->height - 1, static_cast<int>((j + 0.5) / size * texture->height));
+        std::memcpy(img.texel(i, j), texture->texel(ti, tj), 4);
+        img.texel(i, j)[3] = 255;
+      }
+  // Edges go into a mask first so that every edge pixel is blended exactly once.
+  std::vector<char> edge(static_cast<size_t>(size) * size, 0);
+  auto plot = [&](double x, double y) {
+    const int i = static_cast<int>(std::floor(x)), j = static_cast<int>(std::floor(y));
+    if (i >= 0 && j >= 0 && i < size && j < size) edge[static_cast<size_t>(j) * size + i] = 1;
+  };
+  for (const Face& f : param.uv_faces)
+    for (int k = 0; k < 3; ++k) {
+      if (f[k] < 0 || f[k] >= param.num_wedges() || f[(k + 1) % 3] < 0 ||
+          f[(k + 1) % 3] >= param.num_wedges())
+        continue;
+      const Vec2 a = param.uv[f[k]] * size, b = param.uv[f[(k + 1) % 3]] * size;
+      const int steps = std::max(1, static_cast<int>(std::ceil((b - a).lpNorm<Eigen::Infinity>())));
+      for (int s = 0; s <= steps; ++s) {
+        const Vec2 p = a + (b - a) * (static_cast<double>(s) / steps);
+        plot(p.x(), p.y());
+      }
+    }
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i)
+      if (edge[static_cast<size_t>(j) * size + i]) {
+        std::uint8_t* t = img.texel(i, j);
+        for (int c = 0; c < 3; ++c) t[c] = static_cast<std::uint8_t>((3 * t[c] + 2 * 40) / 5);  // 40% dark grey
+      }
+  return img;
+}
+
+}  // namespace adaptex

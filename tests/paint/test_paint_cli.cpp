@@ -1,0 +1,248 @@
+// `adaptex paint` and `adaptex demo` end to end: a small mesh file + generated strokes (+ one decal)
+// produce OBJ/MTL/PNG/GLB/report.json; bad inputs exit 2 with one line and leave no files behind.
+// Optional: Blender (Debian `blender`) imports the .glb headless.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "adaptex/core/shapes.h"
+#include "adaptex/io/image_io.h"
+#include "adaptex/io/mesh_io.h"
+#include "adaptex/paint/eval.h"
+#include "adaptex/paint/generate.h"
+#include "adaptex/paint/strokes.h"
+#include "test_support.h"
+
+using namespace adaptex;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void write_file(const fs::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary);
+  out << text;
+}
+
+int count_lines(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  if (!s.empty() && s.back() != '\n') ++n;
+  return n;
+}
+
+/// Shell-quoted path (built with append: GCC 12 warns falsely on "'" + s + "'").
+std::string q(const fs::path& p) {
+  std::string s(1, '\'');
+  s.append(p.string());
+  s.push_back('\'');
+  return s;
+}
+
+/// A sphere mesh file and a stroke file with generated blobs and one decal (image next to it).
+struct Inputs {
+  test::TempDir tmp;
+  fs::path mesh = tmp.path / "ball.obj";
+  fs::path strokes = tmp.path / "s.json";
+  TriMesh m = shapes::sphere(24, 12, 1.0);
+  StrokeFile s;
+
+  Inputs() {
+    write_obj(mesh, m, nullptr);
+    GenerateOptions go;
+    go.kind = StrokeKind::Blobs;
+    go.seed = 3;
+    go.count = 3;
+    s = generate_strokes(m, go);
+    ImageRGBA8 img(8, 8, {20, 200, 40, 255});
+    write_png(tmp.path / "decal.png", img);
+    Stroke d;
+    d.type = Stroke::Type::Decal;
+    d.image_path = "decal.png";
+    d.image = img;
+    d.camera.eye = Vec3(0, 0, 4);
+    d.camera.target = Vec3(0, 0, 0);
+    d.camera.fov_y_degrees = 20;
+    d.camera.aspect = 1.0;
+    d.opacity = 0.9;
+    s.strokes.push_back(d);
+    write_strokes(strokes, s);
+  }
+};
+
+/// Expects a failed run: exit 2, exactly one line on stderr containing \p needle, and \p outdir
+/// absent (or, if it existed, unchanged: only \p keep inside).
+void expect_clean_failure(const test::CliResult& r, const std::string& needle, const fs::path& outdir,
+                          const std::string& keep = "") {
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(count_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(needle), std::string::npos) << r.err;
+  if (keep.empty()) {
+    EXPECT_FALSE(fs::exists(outdir)) << outdir;
+  } else {
+    std::vector<std::string> names;
+    for (auto& e : fs::directory_iterator(outdir)) names.push_back(e.path().filename().string());
+    EXPECT_EQ(names, std::vector<std::string>{keep});
+  }
+}
+
+}  // namespace
+
+TEST(PaintCli, PaintsAndExportsEverything) {
+  Inputs in;
+  const fs::path out = in.tmp.path / "out";
+  const auto r = test::run_cli("paint " + q(in.mesh) + " --strokes " + q(in.strokes) +
+                               " --size 96 -o " + q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"ball.obj", "ball.mtl", "ball.png", "ball.glb", "report.json"})
+    EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+  // Nothing else (no temporaries) in OUTDIR.
+  int n = 0;
+  for ([[maybe_unused]] auto& e : fs::directory_iterator(out)) ++n;
+  EXPECT_EQ(n, 5);
+
+  const auto rep = nlohmann::json::parse(slurp(out / "report.json"));
+  EXPECT_EQ(rep["texture"]["width"], 96);
+  EXPECT_EQ(rep["mesh"]["faces"], in.m.num_faces());
+  EXPECT_EQ(rep["strokes"]["count"], 4);
+  EXPECT_EQ(rep["strokes"]["decals"], 1);
+  EXPECT_EQ(rep["strokes"]["dabs"], in.s.num_dabs());
+  EXPECT_EQ(rep["adapt"]["mode"], "none");
+  for (const char* phase : {"read", "unwrap", "paint", "export", "total"})
+    EXPECT_GE(rep["times_s"][phase].get<double>(), 0.0) << phase;
+  EXPECT_GE(rep["unwrap"]["final_l2"].get<double>(), 1.0);
+
+  // The exported OBJ + PNG reproduce the strokes (the decal included) as well as the texture can.
+  const TexturedMesh tm = read_textured_obj(out / "ball.obj");
+  EXPECT_EQ(tm.mesh.positions, in.m.positions);
+  const ImageRGBA8 tex = read_image(out / "ball.png");
+  EXPECT_EQ(tex.width, 96);
+  EvalOptions eo;
+  eo.samples = 20000;
+  const StrokeFile sf = read_strokes(in.strokes);
+  const double psnr = evaluate_texture(tm.mesh, tm.param, tex, sf, eo).psnr;
+  EXPECT_GT(psnr, 25.0);
+  // And the decal really is in the texture: the sphere's pole facing the decal camera is green.
+  double best = 1e9;
+  Vec3 pole_colour;
+  for (int f = 0; f < tm.mesh.num_faces(); ++f) {
+    const Vec3 c = point_on_face(tm.mesh, f, 1.0 / 3, 1.0 / 3);
+    const double d = (c - Vec3(0, 0, 1)).norm();
+    if (d < best) {
+      best = d;
+      Vec2 uv = Vec2::Zero();
+      for (int k = 0; k < 3; ++k) uv += tm.param.uv[tm.param.uv_faces[f][k]] / 3.0;
+      pole_colour = sample_bilinear(tex, uv.x(), uv.y());
+    }
+  }
+  EXPECT_NEAR(pole_colour.y(), 0.9 * 200 / 255.0 + 0.1 * 0.0, 0.35);  // mostly decal green
+  EXPECT_GT(pole_colour.y(), pole_colour.x() + 0.2);
+}
+
+TEST(PaintCli, NameOptionAndDefaultPadding) {
+  Inputs in;
+  const fs::path out = in.tmp.path / "named";
+  const auto r = test::run_cli("-q paint " + q(in.mesh) + " --strokes " + q(in.strokes) +
+                               " --size 40 --padding 0 --name thing -o " + q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(r.err.empty()) << r.err;
+  EXPECT_TRUE(fs::exists(out / "thing.glb"));
+  EXPECT_NE(slurp(out / "thing.obj").find("mtllib thing.mtl"), std::string::npos);
+  EXPECT_EQ(nlohmann::json::parse(slurp(out / "report.json"))["texture"]["padding"], 0);
+}
+
+TEST(PaintCli, BadInputsExit2WithOneLineAndNoFiles) {
+  Inputs in;
+  const fs::path out = in.tmp.path / "out";
+  const std::string base = "paint " + q(in.mesh) + " -o " + q(out) + " --strokes ";
+
+  write_file(in.tmp.path / "bad.json", R"({"format": "adaptex.strokes", "version": 2, "strokes": []})");
+  expect_clean_failure(test::run_cli(base + q(in.tmp.path / "bad.json")), "version", out);
+  write_file(in.tmp.path / "garbage.json", "{ not json");
+  expect_clean_failure(test::run_cli(base + q(in.tmp.path / "garbage.json")), "garbage.json", out);
+  expect_clean_failure(test::run_cli(base + q(in.tmp.path / "missing.json")), "missing.json", out);
+
+  const std::string good = base + q(in.strokes);
+  expect_clean_failure(test::run_cli(good + " --size 0"), "--size", out);
+  expect_clean_failure(test::run_cli(good + " --size 1.5"), "--size", out);
+  expect_clean_failure(test::run_cli(good + " --size x"), "--size", out);
+  expect_clean_failure(test::run_cli(good + " --padding -1"), "--padding", out);
+  expect_clean_failure(test::run_cli(good + " --adapt sometimes"), "--adapt", out);
+  expect_clean_failure(test::run_cli(good + " --adapt two-stage"), "not available yet", out);
+  expect_clean_failure(test::run_cli(good + " --adapt single --grid 64"), "not available yet", out);
+  expect_clean_failure(test::run_cli(good + " --grid 16,x"), "--grid", out);
+  expect_clean_failure(test::run_cli(good + " --reparam often"), "--reparam", out);
+  expect_clean_failure(test::run_cli(good + " --update guess"), "--update", out);
+  expect_clean_failure(test::run_cli(good + " --name 'a b'"), "name", out);
+
+  write_file(in.tmp.path / "broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
+  expect_clean_failure(test::run_cli("paint " + q(in.tmp.path / "broken.obj") + " -o " + q(out) +
+                                     " --strokes " + q(in.strokes)),
+                       "broken.obj", out);
+
+  // An existing OUTDIR keeps exactly what it had.
+  fs::create_directories(out);
+  write_file(out / "keep.txt", "x");
+  expect_clean_failure(test::run_cli(base + q(in.tmp.path / "bad.json")), "version", out, "keep.txt");
+}
+
+TEST(PaintCli, DemoRunsAndReportsPsnr) {
+  test::TempDir tmp;
+  const fs::path out = tmp.path / "demo";
+  // Smaller texture and fewer samples than the default to keep the suite fast.
+  const auto r = test::run_cli("-q demo --size 256 --samples 50000 -o " + q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("PSNR"), std::string::npos) << r.out;
+  for (const char* f : {"trefoil.obj", "trefoil.mtl", "trefoil.png", "trefoil.glb", "trefoil_layout.png",
+                        "trefoil_texture_layout.png", "strokes.json", "report.json"})
+    EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+  const auto rep = nlohmann::json::parse(slurp(out / "report.json"));
+  const double psnr = rep["eval"]["psnr_db"].get<double>();
+  EXPECT_GT(psnr, 20.0);
+  EXPECT_LT(psnr, 200.0);
+  // `adaptex eval` on the exported files agrees with the demo's own figure.
+  const auto e = test::run_cli("eval " + q(out / "trefoil.obj") + " " + q(out / "trefoil.png") + " " +
+                               q(out / "strokes.json") + " --samples 50000");
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  const auto ej = nlohmann::json::parse(e.out);
+  EXPECT_NEAR(ej["psnr"].get<double>(), psnr, 0.05);
+}
+
+TEST(PaintCli, BlenderImportsTheGlb) {
+  if (std::system("command -v blender > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "blender not installed (Debian package `blender`); skipping the import smoke test";
+  Inputs in;
+  const fs::path out = in.tmp.path / "out";
+  ASSERT_EQ(test::run_cli("-q paint " + q(in.mesh) + " --strokes " + q(in.strokes) + " --size 64 -o " + q(out))
+                .exit_code,
+            0);
+  const fs::path script = in.tmp.path / "check.py";
+  write_file(script,
+             "import bpy, sys\n"
+             "bpy.ops.wm.read_factory_settings(use_empty=True)\n"
+             "bpy.ops.import_scene.gltf(filepath=sys.argv[-1])\n"
+             "meshes = [o for o in bpy.data.objects if o.type == 'MESH']\n"
+             "assert len(meshes) == 1, meshes\n"
+             "m = meshes[0].data\n"
+             "assert len(m.uv_layers) >= 1\n"
+             "imgs = [i for i in bpy.data.images if i.size[0] == 64]\n"
+             "assert imgs, list(bpy.data.images)\n"
+             "print('BLENDER_OK', len(m.polygons))\n");
+  const std::string cmd = "blender -b --factory-startup --python " + q(script) + " -- " + q(out / "ball.glb") +
+                          " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  ASSERT_NE(p, nullptr);
+  std::string text;
+  char buf[4096];
+  while (fgets(buf, sizeof buf, p)) text += buf;
+  pclose(p);
+  EXPECT_NE(text.find("BLENDER_OK " + std::to_string(in.m.num_faces())), std::string::npos) << text;
+}
