@@ -1,3 +1,4 @@
 # Tests of the brush part of the paint area (strokes, texel map, painter, padding, signal, eval,
 # generate, their CLI commands).
 adaptex_add_test(test_paint_strokes SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_strokes.cpp LIBS adaptex::paint)
+adaptex_add_test(test_paint_brush SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_painter.cpp LIBS adaptex::paint)
