@@ -10,72 +10,17 @@
 #include "adaptex/param/pack.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
+#include "unwrap_checks.h"
 
 namespace adaptex {
 namespace {
+
+using test::check_unwrap;
 
 /// Flips the winding of every face (as the CW-wound shared meshes are).
 TriMesh flipped(TriMesh m) {
   for (Face& t : m.faces) std::swap(t[1], t[2]);
   return m;
-}
-
-/// Every property unwrap() promises, checked independently of how it was made.
-void check_unwrap(const std::string& name, const TriMesh& mesh, const UnwrapOptions& opt = {}) {
-  SCOPED_TRACE(name);
-  const MeshTopology topo = analyze_topology(mesh);
-  const UnwrapResult r = unwrap(mesh, opt);
-  const Parameterization& p = r.param;
-  ASSERT_EQ(p.uv_faces.size(), mesh.faces.size());
-  ASSERT_EQ(p.face_chart.size(), mesh.faces.size());
-  ASSERT_EQ(p.wedge_vertex.size(), p.uv.size());
-  EXPECT_EQ(p.num_charts, topo.num_components);
-  EXPECT_EQ(r.report.num_charts, topo.num_components);
-  EXPECT_EQ(r.report.num_components, topo.num_components);
-  EXPECT_EQ(r.report.genus, topo.total_genus());
-  EXPECT_EQ(r.report.boundary_loops, topo.total_loops());
-  // wedge_vertex is consistent with the mesh faces; UVs are in [0,1]^2.
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      ASSERT_GE(p.uv_faces[f][k], 0);
-      ASSERT_LT(p.uv_faces[f][k], p.num_wedges());
-      ASSERT_EQ(p.wedge_vertex[p.uv_faces[f][k]], mesh.faces[f][k]);
-    }
-  for (const Vec2& t : p.uv) {
-    ASSERT_TRUE(t.x() >= 0 && t.x() <= 1 && t.y() >= 0 && t.y() <= 1) << t.transpose();
-  }
-  // Every chart is a topological disk: the mesh of wedges, chart by chart.
-  for (int c = 0; c < p.num_charts; ++c) {
-    TriMesh chart;
-    chart.positions.resize(p.num_wedges(), Vec3::Zero());
-    for (int f = 0; f < mesh.num_faces(); ++f)
-      if (p.face_chart[f] == c) chart.faces.push_back(p.uv_faces[f]);
-    const MeshTopology ct = analyze_topology(chart);
-    EXPECT_EQ(ct.num_components, 1) << "chart " << c;
-    EXPECT_EQ(ct.total_genus(), 0) << "chart " << c;
-    EXPECT_EQ(ct.total_loops(), 1) << "chart " << c;
-    EXPECT_TRUE(ct.is_manifold()) << "chart " << c;
-  }
-  // No flipped, degenerate or overlapping UV triangles.
-  const StretchStats s = measure_stretch(mesh, p);
-  EXPECT_EQ(s.flipped, 0);
-  EXPECT_EQ(s.degenerate, 0);
-  for (int f = 0; f < mesh.num_faces(); ++f) ASSERT_GT(uv_signed_area(p, f), 0.0) << "face " << f;
-  EXPECT_EQ(count_overlapping_triangles(p), 0);
-  // Stretch figures: finite, Yoshizawa (and augmentation) never make it worse than Floater.
-  EXPECT_TRUE(std::isfinite(r.report.final_l2));
-  EXPECT_GE(r.report.final_l2, 1.0 - 1e-9);
-  EXPECT_LE(r.report.final_l2, r.report.floater_l2 * (1 + 1e-9));
-  EXPECT_NEAR(r.report.final_l2, s.l2, 1e-9 * s.l2);
-  EXPECT_GE(r.report.final_linf, r.report.final_l2 * (1 - 1e-9));
-  // Cut length: zero only for a single disk.
-  if (topo.num_components == 1 && topo.total_genus() == 0 && topo.total_loops() == 1 &&
-      r.report.augmentations == 0) {
-    EXPECT_EQ(r.report.cut_length, 0.0);
-  } else if (topo.total_loops() == 0 || topo.total_genus() > 0) {
-    EXPECT_GT(r.report.cut_length, 0.0);
-  }
-  EXPECT_GE(r.report.time_total, 0.0);
 }
 
 TEST(Unwrap, EveryShapeBecomesNonOverlappingDisks) {
