@@ -24,7 +24,7 @@ void validate(const AdaptOptions& o) {
   if (!(o.alpha >= 0) || !(o.beta >= 0) || !std::isfinite(o.alpha) || !std::isfinite(o.beta))
     throw InvalidInputError("alpha and beta must be finite and >= 0");
   if (!(o.min_weight > 0 && o.min_weight <= 1)) throw InvalidInputError("min_weight must be in (0, 1]");
-  if (!(o.epsilon_texels >= 0) || o.max_iterations < 0)
+  if (!(o.epsilon_texels >= 0) || o.max_iterations < 0 || o.fine_max_iterations < 0)
     throw InvalidInputError("epsilon must be >= 0 and max_iterations >= 0");
 }
 }  // namespace
@@ -94,6 +94,7 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
   lo.alpha = o.alpha;
   lo.beta = o.beta;
   lo.min_weight = o.min_weight;
+  lo.geometry_scale = o.geometry_scale;
   res.ls2 = compute_ls2(res.importance, res.stretch, lo);
   rep.time_ls2 = seconds_since(t0);
 
@@ -116,7 +117,9 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
     const ImageF pooled = pool_for_grid(res.ls2, o.fine_grid, o.pool);
     const ImageF field = pull_back_field(pooled, res.coarse, std::max(pooled.width, pooled.height));
     res.fine = GridWarp::uniform(o.fine_grid);
-    rep.fine_iterations = relax_grid(res.fine, field, ro).iterations;
+    RelaxOptions fo = ro;
+    fo.max_iterations = o.fine_max_iterations;
+    rep.fine_iterations = relax_grid(res.fine, field, fo).iterations;
     rep.time_fine = seconds_since(t0);
   } else {
     t0 = std::chrono::steady_clock::now();
@@ -130,7 +133,9 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
   report_progress(o.progress, "remap", 0);
   SafeRemapResult sr = safe_remap(current, res.warps(), o.remap);
   rep.remap_checks = sr.checks;
-  rep.damping = sr.damping;
+  rep.damping = sr.mean_damping;
+  rep.global_damping = sr.damping;
+  rep.locally_damped = sr.locally_damped;
   res.param = std::move(sr.param);
   rep.l2_after = measure_stretch(mesh, res.param).l2;
   if (o.geometry_safeguard && with_signal == 0 && !(rep.l2_after < rep.l2_before) && rep.damping > 0) {
@@ -144,7 +149,7 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
     const double l2h = measure_stretch(mesh, h.param).l2;
     if (l2h < rep.l2_before) {
       res.param = std::move(h.param);
-      rep.damping = 0.5 * rep.damping * h.damping;
+      rep.damping = 0.5 * rep.damping * h.mean_damping;
       rep.l2_after = l2h;
     } else {
       res.param = current;

@@ -20,13 +20,15 @@ ImageF compute_ls2(const ImageF& importance, const ImageF& stretch, const Ls2Opt
                             std::to_string(importance.width) + "x" + std::to_string(importance.height));
   if (!(o.alpha >= 0) || !(o.beta >= 0) || !std::isfinite(o.alpha) || !std::isfinite(o.beta))
     throw InvalidInputError("L_s2: alpha and beta must be finite and >= 0");
+  if (!(o.geometry_scale >= 0) || !std::isfinite(o.geometry_scale))
+    throw InvalidInputError("L_s2: geometry_scale must be finite and >= 0");
   if (!(o.min_weight > 0 && o.min_weight <= 1))
     throw InvalidInputError("L_s2: min_weight must be in (0, 1]");
   ImageF out(importance.width, importance.height);
   const float lo = static_cast<float>(o.min_weight);
   tbb::parallel_for(size_t(0), out.data.size(), [&](size_t k) {
     const double e = importance.data[k];
-    const double l2 = has_stretch ? stretch.data[k] : 0.0;
+    const double l2 = has_stretch ? o.geometry_scale * stretch.data[k] : 0.0;
     const double w = e <= o.zero_signal ? 1.0 - l2 : 1.0 - (o.alpha * l2 + o.beta * e);
     out.data[k] = std::clamp(static_cast<float>(w), lo, 1.0f);
   });

@@ -61,18 +61,34 @@ RemapCheck check_remap(const Parameterization& before, const Parameterization& a
 SafeRemapResult safe_remap(const Parameterization& param, const std::vector<const GridWarp*>& warps,
                            const SafeRemapOptions& o) {
   const long overlaps_before = o.check_overlaps ? count_overlapping_triangles(param) : 0;
+  const Parameterization full = remap_parameterization(param, warps);
+  const int F = static_cast<int>(param.uv_faces.size());
   SafeRemapResult res;
+  std::vector<float> tw;
+  // Candidate at global blend t: uv = old + t * tw_w * (warped - old). Faces that flip or degenerate
+  // get their wedges' local factor tw halved, round after round (local damping: a few bad triangles
+  // do not cost the whole warp); after max_local_rounds the global bisection on t takes over.
   auto attempt = [&](double t, Parameterization& out) {
-    std::vector<GridWarp> damped;
-    damped.reserve(warps.size());
-    std::vector<const GridWarp*> ptrs;
-    for (const GridWarp* w : warps) {
-      damped.push_back(t == 1.0 ? *w : w->blended(t));
-      ptrs.push_back(&damped.back());
-    }
-    out = remap_parameterization(param, ptrs);
     ++res.checks;
+    out = param;
+    tw.assign(param.uv.size(), 1.0f);
+    auto place = [&](size_t w) { out.uv[w] = param.uv[w] + (t * tw[w]) * (full.uv[w] - param.uv[w]); };
+    tbb::parallel_for(size_t(0), out.uv.size(), place);
     RemapCheck c;
+    std::vector<int> bad;
+    for (int round = 0; round <= o.max_local_rounds; ++round) {
+      bad.clear();
+      for (int f = 0; f < F; ++f) {
+        const double a0 = uv_signed_area(param, f);
+        if (std::abs(a0) <= o.min_area) continue;
+        if (uv_signed_area(out, f) * (a0 > 0 ? 1.0 : -1.0) <= o.min_area) bad.push_back(f);
+      }
+      if (bad.empty() || round == o.max_local_rounds) break;
+      for (int f : bad)
+        for (int w : param.uv_faces[f]) tw[w] *= 0.5f;
+      for (int f : bad)
+        for (int w : param.uv_faces[f]) place(static_cast<size_t>(w));
+    }
     const FlipCount fc = count_flips(param, out, o.min_area);
     c.flipped = fc.flipped;
     c.degenerate = fc.degenerate;
@@ -80,28 +96,42 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
       c.overlaps = std::max(0L, count_overlapping_triangles(out) - overlaps_before);
     return c;
   };
+  auto finish = [&](double t) {
+    res.damping = t;
+    res.locally_damped = 0;
+    double sum = 0;
+    for (float x : tw) {
+      if (x < 1.0f) ++res.locally_damped;
+      sum += x;
+    }
+    res.mean_damping = tw.empty() ? t : t * sum / tw.size();
+  };
   Parameterization cand;
   RemapCheck c = attempt(1.0, cand);
   if (c.ok()) {
     res.param = std::move(cand);
-    res.damping = 1.0;
     res.check = c;
+    finish(1.0);
     return res;
   }
   double lo = 0.0, hi = 1.0;
   res.param = param;
   res.damping = 0.0;
+  res.mean_damping = 0.0;
+  std::vector<float> best_tw(param.uv.size(), 0.0f);
   for (int s = 0; s < o.bisection_steps; ++s) {
     const double mid = 0.5 * (lo + hi);
     c = attempt(mid, cand);
     if (c.ok()) {
       lo = mid;
       res.param = std::move(cand);
-      res.damping = mid;
+      best_tw = tw;
     } else {
       hi = mid;
     }
   }
+  tw = best_tw;
+  finish(lo);
   res.check = RemapCheck{};  // the returned layout is t = lo, checked ok (or the input itself)
   return res;
 }

@@ -8,11 +8,11 @@
 #include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <random>
 
 #include "adaptex/adapt/stretch_map.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/io/image_io.h"
+#include "adaptex/paint/eval.h"
 #include "adaptex/paint/padding.h"
 #include "adaptex/paint/signal.h"
 
@@ -21,30 +21,6 @@ namespace adaptex {
 namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// Fixed surface samples, uniform by 3-D area (deterministic seed).
-std::vector<SurfacePoint> area_samples(const TriMesh& mesh, int count) {
-  std::vector<double> cdf(mesh.faces.size());
-  double acc = 0;
-  for (int f = 0; f < mesh.num_faces(); ++f) cdf[f] = (acc += face_area(mesh, f));
-  std::vector<SurfacePoint> out;
-  if (acc <= 0 || count <= 0) return out;
-  std::mt19937_64 rng(0x5eedadau);
-  std::uniform_real_distribution<double> U(0.0, 1.0);
-  out.resize(count);
-  for (auto& sp : out) {
-    const double r = U(rng) * acc;
-    sp.face = static_cast<int>(std::min<size_t>(std::upper_bound(cdf.begin(), cdf.end(), r) - cdf.begin(), cdf.size() - 1));
-    double a = U(rng), b = U(rng);
-    if (a + b > 1) {
-      a = 1 - a;
-      b = 1 - b;
-    }
-    sp.b0 = a;
-    sp.b1 = b;
-  }
-  return out;
 }
 
 double reconstruction_mse(const Parameterization& param, const ImageRGBA8& tex, const std::vector<SurfacePoint>& pts,
@@ -174,7 +150,7 @@ struct PaintSession::Impl {
     std::vector<Vec3> exact;
     auto t0 = std::chrono::steady_clock::now();
     if (use_safeguard) {
-      if (samples.empty()) samples = area_samples(mesh, opt.safeguard_samples);
+      if (samples.empty()) samples = sample_surface(mesh, opt.safeguard_samples, 0x5eedada);
       StrokeSignal sig(mesh, history);
       exact = sig.evaluate(samples);
       rep.error_before = estimate(*param, tex, exact);
@@ -241,7 +217,6 @@ struct PaintSession::Impl {
     }
     if (accept) {
       res->param = *np;
-      rep.l2_after = 0;  // recomputed below for the kept layout
       painter = std::move(npainter);  // references *np: keep np alive as the new param
       param = std::move(np);
       if (opt.update == TextureUpdate::Resample) {
@@ -250,7 +225,6 @@ struct PaintSession::Impl {
         new_segment();
         composite_dirty = true;
       }
-      rep.l2_after = res->report.l2_after;
     } else {
       rep.accepted = false;
       rep.damping = 0;
@@ -340,7 +314,7 @@ Painter& PaintSession::painter() { return *impl_->painter; }
 double PaintSession::estimate_error() {
   Impl& m = *impl_;
   if (m.history.strokes.empty()) return 0;
-  if (m.samples.empty()) m.samples = area_samples(m.mesh, m.opt.safeguard_samples);
+  if (m.samples.empty()) m.samples = sample_surface(m.mesh, m.opt.safeguard_samples, 0x5eedada);
   StrokeSignal sig(m.mesh, m.history);
   return m.estimate(*m.param, m.texture(), sig.evaluate(m.samples));
 }
@@ -349,6 +323,8 @@ void to_json(nlohmann::json& j, const AdaptReport& r) {
   j = nlohmann::json{{"mode", to_string(r.mode)},
                      {"accepted", r.accepted},
                      {"damping", r.damping},
+                     {"global_damping", r.global_damping},
+                     {"locally_damped_wedges", r.locally_damped},
                      {"l2_before", r.l2_before},
                      {"l2_after", r.l2_after},
                      {"coarse_iterations", r.coarse_iterations},

@@ -35,11 +35,15 @@ std::vector<float> normalized_face_stretch(const TriMesh& mesh, const Parameteri
     ref = l2[f];
     if (acc >= 0.99 * total) break;
   }
-  if (!(ref > 0)) ref = 1.0;
   if (reference) *reference = ref;
+  // Excess stretch: faces at or below the ideal 1 (over-sampled) get 0, the reference gets 1.
+  const double span = ref - 1.0;
   std::vector<float> out(F);
-  for (int f = 0; f < F; ++f)
-    out[f] = std::isfinite(l2[f]) ? static_cast<float>(std::min(1.0, l2[f] / ref)) : 1.0f;
+  for (int f = 0; f < F; ++f) {
+    if (!std::isfinite(l2[f])) out[f] = 1.0f;
+    else if (!(span > 1e-9)) out[f] = 0.0f;
+    else out[f] = static_cast<float>(std::clamp((l2[f] - 1.0) / span, 0.0, 1.0));
+  }
   return out;
 }
 

@@ -177,8 +177,15 @@ TEST(Remap, AdversarialWarpIsDampedAndNeverFlips) {
   const Parameterization raw = remap_parameterization(param, {&w});
   ASSERT_GT(check_remap(param, raw, SafeRemapOptions{}).flipped, 0);  // really adversarial
   const SafeRemapResult r = safe_remap(param, {&w});
-  EXPECT_LT(r.damping, 1.0);
-  EXPECT_GT(r.damping, 0.0);
+  EXPECT_LT(r.mean_damping, 1.0);  // damping happened...
+  EXPECT_GT(r.mean_damping, 0.5);  // ...but only locally: most of the warp is kept
+  EXPECT_GT(r.locally_damped, 0);
+  // Local damping disabled: the global bisection alone must also give a valid layout.
+  SafeRemapOptions global_only;
+  global_only.max_local_rounds = 0;
+  const SafeRemapResult rg = safe_remap(param, {&w}, global_only);
+  EXPECT_LT(rg.damping, 1.0);
+  EXPECT_TRUE(check_remap(param, rg.param).ok());
   const RemapCheck c = check_remap(param, r.param);
   EXPECT_EQ(c.flipped, 0);
   EXPECT_EQ(c.degenerate, 0);
@@ -192,6 +199,7 @@ TEST(Remap, AdversarialWarpIsDampedAndNeverFlips) {
   relax_grid(ok, blob_field(64, 0.5, 0.5, 0.2, 0.2f));
   const SafeRemapResult r2 = safe_remap(param, {&ok});
   EXPECT_EQ(r2.damping, 1.0);
+  EXPECT_EQ(r2.mean_damping, 1.0);
   EXPECT_TRUE(check_remap(param, r2.param).ok());
 }
 

@@ -34,7 +34,10 @@ struct AdaptOptions {
   AdaptMode mode = AdaptMode::TwoStage;  ///< Single / two-stage / none.
   int coarse_grid = 16;   ///< Cells per side of the coarse stage (two-stage only).
   int fine_grid = 256;    ///< Cells per side of the fine stage (and of the single stage).
-  double alpha = 0.5;     ///< L_s² weight α of the geometry stretch where there is signal (§3.6).
+  double alpha = 1.0;     ///< L_s² weight α of the geometry stretch where there is signal (§3.6).
+  /// Share of the normalized geometry stretch in L_s² (L2 ← geometry_scale · L2n in both cases of
+  /// §3.6). 1 is the thesis as written; lower values let the signal dominate (docs/adaptive.md).
+  double geometry_scale = 0.25;
   double beta = 0.95;     ///< L_s² weight β of the signal stretch E_h (§3.6).
   double min_weight = 0.02;  ///< Strictly positive lower clamp of L_s².
   bool use_geometry_stretch = true;  ///< false: L2 = 0 everywhere (signal only, thesis Fig. 3.9e).
@@ -42,7 +45,10 @@ struct AdaptOptions {
   PoolMode pool = PoolMode::Mean;    ///< Sampling of L_s² at each grid's scale.
   GridRing ring = GridRing::Eight;   ///< 1-ring of the relaxation.
   double epsilon_texels = 0.05;      ///< Stop a stage when the largest move < this many texels.
-  int max_iterations = 300;          ///< Sweep cap of each stage.
+  int max_iterations = 300;          ///< Sweep cap of the coarse (or single) stage.
+  /// Sweep cap of the fine stage of TwoStage: it only refines locally around detail (thesis §3.8,
+  /// Fig. 3.13); its global modes converge very slowly and are the coarse stage's job.
+  int fine_max_iterations = 40;
   SafeRemapOptions remap;            ///< Flip / degeneracy / overlap guarantees of the remap.
   /// Only when there is no signal at all (importance map zero): keep the result only if it lowers the
   /// mesh L2 stretch, else try it damped by half, else keep the input (report.accepted = false).
@@ -59,7 +65,9 @@ struct AdaptReport {
   double time_texel_map = 0, time_texture_update = 0, time_safeguard = 0;
   double time_total = 0;       ///< Everything above.
   double l2_before = 0, l2_after = 0;  ///< Mesh L2 stretch (measure_stretch().l2, 1 = ideal).
-  double damping = 1;          ///< Blend factor of the applied warp: 1 = full warp, 0 = none.
+  double damping = 1;          ///< Mean blend factor of the applied warp: 1 = full warp, 0 = none.
+  double global_damping = 1;   ///< Global blend factor t of safe_remap() (1 unless local damping failed).
+  int locally_damped = 0;      ///< Wedges damped locally by safe_remap() (their faces would have flipped).
   int coarse_iterations = 0, fine_iterations = 0;  ///< Relaxation sweeps per stage.
   int remap_checks = 0;        ///< Candidate layouts checked by safe_remap().
   int flipped_after = 0, degenerate_after = 0;  ///< Always 0 (guaranteed by safe_remap()).

@@ -18,7 +18,10 @@ namespace adaptex {
 
 /// Settings of compute_ls2().
 struct Ls2Options {
-  double alpha = 0.5;        ///< Weight of the geometry stretch where there is signal.
+  double alpha = 1.0;        ///< Weight of the geometry stretch where there is signal.
+  /// Scale s of the normalized geometry stretch in both cases (L2 ← s·L2n): the share of L_s² given
+  /// to geometry. 1 = the thesis as written; see AdaptOptions::geometry_scale.
+  double geometry_scale = 1.0;
   double beta = 0.95;        ///< Weight of the signal stretch E_h.
   double min_weight = 0.02;  ///< Lower clamp of L_s² (strictly positive).
   double zero_signal = 1.0 / 512.0;  ///< E_h at or below this counts as "E_h = 0" (8-bit noise).

@@ -4,8 +4,10 @@
 /// interpolation, in its uniform-grid cell, of the cell's four optimized corners; two-stage warps are
 /// applied in order (fine ∘ coarse). The warp is continuous and keeps [0,1]^2, but the mesh is
 /// piecewise linear, so a strong warp could still flip a UV triangle or make two triangles overlap.
-/// safe_remap() guarantees neither happens: it checks the result and, if needed, damps the warps
-/// toward the identity (bisection on the blend factor t, t = 1 full warp, t = 0 the input itself).
+/// safe_remap() guarantees neither happens: it checks the result and, if needed, damps the
+/// displacement of the wedges of the offending faces (local damping, halved round after round), and
+/// only if that is not enough damps the whole warp toward the identity (bisection on the blend factor
+/// t: new uv = old + t·(warped − old); t = 1 full warp, t = 0 the input itself).
 #include <vector>
 
 #include "adaptex/adapt/grid.h"
@@ -35,13 +37,18 @@ struct SafeRemapOptions {
   /// Check for overlapping triangles (count_overlapping_triangles) as well; only pairs that were not
   /// already overlapping in the input count. Costs O(F log F).
   bool check_overlaps = true;
-  int bisection_steps = 10;  ///< Bisection steps on t when the full warp is invalid (precision 2^-steps).
+  /// Local damping rounds: the wedges of every face that flips or degenerates are pulled halfway back
+  /// to their input UV, this many times at most, before the whole warp is damped.
+  int max_local_rounds = 24;
+  int bisection_steps = 10;  ///< Bisection steps on the global t if local damping is not enough.
 };
 
 /// Result of safe_remap().
 struct SafeRemapResult {
   Parameterization param;  ///< The accepted (possibly damped) parameterization.
-  double damping = 1.0;    ///< Blend factor t applied: 1 = full warp, 0 = unchanged input.
+  double damping = 1.0;    ///< Global blend factor t applied: 1 = full warp, 0 = unchanged input.
+  double mean_damping = 1.0;  ///< t times the mean local factor over the wedges (1 = nothing damped).
+  int locally_damped = 0;  ///< Wedges whose displacement was reduced locally.
   int checks = 0;          ///< Number of candidate warps checked.
   RemapCheck check;        ///< Check of the returned parameterization (always ok()).
 };
@@ -50,8 +57,8 @@ struct SafeRemapResult {
 RemapCheck check_remap(const Parameterization& before, const Parameterization& after,
                        const SafeRemapOptions& options = {});
 
-/// Remaps \p param through \p warps, damping them (each blended toward the identity with the same t)
-/// until no face flips, degenerates or overlaps. Never returns an invalid layout: t = 0 is the input.
+/// Remaps \p param through \p warps, damping locally and then globally (see above) until no face
+/// flips, degenerates or overlaps. Never returns an invalid layout: t = 0 is the input.
 /// \pre every warp's points are inside [0,1]^2
 SafeRemapResult safe_remap(const Parameterization& param, const std::vector<const GridWarp*>& warps,
                            const SafeRemapOptions& options = {});

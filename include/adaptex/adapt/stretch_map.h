@@ -4,9 +4,13 @@
 /// the current parameterization, normalized to [0,1], "rendered" over the parametric domain (each texel
 /// inside a chart takes its face's value; texels outside every chart take 0).
 ///
-/// Normalization: L2n_f = min(1, L2_f / L2_ref) with L2_ref the area-weighted (3-D area) 99th percentile
-/// of the per-face L2 (face_l2_stretch, 1 = ideal): the thesis divides by the range; a percentile keeps
-/// one sliver face from squashing every other value towards 0 (docs/adaptive.md).
+/// Normalization (excess stretch): L2n_f = clamp((L2_f − 1) / (L2_ref − 1), 0, 1) with L2_f from
+/// face_l2_stretch (1 = ideal, the mesh-wide average texel density) and L2_ref the area-weighted
+/// (3-D area) 99th percentile of L2_f. Faces sampled at or above the average density get 0, the most
+/// under-sampled 1% get 1. The thesis maps the range to [0,1]; dividing by the plain maximum gave
+/// typical faces L2n ≈ 0.6 and made "1 − L2" in unpainted regions smaller than the weight of painted
+/// ones, so paint was shrunk (−10 dB on venus blobs, docs/adaptive.md); a percentile keeps one sliver
+/// face from squashing every other value.
 #include <vector>
 
 #include "adaptex/core/image.h"
