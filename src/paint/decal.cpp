@@ -85,6 +85,29 @@ Eigen::Vector4d sample_decal_image(const ImageRGBA8& image, double u, double v) 
 
 // ------------------------------------------------------------------------------------------------
 
+namespace {
+
+/// The visibility ray eye -> p: t = 1 at p, stopped a relative epsilon short of it.
+RTCRay make_ray(const Vec3& eye, const Vec3& p) {
+  RTCRay ray;
+  const Vec3 d = p - eye;
+  ray.org_x = static_cast<float>(eye.x());
+  ray.org_y = static_cast<float>(eye.y());
+  ray.org_z = static_cast<float>(eye.z());
+  ray.dir_x = static_cast<float>(d.x());
+  ray.dir_y = static_cast<float>(d.y());
+  ray.dir_z = static_cast<float>(d.z());
+  ray.tnear = 0.0f;
+  ray.tfar = static_cast<float>(1.0 - kDecalRayEpsilon);
+  ray.time = 0.0f;
+  ray.mask = 0xFFFFFFFFu;
+  ray.id = 0;
+  ray.flags = 0;
+  return ray;
+}
+
+}  // namespace
+
 struct DecalProjector::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
@@ -104,20 +127,7 @@ struct DecalProjector::Impl {
   bool occluded(const Vec3& eye, const Vec3& p) const {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    RTCRay ray;
-    ray.org_x = static_cast<float>(eye.x());
-    ray.org_y = static_cast<float>(eye.y());
-    ray.org_z = static_cast<float>(eye.z());
-    const Vec3 d = p - eye;  // t = 1 at p
-    ray.dir_x = static_cast<float>(d.x());
-    ray.dir_y = static_cast<float>(d.y());
-    ray.dir_z = static_cast<float>(d.z());
-    ray.tnear = 0.0f;
-    ray.tfar = static_cast<float>(1.0 - kDecalRayEpsilon);
-    ray.time = 0.0f;
-    ray.mask = 0xFFFFFFFFu;
-    ray.id = 0;
-    ray.flags = 0;
+    RTCRay ray = make_ray(eye, p);
     rtcOccluded1(scene, &ctx, &ray);
     return ray.tfar == -std::numeric_limits<float>::infinity();
   }
@@ -199,15 +209,57 @@ Eigen::Vector4d DecalProjector::evaluate(const Stroke& decal, const Vec3& p, int
   return evaluate_prepared(prepare(decal), *this, p, face);
 }
 
+namespace {
+
+/// Evaluates points [begin, end) of a batch: frustum + image first, then one Embree ray stream
+/// (rtcOccluded1M, coherent: neighbouring texels give neighbouring rays) for the candidates.
+/// \p point(k) / \p face(k) give the inputs, \p store(k, value) the output (zero is pre-stored).
+template <class PointFn, class FaceFn, class StoreFn>
+void evaluate_block(const PreparedDecal& d, RTCScene scene, size_t begin, size_t end, PointFn point,
+                    FaceFn face, StoreFn store) {
+  std::vector<RTCRay> rays;
+  std::vector<size_t> which;
+  rays.reserve(end - begin);
+  which.reserve(end - begin);
+  for (size_t k = begin; k < end; ++k) {
+    if (face(k) < 0) continue;
+    const Vec3 p = point(k);
+    Vec2 uv;
+    double depth;
+    if (!d.frame.project(p, uv, depth)) continue;
+    if (uv.x() < 0.0 || uv.x() > 1.0 || uv.y() < 0.0 || uv.y() > 1.0) continue;
+    Eigen::Vector4d c = sample_decal_image(d.stroke->image, uv.x(), uv.y());
+    c.w() *= d.stroke->opacity;
+    if (c.w() <= 0.0) continue;
+    store(k, c);
+    rays.push_back(make_ray(d.frame.eye, p));
+    which.push_back(k);
+  }
+  if (rays.empty()) return;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcOccluded1M(scene, &ctx, rays.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRay));
+  for (size_t m = 0; m < rays.size(); ++m)
+    if (rays[m].tfar == -std::numeric_limits<float>::infinity())
+      store(which[m], Eigen::Vector4d::Zero());
+}
+
+}  // namespace
+
 void DecalProjector::evaluate(const Stroke& decal, std::span<const Vec3> points,
                               std::span<const int> faces, std::span<Eigen::Vector4d> out) const {
   if (points.size() != faces.size() || points.size() != out.size())
     throw InvalidInputError("decal: evaluate: points, faces and out differ in size");
   const PreparedDecal d = prepare(decal);
+  std::fill(out.begin(), out.end(), Eigen::Vector4d::Zero());
+  if (!d.active) return;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024),
                     [&](const tbb::blocked_range<size_t>& r) {
-                      for (size_t k = r.begin(); k < r.end(); ++k)
-                        out[k] = evaluate_prepared(d, *this, points[k], faces[k]);
+                      evaluate_block(
+                          d, impl_->scene, r.begin(), r.end(), [&](size_t k) { return points[k]; },
+                          [&](size_t k) { return faces[k]; },
+                          [&](size_t k, const Eigen::Vector4d& v) { out[k] = v; });
                     });
 }
 
@@ -215,14 +267,14 @@ void DecalProjector::evaluate_texels(const Stroke& decal, const TexelMap& map,
                                      std::vector<Eigen::Vector4f>& out) const {
   const PreparedDecal d = prepare(decal);
   out.assign(map.inside.size(), Eigen::Vector4f::Zero());
+  if (!d.active) return;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, map.inside.size(), 1024),
                     [&](const tbb::blocked_range<size_t>& r) {
-                      for (size_t k = r.begin(); k < r.end(); ++k) {
-                        const int t = map.inside[k];
-                        out[k] = evaluate_prepared(d, *this, map.position[t].cast<double>(),
-                                                   map.face[t])
-                                     .cast<float>();
-                      }
+                      evaluate_block(
+                          d, impl_->scene, r.begin(), r.end(),
+                          [&](size_t k) { return Vec3(map.position[map.inside[k]].cast<double>()); },
+                          [&](size_t k) { return map.face[map.inside[k]]; },
+                          [&](size_t k, const Eigen::Vector4d& v) { out[k] = v.cast<float>(); });
                     });
 }
 

@@ -159,6 +159,23 @@ TEST_F(TwoPlanes, HiddenBackPlaneStaysUnpaintedVisiblePartIsPainted) {
   }
   EXPECT_GT(painted, 0);
   EXPECT_GT(hidden, 0);
+  // Texel form: a hand-made texel map holding the same points (every other texel outside).
+  TexelMap map;
+  map.width = static_cast<int>(pts.size());
+  map.height = 2;
+  map.face.assign(2 * pts.size(), -1);
+  map.bary.assign(2 * pts.size(), Eigen::Vector2f::Zero());
+  map.position.assign(2 * pts.size(), Vec3f::Zero());
+  for (size_t k = 0; k < pts.size(); ++k) {
+    map.face[2 * k] = faces[k];
+    map.position[2 * k] = pts[k].cast<float>();
+    map.inside.push_back(static_cast<int>(2 * k));
+  }
+  std::vector<Eigen::Vector4f> tex;
+  proj.evaluate_texels(decal, map, tex);
+  ASSERT_EQ(tex.size(), pts.size());
+  for (size_t k = 0; k < pts.size(); ++k)
+    EXPECT_LT((tex[k].cast<double>() - out[k]).norm(), 1e-6) << k;
 }
 
 TEST_F(TwoPlanes, OutsideTheFrustumOrBehindTheEyeIsNotPainted) {
