@@ -156,21 +156,18 @@ std::vector<char> initial_cut(const TriMesh& mesh, const EdgeConnectivity& ec, c
   // 2. Face peeling: a spanning tree of the faces (Kruskal) across interior edges. Non-tree edges
   //    with the longest loops (dist(a) + len + dist(b)) are crossed first, so the edges left over
   //    close the shortest loops; T edges are crossed only if nothing else connects the faces.
-  std::vector<int> order;
+  // Sort keys: T edges last, then by decreasing loop length (ties by edge id, for determinism).
+  std::vector<std::pair<double, int>> order;
   order.reserve(ne);
   for (int e = 0; e < ne; ++e)
-    if (ec.edge_faces[e].size() == 2) order.push_back(e);
-  auto loop_len = [&](int e) {
-    return dist[ec.edges[e][0]] + dist[ec.edges[e][1]] + g.length[e];
-  };
-  std::sort(order.begin(), order.end(), [&](int x, int y) {
-    if (in_tree[x] != in_tree[y]) return in_tree[x] < in_tree[y];
-    const double lx = loop_len(x), ly = loop_len(y);
-    return lx != ly ? lx > ly : x < y;
-  });
+    if (ec.edge_faces[e].size() == 2) {
+      const double loop = dist[ec.edges[e][0]] + dist[ec.edges[e][1]] + g.length[e];
+      order.push_back({in_tree[e] ? kInf : -loop, e});
+    }
+  std::sort(order.begin(), order.end());
   UnionFind faces_uf(nf);
   std::vector<char> in_graph(ne, 1);  // the cut graph: every edge the face tree does not cross
-  for (int e : order)
+  for (const auto& [key, e] : order)
     if (faces_uf.unite(ec.edge_faces[e][0], ec.edge_faces[e][1])) in_graph[e] = 0;
 
   // 3. Dangling-edge pruning.
