@@ -128,6 +128,9 @@ class App {
   BrushSettings& brush() { return brush_; }
   ViewSettings& view() { return view_; }
   AdaptSettings& adapt() { return adapt_; }
+  const AdaptSettings& adapt() const { return adapt_; }
+  const BrushSettings& brush() const { return brush_; }
+  const ViewSettings& view() const { return view_; }
   const std::vector<std::string>& recent_files() const { return recent_; }
   /// Brush radius in world units.
   double world_radius() const;

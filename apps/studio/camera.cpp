@@ -20,7 +20,7 @@ Vec3 Camera::up() const { return right().cross(forward()).normalized(); }
 double Camera::near_plane() const { return std::max(1e-6, std::max(distance - 2.0 * scene_radius, distance * 0.01)); }
 double Camera::far_plane() const { return distance + 4.0 * scene_radius; }
 
-Eigen::Matrix4f Camera::view_matrix() const {
+Eigen::Matrix4d Camera::view_matrix_d() const {
   const Vec3 f = forward(), r = right(), u = up(), e = eye();
   Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
   m.block<1, 3>(0, 0) = r.transpose();
@@ -29,10 +29,11 @@ Eigen::Matrix4f Camera::view_matrix() const {
   m(0, 3) = -r.dot(e);
   m(1, 3) = -u.dot(e);
   m(2, 3) = f.dot(e);
-  return m.cast<float>();
+  return m;
 }
+Eigen::Matrix4f Camera::view_matrix() const { return view_matrix_d().cast<float>(); }
 
-Eigen::Matrix4f Camera::projection_matrix() const {
+Eigen::Matrix4d Camera::projection_matrix_d() const {
   const double n = near_plane(), fa = far_plane();
   const double t = 1.0 / std::tan(fov_y_degrees * kPi / 360.0);
   Eigen::Matrix4d p = Eigen::Matrix4d::Zero();
@@ -41,8 +42,9 @@ Eigen::Matrix4f Camera::projection_matrix() const {
   p(2, 2) = -(fa + n) / (fa - n);
   p(2, 3) = -2.0 * fa * n / (fa - n);
   p(3, 2) = -1.0;
-  return p.cast<float>();
+  return p;
 }
+Eigen::Matrix4f Camera::projection_matrix() const { return projection_matrix_d().cast<float>(); }
 
 Ray Camera::pixel_ray(double x, double y) const {
   const double th = std::tan(fov_y_degrees * kPi / 360.0);
@@ -55,7 +57,7 @@ Ray Camera::pixel_ray(double x, double y) const {
 }
 
 Vec3 Camera::project(const Vec3& p) const {
-  const Eigen::Vector4d c = (projection_matrix().cast<double>() * view_matrix().cast<double>()) *
+  const Eigen::Vector4d c = (projection_matrix_d() * view_matrix_d()) *
                             Eigen::Vector4d(p.x(), p.y(), p.z(), 1.0);
   if (c.w() <= 0) return Vec3(0, 0, 2);
   const Vec3 ndc = c.head<3>() / c.w();

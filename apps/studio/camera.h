@@ -36,6 +36,8 @@ struct Camera {
   /// Column-major 4x4 matrices (OpenGL conventions).
   Eigen::Matrix4f view_matrix() const;
   Eigen::Matrix4f projection_matrix() const;
+  Eigen::Matrix4d view_matrix_d() const;
+  Eigen::Matrix4d projection_matrix_d() const;
 
   /// Ray through window pixel (x, y), origin at the top-left corner of the window, y down.
   Ray pixel_ray(double x, double y) const;

@@ -193,12 +193,21 @@ int main(int argc, char** argv) {
     bool view_applied = false, ready_printed = false;
     int idle_frames = 0, orbit_done = 0;
     StudioUi ui;
+    bool final_frame = false;  // after SIGTERM / SIGINT: one more frame for the --screenshot
     while (!glfwWindowShouldClose(window_ptr) && !app.should_quit() && rc == 0) {
       // 1. input (callbacks run inside glfwPollEvents and act on the App at once)
       glfwPollEvents();
+      if (final_frame) app.request_quit();
       if (sig_fd >= 0) {
         signalfd_siginfo si;
-        if (read(sig_fd, &si, sizeof si) == ssize_t(sizeof si)) app.request_quit();
+        if (read(sig_fd, &si, sizeof si) == ssize_t(sizeof si)) {
+          if (!screenshot.empty() && exit_after < 0) {
+            app.screenshot(screenshot);
+            final_frame = true;
+          } else {
+            app.request_quit();
+          }
+        }
       }
       // 2. background results, autosave
       app.begin_frame();

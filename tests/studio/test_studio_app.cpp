@@ -1,0 +1,340 @@
+/// \file test_studio_app.cpp
+/// Unit tests of the adaptex-studio App logic with the null renderer (no window, no GL):
+/// camera math, picking, brush spacing and symmetry, UI capture, eyedropper, undo/redo over 100 steps,
+/// project round trip, autosave / recovery, bad files, cancel, adaptation while painting.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <thread>
+
+#include "adaptex/paint/painter.h"
+#include "app.h"
+#include "test_support.h"
+
+namespace adaptex::studio {
+namespace {
+
+using adaptex::test::TempDir;
+
+struct Harness {
+  NullRenderer* renderer = nullptr;
+  std::unique_ptr<App> app;
+  explicit Harness(AppOptions opt = {}, int texture_size = 256, const std::string& mesh = "builtin:sphere") {
+    auto r = std::make_unique<NullRenderer>();
+    renderer = r.get();
+    app = std::make_unique<App>(std::move(r), std::move(opt));
+    app->on_resize(400, 300);
+    app->adapt().texture_size = texture_size;
+    if (!mesh.empty()) {
+      app->open_mesh(mesh);
+      EXPECT_TRUE(app->wait_idle(120));
+      EXPECT_TRUE(app->has_model());
+      app->render();  // the first frame uploads the whole texture
+    }
+  }
+  /// A left-button drag along a straight line, in steps of \p step pixels, as window events.
+  void drag(double x0, double y0, double x1, double y1, double step = 5.0) {
+    app->on_cursor(x0, y0);
+    app->on_mouse_button(MouseButton::Left, true, {});
+    const int n = std::max(1, int(std::hypot(x1 - x0, y1 - y0) / step));
+    for (int k = 1; k <= n; ++k) app->on_cursor(x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n);
+    app->on_mouse_button(MouseButton::Left, false, {});
+    app->begin_frame();
+    app->render();
+    app->end_frame();
+  }
+  void click(double x, double y) { drag(x, y, x, y); }
+};
+
+ImageRGBA8 replay_texture(const App& app) {
+  Painter p(*app.mesh(), *app.param(), PainterOptions{app.adapt().texture_size, app.adapt().texture_size, 4},
+            app.history().background());
+  p.paint_all(app.history().to_file());
+  return p.texture();
+}
+
+int max_abs_diff(const ImageRGBA8& a, const ImageRGBA8& b) {
+  if (a.width != b.width || a.height != b.height) return 256;
+  int m = 0;
+  for (size_t k = 0; k < a.data.size(); ++k) m = std::max(m, std::abs(int(a.data[k]) - int(b.data[k])));
+  return m;
+}
+
+// ---- camera -----------------------------------------------------------------------------------
+
+TEST(StudioCamera, PixelRayPassesThroughProjectedPoint) {
+  Camera c;
+  c.width = 640;
+  c.height = 480;
+  c.target = Vec3(0.3, -0.2, 0.5);
+  c.distance = 4;
+  c.yaw = 0.7;
+  c.pitch = -0.4;
+  for (const Vec3& p : {Vec3(0, 0, 0), Vec3(0.5, 0.4, -0.3), Vec3(-0.8, 0.1, 0.9)}) {
+    const Vec3 s = c.project(p);
+    const Ray r = c.pixel_ray(s.x(), s.y());
+    const Vec3 d = p - r.origin;
+    EXPECT_LT((d - d.dot(r.dir) * r.dir).norm(), 1e-9) << p.transpose();
+    EXPECT_GT(d.dot(r.dir), 0);
+  }
+  const Ray centre = c.pixel_ray(320, 240);
+  EXPECT_LT((centre.dir - c.forward()).norm(), 1e-12);
+}
+
+TEST(StudioCamera, FrameShowsTheWholeBoxAndOrbitPanZoomBehave) {
+  Camera c;
+  c.width = 800;
+  c.height = 400;
+  BoundingBox box;
+  box.min = Vec3(-1, -2, 0);
+  box.max = Vec3(3, 1, 0.5);
+  c.yaw = 2.0;
+  c.pitch = 0.6;
+  c.frame(box);
+  for (int k = 0; k < 8; ++k) {
+    const Vec3 p((k & 1) ? box.max.x() : box.min.x(), (k & 2) ? box.max.y() : box.min.y(),
+                 (k & 4) ? box.max.z() : box.min.z());
+    const Vec3 s = c.project(p);
+    EXPECT_GE(s.x(), 0);
+    EXPECT_LE(s.x(), 800);
+    EXPECT_GE(s.y(), 0);
+    EXPECT_LE(s.y(), 400);
+  }
+  const double d = c.distance;
+  c.orbit(50, -30);
+  EXPECT_NEAR((c.eye() - c.target).norm(), d, 1e-9);
+  const Vec3 t = c.target;
+  c.pan(40, 0);  // the old target moves 40 pixels right on screen with the model
+  const Vec3 s = c.project(t);
+  EXPECT_NEAR(s.x(), 400 + 40, 1e-6);
+  EXPECT_NEAR(s.y(), 200, 1e-6);
+  c.zoom(2);
+  EXPECT_NEAR(c.distance, d * 0.85 * 0.85, 1e-9);
+  EXPECT_LT(c.pitch, 3.14159 / 2);
+  c.orbit(0, 1e6);
+  EXPECT_LT(c.pitch, 3.14159 / 2);
+}
+
+// ---- picking and painting --------------------------------------------------------------------
+
+TEST(StudioApp, PicksTheVisibleFrontSurface) {
+  Harness h;
+  auto hit = h.app->pick(200, 150);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->point.norm(), 1.0, 2e-3);
+  EXPECT_GT(hit->point.z(), 0.99);  // camera on +Z: the near pole, not the far one
+  EXPECT_TRUE(hit->front_facing);
+  EXPECT_FALSE(h.app->pick(2, 2));  // background
+}
+
+TEST(StudioApp, DragPaintsDabsOnTheSurfaceAtTheChosenSpacing) {
+  Harness h;
+  h.app->brush().spacing = 0.3;
+  h.app->brush().radius = 0.03;
+  const ImageRGBA8 before = *h.app->texture();
+  h.drag(120, 150, 280, 150, 7.0);
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  const Stroke& s = h.app->history().strokes()[0];
+  const double r = h.app->world_radius();
+  EXPECT_NEAR(s.radius, r, 1e-12);
+  EXPECT_EQ(s.color, h.app->brush().color);
+  ASSERT_GE(s.dabs.size(), 10u);
+  const double pixel = 2 * h.app->camera().distance * std::tan(40 * 3.14159265 / 360) / 300;  // world per pixel
+  for (size_t k = 0; k < s.dabs.size(); ++k) {
+    EXPECT_NEAR(s.dabs[k].norm(), 1.0, 2e-3);
+    EXPECT_GT(s.dabs[k].z(), 0);
+    if (k == 0) continue;
+    const double step = (s.dabs[k] - s.dabs[k - 1]).norm();
+    EXPECT_GE(step, 0.3 * r * (1 - 1e-9));
+    EXPECT_LE(step, 0.3 * r + 3 * pixel);  // one ray per pixel of cursor travel
+  }
+  // The texture changed, and only inside the dab footprint (texels away from any dab untouched).
+  const ImageRGBA8& after = *h.app->texture();
+  EXPECT_GT(max_abs_diff(before, after), 100);
+  EXPECT_GT(h.renderer->texture_updates, 0);
+  EXPECT_EQ(max_abs_diff(after, replay_texture(*h.app)), 0);
+}
+
+TEST(StudioApp, SymmetryMirrorsEveryDab) {
+  Harness h;
+  h.app->brush().symmetry_axis = 0;
+  h.drag(230, 120, 300, 170, 4.0);
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  const auto& dabs = h.app->history().strokes()[0].dabs;
+  int right = 0;
+  for (const Vec3& d : dabs) {
+    if (d.x() <= 0) continue;
+    ++right;
+    double best = 1e9;
+    for (const Vec3& e : dabs) best = std::min(best, (e - Vec3(-d.x(), d.y(), d.z())).norm());
+    EXPECT_LT(best, 1e-6) << d.transpose();
+  }
+  EXPECT_GE(right, 3);
+  EXPECT_EQ(int(dabs.size()), 2 * right);
+}
+
+TEST(StudioApp, NoPaintWhenTheUiHasTheMouseOrWhenOrbiting) {
+  Harness h;
+  h.app->set_ui_capture(true, false);
+  h.drag(150, 150, 250, 150);
+  EXPECT_TRUE(h.app->history().strokes().empty());
+  h.app->set_ui_capture(false, false);
+  const double yaw = h.app->camera().yaw;
+  h.app->on_cursor(150, 150);
+  h.app->on_mouse_button(MouseButton::Left, true, Mods{false, false, true});  // Alt+left orbits
+  h.app->on_cursor(250, 150);
+  h.app->on_mouse_button(MouseButton::Left, false, {});
+  EXPECT_TRUE(h.app->history().strokes().empty());
+  EXPECT_NE(h.app->camera().yaw, yaw);
+}
+
+TEST(StudioApp, KeysChangeRadiusAndEyedropperSamplesThePaint) {
+  Harness h;
+  const double r = h.app->brush().radius;
+  h.app->on_key(']', true, {});
+  EXPECT_NEAR(h.app->brush().radius, r * 1.15, 1e-12);
+  h.app->on_key('[', true, {});
+  EXPECT_NEAR(h.app->brush().radius, r, 1e-12);
+  h.app->brush().color = Vec3(0.1, 0.2, 0.9);
+  h.app->brush().radius = 0.1;
+  h.app->brush().hardness = 1.0;
+  h.click(200, 150);
+  h.app->brush().color = Vec3(0, 0, 0);
+  h.app->brush().tool = Tool::Eyedropper;
+  h.click(200, 150);
+  EXPECT_LT((h.app->brush().color - Vec3(0.1, 0.2, 0.9)).norm(), 0.02);
+  EXPECT_EQ(h.app->history().strokes().size(), 1u);  // the eyedropper does not paint
+}
+
+TEST(StudioApp, UndoRedoHundredStepsReplaysTheHistory) {
+  Harness h;
+  h.app->brush().radius = 0.01;
+  for (int k = 0; k < 110; ++k) {
+    h.app->brush().color = Vec3((k % 7) / 7.0, (k % 3) / 3.0, (k % 5) / 5.0);
+    h.click(140 + (k % 11) * 11, 110 + (k / 11) * 8);
+  }
+  ASSERT_EQ(h.app->history().strokes().size(), 110u);
+  const ImageRGBA8 full = *h.app->texture();
+  for (int k = 0; k < 100; ++k) h.app->on_key('Z', true, Mods{false, true, false});
+  EXPECT_EQ(h.app->history().strokes().size(), 10u);
+  ASSERT_TRUE(h.app->wait_idle(60));
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), replay_texture(*h.app)), 0);
+  for (int k = 0; k < 50; ++k) h.app->on_key('Z', true, Mods{true, true, false});  // Ctrl+Shift+Z
+  for (int k = 0; k < 50; ++k) h.app->on_key('Y', true, Mods{false, true, false});  // Ctrl+Y
+  EXPECT_EQ(h.app->history().strokes().size(), 110u);
+  ASSERT_TRUE(h.app->wait_idle(60));
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), full), 0);
+}
+
+TEST(StudioApp, ProjectSaveLoadRoundTrip) {
+  TempDir dir;
+  Harness h;
+  h.app->brush().color = Vec3(0.2, 0.7, 0.3);
+  h.drag(150, 140, 250, 160);
+  h.app->brush().hardness = 0.8;
+  h.app->brush().symmetry_axis = 2;
+  h.app->adapt().alpha = 0.3;
+  h.app->view().wireframe = true;
+  h.app->set_background_colour(Vec3(0.9, 0.9, 0.8));
+  const auto path = dir.path / "p.json";
+  h.app->save_project(path);
+  ASSERT_TRUE(std::filesystem::exists(path));
+  ASSERT_TRUE(h.app->wait_idle(60));
+
+  Harness g({}, 256, "");
+  g.app->open_project(path);
+  ASSERT_TRUE(g.app->wait_idle(120));
+  ASSERT_TRUE(g.app->has_model());
+  EXPECT_EQ(g.app->mesh_path(), "builtin:sphere");
+  ASSERT_EQ(g.app->history().strokes().size(), 1u);
+  EXPECT_EQ(g.app->history().strokes()[0].dabs, h.app->history().strokes()[0].dabs);
+  EXPECT_EQ(g.app->history().background(), Vec3(0.9, 0.9, 0.8));
+  EXPECT_EQ(g.app->brush().hardness, 0.8);
+  EXPECT_EQ(g.app->brush().symmetry_axis, 2);
+  EXPECT_EQ(g.app->adapt().alpha, 0.3);
+  EXPECT_TRUE(g.app->view().wireframe);
+  EXPECT_EQ(max_abs_diff(*g.app->texture(), *h.app->texture()), 0);
+}
+
+TEST(StudioApp, AutosaveIsOfferedAsRecoveryNextTime) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path;
+  opt.autosave_delay = 0.1;
+  {
+    Harness h(opt);
+    h.drag(150, 150, 250, 150);
+    for (int k = 0; k < 400 && !std::filesystem::exists(dir.path / "recovery.json"); ++k) {
+      h.app->begin_frame();
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_TRUE(std::filesystem::exists(dir.path / "recovery.json"));
+    // Simulate a crash: keep the file, as a killed process would.
+    std::filesystem::copy_file(dir.path / "recovery.json", dir.path / "keep.json");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "recovery.json"));  // clean exit removes it
+  std::filesystem::rename(dir.path / "keep.json", dir.path / "recovery.json");
+  Harness g(opt, 256, "");
+  ASSERT_TRUE(g.app->pending_recovery());
+  g.app->accept_recovery();
+  ASSERT_TRUE(g.app->wait_idle(120));
+  EXPECT_EQ(g.app->history().strokes().size(), 1u);
+  EXPECT_EQ(g.app->mesh_path(), "builtin:sphere");
+}
+
+TEST(StudioApp, BadFilesShowAnErrorAndKeepTheModel) {
+  TempDir dir;
+  Harness h;
+  const std::string good = h.app->mesh_path();
+  h.app->clear_messages();
+  h.app->open_mesh((dir.path / "missing.obj").string());
+  ASSERT_TRUE(h.app->wait_idle(30));
+  ASSERT_FALSE(h.app->messages().empty());
+  EXPECT_TRUE(h.app->messages().back().error);
+  EXPECT_NE(h.app->messages().back().text.find("missing.obj"), std::string::npos);
+  std::ofstream(dir.path / "junk.obj") << "v 0 0 0\nf 1 2 3\nthis is not an obj\n";
+  h.app->open_mesh((dir.path / "junk.obj").string());
+  ASSERT_TRUE(h.app->wait_idle(30));
+  EXPECT_TRUE(h.app->messages().back().error);
+  EXPECT_EQ(h.app->mesh_path(), good);
+  h.app->on_drop({(dir.path / "nope.json").string()});
+  EXPECT_TRUE(h.app->messages().back().error);
+}
+
+TEST(StudioApp, LoadingCanBeCancelled) {
+  Harness h({}, 256, "");
+  h.app->open_mesh("builtin:trefoil");
+  h.app->cancel_load();
+  ASSERT_TRUE(h.app->wait_idle(60));
+  EXPECT_FALSE(h.app->has_model());
+}
+
+TEST(StudioApp, AdaptsInTheBackgroundWhilePaintingContinues) {
+  Harness h;
+  h.app->adapt().mode = AdaptMode::TwoStage;
+  h.app->adapt().fine_grid = 64;
+  h.app->brush().radius = 0.05;
+  h.app->brush().hardness = 0.9;
+  const auto serial = h.app->surface_serial();
+  h.drag(150, 150, 250, 150);
+  h.app->begin_frame();  // starts the re-parameterization job
+  // A second stroke while the job may still run: painted at once (the texture changes now).
+  const int updates = h.renderer->texture_updates;
+  h.app->brush().color = Vec3(0.1, 0.1, 0.9);
+  h.drag(200, 100, 200, 200);
+  EXPECT_GT(h.renderer->texture_updates + h.renderer->texture_uploads, updates);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  EXPECT_GT(h.app->surface_serial(), serial);
+  EXPECT_FALSE(h.app->last_cycle().empty());
+  ASSERT_NE(h.app->adapt_maps(), nullptr);
+  EXPECT_EQ(h.app->history().strokes().size(), 2u);
+  const Parameterization& p = *h.app->param();
+  int flipped = 0;
+  for (int f = 0; f < int(p.uv_faces.size()); ++f) flipped += uv_signed_area(p, f) <= 0;
+  EXPECT_EQ(flipped, 0);
+  EXPECT_LE(max_abs_diff(*h.app->texture(), replay_texture(*h.app)), 1);
+}
+
+}  // namespace
+}  // namespace adaptex::studio

@@ -1,0 +1,260 @@
+/// \file test_studio_gui.cpp
+/// Acceptance tests of adaptex-studio as a real program: under Xvfb with Mesa's software OpenGL, the
+/// app is driven with real X input events (xdotool) and its outputs are checked; a SIGKILLed session
+/// is recovered from its autosave. Skipped (with a message) when Xvfb or xdotool is missing.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "adaptex/io/image_io.h"
+#include "adaptex/io/mesh_io.h"
+#include "test_support.h"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using adaptex::test::TempDir;
+using namespace std::chrono_literals;
+
+std::optional<fs::path> find_program(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::stringstream ss(path ? path : "/usr/bin:/bin");
+  std::string dir;
+  while (std::getline(ss, dir, ':'))
+    if (!dir.empty() && access((fs::path(dir) / name).c_str(), X_OK) == 0) return fs::path(dir) / name;
+  return std::nullopt;
+}
+
+/// Spawns \p args with extra environment variables, stdout+stderr appended to \p log.
+pid_t spawn(const std::vector<std::string>& args, const std::vector<std::string>& env_extra, const fs::path& log) {
+  std::vector<std::string> env;
+  for (char** e = environ; *e; ++e) env.emplace_back(*e);
+  env.insert(env.end(), env_extra.begin(), env_extra.end());
+  std::vector<char*> argv, envp;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  for (const auto& e : env) envp.push_back(const_cast<char*>(e.c_str()));
+  envp.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, argv[0], &fa, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&fa);
+  return rc == 0 ? pid : -1;
+}
+
+/// Waits for \p pid to exit; \return exit status or -1 on timeout.
+int wait_exit(pid_t pid, std::chrono::seconds timeout) {
+  const auto t0 = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - t0 < timeout) {
+    int st = 0;
+    if (waitpid(pid, &st, WNOHANG) == pid) return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    std::this_thread::sleep_for(50ms);
+  }
+  return -1;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+bool wait_for(const std::function<bool()>& cond, std::chrono::seconds timeout) {
+  const auto t0 = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - t0 < timeout) {
+    if (cond()) return true;
+    std::this_thread::sleep_for(100ms);
+  }
+  return cond();
+}
+
+/// A private Xvfb server for one test.
+class Xvfb {
+ public:
+  explicit Xvfb(const fs::path& log) {
+    auto xvfb = find_program("Xvfb");
+    if (!xvfb) return;
+    for (int n = 91; n < 300; ++n) {
+      std::ostringstream sock, lock, disp;
+      sock << "/tmp/.X11-unix/X" << n;
+      lock << "/tmp/.X" << n << "-lock";
+      disp << ":" << n;
+      if (fs::exists(sock.str()) || fs::exists(lock.str())) continue;
+      display_ = disp.str();
+      pid_ = spawn({xvfb->string(), display_, "-screen", "0", "1024x768x24", "-nolisten", "tcp"}, {}, log);
+      if (pid_ > 0 && wait_for([&] { return fs::exists(sock.str()); }, 10s)) return;
+      stop();
+    }
+  }
+  ~Xvfb() { stop(); }
+  bool ok() const { return pid_ > 0; }
+  const std::string& display() const { return display_; }
+  std::vector<std::string> env() const { return {"DISPLAY=" + display_, "LIBGL_ALWAYS_SOFTWARE=1"}; }
+
+ private:
+  void stop() {
+    if (pid_ > 0) {
+      kill(pid_, SIGTERM);
+      if (wait_exit(pid_, 5s) < 0) kill(pid_, SIGKILL), wait_exit(pid_, 5s);
+    }
+    pid_ = -1;
+  }
+  pid_t pid_ = -1;
+  std::string display_;
+};
+
+#define REQUIRE_X_TOOLS()                                                                       \
+  do {                                                                                          \
+    if (!find_program("Xvfb")) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): skipping the GUI test"; \
+    if (!find_program("xdotool")) GTEST_SKIP() << "xdotool not installed: skipping the GUI test";                \
+  } while (0)
+
+/// Mean RGB of a screen rectangle (x, y from the top-left, inclusive ranges).
+std::array<double, 3> mean_rgb(const adaptex::ImageRGBA8& shot, int x0, int x1, int y0, int y1) {
+  std::array<double, 3> m{0, 0, 0};
+  int n = 0;
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const uint8_t* p = shot.texel(x, shot.height - 1 - y);  // ImageRGBA8 rows are bottom-up
+      for (int c = 0; c < 3; ++c) m[c] += p[c];
+      ++n;
+    }
+  for (double& v : m) v /= n;
+  return m;
+}
+
+TEST(StudioGui, XdotoolDragPaintsTheSurfaceUnderTheCursor) {
+  REQUIRE_X_TOOLS();
+  TempDir dir;
+  Xvfb x(dir.path / "xvfb.log");
+  ASSERT_TRUE(x.ok()) << slurp(dir.path / "xvfb.log");
+  const fs::path log = dir.path / "app.log", hist = dir.path / "history.json", tex = dir.path / "texture.png",
+                 shot = dir.path / "shot.png", exp = dir.path / "export";
+  const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "builtin:sphere", "--window", "800x600", "--texture-size", "512",
+                           "--config-dir", (dir.path / "cfg").string(), "--no-recovery", "--history-out",
+                           hist.string(), "--texture-out", tex.string(), "--screenshot", shot.string(),
+                           "--export-obj", exp.string()},
+                          x.env(), log);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_for([&] { return slurp(log).find("adaptex-studio: ready") != std::string::npos; }, 120s))
+      << slurp(log);
+  // A real drag across the middle of the sphere, right of the panels (x > 310).
+  std::ostringstream cmd;
+  cmd << "DISPLAY=" << x.display() << " xdotool mousemove 330 300 sleep 0.3 mousedown 1 sleep 0.2";
+  for (int px = 340; px <= 470; px += 10) cmd << " mousemove " << px << " 300 sleep 0.05";
+  cmd << " sleep 0.2 mouseup 1 sleep 0.3 mousemove 700 80 sleep 0.5";
+  ASSERT_EQ(std::system(cmd.str().c_str()), 0);
+  kill(app, SIGTERM);
+  const int rc = wait_exit(app, 60s);
+  if (rc < 0) kill(app, SIGKILL), wait_exit(app, 5s);
+  ASSERT_EQ(rc, 0) << slurp(log);
+
+  // 1. The stroke history gained dabs on the visible surface under the drag.
+  std::ifstream hin(hist);
+  const auto h = nlohmann::json::parse(hin);
+  ASSERT_EQ(h["strokes"].size(), 1u) << h.dump();
+  const auto& dabs = h["strokes"][0]["dabs"];
+  ASSERT_GE(dabs.size(), 8u);
+  double xmin = 1e9, xmax = -1e9;
+  std::vector<adaptex::Vec3> pts;
+  for (const auto& d : dabs) {
+    const adaptex::Vec3 p(d[0].get<double>(), d[1].get<double>(), d[2].get<double>());
+    EXPECT_NEAR(p.norm(), 1.0, 3e-3);  // on the unit sphere
+    EXPECT_GT(p.z(), 0.5);              // the side facing the camera (+Z)
+    EXPECT_NEAR(p.y(), 0.0, 0.05);      // along the horizontal drag through the centre
+    xmin = std::min(xmin, p.x());
+    xmax = std::max(xmax, p.x());
+    pts.push_back(p);
+  }
+  EXPECT_LT(xmin, -0.15);
+  EXPECT_GT(xmax, 0.2);
+
+  // 2. The texture changed there: the texel under each dab centre has the brush colour.
+  adaptex::TexturedMesh tm;
+  for (const auto& e : fs::directory_iterator(exp))
+    if (e.path().extension() == ".obj") tm = adaptex::read_textured_obj(e.path());
+  ASSERT_GT(tm.mesh.num_faces(), 0);
+  const adaptex::ImageRGBA8 texture = adaptex::read_image(tex);
+  int checked = 0;
+  for (const auto& p : pts) {
+    for (int f = 0; f < tm.mesh.num_faces(); ++f) {
+      const auto& F = tm.mesh.faces[f];
+      const adaptex::Vec3 a = tm.mesh.positions[F[0]], b = tm.mesh.positions[F[1]], c = tm.mesh.positions[F[2]];
+      const adaptex::Vec3 n = (b - a).cross(c - a);
+      if (std::abs((p - a).dot(n.normalized())) > 1e-6) continue;
+      const double l0 = (c - b).cross(p - b).dot(n) / n.squaredNorm(), l1 = (a - c).cross(p - c).dot(n) / n.squaredNorm();
+      if (l0 < -1e-9 || l1 < -1e-9 || l0 + l1 > 1 + 1e-9) continue;
+      const auto& U = tm.param.uv_faces[f];
+      const adaptex::Vec2 uv = l0 * tm.param.uv[U[0]] + l1 * tm.param.uv[U[1]] + (1 - l0 - l1) * tm.param.uv[U[2]];
+      const adaptex::Vec3 col = adaptex::sample_bilinear(texture, uv.x(), uv.y());
+      EXPECT_NEAR(col.x(), 0.85, 0.03);
+      EXPECT_NEAR(col.y(), 0.10, 0.03);
+      ++checked;
+      break;
+    }
+  }
+  EXPECT_GE(checked, int(pts.size()) / 2);
+
+  // 3. The screenshot shows the paint along the drag, and not elsewhere on the model.
+  const adaptex::ImageRGBA8 s = adaptex::read_image(shot);
+  ASSERT_EQ(s.width, 800);
+  const auto on = mean_rgb(s, 360, 440, 296, 304), off = mean_rgb(s, 360, 440, 150, 170),
+             bg = mean_rgb(s, 740, 790, 20, 60);
+  EXPECT_GT(on[0], 120) << on[0] << " " << on[1] << " " << on[2];
+  EXPECT_GT(on[0] - on[1], 80);
+  EXPECT_LT(std::abs(off[0] - off[1]), 25) << off[0] << " " << off[1];  // unpainted (white, shaded)
+  EXPECT_GT(off[0], 120);
+  EXPECT_LT(bg[0], 100);  // the dark background
+}
+
+TEST(StudioGui, SigkilledSessionIsRecoveredFromTheAutosave) {
+  REQUIRE_X_TOOLS();
+  TempDir dir;
+  Xvfb x(dir.path / "xvfb.log");
+  ASSERT_TRUE(x.ok());
+  const fs::path strokes = dir.path / "s.json", rec = dir.path / "rec", log = dir.path / "app.log";
+  std::ofstream(strokes) << R"({"format":"adaptex.strokes","version":1,"strokes":[{"color":[0.1,0.3,0.9],
+    "radius":0.2,"hardness":0.5,"dabs":[[0,0,1],[0.3,0.2,0.93]]}]})";
+  const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "builtin:sphere", "--window", "640x480", "--texture-size", "256",
+                           "--replay", strokes.string(), "--config-dir", (dir.path / "cfg").string(),
+                           "--recovery-dir", rec.string()},
+                          x.env(), log);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_for([&] { return fs::exists(rec / "recovery.json"); }, 120s)) << slurp(log);
+  kill(app, SIGKILL);
+  wait_exit(app, 10s);
+  ASSERT_TRUE(fs::exists(rec / "recovery.json"));
+
+  const fs::path hist = dir.path / "h.json", log2 = dir.path / "app2.log";
+  const pid_t again = spawn({ADAPTEX_STUDIO_PATH, "--window", "640x480", "--texture-size", "256", "--recover",
+                             "--recovery-dir", rec.string(), "--config-dir", (dir.path / "cfg").string(),
+                             "--history-out", hist.string(), "--exit-after-frames", "3"},
+                            x.env(), log2);
+  ASSERT_GT(again, 0);
+  ASSERT_EQ(wait_exit(again, 120s), 0) << slurp(log2);
+  EXPECT_NE(slurp(log2).find("recovery file found"), std::string::npos) << slurp(log2);
+  std::ifstream hin(hist);
+  const auto h = nlohmann::json::parse(hin);
+  ASSERT_EQ(h["strokes"].size(), 1u);
+  EXPECT_EQ(h["strokes"][0]["dabs"].size(), 2u);
+  EXPECT_NEAR(h["strokes"][0]["dabs"][1][0].get<double>(), 0.3, 1e-12);
+  EXPECT_FALSE(fs::exists(rec / "recovery.json"));  // the clean exit removed this session's file
+}
+
+}  // namespace
