@@ -1,0 +1,201 @@
+// Mesh-level tests of the adaptive re-parameterization: overlap-free multi-chart layouts, geometry-only
+// stretch reduction, replay vs resample, the quality property, the session and `adaptex reparam`.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "adaptex/adapt/adapt.h"
+#include "adaptex/adapt/session.h"
+#include "adaptex/core/shapes.h"
+#include "adaptex/io/image_io.h"
+#include "adaptex/io/mesh_io.h"
+#include "adaptex/paint/eval.h"
+#include "adaptex/paint/generate.h"
+#include "adaptex/paint/painter.h"
+#include "adaptex/param/stretch.h"
+#include "adaptex/param/unwrap.h"
+#include "test_support.h"
+
+namespace adaptex {
+namespace {
+
+// Thin hard lines concentrated in one small part of the surface (around the first vertex).
+StrokeFile corner_lines(const TriMesh& mesh, int count, double radius_frac) {
+  const double d = bounding_box(mesh).diagonal();
+  GenerateOptions go;
+  go.kind = StrokeKind::Lines;
+  go.count = count;
+  go.seed = 7;
+  StrokeFile f = generate_strokes(mesh, go);
+  for (auto& s : f.strokes) s.radius = radius_frac * d;
+  return f;
+}
+
+ImageRGBA8 paint(const TriMesh& mesh, const Parameterization& p, const StrokeFile& s, int size) {
+  PainterOptions po;
+  po.width = po.height = size;
+  Painter painter(mesh, p, po, s.background);
+  painter.paint_all(s);
+  return painter.texture();
+}
+
+TEST(AdaptMesh, TwoComponentLayoutStaysOverlapFreeAndFlipFree) {
+  const TriMesh mesh = shapes::two_components();
+  const Parameterization param = unwrap(mesh).param;
+  ASSERT_GE(param.num_charts, 2);
+  const StrokeFile strokes = corner_lines(mesh, 30, 0.004);
+  PainterOptions po;
+  po.width = po.height = 256;
+  Painter painter(mesh, param, po, strokes.background);
+  painter.paint_all(strokes);
+  for (AdaptMode mode : {AdaptMode::Single, AdaptMode::TwoStage}) {
+    AdaptOptions o;
+    o.mode = mode;
+    o.fine_grid = 128;
+    o.geometry_scale = 1.0;  // the thesis' full geometry term: larger warps
+    const AdaptResult r = adapt_parameterization(mesh, param, painter.texture(), painter.texel_map(), o);
+    EXPECT_EQ(count_overlapping_triangles(r.param), 0);
+    const StretchStats st = measure_stretch(mesh, r.param);
+    EXPECT_EQ(st.flipped, 0);
+    EXPECT_EQ(st.degenerate, 0);
+    EXPECT_GT(r.report.damping, 0.0);
+    double moved = 0;
+    for (size_t k = 0; k < param.uv.size(); ++k) moved = std::max(moved, (r.param.uv[k] - param.uv[k]).norm());
+    EXPECT_GT(moved, 1e-3);  // it did re-parameterize
+    for (const Vec2& uv : r.param.uv) {
+      EXPECT_GE(uv.minCoeff(), 0.0);
+      EXPECT_LE(uv.maxCoeff(), 1.0);
+    }
+  }
+}
+
+TEST(AdaptMesh, GeometryOnlyLowersL2Stretch) {
+  // A curved disk with a stretchy initial parameterization (Floater only, no Yoshizawa).
+  const TriMesh mesh = shapes::sphere(48, 24);
+  UnwrapOptions uo;
+  uo.yoshizawa_max_iterations = 0;
+  const Parameterization param = unwrap(mesh, uo).param;
+  PainterOptions po;
+  po.width = po.height = 256;
+  Painter painter(mesh, param, po);  // nothing painted: no signal
+  AdaptOptions o;  // defaults (measured: L2 1.2925 -> 1.2347; geometry_scale 1, the thesis as written,
+                   // overshoots to 1.78 and is rejected by the geometry safeguard, docs/adaptive.md)
+  const AdaptResult r = adapt_parameterization(mesh, param, painter.texture(), painter.texel_map(), o);
+  EXPECT_EQ(r.report.signal_fraction, 0.0);
+  EXPECT_TRUE(r.report.accepted);
+  EXPECT_LT(r.report.l2_after, r.report.l2_before * 0.98);
+  EXPECT_NEAR(r.report.l2_after, measure_stretch(mesh, r.param).l2, 1e-12);
+  EXPECT_EQ(measure_stretch(mesh, r.param).flipped, 0);
+}
+
+TEST(AdaptMesh, QualityTwoStageBeatsFixedParameterizationOnConcentratedLines) {
+  const TriMesh mesh = shapes::sphere(64, 32);
+  const Parameterization param = unwrap(mesh).param;
+  const StrokeFile strokes = corner_lines(mesh, 40, 0.003);
+  const int N = 128;
+  EvalOptions eo;
+  eo.samples = 200000;
+  const double none = evaluate_texture(mesh, param, paint(mesh, param, strokes, N), strokes, eo).psnr;
+  const double none2 = evaluate_texture(mesh, param, paint(mesh, param, strokes, 2 * N), strokes, eo).psnr;
+  for (bool safeguard : {false, true}) {
+    PaintSessionOptions so;
+    so.texture_size = N;
+    so.safeguard = safeguard;
+    PaintSession s(mesh, param, so, strokes.background);
+    for (const auto& st : strokes.strokes) s.add_stroke(st);
+    s.finish();
+    ASSERT_EQ(s.reports().size(), 1u);
+    const double ad = evaluate_texture(mesh, s.param(), s.texture(), strokes, eo).psnr;
+    std::printf("sphere lines N=%d: none %.2f dB, two-stage %.2f dB, none at 2N %.2f dB (safeguard %d)\n", N, none,
+                ad, none2, safeguard);
+    EXPECT_GT(ad, none + 0.3);  // a real gain, not just "not worse"
+    EXPECT_EQ(measure_stretch(mesh, s.param()).flipped, 0);
+  }
+}
+
+TEST(AdaptMesh, ReplayEqualsFreshPaintAndResampleLosesSomething) {
+  const TriMesh mesh = shapes::torus(48, 24);
+  const Parameterization param = unwrap(mesh).param;
+  StrokeFile strokes = corner_lines(mesh, 6, 0.01);
+  const int N = 128;
+  PaintSessionOptions so;
+  so.texture_size = N;
+  so.schedule = ReparamSchedule::EachStroke;
+  so.safeguard = false;  // every stroke re-parameterizes
+  so.adapt.fine_grid = 64;
+  PaintSession replay(mesh, param, so, strokes.background);
+  so.update = TextureUpdate::Resample;
+  PaintSession resample(mesh, param, so, strokes.background);
+  for (const auto& st : strokes.strokes) {
+    replay.add_stroke(st);
+    resample.add_stroke(st);
+  }
+  EXPECT_EQ(replay.reports().size(), strokes.strokes.size());
+  // Replay: byte-identical to painting the whole history afresh on the final parameterization.
+  const ImageRGBA8 fresh = paint(mesh, replay.param(), replay.history(), N);
+  EXPECT_EQ(fresh.data, replay.texture().data);
+  // Resample accumulates blur: its error is not lower than replay's on the same final layout family.
+  EvalOptions eo;
+  eo.samples = 100000;
+  const double p_replay = evaluate_texture(mesh, replay.param(), replay.texture(), strokes, eo).psnr;
+  const double p_resample = evaluate_texture(mesh, resample.param(), resample.texture(), strokes, eo).psnr;
+  std::printf("torus 6 each-stroke re-parameterizations: replay %.2f dB, resample %.2f dB\n", p_replay, p_resample);
+  EXPECT_GT(p_replay, p_resample);
+  EXPECT_GT(p_resample, 15.0);  // but it is still the same picture
+}
+
+TEST(AdaptMesh, SafeguardNeverAcceptsAWorseLayout) {
+  const TriMesh mesh = shapes::torus(40, 20);
+  const Parameterization param = unwrap(mesh).param;
+  GenerateOptions go;
+  go.kind = StrokeKind::Blobs;
+  go.count = 3;
+  const StrokeFile strokes = generate_strokes(mesh, go);
+  PaintSessionOptions so;
+  so.texture_size = 64;
+  so.schedule = ReparamSchedule::EachStroke;
+  PaintSession s(mesh, param, so, strokes.background);
+  for (const auto& st : strokes.strokes) {
+    s.add_stroke(st);
+    const AdaptReport& r = s.reports().back();
+    if (r.accepted && r.error_before >= 0) {
+      EXPECT_LT(r.error_after, r.error_before);
+    }
+    if (!r.accepted) {
+      EXPECT_EQ(r.damping, 0.0);
+    }
+  }
+}
+
+TEST(ReparamCli, WritesAllOutputsOrNothing) {
+  test::TempDir dir;
+  // A textured mesh: unwrapped sphere + a painted texture.
+  const TriMesh mesh = shapes::sphere(32, 16);
+  const Parameterization param = unwrap(mesh).param;
+  const StrokeFile strokes = corner_lines(mesh, 10, 0.01);
+  write_obj(dir.path / "in.obj", mesh, &param);
+  write_png(dir.path / "in.png", paint(mesh, param, strokes, 128));
+  const auto out = dir.path / "out";
+  auto r = test::run_cli("reparam " + (dir.path / "in.obj").string() + " " + (dir.path / "in.png").string() +
+                         " --grid 8,64 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"in.obj", "in.mtl", "in.png", "in.glb", "report.json"}) EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  const TexturedMesh back = read_textured_obj(out / "in.obj");
+  EXPECT_EQ(measure_stretch(back.mesh, back.param).flipped, 0);
+  // Bad input: exit 2, one line, no output directory.
+  const auto bad = dir.path / "bad";
+  r = test::run_cli("reparam " + (dir.path / "in.obj").string() + " " + (dir.path / "in.png").string() +
+                    " --grid 8,zz -o " + bad.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(bad));
+  std::ofstream(dir.path / "broken.png") << "not a png";
+  r = test::run_cli("reparam " + (dir.path / "in.obj").string() + " " + (dir.path / "broken.png").string() +
+                    " -o " + bad.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(bad));
+}
+
+}  // namespace
+}  // namespace adaptex
