@@ -37,6 +37,7 @@ std::string absolute_path(const std::string& p) {
 struct App::Model {
   std::string path;
   TriMesh mesh;
+  std::shared_ptr<const Parameterization> initial;  // the unwrap() result (the fixed baseline)
   BoundingBox box;
   std::unique_ptr<RayCaster> caster;
 };
@@ -82,6 +83,7 @@ App::App(std::unique_ptr<Renderer> renderer, AppOptions options)
 }
 
 App::~App() {
+  compare_job_.reset();
   if (load_job_) load_job_->cancel();
   if (rebuild_job_) rebuild_job_->cancel();
   autosave_job_.reset();
@@ -157,6 +159,7 @@ void App::open_mesh(const std::string& path_in) {
     auto param = std::make_shared<Parameterization>(
         unwrap_mesh(model->mesh, [&job](std::string_view phase, double f) { return job.progress(phase, f); }));
     if (!job.progress("texture", 0.0)) throw CancelledError();
+    model->initial = param;
     LoadResult r;
     r.model = model;
     r.surface = std::make_unique<Surface>();
@@ -257,7 +260,7 @@ double App::world_radius() const {
 }
 
 bool App::idle() const {
-  if (load_job_ || rebuild_job_ || !pending_strokes_.empty()) return false;
+  if (load_job_ || rebuild_job_ || compare_job_ || !pending_strokes_.empty()) return false;
   if (!surface_) return true;
   if (surface_->generation != history_.generation() || surface_->painted != history_.strokes().size()) return false;
   if (adapt_pending_ && adapt_.mode != AdaptMode::None) return false;
@@ -643,6 +646,14 @@ void App::poll_jobs() {
   retired_jobs_.erase(std::remove_if(retired_jobs_.begin(), retired_jobs_.end(),
                                      [](const auto& j) { return j->ready(); }),
                       retired_jobs_.end());
+  if (compare_job_ && compare_job_->ready()) {
+    try {
+      comparison_ = std::make_shared<Comparison>(compare_job_->take());
+    } catch (const std::exception& e) {
+      add_message(std::string("comparison failed: ") + e.what(), true);
+    }
+    compare_job_.reset();
+  }
   if (load_job_ && load_job_->ready()) {
     auto job = std::move(load_job_);
     try {
@@ -847,4 +858,27 @@ void App::request_adapt() {
 
 namespace adaptex::studio {
 bool App::load_running() const { return load_job_ != nullptr; }
+bool App::compare_running() const { return compare_job_ != nullptr; }
+
+void App::request_compare() {
+  if (!surface_ || compare_job_) return;
+  auto model = model_;
+  auto adaptive = surface_->param;
+  auto tex = std::make_shared<ImageRGBA8>(surface_->canvas->texture());
+  StrokeFile file = history_.to_file();
+  const int size = surface_->size;
+  compare_job_ = std::make_unique<Job<Comparison>>([model, adaptive, tex, file, size](Job<Comparison>&) {
+    Comparison c;
+    c.fixed_param = model->initial;
+    c.adaptive_param = adaptive;
+    Canvas fixed(model->mesh, *model->initial, size, size, file.background);
+    for (const Stroke& s : file.strokes) fixed.paint_stroke(s);
+    c.fixed_texture = fixed.texture();
+    c.adaptive_texture = *tex;
+    c.psnr_fixed = texture_psnr(model->mesh, *model->initial, c.fixed_texture, file);
+    c.psnr_adaptive = texture_psnr(model->mesh, *adaptive, c.adaptive_texture, file);
+    c.strokes = file.strokes.size();
+    return c;
+  });
+}
 }  // namespace adaptex::studio

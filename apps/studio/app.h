@@ -50,6 +50,14 @@ struct AdaptMaps {
   double damping = 1;
 };
 
+/// Fixed vs adaptive parameterization on the same strokes at the same texture size (Inspect panel).
+struct Comparison {
+  std::shared_ptr<const Parameterization> fixed_param, adaptive_param;
+  ImageRGBA8 fixed_texture, adaptive_texture;
+  double psnr_fixed = 0, psnr_adaptive = 0;  ///< dB against the exact stroke signal (adaptex eval).
+  size_t strokes = 0;
+};
+
 /// Timing statistics (frame time, dab-to-screen latency).
 struct Stats {
   std::vector<double> frame_ms;       ///< CPU+GPU time of each frame (end_frame to end_frame).
@@ -147,10 +155,16 @@ class App {
   bool load_running() const;
   std::optional<std::filesystem::path> pending_recovery() const { return pending_recovery_; }
   const Stats& stats() const { return stats_; }
+  void reset_stats() { stats_ = Stats(); }
   Renderer& renderer() { return *renderer_; }
   const std::optional<ImageRGBA8>& decal_image() const { return decal_image_; }
   /// Phase times of the last re-parameterization cycle (name, ms).
   const std::vector<std::pair<std::string, double>>& last_cycle() const { return last_cycle_; }
+  /// Starts the fixed-vs-adaptive comparison in the background.
+  void request_compare();
+  /// The last comparison (null before the first one).
+  const Comparison* comparison() const { return comparison_.get(); }
+  bool compare_running() const;
   /// Maps of the last re-parameterization (null before the first one).
   const AdaptMaps* adapt_maps() const { return maps_.get(); }
   /// Canvas (texture) generation counter: changes whenever a new texture is swapped in.
@@ -194,6 +208,8 @@ class App {
   std::unique_ptr<Job<RebuildResult>> rebuild_job_;
   std::vector<std::unique_ptr<Job<RebuildResult>>> retired_jobs_;  // cancelled, joined when done
   std::unique_ptr<Job<int>> autosave_job_;
+  std::unique_ptr<Job<Comparison>> compare_job_;
+  std::shared_ptr<const Comparison> comparison_;
   bool adapt_pending_ = false;
   std::string loading_path_;
   std::vector<Stroke> pending_strokes_;  // replayed/recovered strokes waiting for the model

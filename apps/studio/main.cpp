@@ -102,6 +102,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"none", "single", "two-stage"}));
   cli.add_option("--yaw", yaw, "Initial camera yaw (degrees)");
   cli.add_option("--pitch", pitch, "Initial camera pitch (degrees)");
+  std::string inspect;
+  cli.add_option("--inspect", inspect, "Open the Inspect panel: texture|uv|importance|stretch|ls2|compare")
+      ->check(CLI::IsMember({"texture", "uv", "importance", "stretch", "ls2", "compare"}));
   cli.add_option("--orbit-frames", orbit_frames, "Benchmark: orbit the camera for N frames, then quit");
   CLI11_PARSE(cli, argc, argv);
 
@@ -193,6 +196,10 @@ int main(int argc, char** argv) {
     bool view_applied = false, ready_printed = false;
     int idle_frames = 0, orbit_done = 0;
     StudioUi ui;
+    const std::vector<std::string> inspect_modes = {"texture", "uv", "importance", "stretch", "ls2", "compare"};
+    for (size_t k = 0; k < inspect_modes.size(); ++k)
+      if (inspect == inspect_modes[k]) ui.show_inspect(int(k));
+    bool adapt_requested = false, compare_requested = false;
     bool final_frame = false;  // after SIGTERM / SIGINT: one more frame for the --screenshot
     while (!glfwWindowShouldClose(window_ptr) && !app.should_quit() && rc == 0) {
       // 1. input (callbacks run inside glfwPollEvents and act on the App at once)
@@ -217,8 +224,18 @@ int main(int argc, char** argv) {
         app.camera().pitch = pitch * 3.14159265358979 / 180;
         view_applied = true;
       }
+      if (app.has_model() && !app.load_running() && !adapt_requested && !replay.empty() &&
+          app.adapt().mode != AdaptMode::None) {
+        app.request_adapt();  // re-parameterize for the replayed strokes, as after a painted stroke
+        adapt_requested = true;
+      }
+      if (idle && inspect == "compare" && !compare_requested) {
+        app.request_compare();
+        compare_requested = true;
+      }
       if (idle && !ready_printed) {
         std::cout << "adaptex-studio: ready" << std::endl;
+        app.reset_stats();  // statistics cover the interactive session, not the loading
         ready_printed = true;
       }
       if (orbit_frames > 0 && app.has_model() && !app.load_running()) {
@@ -243,7 +260,7 @@ int main(int argc, char** argv) {
           app.request_quit();
         }
       }
-      if (orbit_frames > 0) glFinish();  // time the real rendering work in the benchmark
+      if (orbit_frames > 0 || !stats_out.empty()) glFinish();  // measured frames include the GPU work
       app.end_frame();
       glfwSwapBuffers(window_ptr);
     }
@@ -252,7 +269,7 @@ int main(int argc, char** argv) {
     if (!export_dir.empty()) app.export_obj(export_dir);
     if (!stats_out.empty()) {
       const Stats& s = app.stats();
-      std::vector<double> frames(s.frame_ms.begin() + std::min<size_t>(s.frame_ms.size(), 5), s.frame_ms.end());
+      std::vector<double> frames(s.frame_ms.begin() + std::min<size_t>(s.frame_ms.size(), 2), s.frame_ms.end());
       nlohmann::json j;
       j["frames"] = frames.size();
       j["frame_ms_median"] = percentile(frames, 0.5);
@@ -266,6 +283,7 @@ int main(int argc, char** argv) {
       j["dabs"] = s.dab_paint_ms.size();
       j["faces"] = app.mesh() ? app.mesh()->num_faces() : 0;
       j["window"] = window;
+      j["texture_size"] = app.adapt().texture_size;
       std::ofstream(stats_out) << j.dump(1) << "\n";
     }
     for (const auto& m : app.messages())

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "adaptex/paint/export.h"
+
 namespace adaptex::studio {
 namespace {
 
@@ -22,6 +24,22 @@ void draw_line(ImageRGBA8& img, double x0, double y0, double x1, double y1, std:
     p[1] = c[1];
     p[2] = c[2];
   }
+}
+
+/// Blue -> cyan -> yellow -> red heat map of a [0,1] map (values clamped).
+ImageRGBA8 heat_image(const ImageF& m) {
+  ImageRGBA8 img(m.width, m.height, {0, 0, 0, 255});
+  for (int j = 0; j < m.height; ++j)
+    for (int i = 0; i < m.width; ++i) {
+      const double t = std::clamp(double(m.at(i, j)), 0.0, 1.0);
+      const double r = std::clamp(2.0 * t - 0.5, 0.0, 1.0), g = std::clamp(t < 0.5 ? 2 * t : 2 - 2 * t + 0.3, 0.0, 1.0),
+                   b = std::clamp(1.0 - 2.0 * t, 0.0, 1.0);
+      uint8_t* p = img.texel(i, j);
+      p[0] = uint8_t(255 * r);
+      p[1] = uint8_t(255 * g);
+      p[2] = uint8_t(255 * b);
+    }
+  return img;
 }
 
 }  // namespace
@@ -138,39 +156,85 @@ void StudioUi::adapt_panel(App& app) {
 }
 
 void StudioUi::inspect_window(App& app) {
-  ImGui::SetNextWindowSize(ImVec2(420, 470), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - 430, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 420), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - 348, 8), ImGuiCond_FirstUseEver);
   if (!ImGui::Begin("Inspect", &show_inspect_)) return ImGui::End();
-  const char* modes[] = {"texture", "texture + UV", "importance", "stretch", "L_s^2"};
-  ImGui::Combo("Show", &inspect_mode_, modes, 5);
-  ImGui::SameLine();
-  ImGui::Checkbox("grid", &inspect_grid_);
+  const char* modes[] = {"texture", "texture + UV", "importance", "stretch", "L_s^2", "fixed vs adaptive"};
+  ImGui::Combo("Show", &inspect_mode_, modes, 6);
+  ImGui::Checkbox("optimized grid", &inspect_grid_);
   const ImageRGBA8* tex = app.texture();
   const Parameterization* p = app.param();
-  if (tex && p) {
-    const std::uint64_t key = (app.surface_serial() << 20) ^ (app.history().version() << 4) ^ std::uint64_t(inspect_mode_);
-    if (key != inspect_key_ && (++inspect_frames_ % 10 == 1 || app.idle())) {
-      inspect_key_ = key;
-      inspect_img_ = *tex;
-      if (inspect_mode_ >= 2) {
-        ImGui::TextDisabled("map not available (needs the adaptive library)");
-      }
-      if (inspect_mode_ == 1 && p->uv_faces.size() < 400000) {
-        const double W = inspect_img_.width, H = inspect_img_.height;
-        for (const Face& f : p->uv_faces)
-          for (int k = 0; k < 3; ++k) {
-            const Vec2 a = p->uv[f[k]], b = p->uv[f[(k + 1) % 3]];
-            draw_line(inspect_img_, a.x() * W, a.y() * H, b.x() * W, b.y() * H, {40, 40, 60});
-          }
-      }
-      inspect_tex_ = app.renderer().ui_image(0, inspect_img_);
-    }
-    const float w = std::max(64.f, ImGui::GetContentRegionAvail().x);
-    // ImageRGBA8 rows start at v = 0 (bottom): flip vertically for display.
-    if (inspect_tex_) ImGui::Image(inspect_tex_, ImVec2(w, w), ImVec2(0, 1), ImVec2(1, 0));
-  } else {
+  const AdaptMaps* maps = app.adapt_maps();
+  if (!tex || !p) {
     ImGui::TextDisabled("no texture yet");
+    return ImGui::End();
   }
+  if (maps)
+    ImGui::Text("last re-parameterization: %s, damping %.2f", maps->accepted ? "accepted" : "kept previous (safeguard)",
+                maps->damping);
+  const float w = std::max(64.f, ImGui::GetContentRegionAvail().x);
+  if (inspect_mode_ == 5) {
+    const Comparison* c = app.comparison();
+    if (ImGui::Button(app.compare_running() ? "comparing..." : "Compare now") && !app.compare_running())
+      app.request_compare();
+    if (!c) {
+      ImGui::TextWrapped("Paints the same strokes on the fixed (unwrap) parameterization at the same texture size "
+                         "and measures both against the exact stroke signal.");
+      return ImGui::End();
+    }
+    const std::uint64_t key = reinterpret_cast<std::uintptr_t>(c) * 31 + 5;
+    if (key != inspect_key_) {
+      inspect_key_ = key;
+      ImageRGBA8 a = draw_uv_layout(*c->fixed_param, &c->fixed_texture, 512);
+      ImageRGBA8 b = draw_uv_layout(*c->adaptive_param, &c->adaptive_texture, 512);
+      compare_tex_[0] = app.renderer().ui_image(1, a);
+      compare_tex_[1] = app.renderer().ui_image(2, b);
+    }
+    const float half = w * 0.5f - 4;
+    ImGui::Text("fixed: %.2f dB", c->psnr_fixed);
+    ImGui::SameLine(half + 8);
+    ImGui::Text("adaptive: %.2f dB", c->psnr_adaptive);
+    ImGui::Image(compare_tex_[0], ImVec2(half, half), ImVec2(0, 1), ImVec2(1, 0));
+    ImGui::SameLine();
+    ImGui::Image(compare_tex_[1], ImVec2(half, half), ImVec2(0, 1), ImVec2(1, 0));
+    ImGui::Text("%zu strokes, same texture size; PSNR over 200k surface samples", c->strokes);
+    return ImGui::End();
+  }
+  const std::uint64_t key = (app.surface_serial() << 24) ^ (app.history().version() << 8) ^
+                            (std::uint64_t(inspect_mode_) << 1) ^ std::uint64_t(inspect_grid_);
+  if (key != inspect_key_ && (++inspect_frames_ % 10 == 1 || app.idle())) {
+    inspect_key_ = key;
+    const ImageF* map = !maps ? nullptr : inspect_mode_ == 2 ? &maps->importance : inspect_mode_ == 3 ? &maps->stretch
+                                        : inspect_mode_ == 4 ? &maps->ls2 : nullptr;
+    if (inspect_mode_ >= 2 && map && map->width > 0) {
+      inspect_img_ = heat_image(*map);
+    } else if (inspect_mode_ == 1) {
+      inspect_img_ = draw_uv_layout(*p, tex, std::min(1024, tex->width));
+    } else {
+      inspect_img_ = *tex;
+    }
+    if (inspect_grid_ && maps) {
+      for (const GridWarp* g : {&maps->coarse, &maps->fine}) {
+        if (g->n <= 0) continue;
+        const double W = inspect_img_.width, H = inspect_img_.height;
+        const int step = std::max(1, g->n / 32);  // at most ~32 lines per direction
+        const std::array<uint8_t, 3> col = g == &maps->coarse ? std::array<uint8_t, 3>{255, 200, 0}
+                                                              : std::array<uint8_t, 3>{0, 160, 255};
+        for (int j = 0; j <= g->n; j += (g == &maps->coarse ? 1 : step))
+          for (int i = 0; i < g->n; ++i)
+            draw_line(inspect_img_, g->at(i, j).x() * W, g->at(i, j).y() * H, g->at(i + 1, j).x() * W,
+                      g->at(i + 1, j).y() * H, col);
+        for (int i = 0; i <= g->n; i += (g == &maps->coarse ? 1 : step))
+          for (int j = 0; j < g->n; ++j)
+            draw_line(inspect_img_, g->at(i, j).x() * W, g->at(i, j).y() * H, g->at(i, j + 1).x() * W,
+                      g->at(i, j + 1).y() * H, col);
+      }
+    }
+    inspect_tex_ = app.renderer().ui_image(0, inspect_img_);
+  }
+  if (inspect_mode_ >= 2 && !maps) ImGui::TextDisabled("maps appear after the first re-parameterization (Adapt)");
+  // ImageRGBA8 rows start at v = 0 (bottom): flip vertically for display.
+  if (inspect_tex_) ImGui::Image(inspect_tex_, ImVec2(w, w), ImVec2(0, 1), ImVec2(1, 0));
   ImGui::End();
 }
 

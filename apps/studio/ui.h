@@ -15,6 +15,12 @@ class StudioUi {
  public:
   /// Builds this frame's panels (between ImGui::NewFrame and ImGui::Render).
   void draw(App& app);
+  /// Opens the Inspect panel showing \p mode (0 texture, 1 texture + UV, 2 importance, 3 stretch,
+  /// 4 L_s^2, 5 fixed vs adaptive).
+  void show_inspect(int mode) {
+    show_inspect_ = true;
+    inspect_mode_ = mode;
+  }
 
  private:
   void file_panel(App& app);
@@ -33,6 +39,7 @@ class StudioUi {
   std::uint64_t inspect_key_ = ~0ull;  // what the uploaded inspect image shows
   int inspect_frames_ = 0;
   void* inspect_tex_ = nullptr;
+  void* compare_tex_[2] = {nullptr, nullptr};
   ImageRGBA8 inspect_img_;
   size_t shown_messages_ = 0;
   std::string error_text_;
