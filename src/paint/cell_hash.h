@@ -71,6 +71,24 @@ class CellHash {
   }
   bool empty() const { return slots_.empty(); }
 
+  /// A run of equal keys: [begin, end) in the sorted array.
+  struct Run {
+    std::uint64_t key;
+    std::uint32_t begin, end;
+  };
+  /// Builds the table from runs (distinct keys).
+  explicit CellHash(const std::vector<Run>& runs) {
+    size_t cap = 16;
+    while (cap < 2 * runs.size()) cap *= 2;
+    mask_ = cap - 1;
+    slots_.assign(cap, Slot{kEmpty, 0, 0});
+    for (const Run& r : runs) {
+      size_t h = hash(r.key) & mask_;
+      while (slots_[h].key != kEmpty) h = (h + 1) & mask_;
+      slots_[h] = Slot{r.key, r.begin, r.end};
+    }
+  }
+
  private:
   static constexpr std::uint64_t kEmpty = ~0ULL;
   static inline size_t hash(std::uint64_t k) {

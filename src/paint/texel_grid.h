@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <vector>
 
 #include "adaptex/core/types.h"
@@ -32,21 +31,19 @@ class TexelGrid {
   const std::vector<int>& order() const { return order_; }
   const std::vector<P3>& sorted_points() const { return pos_; }
 
-  /// Level used for radius r (built on first use; thread-safe).
+  /// Level used for radius r: cell size in (r/2, r] (or the finest level).
   int level_for(double r) const {
     int L = 0;
     while (L < kMaxLevel && cell_ * std::ldexp(1.0, L + 1) <= r) ++L;
-    ensure_level(L);
     return L;
   }
-  void ensure_level(int L) const;
 
   /// Calls fn(slot, squared distance) for every point with |p - c| < r.
   template <class Fn>
   void for_each_in_ball(const Vec3& c, double r, Fn&& fn) const {
     if (pos_.empty()) return;
     const int L = level_for(r);
-    const CellHash& table = *levels_[L];
+    const CellHash& table = levels_[L];
     const double cs = cell_ * std::ldexp(1.0, L);
     const double r2 = r * r;
     std::int64_t lo[3], hi[3];
@@ -90,9 +87,7 @@ class TexelGrid {
   double cell_ = 1;  // fine cell size
   std::vector<int> order_;
   std::vector<P3> pos_;
-  std::vector<std::uint64_t> codes_;
-  mutable std::array<std::unique_ptr<CellHash>, kMaxLevel + 1> levels_;
-  mutable std::array<std::once_flag, kMaxLevel + 1> once_;
+  std::array<CellHash, kMaxLevel + 1> levels_;  // all built by the constructor
 };
 
 }  // namespace adaptex::detail

@@ -318,3 +318,40 @@ TEST(Eval, SamplesAreUniformByAreaAndReproducible) {
   for (size_t k = 0; k < a.size(); ++k) same += a[k].b0 == c[k].b0;
   EXPECT_LT(same, 10);
 }
+
+TEST(Painter, DecalStrokesMatchTheSignalAtTexelCentres) {
+  const TriMesh mesh = shapes::plane(8);
+  const Parameterization param = planar_param(mesh);
+  StrokeFile file = plane_strokes();
+  Stroke decal;
+  decal.type = Stroke::Type::Decal;
+  decal.image = ImageRGBA8(4, 4);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      std::uint8_t* px = decal.image.texel(i, j);
+      px[0] = static_cast<std::uint8_t>(60 * i);
+      px[1] = static_cast<std::uint8_t>(60 * j);
+      px[2] = 200;
+      px[3] = static_cast<std::uint8_t>((i + j) % 3 == 0 ? 0 : 255);
+    }
+  decal.camera.eye = Vec3(0.4, 0.5, 2.0);
+  decal.camera.target = Vec3(0.4, 0.5, 0.0);
+  decal.camera.fov_y_degrees = 20;
+  decal.opacity = 0.8;
+  file.strokes.insert(file.strokes.begin() + 2, decal);  // between brush strokes
+  Painter painter(mesh, param, {128, 128, 2});
+  painter.paint_all(file);
+  const StrokeSignal signal(mesh, file);
+  ASSERT_TRUE(signal.has_decals());
+  const ImageRGBA8& tex = painter.texture();
+  const TexelMap& map = painter.texel_map();
+  int decal_texels = 0;
+  for (int t : map.inside) {
+    const Vec3 truth = signal.evaluate(map.position[t].cast<double>(), map.face[t]);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_LE(std::abs(tex.data[static_cast<size_t>(t) * 4 + c] - std::round(255 * truth[c])), 1.0) << t;
+    const Vec3 without = evaluate_strokes_reference(plane_strokes(), map.position[t].cast<double>());
+    decal_texels += (truth - without).norm() > 0.1;
+  }
+  EXPECT_GT(decal_texels, 500);  // the decal really changed a region
+}
