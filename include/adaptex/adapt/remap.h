@@ -35,7 +35,8 @@ struct SafeRemapOptions {
   /// triangle about 10^-6 of the square wide: far below a texel but above round-off.
   double min_area = 1e-12;
   /// Check for overlapping triangles (count_overlapping_triangles) as well; only pairs that were not
-  /// already overlapping in the input count. Costs O(F log F).
+  /// already overlapping in the input count. Costs O(F log F). Skipped (provably unnecessary) for a
+  /// single chart whose boundary lies on the square's sides (single_chart_on_square()).
   bool check_overlaps = true;
   /// Local damping rounds: the wedges of every face that flips or degenerates are pulled halfway back
   /// to their input UV, this many times at most, before the whole warp is damped.
@@ -52,6 +53,9 @@ struct SafeRemapResult {
   int checks = 0;          ///< Number of candidate warps checked.
   RemapCheck check;        ///< Check of the returned parameterization (always ok()).
 };
+
+/// True if \p param is one chart whose UV boundary edges all lie on the sides of [0,1]^2.
+bool single_chart_on_square(const Parameterization& param);
 
 /// Checks \p after against \p before (same faces).
 RemapCheck check_remap(const Parameterization& before, const Parameterization& after,
