@@ -182,30 +182,22 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
     const long chart_faces = comp.mesh.num_faces();
     const long eval_cost = chart_faces * (1 + std::max(0, std::min(dopt.max_iterations,
                                                                options.augment_yoshizawa_iterations)));
-    if (options.max_augmentations > 0) {
-      t0 = Clock::now();
-      DiskParamOptions cheap = dopt;
-      cheap.max_iterations = std::min(dopt.max_iterations, options.augment_yoshizawa_iterations);
-      cheap.yoshizawa = cheap.max_iterations > 0;
-      cheap.progress = [&](std::string_view, double) {
-        return !options.progress || options.progress("augment", frac0);
-      };
-      // The budgets apply to charts whose cheap parameterization is valid; a chart with degenerate
-      // UV triangles (squeezed extremities) is always augmented, up to max_augmentations.
-      auto within_budget = [&] {
-        return augment_faces_left >= eval_cost && Clock::now() < augment_deadline;
-      };
-      bool evaluated = false;
-      CutScore cur_score;
-      if (augment_faces_left >= 2 * eval_cost && Clock::now() < augment_deadline) {
-        report_progress(options.progress, "augment", frac0);
-        cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap);
-        augment_faces_left -= eval_cost;
-        cur_score = score(cur);
-        evaluated = true;
-      }
-      for (int a = 0; evaluated && a < options.max_augmentations; ++a) {
-        if (cur_score.bad == 0 && !within_budget()) break;
+    DiskParamOptions cheap = dopt;
+    cheap.max_iterations = std::min(dopt.max_iterations, options.augment_yoshizawa_iterations);
+    cheap.yoshizawa = cheap.max_iterations > 0;
+    cheap.progress = [&](std::string_view, double) {
+      return !options.progress || options.progress("augment", frac0);
+    };
+    // Adds paths to cur while the score improves. The budgets apply while the current
+    // parameterization is valid; one with degenerate UV triangles (squeezed extremities) is
+    // augmented regardless of them, up to max_augmentations. Returns true if the cut changed.
+    auto augment_loop = [&](CutScore cur_score) {
+      const auto ta = Clock::now();
+      bool changed = false;
+      for (int a = 0; a < options.max_augmentations; ++a) {
+        if (cur_score.bad == 0 &&
+            (augment_faces_left < eval_cost || Clock::now() >= augment_deadline))
+          break;
         report_progress(options.progress, "augment",
                         frac0 + (frac1 - frac0) * a / options.max_augmentations);
         const std::vector<char> on_cut = cut_vertices(comp.mesh, ec, cur.cut);
@@ -222,8 +214,21 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
         cur = std::move(cand);
         cur_score = cand_score;
         ++chart.augmentations;
+        changed = true;
       }
+      rep.time_augment += seconds_since(ta);
+      return changed;
+    };
+    bool evaluated = false;
+    if (options.max_augmentations > 0 && augment_faces_left >= 2 * eval_cost &&
+        Clock::now() < augment_deadline) {
+      t0 = Clock::now();
+      report_progress(options.progress, "augment", frac0);
+      cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap);
+      augment_faces_left -= eval_cost;
       rep.time_augment += seconds_since(t0);
+      evaluated = true;
+      augment_loop(score(cur));
     }
 
     // The parameterization of the disk (Floater, then Yoshizawa).
@@ -231,9 +236,17 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
     full.progress = [&](std::string_view phase, double f) {
       return !options.progress || options.progress(phase, frac0 + f * (frac1 - frac0));
     };
-    cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, full);
-    rep.time_floater += cur.param.time_floater;
-    rep.time_yoshizawa += cur.param.time_yoshizawa;
+    auto solve_full = [&] {
+      cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, full);
+      rep.time_floater += cur.param.time_floater;
+      rep.time_yoshizawa += cur.param.time_yoshizawa;
+    };
+    solve_full();
+    // Rescue: a chart over the budgets whose result has degenerate triangles is augmented anyway.
+    if (options.max_augmentations > 0 && !evaluated) {
+      const CutScore s = score(cur);
+      if (s.bad > 0 && augment_loop(s)) solve_full();
+    }
     chart.cut_length = cut_length(graph, cur.cut);
     chart.state = std::move(cur);
     double area2 = 0;

@@ -63,3 +63,26 @@ GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(UnwrapSharedMesh);
 
 }  // namespace
 }  // namespace adaptex
+
+namespace adaptex {
+namespace {
+
+TEST(UnwrapShared, SqueezedExtremitiesAreAugmentedBeyondTheBudgets) {
+  // dino.off: the Floater embedding of its initial (diameter) cut squeezes the legs into degenerate
+  // UV triangles; with both augmentation budgets at zero the rescue still augments the cut.
+  ADAPTEX_REQUIRE_SHARED();
+  const TriMesh mesh = read_mesh(*test::shared_meshes_dir() / "dino.off");
+  UnwrapOptions opt;
+  opt.augment_face_budget = 0;
+  opt.augment_time_budget = 0;
+  UnwrapResult r;
+  test::check_unwrap("dino.off without budget", mesh, opt, &r);
+  EXPECT_GT(r.report.augmentations, 0);
+  // Without augmentation at all the result is degenerate: the rescue is what makes it valid.
+  opt.max_augmentations = 0;
+  const UnwrapResult plain = unwrap(mesh, opt);
+  EXPECT_GT(measure_stretch(mesh, plain.param).degenerate, 0);
+}
+
+}  // namespace
+}  // namespace adaptex
