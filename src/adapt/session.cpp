@@ -67,6 +67,11 @@ struct PaintSession::Impl {
   PaintSessionOptions opt;
   std::unique_ptr<Parameterization> param;
   std::unique_ptr<Painter> painter;
+  // Each-stroke mode: every re-parameterization starts from the initial layout (base) and the history
+  // painted on it, so warps never compose over many strokes (no drift, no accumulated distortion) and
+  // the last one equals what end mode computes.
+  std::unique_ptr<Parameterization> base_param;
+  std::unique_ptr<Painter> base_painter;
   StrokeFile history;
   std::vector<AdaptReport> reports;
   std::unique_ptr<AdaptResult> last;
@@ -116,6 +121,7 @@ struct PaintSession::Impl {
   }
 
   void paint(const Stroke& s) {
+    if (base_painter) base_painter->paint_stroke(s);
     painter->paint_stroke(s);  // keeps the painter's own (replay-exact) texture for the history too
     if (resampled) {
       segment->black.paint_stroke(s);
@@ -134,7 +140,10 @@ struct PaintSession::Impl {
     AdaptOptions ao = opt.adapt;
     if (ao.mode == AdaptMode::None) ao.mode = AdaptMode::TwoStage;  // explicit request
     const ImageRGBA8& tex = texture();
-    auto res = std::make_unique<AdaptResult>(adapt_parameterization(mesh, *param, tex, painter->texel_map(), ao));
+    const Parameterization& src = base_param ? *base_param : *param;
+    auto res = std::make_unique<AdaptResult>(
+        base_painter ? adapt_parameterization(mesh, src, base_painter->texture(), base_painter->texel_map(), ao)
+                     : adapt_parameterization(mesh, src, tex, painter->texel_map(), ao));
     AdaptReport& rep = res->report;
     if (!opt.debug_dir.empty())
       write_debug_maps(opt.debug_dir, "reparam" + std::to_string(reparam_count), *res);
@@ -167,7 +176,7 @@ struct PaintSession::Impl {
         for (const GridWarp* w : res->warps()) half.push_back(w->blended(t * rep.damping));
         std::vector<const GridWarp*> ptrs;
         for (auto& w : half) ptrs.push_back(&w);
-        np = std::make_unique<Parameterization>(safe_remap(*param, ptrs, ao.remap).param);
+        np = std::make_unique<Parameterization>(safe_remap(src, ptrs, ao.remap).param);
       }
       auto tm = std::chrono::steady_clock::now();
       npainter = std::make_unique<Painter>(mesh, *np, po, history.background);
@@ -255,6 +264,10 @@ PaintSession::PaintSession(TriMesh mesh, Parameterization initial, const PaintSe
   m.history.background = background;
   m.param = std::make_unique<Parameterization>(std::move(initial));
   m.painter = std::make_unique<Painter>(m.mesh, *m.param, m.painter_options(background), background);
+  if (options.schedule == ReparamSchedule::EachStroke && options.adapt.mode != AdaptMode::None) {
+    m.base_param = std::make_unique<Parameterization>(*m.param);
+    m.base_painter = std::make_unique<Painter>(m.mesh, *m.base_param, m.painter_options(background), background);
+  }
 }
 
 PaintSession::~PaintSession() = default;
@@ -271,6 +284,7 @@ void PaintSession::begin_stroke(const Stroke& style) {
   Impl& m = *impl_;
   if (m.resampled) throw Error("paint session: interactive strokes are not supported in resample mode");
   m.painter->begin_stroke(style);
+  if (m.base_painter) m.base_painter->begin_stroke(style);
   m.open_style = style;
   m.open_style.dabs.clear();
   m.open = true;
@@ -279,6 +293,7 @@ void PaintSession::begin_stroke(const Stroke& style) {
 std::array<int, 4> PaintSession::add_dab(const Vec3& centre) {
   Impl& m = *impl_;
   const auto r = m.painter->add_dab(centre);
+  if (m.base_painter) m.base_painter->add_dab(centre);
   m.open_dabs.push_back(centre);
   return r;
 }
@@ -286,6 +301,7 @@ std::array<int, 4> PaintSession::add_dab(const Vec3& centre) {
 void PaintSession::end_stroke() {
   Impl& m = *impl_;
   m.painter->end_stroke();
+  if (m.base_painter) m.base_painter->end_stroke();
   m.open = false;
   Stroke s = m.open_style;
   s.dabs = std::move(m.open_dabs);

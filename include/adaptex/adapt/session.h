@@ -9,6 +9,10 @@
 ///   s.finish();                                          // end mode re-parameterizes once here
 ///   write(s.param(), s.texture());  json["adapt"] = adapt_reports_json(s.reports());
 ///
+/// Each-stroke mode re-parameterizes from the *initial* layout every time (the history is also painted
+/// on it): warps never compose over many strokes, so the layout cannot drift or accumulate distortion,
+/// and after the last stroke the layout is the one end mode computes (docs/adaptive.md).
+///
 /// Never worse (safeguard): with a history, each candidate parameterization is judged by the
 /// reconstruction error of its replayed texture against the exact stroke signal on a fixed set of
 /// surface samples (uniform by area); the candidate, else the candidate damped by half, is kept only
