@@ -12,7 +12,6 @@
 #include <cmath>
 #include <numbers>
 #include <string>
-#include <unordered_map>
 
 #include "adaptex/core/errors.h"
 #include "amg.h"
@@ -208,16 +207,25 @@ DiskBoundary map_boundary_to_square(const TriMesh& disk, const std::vector<int>&
   if (n < 3)
     throw TopologyError("disk boundary loop has " + std::to_string(n) + " vertices (need at least 3)");
   const int nv = disk.num_vertices();
-  // Directed face edges a->b, to orient the loop and to find chords and ears.
-  std::unordered_map<long long, int> directed;  // key a*nv+b -> count
-  directed.reserve(disk.faces.size() * 3);
-  auto key = [nv](int a, int b) { return static_cast<long long>(a) * nv + b; };
+  // Directed face edges a->b (CSR by a), to orient the loop and to find chords and ears.
+  std::vector<int> out_off(nv + 1, 0), out_to(disk.faces.size() * 3);
   for (const Face& f : disk.faces)
-    for (int k = 0; k < 3; ++k) ++directed[key(f[k], f[(k + 1) % 3])];
+    for (int k = 0; k < 3; ++k) ++out_off[f[k] + 1];
+  for (int v = 0; v < nv; ++v) out_off[v + 1] += out_off[v];
+  {
+    std::vector<int> fill(out_off.begin(), out_off.end() - 1);
+    for (const Face& f : disk.faces)
+      for (int k = 0; k < 3; ++k) out_to[fill[f[k]]++] = f[(k + 1) % 3];
+  }
+  auto has_edge = [&](int a, int b) {
+    for (int k = out_off[a]; k < out_off[a + 1]; ++k)
+      if (out_to[k] == b) return true;
+    return false;
+  };
   DiskBoundary out;
   out.loop = loop_in;
-  const bool fwd = directed.count(key(loop_in[0], loop_in[1])) > 0;
-  const bool bwd = directed.count(key(loop_in[1], loop_in[0])) > 0;
+  const bool fwd = has_edge(loop_in[0], loop_in[1]);
+  const bool bwd = has_edge(loop_in[1], loop_in[0]);
   if (fwd == bwd)
     throw TopologyError("boundary loop edge (" + std::to_string(loop_in[0]) + "," +
                         std::to_string(loop_in[1]) + ") is not a boundary edge of the disk");
@@ -248,7 +256,7 @@ DiskBoundary map_boundary_to_square(const TriMesh& disk, const std::vector<int>&
       const int d = std::abs(pos[a] - pos[b]);
       if (d == 1 || d == n - 1) {
         // Consecutive on the loop: a chord only if the edge is interior (two faces).
-        if (!(directed.count(key(a, b)) && directed.count(key(b, a)))) continue;
+        if (!(has_edge(a, b) && has_edge(b, a))) continue;
       }
       chords.push_back({pos[a], pos[b]});
     }
