@@ -188,25 +188,26 @@ PreparedDecal prepare(const Stroke& decal) {
   return d;
 }
 
-}  // namespace
-
-// Evaluates one point with an already prepared decal.
-static Eigen::Vector4d evaluate_prepared(const PreparedDecal& d, const DecalProjector& proj,
-                                         const Vec3& p, int face) {
-  if (!d.active || face < 0) return Eigen::Vector4d::Zero();
+/// Colour and coverage of the decal at p before the visibility test: frustum, image, opacity.
+/// \return false where nothing is painted whether p is visible or not.
+bool unoccluded_value(const PreparedDecal& d, const Vec3& p, int face, Eigen::Vector4d& c) {
+  if (!d.active || face < 0) return false;
   Vec2 uv;
   double depth;
-  if (!d.frame.project(p, uv, depth)) return Eigen::Vector4d::Zero();
-  if (uv.x() < 0.0 || uv.x() > 1.0 || uv.y() < 0.0 || uv.y() > 1.0) return Eigen::Vector4d::Zero();
-  Eigen::Vector4d c = sample_decal_image(d.stroke->image, uv.x(), uv.y());
+  if (!d.frame.project(p, uv, depth)) return false;
+  if (uv.x() < 0.0 || uv.x() > 1.0 || uv.y() < 0.0 || uv.y() > 1.0) return false;
+  c = sample_decal_image(d.stroke->image, uv.x(), uv.y());
   c.w() *= d.stroke->opacity;
-  if (c.w() <= 0.0) return Eigen::Vector4d::Zero();
-  if (!proj.visible(d.frame.eye, p)) return Eigen::Vector4d::Zero();
-  return c;
+  return c.w() > 0.0;
 }
 
+}  // namespace
+
 Eigen::Vector4d DecalProjector::evaluate(const Stroke& decal, const Vec3& p, int face) const {
-  return evaluate_prepared(prepare(decal), *this, p, face);
+  Eigen::Vector4d c;
+  if (!unoccluded_value(prepare(decal), p, face, c) || !visible(decal.camera.eye, p))
+    return Eigen::Vector4d::Zero();
+  return c;
 }
 
 namespace {
@@ -222,15 +223,9 @@ void evaluate_block(const PreparedDecal& d, RTCScene scene, size_t begin, size_t
   rays.reserve(end - begin);
   which.reserve(end - begin);
   for (size_t k = begin; k < end; ++k) {
-    if (face(k) < 0) continue;
     const Vec3 p = point(k);
-    Vec2 uv;
-    double depth;
-    if (!d.frame.project(p, uv, depth)) continue;
-    if (uv.x() < 0.0 || uv.x() > 1.0 || uv.y() < 0.0 || uv.y() > 1.0) continue;
-    Eigen::Vector4d c = sample_decal_image(d.stroke->image, uv.x(), uv.y());
-    c.w() *= d.stroke->opacity;
-    if (c.w() <= 0.0) continue;
+    Eigen::Vector4d c;
+    if (!unoccluded_value(d, p, face(k), c)) continue;
     store(k, c);
     rays.push_back(make_ray(d.frame.eye, p));
     which.push_back(k);

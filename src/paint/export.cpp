@@ -123,14 +123,18 @@ std::vector<unsigned char> encode_glb_png(const TriMesh& mesh, const Parameteriz
   std::vector<float> pos(3 * static_cast<size_t>(nw)), uv(2 * static_cast<size_t>(nw));
   std::vector<double> pmin(3, std::numeric_limits<double>::infinity()),
       pmax(3, -std::numeric_limits<double>::infinity());
-  // Wedge -> 3-D vertex through the faces (authoritative even if wedge_vertex were missing).
+  // Wedge -> 3-D vertex through the faces (authoritative); wedge_vertex only for unused wedges.
   std::vector<int> wv(nw, -1);
   for (size_t f = 0; f < mesh.faces.size(); ++f)
     for (int k = 0; k < 3; ++k) wv[param.uv_faces[f][k]] = mesh.faces[f][k];
+  for (int w = 0; w < nw; ++w)
+    if (wv[w] < 0) {
+      const bool known = w < static_cast<int>(param.wedge_vertex.size()) && param.wedge_vertex[w] >= 0 &&
+                         param.wedge_vertex[w] < mesh.num_vertices();
+      wv[w] = known ? param.wedge_vertex[w] : 0;
+    }
   for (int w = 0; w < nw; ++w) {
-    const int v = wv[w] >= 0 ? wv[w]
-                  : w < static_cast<int>(param.wedge_vertex.size()) ? param.wedge_vertex[w]
-                                                                   : 0;
+    const int v = wv[w];
     for (int k = 0; k < 3; ++k) {
       const float x = static_cast<float>(mesh.positions[v][k]);
       pos[3 * w + k] = x;
@@ -160,7 +164,7 @@ std::vector<unsigned char> encode_glb_png(const TriMesh& mesh, const Parameteriz
     const std::vector<Vec3> vn = vertex_normals(mesh);
     std::vector<float> nrm(3 * static_cast<size_t>(nw));
     for (int w = 0; w < nw; ++w)
-      for (int k = 0; k < 3; ++k) nrm[3 * w + k] = static_cast<float>(vn[std::max(wv[w], 0)][k]);
+      for (int k = 0; k < 3; ++k) nrm[3 * w + k] = static_cast<float>(vn[wv[w]][k]);
     const int v_nrm = add_buffer_view(model, buf, nrm.data(), nrm.size() * sizeof(float),
                                       TINYGLTF_TARGET_ARRAY_BUFFER);
     prim.attributes["NORMAL"] =
