@@ -70,6 +70,7 @@ int main(int argc, char** argv) {
   if (get("--norm", "edge") == "pct") so.adapt.importance.normalization = ImportanceNormalization::Percentile;
   if (a.count("--eps")) so.adapt.epsilon_texels = std::stod(a["--eps"]);
   if (a.count("--iters")) so.adapt.max_iterations = std::stoi(a["--iters"]);
+  if (a.count("--fine-iters")) so.adapt.fine_max_iterations = std::stoi(a["--fine-iters"]);
   if (a.count("--min-weight")) so.adapt.min_weight = std::stod(a["--min-weight"]);
   so.safeguard = !a.count("--no-safeguard");
   so.schedule = parse_reparam_schedule(get("--schedule", "end"));
