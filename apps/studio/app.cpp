@@ -518,7 +518,7 @@ void App::update_cursor(double x, double y) {
 
 void App::undo() {
   if (stroke_open_) return;
-  if (history_.undo()) add_message("undo (" + std::to_string(history_.strokes().size()) + " strokes)", false);
+  history_.undo();
 }
 
 void App::redo() {

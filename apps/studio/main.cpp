@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"none", "single", "two-stage"}));
   cli.add_option("--yaw", yaw, "Initial camera yaw (degrees)");
   cli.add_option("--pitch", pitch, "Initial camera pitch (degrees)");
-  std::string inspect;
+  std::string inspect, decal;
+  cli.add_option("--decal", decal, "Once loaded, project this image as a decal from the initial view");
   cli.add_option("--inspect", inspect, "Open the Inspect panel: texture|uv|importance|stretch|ls2|compare")
       ->check(CLI::IsMember({"texture", "uv", "importance", "stretch", "ls2", "compare"}));
   cli.add_option("--orbit-frames", orbit_frames, "Benchmark: orbit the camera for N frames, then quit");
@@ -232,6 +233,11 @@ int main(int argc, char** argv) {
       if (idle && inspect == "compare" && !compare_requested) {
         app.request_compare();
         compare_requested = true;
+      }
+      if (idle && !decal.empty()) {
+        app.load_decal(decal);
+        app.project_decal(1.0);
+        decal.clear();
       }
       if (idle && !ready_printed) {
         std::cout << "adaptex-studio: ready" << std::endl;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <thread>
 
+#include "adaptex/io/image_io.h"
 #include "adaptex/paint/painter.h"
 #include "app.h"
 #include "test_support.h"
@@ -334,6 +335,39 @@ TEST(StudioApp, AdaptsInTheBackgroundWhilePaintingContinues) {
   for (int f = 0; f < int(p.uv_faces.size()); ++f) flipped += uv_signed_area(p, f) <= 0;
   EXPECT_EQ(flipped, 0);
   EXPECT_LE(max_abs_diff(*h.app->texture(), replay_texture(*h.app)), 1);
+}
+
+TEST(StudioApp, DecalFromTheViewAndExports) {
+  TempDir dir;
+  Harness h;
+  ImageRGBA8 img(16, 16, {20, 200, 40, 255});
+  write_png(dir.path / "d.png", img);
+  const ImageRGBA8 before = *h.app->texture();
+  h.app->load_decal(dir.path / "d.png");
+  h.app->project_decal(1.0);
+  ASSERT_TRUE(h.app->wait_idle(60));
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  const Stroke& s = h.app->history().strokes()[0];
+  EXPECT_EQ(s.type, Stroke::Type::Decal);
+  EXPECT_LT((s.camera.eye - h.app->camera().eye()).norm(), 1e-12);
+  EXPECT_GT(max_abs_diff(before, *h.app->texture()), 100);
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), replay_texture(*h.app)), 0);
+  // The surface point under the centre of the view got the decal colour.
+  const auto hit = h.app->pick(200, 150);
+  ASSERT_TRUE(hit);
+  EXPECT_LT((h.app->sample_colour(*hit) - Vec3(20, 200, 40) / 255.0).norm(), 0.02);
+
+  h.app->export_obj(dir.path / "out");
+  h.app->export_glb(dir.path / "out" / "m.glb");
+  h.app->save_history(dir.path / "h.json");
+  int objs = 0;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path / "out"))
+    objs += e.path().extension() == ".obj" || e.path().extension() == ".mtl" || e.path().extension() == ".png";
+  EXPECT_EQ(objs, 3);
+  EXPECT_GT(std::filesystem::file_size(dir.path / "out" / "m.glb"), 1000u);
+  const StrokeFile back = load_strokes(dir.path / "h.json");
+  ASSERT_EQ(back.strokes.size(), 1u);
+  EXPECT_EQ(back.strokes[0].type, Stroke::Type::Decal);
 }
 
 }  // namespace
