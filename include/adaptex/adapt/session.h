@@ -59,6 +59,15 @@ ReparamSchedule parse_reparam_schedule(const std::string& name);
 /// Parses "replay" / "resample". \throw InvalidInputError
 TextureUpdate parse_texture_update(const std::string& name);
 
+/// Session options from the command-line strings of `adaptex paint` (issue 4 item 8):
+/// mode "none" | "single" | "two-stage"; grid {} (defaults), {FINE} or {COARSE, FINE}; alpha/beta < 0 =
+/// default; reparam "each-stroke" | "end"; update "replay" | "resample"; debug_maps empty = none.
+/// \throw InvalidInputError one-line message naming the bad option
+PaintSessionOptions make_session_options(int size, int padding, const std::string& mode,
+                                         const std::vector<int>& grid, double alpha, double beta,
+                                         const std::string& reparam, const std::string& update,
+                                         const std::filesystem::path& debug_maps = {});
+
 class PaintSession {
  public:
   /// \param mesh the surface (moved into the session)
