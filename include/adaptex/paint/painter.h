@@ -24,14 +24,20 @@ struct PainterOptions {
 /// Usage: whole strokes with paint_stroke(), or interactively begin_stroke/add_dab/end_stroke.
 class Painter {
  public:
+  /// Builds the texel map, the spatial index of texel points and the seam padding (docs/painting.md).
   /// \pre mesh and param stay alive and unchanged while the painter is used
+  /// \throw InvalidInputError size outside [1, 65535], padding < 0, background outside [0,1],
+  ///        param not parallel to mesh
   Painter(const TriMesh& mesh, const Parameterization& param, const PainterOptions& options,
           const Vec3& background = Vec3(1, 1, 1));
   ~Painter();
   Painter(Painter&&) noexcept;
   Painter& operator=(Painter&&) noexcept;
 
-  /// Paints a whole stroke (brush or decal).
+  /// Paints a whole stroke (brush or decal). Brush strokes with >= 16 dabs run in parallel (TBB);
+  /// the result is identical to begin_stroke/add_dab/end_stroke.
+  /// \throw InvalidInputError the stroke breaks the contract's rules (validate_stroke)
+  /// \throw Error decal stroke without the decal module, or an interactive stroke is open
   void paint_stroke(const Stroke& stroke);
   /// Paints every stroke of a file in order (the background of \p file replaces the current one
   /// only if nothing was painted yet).
@@ -47,7 +53,9 @@ class Painter {
   /// Interactive: closes the open stroke.
   void end_stroke();
 
-  /// The texture (with seam padding applied to texels outside the charts).
+  /// The texture: chart texels round(255 * colour) with alpha 255; padded texels copy their source
+  /// chart texel (alpha 255); other texels the background with alpha 0. Only the region changed
+  /// since the last call is converted.
   const ImageRGBA8& texture();
   /// The texel -> surface map of this parameterization.
   const TexelMap& texel_map() const;
