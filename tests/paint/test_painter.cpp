@@ -244,6 +244,8 @@ TEST(Padding, ReducesTheBilinearErrorAtChartBorders) {
     return sum / n;
   };
   const double without = border_error(0), with = border_error(4);
+  RecordProperty("border_mse_without_padding", std::to_string(without));
+  RecordProperty("border_mse_with_padding", std::to_string(with));
   EXPECT_GT(without, 0.01);
   EXPECT_LT(with, without / 20) << "with padding " << with << ", without " << without;
 }
