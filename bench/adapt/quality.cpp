@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   std::map<std::string, std::string> a;
   for (int i = 1; i < argc; ++i) {
     std::string k = argv[i];
-    if (k == "--no-safeguard" || k == "--verbose" || k == "--no-geometry") a[k] = "1";
+    if (k == "--no-safeguard" || k == "--verbose" || k == "--no-geometry" || k == "--slide") a[k] = "1";
     else if (i + 1 < argc) a[k] = argv[++i];
   }
   auto get = [&](const std::string& k, const std::string& d) { return a.count(k) ? a[k] : d; };
@@ -70,6 +70,7 @@ int main(int argc, char** argv) {
   if (get("--norm", "edge") == "pct") so.adapt.importance.normalization = ImportanceNormalization::Percentile;
   if (a.count("--eps")) so.adapt.epsilon_texels = std::stod(a["--eps"]);
   if (a.count("--iters")) so.adapt.max_iterations = std::stoi(a["--iters"]);
+  if (a.count("--slide")) so.adapt.slide_boundary = true;
   if (a.count("--fine-iters")) so.adapt.fine_max_iterations = std::stoi(a["--fine-iters"]);
   if (a.count("--min-weight")) so.adapt.min_weight = std::stod(a["--min-weight"]);
   so.safeguard = !a.count("--no-safeguard");

@@ -101,6 +101,7 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
   const int T = std::max(texture.width, texture.height);
   RelaxOptions ro;
   ro.ring = o.ring;
+  ro.slide_boundary = o.slide_boundary;
   ro.epsilon = o.epsilon_texels / T;
   ro.max_iterations = o.max_iterations;
   ro.progress = o.progress;

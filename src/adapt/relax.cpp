@@ -46,6 +46,48 @@ double relax_row(GridWarp& g, std::vector<double>& w, const ImageF& field, int j
   return max_move;
 }
 
+// Slides the non-corner boundary points of colour c along their side: the weighted average of the
+// ring (points outside the grid skipped), projected on the side and clamped between the two
+// neighbours on the side, so the order along the side (and the square) is preserved.
+double slide_boundary(GridWarp& g, std::vector<double>& w, const ImageF& field, int c, bool eight) {
+  const int n = g.n, side = n + 1;
+  double max_move = 0;
+  auto visit = [&](int i, int j, bool horizontal) {
+    const int colour = eight ? (i & 1) + 2 * (j & 1) : (i + j) & 1;
+    if (colour != c) return;
+    const size_t k = static_cast<size_t>(j) * side + i;
+    double ws = 0, acc = 0;
+    for (int dj = -1; dj <= 1; ++dj)
+      for (int di = -1; di <= 1; ++di) {
+        if ((di == 0 && dj == 0) || (!eight && di != 0 && dj != 0)) continue;
+        const int x = i + di, y = j + dj;
+        if (x < 0 || x > n || y < 0 || y > n) continue;
+        const size_t m = static_cast<size_t>(y) * side + x;
+        ws += w[m];
+        acc += w[m] * (horizontal ? g.points[m].x() : g.points[m].y());
+      }
+    double v = acc / ws;
+    const size_t a = horizontal ? k - 1 : k - side, b = horizontal ? k + 1 : k + side;
+    const double lo = horizontal ? g.points[a].x() : g.points[a].y();
+    const double hi = horizontal ? g.points[b].x() : g.points[b].y();
+    v = std::clamp(v, lo, hi);
+    Vec2 p = g.points[k];
+    (horizontal ? p.x() : p.y()) = v;
+    max_move = std::max(max_move, (p - g.points[k]).norm());
+    g.points[k] = p;
+    w[k] = sample_bilinear(field, p.x(), p.y());
+  };
+  for (int i = 1; i < n; ++i) {
+    visit(i, 0, true);
+    visit(i, n, true);
+  }
+  for (int j = 1; j < n; ++j) {
+    visit(0, j, false);
+    visit(n, j, false);
+  }
+  return max_move;
+}
+
 }  // namespace
 
 RelaxStats relax_grid(GridWarp& grid, const ImageF& weights, const RelaxOptions& options) {
@@ -81,6 +123,7 @@ RelaxStats relax_grid(GridWarp& grid, const ImageF& weights, const RelaxOptions&
       } else {
         for (int j = 1; j < n; ++j) max_move = std::max(max_move, relax_row(grid, w, weights, j, c, eight));
       }
+      if (options.slide_boundary) max_move = std::max(max_move, slide_boundary(grid, w, weights, c, eight));
     }
     stats.iterations = it + 1;
     stats.last_max_move = max_move;

@@ -44,6 +44,7 @@ struct AdaptOptions {
   ImportanceOptions importance;      ///< Normalization of the Sobel importance map.
   PoolMode pool = PoolMode::Mean;    ///< Sampling of L_s² at each grid's scale.
   GridRing ring = GridRing::Eight;   ///< 1-ring of the relaxation.
+  bool slide_boundary = false;       ///< Boundary grid points slide along the square's sides.
   double epsilon_texels = 0.05;      ///< Stop a stage when the largest move < this many texels.
   int max_iterations = 300;          ///< Sweep cap of the coarse (or single) stage.
   /// Sweep cap of the fine stage of TwoStage: it only refines locally around detail (thesis §3.8,

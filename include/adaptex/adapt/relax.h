@@ -26,6 +26,9 @@ struct RelaxOptions {
   double epsilon = 1e-4;            ///< Stop when the largest move of a sweep is below this (uv units).
   int max_iterations = 200;         ///< Cap on the number of sweeps.
   bool parallel = true;             ///< Use TBB for grids with many points (results are identical).
+  /// Let the non-corner boundary points slide along their side of the square (weighted average of
+  /// their ring projected on the side, kept between their side neighbours). Corners stay fixed.
+  bool slide_boundary = false;
   ProgressCallback progress;        ///< Phase "relax", called every few sweeps; false cancels.
 };
 
