@@ -124,6 +124,30 @@ TEST(Relax, LowWeightBlobGrowsItsCells) {
   }
 }
 
+TEST(Relax, SlidingBoundaryStaysOnTheSidesInOrder) {
+  const ImageF field = blob_field(128, 0.5, 0.03, 0.12, 0.05f);  // detail touching the bottom side
+  GridWarp fixed = GridWarp::uniform(16), slid = GridWarp::uniform(16);
+  RelaxOptions o;
+  o.max_iterations = 500;
+  relax_grid(fixed, field, o);
+  o.slide_boundary = true;
+  relax_grid(slid, field, o);
+  for (int i = 0; i <= 16; ++i) {
+    EXPECT_EQ(slid.at(i, 0).y(), 0.0);
+    EXPECT_EQ(slid.at(i, 16).y(), 1.0);
+    EXPECT_EQ(slid.at(0, i).x(), 0.0);
+    EXPECT_EQ(slid.at(16, i).x(), 1.0);
+    if (i > 0) {
+      EXPECT_GT(slid.at(i, 0).x(), slid.at(i - 1, 0).x());
+      EXPECT_GT(slid.at(0, i).y(), slid.at(0, i - 1).y());
+    }
+  }
+  EXPECT_EQ(slid.at(0, 0), Vec2(0, 0));
+  EXPECT_EQ(slid.at(16, 16), Vec2(1, 1));
+  // The bottom-centre cells grow more when their side points can move apart.
+  EXPECT_GT(cell_area(slid, 7, 0) + cell_area(slid, 8, 0), cell_area(fixed, 7, 0) + cell_area(fixed, 8, 0));
+}
+
 TEST(Relax, ParallelAndSerialGiveIdenticalResults) {
   const ImageF field = blob_field(256, 0.3, 0.6, 0.1, 0.05f);
   GridWarp a = GridWarp::uniform(128), b = GridWarp::uniform(128);
