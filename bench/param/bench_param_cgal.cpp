@@ -20,11 +20,13 @@ using SurfaceMesh = CGAL::Surface_mesh<Kernel::Point_3>;
 using VertexDesc = SurfaceMesh::Vertex_index;
 namespace SMP = CGAL::Surface_mesh_parameterization;
 
-static void adaptex_case(benchmark::State& state, const std::string& name) {
+static void adaptex_case(benchmark::State& state, const std::string& name, EmbeddingWeights w) {
   const TriMesh& m = bench::disk(name);
   if (m.num_faces() == 0) return state.SkipWithError("mesh not available");
+  DiskParamOptions opt;
+  opt.weights = w;
   DiskParamResult r;
-  for (auto _ : state) r = parameterize_disk(m, {});
+  for (auto _ : state) r = parameterize_disk(m, {}, opt);
   const StretchStats st = measure_stretch(m, r.uv);
   state.counters["faces"] = m.num_faces();
   state.counters["L2"] = st.l2;
@@ -69,7 +71,14 @@ int main(int argc, char** argv) {
   for (const char* name : {"bump10k", "bump100k", "face", "camelhead"}) {
     const int its = std::string(name) == "bump100k" ? 1 : 2;
     benchmark::RegisterBenchmark((std::string("adaptex/") + name).c_str(),
-                                 [n = std::string(name)](benchmark::State& s) { adaptex_case(s, n); })
+                                 [n = std::string(name)](benchmark::State& s) {
+                                   adaptex_case(s, n, EmbeddingWeights::ShapePreserving);
+                                 })
+        ->Unit(benchmark::kMillisecond)->Iterations(its)->UseRealTime();
+    benchmark::RegisterBenchmark((std::string("adaptex_meanvalue/") + name).c_str(),
+                                 [n = std::string(name)](benchmark::State& s) {
+                                   adaptex_case(s, n, EmbeddingWeights::MeanValue);
+                                 })
         ->Unit(benchmark::kMillisecond)->Iterations(its)->UseRealTime();
     benchmark::RegisterBenchmark((std::string("CGAL_iterative_authalic/") + name).c_str(),
                                  [n = std::string(name)](benchmark::State& s) { cgal_case(s, n, 15); })
