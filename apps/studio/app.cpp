@@ -141,9 +141,10 @@ void App::add_recent(const std::string& path) {
 
 void App::open_mesh(const std::string& path_in) {
   const std::string path = absolute_path(path_in);
-  if (load_job_) load_job_->cancel();
-  retired_jobs_.clear();
-  load_job_.reset();
+  if (load_job_) {
+    load_job_->cancel();
+    retired_jobs_.push_back(std::move(load_job_));  // never wait for it on the UI thread
+  }
   loading_path_ = path;
   const int size = adapt_.texture_size;
   const Vec3 bg = pending_background_.value_or(history_.background());
@@ -559,10 +560,13 @@ void App::start_rebuild(bool adapt) {
   if (rebuild_job_) {
     rebuild_job_->cancel();
     retired_jobs_.push_back(std::move(rebuild_job_));
+    if (rebuild_adapting_ && adapt_.mode != AdaptMode::None) adapt_pending_ = true;  // redo it later
   }
+  rebuild_adapting_ = adapt;
   auto model = model_;
   auto param = surface_->param;
   const std::uint64_t gen = history_.generation();
+  rebuild_generation_ = gen;
   StrokeFile file = history_.to_file();
   const int size = adapt_.texture_size;
   AdaptRequest req;
@@ -617,7 +621,9 @@ void App::maybe_start_rebuild() {
   if (!model_ || !surface_ || load_job_) return;
   const bool stale = surface_->generation != history_.generation() || surface_->size != adapt_.texture_size;
   if (rebuild_job_) {
-    return;  // poll_jobs() discards a result of an old generation and we start again then
+    // A rebuild for an older history generation (undo / redo meanwhile) is abandoned, not awaited.
+    if (rebuild_generation_ != history_.generation()) start_rebuild(false);
+    return;
   }
   const bool want_adapt = adapt_pending_ && adapt_.mode != AdaptMode::None;
   if (stale || (want_adapt && !stroke_open_)) {
@@ -796,6 +802,7 @@ void App::end_frame() {
     }
   }
   const auto now = Clock::now();
+  if (stats_.frame_ms.size() > 100000) stats_ = Stats();  // bounded memory in long sessions
   stats_.frame_ms.push_back(std::chrono::duration<double, std::milli>(now - last_frame_end_).count());
   last_frame_end_ = now;
   if (first_pending_dab_) {

@@ -206,11 +206,13 @@ class App {
   std::unique_ptr<Surface> surface_;
   std::unique_ptr<Job<LoadResult>> load_job_;
   std::unique_ptr<Job<RebuildResult>> rebuild_job_;
-  std::vector<std::unique_ptr<Job<RebuildResult>>> retired_jobs_;  // cancelled, joined when done
+  std::vector<std::unique_ptr<JobBase>> retired_jobs_;  // cancelled; destroyed (joined) once finished
   std::unique_ptr<Job<int>> autosave_job_;
   std::unique_ptr<Job<Comparison>> compare_job_;
   std::shared_ptr<const Comparison> comparison_;
   bool adapt_pending_ = false;
+  std::uint64_t rebuild_generation_ = 0;
+  bool rebuild_adapting_ = false;  // history generation the running rebuild job is for
   std::string loading_path_;
   std::vector<Stroke> pending_strokes_;  // replayed/recovered strokes waiting for the model
   std::optional<Vec3> pending_background_;

@@ -12,8 +12,16 @@
 
 namespace adaptex::studio {
 
+/// Type-erased view of a job (for cancelled jobs that are left to finish on their own).
+class JobBase {
+ public:
+  virtual ~JobBase() = default;
+  virtual bool ready() const = 0;
+  virtual void cancel() = 0;
+};
+
 template <class R>
-class Job {
+class Job : public JobBase {
  public:
   /// Starts \p work(job) on a new thread; work reports through progress() and checks cancelled().
   explicit Job(std::function<R(Job&)> work) {
@@ -29,7 +37,7 @@ class Job {
       done_ = true;
     });
   }
-  ~Job() {
+  ~Job() override {
     cancel_ = true;
     if (thread_.joinable()) thread_.join();
   }
@@ -46,10 +54,10 @@ class Job {
     return !cancel_;
   }
   bool cancelled() const { return cancel_; }
-  void cancel() { cancel_ = true; }
+  void cancel() override { cancel_ = true; }
 
   /// UI side.
-  bool ready() const { return done_; }
+  bool ready() const override { return done_; }
   double fraction() const { return fraction_; }
   std::string phase() const {
     std::lock_guard lock(mutex_);
