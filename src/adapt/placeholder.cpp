@@ -1,2 +1,0 @@
-// Placeholder translation unit; replaced as the adapt area lands.
-namespace adaptex {}

@@ -1,2 +1,0 @@
-// Placeholder translation unit; replaced as the io area lands.
-namespace adaptex {}

@@ -1,2 +1,0 @@
-// Placeholder translation unit; replaced as the paint area lands.
-namespace adaptex {}

@@ -1,2 +1,0 @@
-// Placeholder translation unit; replaced as the param area lands.
-namespace adaptex {}
