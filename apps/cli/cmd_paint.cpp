@@ -64,11 +64,11 @@ void validate(PaintCommand& c, const Context& ctx) {
     throw InvalidInputError("--grid: two-stage needs two sizes (coarse,fine), e.g. 16,256");
   if (a.mode == "single" && a.grid.size() == 2)
     throw InvalidInputError("--grid: single-stage needs one size, e.g. 256");
-  if (a.mode != "none")
-    // The adaptive re-parameterization (issue 4) plugs in at unwrap_and_paint() in paint_common.h.
-    throw InvalidInputError("--adapt " + a.mode + " is not available yet (only --adapt none)");
-  if (!a.grid.empty() || a.alpha || a.beta || !a.debug_maps.empty())
+  if (a.mode == "none" && (!a.grid.empty() || a.alpha || a.beta || !a.debug_maps.empty()))
     ctx.warn("--grid/--alpha/--beta/--debug-maps have no effect with --adapt none");
+  // Let the session validate the combination now, before any work is done.
+  (void)make_session_options(c.run.size, c.run.padding, a.mode, a.grid, a.alpha.value_or(-1.0),
+                             a.beta.value_or(-1.0), a.reparam, a.update, a.debug_maps);
   if (c.name.empty())
     c.name = sanitize_export_name(c.mesh.stem().string());
   else
@@ -129,7 +129,7 @@ void add_paint_command(CLI::App& app, Context& ctx) {
   sub->add_option("--name", cmd->name, "Base name of the output files (default: the mesh file's stem)");
   sub->add_flag("--repair", cmd->repair, "Split non-manifold vertices / drop duplicate faces on reading");
   sub->add_option("--adapt", cmd->run.adapt.mode,
-                  "Adaptive re-parameterization: none | single | two-stage (only none so far)")
+                  "Signal-adaptive re-parameterization: none | single | two-stage")
       ->check(CLI::IsMember({"none", "single", "two-stage"}))
       ->capture_default_str();
   sub->add_option("--grid", cmd->grid, "Relaxation grid size(s): coarse,fine for two-stage (e.g. 16,256)");

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptex/adapt/session.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/mesh.h"
@@ -49,10 +50,10 @@ inline ProgressCallback phase_printer(const Context& ctx, const std::string& pre
   };
 }
 
-/// Settings of the adaptive re-parameterization (issue 4, `--adapt` and friends). Parsed and
-/// validated by `adaptex paint`; only mode "none" is implemented so far.
+/// Settings of the adaptive re-parameterization (issue 4, `--adapt` and friends), parsed and
+/// validated by `adaptex paint` and turned into PaintSessionOptions by make_session_options().
 struct AdaptSettings {
-  std::string mode = "none";         ///< none | single | two-stage
+  std::string mode = "two-stage";    ///< none | single | two-stage
   std::vector<int> grid;             ///< --grid: 1 (single) or 2 (coarse, fine) grid sizes; empty = default
   std::optional<double> alpha, beta; ///< --alpha / --beta L_s^2 weights; unset = the adaptive defaults
   std::string reparam = "end";       ///< each-stroke | end
@@ -84,7 +85,9 @@ struct PaintRun {
   ImageRGBA8 texture;
   long long texel_updates = 0;
   long long chart_texels = 0;  ///< Texels inside a chart at the final parameterization.
-  double time_unwrap = 0, time_paint = 0;  ///< Seconds.
+  double time_unwrap = 0, time_paint = 0;  ///< Seconds (paint includes re-parameterization).
+  nlohmann::json adapt_reports = nlohmann::json::object();  ///< Per re-parameterization (adapt modes).
+  double initial_l2 = 0, final_l2 = 0;  ///< L2 stretch of the unwrap and of the final layout.
 };
 
 /// Unwraps \p mesh (progress lines on stderr) and paints every stroke of \p strokes.
@@ -101,23 +104,39 @@ inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
   run.time_unwrap = sw.lap();
 
   ctx.info("paint: " + std::to_string(strokes.strokes.size()) + " strokes at " +
-           std::to_string(options.size) + "x" + std::to_string(options.size));
-  PainterOptions po;
-  po.width = po.height = options.size;
-  po.padding = options.padding;
-  Painter painter(mesh, run.param, po, strokes.background);
+           std::to_string(options.size) + "x" + std::to_string(options.size) +
+           (options.adapt.mode == "none" ? std::string()
+                                         : ", adapt " + options.adapt.mode + " (" + options.adapt.reparam + ")"));
   if (options.adapt.mode == "none") {
+    PainterOptions po;
+    po.width = po.height = options.size;
+    po.padding = options.padding;
+    Painter painter(mesh, run.param, po, strokes.background);
     painter.paint_all(strokes);
+    run.texture = painter.texture();
+    run.texel_updates = painter.texel_updates();
+    run.chart_texels = static_cast<long long>(painter.texel_map().inside.size());
   } else {
-    // ---- Adaptive re-parameterization hook (issue 4) ----------------------------------------
-    // `single` / `two-stage`: paint with re-parameterization (after each stroke or at the end,
-    // per options.adapt.reparam) and replace run.param and the texture with the adapted ones.
-    // cmd_paint.cpp rejects these modes before any work is done until they are implemented.
-    throw InvalidInputError("--adapt " + options.adapt.mode + " is not available yet");
+    // Signal-adaptive re-parameterization (issue 4): a PaintSession paints every stroke and
+    // re-parameterizes after each stroke or once at the end, replaying or resampling the texture.
+    const AdaptSettings& a = options.adapt;
+    const PaintSessionOptions so = make_session_options(
+        options.size, options.padding, a.mode, a.grid, a.alpha.value_or(-1.0), a.beta.value_or(-1.0),
+        a.reparam, a.update, a.debug_maps);
+    PaintSession session(mesh, run.param, so, strokes.background);
+    const size_t n = strokes.strokes.size();
+    for (size_t k = 0; k < n; ++k) {
+      session.add_stroke(strokes.strokes[k]);
+      if (so.schedule == ReparamSchedule::EachStroke && (k + 1) % 10 == 0)
+        ctx.info("adapt: " + std::to_string(k + 1) + "/" + std::to_string(n) + " strokes");
+    }
+    session.finish();
+    run.param = session.param();
+    run.texture = session.texture();
+    run.texel_updates = session.painter().texel_updates();
+    run.chart_texels = static_cast<long long>(session.texel_map().inside.size());
+    run.adapt_reports = adapt_reports_json(session.reports());
   }
-  run.texture = painter.texture();
-  run.texel_updates = painter.texel_updates();
-  run.chart_texels = static_cast<long long>(painter.texel_map().inside.size());
   run.time_paint = sw.lap();
   return run;
 }
@@ -157,7 +176,10 @@ inline nlohmann::json paint_report(const TriMesh& mesh, const StrokeFile& stroke
                    {"dabs", strokes.num_dabs()}}},
       {"paint", {{"texel_updates", run.texel_updates},
                  {"texel_updates_per_s", run.time_paint > 0 ? run.texel_updates / run.time_paint : 0.0}}},
-      {"adapt", {{"mode", options.adapt.mode}}},
+      {"adapt", {{"mode", options.adapt.mode},
+                 {"reparam", options.adapt.reparam},
+                 {"update", options.adapt.update},
+                 {"reparameterizations", run.adapt_reports}}},
       {"unwrap", {{"floater_l2", u.floater_l2},
                   {"final_l2", u.final_l2},
                   {"final_linf", u.final_linf},

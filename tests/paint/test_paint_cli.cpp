@@ -96,6 +96,37 @@ void expect_clean_failure(const test::CliResult& r, const std::string& needle, c
 
 }  // namespace
 
+TEST(PaintCli, AdaptModesReparameterizeAsScheduled) {
+  Inputs in;
+  struct Case {
+    std::string flags;
+    int reparams;
+  };
+  const int strokes = static_cast<int>(in.s.strokes.size());
+  for (const Case& c : {Case{"--adapt none", 0}, Case{"--adapt single --grid 64", 1},
+                        Case{"--adapt two-stage --grid 8,64 --reparam each-stroke", strokes}}) {
+    SCOPED_TRACE(c.flags);
+    const fs::path out = in.tmp.path / "adapt-out";
+    fs::remove_all(out);
+    const auto r = test::run_cli("paint " + q(in.mesh) + " --strokes " + q(in.strokes) +
+                                 " --size 64 " + c.flags + " -o " + q(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto rep = nlohmann::json::parse(slurp(out / "report.json"));
+    if (c.reparams == 0) {
+      EXPECT_EQ(rep["adapt"]["mode"], "none");
+    } else {
+      EXPECT_EQ(rep["adapt"]["reparameterizations"]["count"], c.reparams);
+    }
+    // Whatever the mode, the exported layout is valid: no flipped UV triangle, UVs in [0,1]^2.
+    const TexturedMesh tm = read_textured_obj(out / "ball.obj");
+    for (int f = 0; f < tm.mesh.num_faces(); ++f) EXPECT_GT(uv_signed_area(tm.param, f), 0.0) << f;
+    for (const Vec2& uv : tm.param.uv) {
+      EXPECT_GE(uv.minCoeff(), 0.0);
+      EXPECT_LE(uv.maxCoeff(), 1.0);
+    }
+  }
+}
+
 TEST(PaintCli, PaintsAndExportsEverything) {
   Inputs in;
   const fs::path out = in.tmp.path / "out";
@@ -115,7 +146,9 @@ TEST(PaintCli, PaintsAndExportsEverything) {
   EXPECT_EQ(rep["strokes"]["count"], 4);
   EXPECT_EQ(rep["strokes"]["decals"], 1);
   EXPECT_EQ(rep["strokes"]["dabs"], in.s.num_dabs());
-  EXPECT_EQ(rep["adapt"]["mode"], "none");
+  EXPECT_EQ(rep["adapt"]["mode"], "two-stage");  // the default
+  EXPECT_EQ(rep["adapt"]["reparam"], "end");
+  EXPECT_EQ(rep["adapt"]["reparameterizations"]["count"], 1);
   for (const char* phase : {"read", "unwrap", "paint", "export", "total"})
     EXPECT_GE(rep["times_s"][phase].get<double>(), 0.0) << phase;
   EXPECT_GE(rep["unwrap"]["final_l2"].get<double>(), 1.0);
@@ -176,8 +209,10 @@ TEST(PaintCli, BadInputsExit2WithOneLineAndNoFiles) {
   expect_clean_failure(test::run_cli(good + " --size x"), "--size", out);
   expect_clean_failure(test::run_cli(good + " --padding -1"), "--padding", out);
   expect_clean_failure(test::run_cli(good + " --adapt sometimes"), "--adapt", out);
-  expect_clean_failure(test::run_cli(good + " --adapt two-stage"), "not available yet", out);
-  expect_clean_failure(test::run_cli(good + " --adapt single --grid 64"), "not available yet", out);
+  expect_clean_failure(test::run_cli(good + " --adapt two-stage --grid 64"), "--grid", out);
+  expect_clean_failure(test::run_cli(good + " --adapt single --grid 16,256"), "--grid", out);
+  expect_clean_failure(test::run_cli(good + " --adapt two-stage --grid 16,x"), "--grid", out);
+  expect_clean_failure(test::run_cli(good + " --adapt two-stage --alpha -1"), "--alpha", out);
   expect_clean_failure(test::run_cli(good + " --grid 16,x"), "--grid", out);
   expect_clean_failure(test::run_cli(good + " --reparam often"), "--reparam", out);
   expect_clean_failure(test::run_cli(good + " --update guess"), "--update", out);
