@@ -147,7 +147,10 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   rep.time_cut += seconds_since(t0);
 
   DiskParamOptions dopt;
-  dopt.weights = options.weights;
+  dopt.weights = options.weights == EmbeddingWeights::MeanValue &&
+                         mesh.num_faces() > options.mean_value_max_faces
+                     ? EmbeddingWeights::ShapePreserving
+                     : options.weights;
   dopt.eta = options.yoshizawa_eta;
   dopt.max_iterations = options.yoshizawa_max_iterations;
   dopt.yoshizawa = options.yoshizawa_max_iterations > 0;
