@@ -10,6 +10,8 @@ find_package(CLI11 REQUIRED)
 find_package(Threads REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
+# FFTW3 (DCT Poisson solve of the density-flow warp, src/adapt/density_flow.cpp).
+pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3)
 
 # SuiteSparse (CHOLMOD) ships no CMake config on Debian 12: locate it by hand.
 find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)

@@ -3,7 +3,7 @@
 set -euo pipefail
 PACKAGES=(
   build-essential cmake ninja-build pkg-config ccache git
-  libeigen3-dev libsuitesparse-dev libtbb-dev
+  libeigen3-dev libsuitesparse-dev libtbb-dev libfftw3-dev
   libassimp-dev libtinyobjloader-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev
   libembree-dev libcgal-dev
   libgtest-dev libgmock-dev libbenchmark-dev

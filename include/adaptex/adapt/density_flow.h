@@ -1,0 +1,46 @@
+#pragma once
+/// \file density_flow.h
+/// Flow-based density-equalizing map of the unit square (Gastner, Seguy & More, "Fast flow-based
+/// algorithm for creating density-equalizing map projections", PNAS 115(10), 2018).
+///
+/// Given a density ρ₀ > 0 on an L x L cell raster of [0,1]² (mean ρ̄), the map X: [0,1]² → [0,1]²
+/// has Jacobian determinant det ∇X(x) = ρ₀(x) / ρ̄: a cell of density 4ρ̄ becomes 4 times larger.
+/// Construction: ρ_t = (1 − t)ρ₀ + tρ̄ for t ∈ [0,1]; the flux J = −∇φ with ∇²φ = ρ̄ − ρ₀ and zero
+/// normal flux on the sides (one DCT Poisson solve, FFTW REDFT10/REDFT01) satisfies ∂ρ_t/∂t + ∇·J = 0,
+/// so advecting points with v(x, t) = J(x) / ρ_t(x) from t = 0 to 1 pushes ρ₀ forward to ρ̄.
+/// The flow of a smooth velocity field is a diffeomorphism: the map cannot fold, and because the
+/// normal velocity vanishes on the sides, boundary points slide along their side and corners stay.
+///
+/// The result is a GridWarp (grid.h): the advected (n+1)² lattice points; GridWarp::apply then
+/// interpolates the map bilinearly between them, which is how remap.h consumes every warp.
+#include "adaptex/adapt/grid.h"
+#include "adaptex/core/image.h"
+
+namespace adaptex {
+
+/// Settings of density_equalizing_warp().
+struct DensityFlowOptions {
+  int cells = 256;             ///< Cells per side n of the output GridWarp (lattice of (n+1)² points).
+  double tolerance = 1e-3;     ///< Local error bound of the adaptive integration, in output cells.
+  int max_steps = 4000;        ///< Cap on integration steps per point (never reached on sane input).
+  bool parallel = true;        ///< Advect points with TBB (results are identical either way).
+};
+
+/// What density_equalizing_warp() did.
+struct DensityFlowStats {
+  long total_steps = 0;        ///< Accepted integration steps over all points.
+  int max_steps = 0;           ///< Most steps any point took.
+  double max_displacement = 0; ///< Largest point displacement (uv units).
+  int inverted_cells = 0;      ///< Output cells with non-positive signed area (0 expected).
+  /// Relative L1 error of the achieved cell areas against ρ₀/ρ̄, sampled on the output lattice
+  /// (Σ |area·n² − ρ₀/ρ̄| / n²): how exactly the map reached the density.
+  double density_error = 0;
+};
+
+/// The density-equalizing map of \p density (L x L, any L >= 2; rows are v, as images are).
+/// \pre density.width == density.height >= 2, every value finite and > 0; options.cells >= 1
+/// \throw InvalidInputError a precondition fails
+GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions& options = {},
+                                 DensityFlowStats* stats = nullptr);
+
+}  // namespace adaptex

@@ -1,0 +1,203 @@
+// Flow-based density-equalizing map (Gastner, Seguy & More, PNAS 2018): one DCT Poisson solve, then
+// every lattice point is advected through v = J / ρ_t with an adaptive Bogacki–Shampine RK3(2).
+#include "adaptex/adapt/density_flow.h"
+
+#include <fftw3.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <string>
+
+#include "adaptex/core/errors.h"
+
+namespace adaptex {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// FFTW's planner is not thread-safe; execution of distinct plans is.
+std::mutex& fftw_planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+/// φ on the L x L cell centres with ∇²_h φ = ρ̄ − ρ (5-point Laplacian, reflective sides), by DCT.
+std::vector<double> solve_poisson_neumann(const ImageF& rho) {
+  const int L = rho.width;
+  std::vector<double> a(static_cast<size_t>(L) * L);
+  for (size_t k = 0; k < a.size(); ++k) a[k] = rho.data[k];
+  fftw_plan fwd, inv;
+  {
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    fwd = fftw_plan_r2r_2d(L, L, a.data(), a.data(), FFTW_REDFT10, FFTW_REDFT10, FFTW_ESTIMATE);
+    inv = fftw_plan_r2r_2d(L, L, a.data(), a.data(), FFTW_REDFT01, FFTW_REDFT01, FFTW_ESTIMATE);
+  }
+  fftw_execute(fwd);
+  std::vector<double> lambda(L);
+  for (int k = 0; k < L; ++k) {
+    const double s = std::sin(kPi * k / (2.0 * L));
+    lambda[k] = -4.0 * L * L * s * s;  // eigenvalue of the 1-D reflective 3-point Laplacian
+  }
+  const double norm = 4.0 * L * L;  // REDFT01(REDFT10(x)) = (2L)² x in 2-D
+  for (int l = 0; l < L; ++l)
+    for (int k = 0; k < L; ++k) {
+      double& c = a[static_cast<size_t>(l) * L + k];
+      c = (k == 0 && l == 0) ? 0.0 : -c / ((lambda[k] + lambda[l]) * norm);
+    }
+  fftw_execute(inv);
+  {
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    fftw_destroy_plan(fwd);
+    fftw_destroy_plan(inv);
+  }
+  return a;
+}
+
+/// Flux J = −∇φ and ρ₀ on the (L+1)² corner lattice; v(x, t) = J / ((1−t)ρ₀ + tρ̄), bilinear.
+struct Field {
+  int L = 0;
+  double mean = 1;
+  std::vector<double> jx, jy, rho;  // (L+1)², row-major (j * (L+1) + i)
+
+  Field(const ImageF& density, const std::vector<double>& phi) : L(density.width) {
+    const int S = L + 1;
+    jx.assign(static_cast<size_t>(S) * S, 0.0);
+    jy.assign(jx.size(), 0.0);
+    rho.assign(jx.size(), 0.0);
+    double sum = 0;
+    for (float v : density.data) sum += v;
+    mean = sum / density.data.size();
+    auto p = [&](int i, int j) { return phi[static_cast<size_t>(j) * L + i]; };
+    for (int j = 0; j <= L; ++j)
+      for (int i = 0; i <= L; ++i) {
+        const int j0 = std::max(j - 1, 0), j1 = std::min(j, L - 1);
+        const int i0 = std::max(i - 1, 0), i1 = std::min(i, L - 1);
+        const size_t c = static_cast<size_t>(j) * S + i;
+        // Face fluxes between cells (i-1, ·) and (i, ·), averaged over the rows meeting at the corner.
+        if (i > 0 && i < L) jx[c] = -0.5 * L * ((p(i, j0) - p(i - 1, j0)) + (p(i, j1) - p(i - 1, j1)));
+        if (j > 0 && j < L) jy[c] = -0.5 * L * ((p(i0, j) - p(i0, j - 1)) + (p(i1, j) - p(i1, j - 1)));
+        rho[c] = 0.25 * (density.at(i0, j0) + density.at(i1, j0) + density.at(i0, j1) + density.at(i1, j1));
+      }
+  }
+
+  Vec2 velocity(const Vec2& x, double t) const {
+    const double gx = std::clamp(x.x(), 0.0, 1.0) * L, gy = std::clamp(x.y(), 0.0, 1.0) * L;
+    const int i = std::min(static_cast<int>(gx), L - 1), j = std::min(static_cast<int>(gy), L - 1);
+    const double s = gx - i, u = gy - j;
+    const size_t S = static_cast<size_t>(L) + 1, c00 = j * S + i, c10 = c00 + 1, c01 = c00 + S, c11 = c01 + 1;
+    const double w00 = (1 - s) * (1 - u), w10 = s * (1 - u), w01 = (1 - s) * u, w11 = s * u;
+    const double fx = w00 * jx[c00] + w10 * jx[c10] + w01 * jx[c01] + w11 * jx[c11];
+    const double fy = w00 * jy[c00] + w10 * jy[c10] + w01 * jy[c01] + w11 * jy[c11];
+    const double r0 = w00 * rho[c00] + w10 * rho[c10] + w01 * rho[c01] + w11 * rho[c11];
+    const double r = (1 - t) * r0 + t * mean;
+    return Vec2(fx / r, fy / r);
+  }
+};
+
+Vec2 clamp01(const Vec2& p) { return Vec2(std::clamp(p.x(), 0.0, 1.0), std::clamp(p.y(), 0.0, 1.0)); }
+
+/// Advects one point from t = 0 to 1 (Bogacki–Shampine 3(2), FSAL, per-point step control).
+/// \return the number of accepted steps
+int advect(const Field& f, Vec2& x, double tol, double max_move, int max_steps) {
+  double t = 0, h = 0.02;
+  Vec2 k1 = f.velocity(x, 0);
+  int steps = 0;
+  for (int guard = 0; t < 1.0 && guard < 4 * max_steps; ++guard) {
+    const double speed = k1.norm();
+    if (speed * h > max_move) h = max_move / speed;  // never jump over density features
+    h = std::min(h, 1.0 - t);
+    const Vec2 k2 = f.velocity(clamp01(x + 0.5 * h * k1), t + 0.5 * h);
+    const Vec2 k3 = f.velocity(clamp01(x + 0.75 * h * k2), t + 0.75 * h);
+    const Vec2 y = clamp01(x + h * (2.0 / 9 * k1 + 1.0 / 3 * k2 + 4.0 / 9 * k3));
+    const Vec2 k4 = f.velocity(y, t + h);
+    const Vec2 z = x + h * (7.0 / 24 * k1 + 0.25 * k2 + 1.0 / 3 * k3 + 0.125 * k4);
+    const double err = (y - z).norm();
+    if (err <= tol || steps >= max_steps) {
+      x = y;
+      t += h;
+      k1 = k4;
+      ++steps;
+    }
+    const double factor = err > 0 ? 0.9 * std::cbrt(tol / err) : 4.0;
+    h *= std::clamp(factor, 0.2, 4.0);
+    h = std::max(h, 1e-9);
+  }
+  return steps;
+}
+
+double cell_signed_area(const GridWarp& g, int i, int j) {
+  const Vec2 a = g.at(i, j), b = g.at(i + 1, j), c = g.at(i + 1, j + 1), d = g.at(i, j + 1);
+  const auto cross = [](const Vec2& p, const Vec2& q) { return p.x() * q.y() - p.y() * q.x(); };
+  return 0.5 * (cross(a, b) + cross(b, c) + cross(c, d) + cross(d, a));
+}
+
+}  // namespace
+
+GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions& o, DensityFlowStats* stats) {
+  if (density.width != density.height || density.width < 2)
+    throw InvalidInputError("density_equalizing_warp: the density must be a square raster of >= 2 cells, got " +
+                            std::to_string(density.width) + "x" + std::to_string(density.height));
+  for (float v : density.data)
+    if (!(std::isfinite(v) && v > 0))
+      throw InvalidInputError("density_equalizing_warp: densities must be finite and > 0");
+  if (o.cells < 1 || o.cells > 8192) throw InvalidInputError("density_equalizing_warp: cells must be in [1, 8192]");
+  if (!(o.tolerance > 0) || o.max_steps < 1)
+    throw InvalidInputError("density_equalizing_warp: tolerance must be > 0 and max_steps >= 1");
+
+  const Field field(density, solve_poisson_neumann(density));
+  GridWarp g = GridWarp::uniform(o.cells);
+  const double tol = o.tolerance / o.cells;
+  const double max_move = 0.5 / std::max(o.cells, density.width);
+  std::atomic<long> total{0};
+  std::atomic<int> most{0};
+  auto run = [&](int j0, int j1) {
+    long local = 0;
+    int local_most = 0;
+    for (int j = j0; j < j1; ++j)
+      for (int i = 0; i <= o.cells; ++i) {
+        const int s = advect(field, g.at(i, j), tol, max_move, o.max_steps);
+        local += s;
+        local_most = std::max(local_most, s);
+      }
+    total += local;
+    int cur = most.load();
+    while (local_most > cur && !most.compare_exchange_weak(cur, local_most)) {
+    }
+  };
+  if (o.parallel)
+    tbb::parallel_for(tbb::blocked_range<int>(0, o.cells + 1, 4),
+                      [&](const tbb::blocked_range<int>& r) { run(r.begin(), r.end()); });
+  else
+    run(0, o.cells + 1);
+  // Round-off can move a side point off its side by ~1e-17: put it back exactly.
+  for (int k = 0; k <= o.cells; ++k) {
+    g.at(0, k).x() = 0;
+    g.at(o.cells, k).x() = 1;
+    g.at(k, 0).y() = 0;
+    g.at(k, o.cells).y() = 1;
+  }
+  if (stats) {
+    stats->total_steps = total;
+    stats->max_steps = most;
+    stats->max_displacement = g.max_displacement();
+    stats->inverted_cells = 0;
+    double err = 0;
+    const double n2 = double(o.cells) * o.cells;
+    for (int j = 0; j < o.cells; ++j)
+      for (int i = 0; i < o.cells; ++i) {
+        const double a = cell_signed_area(g, i, j);
+        if (a <= 0) ++stats->inverted_cells;
+        const double target = sample_bilinear(density, (i + 0.5) / o.cells, (j + 0.5) / o.cells) / field.mean;
+        err += std::abs(a * n2 - target);
+      }
+    stats->density_error = err / n2;
+  }
+  return g;
+}
+
+}  // namespace adaptex
