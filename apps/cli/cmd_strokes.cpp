@@ -1,4 +1,4 @@
-// `adaptex strokes generate MESH --kind lines|blobs|mixed [--seed S] [--count N] -o S.json`:
+// `adaptex strokes generate MESH --kind lines|blobs|mixed|dots [--seed S] [--count N] -o S.json`:
 // seeded, reproducible test stroke sets (paint/generate.h).
 // `adaptex strokes check S.json [-o OUT.json]`: strict validation of a stroke file (one line naming
 // the stroke index and field on error, exit 2); with -o writes it back normalized (defaults filled).
@@ -27,7 +27,7 @@ struct CheckArgs {
   std::string input, output;
 };
 
-void print_summary(const std::string& file, const StrokeFile& s) {
+void print_summary(const std::string& file, const StrokeFile& s, const GeneratedRegion& region = {}) {
   int decals = 0;
   for (const Stroke& st : s.strokes) decals += st.type == Stroke::Type::Decal;
   nlohmann::json j;
@@ -36,6 +36,10 @@ void print_summary(const std::string& file, const StrokeFile& s) {
   j["decals"] = decals;
   j["dabs"] = s.num_dabs();
   j["background"] = {s.background[0], s.background[1], s.background[2]};
+  if (region.radius > 0)
+    j["region"] = {{"centre", {region.centre[0], region.centre[1], region.centre[2]}},
+                   {"radius", region.radius},
+                   {"area_fraction", region.area_fraction}};
   std::cout << j.dump() << "\n";
 }
 
@@ -49,11 +53,12 @@ void run_generate(const GenerateArgs& a, const Context& ctx) {
   ReadReport report;
   const TriMesh mesh = read_mesh(a.mesh, {}, &report);
   for (const auto& w : report.warnings) ctx.warn(w);
-  const StrokeFile s = generate_strokes(mesh, opt);
+  GeneratedRegion region;
+  const StrokeFile s = generate_strokes(mesh, opt, &region);
   AtomicOutput out;
   write_strokes(out.add(a.output), s);
   out.commit();
-  print_summary(a.output, s);
+  print_summary(a.output, s, region);
 }
 
 void run_check(const CheckArgs& a, const Context& ctx) {
@@ -77,12 +82,14 @@ void add_strokes_command(CLI::App& app, Context& ctx) {
   auto* gen = sub->add_subcommand(
       "generate",
       "Generate a seeded, reproducible stroke set on a mesh: lines (many thin hard strokes in one "
-      "region), blobs (a few broad soft strokes), mixed (both). Sizes are fractions of the "
-      "bounding-box diagonal; dabs lie on the surface.");
+      "region), blobs (a few broad soft strokes), mixed (both), dots (150-400 tiny hard dots "
+      "sprinkled in a ball holding 10-20% of the surface: speckle, text-like). Sizes are fractions of "
+      "the bounding-box diagonal; dabs lie on the surface.");
   gen->add_option("mesh", g->mesh, "Input mesh (any format read_mesh reads)")->required();
-  gen->add_option("--kind", g->kind, "lines | blobs | mixed (default mixed)");
+  gen->add_option("--kind", g->kind, "lines | blobs | mixed | dots (default mixed)");
   gen->add_option("--seed", g->seed, "Random seed (default 1)");
-  gen->add_option("--count", g->count, "Number of strokes (default: 60 lines, 6 blobs, 48 mixed)");
+  gen->add_option("--count", g->count,
+                  "Number of strokes (default: 60 lines, 6 blobs, 48 mixed, 150-400 dots drawn from the seed)");
   gen->add_option("-o,--output", g->output, "Output stroke file (.json)")->required();
   gen->callback([g, &ctx] { run_generate(*g, ctx); });
 

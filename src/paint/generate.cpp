@@ -1,5 +1,6 @@
 /// \file generate.cpp
-/// Seeded test stroke sets: surface walks (tangent step + closest-point projection).
+/// Seeded test stroke sets: surface walks (tangent step + closest-point projection); dots sprinkled
+/// in a Euclidean ball around a random surface point.
 #include "adaptex/paint/generate.h"
 
 #include <algorithm>
@@ -135,6 +136,47 @@ class Walker {
     return dabs;
   }
 
+  /// Radius of the Euclidean ball around \p c whose faces (by centroid distance) hold \p fraction of
+  /// the total surface area.
+  double ball_radius_for_area(const Vec3& c, double fraction) const {
+    std::vector<std::pair<double, int>> by_distance(mesh_.faces.size());
+    for (int f = 0; f < mesh_.num_faces(); ++f) {
+      by_distance[f] = {(centroid(f) - c).norm(), f};
+    }
+    std::sort(by_distance.begin(), by_distance.end());
+    double area = 0;
+    for (const auto& [d, f] : by_distance)
+      if ((area += face_area(mesh_, f)) >= fraction * total_) return d;
+    return by_distance.back().first;
+  }
+
+  /// Faces with a vertex or the centroid within \p radius of \p c, plus \p c's own face \p cf.
+  std::vector<int> faces_in_ball(const Vec3& c, double radius, int cf) const {
+    std::vector<int> out;
+    for (int f = 0; f < mesh_.num_faces(); ++f) {
+      const Face& t = mesh_.faces[f];
+      bool in = f == cf || (centroid(f) - c).norm() <= radius;
+      for (int k = 0; k < 3 && !in; ++k) in = (mesh_.positions[t[k]] - c).norm() <= radius;
+      if (in && face_area(mesh_, f) > 0) out.push_back(f);
+    }
+    return out;
+  }
+
+  /// Area-uniform random point of \p faces (cumulative areas \p cdf) inside the ball (c, radius),
+  /// by rejection; \p fallback (a point of the ball on the surface) if 64 tries miss.
+  std::pair<Vec3, int> random_point_in_ball(Rng& rng, const std::vector<int>& faces, const std::vector<double>& cdf,
+                                            const Vec3& c, double radius, std::pair<Vec3, int> fallback) const {
+    for (int attempt = 0; attempt < 64; ++attempt) {
+      const size_t k = std::min(faces.size() - 1, static_cast<size_t>(std::upper_bound(cdf.begin(), cdf.end(),
+                                                                                       rng.uniform() * cdf.back()) -
+                                                                      cdf.begin()));
+      const double s = std::sqrt(rng.uniform()), t = rng.uniform();
+      const Vec3 p = point_on_face(mesh_, faces[k], 1 - s, s * (1 - t));
+      if ((p - c).norm() <= radius) return {p, faces[k]};
+    }
+    return fallback;
+  }
+
   /// Faces with a vertex within \p radius of \p c.
   std::vector<int> faces_near(const Vec3& c, double radius) const {
     std::vector<int> out;
@@ -147,7 +189,13 @@ class Walker {
     return out;
   }
 
+ const TriMesh& mesh() const { return mesh_; }
+
  private:
+  Vec3 centroid(int f) const {
+    const Face& t = mesh_.faces[f];
+    return (mesh_.positions[t[0]] + mesh_.positions[t[1]] + mesh_.positions[t[2]]) / 3.0;
+  }
   Vec3 closest(const Vec3& p, int f) const {
     const Face& t = mesh_.faces[f];
     return closest_on_triangle(p, mesh_.positions[t[0]], mesh_.positions[t[1]], mesh_.positions[t[2]]);
@@ -166,8 +214,9 @@ class Walker {
   double total_ = 0;
 };
 
-Vec3 random_colour(Rng& rng) {
-  const double h = rng.uniform(0, 6), s = rng.uniform(0.6, 1.0), v = rng.uniform(0.45, 1.0);
+/// Random HSV colour with saturation in [s_min, 1] and value in [v_min, 1].
+Vec3 random_colour(Rng& rng, double s_min = 0.6, double v_min = 0.45) {
+  const double h = rng.uniform(0, 6), s = rng.uniform(s_min, 1.0), v = rng.uniform(v_min, 1.0);
   const double c = v * s, x = c * (1 - std::abs(std::fmod(h, 2.0) - 1)), m = v - c;
   Vec3 rgb;
   switch (static_cast<int>(h) % 6) {
@@ -181,29 +230,71 @@ Vec3 random_colour(Rng& rng) {
   return (rgb + Vec3::Constant(m)).cwiseMax(0.0).cwiseMin(1.0);
 }
 
+/// The Dots kind (generate.h): \p count dots (-1: 150-400) in a ball holding 10-20 % of the area.
+void generate_dots(const Walker& walker, Rng& rng, double diag, int count, StrokeFile& file,
+                   GeneratedRegion& region) {
+  const auto centre = walker.random_point(rng);
+  region.centre = centre.first;
+  region.area_fraction = rng.uniform(0.10, 0.20);
+  region.radius = walker.ball_radius_for_area(region.centre, region.area_fraction);
+  const std::vector<int> faces = walker.faces_in_ball(region.centre, region.radius, centre.second);
+  std::vector<double> cdf(faces.size());
+  double total = 0;
+  for (size_t k = 0; k < faces.size(); ++k) cdf[k] = total += face_area(walker.mesh(), faces[k]);
+  if (count < 0) count = 150 + std::min(250, static_cast<int>(rng.uniform() * 251));
+  for (int k = 0; k < count; ++k) {
+    Stroke s;
+    s.color = random_colour(rng, 0.8, 0.6);
+    s.radius = rng.uniform(0.001, 0.002) * diag;
+    s.hardness = rng.uniform(0.8, 1.0);
+    s.opacity = 1.0;
+    const int extra = std::min(2, static_cast<int>(rng.uniform() * 3));  // 1-3 dabs
+    const double step = rng.uniform(0.5, 1.0) * s.radius;
+    auto [p, f] = walker.random_point_in_ball(rng, faces, cdf, region.centre, region.radius, centre);
+    if (extra == 0) {
+      s.dabs = {p};
+    } else {
+      for (const Vec3& q : walker.walk(rng, p, f, extra * step, step))
+        if ((q - region.centre).norm() <= region.radius) s.dabs.push_back(q);
+    }
+    file.strokes.push_back(std::move(s));
+  }
+}
+
 }  // namespace
 
 StrokeKind parse_stroke_kind(const std::string& name) {
   if (name == "lines") return StrokeKind::Lines;
   if (name == "blobs") return StrokeKind::Blobs;
   if (name == "mixed") return StrokeKind::Mixed;
-  throw InvalidInputError("unknown stroke kind \"" + name + "\" (expected lines, blobs or mixed)");
+  if (name == "dots") return StrokeKind::Dots;
+  throw InvalidInputError("unknown stroke kind \"" + name + "\" (expected lines, blobs, mixed or dots)");
 }
 
 std::string to_string(StrokeKind kind) {
   switch (kind) {
     case StrokeKind::Lines: return "lines";
     case StrokeKind::Blobs: return "blobs";
+    case StrokeKind::Dots: return "dots";
     default: return "mixed";
   }
 }
 
-StrokeFile generate_strokes(const TriMesh& mesh, const GenerateOptions& options) {
+StrokeFile generate_strokes(const TriMesh& mesh, const GenerateOptions& options, GeneratedRegion* region_out) {
   if (options.count < 1 && options.count != -1)
     throw InvalidInputError("strokes generate: --count must be >= 1 (got " + std::to_string(options.count) + ")");
   const Walker walker(mesh);
   const double diag = bounding_box(mesh).diagonal();
   Rng rng{options.seed * 0xA24BAED4963EE407ULL + 0x1234567ULL};
+  StrokeFile file;
+  file.background = options.background;
+  GeneratedRegion ball;
+  if (options.kind == StrokeKind::Dots) {
+    generate_dots(walker, rng, diag, options.count, file, ball);
+    if (region_out) *region_out = ball;
+    return file;
+  }
+  if (region_out) *region_out = ball;
   int lines = 0, blobs = 0;
   switch (options.kind) {
     case StrokeKind::Lines: lines = options.count > 0 ? options.count : 60; break;
@@ -214,9 +305,8 @@ StrokeFile generate_strokes(const TriMesh& mesh, const GenerateOptions& options)
       lines = n - blobs;
       break;
     }
+    case StrokeKind::Dots: break;
   }
-  StrokeFile file;
-  file.background = options.background;
   for (int k = 0; k < blobs; ++k) {
     Stroke s;
     s.color = random_colour(rng);

@@ -175,8 +175,20 @@ TEST(BrushCli, GenerateIsReproducibleAndOnTheSurface) {
   for (const Stroke& s : blobs.strokes) EXPECT_GE(s.radius, 0.04 * diag * 0.999);
   const StrokeFile mixed = read_strokes((gen("mixed", 1, "e.json"), tmp.path / "e.json"));
   EXPECT_EQ(mixed.strokes.size(), 48u);
-  const auto bad = run_cli("strokes generate " + q(tmp.path / "s.obj") + " --kind dots -o " + q(tmp.path / "x.json"));
+  EXPECT_EQ(gen("dots", 2, "f.json"), gen("dots", 2, "g.json"));
+  const StrokeFile dots = read_strokes(tmp.path / "f.json");
+  EXPECT_GE(dots.strokes.size(), 150u);
+  EXPECT_LE(dots.strokes.size(), 400u);
+  for (const Stroke& s : dots.strokes) EXPECT_LE(s.radius, 0.002 * diag * 1.001);
+  const auto summary = run_cli("strokes generate " + q(tmp.path / "s.obj") + " --kind dots -o " + q(tmp.path / "h.json"));
+  ASSERT_EQ(summary.exit_code, 0) << summary.err;
+  const auto js = nlohmann::json::parse(summary.out);
+  EXPECT_EQ(js["strokes"].get<size_t>(), read_strokes(tmp.path / "h.json").strokes.size());
+  EXPECT_GT(js["region"]["radius"].get<double>(), 0.0);
+  const auto bad = run_cli("strokes generate " + q(tmp.path / "s.obj") + " --kind speckle -o " + q(tmp.path / "x.json"));
   EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.err.find("unknown stroke kind \"dots\""), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_NE(bad.err.find("unknown stroke kind \"speckle\" (expected lines, blobs, mixed or dots)"), std::string::npos)
+      << bad.err;
   EXPECT_FALSE(std::filesystem::exists(tmp.path / "x.json"));
 }
