@@ -258,9 +258,9 @@ int bicgstab(const AmgPreconditioner::RowMat& a, const AmgPreconditioner& m,
     }
     rho = rho_cur;
     if (converged(r)) return it;
+    if (!r.allFinite()) return -max_iterations;  // breakdown with non-finite values
   }
-  throw SolverError("Tutte system: BiCGSTAB (AMG) did not converge in " +
-                    std::to_string(max_iterations) + " iterations");
+  return -max_iterations;
 }
 
 }  // namespace adaptex::detail

@@ -19,6 +19,9 @@
 #ifdef ADAPTEX_HAVE_UMFPACK
 #include <Eigen/UmfPackSupport>
 #endif
+#ifdef ADAPTEX_HAVE_KLU
+#include <klu.h>
+#endif
 
 namespace adaptex {
 
@@ -355,6 +358,54 @@ DiskBoundary map_boundary_to_square(const TriMesh& disk, const std::vector<int>&
 // ---------------------------------------------------------------------------------------------
 // Solver.
 
+#ifdef ADAPTEX_HAVE_KLU
+namespace {
+
+/// KLU factorization of Aᵀ (the row-major A's arrays read as compressed columns). Aᵀ is column
+/// diagonally dominant (each row of A: diagonal 1, off-diagonal magnitudes summing to <= 1), so the
+/// diagonal pivots of the first factorization stay good for any later weights: refactor() keeps the
+/// pivot order and only redoes the numbers (klu_refactor). solve() uses klu_tsolve: A x = b.
+class KluFactor {
+ public:
+  KluFactor() {
+    klu_defaults(&common_);
+    common_.btf = 0;    // the Tutte matrix of a disk is irreducible: a block triangular form has one block
+    common_.scale = 0;  // diagonally dominant already: no row scaling
+  }
+  ~KluFactor() { clear(); }
+  KluFactor(const KluFactor&) = delete;
+  KluFactor& operator=(const KluFactor&) = delete;
+
+  /// Factorizes \p a; reuses the symbolic analysis and, when \p refactor, the pivot order.
+  bool factorize(RowMat& a, bool refactor) {
+    int* ap = a.outerIndexPtr();
+    int* ai = a.innerIndexPtr();
+    double* ax = a.valuePtr();
+    if (!symbolic_) symbolic_ = klu_analyze(static_cast<int>(a.rows()), ap, ai, &common_);
+    if (!symbolic_) return false;
+    if (numeric_ && refactor && klu_refactor(ap, ai, ax, symbolic_, numeric_, &common_)) return true;
+    if (numeric_) klu_free_numeric(&numeric_, &common_);
+    numeric_ = klu_factor(ap, ai, ax, symbolic_, &common_);
+    return numeric_ != nullptr;
+  }
+  /// Overwrites the column-major n×2 block \p b with A⁻¹ b.
+  bool solve(Eigen::MatrixX2d& b) {
+    return klu_tsolve(symbolic_, numeric_, static_cast<int>(b.rows()), 2, b.data(), &common_) != 0;
+  }
+  void clear() {
+    if (numeric_) klu_free_numeric(&numeric_, &common_);
+    if (symbolic_) klu_free_symbolic(&symbolic_, &common_);
+  }
+
+ private:
+  klu_common common_{};
+  klu_symbolic* symbolic_ = nullptr;
+  klu_numeric* numeric_ = nullptr;
+};
+
+}  // namespace
+#endif
+
 struct TutteSolver::Impl {
   RowMat A;                   ///< Master matrix (row-major), pattern fixed at construction.
   std::vector<int> entry_pos; ///< Weight entry -> position in A's values (-1: boundary neighbour).
@@ -362,9 +413,24 @@ struct TutteSolver::Impl {
 #ifdef ADAPTEX_HAVE_UMFPACK
   Eigen::UmfPackLU<SpMat> umf;
 #endif
+#ifdef ADAPTEX_HAVE_KLU
+  KluFactor klu;
+#endif
   Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>> lu;
   detail::AmgPreconditioner amg;
-  bool analyzed = false;
+  // Whether each backend's symbolic analysis (AMG: hierarchy) of A's pattern exists.
+  bool klu_analyzed = false, umf_analyzed = false, lu_analyzed = false, amg_analyzed = false;
+
+  bool solve_direct(Backend b, const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d& x);
+
+  /// ||A x - b|| <= tol ||b|| for both columns, and x finite.
+  bool residual_ok(const Eigen::MatrixX2d& b, const Eigen::MatrixX2d& x, double tol) const {
+    if (!x.allFinite()) return false;
+    const Eigen::MatrixX2d r = A * x - b;
+    for (int c = 0; c < 2; ++c)
+      if (!(r.col(c).norm() <= tol * std::max(b.col(c).norm(), 1e-300))) return false;
+    return true;
+  }
 };
 
 TutteSolver::TutteSolver(const ConvexWeights& pattern, const std::vector<char>& is_boundary,
@@ -378,7 +444,10 @@ TutteSolver::TutteSolver(const ConvexWeights& pattern, const std::vector<char>& 
       interior_.push_back(v);
     }
   const int n = num_interior();
-  if (backend_ == Backend::Auto) backend_ = n <= kAutoDirectLimit ? Backend::Umfpack : Backend::Multigrid;
+  if (backend_ == Backend::Auto) backend_ = n <= kAutoDirectLimit ? Backend::Klu : Backend::Multigrid;
+#ifndef ADAPTEX_HAVE_KLU
+  if (backend_ == Backend::Klu) backend_ = Backend::Umfpack;
+#endif
 #ifndef ADAPTEX_HAVE_UMFPACK
   if (backend_ == Backend::Umfpack) backend_ = Backend::SparseLU;
 #endif
@@ -408,59 +477,106 @@ TutteSolver::TutteSolver(const ConvexWeights& pattern, const std::vector<char>& 
 
 TutteSolver::~TutteSolver() = default;
 
+/// Direct solve of A x = rhs with the backend \p b (Klu, Umfpack or SparseLU), reusing its symbolic
+/// analysis. Returns false on factorization failure or a non-finite / inaccurate result.
+bool TutteSolver::Impl::solve_direct(Backend b, const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d& x) {
+  Impl& im = *this;
+  constexpr double kDirectTolerance = 1e-8;
+  switch (b) {
+#ifdef ADAPTEX_HAVE_KLU
+    case Backend::Klu: {
+      const bool refactor = klu_analyzed;
+      klu_analyzed = true;
+      if (!im.klu.factorize(im.A, refactor)) return false;
+      x = rhs;
+      if (im.klu.solve(x) && im.residual_ok(rhs, x, kDirectTolerance)) return true;
+      if (!refactor) return false;
+      // The kept pivot order no longer suits the new values: factorize afresh (partial pivoting).
+      if (!im.klu.factorize(im.A, false)) return false;
+      x = rhs;
+      return im.klu.solve(x) && im.residual_ok(rhs, x, kDirectTolerance);
+    }
+#endif
+#ifdef ADAPTEX_HAVE_UMFPACK
+    case Backend::Umfpack: {
+      const SpMat Ac(im.A);
+      if (!umf_analyzed) im.umf.analyzePattern(Ac), umf_analyzed = true;
+      im.umf.factorize(Ac);
+      if (im.umf.info() != Eigen::Success) return false;
+      x = im.umf.solve(rhs);
+      return im.residual_ok(rhs, x, kDirectTolerance);
+    }
+#endif
+    default: {
+      const SpMat Ac(im.A);
+      if (!lu_analyzed) im.lu.analyzePattern(Ac), lu_analyzed = true;
+      im.lu.factorize(Ac);
+      if (im.lu.info() != Eigen::Success) return false;
+      x = im.lu.solve(rhs);
+      return im.residual_ok(rhs, x, kDirectTolerance);
+    }
+  }
+}
+
 void TutteSolver::solve(const ConvexWeights& w, std::vector<Vec2>& uv) {
   const int n = num_interior();
   if (n == 0) return;
-  RowMat& A = impl_->A;
+  Impl& im = *impl_;
+  RowMat& A = im.A;
   // A(i,i) = 1, A(i,j) = -λ_vw (w interior); rhs_i = Σ_{w boundary} λ_vw ψ(w).
   Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2);
   double* val = A.valuePtr();
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, 4096), [&](const tbb::blocked_range<int>& r) {
-    for (int i = r.begin(); i != r.end(); ++i) {
-      const int v = interior_[i];
-      val[impl_->diag_pos[i]] = 1.0;
-      for (int k = w.offsets[v]; k < w.offsets[v + 1]; ++k) {
-        const int p = impl_->entry_pos[k];
-        if (p >= 0) val[p] = -w.values[k];
-        else rhs.row(i) += w.values[k] * uv[w.neighbors[k]].transpose();
-      }
+  auto assemble = [&](int i) {
+    const int v = interior_[i];
+    val[im.diag_pos[i]] = 1.0;
+    for (int k = w.offsets[v]; k < w.offsets[v + 1]; ++k) {
+      const int p = im.entry_pos[k];
+      if (p >= 0) val[p] = -w.values[k];
+      else rhs.row(i) += w.values[k] * uv[w.neighbors[k]].transpose();
     }
-  });
+  };
+  if (n < 8192) {
+    for (int i = 0; i < n; ++i) assemble(i);
+  } else {
+    tbb::parallel_for(tbb::blocked_range<int>(0, n, 4096), [&](const tbb::blocked_range<int>& r) {
+      for (int i = r.begin(); i != r.end(); ++i) assemble(i);
+    });
+  }
   Eigen::MatrixX2d x(n, 2);
-  auto fail = [](const char* what) { throw SolverError(std::string("Tutte system: ") + what); };
-  switch (backend_) {
-#ifdef ADAPTEX_HAVE_UMFPACK
-    case Backend::Umfpack: {
-      const SpMat Ac(A);
-      if (!impl_->analyzed) impl_->umf.analyzePattern(Ac), impl_->analyzed = true;
-      impl_->umf.factorize(Ac);
-      if (impl_->umf.info() != Eigen::Success) fail("UMFPACK factorization failed");
-      x = impl_->umf.solve(rhs);
-      break;
-    }
-#else
-    case Backend::Umfpack:
-#endif
-    case Backend::Auto:
-    case Backend::SparseLU: {
-      const SpMat Ac(A);
-      if (!impl_->analyzed) impl_->lu.analyzePattern(Ac), impl_->analyzed = true;
-      impl_->lu.factorize(Ac);
-      if (impl_->lu.info() != Eigen::Success) fail("SparseLU factorization failed");
-      x = impl_->lu.solve(rhs);
-      break;
-    }
-    case Backend::Multigrid: {
-      if (!impl_->analyzed) impl_->amg.setup(A), impl_->analyzed = true;
-      else impl_->amg.update(A);
+  bool ok = false;
+  if (backend_ == Backend::Multigrid) {
+    try {
+      if (!im.amg_analyzed) im.amg.setup(A), im.amg_analyzed = true;
+      else im.amg.update(A);
       detail::AmgPreconditioner::Block xb(n, 2), bb = rhs;
       for (int i = 0; i < n; ++i) xb.row(i) = uv[interior_[i]].transpose();
-      last_iterations_ += detail::bicgstab(A, impl_->amg, bb, xb, tolerance_, 500);
+      if (!xb.allFinite()) xb.setConstant(0.5);
+      const int its = detail::bicgstab(A, im.amg, bb, xb, tolerance_, max_iterations_);
+      last_iterations_ += std::abs(its);
       x = xb;
-      break;
+      ok = its >= 0 && x.allFinite();
+    } catch (const SolverError&) {  // the AMG hierarchy could not be built (singular coarse level)
+      im.amg_analyzed = false;
+      ok = false;
     }
+  } else {
+    ok = im.solve_direct(backend_, rhs, x);
   }
-  if (!x.allFinite()) fail("solution is not finite");
+  if (!ok) {
+    // Fallback (issue 8): the iterative solver did not converge or the direct one failed. A direct
+    // LU with partial pivoting (UMFPACK, else SparseLU) from scratch; the Tutte matrix of strictly
+    // positive convex weights is a non-singular M-matrix, so this only fails on non-finite weights.
+    ++fallbacks_;
+#ifdef ADAPTEX_HAVE_UMFPACK
+    const Backend fb = backend_ == Backend::Umfpack ? Backend::SparseLU : Backend::Umfpack;
+#else
+    const Backend fb = Backend::SparseLU;
+#endif
+    ok = im.solve_direct(fb, rhs, x);
+  }
+  if (!ok)
+    throw SolverError("Tutte system (" + std::to_string(n) +
+                      " unknowns): no backend produced a finite solution (non-finite weights?)");
   for (int i = 0; i < n; ++i) uv[interior_[i]] = x.row(i).transpose();
 }
 

@@ -69,12 +69,18 @@ class TutteSolver {
  public:
   /// Linear-algebra backend.
   enum class Backend {
-    Auto,       ///< Umfpack up to 20k unknowns, Multigrid above (see docs/parameterization.md).
+    Auto,       ///< Klu up to 20k unknowns, Multigrid above (see docs/parameterization.md).
     Umfpack,    ///< SuiteSparse UMFPACK LU, symbolic analysis reused (SparseLU if not built with it).
     SparseLU,   ///< Eigen::SparseLU (supernodal LU, no extra library), symbolic analysis reused.
     Multigrid,  ///< BiCGSTAB preconditioned by smoothed-aggregation AMG (aggregates reused),
                 ///< warm-started from the current uv. Scales linearly; for 100k+ faces.
+    Klu,        ///< SuiteSparse KLU (Davis & Palamadai Natarajan 2010, "Algorithm 907: KLU"), symbolic
+                ///< analysis and pivot order reused (klu_refactor): the fastest on small systems
+                ///< (Umfpack if not built with it).
   };
+  // Every backend checks its result (finite, relative residual <= 1e-8 for the direct ones, the
+  // tolerance for Multigrid). On failure solve() falls back to a fresh direct LU with partial
+  // pivoting (UMFPACK, or SparseLU when the failing backend is UMFPACK) and counts it in fallbacks().
   /// \param pattern weights whose sparsity pattern every later solve() uses.
   /// \param is_boundary V flags; boundary vertices are fixed.
   TutteSolver(const ConvexWeights& pattern, const std::vector<char>& is_boundary,
@@ -86,15 +92,21 @@ class TutteSolver {
   /// Solves for the interior positions. \p uv (size V): boundary entries are read (the fixed boundary),
   /// interior entries are overwritten (and used as the initial guess by BiCgStab).
   /// \pre weights has the pattern given at construction.
-  /// \throw SolverError factorization or convergence failure
+  /// \throw SolverError neither the backend nor the direct fallback produced an accurate finite
+  ///   solution (only with non-finite weights)
   void solve(const ConvexWeights& weights, std::vector<Vec2>& uv);
 
   /// The backend in use (Auto resolved).
   Backend backend() const { return backend_; }
   /// Relative residual tolerance of the iterative backend (default 1e-10).
   void set_tolerance(double tol) { tolerance_ = tol; }
+  /// Cap on BiCGSTAB iterations per solve (Multigrid backend, default 500); on reaching it solve()
+  /// falls back to a direct factorization.
+  void set_max_iterations(int its) { max_iterations_ = its; }
   /// BiCGSTAB iterations summed over all solves so far (iterative backend only).
   int iterations() const { return last_iterations_; }
+  /// Solves so far that needed the direct fallback (the backend failed or did not converge).
+  int fallbacks() const { return fallbacks_; }
   int num_interior() const { return static_cast<int>(interior_.size()); }
 
  private:
@@ -102,7 +114,9 @@ class TutteSolver {
   std::unique_ptr<Impl> impl_;
   Backend backend_;
   double tolerance_ = 1e-10;
+  int max_iterations_ = 500;
   int last_iterations_ = 0;
+  int fallbacks_ = 0;
   std::vector<int> interior_;   ///< Interior vertex of each unknown.
   std::vector<int> unknown_;    ///< V: unknown index of each vertex (-1 on the boundary).
 };

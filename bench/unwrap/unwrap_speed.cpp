@@ -1,0 +1,70 @@
+// Speed of the whole unwrap() (cut + Floater + Yoshizawa + augmentation + packing) against thesis
+// Table 4.1 ("Init-param." column, 2005 hardware), issue 8 target: >= 100x the thesis speed at the
+// same face count. Each benchmark reports the median wall time (ms) over its repetitions and the
+// counters target_ms = thesis_s * 1000 / 100, thesis_s, L2 (final mesh L2 stretch) and faces.
+//
+//   build/bench/unwrap/bench_unwrap_speed --benchmark_repetitions=15
+//       --benchmark_report_aggregates_only=true --benchmark_counters_tabular=true   (one line)
+//
+// The shared meshes stand in for the thesis models of (about) the same face count: venus.off for
+// venus (1396 faces), triceratops.off for triceratops (5660), dino.off (7828) for horse (7500).
+// Results: docs/benchmarks.md.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <string>
+
+#include "adaptex/io/mesh_io.h"
+#include "adaptex/param/unwrap.h"
+
+using namespace adaptex;
+
+namespace {
+
+struct ThesisRow {
+  const char* thesis_model;  ///< Model name in thesis Table 4.1.
+  int thesis_faces;          ///< Face count in Table 4.1.
+  double thesis_seconds;     ///< "Init-param." time in Table 4.1 (s).
+  const char* file;          ///< Stand-in mesh in ../shared/meshes.
+};
+
+constexpr ThesisRow kRows[] = {
+    {"venus", 1396, 0.625, "venus.off"},
+    {"triceratops", 5660, 3.234, "triceratops.off"},
+    {"horse", 7500, 4.906, "dino.off"},
+};
+
+void run(benchmark::State& state, const ThesisRow& row) {
+  const std::filesystem::path file = std::filesystem::path(ADAPTEX_SHARED_DIR) / "meshes" / row.file;
+  if (!std::filesystem::exists(file)) {
+    state.SkipWithError("mesh not available (../shared/meshes absent)");
+    return;
+  }
+  const TriMesh mesh = read_mesh(file);
+  UnwrapResult r;
+  for (auto _ : state) {
+    r = unwrap(mesh);
+    benchmark::DoNotOptimize(r.param.uv.data());
+  }
+  state.counters["faces"] = mesh.num_faces();
+  state.counters["thesis_s"] = row.thesis_seconds;
+  state.counters["target_ms"] = row.thesis_seconds * 1000.0 / 100.0;
+  state.counters["L2"] = r.report.final_l2;
+  state.counters["augm"] = r.report.augmentations;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (const ThesisRow& row : kRows) {
+    const std::string label = std::string("Unwrap/") + row.thesis_model + "/" + row.file;
+    benchmark::RegisterBenchmark(label.c_str(), [&row](benchmark::State& s) { run(s, row); })
+        ->Unit(benchmark::kMillisecond)
+        ->MeasureProcessCPUTime()
+        ->UseRealTime();
+  }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
