@@ -5,7 +5,10 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <string>
 #include <unordered_map>
+
+#include "adaptex/core/errors.h"
 
 namespace adaptex::shapes {
 
@@ -295,6 +298,104 @@ TriMesh trefoil_knot(int segments, int sides, double tube) {
     return Vec3(c + tube * 3.0 * (std::cos(a) * N + std::sin(a) * B) * 0.3);
   });
   orient_outward(m);
+  return m;
+}
+
+TriMesh genus_surface(int genus, int cells_per_unit) {
+  if (genus < 0 || genus > 64)
+    throw InvalidInputError("genus_surface: genus " + std::to_string(genus) + " is outside [0, 64]");
+  if (cells_per_unit < 2 || cells_per_unit > 200)
+    throw InvalidInputError("genus_surface: cells_per_unit " + std::to_string(cells_per_unit) +
+                            " is outside [2, 200]");
+  if (genus == 0) {
+    // An icosphere with about as many faces per unit area as one torus of the row.
+    int s = 0;
+    while (s < 7 && 20.0 * std::pow(4.0, s + 1) <= 110.0 * cells_per_unit * cells_per_unit) ++s;
+    return icosphere(s);
+  }
+  const double spacing = 2.1, R = 1.0, r = 0.4, k = 0.25;
+  auto f = [&](const Vec3& p) {
+    double d = 0;
+    for (int i = 0; i < genus; ++i) {
+      const Vec3 q = p - Vec3(spacing * (i - 0.5 * (genus - 1)), 0, 0);
+      const double t = std::hypot(std::hypot(q.x(), q.y()) - R, q.z()) - r;
+      if (i == 0) {
+        d = t;
+      } else {  // smooth union (polynomial smooth minimum)
+        const double hh = std::clamp(0.5 + 0.5 * (t - d) / k, 0.0, 1.0);
+        d = t + (d - t) * hh - k * hh * (1 - hh);
+      }
+    }
+    return d;
+  };
+  const double half = 0.5 * spacing * (genus - 1) + R + r + 0.3;
+  const Vec3 lo(-half, -(R + r + 0.3), -(r + 0.3)), hi(half, R + r + 0.3, r + 0.3);
+  const int res = std::max(4, static_cast<int>(std::ceil(2 * half * cells_per_unit)));
+  TriMesh m = marching_tetrahedra(f, lo, hi, res);
+  orient_outward(m);
+  return m;
+}
+
+TriMesh sphere_with_holes(int holes, int subdivisions) {
+  if (subdivisions < 0 || subdivisions > 7)
+    throw InvalidInputError("sphere_with_holes: subdivisions " + std::to_string(subdivisions) +
+                            " is outside [0, 7]");
+  if (holes < 1 || holes > (1 << (2 * subdivisions)))
+    throw InvalidInputError("sphere_with_holes: " + std::to_string(holes) +
+                            " holes do not fit on an icosphere with " +
+                            std::to_string(subdivisions) + " subdivisions");
+  const TriMesh ico = icosphere(subdivisions);
+  const double radius = std::min(0.6, 0.3 * std::sqrt(4 * kPi / holes));
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  std::vector<Vec3> centres;
+  for (int i = 0; i < holes; ++i) {
+    const double z = 1.0 - (2.0 * i + 1.0) / holes, rho = std::sqrt(1.0 - z * z);
+    centres.push_back(Vec3(rho * std::cos(golden * i), rho * std::sin(golden * i), z));
+  }
+  const int nv = ico.num_vertices();
+  std::vector<char> keep(nv, 1);
+  for (int v = 0; v < nv; ++v)
+    for (const Vec3& c : centres)
+      if (std::acos(std::clamp(ico.positions[v].dot(c), -1.0, 1.0)) < radius) keep[v] = 0;
+  // Remove pinched vertices: the kept faces around a kept vertex must form one fan. In the closed
+  // star of v, the number of fans of kept faces is (kept faces) - (edges at v shared by two kept
+  // faces), unless every face is kept.
+  for (bool changed = true; changed;) {
+    changed = false;
+    std::vector<int> kept_faces(nv, 0), star_faces(nv, 0);
+    std::map<std::pair<int, int>, int> kept_edge_faces;
+    for (const Face& t : ico.faces) {
+      const bool kf = keep[t[0]] && keep[t[1]] && keep[t[2]];
+      for (int j = 0; j < 3; ++j) {
+        ++star_faces[t[j]];
+        if (!kf) continue;
+        ++kept_faces[t[j]];
+        ++kept_edge_faces[std::minmax(t[j], t[(j + 1) % 3])];
+      }
+    }
+    std::vector<int> shared(nv, 0);
+    for (const auto& [e, n] : kept_edge_faces)
+      if (n == 2) ++shared[e.first], ++shared[e.second];
+    for (int v = 0; v < nv; ++v)
+      if (keep[v] && kept_faces[v] < star_faces[v] && kept_faces[v] - shared[v] != 1) {
+        keep[v] = 0;
+        changed = true;
+      }
+  }
+  TriMesh m;
+  std::vector<int> remap(nv, -1);
+  for (const Face& t : ico.faces) {
+    if (!(keep[t[0]] && keep[t[1]] && keep[t[2]])) continue;
+    Face nt;
+    for (int j = 0; j < 3; ++j) {
+      if (remap[t[j]] < 0) {
+        remap[t[j]] = m.num_vertices();
+        m.positions.push_back(ico.positions[t[j]]);
+      }
+      nt[j] = remap[t[j]];
+    }
+    m.faces.push_back(nt);
+  }
   return m;
 }
 

@@ -29,4 +29,18 @@ TriMesh bowtie_vertex();
 /// A closed genus-1 trefoil-knot tube: the demo's embedded default mesh.
 TriMesh trefoil_knot(int segments = 240, int sides = 24, double tube = 0.28);
 
+/// Closed surface of genus \p genus: a row of \p genus tori (major radius 1, minor 0.4, centres
+/// 2.1 apart) joined by a smooth union and polygonized by marching tetrahedra; genus 0 is an
+/// icosphere of about as many faces as one torus. \p cells_per_unit grid cells per unit length
+/// (double_torus(48) uses about 9); about 110 cells_per_unit^2 faces per torus (1.8k at the
+/// default 4). \pre 0 <= genus <= 64, 2 <= cells_per_unit <= 200.
+/// \throw InvalidInputError genus or cells_per_unit out of range
+TriMesh genus_surface(int genus, int cells_per_unit = 4);
+/// Unit sphere (icosphere with \p subdivisions levels) with \p holes circular holes, centred on a
+/// Fibonacci spiral of points, each of angular radius 0.3 sqrt(4 pi / holes) (at most 0.6 rad):
+/// genus 0, \p holes boundary loops, no pinched vertex (a vertex whose removed neighbours form
+/// several fans is removed too). \pre holes >= 1 and the holes are at least two edges wide
+/// (holes <= 4^subdivisions). \throw InvalidInputError out of range
+TriMesh sphere_with_holes(int holes, int subdivisions = 5);
+
 }  // namespace adaptex::shapes
