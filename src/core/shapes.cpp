@@ -399,4 +399,66 @@ TriMesh sphere_with_holes(int holes, int subdivisions) {
   return m;
 }
 
+TriMesh disjoint_union(const std::vector<TriMesh>& meshes) {
+  TriMesh m;
+  for (const TriMesh& part : meshes) m = merge(m, part);
+  return m;
+}
+
+TriMesh pinched_annulus(int n) {
+  if (n < 3) throw InvalidInputError("pinched_annulus: n " + std::to_string(n) + " is below 3");
+  const TriMesh grid = plane(n);
+  TriMesh m;
+  std::vector<int> remap(grid.positions.size(), -1);
+  // plane() emits two faces per cell, cell (i, j) at 2 (j n + i).
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const bool ring = i == 0 || j == 0 || i == n - 1 || j == n - 1;
+      if (!ring || (i == n - 1 && j == n - 1)) continue;
+      for (int h = 0; h < 2; ++h) {
+        Face t = grid.faces[2 * (j * n + i) + h];
+        for (int& v : t) {
+          if (remap[v] < 0) {
+            remap[v] = m.num_vertices();
+            m.positions.push_back(grid.positions[v]);
+          }
+          v = remap[v];
+        }
+        m.faces.push_back(t);
+      }
+    }
+  return m;
+}
+
+TriMesh with_pinched_hole(const TriMesh& closed) {
+  std::vector<std::vector<int>> vertex_faces(closed.positions.size());
+  for (int f = 0; f < closed.num_faces(); ++f)
+    for (int v : closed.faces[f]) vertex_faces[v].push_back(f);
+  auto corner = [&](int f, int v) {
+    const Face& t = closed.faces[f];
+    return t[0] == v ? 0 : t[1] == v ? 1 : 2;
+  };
+  for (int v = 0; v < closed.num_vertices(); ++v) {
+    const auto& around = vertex_faces[v];
+    if (around.size() < 4) continue;
+    // Order the one-ring: the face after (v, a, b) contains the edge v -> b.
+    std::vector<int> ring{around[0]};
+    while (ring.size() <= around.size()) {
+      const int b = closed.faces[ring.back()][(corner(ring.back(), v) + 2) % 3];
+      int next = -1;
+      for (int f : around)
+        if (closed.faces[f][(corner(f, v) + 1) % 3] == b) next = f;
+      if (next < 0 || next == ring[0]) break;
+      ring.push_back(next);
+    }
+    if (ring.size() != around.size()) continue;
+    TriMesh m = closed;
+    const int drop0 = ring[0], drop1 = ring[ring.size() / 2];
+    m.faces.erase(m.faces.begin() + std::max(drop0, drop1));
+    m.faces.erase(m.faces.begin() + std::min(drop0, drop1));
+    return m;
+  }
+  throw InvalidInputError("with_pinched_hole: no vertex of valence >= 4 with a closed one-ring");
+}
+
 }  // namespace adaptex::shapes

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <numeric>
-#include <unordered_map>
 
 namespace adaptex {
 
@@ -17,6 +16,12 @@ struct UnionFind {
   }
   void unite(int a, int b) { parent[find(a)] = find(b); }
 };
+
+/// Corner index 3f+k of vertex v in face f (v must be a corner of f).
+int corner_index(const TriMesh& mesh, int f, int v) {
+  const Face& t = mesh.faces[f];
+  return 3 * f + (t[0] == v ? 0 : t[1] == v ? 1 : 2);
+}
 
 }  // namespace
 
@@ -73,6 +78,97 @@ int MeshTopology::total_genus() const {
   return g;
 }
 
+VertexFans build_vertex_fans(const TriMesh& mesh, const EdgeConnectivity& ec) {
+  const int nf = mesh.num_faces();
+  UnionFind corners(3 * nf);
+  for (int e = 0; e < ec.num_edges(); ++e) {
+    const auto& fs = ec.edge_faces[e];
+    for (size_t k = 1; k < fs.size(); ++k)
+      for (int v : ec.edges[e]) corners.unite(corner_index(mesh, fs[0], v), corner_index(mesh, fs[k], v));
+  }
+  VertexFans out;
+  out.corner_fan.assign(3 * static_cast<size_t>(nf), -1);
+  std::vector<int> fan_of_root(3 * static_cast<size_t>(nf), -1);
+  for (int c = 0; c < 3 * nf; ++c) {
+    int& fan = fan_of_root[corners.find(c)];
+    if (fan < 0) {
+      fan = out.num_fans();
+      out.fan_vertex.push_back(mesh.faces[c / 3][c % 3]);
+    }
+    out.corner_fan[c] = fan;
+  }
+  return out;
+}
+
+namespace {
+
+/// Connected components of the faces through edges shared by two or more faces, numbered in the
+/// order of the lowest vertex (then fan) they contain. Returns the number of components.
+int face_components(const TriMesh& mesh, const EdgeConnectivity& ec, const VertexFans& fans,
+                    std::vector<int>& face_component) {
+  const int nf = mesh.num_faces();
+  UnionFind faces(nf);
+  for (const auto& fs : ec.edge_faces)
+    for (size_t k = 1; k < fs.size(); ++k) faces.unite(fs[0], fs[k]);
+  std::vector<int> fan_face(fans.num_fans(), -1);  // a face of every fan
+  for (int c = 0; c < 3 * nf; ++c)
+    if (fan_face[fans.corner_fan[c]] < 0) fan_face[fans.corner_fan[c]] = c / 3;
+  std::vector<int> order(fans.num_fans());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return fans.fan_vertex[a] < fans.fan_vertex[b]; });
+  std::vector<int> root_comp(nf, -1);
+  int nc = 0;
+  for (int fan : order) {
+    int& c = root_comp[faces.find(fan_face[fan])];
+    if (c < 0) c = nc++;
+  }
+  face_component.resize(nf);
+  for (int f = 0; f < nf; ++f) face_component[f] = root_comp[faces.find(f)];
+  return nc;
+}
+
+/// Boundary loops traced fan by fan (see MeshTopology::boundary_loops).
+std::vector<std::vector<int>> trace_boundary_loops(const TriMesh& mesh, const EdgeConnectivity& ec,
+                                                   const VertexFans& fans,
+                                                   std::vector<int>& loop_first_edge) {
+  // The (at most two) boundary edges of every fan.
+  std::vector<std::array<int, 2>> fan_boundary(fans.num_fans(), {-1, -1});
+  for (int e = 0; e < ec.num_edges(); ++e) {
+    if (!ec.is_boundary(e)) continue;
+    for (int v : ec.edges[e]) {
+      auto& slot = fan_boundary[fans.corner_fan[corner_index(mesh, ec.edge_faces[e][0], v)]];
+      (slot[0] < 0 ? slot[0] : slot[1]) = e;
+    }
+  }
+  std::vector<std::vector<int>> loops;
+  std::vector<char> visited(ec.num_edges(), 0);
+  for (int e0 = 0; e0 < ec.num_edges(); ++e0) {
+    if (!ec.is_boundary(e0) || visited[e0]) continue;
+    visited[e0] = 1;
+    const int f0 = ec.edge_faces[e0][0];
+    const Face& t = mesh.faces[f0];
+    int k = 0;
+    while (ec.face_edges[f0][k] != e0) ++k;
+    std::vector<int> loop{t[k]};
+    int e = e0, cur = t[(k + 1) % 3];
+    for (;;) {
+      const auto& slot = fan_boundary[fans.corner_fan[corner_index(mesh, ec.edge_faces[e][0], cur)]];
+      const int next = slot[0] == e ? slot[1] : slot[0];
+      if (next < 0 || next == e0 || visited[next]) break;  // closed (or open on non-manifold input)
+      loop.push_back(cur);
+      visited[next] = 1;
+      e = next;
+      cur = ec.edges[e][0] == cur ? ec.edges[e][1] : ec.edges[e][0];
+    }
+    loops.push_back(std::move(loop));
+    loop_first_edge.push_back(e0);
+  }
+  return loops;
+}
+
+}  // namespace
+
 MeshTopology analyze_topology(const TriMesh& mesh) {
   MeshTopology topo;
   const int nv = mesh.num_vertices(), nf = mesh.num_faces();
@@ -80,97 +176,49 @@ MeshTopology analyze_topology(const TriMesh& mesh) {
   topo.num_faces = nf;
   const EdgeConnectivity ec = build_edges(mesh);
   topo.num_edges = ec.num_edges();
+  const VertexFans fans = build_vertex_fans(mesh, ec);
 
-  // Components through shared vertices.
-  UnionFind uf(nv);
-  std::vector<char> used(nv, 0);
-  for (const Face& t : mesh.faces) {
-    uf.unite(t[0], t[1]);
-    uf.unite(t[1], t[2]);
-    for (int v : t) used[v] = 1;
-  }
-  std::vector<int> root_to_comp(nv, -1);
-  std::vector<int> vertex_comp(nv, -1);
+  // Unreferenced and pinched vertices.
+  std::vector<int> vertex_fans(nv, 0);
+  for (int v : fans.fan_vertex) ++vertex_fans[v];
   for (int v = 0; v < nv; ++v) {
-    if (!used[v]) {
-      ++topo.num_unreferenced_vertices;
-      continue;
-    }
-    int r = uf.find(v);
-    if (root_to_comp[r] < 0) root_to_comp[r] = topo.num_components++;
-    vertex_comp[v] = root_to_comp[r];
+    topo.num_unreferenced_vertices += vertex_fans[v] == 0;
+    if (vertex_fans[v] > 1) topo.nonmanifold_vertices.push_back(v);
   }
-  topo.face_component.resize(nf);
-  for (int f = 0; f < nf; ++f) topo.face_component[f] = vertex_comp[mesh.faces[f][0]];
-
-  // Non-manifold edges.
   for (int e = 0; e < ec.num_edges(); ++e)
     if (ec.edge_faces[e].size() > 2) topo.nonmanifold_edges.push_back(ec.edges[e]);
 
-  // Non-manifold vertices: the faces around a vertex must form one fan (connected across edges).
-  const VertexFaces vf = build_vertex_faces(mesh);
-  std::unordered_map<int, int> other_to_face;
-  for (int v = 0; v < nv; ++v) {
-    const int begin = vf.offsets[v], end = vf.offsets[v + 1];
-    if (end - begin <= 1) continue;
-    UnionFind local(end - begin);
-    other_to_face.clear();
-    for (int k = begin; k < end; ++k) {
-      const Face& t = mesh.faces[vf.faces[k]];
-      for (int c = 0; c < 3; ++c) {
-        if (t[c] == v) continue;
-        auto [it, inserted] = other_to_face.emplace(t[c], k - begin);
-        if (!inserted) local.unite(it->second, k - begin);
-      }
-    }
-    int pieces = 0;
-    for (int k = 0; k < end - begin; ++k) pieces += local.find(k) == k;
-    if (pieces > 1) topo.nonmanifold_vertices.push_back(v);
-  }
+  topo.num_components = face_components(mesh, ec, fans, topo.face_component);
+  std::vector<int> loop_first_edge;
+  topo.boundary_loops = trace_boundary_loops(mesh, ec, fans, loop_first_edge);
 
-  // Boundary loops: follow directed boundary half-edges (a -> b as seen by the single face).
-  std::unordered_multimap<int, int> next_of;  // a -> b
-  for (int e = 0; e < ec.num_edges(); ++e) {
-    if (!ec.is_boundary(e)) continue;
-    const Face& t = mesh.faces[ec.edge_faces[e][0]];
-    for (int c = 0; c < 3; ++c) {
-      const int a = t[c], b = t[(c + 1) % 3];
-      if (std::min(a, b) == ec.edges[e][0] && std::max(a, b) == ec.edges[e][1]) next_of.emplace(a, b);
-    }
-  }
-  while (!next_of.empty()) {
-    auto it = next_of.begin();
-    const int start = it->first;
-    std::vector<int> loop{start};
-    int cur = it->second;
-    next_of.erase(it);
-    while (cur != start) {
-      loop.push_back(cur);
-      auto nx = next_of.find(cur);
-      if (nx == next_of.end()) break;  // open chain: only on non-manifold input
-      cur = nx->second;
-      next_of.erase(nx);
-    }
-    topo.boundary_loops.push_back(std::move(loop));
-  }
-
-  // Per-component Euler characteristic and genus.
+  // Per-component counts; vertices are counted as fans (pinched vertices split).
   const int nc = topo.num_components;
-  std::vector<long> cv(nc, 0), ce(nc, 0), cf(nc, 0);
-  topo.component_loops.assign(nc, 0);
-  for (int v = 0; v < nv; ++v)
-    if (vertex_comp[v] >= 0) ++cv[vertex_comp[v]];
-  for (const auto& e : ec.edges) ++ce[vertex_comp[e[0]]];
-  for (int f = 0; f < nf; ++f) ++cf[topo.face_component[f]];
-  for (const auto& loop : topo.boundary_loops) ++topo.component_loops[vertex_comp[loop[0]]];
-  topo.component_genus.resize(nc);
-  long chi_total = 0;
-  for (int c = 0; c < nc; ++c) {
-    const long chi = cv[c] - ce[c] + cf[c];
-    chi_total += chi;
-    topo.component_genus[c] = static_cast<int>(std::max(0L, (2 - chi - topo.component_loops[c]) / 2));
+  topo.components.assign(nc, {});
+  for (int f = 0; f < nf; ++f) ++topo.components[topo.face_component[f]].faces;
+  for (int e = 0; e < ec.num_edges(); ++e) ++topo.components[topo.face_component[ec.edge_faces[e][0]]].edges;
+  std::vector<char> fan_seen(fans.num_fans(), 0);
+  for (int c = 0; c < 3 * nf; ++c) {
+    const int fan = fans.corner_fan[c];
+    if (!fan_seen[fan]) ++topo.components[topo.face_component[c / 3]].vertices;
+    fan_seen[fan] = 1;
   }
-  topo.euler_characteristic = static_cast<int>(chi_total);
+  for (size_t l = 0; l < topo.boundary_loops.size(); ++l) {
+    const int c = topo.face_component[ec.edge_faces[loop_first_edge[l]][0]];
+    topo.loop_component.push_back(c);
+    topo.components[c].loops.push_back(static_cast<int>(l));
+  }
+  topo.component_genus.resize(nc);
+  topo.component_loops.resize(nc);
+  for (int c = 0; c < nc; ++c) {
+    ComponentTopology& ct = topo.components[c];
+    ct.euler = ct.vertices - ct.edges + ct.faces;
+    const int loops = static_cast<int>(ct.loops.size());
+    ct.genus = std::max(0, (2 - ct.euler - loops) / 2);
+    topo.component_genus[c] = ct.genus;
+    topo.component_loops[c] = loops;
+  }
+  topo.euler_characteristic = (nv - topo.num_unreferenced_vertices) - topo.num_edges + nf;
   return topo;
 }
 

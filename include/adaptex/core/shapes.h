@@ -1,6 +1,8 @@
 #pragma once
 /// \file shapes.h
 /// Meshes built in code, for tests, benchmarks and the demo (no data files needed).
+#include <vector>
+
 #include "adaptex/core/mesh.h"
 
 namespace adaptex::shapes {
@@ -42,5 +44,22 @@ TriMesh genus_surface(int genus, int cells_per_unit = 4);
 /// several fans is removed too). \pre holes >= 1 and the holes are at least two edges wide
 /// (holes <= 4^subdivisions). \throw InvalidInputError out of range
 TriMesh sphere_with_holes(int holes, int subdivisions = 5);
+
+/// Disjoint union of \p meshes in one mesh (vertices and faces appended in order, indices shifted).
+/// \pre every mesh has valid indices \throw nothing beyond std::bad_alloc
+TriMesh disjoint_union(const std::vector<TriMesh>& meshes);
+/// Square annulus whose inner and outer boundaries touch at one *pinched* vertex: the ring of
+/// cells of width one around an n x n grid on [0,1]^2 (z = 0), with its corner cell at (1, 1)
+/// removed, so that the two cells next to the inner corner (1 - 1/n, 1 - 1/n) meet only at that
+/// vertex. Split there (core/pinched.h) it is a disk: genus 0, one boundary loop of 8n - 8 edges.
+/// \pre n >= 3 \throw InvalidInputError n < 3
+TriMesh pinched_annulus(int n = 8);
+/// \p closed with a hole whose boundary touches itself: two non-adjacent faces of the one-ring of
+/// a vertex v (the first vertex of valence >= 4) are removed, so v keeps two separate fans (a
+/// pinched vertex) and the hole is one loop of 6 edges through v twice. Split at v, the surface
+/// keeps the genus of \p closed and has one boundary loop.
+/// \pre \p closed is a closed, manifold, consistently oriented mesh
+/// \throw InvalidInputError no vertex of valence >= 4 with a closed one-ring
+TriMesh with_pinched_hole(const TriMesh& closed);
 
 }  // namespace adaptex::shapes

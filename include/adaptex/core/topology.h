@@ -28,24 +28,61 @@ struct VertexFaces {
 };
 VertexFaces build_vertex_faces(const TriMesh& mesh);
 
+/// Face fans around vertices: the corners (f, k) of a vertex that are connected through edges shared
+/// by two or more faces form one fan. A vertex of a manifold mesh has exactly one fan (a disk or a
+/// half-disk); a *pinched* vertex has several (two surfaces, or two parts of one boundary, touching at
+/// a single point).
+struct VertexFans {
+  std::vector<int> corner_fan;  ///< 3F: fan id of corner 3f+k (the corner of mesh.faces[f][k]).
+  std::vector<int> fan_vertex;  ///< Fans: the vertex of each fan. Fans of a vertex are numbered in
+                                ///< order of their first corner, so its first fan has the lowest id.
+  int num_fans() const { return static_cast<int>(fan_vertex.size()); }
+};
+
+/// Groups the corners of every vertex into fans. O(F α(F)).
+/// \pre \p ec = build_edges(mesh)
+VertexFans build_vertex_fans(const TriMesh& mesh, const EdgeConnectivity& ec);
+
+/// Topology of one connected component, counted on the surface whose pinched vertices are split
+/// (one vertex per fan), so that euler == 2 - 2 genus - boundary_loops holds on orientable components.
+struct ComponentTopology {
+  int faces = 0;     ///< Faces of the component.
+  int vertices = 0;  ///< Vertex fans of the component (= vertices when none is pinched).
+  int edges = 0;     ///< Edges of the component.
+  int euler = 0;     ///< vertices - edges + faces.
+  int genus = 0;     ///< (2 - euler - boundary_loops) / 2, clamped at 0 (a non-orientable piece).
+  std::vector<int> loops;  ///< Indices into MeshTopology::boundary_loops of its boundary loops.
+};
+
 /// Topological summary of a mesh.
 struct MeshTopology {
   int num_vertices = 0, num_faces = 0, num_edges = 0;
-  int num_components = 0;                ///< Connected components (through shared vertices).
+  /// Connected components: faces are connected through shared edges, so a pinched vertex does not
+  /// join two surfaces that only touch there (it belongs to each of them).
+  int num_components = 0;
   std::vector<int> face_component;       ///< F: component of every face.
   std::vector<int> component_genus;      ///< Genus of each component (from its Euler characteristic).
   std::vector<int> component_loops;      ///< Number of boundary loops of each component.
-  std::vector<std::vector<int>> boundary_loops;  ///< Boundary loops as vertex cycles.
-  int euler_characteristic = 0;          ///< V - E + F over the whole mesh.
+  std::vector<ComponentTopology> components;  ///< Per component: counts, Euler characteristic, loops.
+  /// Boundary loops as vertex cycles, traced fan by fan: from a boundary edge to the other boundary
+  /// edge of the same fan at its end vertex, so a loop that passes twice through a pinched vertex
+  /// is followed correctly and the face winding does not matter. A loop is listed in the direction
+  /// of the winding of the face of its first edge (interior on the left on oriented meshes).
+  std::vector<std::vector<int>> boundary_loops;
+  std::vector<int> loop_component;       ///< Per boundary loop: its component.
+  int euler_characteristic = 0;          ///< V - E + F over the whole mesh (V: vertices, not fans).
   int num_unreferenced_vertices = 0;     ///< Vertices used by no face.
   std::vector<std::array<int, 2>> nonmanifold_edges;  ///< Edges with more than two faces.
-  std::vector<int> nonmanifold_vertices; ///< Vertices whose face fan is not a single disk/half-disk.
+  std::vector<int> nonmanifold_vertices; ///< Vertices with more than one fan (pinched vertices).
   bool is_manifold() const { return nonmanifold_edges.empty() && nonmanifold_vertices.empty(); }
   int total_genus() const;
   int total_loops() const { return static_cast<int>(boundary_loops.size()); }
 };
 
-/// Computes the topological summary. Boundary loops and genus are only meaningful on manifold meshes.
+/// Computes the topological summary. Components, loops and genus are those of the surface with its
+/// pinched vertices split (see ComponentTopology); on meshes with non-manifold edges they are only
+/// indicative.
+/// \pre face indices are in range
 MeshTopology analyze_topology(const TriMesh& mesh);
 
 }  // namespace adaptex
