@@ -1,6 +1,7 @@
 // `adaptex info IN [--repair] [--json]`: reads and validates a mesh (io/mesh_io.h) and prints its
-// counts, topology (components, genus, boundary loops, manifoldness), bounding box, area and what the
-// reader dropped or welded. Bad input: exit 2 with one line on stderr (main.cpp).
+// counts, topology (components, genus, boundary loops, manifoldness; per component:
+// topology_report.h), bounding box, area and what the reader dropped, welded or split. Bad input:
+// exit 2 with one line on stderr (main.cpp).
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include "adaptex/core/topology.h"
 #include "adaptex/io/mesh_io.h"
 #include "cli_common.h"
+#include "topology_report.h"
 
 namespace adaptex::cli {
 
@@ -59,6 +61,7 @@ void run_info(const InfoOptions& opt, const Context& ctx) {
     std::vector<std::size_t> loop_lengths;
     for (const auto& l : topo.boundary_loops) loop_lengths.push_back(l.size());
     j["boundary_loop_lengths"] = loop_lengths;
+    j["component_topology"] = component_topology_json(topo);
     j["manifold"] = topo.is_manifold();
     j["nonmanifold_edges"] = topo.nonmanifold_edges.size();
     j["nonmanifold_vertices"] = topo.nonmanifold_vertices.size();
@@ -72,6 +75,7 @@ void run_info(const InfoOptions& opt, const Context& ctx) {
     j["dropped_unreferenced_vertices"] = report.dropped_unreferenced_vertices;
     j["dropped_duplicate_faces"] = report.dropped_duplicate_faces;
     j["split_nonmanifold_vertices"] = report.split_nonmanifold_vertices;
+    j["split_pinched_vertices"] = report.split_pinched_vertices;
     j["welded_vertices"] = report.welded_vertices;
     j["warnings"] = report.warnings;
     std::cout << j.dump(2) << "\n";
@@ -84,11 +88,7 @@ void run_info(const InfoOptions& opt, const Context& ctx) {
   os << "edges:       " << topo.num_edges << "\n";
   os << "euler char.: " << topo.euler_characteristic << "\n";
   os << "components:  " << topo.num_components << "\n";
-  const int shown = std::min(topo.num_components, 20);
-  for (int c = 0; c < shown; ++c)
-    os << "  component " << c << ": genus " << topo.component_genus[c] << ", " << topo.component_loops[c]
-       << " boundary loop" << (topo.component_loops[c] == 1 ? "" : "s") << "\n";
-  if (shown < topo.num_components) os << "  ... (" << topo.num_components - shown << " more components)\n";
+  os << component_topology_text(topo);
   os << "genus:       " << topo.total_genus() << " (sum over components)\n";
   os << "boundary:    " << topo.total_loops() << " loop" << (topo.total_loops() == 1 ? "" : "s");
   if (topo.total_loops() > 0) {
@@ -109,6 +109,7 @@ void run_info(const InfoOptions& opt, const Context& ctx) {
      << report.dropped_unreferenced_vertices << " unreferenced vertices, " << report.dropped_duplicate_faces
      << " duplicate faces\n";
   os << "welded:      " << report.welded_vertices << " vertices\n";
+  os << "pinched:     " << report.split_pinched_vertices << " vertices split (one vertex per fan of faces)\n";
   if (opt.repair) os << "repaired:    " << report.split_nonmanifold_vertices << " vertices split\n";
   std::cout << os.str();
 }
@@ -121,7 +122,8 @@ void add_info_command(CLI::App& app, Context& ctx) {
       "info", "Read and validate a mesh (OBJ, OFF, PLY, STL, glTF/GLB); print counts, topology and bounds");
   sub->add_option("IN", opt->input, "Input mesh file")->required();
   sub->add_flag("--repair", opt->repair,
-                "Split non-manifold vertices/edges and drop duplicate faces instead of rejecting the mesh");
+                "Split non-manifold edges and drop duplicate faces instead of rejecting the mesh "
+                "(pinched vertices are always split)");
   sub->add_flag("--json", opt->json, "Print the report as JSON on stdout");
   sub->callback([opt, &ctx] { run_info(*opt, ctx); });
 }

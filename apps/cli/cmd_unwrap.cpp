@@ -16,6 +16,7 @@
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
 #include "cli_common.h"
+#include "topology_report.h"
 
 namespace adaptex::cli {
 
@@ -85,6 +86,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
     j["components"] = r.num_components;
     j["genus"] = r.genus;
     j["boundary_loops"] = r.boundary_loops;
+    j["component_topology"] = component_topology_json(analyze_topology(mesh));
     j["charts"] = r.num_charts;
     j["wedges"] = res.param.num_wedges();
     j["cut_length"] = r.cut_length;
@@ -102,6 +104,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
                    {"dropped_unreferenced_vertices", rr.dropped_unreferenced_vertices},
                    {"dropped_duplicate_faces", rr.dropped_duplicate_faces},
                    {"split_nonmanifold_vertices", rr.split_nonmanifold_vertices},
+                   {"split_pinched_vertices", rr.split_pinched_vertices},
                    {"welded_vertices", rr.welded_vertices}};
     j["time"] = {{"read", time_read},         {"cut", r.time_cut},
                  {"floater", r.time_floater}, {"yoshizawa", r.time_yoshizawa},

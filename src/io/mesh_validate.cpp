@@ -1,7 +1,8 @@
 /// \file mesh_validate.cpp
 /// Validation and repair of triangle meshes (issue 2, "Mesh input"): non-finite coordinates, indices
-/// out of range, degenerate faces and unreferenced vertices (dropped with a warning), duplicate faces,
-/// non-manifold edges and vertices (rejected, or repaired with ReadOptions::repair), and the common
+/// out of range, degenerate faces and unreferenced vertices (dropped with a warning), pinched vertices
+/// (split with a warning), duplicate faces and non-manifold edges (rejected, or repaired with
+/// ReadOptions::repair), and the common
 /// polygon-soup -> TriMesh step of every reader (fan triangulation, welding by identical position).
 #include <algorithm>
 #include <charconv>
@@ -13,6 +14,7 @@
 #include <unordered_map>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/pinched.h"
 #include "adaptex/core/topology.h"
 #include "mesh_soup.h"
 
@@ -314,8 +316,25 @@ TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOption
   };
   drop_unreferenced(true);
 
-  // 5. Manifoldness (repair if asked).
+  // 5. Pinched vertices (several fans of faces at one vertex) are split, one vertex per fan, when the
+  //    edges are manifold; then manifoldness (repair if asked).
   MeshTopology topo = analyze_topology(mesh);
+  if (topo.nonmanifold_edges.empty() && !topo.nonmanifold_vertices.empty()) {
+    const int first = topo.nonmanifold_vertices.front();
+    const std::string where = format_point(mesh.positions[first]);
+    PinchedSplit split = split_pinched_vertices(mesh);
+    if (!vertex_source.empty()) {  // tracked: compose with the file's vertex numbers
+      for (int& v : split.vertex_source) v = vertex_source[v];
+      vertex_source = std::move(split.vertex_source);
+    }
+    mesh = std::move(split.mesh);
+    report.split_pinched_vertices += split.pinched_vertices;
+    warn(report, name + ": split " + plural(split.pinched_vertices, "pinched vertex", "pinched vertices") +
+                     " (separate fans of faces touching at one point; first: vertex " + std::to_string(first) +
+                     " at " + where + ") into one vertex per fan: " +
+                     plural(split.added_vertices, "copy", "copies") + " added at the same position");
+    topo = analyze_topology(mesh);
+  }
   if (!topo.is_manifold() && options.repair) {
     int added = 0;
     for (int round = 0; round < 4 && !topo.is_manifold(); ++round) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/pinched.h"
 #include "adaptex/core/topology.h"
 #include "adaptex/param/cut.h"
 #include "adaptex/param/disk_param.h"
@@ -135,11 +136,17 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   auto t0 = Clock::now();
   report_progress(options.progress, "cut", 0.0);
   const MeshTopology topo = analyze_topology(mesh);
-  if (!topo.is_manifold())
+  if (!topo.nonmanifold_edges.empty())
     throw TopologyError("unwrap: the mesh is not manifold (" +
-                        std::to_string(topo.nonmanifold_edges.size()) + " non-manifold edges, " +
-                        std::to_string(topo.nonmanifold_vertices.size()) +
-                        " non-manifold vertices); repair it first");
+                        std::to_string(topo.nonmanifold_edges.size()) +
+                        " non-manifold edges); repair it first");
+  if (!topo.nonmanifold_vertices.empty()) {
+    // Pinched vertices (core/pinched.h): unwrap the split surface; its wedges map back to the input.
+    const PinchedSplit split = split_pinched_vertices(mesh);
+    UnwrapResult r = unwrap(split.mesh, options);
+    for (int& v : r.param.wedge_vertex) v = split.vertex_source[v];
+    return r;
+  }
   rep.num_components = topo.num_components;
   rep.genus = topo.total_genus();
   rep.boundary_loops = topo.total_loops();

@@ -151,8 +151,52 @@ TEST(InfoCli, NonManifoldEdgeAndVertex) {
   test::write_off(dir.path / "fan.off", shapes::nonmanifold_fan());
   expect_bad(dir.path / "fan.off", "1 non-manifold edge (first: vertices ");
   expect_bad(dir.path / "fan.off", "rerun with --repair");
+  // A pinched vertex alone is not an error: it is split with a warning (InfoCli.PinchedVertices...).
   test::write_off(dir.path / "bowtie.off", shapes::bowtie_vertex());
-  expect_bad(dir.path / "bowtie.off", "1 non-manifold vertex (first: vertex ");
+  const auto r = run_cli("info --json '" + (dir.path / "bowtie.off").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("bowtie.off: split 1 pinched vertex"), std::string::npos) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["components"], 2);
+}
+
+TEST(InfoCli, PinchedVerticesSplitAndTopologyPerComponent) {
+  TempDir dir;
+  // A genus-2 surface whose hole touches itself, an annulus whose two boundaries touch, a torus.
+  const TriMesh m = shapes::disjoint_union({shapes::with_pinched_hole(shapes::double_torus(24)),
+                                            shapes::pinched_annulus(5), shapes::torus(12, 6)});
+  test::write_off(dir.path / "p.off", m);
+  auto r = run_cli("info --json '" + (dir.path / "p.off").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("p.off: split 2 pinched vertices"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["manifold"], true);
+  EXPECT_EQ(j["split_pinched_vertices"], 2);
+  EXPECT_EQ(j["components"], 3);
+  EXPECT_EQ(j["genus"], 3);
+  EXPECT_EQ(j["boundary_loops"], 2);
+  EXPECT_EQ(j["component_genus"], nlohmann::json::array({2, 0, 1}));
+  EXPECT_EQ(j["component_boundary_loops"], nlohmann::json::array({1, 1, 0}));
+  const auto& comps = j["component_topology"];
+  ASSERT_EQ(comps.size(), 3u);
+  EXPECT_EQ(comps[0]["boundary_loop_lengths"], nlohmann::json::array({6}));
+  EXPECT_EQ(comps[1]["boundary_loop_lengths"], nlohmann::json::array({32}));
+  EXPECT_EQ(comps[2]["boundary_loop_lengths"], nlohmann::json::array());
+  EXPECT_EQ(comps[2]["faces"], 144);
+  int faces = 0;
+  for (const auto& c : comps) {
+    faces += c["faces"].get<int>();
+    EXPECT_EQ(c["euler"].get<int>(), c["vertices"].get<int>() - c["edges"].get<int>() + c["faces"].get<int>());
+    EXPECT_EQ(c["euler"].get<int>(), 2 - 2 * c["genus"].get<int>() - c["boundary_loops"].get<int>());
+  }
+  EXPECT_EQ(faces, m.num_faces());
+  r = run_cli("info '" + (dir.path / "p.off").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("  component 0: genus 2, 1 boundary loop (lengths: 6 edges), euler char. -3"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  component 1: genus 0, 1 boundary loop (lengths: 32 edges), euler char. 1"),
+            std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  component 2: genus 1, 0 boundary loops, euler char. 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("pinched:     2 vertices split"), std::string::npos) << r.out;
 }
 
 TEST(InfoCli, RepairMakesThemManifold) {
@@ -166,8 +210,10 @@ TEST(InfoCli, RepairMakesThemManifold) {
     EXPECT_EQ(j["manifold"], true) << f;
     EXPECT_EQ(j["nonmanifold_edges"], 0) << f;
     EXPECT_EQ(j["nonmanifold_vertices"], 0) << f;
-    EXPECT_GT(j["split_nonmanifold_vertices"].get<int>(), 0) << f;
-    EXPECT_NE(r.err.find("repair split"), std::string::npos) << r.err;
+    // The fan's non-manifold edge is repaired; the bow-tie's pinched vertex is split anyway.
+    EXPECT_GT(j["split_nonmanifold_vertices"].get<int>() + j["split_pinched_vertices"].get<int>(), 0) << f;
+    EXPECT_TRUE(r.err.find("repair split") != std::string::npos || r.err.find("pinched") != std::string::npos)
+        << r.err;
   }
 }
 

@@ -129,8 +129,9 @@ TEST(UnwrapCli, BadInputExitsWithTwoAndLeavesNoFile) {
     std::ofstream(dir.path / "bad.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n";  // truncated
   }
   expect_bad("unwrap " + q(dir.path / "bad.off") + " -o " + q(out) + " --report " + q(rep), "bad.off");
-  write_off(dir.path / "bowtie.off", shapes::bowtie_vertex());
-  expect_bad("unwrap " + q(dir.path / "bowtie.off") + " -o " + q(out), "manifold");
+  write_off(dir.path / "fan.off", shapes::nonmanifold_fan());
+  expect_bad("unwrap " + q(dir.path / "fan.off") + " -o " + q(out), "manifold");
+  write_off(dir.path / "bowtie.off", shapes::bowtie_vertex());  // pinched: split, not an error
   // A failing second output (layout in an impossible place) leaves no OBJ or report behind.
   write_off(dir.path / "ok.off", shapes::sphere(12, 6));
   const auto r = run_cli("-q unwrap " + q(dir.path / "ok.off") + " -o " + q(out) + " --report " +
@@ -140,7 +141,7 @@ TEST(UnwrapCli, BadInputExitsWithTwoAndLeavesNoFile) {
   EXPECT_FALSE(std::filesystem::exists(rep));
   // Bad options.
   expect_bad("unwrap " + q(dir.path / "ok.off") + " -o " + q(out) + " --layout-size 2", "layout-size");
-  // --repair makes the bow-tie usable: two charts.
+  // --repair keeps the bow-tie usable: two charts.
   const auto ok = run_cli("-q unwrap " + q(dir.path / "bowtie.off") + " --repair -o " + q(out) +
                           " --report " + q(rep));
   EXPECT_EQ(ok.exit_code, 0) << ok.err;

@@ -14,7 +14,8 @@ namespace adaptex {
 
 /// Options of read_mesh().
 struct ReadOptions {
-  /// Split non-manifold vertices and drop duplicate faces instead of rejecting the mesh.
+  /// Split non-manifold edges and drop duplicate faces instead of rejecting the mesh (pinched
+  /// vertices, where only separate fans of faces meet, are always split).
   bool repair = false;
 };
 
@@ -25,6 +26,9 @@ struct ReadReport {
   int dropped_unreferenced_vertices = 0;  ///< Vertices used by no face, removed.
   int dropped_duplicate_faces = 0;    ///< Faces with the same vertex set as an earlier one (repair).
   int split_nonmanifold_vertices = 0; ///< Vertices duplicated to make the mesh manifold (repair).
+  /// Pinched vertices (several separate fans of faces at one vertex) split into one vertex per fan,
+  /// always (no repair needed); the copies keep the exact position.
+  int split_pinched_vertices = 0;
   int welded_vertices = 0;            ///< Vertices merged because the format split them.
   std::vector<std::string> warnings;  ///< Human-readable warning lines (file name included).
 };
@@ -35,12 +39,13 @@ struct ReadReport {
 /// per-corner output) are welded by identical position.
 /// \throw IoError unreadable, corrupt or truncated file, unknown format
 /// \throw InvalidInputError no faces, NaN/inf coordinates, indices out of range
-/// \throw TopologyError non-manifold edges or vertices (unless options.repair)
+/// \throw TopologyError non-manifold edges or duplicate faces (unless options.repair)
 TriMesh read_mesh(const std::filesystem::path& path, const ReadOptions& options = {},
                   ReadReport* report = nullptr);
 
 /// Validates an in-memory mesh the same way read_mesh() does (degenerate/unreferenced are dropped,
-/// the rest throws); \p name is used in messages in place of a file name.
+/// pinched vertices are split, the rest throws); \p name is used in messages in place of a file name.
+/// \throw InvalidInputError, TopologyError as read_mesh()
 TriMesh validate_mesh(TriMesh mesh, const std::string& name, const ReadOptions& options = {},
                       ReadReport* report = nullptr);
 

@@ -75,8 +75,10 @@ struct UnwrapResult {
 };
 
 /// Parameterizes every connected component as one chart, packed into [0,1]^2 without overlap.
-/// \pre mesh is manifold with valid indices and no degenerate faces (as read_mesh() returns it)
-/// \throw TopologyError non-manifold input
+/// Pinched vertices (several separate fans of faces at one vertex, core/pinched.h) are split first:
+/// the charts are those of the split surface and its wedges refer to the input vertices.
+/// \pre mesh has manifold edges, valid indices and no degenerate faces (as read_mesh() returns it)
+/// \throw TopologyError non-manifold edges
 /// \throw SolverError the sparse solve failed
 /// \throw CancelledError the progress callback returned false
 UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options = {});
