@@ -1,19 +1,32 @@
-// Quality study of the signal-adaptive re-parameterization (docs/quality.md): for every mesh x stroke
-// kind x texture size N, the PSNR (adaptex eval metric) of a fixed parameterization ("none") at N and
-// 2N against the adapted one (default two-stage, end mode, replay) at N. One table row per case.
+// Quality study of the signal-adaptive re-parameterization and acceptance tool of issue 12
+// (docs/quality.md): for every mesh x stroke kind x texture size N, the PSNR (adaptex eval metric) of
+// the fixed layout ("none", a Painter on unwrap()'s layout) at N, 2N and 4N, and of each requested
+// adaptive mode at N (a PaintSession, end mode, replay). Each mode's *texel saving factor* is the
+// texture area none needs to reach the mode's PSNR, interpolated linearly in log2 N
+// (paint/texel_saving.h). One markdown row per case, printed as soon as the case is done, then a
+// summary per stroke kind and mode.
 //
-//   adaptex_adapt_quality [--meshes a.obj,b.off] [--kinds lines,blobs,mixed] [--sizes 128,256,512]
-//                         [--mode two-stage|single] [--alpha A] [--beta B] [--grid 16,256]
-//                         [--pool mean|min|none] [--ring 4|8] [--no-safeguard] [--norm edge|pct]
-//                         [--schedule end|each-stroke] [--update replay|resample] [--count N]
+//   adaptex_adapt_quality [--meshes a.obj,spot,...] [--kinds lines,dots,mixed,blobs] [--sizes 128,256,512]
+//                         [--modes two-stage,single,...[:no-refine]] [--samples K] [--eval-seed E]
+//                         [--count N] [--seed S]
+//                         [--grid C,F] [--alpha A] [--beta B] [--schedule end|each-stroke]
+//                         [--update replay|resample] [--no-safeguard] [--no-refine] [--verbose]
+//
+// Mode names go to make_session_options() (parse_adapt_mode), so every mode the library knows works.
+// A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
+// turns it off for every mode. Meshes: paths, or names/stems of ADAPTEX_SHARED_DIR/meshes (default:
+// all of them), run in order of increasing face count.
 // GCC 12 reports a false -Wrestrict inside std::string copies at -O3 (GCC bug 105329).
 #pragma GCC diagnostic ignored "-Wrestrict"
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 #include <map>
+#include <set>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -23,122 +36,291 @@
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/generate.h"
+#include "adaptex/paint/texel_saving.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
 
 using namespace adaptex;
+namespace fs = std::filesystem;
 
 namespace {
+
 std::vector<std::string> split(const std::string& s) {
   std::vector<std::string> out;
   std::stringstream ss(s);
   std::string x;
-  while (std::getline(ss, x, ',')) out.push_back(x);
+  while (std::getline(ss, x, ','))
+    if (!x.empty()) out.push_back(x);
   return out;
 }
+
+/// One adaptive configuration compared against none: a mode name for parse_adapt_mode, refinement on/off.
+struct ModeSpec {
+  std::string label;  ///< Column title, e.g. "two-stage" or "density-flow:no-refine".
+  std::string name;   ///< The --adapt mode string.
+  bool refine = true;
+};
+
+struct Args {
+  std::vector<std::string> meshes, kinds{"lines", "dots", "mixed", "blobs"};
+  std::vector<int> sizes{128, 256, 512};
+  std::vector<ModeSpec> modes;
+  long long samples = 400000;
+  std::uint64_t eval_seed = 1;
+  int count = -1;
+  std::uint64_t seed = 1;
+  std::vector<int> grid;
+  double alpha = -1, beta = -1;
+  std::string schedule = "end", update = "replay";
+  bool safeguard = true, verbose = false;
+};
+
+// ---- Mesh refinement switch (issue 12): the ONE place where this tool sets refinement on/off. ----
+// Uses PaintSessionOptions::refine or AdaptOptions::refine, whichever this build has; a build with
+// neither can only run with refinement at its default (asking for no-refine is then an error).
+template <class Options>
+void set_refine(Options& o, bool refine) {
+  if constexpr (requires { o.refine = refine; }) {
+    o.refine = refine;
+  } else if constexpr (requires { o.adapt.refine = refine; }) {
+    o.adapt.refine = refine;
+  } else if (!refine) {
+    throw std::invalid_argument("no-refine: this build's PaintSessionOptions has no refinement switch");
+  }
+}
+
+PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) {
+  PaintSessionOptions o = make_session_options(size, 4, m.name, a.grid, a.alpha, a.beta, a.schedule, a.update);
+  o.safeguard = a.safeguard;
+  set_refine(o, m.refine);
+  return o;
+}
+
+/// Mesh arguments -> files: an existing path, else a file name or stem in the shared meshes directory.
+std::vector<std::string> resolve_meshes(const std::vector<std::string>& given) {
+  const fs::path shared = fs::path(ADAPTEX_SHARED_DIR) / "meshes";
+  std::vector<std::string> all;
+  if (fs::is_directory(shared))
+    for (const auto& e : fs::directory_iterator(shared))
+      if (e.path().extension() != ".md") all.push_back(e.path().string());
+  std::sort(all.begin(), all.end());
+  if (given.empty()) return all;
+  std::vector<std::string> out;
+  for (const auto& g : given) {
+    if (fs::exists(g)) {
+      out.push_back(g);
+      continue;
+    }
+    std::string hit;
+    for (const auto& p : all)
+      if (fs::path(p).filename() == g || fs::path(p).stem() == g) hit = p;
+    if (hit.empty()) throw std::invalid_argument(g + ": no such mesh file (nor in " + shared.string() + ")");
+    out.push_back(hit);
+  }
+  return out;
+}
+
+Args parse_args(int argc, char** argv) {
+  Args a;
+  bool no_refine = false;
+  std::vector<std::string> modes{"two-stage"};
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    if (k == "--no-safeguard") { a.safeguard = false; continue; }
+    if (k == "--no-refine") { no_refine = true; continue; }
+    if (k == "--verbose") { a.verbose = true; continue; }
+    if (i + 1 >= argc) throw std::invalid_argument(k + ": unknown option or missing value");
+    const std::string v = argv[++i];
+    if (k == "--meshes") a.meshes = split(v);
+    else if (k == "--kinds") a.kinds = split(v);
+    else if (k == "--sizes") {
+      a.sizes.clear();
+      for (const auto& s : split(v)) a.sizes.push_back(std::stoi(s));
+    } else if (k == "--modes" || k == "--mode") modes = split(v);
+    else if (k == "--samples") a.samples = std::stoll(v);
+    else if (k == "--eval-seed") a.eval_seed = std::stoull(v);
+    else if (k == "--count") a.count = std::stoi(v);
+    else if (k == "--seed") a.seed = std::stoull(v);
+    else if (k == "--grid") {
+      for (const auto& s : split(v)) a.grid.push_back(std::stoi(s));
+    } else if (k == "--alpha") a.alpha = std::stod(v);
+    else if (k == "--beta") a.beta = std::stod(v);
+    else if (k == "--schedule") a.schedule = v;
+    else if (k == "--update") a.update = v;
+    else throw std::invalid_argument(k + ": unknown option");
+  }
+  for (const auto& m : modes) {
+    const auto colon = m.find(':');
+    ModeSpec s{m, m.substr(0, colon), !no_refine};
+    if (colon != std::string::npos) {
+      if (m.substr(colon + 1) != "no-refine") throw std::invalid_argument(m + ": the only mode suffix is :no-refine");
+      s.refine = false;
+    }
+    if (no_refine && colon == std::string::npos) s.label += ":no-refine";
+    a.modes.push_back(s);
+  }
+  for (int n : a.sizes)
+    if (n < 8 || n > 4096) throw std::invalid_argument("--sizes: each N must be in [8, 4096] (4N is painted too)");
+  for (const auto& k : a.kinds) (void)parse_stroke_kind(k);
+  for (const auto& m : a.modes) (void)session_options(a, m, a.sizes.front());  // fail early on bad names
+  a.meshes = resolve_meshes(a.meshes);
+  return a;
+}
+
+/// One adaptive run at N.
+struct ModeResult {
+  double psnr = 0, seconds = 0;
+  TexelSaving saving;
+  int flipped = 0, degenerate = 0, faces = 0, accepted = 0, reparams = 0;
+  long overlaps = 0;
+};
+
+ModeResult run_mode(const Args& a, const ModeSpec& m, const TriMesh& mesh, const Parameterization& param,
+                    const StrokeFile& strokes, int n, const std::array<double, 3>& none, const EvalOptions& eo) {
+  ModeResult r;
+  const auto t0 = std::chrono::steady_clock::now();
+  PaintSession s(mesh, param, session_options(a, m, n), strokes.background);
+  for (const auto& st : strokes.strokes) s.add_stroke(st);
+  s.finish();
+  const ImageRGBA8& texture = s.texture();
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.psnr = evaluate_texture(s.mesh(), s.param(), texture, strokes, eo).psnr;
+  r.saving = texel_saving_factor(r.psnr, none);
+  const StretchStats st = measure_stretch(s.mesh(), s.param());
+  r.flipped = st.flipped;
+  r.degenerate = st.degenerate;
+  r.overlaps = count_overlapping_triangles(s.param());
+  r.faces = s.mesh().num_faces();
+  for (const auto& rep : s.reports()) r.accepted += rep.accepted;
+  r.reparams = static_cast<int>(s.reports().size());
+  if (a.verbose) std::fprintf(stderr, "%s\n", adapt_reports_json(s.reports()).dump().c_str());
+  return r;
+}
+
+std::string factor_cell(const TexelSaving& s) {
+  char buf[32];
+  if (s.lossless) return "=1";
+  std::snprintf(buf, sizeof buf, "%s%.2f", s.above_range ? ">" : (s.clamped ? "≤" : ""), s.factor);
+  return buf;
+}
+
+/// PSNR of none (a Painter on the fixed layout) at \p size, cached per size.
+double psnr_none(std::map<int, double>& cache, int size, const TriMesh& mesh, const Parameterization& param,
+                 const StrokeFile& strokes, const EvalOptions& eo) {
+  if (auto it = cache.find(size); it != cache.end()) return it->second;
+  PainterOptions po;
+  po.width = po.height = size;
+  Painter p(mesh, param, po, strokes.background);
+  p.paint_all(strokes);
+  return cache[size] = evaluate_texture(mesh, param, p.texture(), strokes, eo).psnr;
+}
+
+struct CaseRecord {
+  std::string kind;
+  double none_n = 0;
+  std::vector<ModeResult> modes;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n == 0 ? 0 : (n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
+void print_header(const Args& a) {
+  std::printf("| mesh | faces | kind | N | none N | none 2N | none 4N |");
+  for (const auto& m : a.modes) std::printf(" %s N | ×area | F/D/O | acc | faces after | t s |", m.label.c_str());
+  std::printf("\n|---|---:|---|---:|---:|---:|---:|");
+  for (size_t k = 0; k < a.modes.size(); ++k) std::printf("---:|---:|---:|---:|---:|---:|");
+  std::printf("\n");
+  std::fflush(stdout);
+}
+
+void print_summary(const Args& a, const std::vector<CaseRecord>& cases) {
+  std::printf("\nSummary (×area: texel saving factor; below 1 = worse than none at N by > 0.1 dB, "
+              "both >= 50 dB count as equal):\n\n");
+  std::printf("| kind | mode | cases | median ×area | min ×area | max ×area | cases >= 4 | below 1 | "
+              "median gain dB | F/D/O total |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const auto& kind : a.kinds)
+    for (size_t m = 0; m < a.modes.size(); ++m) {
+      std::vector<double> f, gain;
+      int below = 0, four = 0;
+      long bad = 0;
+      for (const auto& c : cases) {
+        if (c.kind != kind) continue;
+        const ModeResult& r = c.modes[m];
+        f.push_back(r.saving.factor);
+        gain.push_back(r.psnr - c.none_n);
+        below += worse_than_none(r.psnr, c.none_n);
+        four += r.saving.factor >= 4;
+        bad += r.flipped + r.degenerate + r.overlaps;
+      }
+      if (f.empty()) continue;
+      std::printf("| %s | %s | %zu | %.2f | %.2f | %.2f | %d | %d | %+.2f | %ld |\n", kind.c_str(),
+                  a.modes[m].label.c_str(), f.size(), median(f), *std::min_element(f.begin(), f.end()),
+                  *std::max_element(f.begin(), f.end()), four, below, median(gain), bad);
+    }
+  std::fflush(stdout);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::map<std::string, std::string> a;
-  for (int i = 1; i < argc; ++i) {
-    std::string k = argv[i];
-    if (k == "--no-safeguard" || k == "--verbose" || k == "--no-geometry" || k == "--slide") a[k] = "1";
-    else if (i + 1 < argc) a[k] = argv[++i];
+  Args a;
+  try {
+    a = parse_args(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "adaptex_adapt_quality: error: %s\n", e.what());
+    return 2;
   }
-  auto get = [&](const std::string& k, const std::string& d) { return a.count(k) ? a[k] : d; };
-  std::vector<std::string> meshes;
-  if (a.count("--meshes")) meshes = split(a["--meshes"]);
-  else
-    for (auto& e : std::filesystem::directory_iterator(std::string(ADAPTEX_SHARED_DIR) + "/meshes"))
-      if (e.path().extension() != ".md") meshes.push_back(e.path().string());
-  std::sort(meshes.begin(), meshes.end());
-  const auto kinds = split(get("--kinds", "lines,blobs,mixed"));
-  std::vector<int> sizes;
-  for (auto& s : split(get("--sizes", "128,256,512"))) sizes.push_back(std::stoi(s));
-  PaintSessionOptions so;
-  so.adapt.mode = parse_adapt_mode(get("--mode", "two-stage"));
-  if (a.count("--alpha")) so.adapt.alpha = std::stod(a["--alpha"]);
-  if (a.count("--beta")) so.adapt.beta = std::stod(a["--beta"]);
-  if (a.count("--grid")) {
-    auto g = split(a["--grid"]);
-    so.adapt.coarse_grid = std::stoi(g[0]);
-    so.adapt.fine_grid = std::stoi(g.back());
-  }
-  const std::string pool = get("--pool", "mean");
-  so.adapt.pool = pool == "min" ? PoolMode::Min : pool == "none" ? PoolMode::None : PoolMode::Mean;
-  so.adapt.ring = get("--ring", "8") == "4" ? GridRing::Four : GridRing::Eight;
-  if (get("--norm", "edge") == "pct") so.adapt.importance.normalization = ImportanceNormalization::Percentile;
-  if (a.count("--eps")) so.adapt.epsilon_texels = std::stod(a["--eps"]);
-  if (a.count("--iters")) so.adapt.max_iterations = std::stoi(a["--iters"]);
-  if (a.count("--slide")) so.adapt.slide_boundary = true;
-  if (a.count("--fine-iters")) so.adapt.fine_max_iterations = std::stoi(a["--fine-iters"]);
-  if (a.count("--min-weight")) so.adapt.min_weight = std::stod(a["--min-weight"]);
-  so.safeguard = !a.count("--no-safeguard");
-  so.schedule = parse_reparam_schedule(get("--schedule", "end"));
-  so.update = parse_texture_update(get("--update", "replay"));
-  const int count = std::stoi(get("--count", "-1"));
-  if (a.count("--debug")) so.debug_dir = a["--debug"];
-  if (a.count("--gscale")) so.adapt.geometry_scale = std::stod(a["--gscale"]);
-  if (a.count("--no-geometry")) so.adapt.use_geometry_stretch = false;
   EvalOptions eo;
-  eo.samples = std::stoll(get("--samples", "400000"));
-
-  std::printf("| mesh | faces | strokes | N | none N | none 2N | %s N | gain dB | to 2N | damping | accepted | t_reparam ms |\n",
-              to_string(so.adapt.mode));
-  std::printf("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-  std::fflush(stdout);
-  for (const auto& path : meshes) {
-    TriMesh mesh;
-    Parameterization param;
+  eo.samples = a.samples;
+  eo.seed = a.eval_seed;
+  // Smallest meshes first: early rows come quickly.
+  std::vector<std::pair<int, std::string>> order;
+  for (const auto& path : a.meshes) {
     try {
-      mesh = read_mesh(path);
-      param = unwrap(mesh).param;
+      order.push_back({read_mesh(path).num_faces(), path});
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", path.c_str(), e.what());
-      continue;
     }
-    const std::string name = std::filesystem::path(path).stem().string();
-    for (const auto& kind : kinds) {
+  }
+  std::sort(order.begin(), order.end());
+  std::vector<int> sizes = a.sizes;
+  std::sort(sizes.begin(), sizes.end());
+  print_header(a);
+  std::vector<CaseRecord> cases;
+  for (const auto& [faces, path] : order) {
+    const TriMesh mesh = read_mesh(path);
+    const Parameterization param = unwrap(mesh).param;
+    const std::string name = fs::path(path).stem().string();
+    for (const auto& kind : a.kinds) {
       GenerateOptions go;
       go.kind = parse_stroke_kind(kind);
-      go.count = count;
+      go.count = a.count;
+      go.seed = a.seed;
       const StrokeFile strokes = generate_strokes(mesh, go);
-      for (int N : sizes) {
-        auto psnr_none = [&](int size) {
-          PainterOptions po;
-          po.width = po.height = size;
-          Painter p(mesh, param, po, strokes.background);
-          p.paint_all(strokes);
-          return evaluate_texture(mesh, param, p.texture(), strokes, eo).psnr;
-        };
-        const double none = psnr_none(N), none2 = psnr_none(2 * N);
-        PaintSessionOptions o = so;
-        o.texture_size = N;
-        PaintSession s(mesh, param, o, strokes.background);
-        const auto t0 = std::chrono::steady_clock::now();
-        for (const auto& st : strokes.strokes) s.add_stroke(st);
-        s.finish();
-        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        const double ad = evaluate_texture(mesh, s.param(), s.texture(), strokes, eo).psnr;
-        const auto st = measure_stretch(mesh, s.param());
-        double damping = 0, reparam_ms = 0;
-        int accepted = 0;
-        for (const auto& r : s.reports()) {
-          damping += r.damping;
-          accepted += r.accepted;
-          reparam_ms += 1e3 * r.time_total;
+      std::map<int, double> none_cache;
+      for (int n : sizes) {
+        const std::array<double, 3> none{psnr_none(none_cache, n, mesh, param, strokes, eo),
+                                         psnr_none(none_cache, 2 * n, mesh, param, strokes, eo),
+                                         psnr_none(none_cache, 4 * n, mesh, param, strokes, eo)};
+        CaseRecord c{kind, none[0], {}};
+        std::printf("| %s | %d | %s | %d | %.2f | %.2f | %.2f |", name.c_str(), faces, kind.c_str(), n, none[0],
+                    none[1], none[2]);
+        for (const auto& m : a.modes) {
+          const ModeResult r = run_mode(a, m, mesh, param, strokes, n, none, eo);
+          std::printf(" %.2f | %s | %d/%d/%ld | %d/%d | %d | %.1f |", r.psnr, factor_cell(r.saving).c_str(), r.flipped,
+                      r.degenerate, r.overlaps, r.accepted, r.reparams, r.faces, r.seconds);
+          std::fflush(stdout);
+          c.modes.push_back(r);
         }
-        const int nr = static_cast<int>(s.reports().size());
-        std::printf("| %s | %d | %s | %d | %.2f | %.2f | %.2f | %+.2f | %.0f%% | %.2f | %d/%d | %.0f |%s\n", name.c_str(),
-                    mesh.num_faces(), kind.c_str(), N, none, none2, ad, ad - none,
-                    none2 > none ? 100.0 * (ad - none) / (none2 - none) : 0.0, nr ? damping / nr : 0.0, accepted, nr,
-                    nr ? reparam_ms / nr : 0.0, (st.flipped || st.degenerate) ? " FLIPS" : "");
+        std::printf("\n");
         std::fflush(stdout);
-        (void)secs;
-        if (a.count("--verbose"))
-          for (const auto& r : s.reports()) std::fprintf(stderr, "%s\n", nlohmann::json(r).dump().c_str());
+        cases.push_back(std::move(c));
       }
     }
   }
+  print_summary(a, cases);
   return 0;
 }
