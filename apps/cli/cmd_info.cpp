@@ -76,6 +76,7 @@ void run_info(const InfoOptions& opt, const Context& ctx) {
     j["dropped_duplicate_faces"] = report.dropped_duplicate_faces;
     j["split_nonmanifold_vertices"] = report.split_nonmanifold_vertices;
     j["split_pinched_vertices"] = report.split_pinched_vertices;
+    j["flipped_faces"] = report.flipped_faces;
     j["welded_vertices"] = report.welded_vertices;
     j["warnings"] = report.warnings;
     std::cout << j.dump(2) << "\n";
@@ -110,6 +111,7 @@ void run_info(const InfoOptions& opt, const Context& ctx) {
      << " duplicate faces\n";
   os << "welded:      " << report.welded_vertices << " vertices\n";
   os << "pinched:     " << report.split_pinched_vertices << " vertices split (one vertex per fan of faces)\n";
+  os << "rewound:     " << report.flipped_faces << " faces flipped to the winding of their neighbours\n";
   if (opt.repair) os << "repaired:    " << report.split_nonmanifold_vertices << " vertices split\n";
   std::cout << os.str();
 }

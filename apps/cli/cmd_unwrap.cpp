@@ -105,6 +105,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
                    {"dropped_duplicate_faces", rr.dropped_duplicate_faces},
                    {"split_nonmanifold_vertices", rr.split_nonmanifold_vertices},
                    {"split_pinched_vertices", rr.split_pinched_vertices},
+                   {"flipped_faces", rr.flipped_faces},
                    {"welded_vertices", rr.welded_vertices}};
     j["time"] = {{"read", time_read},         {"cut", r.time_cut},
                  {"floater", r.time_floater}, {"yoshizawa", r.time_yoshizawa},

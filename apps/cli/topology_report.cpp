@@ -18,7 +18,9 @@ nlohmann::json component_topology_json(const MeshTopology& topo) {
                    {"euler", c.euler},
                    {"genus", c.genus},
                    {"boundary_loops", c.loops.size()},
-                   {"boundary_loop_lengths", lengths}});
+                   {"boundary_loop_lengths", lengths},
+                   {"orientable", c.orientable},
+                   {"consistently_oriented", c.consistently_oriented}});
   }
   return arr;
 }
@@ -36,7 +38,8 @@ std::string component_topology_text(const MeshTopology& topo, int max_shown) {
       os << (nl > 10 ? " ..." : "") << " edges)";
     }
     os << ", euler char. " << c.euler << ", " << c.faces << " faces, " << c.vertices << " vertices, " << c.edges
-       << " edges\n";
+       << " edges" << (!c.orientable ? ", NOT orientable" : !c.consistently_oriented ? ", mixed winding" : "")
+       << "\n";
   }
   if (shown < topo.num_components) os << "  ... (" << topo.num_components - shown << " more components)\n";
   return os.str();

@@ -11,7 +11,8 @@
 namespace adaptex::cli {
 
 /// JSON array with one object per component: "faces", "vertices", "edges", "euler", "genus",
-/// "boundary_loops" (count) and "boundary_loop_lengths" (edges per loop, in loop order).
+/// "boundary_loops" (count), "boundary_loop_lengths" (edges per loop, in loop order), "orientable"
+/// and "consistently_oriented" (core/topology.h ComponentTopology).
 /// \throw nothing beyond std::bad_alloc
 nlohmann::json component_topology_json(const MeshTopology& topo);
 

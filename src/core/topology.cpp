@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "adaptex/core/orientation.h"
+
 namespace adaptex {
 
 namespace {
@@ -207,6 +209,12 @@ MeshTopology analyze_topology(const TriMesh& mesh) {
     const int c = topo.face_component[ec.edge_faces[loop_first_edge[l]][0]];
     topo.loop_component.push_back(c);
     topo.components[c].loops.push_back(static_cast<int>(l));
+  }
+  const FaceOrientation orientation = orient_faces(mesh, ec);
+  for (int f = 0; f < nf; ++f) {
+    ComponentTopology& ct = topo.components[topo.face_component[f]];
+    ct.orientable = ct.orientable && !orientation.non_orientable[f];
+    ct.consistently_oriented = ct.consistently_oriented && !orientation.flip[f] && !orientation.non_orientable[f];
   }
   topo.component_genus.resize(nc);
   topo.component_loops.resize(nc);

@@ -41,10 +41,12 @@ struct SoupMesh {
 
 /// validate_mesh() with provenance: \p face_source / \p vertex_source are updated in step with the
 /// faces and vertices that are dropped, split or compacted (vertex_source of a split copy is the
-/// source of the original). Both may be empty (then they are not tracked).
+/// source of the original). Both may be empty (then they are not tracked). \p face_flipped is set
+/// to F flags (1 = corners 1 and 2 of the face were swapped to make the winding consistent), or
+/// left empty when no face was flipped.
 TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOptions& options,
                          ReadReport& report, std::vector<int>& face_source,
-                         std::vector<int>& vertex_source);
+                         std::vector<int>& vertex_source, std::vector<char>& face_flipped);
 
 /// Validates and triangulates \p soup (see read_mesh() for the rules). \p name is the file name.
 SoupMesh soup_to_mesh(PolygonSoup soup, const std::string& name, const ReadOptions& options,

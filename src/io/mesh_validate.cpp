@@ -2,7 +2,7 @@
 /// Validation and repair of triangle meshes (issue 2, "Mesh input"): non-finite coordinates, indices
 /// out of range, degenerate faces and unreferenced vertices (dropped with a warning), pinched vertices
 /// (split with a warning), duplicate faces and non-manifold edges (rejected, or repaired with
-/// ReadOptions::repair), and the common
+/// ReadOptions::repair), mixed face winding (made consistent with a warning), and the common
 /// polygon-soup -> TriMesh step of every reader (fan triangulation, welding by identical position).
 #include <algorithm>
 #include <charconv>
@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/orientation.h"
 #include "adaptex/core/pinched.h"
 #include "adaptex/core/topology.h"
 #include "mesh_soup.h"
@@ -205,7 +206,7 @@ std::string describe_nonmanifold(const TriMesh& mesh, const MeshTopology& topo) 
 
 TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOptions& options,
                          ReadReport& report, std::vector<int>& face_source,
-                         std::vector<int>& vertex_source) {
+                         std::vector<int>& vertex_source, std::vector<char>& face_flipped) {
   const int nv = mesh.num_vertices();
   // 1. Finite coordinates and indices in range.
   for (int v = 0; v < nv; ++v)
@@ -352,6 +353,24 @@ TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOption
     drop_unreferenced(false);
   }
   if (!topo.is_manifold()) throw TopologyError(name + ": " + describe_nonmanifold(mesh, topo));
+
+  // 6. Mixed winding: the faces that disagree with the majority of their surface are flipped.
+  face_flipped.clear();
+  const FaceOrientation orientation = orient_faces(mesh);
+  if (orientation.num_flipped > 0) {
+    int first = 0;
+    while (!orientation.flip[first]) ++first;
+    apply_orientation(mesh, orientation);
+    face_flipped = orientation.flip;
+    report.flipped_faces += orientation.num_flipped;
+    warn(report, name + ": flipped " + plural(orientation.num_flipped, "face", "faces") + " of " +
+                     std::to_string(mesh.num_faces()) +
+                     " whose winding disagreed with their neighbours (first: face " +
+                     std::to_string(face_source.empty() ? first : face_source[first]) + ")");
+  }
+  if (orientation.num_non_orientable_faces > 0)
+    warn(report, name + ": " + plural(orientation.num_non_orientable_faces, "face lies", "faces lie") +
+                     " on a non-orientable surface (a Moebius band or similar): no consistent winding");
   return mesh;
 }
 
@@ -443,9 +462,13 @@ SoupMesh soup_to_mesh(PolygonSoup soup, const std::string& name, const ReadOptio
   }
   if (mesh.faces.empty())
     throw InvalidInputError(name + ": no faces: all " + std::to_string(np) + " faces have fewer than 3 vertices");
-  out.mesh = validate_tracked(std::move(mesh), name, options, report, face_source, vertex_source);
+  std::vector<char> flipped;
+  out.mesh = validate_tracked(std::move(mesh), name, options, report, face_source, vertex_source, flipped);
   std::vector<std::array<std::int64_t, 3>> corners(face_source.size());
-  for (size_t f = 0; f < face_source.size(); ++f) corners[f] = out.face_corners[face_source[f]];
+  for (size_t f = 0; f < face_source.size(); ++f) {
+    corners[f] = out.face_corners[face_source[f]];
+    if (!flipped.empty() && flipped[f]) std::swap(corners[f][1], corners[f][2]);
+  }
   out.face_corners = std::move(corners);
   out.vertex_source = std::move(vertex_source);
   return out;
@@ -463,7 +486,9 @@ double signed_volume(const TriMesh& mesh) {
 TriMesh validate_mesh(TriMesh mesh, const std::string& name, const ReadOptions& options, ReadReport* report) {
   ReadReport local;
   std::vector<int> none_f, none_v;
-  return io_detail::validate_tracked(std::move(mesh), name, options, report ? *report : local, none_f, none_v);
+  std::vector<char> flipped;
+  return io_detail::validate_tracked(std::move(mesh), name, options, report ? *report : local, none_f, none_v,
+                                     flipped);
 }
 
 }  // namespace adaptex

@@ -1,6 +1,7 @@
 # Surgery part of adaptex_param (owner: param-surgery): topological surgery (§3.2), chart packing,
 # the unwrap() pipeline.
 target_sources(adaptex_param PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/charts.cpp
   ${CMAKE_CURRENT_LIST_DIR}/cut.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pack.cpp
   ${CMAKE_CURRENT_LIST_DIR}/layout_image.cpp

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/orientation.h"
 #include "adaptex/core/pinched.h"
 #include "adaptex/core/topology.h"
 #include "adaptex/param/cut.h"
@@ -140,11 +141,23 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
     throw TopologyError("unwrap: the mesh is not manifold (" +
                         std::to_string(topo.nonmanifold_edges.size()) +
                         " non-manifold edges); repair it first");
-  if (!topo.nonmanifold_vertices.empty()) {
-    // Pinched vertices (core/pinched.h): unwrap the split surface; its wedges map back to the input.
-    const PinchedSplit split = split_pinched_vertices(mesh);
+  bool mixed_winding = false;
+  for (const ComponentTopology& c : topo.components) {
+    if (!c.orientable)
+      throw TopologyError("unwrap: a component of " + std::to_string(c.faces) +
+                          " faces is not orientable (a Moebius band or similar); it has no layout");
+    mixed_winding = mixed_winding || !c.consistently_oriented;
+  }
+  if (!topo.nonmanifold_vertices.empty() || mixed_winding) {
+    // Pinched vertices (core/pinched.h) and mixed winding (core/orientation.h): unwrap the split,
+    // consistently wound surface; its wedges and face corners map back to the input.
+    PinchedSplit split = split_pinched_vertices(mesh);
+    const FaceOrientation orientation = orient_faces(split.mesh);
+    apply_orientation(split.mesh, orientation);
     UnwrapResult r = unwrap(split.mesh, options);
     for (int& v : r.param.wedge_vertex) v = split.vertex_source[v];
+    for (size_t f = 0; f < mesh.faces.size(); ++f)
+      if (orientation.flip[f]) std::swap(r.param.uv_faces[f][1], r.param.uv_faces[f][2]);
     return r;
   }
   rep.num_components = topo.num_components;

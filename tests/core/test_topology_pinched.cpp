@@ -1,12 +1,15 @@
 // Issue 8, "Topology that is right": boundary loops are traced fan by fan (a loop through a pinched
 // vertex, inconsistent face winding), components are separated at pinched vertices, and every
-// component satisfies euler == 2 - 2 genus - loops. split_pinched_vertices() keeps positions exactly.
+// component satisfies euler == 2 - 2 genus - loops. split_pinched_vertices() keeps positions exactly;
+// orient_faces() makes a mixed winding consistent and finds non-orientable pieces.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
+#include "adaptex/core/orientation.h"
 #include "adaptex/core/pinched.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/core/topology.h"
@@ -204,4 +207,68 @@ TEST(PinchedSplit, OneVertexPerFanSamePositionSameTopology) {
   const PinchedSplit none = split_pinched_vertices(shapes::torus(12, 6));
   EXPECT_EQ(none.pinched_vertices, 0);
   EXPECT_EQ(none.mesh.faces, shapes::torus(12, 6).faces);
+}
+
+namespace {
+
+/// A Möbius band: a strip of n quads whose ends are glued with a half twist.
+TriMesh moebius(int n) {
+  TriMesh m;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * 3.14159265358979 * i / n;
+    for (double s : {-0.3, 0.3}) {
+      const double r = 1 + s * std::cos(t / 2);
+      m.positions.push_back(Vec3(r * std::cos(t), r * std::sin(t), s * std::sin(t / 2)));
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 * i, b = 2 * i + 1;
+    const bool last = i + 1 == n;
+    const int c = last ? 1 : 2 * i + 2, d = last ? 0 : 2 * i + 3;  // the twist swaps the sides
+    m.faces.push_back({a, c, d});
+    m.faces.push_back({a, d, b});
+  }
+  return m;
+}
+
+}  // namespace
+
+TEST(Orientation, MixedWindingIsMadeConsistentKeepingTheMajority) {
+  const TriMesh ref = shapes::with_pinched_hole(shapes::genus_surface(3));
+  TriMesh mixed = ref;
+  int changed = 0;
+  for (size_t f = 0; f < mixed.faces.size(); f += 7, ++changed) std::swap(mixed.faces[f][1], mixed.faces[f][2]);
+  const MeshTopology before = analyze_topology(mixed);
+  ASSERT_EQ(before.num_components, 1);
+  EXPECT_TRUE(before.components[0].orientable);
+  EXPECT_FALSE(before.components[0].consistently_oriented);
+  // The loops and genus are right even before the winding is fixed (the issue's genus-3 mesh).
+  EXPECT_EQ(before.total_genus(), 3);
+  EXPECT_EQ(before.total_loops(), 1);
+  const FaceOrientation o = orient_faces(mixed);
+  EXPECT_EQ(o.num_flipped, changed);
+  EXPECT_EQ(o.num_non_orientable_faces, 0);
+  apply_orientation(mixed, o);
+  EXPECT_EQ(mixed.faces, ref.faces);
+  EXPECT_TRUE(analyze_topology(mixed).components[0].consistently_oriented);
+  // Already consistent: nothing to flip; the minority is what gets flipped.
+  EXPECT_EQ(orient_faces(ref).num_flipped, 0);
+  TriMesh most = ref;
+  for (size_t f = 0; f < most.faces.size(); ++f)
+    if (f % 4 != 0) std::swap(most.faces[f][1], most.faces[f][2]);
+  const FaceOrientation om = orient_faces(most);
+  EXPECT_EQ(om.num_flipped, static_cast<int>((ref.faces.size() + 3) / 4));
+}
+
+TEST(Orientation, MoebiusBandIsNotOrientable) {
+  const TriMesh m = moebius(24);
+  const MeshTopology t = analyze_topology(m);
+  ASSERT_EQ(t.num_components, 1);
+  EXPECT_TRUE(t.is_manifold());
+  EXPECT_FALSE(t.components[0].orientable);
+  EXPECT_EQ(t.total_loops(), 1);  // the band's single boundary loop, traced regardless of winding
+  EXPECT_EQ(t.boundary_loops[0].size(), 48u);
+  const FaceOrientation o = orient_faces(m);
+  EXPECT_EQ(o.num_flipped, 0);
+  EXPECT_EQ(o.num_non_orientable_faces, m.num_faces());
 }

@@ -394,6 +394,50 @@ TEST(MeshIo, PinchedVerticesAreSplitWithoutRepair) {
   EXPECT_TRUE(analyze_topology(m).is_manifold());
 }
 
+TEST(MeshIo, MixedWindingIsMadeConsistent) {
+  // Some faces wound against their neighbours (as in some scans): flipped back, with a warning.
+  const TriMesh ref = shapes::with_pinched_hole(shapes::torus(16, 8));
+  TriMesh mixed = ref;
+  for (size_t f = 0; f < mixed.faces.size(); f += 5) std::swap(mixed.faces[f][1], mixed.faces[f][2]);
+  ReadReport r;
+  const TriMesh out = validate_mesh(mixed, "mixed", {}, &r);
+  EXPECT_EQ(r.flipped_faces, static_cast<int>((ref.faces.size() + 4) / 5));
+  EXPECT_EQ(r.split_pinched_vertices, 1);
+  ASSERT_EQ(r.warnings.size(), 2u);
+  EXPECT_NE(r.warnings[1].find("mixed: flipped " + std::to_string(r.flipped_faces) + " faces"), std::string::npos)
+      << r.warnings[1];
+  ASSERT_EQ(out.num_faces(), ref.num_faces());
+  for (int f = 0; f < ref.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(out.positions[out.faces[f][k]], ref.positions[ref.faces[f][k]]);
+  EXPECT_TRUE(analyze_topology(out).components[0].consistently_oriented);
+  // A textured OBJ with mixed winding: the UV corners follow their vertices when a face is flipped.
+  TempDir dir;
+  const TriMesh plane = shapes::plane(4);
+  TriMesh wound = plane;
+  Parameterization p;
+  for (const Vec3& x : plane.positions) {
+    p.uv.push_back(Vec2(x.x(), x.y()));
+    p.wedge_vertex.push_back(static_cast<int>(p.wedge_vertex.size()));
+  }
+  for (size_t f = 0; f < wound.faces.size(); f += 3) std::swap(wound.faces[f][1], wound.faces[f][2]);
+  p.uv_faces = wound.faces;
+  p.face_chart.assign(wound.faces.size(), 0);
+  p.num_charts = 1;
+  write_obj(dir.path / "wound.obj", wound, &p);
+  ReadReport rt;
+  const TexturedMesh back = read_textured_obj(dir.path / "wound.obj", {}, &rt);
+  EXPECT_EQ(rt.flipped_faces, static_cast<int>((plane.faces.size() + 2) / 3));
+  ASSERT_EQ(back.mesh.faces, plane.faces);
+  for (int f = 0; f < back.mesh.num_faces(); ++f) {
+    EXPECT_GT(uv_signed_area(back.param, f), 0.0) << "face " << f;
+    for (int k = 0; k < 3; ++k) {
+      const Vec2& t = back.param.uv[back.param.uv_faces[f][k]];
+      const Vec3& x = back.mesh.positions[back.mesh.faces[f][k]];
+      EXPECT_EQ(t, Vec2(x.x(), x.y())) << "face " << f << " corner " << k;
+    }
+  }
+}
+
 TEST(MeshIo, ErrorsNameTheFile) {
   TempDir dir;
   EXPECT_THROW(read_mesh(dir.path / "missing.obj"), IoError);

@@ -4,3 +4,4 @@ adaptex_add_test(test_param_unwrap SOURCES test_unwrap.cpp LIBS adaptex::adaptex
 adaptex_add_test(test_param_unwrap_cli SOURCES test_unwrap_cli.cpp
   LIBS adaptex::adaptex nlohmann_json::nlohmann_json)
 adaptex_add_test(test_param_unwrap_shared SOURCES test_unwrap_shared.cpp LIBS adaptex::adaptex)
+adaptex_add_test(test_param_charts SOURCES test_charts.cpp LIBS adaptex::adaptex)

@@ -48,7 +48,7 @@ TEST(UnwrapCli, WritesObjReportAndLayout) {
   const TriMesh mesh = write_off(dir.path / "in.off", shapes::torus(40, 12));
   const auto out = dir.path / "out.obj", rep = dir.path / "r.json", lay = dir.path / "l.png";
   const auto r = run_cli("unwrap " + q(dir.path / "in.off") + " -o " + q(out) + " --report " +
-                         q(rep) + " --layout " + q(lay) + " --layout-size 256");
+                         q(rep) + " --layout " + q(lay) + " --layout-size 256 --charts single");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // OBJ: v lines are exactly the input positions, vt in [0,1]^2, f v/vt with valid indices.
   std::ifstream in(out);
@@ -91,13 +91,16 @@ TEST(UnwrapCli, WritesObjReportAndLayout) {
   const nlohmann::json j = nlohmann::json::parse(rf);
   for (const char* key : {"vertices", "faces", "components", "genus", "boundary_loops", "charts",
                           "cut_length", "augmentations", "floater_l2", "floater_linf", "final_l2",
-                          "final_linf", "time"})
+                          "final_linf", "coverage", "effective_texel_share", "time"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["faces"].get<int>(), mesh.num_faces());
   EXPECT_EQ(j["vertices"].get<int>(), mesh.num_vertices());
   EXPECT_EQ(j["genus"].get<int>(), 1);
   EXPECT_EQ(j["boundary_loops"].get<int>(), 0);
   EXPECT_EQ(j["charts"].get<int>(), 1);
+  EXPECT_DOUBLE_EQ(j["coverage"].get<double>(), 1.0);  // one chart fills the square
+  EXPECT_NEAR(j["effective_texel_share"].get<double>(),
+              1.0 / (j["final_l2"].get<double>() * j["final_l2"].get<double>()), 1e-9);
   EXPECT_GT(j["cut_length"].get<double>(), 0.0);
   EXPECT_LE(j["final_l2"].get<double>(), j["floater_l2"].get<double>());
   EXPECT_EQ(j["flipped"].get<int>(), 0);

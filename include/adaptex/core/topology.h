@@ -51,6 +51,11 @@ struct ComponentTopology {
   int edges = 0;     ///< Edges of the component.
   int euler = 0;     ///< vertices - edges + faces.
   int genus = 0;     ///< (2 - euler - boundary_loops) / 2, clamped at 0 (a non-orientable piece).
+  /// Its faces can be wound consistently (core/orientation.h); genus is meaningful only then.
+  /// True also when the mesh mixes windings: see consistently_oriented.
+  bool orientable = true;
+  /// Every edge shared by two faces of the component is traversed in opposite directions.
+  bool consistently_oriented = true;
   std::vector<int> loops;  ///< Indices into MeshTopology::boundary_loops of its boundary loops.
 };
 

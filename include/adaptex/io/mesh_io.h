@@ -29,11 +29,16 @@ struct ReadReport {
   /// Pinched vertices (several separate fans of faces at one vertex) split into one vertex per fan,
   /// always (no repair needed); the copies keep the exact position.
   int split_pinched_vertices = 0;
+  /// Faces reversed because their winding disagreed with the majority of their surface (always;
+  /// core/orientation.h). Positions are untouched.
+  int flipped_faces = 0;
   int welded_vertices = 0;            ///< Vertices merged because the format split them.
   std::vector<std::string> warnings;  ///< Human-readable warning lines (file name included).
 };
 
-/// Reads and validates a triangle mesh (polygons are fan-triangulated).
+/// Reads and validates a triangle mesh (polygons are fan-triangulated). Pinched vertices are split
+/// (core/pinched.h) and a mixed face winding is made consistent (core/orientation.h), each with a
+/// warning; nothing else about the faces changes.
 /// Positions keep the file's units and values; vertex order follows the file where the format has
 /// shared vertices. Vertices split by the format (STL, OBJ with separate v/vn/vt indices, assimp's
 /// per-corner output) are welded by identical position.

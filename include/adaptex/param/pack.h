@@ -29,4 +29,21 @@ struct ChartPlacement {
 /// \throw InvalidInputError padding out of range or no charts
 std::vector<ChartPlacement> pack_charts(const std::vector<double>& areas, double padding);
 
+/// Placement of one rectangular chart: uv' = offset + size.cwiseProduct(uv), for uv in [0,1]^2.
+struct RectPlacement {
+  Vec2 offset = Vec2::Zero();  ///< Lower-left corner of the chart's rectangle in [0,1]^2.
+  Vec2 size = Vec2::Ones();    ///< Width and height of the chart's rectangle.
+};
+
+/// Packs one rectangle per chart into [0,1]^2 (multi-chart layouts, docs/charts.md): rectangle i
+/// has the shape of \p sizes[i] (width, height; only the ratios between all the sizes matter), all
+/// scaled by the same factor, the largest at which a shelf packing (tallest first, rows left to
+/// right) fits with gap \p padding between rectangles and to the border. A single rectangle fills
+/// the unit square.
+/// \param sizes C positive (width, height) pairs (non-positive entries get the smallest size)
+/// \param padding as in pack_charts()
+/// \return C placements: pairwise disjoint rectangles at least \p padding apart, inside [0,1]^2
+/// \throw InvalidInputError padding out of range, no charts, or they cannot be packed
+std::vector<RectPlacement> pack_rectangles(const std::vector<Vec2>& sizes, double padding);
+
 }  // namespace adaptex

@@ -75,10 +75,12 @@ struct UnwrapResult {
 };
 
 /// Parameterizes every connected component as one chart, packed into [0,1]^2 without overlap.
-/// Pinched vertices (several separate fans of faces at one vertex, core/pinched.h) are split first:
-/// the charts are those of the split surface and its wedges refer to the input vertices.
+/// Pinched vertices (several separate fans of faces at one vertex, core/pinched.h) are split and a
+/// mixed face winding is made consistent (core/orientation.h) first: the charts are those of the
+/// split, consistently wound surface; wedges refer to the input vertices and uv_faces to the input
+/// corners (so a face wound against its neighbours has a UV triangle of negative signed area).
 /// \pre mesh has manifold edges, valid indices and no degenerate faces (as read_mesh() returns it)
-/// \throw TopologyError non-manifold edges
+/// \throw TopologyError non-manifold edges, a non-orientable component
 /// \throw SolverError the sparse solve failed
 /// \throw CancelledError the progress callback returned false
 UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options = {});

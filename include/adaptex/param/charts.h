@@ -1,0 +1,53 @@
+#pragma once
+/// \file charts.h
+/// Segmentation of a surface into a few charts for a multi-chart layout (docs/charts.md).
+/// Charts are grown from seeds over the dual graph with a cost that adds normal deviation to
+/// geodesic distance, in the spirit of the Lloyd-style region growing of Sander et al. 2003
+/// ("Multi-chart geometry images") and Julius, Kraevoy, Sheffer 2005 ("D-Charts": developable,
+/// compact charts), then re-seeded at their centres a few times. Each chart is then cut to a disk
+/// and parameterized like a component (unwrap.h).
+#include <vector>
+
+#include "adaptex/core/mesh.h"
+
+namespace adaptex {
+
+/// Settings of segment_charts().
+struct ChartSegmentOptions {
+  /// Number of charts (seeds). Fewer come out only if the mesh has fewer faces.
+  int num_charts = 8;
+  /// Lloyd iterations: after growing, every seed moves to the centre of its chart (the face
+  /// farthest from the chart's border) and the charts are grown again.
+  int lloyd_iterations = 3;
+  /// Normal penalty of a dual step f -> g of length d: cost d * (1 + normal_weight * (1 - n_g·n_c)),
+  /// n_c = the area-weighted mean normal of the chart (the seed's normal before the first
+  /// iteration). 0 gives plain geodesic Voronoi cells; higher values follow creases.
+  double normal_weight = 4.0;
+};
+
+/// Splits \p mesh into connected charts (through shared edges).
+/// Seeds: farthest-point sampling on the dual graph (step length = distance between face
+/// centroids), starting from the face farthest from face 0. Growth: multi-source Dijkstra with the
+/// cost of ChartSegmentOptions::normal_weight.
+/// \pre mesh has manifold edges (at most two faces per edge) and is connected (one component)
+/// \return F labels in [0, C), C = min(num_charts, F); every label is used and each chart is
+///         connected through edges
+/// \throw InvalidInputError num_charts < 1, lloyd_iterations < 0, normal_weight < 0, no faces
+std::vector<int> segment_charts(const TriMesh& mesh, const ChartSegmentOptions& options = {});
+
+/// One chart cut out of a mesh: its own vertices (a vertex where the chart's faces meet in several
+/// separate fans gets one vertex per fan, so every chart is edge- and vertex-manifold).
+struct ChartMesh {
+  TriMesh mesh;               ///< The chart's faces, in input order, with local vertex ids.
+  std::vector<int> faces;     ///< Local face -> input face.
+  std::vector<int> vertices;  ///< Local vertex -> input vertex.
+};
+
+/// Cuts \p mesh into the charts given by \p face_chart (F labels in [0, num_charts)).
+/// \pre mesh has manifold edges
+/// \return num_charts charts (a label no face uses gives an empty chart)
+/// \throw InvalidInputError face_chart has the wrong size or a label outside [0, num_charts)
+std::vector<ChartMesh> extract_charts(const TriMesh& mesh, const std::vector<int>& face_chart,
+                                      int num_charts);
+
+}  // namespace adaptex

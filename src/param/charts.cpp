@@ -1,0 +1,283 @@
+/// \file charts.cpp
+/// Segmentation into charts by seeded region growing with Lloyd re-seeding (docs/charts.md).
+#include "adaptex/param/charts.h"
+
+#include <algorithm>
+#include <limits>
+#include <numeric>
+#include <queue>
+#include <string>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/core/topology.h"
+
+namespace adaptex {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Dual graph of the faces in CSR form: neighbours across shared (two-face) edges.
+struct DualGraph {
+  std::vector<int> offsets, nbr;
+  std::vector<double> length;  ///< Distance between the two face centroids.
+  std::vector<Vec3> centroid, normal;
+  std::vector<double> area;
+};
+
+DualGraph build_dual_graph(const TriMesh& mesh) {
+  const int nf = mesh.num_faces();
+  const EdgeConnectivity ec = build_edges(mesh);
+  DualGraph g;
+  g.centroid.resize(nf);
+  g.normal.resize(nf);
+  g.area.resize(nf);
+  for (int f = 0; f < nf; ++f) {
+    const Face& t = mesh.faces[f];
+    g.centroid[f] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0;
+    g.normal[f] = face_normal(mesh, f);
+    g.area[f] = face_area(mesh, f);
+  }
+  g.offsets.assign(nf + 1, 0);
+  for (const auto& ef : ec.edge_faces)
+    if (ef.size() == 2) ++g.offsets[ef[0] + 1], ++g.offsets[ef[1] + 1];
+  for (int f = 0; f < nf; ++f) g.offsets[f + 1] += g.offsets[f];
+  g.nbr.resize(g.offsets[nf]);
+  g.length.resize(g.offsets[nf]);
+  std::vector<int> fill(g.offsets.begin(), g.offsets.end() - 1);
+  for (const auto& ef : ec.edge_faces) {
+    if (ef.size() != 2) continue;
+    const double d = (g.centroid[ef[0]] - g.centroid[ef[1]]).norm();
+    g.nbr[fill[ef[0]]] = ef[1];
+    g.length[fill[ef[0]]++] = d;
+    g.nbr[fill[ef[1]]] = ef[0];
+    g.length[fill[ef[1]]++] = d;
+  }
+  return g;
+}
+
+/// Multi-source Dijkstra over the dual graph. \p step_cost(label, k) is the cost of adjacency
+/// entry k when growing chart \p label. Fills dist and label (-1 where unreachable).
+template <class Cost>
+void grow(const DualGraph& g, const std::vector<int>& seeds, Cost step_cost,
+          std::vector<double>& dist, std::vector<int>& label) {
+  const int nf = static_cast<int>(g.centroid.size());
+  dist.assign(nf, kInf);
+  label.assign(nf, -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<>> pq;
+  for (size_t s = 0; s < seeds.size(); ++s) {
+    dist[seeds[s]] = 0;
+    label[seeds[s]] = static_cast<int>(s);
+    pq.push({0.0, seeds[s]});
+  }
+  while (!pq.empty()) {
+    const auto [d, f] = pq.top();
+    pq.pop();
+    if (d > dist[f]) continue;
+    for (int k = g.offsets[f]; k < g.offsets[f + 1]; ++k) {
+      const int h = g.nbr[k];
+      const double nd = d + step_cost(label[f], k);
+      if (nd < dist[h]) {
+        dist[h] = nd;
+        label[h] = label[f];
+        pq.push({nd, h});
+      }
+    }
+  }
+}
+
+/// Farthest-point seeds: the face farthest from face 0, then repeatedly the face farthest from all
+/// seeds so far (plain centroid distance).
+std::vector<int> farthest_point_seeds(const DualGraph& g, int k) {
+  std::vector<double> dist;
+  std::vector<int> label;
+  auto plain = [&](int, int j) { return g.length[j]; };
+  grow(g, {0}, plain, dist, label);
+  std::vector<int> seeds;
+  auto farthest = [&] {
+    int best = 0;
+    for (size_t f = 0; f < dist.size(); ++f)
+      if (dist[f] < kInf && dist[f] > dist[best]) best = static_cast<int>(f);
+    return best;
+  };
+  seeds.push_back(farthest());
+  while (static_cast<int>(seeds.size()) < k) {
+    grow(g, seeds, plain, dist, label);
+    const int f = farthest();
+    if (dist[f] <= 0) break;  // every face is a seed already
+    seeds.push_back(f);
+  }
+  return seeds;
+}
+
+/// The centre of every chart: the face farthest (plain dual distance) from the chart's border.
+std::vector<int> chart_centres(const DualGraph& g, const std::vector<int>& label, int k) {
+  const int nf = static_cast<int>(label.size());
+  std::vector<int> border;
+  for (int f = 0; f < nf; ++f) {
+    bool on_border = g.offsets[f + 1] - g.offsets[f] < 3;  // touches the mesh boundary
+    for (int j = g.offsets[f]; j < g.offsets[f + 1]; ++j) on_border |= label[g.nbr[j]] != label[f];
+    if (on_border) border.push_back(f);
+  }
+  std::vector<double> dist;
+  std::vector<int> nearest;
+  // Every path out of a chart crosses its border faces, so the nearest border face of a face is one
+  // of its own chart's.
+  auto inside = [&](int, int j) { return g.length[j]; };
+  std::vector<int> centre(k, -1);
+  std::vector<double> best(k, -1.0);
+  if (border.empty()) return centre;
+  grow(g, border, inside, dist, nearest);
+  for (int f = 0; f < nf; ++f)
+    if (dist[f] < kInf && dist[f] > best[label[f]]) best[label[f]] = dist[f], centre[label[f]] = f;
+  return centre;
+}
+
+/// Smooths chart borders. An "ear" of a chart is a vertex where the chart has a single face while
+/// other charts (or the mesh boundary) take the rest of its fan: the disk embedding must make such a
+/// vertex a corner of the square (Floater's one-to-one condition), and with more than four of them
+/// it falls back to the circle and flattens the ear faces into slivers of huge stretch. Each such
+/// face moves to the chart that has the most faces at that vertex; repeated until nothing moves
+/// (bounded). Ears of the mesh itself (a vertex with one face) cannot be removed.
+void remove_ears(const TriMesh& mesh, std::vector<int>& label) {
+  const VertexFaces vf = build_vertex_faces(mesh);
+  const int nv = mesh.num_vertices();
+  for (int pass = 0; pass < 20; ++pass) {
+    bool moved = false;
+    for (int v = 0; v < nv; ++v) {
+      const int b = vf.offsets[v], e = vf.offsets[v + 1];
+      if (e - b < 2) continue;
+      for (int i = b; i < e; ++i) {
+        const int f = vf.faces[i], l = label[f];
+        int same = 0, best = -1, best_count = 0;
+        for (int j = b; j < e; ++j) same += label[vf.faces[j]] == l;
+        if (same != 1) continue;
+        for (int j = b; j < e; ++j) {
+          const int o = label[vf.faces[j]];
+          if (o == l) continue;
+          int count = 0;
+          for (int q = b; q < e; ++q) count += label[vf.faces[q]] == o;
+          if (count > best_count) best = o, best_count = count;
+        }
+        if (best >= 0) {
+          label[f] = best;
+          moved = true;
+        }
+      }
+    }
+    if (!moved) break;
+  }
+}
+
+}  // namespace
+
+std::vector<int> segment_charts(const TriMesh& mesh, const ChartSegmentOptions& options) {
+  const int nf = mesh.num_faces();
+  if (nf == 0) throw InvalidInputError("segment_charts: the mesh has no faces");
+  if (options.num_charts < 1 || options.lloyd_iterations < 0 || !(options.normal_weight >= 0))
+    throw InvalidInputError("segment_charts: num_charts " + std::to_string(options.num_charts) +
+                            ", lloyd_iterations " + std::to_string(options.lloyd_iterations) +
+                            " or normal_weight out of range");
+  const DualGraph g = build_dual_graph(mesh);
+  std::vector<int> seeds = farthest_point_seeds(g, std::min(options.num_charts, nf));
+  const int k = static_cast<int>(seeds.size());
+  std::vector<Vec3> chart_normal(k);
+  for (int c = 0; c < k; ++c) chart_normal[c] = g.normal[seeds[c]];
+  std::vector<double> dist;
+  std::vector<int> label;
+  auto cost = [&](int c, int j) {
+    const double dev = 1.0 - chart_normal[c].dot(g.normal[g.nbr[j]]);
+    return g.length[j] * (1.0 + options.normal_weight * std::max(0.0, dev));
+  };
+  for (int it = 0;; ++it) {
+    grow(g, seeds, cost, dist, label);
+    if (it == options.lloyd_iterations) break;
+    // Re-seed at the chart centres; the chart normal becomes the mean normal of the chart.
+    std::vector<Vec3> sum(k, Vec3::Zero());
+    for (int f = 0; f < nf; ++f)
+      if (label[f] >= 0) sum[label[f]] += g.area[f] * g.normal[f];
+    const std::vector<int> centre = chart_centres(g, label, k);
+    for (int c = 0; c < k; ++c) {
+      if (centre[c] >= 0) seeds[c] = centre[c];
+      const double n = sum[c].norm();
+      chart_normal[c] = n > 0 ? Vec3(sum[c] / n) : g.normal[seeds[c]];
+    }
+  }
+  // Faces the growth cannot reach (only if the mesh is not connected) join chart 0.
+  for (int& l : label)
+    if (l < 0) l = 0;
+  remove_ears(mesh, label);
+  // Moving ears can split a chart: every edge-connected part of a chart becomes a chart
+  // (numbered in order of first face; labels left without faces disappear).
+  std::vector<int> part(nf, -1);
+  int used = 0;
+  std::vector<int> stack;
+  for (int f0 = 0; f0 < nf; ++f0) {
+    if (part[f0] >= 0) continue;
+    part[f0] = used;
+    stack.push_back(f0);
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      for (int j = g.offsets[f]; j < g.offsets[f + 1]; ++j) {
+        const int h = g.nbr[j];
+        if (part[h] < 0 && label[h] == label[f]) part[h] = used, stack.push_back(h);
+      }
+    }
+    ++used;
+  }
+  return part;
+}
+
+std::vector<ChartMesh> extract_charts(const TriMesh& mesh, const std::vector<int>& face_chart,
+                                      int num_charts) {
+  const int nf = mesh.num_faces();
+  if (static_cast<int>(face_chart.size()) != nf)
+    throw InvalidInputError("extract_charts: " + std::to_string(face_chart.size()) +
+                            " labels for " + std::to_string(nf) + " faces");
+  for (int l : face_chart)
+    if (l < 0 || l >= num_charts)
+      throw InvalidInputError("extract_charts: chart label " + std::to_string(l) +
+                              " outside [0, " + std::to_string(num_charts) + ")");
+  // Corners glued across edges whose two faces are in the same chart are one chart vertex.
+  const EdgeConnectivity ec = build_edges(mesh);
+  std::vector<int> parent(3 * static_cast<size_t>(nf));
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  auto corner_of = [&](int f, int v) {
+    const Face& t = mesh.faces[f];
+    return 3 * f + (t[0] == v ? 0 : t[1] == v ? 1 : 2);
+  };
+  for (int e = 0; e < ec.num_edges(); ++e) {
+    const auto& ef = ec.edge_faces[e];
+    if (ef.size() != 2 || face_chart[ef[0]] != face_chart[ef[1]]) continue;
+    for (int v : ec.edges[e]) {
+      const int a = find(corner_of(ef[0], v)), b = find(corner_of(ef[1], v));
+      if (a != b) parent[a] = b;
+    }
+  }
+  std::vector<ChartMesh> charts(num_charts);
+  std::vector<int> local(3 * static_cast<size_t>(nf), -1);
+  for (int f = 0; f < nf; ++f) {
+    ChartMesh& c = charts[face_chart[f]];
+    Face t;
+    for (int k = 0; k < 3; ++k) {
+      const int r = find(3 * f + k);
+      if (local[r] < 0) {
+        local[r] = static_cast<int>(c.vertices.size());
+        c.vertices.push_back(mesh.faces[f][k]);
+        c.mesh.positions.push_back(mesh.positions[mesh.faces[f][k]]);
+      }
+      t[k] = local[r];
+    }
+    c.mesh.faces.push_back(t);
+    c.faces.push_back(f);
+  }
+  return charts;
+}
+
+}  // namespace adaptex
