@@ -461,4 +461,120 @@ TriMesh with_pinched_hole(const TriMesh& closed) {
   throw InvalidInputError("with_pinched_hole: no vertex of valence >= 4 with a closed one-ring");
 }
 
+namespace {
+
+/// Deterministic uniform numbers in [0, 1) (64-bit LCG, same sequence on every platform).
+struct Lcg {
+  unsigned long long s;
+  double next() {
+    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(s >> 11) * (1.0 / 9007199254740992.0);
+  }
+};
+
+/// Closed fan of \p nf faces around vertex 0 (rim on the unit circle, centre raised by 0.3).
+TriMesh tiny_fan(int nf, int variant) {
+  TriMesh m;
+  m.positions.push_back(Vec3(0, 0, 0.3));
+  for (int j = 0; j < nf; ++j) {
+    const double a = 2 * 3.14159265358979323846 * j / nf;
+    m.positions.push_back(Vec3(std::cos(a), std::sin(a), 0));
+  }
+  if (nf == 4 && variant == 0) {  // exact rim (1,0),(0,1),(-1,0),(0,-1); centre on the first rim edge
+    m.positions = {Vec3(0.5, 0.5, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(-1, 0, 0), Vec3(0, -1, 0)};
+  }
+  if (nf == 5 && variant == 0) m.positions[2] = m.positions[1];  // duplicate points
+  for (int j = 0; j < nf; ++j) m.faces.push_back({0, 1 + j, 1 + (j + 1) % nf});
+  return m;
+}
+
+/// Triangle strip of \p nf faces; the last triangle is a sliver when \p sliver.
+TriMesh tiny_strip(int nf, bool sliver) {
+  TriMesh m;
+  for (int j = 0; j < nf + 2; ++j)
+    m.positions.push_back(Vec3(0.5 * j, (j % 2) ? 1.0 : 0.0, 0.1 * std::sin(0.7 * j)));
+  for (int j = 0; j < nf; ++j)
+    m.faces.push_back(j % 2 ? Face{j, j + 1, j + 2} : Face{j, j + 2, j + 1});
+  if (sliver) {
+    const Vec3 a = m.positions[nf - 1], b = m.positions[nf];
+    Vec3& c = m.positions[nf + 1];
+    const Vec3 mid = 0.5 * (a + b), dir = (c - mid).normalized();
+    c = mid + 1e-6 * (b - a).norm() * dir;
+  }
+  return m;
+}
+
+/// Noisy height field over an nx x ny grid (cell size h) with isolated one-face holes.
+TriMesh scan_patch(int nx, int ny, double h, Lcg& rng, const Vec3& origin) {
+  TriMesh m;
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) {
+      const double x = i * h, y = j * h;
+      const double z = 0.15 * std::sin(3 * x + origin.x()) * std::cos(2 * y) + 1e-3 * h * rng.next();
+      m.positions.push_back(origin + Vec3(x, y, z));
+    }
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int a = j * (nx + 1) + i, b = a + 1, c = a + nx + 1, d = c + 1;
+      // One-face holes on a sparse lattice of cells (never two in neighbouring cells).
+      const bool hole = i < nx - 2 && j < ny - 2 && i % 29 == 8 && j % 31 == 11;
+      m.faces.push_back({a, b, d});
+      if (!hole) m.faces.push_back({a, d, c});
+    }
+  return m;
+}
+
+}  // namespace
+
+TriMesh tiny_components(int count) {
+  if (count < 1) throw InvalidInputError("tiny_components: count must be >= 1");
+  std::vector<TriMesh> parts;
+  Vec3 prev_first = Vec3::Zero();
+  for (int i = 0; i < count; ++i) {
+    const int nf = 1 + i % 10;
+    TriMesh m = (nf >= 3 && i % 2 == 0) ? tiny_fan(nf, i % 4) : tiny_strip(nf, i % 3 == 2);
+    const Vec3 offset = (i % 5 == 4) ? Vec3(prev_first - m.positions[0])
+                                     : Vec3(6.0 * (i % 20), 3.0 * (i / 20), 0.0);
+    for (Vec3& p : m.positions) p += offset;
+    prev_first = m.positions[0];
+    parts.push_back(std::move(m));
+  }
+  return disjoint_union(parts);
+}
+
+TriMesh synthetic_scan(int target_faces, int components, int zero_area_faces, unsigned seed) {
+  if (components < 1 || target_faces < 100 * components || zero_area_faces < 0)
+    throw InvalidInputError("synthetic_scan: need components >= 1, target_faces >= 100 components, "
+                            "zero_area_faces >= 0");
+  Lcg rng{seed * 2654435761ULL + 1};
+  std::vector<TriMesh> parts;
+  const int big = components > 1 ? target_faces / 2 : target_faces;
+  const int regular = std::max(1, components - 1 - (components - 1) / 10);
+  for (int c = 0; c < components; ++c) {
+    const Vec3 origin(2.5 * (c % 16), 2.5 * (c / 16), 0.0);
+    if (c > 0 && c % 10 == 0) {  // tiny component
+      TriMesh m = tiny_strip(1 + c % 10, false);
+      for (Vec3& p : m.positions) p = origin + 0.1 * p;
+      parts.push_back(std::move(m));
+      continue;
+    }
+    const int faces = c == 0 ? big : (target_faces - big) / regular;
+    const int nx = std::max(2, static_cast<int>(std::sqrt(faces / 2.0 * (1.0 + 0.5 * (c % 3)))));
+    const int ny = std::max(2, faces / (2 * nx));
+    parts.push_back(scan_patch(nx, ny, 2.0 / std::max(nx, ny), rng, origin));
+  }
+  // Zero-area faces: collapse interior grid edges (a, a+1) of the big patch onto a.
+  TriMesh& p0 = parts[0];
+  const int nx0 = static_cast<int>(std::round(
+      (p0.positions.back().x() - p0.positions.front().x()) / (p0.positions[1].x() - p0.positions[0].x())));
+  const int rows = static_cast<int>(p0.positions.size()) / (nx0 + 1);
+  for (int k = 0; k < zero_area_faces / 2; ++k) {
+    const int j = 2 + static_cast<int>(rng.next() * (rows - 4));
+    const int i = 2 + 4 * static_cast<int>(rng.next() * ((nx0 - 4) / 4));
+    const int a = j * (nx0 + 1) + i;
+    p0.positions[a + 1] = p0.positions[a];
+  }
+  return disjoint_union(parts);
+}
+
 }  // namespace adaptex::shapes

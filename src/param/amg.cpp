@@ -258,9 +258,9 @@ int bicgstab(const AmgPreconditioner::RowMat& a, const AmgPreconditioner& m,
     }
     rho = rho_cur;
     if (converged(r)) return it;
-    if (!r.allFinite()) return -max_iterations;  // breakdown with non-finite values
+    if (!r.allFinite()) return -1;  // breakdown with non-finite values
   }
-  return -max_iterations;
+  return -1;
 }
 
 }  // namespace adaptex::detail

@@ -45,8 +45,8 @@ void multiply(const AmgPreconditioner::RowMat& a, const AmgPreconditioner::Block
 
 /// BiCGSTAB (van der Vorst 1992) on both columns of \p b at once, right-preconditioned by \p m,
 /// starting from \p x. Stops when ||b - A x|| <= tol ||b|| for both columns.
-/// \return iterations performed, or -max_iterations (x holds the last iterate) when both columns did
-/// not converge within max_iterations or the iteration broke down (non-finite values).
+/// \return iterations performed, or -1 (x holds the last iterate) when the columns did not both
+/// converge within max_iterations or the iteration broke down (non-finite values).
 int bicgstab(const AmgPreconditioner::RowMat& a, const AmgPreconditioner& m,
              const AmgPreconditioner::Block& b, AmgPreconditioner::Block& x, double tol,
              int max_iterations);

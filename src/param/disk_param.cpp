@@ -57,18 +57,25 @@ DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& b
   }
   ConvexWeights weights = compute_embedding_weights(disk, is_boundary, options.weights);
   TutteSolver solver(weights, is_boundary, options.backend);
+  solver.set_max_iterations(options.max_solver_iterations);
   solver.solve(weights, res.uv);
   StretchStats st = measure_stretch(disk, res.uv);
   res.floater_l2 = res.final_l2 = st.l2;
   res.floater_linf = res.final_linf = st.linf;
   res.time_floater = seconds_since(t0);
   report_progress(options.progress, "floater", 1.0);
+  res.solver_fallbacks = solver.fallbacks();
   if (!options.yoshizawa || options.max_iterations <= 0 || !std::isfinite(st.l2)) return res;
 
   // Yoshizawa–Belyaev–Seidel: λ_vw ← λ_vw / σ_w^η, re-solve, keep the best iterate. When an iterate
   // does not lower L2 by min_improvement, restart from the best weights with η halved (a damped step);
   // stop after max_halvings failed halvings or max_iterations solves.
   const auto t1 = std::chrono::steady_clock::now();
+  const int nf = disk.num_faces();
+  std::vector<double> face_areas(nf), face_l2;
+  for (int f = 0; f < nf; ++f) face_areas[f] = face_area(disk, f);
+  measure_stretch(disk, res.uv, face_l2);
+  std::vector<double> sigma = vertex_stretch(disk, face_l2, face_areas);  // of the best iterate
   std::vector<Vec2> cur = res.uv;
   ConvexWeights best_weights = weights;
   double eta = options.eta;
@@ -76,19 +83,19 @@ DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& b
   for (int it = 1; it <= options.max_iterations; ++it) {
     report_progress(options.progress, "yoshizawa",
                     static_cast<double>(it - 1) / options.max_iterations);
-    const std::vector<double> sigma = vertex_stretch(disk, res.uv);
     yoshizawa_reweight(weights, sigma, eta);
     cur = res.uv;
     solver.solve(weights, cur);
-    st = measure_stretch(disk, cur);
+    st = measure_stretch(disk, cur, face_l2);
     res.iterations = it;
     const double prev_l2 = res.final_l2;
     const bool better = st.flipped == 0 && st.degenerate == 0 && st.l2 < res.final_l2;
     if (better) {
-      res.uv = cur;
+      res.uv.swap(cur);
       res.final_l2 = st.l2;
       res.final_linf = st.linf;
       best_weights = weights;
+      if (it < options.max_iterations) sigma = vertex_stretch(disk, face_l2, face_areas);
     } else {
       weights = best_weights;
     }
@@ -98,6 +105,7 @@ DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& b
     }
   }
   res.time_yoshizawa = seconds_since(t1);
+  res.solver_fallbacks = solver.fallbacks();
   report_progress(options.progress, "yoshizawa", 1.0);
   return res;
 }

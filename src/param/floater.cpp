@@ -73,26 +73,36 @@ bool ordered_ring(const CornerPairs& cp, int v, std::vector<int>& ring) {
   return cur == ring.front();
 }
 
-/// tan(α/2) of the angle between a and b, stable form |a×b| / (|a||b| + a·b).
-double tan_half(const Vec3& a, const Vec3& b) {
-  const double cr = a.cross(b).norm();
-  const double den = a.norm() * b.norm() + a.dot(b);
-  return den > 0 ? cr / den : std::numeric_limits<double>::infinity();
-}
-
-bool mean_value_row(const TriMesh& m, int v, const std::vector<int>& ring, double* out) {
+/// Floater 2003 mean-value row. Each corner angle's tan(α/2) and each edge length is computed once.
+/// Regularized for degenerate rings (zero-length edges of duplicate points, zero-area slivers): edge
+/// lengths are floored at 1e-3 of the ring's mean, tan(α/2) capped at 1e3 (α within 0.1° of π), and
+/// every weight floored at 1e-6 of the row's largest, so the row stays finite, strictly positive and
+/// the system well conditioned enough for the iterative solver. Never active on ordinary meshes.
+/// False only when no length is positive.
+bool mean_value_row(const TriMesh& m, int v, const std::vector<int>& ring, double* out,
+                    std::vector<double>& len, std::vector<double>& th) {
   const int d = static_cast<int>(ring.size());
   const Vec3& p = m.positions[v];
-  double sum = 0;
-  for (int i = 0; i < d; ++i) {
-    const Vec3 e = m.positions[ring[i]] - p;
-    const Vec3 eprev = m.positions[ring[(i + d - 1) % d]] - p;
-    const Vec3 enext = m.positions[ring[(i + 1) % d]] - p;
-    const double len = e.norm();
-    out[i] = (tan_half(eprev, e) + tan_half(e, enext)) / len;
-    sum += out[i];
+  len.resize(d);
+  th.resize(d);
+  double mean_len = 0;
+  for (int i = 0; i < d; ++i) mean_len += len[i] = (m.positions[ring[i]] - p).norm();
+  mean_len /= d;
+  if (!(mean_len > 0) || !std::isfinite(mean_len)) return false;
+  for (int i = 0; i < d; ++i) {  // th[i] = tan(α_i / 2), α_i the angle between e_i and e_{i+1}
+    const int j = (i + 1) % d;
+    const Vec3 a = m.positions[ring[i]] - p, b = m.positions[ring[j]] - p;
+    const double den = len[i] * len[j] + a.dot(b);
+    th[i] = den > 0 ? std::min(a.cross(b).norm() / den, 1e3) : 1e3;
+    if (!std::isfinite(th[i])) th[i] = 1e3;
   }
-  if (!(sum > 0) || !std::isfinite(sum)) return false;
+  double sum = 0, mx = 0;
+  for (int i = 0; i < d; ++i) {
+    out[i] = (th[(i + d - 1) % d] + th[i]) / std::max(len[i], 1e-3 * mean_len);
+    mx = std::max(mx, out[i]);
+  }
+  if (!(mx > 0) || !std::isfinite(mx)) return false;
+  for (int i = 0; i < d; ++i) sum += out[i] = std::max(out[i], 1e-6 * mx);
   for (int i = 0; i < d; ++i) out[i] /= sum;
   return true;
 }
@@ -178,7 +188,7 @@ ConvexWeights compute_embedding_weights(const TriMesh& disk, const std::vector<c
   tbb::parallel_for(tbb::blocked_range<int>(0, nv, 2048), [&](const tbb::blocked_range<int>& r) {
     std::vector<int> ring;
     std::vector<Vec2> polar;
-    std::vector<double> phi;
+    std::vector<double> phi, len, th;
     for (int v = r.begin(); v != r.end(); ++v) {
       if (is_boundary[v]) continue;
       if (cp.offsets[v + 1] == cp.offsets[v]) continue;  // isolated vertex: empty row
@@ -190,7 +200,7 @@ ConvexWeights compute_embedding_weights(const TriMesh& disk, const std::vector<c
       std::copy(ring.begin(), ring.end(), w.neighbors.begin() + w.offsets[v]);
       bool ok = weights == EmbeddingWeights::ShapePreserving &&
                 shape_preserving_row(disk, v, ring, out, polar, phi);
-      if (!ok) ok = mean_value_row(disk, v, ring, out);
+      if (!ok) ok = mean_value_row(disk, v, ring, out, len, th);
       if (!ok) {  // only for degenerate geometry: uniform (Tutte) weights
         for (size_t i = 0; i < ring.size(); ++i) out[i] = 1.0 / static_cast<double>(ring.size());
       }
@@ -237,10 +247,15 @@ DiskBoundary map_boundary_to_square(const TriMesh& disk, const std::vector<int>&
 
   std::vector<int> pos(nv, -1);
   for (int i = 0; i < n; ++i) pos[loop[i]] = i;
-  // Arc length.
-  std::vector<double> arc(n + 1, 0.0);
+  // Arc length, each edge floored at 1e-3 of the mean edge (duplicate points on the boundary would
+  // otherwise share one UV position and collapse their triangles).
+  std::vector<double> edge_len(n);
+  double mean_edge = 0;
   for (int i = 0; i < n; ++i)
-    arc[i + 1] = arc[i] + (disk.positions[loop[(i + 1) % n]] - disk.positions[loop[i]]).norm();
+    mean_edge += edge_len[i] = (disk.positions[loop[(i + 1) % n]] - disk.positions[loop[i]]).norm();
+  mean_edge = mean_edge > 0 && std::isfinite(mean_edge) ? mean_edge / n : 1.0;
+  std::vector<double> arc(n + 1, 0.0);
+  for (int i = 0; i < n; ++i) arc[i + 1] = arc[i] + std::max(edge_len[i], 1e-3 * mean_edge);
   const double total = arc[n];
   // Chords: edges between two boundary vertices that are not consecutive on the loop.
   std::vector<std::array<int, 2>> chords;
@@ -370,7 +385,7 @@ class KluFactor {
   KluFactor() {
     klu_defaults(&common_);
     common_.btf = 0;    // the Tutte matrix of a disk is irreducible: a block triangular form has one block
-    common_.scale = 0;  // diagonally dominant already: no row scaling
+    common_.scale = -1;  // diagonally dominant already: no row scaling (results are checked instead)
   }
   ~KluFactor() { clear(); }
   KluFactor(const KluFactor&) = delete;
@@ -552,7 +567,7 @@ void TutteSolver::solve(const ConvexWeights& w, std::vector<Vec2>& uv) {
       for (int i = 0; i < n; ++i) xb.row(i) = uv[interior_[i]].transpose();
       if (!xb.allFinite()) xb.setConstant(0.5);
       const int its = detail::bicgstab(A, im.amg, bb, xb, tolerance_, max_iterations_);
-      last_iterations_ += std::abs(its);
+      last_iterations_ += its >= 0 ? its : max_iterations_;
       x = xb;
       ok = its >= 0 && x.allFinite();
     } catch (const SolverError&) {  // the AMG hierarchy could not be built (singular coarse level)

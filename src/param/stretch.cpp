@@ -142,6 +142,14 @@ StretchStats measure_stretch(const TriMesh& mesh, const std::vector<Vec2>& verte
       evaluate_faces(mesh, [&](int f, int k) { return vertex_uv[mesh.faces[f][k]]; }));
 }
 
+StretchStats measure_stretch(const TriMesh& mesh, const std::vector<Vec2>& vertex_uv,
+                             std::vector<double>& face_l2) {
+  const std::vector<FaceData3> d =
+      evaluate_faces(mesh, [&](int f, int k) { return vertex_uv[mesh.faces[f][k]]; });
+  face_l2 = l2_per_face(d);
+  return summarize(d);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Overlap counting.
 

@@ -62,4 +62,22 @@ TriMesh pinched_annulus(int n = 8);
 /// \throw InvalidInputError no vertex of valence >= 4 with a closed one-ring
 TriMesh with_pinched_hole(const TriMesh& closed);
 
+/// \p count tiny components, the hard cases of a range scan for a solver: component i has
+/// 1 + i % 10 faces; with at least 3 faces and i even it is a closed fan around one interior vertex
+/// (with i % 4 == 0 and 4 faces the centre lies exactly on a rim edge: one zero-area face; with
+/// 5 faces two rim vertices are duplicate points: one zero-area face with a zero-length edge),
+/// otherwise a triangle strip whose last triangle is a sliver (height 1e-6 of its base) when
+/// i % 3 == 2. Every fifth component is moved so that its first vertex has the position of the
+/// previous component's first vertex (duplicate points across components). Each component is a
+/// manifold disk, consistently oriented. \pre count >= 1 \throw InvalidInputError count < 1
+TriMesh tiny_components(int count);
+/// A synthetic range scan of about \p target_faces faces in \p components components (the first
+/// holds about half the faces, the next ones share the rest, and every tenth is a tiny one of 1-10
+/// faces): noisy height fields over grids, with isolated single-face holes (extra boundary loops),
+/// and \p zero_area_faces / 2 interior grid edges collapsed onto one endpoint (its two faces get zero
+/// area, its two vertices become duplicate points; the faces stay manifold). Deterministic in \p seed.
+/// \pre target_faces >= 100 * components, components >= 1, zero_area_faces >= 0
+/// \throw InvalidInputError out of range
+TriMesh synthetic_scan(int target_faces, int components, int zero_area_faces, unsigned seed = 1);
+
 }  // namespace adaptex::shapes

@@ -45,6 +45,12 @@ std::vector<double> face_l2_stretch(const TriMesh& mesh, const std::vector<Vec2>
 /// measure_stretch() for a per-vertex UV array (size V, indexed like mesh.positions).
 StretchStats measure_stretch(const TriMesh& mesh, const std::vector<Vec2>& vertex_uv);
 
+/// measure_stretch() and face_l2_stretch() of a per-vertex UV array in one pass over the faces (the
+/// Yoshizawa loop needs both for every iterate). \p face_l2 receives F values.
+/// \pre vertex_uv.size() == mesh.positions.size()
+StretchStats measure_stretch(const TriMesh& mesh, const std::vector<Vec2>& vertex_uv,
+                             std::vector<double>& face_l2);
+
 /// Number of pairs of UV triangles whose interiors overlap (exact orientation predicates on a
 /// uniform grid of buckets; independent of how the layout was made). Shared edges/vertices do not
 /// count. \param max_pairs stop counting after this many.

@@ -16,6 +16,12 @@ namespace adaptex {
 /// without faces).
 std::vector<double> vertex_stretch(const TriMesh& mesh, const std::vector<Vec2>& uv);
 
+/// vertex_stretch() from given per-face values: \p face_l2 (F, as face_l2_stretch() returns them) and
+/// \p face_areas (F, 3-D areas).
+/// \pre face_l2.size() == face_areas.size() == mesh.faces.size()
+std::vector<double> vertex_stretch(const TriMesh& mesh, const std::vector<double>& face_l2,
+                                   const std::vector<double>& face_areas);
+
 /// One Yoshizawa update: λ_vw ← λ_vw / σ_w^η, then each row renormalized to sum 1.
 /// \pre sigma has V finite positive entries.
 void yoshizawa_reweight(ConvexWeights& weights, const std::vector<double>& sigma, double eta);
