@@ -28,36 +28,37 @@ struct Edges {
 
 // O(F): half-edges bucketed by their smaller vertex (counting sort), matched inside each bucket.
 Edges build_edge_table(const TriMesh& mesh) {
-  const int V = mesh.num_vertices(), H = 3 * mesh.num_faces();
-  auto ends = [&](int h) {
-    const Face& f = mesh.faces[h / 3];
-    const int a = f[h % 3], b = f[next3(h % 3)];
-    return std::pair<int, int>(std::min(a, b), std::max(a, b));
-  };
-  std::vector<int> start(V + 1, 0), bucket(H);
-  for (int h = 0; h < H; ++h) ++start[ends(h).first + 1];
+  const int V = mesh.num_vertices(), F = mesh.num_faces();
+  std::vector<int> start(V + 1, 0);
+  for (const Face& f : mesh.faces)
+    for (int k = 0; k < 3; ++k) ++start[std::min(f[k], f[next3(k)]) + 1];
   for (int v = 0; v < V; ++v) start[v + 1] += start[v];
   std::vector<int> cursor(start.begin(), start.end() - 1);
-  for (int h = 0; h < H; ++h) bucket[cursor[ends(h).first]++] = h;
+  std::vector<std::pair<int, int>> bucket(3 * static_cast<size_t>(F));  // (larger vertex, half-edge)
+  for (int f = 0; f < F; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.faces[f][k], b = mesh.faces[f][next3(k)];
+      bucket[cursor[std::min(a, b)]++] = {std::max(a, b), 3 * f + k};
+    }
   Edges e;
-  e.he_edge.assign(H, -1);
-  e.edge_he.reserve(H / 2 + 16);
+  e.he_edge.assign(bucket.size(), -1);
+  e.edge_he.reserve(bucket.size() / 2 + 16);
   for (int v = 0; v < V; ++v)
     for (int i = start[v]; i < start[v + 1]; ++i) {
-      const int h = bucket[i], b = ends(h).second;
-      int found = -1;
-      for (int j = start[v]; j < i && found < 0; ++j)
-        if (ends(bucket[j]).second == b) found = e.he_edge[bucket[j]];
-      if (found < 0) {
+      const auto [b, h] = bucket[i];
+      int j = start[v];
+      while (j < i && bucket[j].first != b) ++j;
+      if (j == i) {
         e.he_edge[h] = e.size();
         e.edge_he.push_back({h, -1});
-      } else if (e.edge_he[found][1] >= 0) {
+        continue;
+      }
+      const int found = e.he_edge[bucket[j].second];
+      if (e.edge_he[found][1] >= 0)
         throw TopologyError("refine_for_warp: edge (" + std::to_string(v) + ", " + std::to_string(b) +
                             ") has more than two faces (non-manifold mesh)");
-      } else {
-        e.he_edge[h] = found;
-        e.edge_he[found][1] = h;
-      }
+      e.he_edge[h] = found;
+      e.edge_he[found][1] = h;
     }
   return e;
 }
@@ -73,6 +74,8 @@ struct State {
   FaceData<int> parent;
   std::vector<Vec2> warped;  // U: warp(param.uv[w])
   std::vector<char> active;  // F: created by the last round (its edges are not yet checked)
+  std::vector<double> face_dev;  // F: largest midpoint deviation of the face's UV edges (when checked)
+  std::vector<char> face_bad;    // F: the warp flips or degenerates the face (when checked)
 };
 
 // What one round measured on the active faces.
@@ -99,9 +102,8 @@ Vec2 checked_warp(const std::function<Vec2(const Vec2&)>& warp, const Vec2& p) {
   return q;
 }
 
-// Deviation of every UV edge of the faces with only_active == false or active[f], in parallel.
-Measure measure(const State& s, const std::function<Vec2(const Vec2&)>& warp, const RefineOptions& o,
-                bool only_active) {
+// Deviation of every UV edge of the active faces, in parallel; also updates face_dev / face_bad.
+Measure measure(State& s, const std::function<Vec2(const Vec2&)>& warp, const RefineOptions& o) {
   const int F = s.mesh.num_faces();
   Measure m;
   m.dev.assign(3 * static_cast<size_t>(F), -1.0);
@@ -109,7 +111,7 @@ Measure measure(const State& s, const std::function<Vec2(const Vec2&)>& warp, co
   m.bad.assign(F, 0);
   tbb::parallel_for(tbb::blocked_range<int>(0, F, 1024), [&](const tbb::blocked_range<int>& r) {
     for (int f = r.begin(); f < r.end(); ++f) {
-      if (only_active && !s.active[f]) continue;
+      if (!s.active[f]) continue;
       const Face& w = s.param.uv_faces[f];
       for (int k = 0; k < 3; ++k) {
         const int a = w[k], b = w[next3(k)];
@@ -118,6 +120,8 @@ Measure measure(const State& s, const std::function<Vec2(const Vec2&)>& warp, co
         m.dev[3 * f + k] = (q - 0.5 * (s.warped[a] + s.warped[b])).norm();
       }
       m.bad[f] = face_is_bad(s, f, o.min_area);
+      s.face_bad[f] = m.bad[f];
+      s.face_dev[f] = std::max({m.dev[3 * f], m.dev[3 * f + 1], m.dev[3 * f + 2]});
     }
   });
   return m;
@@ -246,6 +250,8 @@ void split_faces(State& s, const Edges& e, const std::vector<char>& marked, cons
   s.param.face_chart.resize(F + added);
   s.parent.resize(F + added);
   s.active.assign(F + added, 0);
+  s.face_dev.resize(F + added);
+  s.face_bad.resize(F + added);
   tbb::parallel_for(tbb::blocked_range<int>(0, F, 1024), [&](const tbb::blocked_range<int>& r) {
     for (int f = r.begin(); f < r.end(); ++f) {
       if (offset[f + 1] == offset[f]) continue;
@@ -301,18 +307,17 @@ void check_input(const TriMesh& mesh, const Parameterization& param,
     }
 }
 
-// Largest midpoint deviation and number of bad faces over the whole refined mesh.
-void final_stats(const State& s, const std::function<Vec2(const Vec2&)>& warp, const RefineOptions& o,
-                 RefineResult& res) {
-  const Measure m = measure(s, warp, o, false);
+// Largest midpoint deviation and number of bad faces over the whole refined mesh (face_dev /
+// face_bad are current: a face that was checked and not split keeps its UVs).
+void final_stats(const State& s, RefineResult& res) {
   res.max_deviation = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, m.dev.size(), 4096), 0.0,
+      tbb::blocked_range<size_t>(0, s.face_dev.size(), 4096), 0.0,
       [&](const tbb::blocked_range<size_t>& r, double x) {
-        for (size_t i = r.begin(); i < r.end(); ++i) x = std::max(x, m.dev[i]);
+        for (size_t i = r.begin(); i < r.end(); ++i) x = std::max(x, s.face_dev[i]);
         return x;
       },
       [](double a, double b) { return std::max(a, b); });
-  res.flipped = static_cast<int>(std::count(m.bad.begin(), m.bad.end(), char(1)));
+  res.flipped = static_cast<int>(std::count(s.face_bad.begin(), s.face_bad.end(), char(1)));
 }
 
 }  // namespace
@@ -321,23 +326,28 @@ RefineResult refine_for_warp(const TriMesh& mesh, const Parameterization& param,
                              const std::function<Vec2(const Vec2&)>& warp, const RefineOptions& o) {
   check_input(mesh, param, warp, o);
   const long max_faces = o.max_faces > 0 ? o.max_faces : 4L * mesh.num_faces();
-  State s{mesh, param, {}, std::vector<Vec2>(param.uv.size()), std::vector<char>(mesh.faces.size(), 1)};
-  s.parent.resize(mesh.faces.size());
-  for (size_t f = 0; f < s.parent.size(); ++f) s.parent[f] = static_cast<int>(f);
+  const size_t F = mesh.faces.size();
+  State s{mesh, param, std::vector<int>(F), std::vector<Vec2>(param.uv.size()), std::vector<char>(F, 1),
+          std::vector<double>(F, 0.0), std::vector<char>(F, 0)};
+  for (size_t f = 0; f < F; ++f) s.parent[f] = static_cast<int>(f);
   tbb::parallel_for(size_t(0), s.warped.size(), [&](size_t w) { s.warped[w] = checked_warp(warp, param.uv[w]); });
   RefineResult res;
+  bool checked = false;  // the active faces have been measured since the last split
   for (int level = 0; level < o.max_levels && !res.budget_reached; ++level) {
     const Edges e = build_edge_table(s.mesh);
-    const Measure m = measure(s, warp, o, true);
+    const Measure m = measure(s, warp, o);
+    checked = true;
     std::vector<char> marked;
     const std::vector<int> order = close_marking(s, e, seed_edges(e, m, o.tolerance), max_faces, marked,
                                                  res.budget_reached);
     if (order.empty()) break;
     const std::vector<int> he_wedge = add_midpoints(s, e, order, m, warp);
     split_faces(s, e, marked, he_wedge);
+    checked = false;
     ++res.levels;
   }
-  final_stats(s, warp, o, res);
+  if (!checked) measure(s, warp, o);
+  final_stats(s, res);
   res.added_vertices = s.mesh.num_vertices() - mesh.num_vertices();
   res.added_wedges = s.param.num_wedges() - param.num_wedges();
   res.added_faces = s.mesh.num_faces() - mesh.num_faces();

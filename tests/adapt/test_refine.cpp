@@ -8,6 +8,7 @@
 #include <functional>
 #include <set>
 
+#include "adaptex/adapt/grid.h"
 #include "adaptex/adapt/refine.h"
 #include "adaptex/adapt/remap.h"
 #include "adaptex/core/errors.h"
@@ -330,6 +331,25 @@ TEST(Refine, FacesFarFromTheWarpAreUntouched) {
   for (int f = 0; f < s.mesh.num_faces(); ++f) identity += r.parent_face[f] == f;
   EXPECT_EQ(identity, s.mesh.num_faces());
   EXPECT_LT(untouched, s.mesh.num_faces());
+}
+
+TEST(Refine, GridWarpThroughApply) {
+  // The form adaptex's warps take: a GridWarp (piecewise bilinear), passed through apply().
+  const Scene s = plane_scene(12);
+  const Warp smooth = compose(magnifier(Vec2(0.5, 0.5), 0.35, 2.5), swirl(Vec2(0.5, 0.5), 0.35, 2.5));
+  GridWarp grid = GridWarp::uniform(128);
+  for (Vec2& p : grid.points) p = smooth(p);
+  const Warp warp = [&grid](const Vec2& p) { return grid.apply(p); };
+  ASSERT_GT(bad_faces(s.param, warp), 0);
+  const RefineResult r = refine_for_warp(s.mesh, s.param, warp, options(0.5 / 256, 12));
+  expect_valid_refinement(s, r);
+  EXPECT_LT(r.levels, 12);
+  EXPECT_EQ(bad_faces(r.param, warp), 0);
+  EXPECT_LE(max_deviation(r.param, warp), 0.5 / 256);
+  // And the library's remap of the refined layout through the same grid needs no damping.
+  const SafeRemapResult sr = safe_remap(r.param, {&grid});
+  EXPECT_EQ(sr.damping, 1.0);
+  EXPECT_EQ(sr.locally_damped, 0);
 }
 
 TEST(Refine, IdentityWarpChangesNothing) {
