@@ -29,33 +29,51 @@ int corner_index(const TriMesh& mesh, int f, int v) {
 
 EdgeConnectivity build_edges(const TriMesh& mesh) {
   const int nf = mesh.num_faces();
-  // Sort (a, b, face, corner) records to group the corners of each undirected edge.
+  // Group the (b, face, corner) records of each undirected edge a-b (a < b): a counting sort by a
+  // (stable, so faces stay in increasing order), then a small sort by b within each bucket. O(F)
+  // plus the sorts of the vertex buckets (a few records each).
   struct Rec {
-    int a, b, face, corner;
+    int b, face, corner;
   };
-  std::vector<Rec> recs;
-  recs.reserve(static_cast<size_t>(nf) * 3);
-  for (int f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) {
-      int a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
-      if (a > b) std::swap(a, b);
-      recs.push_back({a, b, f, k});
-    }
-  std::sort(recs.begin(), recs.end(), [](const Rec& x, const Rec& y) {
-    return x.a != y.a ? x.a < y.a : x.b != y.b ? x.b < y.b : x.face < y.face;
-  });
+  int nv = mesh.num_vertices();
+  for (const Face& t : mesh.faces)
+    for (int v : t) nv = std::max(nv, v + 1);
+  std::vector<int> start(static_cast<size_t>(nv) + 1, 0);
+  for (const Face& t : mesh.faces)
+    for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
+  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<Rec> recs(static_cast<size_t>(nf) * 3);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const int a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
+        recs[fill[std::min(a, b)]++] = {std::max(a, b), f, k};
+      }
+  }
   EdgeConnectivity ec;
   ec.face_edges.assign(nf, {-1, -1, -1});
-  for (size_t i = 0; i < recs.size();) {
-    size_t j = i;
-    const int e = static_cast<int>(ec.edges.size());
-    ec.edges.push_back({recs[i].a, recs[i].b});
-    ec.edge_faces.emplace_back();
-    for (; j < recs.size() && recs[j].a == recs[i].a && recs[j].b == recs[i].b; ++j) {
-      ec.face_edges[recs[j].face][recs[j].corner] = e;
-      ec.edge_faces[e].push_back(recs[j].face);
+  ec.edges.reserve(static_cast<size_t>(nf) * 3 / 2 + 16);
+  ec.edge_faces.reserve(ec.edges.capacity());
+  for (int a = 0; a < nv; ++a) {
+    const auto first = recs.begin() + start[a], last = recs.begin() + start[a + 1];
+    if (last - first <= 16) {  // insertion sort (stable, no allocation) for the usual small bucket
+      for (auto i = first + (first != last); i < last; ++i)
+        for (auto j = i; j != first && (j - 1)->b > j->b; --j) std::iter_swap(j - 1, j);
+    } else {
+      std::stable_sort(first, last, [](const Rec& x, const Rec& y) { return x.b < y.b; });
     }
-    i = j;
+    for (auto i = first; i != last;) {
+      const int e = static_cast<int>(ec.edges.size());
+      ec.edges.push_back({a, i->b});
+      auto& faces = ec.edge_faces.emplace_back();
+      auto j = i;
+      for (; j != last && j->b == i->b; ++j) {
+        ec.face_edges[j->face][j->corner] = e;
+        faces.push_back(j->face);
+      }
+      i = j;
+    }
   }
   return ec;
 }

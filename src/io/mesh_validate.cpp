@@ -356,6 +356,9 @@ TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOption
 
   // 6. Mixed winding: the faces that disagree with the majority of their surface are flipped.
   face_flipped.clear();
+  bool consistent = true;
+  for (const ComponentTopology& c : topo.components) consistent = consistent && c.consistently_oriented;
+  if (consistent) return mesh;
   const FaceOrientation orientation = orient_faces(mesh);
   if (orientation.num_flipped > 0) {
     int first = 0;
