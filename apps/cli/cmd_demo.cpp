@@ -49,12 +49,12 @@ void run_demo(const DemoCommand& c, const Context& ctx) {
 
   ctx.info("export");
   AtomicOutput out;
-  const ExportedFiles files = export_textured_mesh(out, c.outdir, name, mesh, run.param, run.texture);
+  const ExportedFiles files = export_textured_mesh(out, c.outdir, name, run.mesh, run.param, run.texture);
   write_strokes(out.add(c.outdir / "strokes.json"), strokes);
   LayoutImageOptions lo;
   lo.size = 1024;
   write_png(out.add(c.outdir / (name + "_layout.png")),
-            render_layout(run.param, face_l2_stretch(mesh, run.param), lo));
+            render_layout(run.param, face_l2_stretch(run.mesh, run.param), lo));
   write_png(out.add(c.outdir / (name + "_texture_layout.png")),
             draw_uv_layout(run.param, &run.texture, 1024));
   const double time_export = sw.lap();
@@ -62,7 +62,7 @@ void run_demo(const DemoCommand& c, const Context& ctx) {
   ctx.info("eval: " + std::to_string(c.samples) + " surface samples");
   EvalOptions eo;
   eo.samples = c.samples;
-  const EvalResult ev = evaluate_texture(mesh, run.param, run.texture, strokes, eo);
+  const EvalResult ev = evaluate_texture(run.mesh, run.param, run.texture, strokes, eo);
   // The same strokes on the fixed (non-adaptive) parameterization, for comparison.
   PaintRunOptions fixed_po = po;
   fixed_po.adapt.mode = "none";
@@ -72,7 +72,7 @@ void run_demo(const DemoCommand& c, const Context& ctx) {
   const EvalResult ev_fixed = evaluate_texture(mesh, fixed_run.param, fixed_run.texture, strokes, eo);
   const double time_eval = sw.lap();
 
-  nlohmann::json report = paint_report(mesh, strokes, run, po, files);
+  nlohmann::json report = paint_report(run.mesh, strokes, run, po, files);
   report["command"] = "demo";
   report["input"] = {{"mesh", "shapes::trefoil_knot()"}, {"strokes", "generated: mixed"}, {"seed", c.seed}};
   report["eval"] = {{"psnr_db", ev.psnr},         {"mse", ev.mse},

@@ -20,6 +20,7 @@ struct PaintCommand {
   std::filesystem::path mesh, strokes, outdir;
   std::string name;
   bool repair = false;
+  bool no_refine = false;
   PaintRunOptions run;
   std::string grid;  // raw --grid text
   double alpha = std::nan(""), beta = std::nan("");
@@ -51,6 +52,7 @@ std::vector<int> parse_grid(const std::string& text) {
 /// Checks every option before any work is done (so a bad option never costs an unwrap).
 void validate(PaintCommand& c, const Context& ctx) {
   AdaptSettings& a = c.run.adapt;
+  a.refine = !c.no_refine;
   if (!c.grid.empty()) a.grid = parse_grid(c.grid);
   if (!std::isnan(c.alpha)) {
     if (!std::isfinite(c.alpha) || c.alpha < 0) throw InvalidInputError("--alpha must be a finite number >= 0");
@@ -94,9 +96,10 @@ void run_paint(PaintCommand& c, const Context& ctx) {
   sw.lap();
 
   AtomicOutput out;
-  const ExportedFiles files = export_textured_mesh(out, c.outdir, c.name, mesh, run.param, run.texture);
+  const ExportedFiles files = export_textured_mesh(out, c.outdir, c.name, run.mesh, run.param, run.texture);
   const double time_export = sw.lap();
-  nlohmann::json report = paint_report(mesh, strokes, run, c.run, files);
+  nlohmann::json report = paint_report(run.mesh, strokes, run, c.run, files);
+  report["mesh"]["input_faces"] = mesh.num_faces();
   report["command"] = "paint";
   report["input"] = {{"mesh", c.mesh.string()}, {"strokes", c.strokes.string()}, {"format", rr.format}};
   report["times_s"] = {{"read", time_read},
@@ -128,10 +131,15 @@ void add_paint_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   sub->add_option("--name", cmd->name, "Base name of the output files (default: the mesh file's stem)");
   sub->add_flag("--repair", cmd->repair, "Split non-manifold vertices / drop duplicate faces on reading");
+  std::vector<std::string> modes;
+  for (AdaptMode m : adapt_modes()) modes.push_back(to_string(m));
   sub->add_option("--adapt", cmd->run.adapt.mode,
-                  "Signal-adaptive re-parameterization: none | single | two-stage")
-      ->check(CLI::IsMember({"none", "single", "two-stage"}))
+                  "Signal-adaptive re-parameterization: density-flow (error-model density + flow map) | "
+                  "two-stage | single (thesis relaxation) | none")
+      ->check(CLI::IsMember(modes))
       ->capture_default_str();
+  sub->add_flag("--no-refine", cmd->no_refine,
+                "Keep the input's vertices (density-flow refines triangles too large for the warp)");
   sub->add_option("--grid", cmd->grid, "Relaxation grid size(s): coarse,fine for two-stage (e.g. 16,256)");
   sub->add_option("--alpha", cmd->alpha, "L_s^2 weight of the geometric stretch");
   sub->add_option("--beta", cmd->beta, "L_s^2 weight of the signal stretch");

@@ -25,7 +25,8 @@ namespace adaptex::cli {
 namespace {
 
 struct ReparamArgs {
-  std::string mesh, texture, outdir, name, grid, mode = "two-stage", debug_maps;
+  std::string mesh, texture, outdir, name, grid, mode = to_string(AdaptOptions{}.mode), debug_maps;
+  bool no_refine = false;
   double alpha = AdaptOptions{}.alpha, beta = AdaptOptions{}.beta;
   int size = 0, padding = 4;
 };
@@ -37,7 +38,8 @@ void run_reparam(const ReparamArgs& a, const Context& ctx) {
   const auto t_start = Clock::now();
   AdaptOptions opt;
   opt.mode = parse_adapt_mode(a.mode);
-  if (opt.mode == AdaptMode::None) throw InvalidInputError("--adapt must be single or two-stage");
+  if (opt.mode == AdaptMode::None) throw InvalidInputError("--adapt must be density-flow, two-stage or single");
+  opt.refine = !a.no_refine;
   opt.alpha = a.alpha;
   opt.beta = a.beta;
   if (!a.grid.empty()) {
@@ -72,16 +74,20 @@ void run_reparam(const ReparamArgs& a, const Context& ctx) {
   AdaptResult res = adapt_parameterization(tm.mesh, tm.param, tex, old_map, opt);
   const int W = a.size > 0 ? a.size : tex.width, H = a.size > 0 ? a.size : tex.height;
   t0 = Clock::now();
-  const TexelMap new_map = build_texel_map(tm.mesh, res.param, W, H);
+  // With refinement the layout belongs to the refined mesh (same surface); its old-domain layout
+  // tells where each refined face's texels were in the input texture.
+  const TriMesh& out_mesh = res.refined_mesh ? *res.refined_mesh : tm.mesh;
+  const Parameterization& old_layout = res.refined_mesh ? *res.refined_layout : tm.param;
+  const TexelMap new_map = build_texel_map(out_mesh, res.param, W, H);
   res.report.time_texel_map = since(t0);
   t0 = Clock::now();
-  const ImageRGBA8 new_tex = resample_texture(tm.param, tex, new_map, a.padding);
+  const ImageRGBA8 new_tex = resample_texture(old_layout, tex, new_map, a.padding);
   res.report.time_texture_update = since(t0);
-  const StretchStats st = measure_stretch(tm.mesh, res.param);
+  const StretchStats st = measure_stretch(out_mesh, res.param);
 
   AtomicOutput out;
   const std::string name = a.name.empty() ? sanitize_export_name(std::filesystem::path(a.mesh).stem().string()) : a.name;
-  export_textured_mesh(out, a.outdir, name, tm.mesh, res.param, new_tex);
+  export_textured_mesh(out, a.outdir, name, out_mesh, res.param, new_tex);
   if (!a.debug_maps.empty()) {
     // Written inside OUTDIR's commit when it is below OUTDIR; otherwise directly.
     write_debug_maps(a.debug_maps, name, res);
@@ -90,6 +96,7 @@ void run_reparam(const ReparamArgs& a, const Context& ctx) {
   j["input"] = a.mesh;
   j["texture"] = a.texture;
   j["faces"] = tm.mesh.num_faces();
+  j["faces_out"] = out_mesh.num_faces();
   j["charts"] = tm.param.num_charts;
   j["size"] = {W, H};
   j["update"] = "resample";
@@ -126,7 +133,9 @@ void add_reparam_command(CLI::App& app, Context& ctx) {
   sub->add_option("mesh", a->mesh, "OBJ with texture coordinates (vt, f v/vt)")->required()->check(CLI::ExistingFile);
   sub->add_option("texture", a->texture, "Its texture image (PNG, ...)")->required()->check(CLI::ExistingFile);
   sub->add_option("-o,--output", a->outdir, "Output directory")->required();
-  sub->add_option("--adapt", a->mode, "single | two-stage")->capture_default_str();
+  sub->add_option("--adapt", a->mode, "density-flow | two-stage | single")->capture_default_str();
+  sub->add_flag("--no-refine", a->no_refine,
+                "Keep the input's vertices (density-flow refines triangles too large for the warp)");
   sub->add_option("--grid", a->grid, "Grid cells per side: FINE or COARSE,FINE (default 16,256)");
   sub->add_option("--alpha", a->alpha, "L_s^2 weight of the geometry stretch where there is signal")->capture_default_str();
   sub->add_option("--beta", a->beta, "L_s^2 weight of the signal stretch E_h")->capture_default_str();

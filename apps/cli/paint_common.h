@@ -53,7 +53,8 @@ inline ProgressCallback phase_printer(const Context& ctx, const std::string& pre
 /// Settings of the adaptive re-parameterization (issue 4, `--adapt` and friends), parsed and
 /// validated by `adaptex paint` and turned into PaintSessionOptions by make_session_options().
 struct AdaptSettings {
-  std::string mode = "two-stage";    ///< none | single | two-stage
+  std::string mode = to_string(AdaptOptions{}.mode);  ///< none | single | two-stage | density-flow
+  bool refine = AdaptOptions{}.refine;  ///< false: --no-refine (keep the input's vertices)
   std::vector<int> grid;             ///< --grid: 1 (single) or 2 (coarse, fine) grid sizes; empty = default
   std::optional<double> alpha, beta; ///< --alpha / --beta L_s^2 weights; unset = the adaptive defaults
   std::string reparam = "end";       ///< each-stroke | end
@@ -80,6 +81,7 @@ struct PaintRunOptions {
 
 /// What one unwrap + paint run produced.
 struct PaintRun {
+  TriMesh mesh;  ///< The painted mesh: the input, or its refinement (same surface) after density-flow.
   Parameterization param;
   UnwrapReport unwrap;
   ImageRGBA8 texture;
@@ -111,6 +113,7 @@ inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
     PainterOptions po;
     po.width = po.height = options.size;
     po.padding = options.padding;
+    run.mesh = mesh;
     Painter painter(mesh, run.param, po, strokes.background);
     painter.paint_all(strokes);
     run.texture = painter.texture();
@@ -123,7 +126,9 @@ inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
     const PaintSessionOptions so = make_session_options(
         options.size, options.padding, a.mode, a.grid, a.alpha.value_or(-1.0), a.beta.value_or(-1.0),
         a.reparam, a.update, a.debug_maps);
-    PaintSession session(mesh, run.param, so, strokes.background);
+    PaintSessionOptions sor = so;
+    sor.adapt.refine = a.refine;
+    PaintSession session(mesh, run.param, sor, strokes.background);
     const size_t n = strokes.strokes.size();
     for (size_t k = 0; k < n; ++k) {
       session.add_stroke(strokes.strokes[k]);
@@ -131,6 +136,7 @@ inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
         ctx.info("adapt: " + std::to_string(k + 1) + "/" + std::to_string(n) + " strokes");
     }
     session.finish();
+    run.mesh = session.mesh();
     run.param = session.param();
     run.texture = session.texture();
     run.texel_updates = session.painter().texel_updates();

@@ -570,7 +570,7 @@ void App::start_rebuild(bool adapt) {
   StrokeFile file = history_.to_file();
   const int size = adapt_.texture_size;
   AdaptRequest req;
-  req.mode = adapt_.mode == AdaptMode::Single ? 1 : 2;
+  req.mode = static_cast<int>(adapt_.mode);  // index into adaptex::adapt_modes()
   req.alpha = adapt_.alpha;
   req.beta = adapt_.beta;
   req.coarse_grid = adapt_.coarse_grid;

@@ -62,7 +62,11 @@ AdaptOutcome adapt_and_replay(const TriMesh& mesh, const Parameterization& curre
                               const AdaptRequest& request, const ProgressCallback& progress) {
   PaintSessionOptions opt;
   opt.texture_size = request.texture_size;
-  opt.adapt.mode = request.mode == 1 ? AdaptMode::Single : AdaptMode::TwoStage;
+  const auto& modes = adapt_modes();
+  opt.adapt.mode = request.mode >= 1 && request.mode < static_cast<int>(modes.size()) ? modes[request.mode]
+                                                                                     : AdaptOptions{}.mode;
+  // The studio keeps one mesh for its whole session (picking, undo, projects): no refinement yet.
+  opt.adapt.refine = false;
   opt.adapt.alpha = request.alpha;
   opt.adapt.beta = request.beta;
   opt.adapt.coarse_grid = request.coarse_grid;
@@ -88,8 +92,8 @@ AdaptOutcome adapt_and_replay(const TriMesh& mesh, const Parameterization& curre
     o.importance = r->importance;
     o.stretch = r->stretch;
     o.ls2 = r->ls2;
-    o.coarse = r->coarse;
-    o.fine = r->fine;
+    if (r->grids.size() == 2) o.coarse = r->grids[0];
+    if (!r->grids.empty()) o.fine = r->grids.back();
   }
   o.canvas = std::make_unique<Canvas>(std::move(session));
   return o;

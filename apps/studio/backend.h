@@ -57,7 +57,7 @@ class Canvas {
 
 /// Settings of one adaptive re-parameterization (adaptex::AdaptOptions subset).
 struct AdaptRequest {
-  int mode = 2;  ///< 1 = single stage, 2 = two-stage.
+  int mode = 2;  ///< Index into adaptex::adapt_modes(): 1 single, 2 two-stage, 3 density-flow.
   double alpha = 0.5, beta = 0.95;
   int coarse_grid = 16, fine_grid = 256;
   int texture_size = 1024;

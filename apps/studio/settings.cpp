@@ -5,6 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "adaptex/adapt/adapt.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
 #include "stroke_json.h"
@@ -17,11 +18,13 @@ Vec3 get_v3(const json& j, const Vec3& def) {
   if (!j.is_array() || j.size() != 3) return def;
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
 }
-const char* mode_name(AdaptMode m) {
-  return m == AdaptMode::None ? "none" : m == AdaptMode::Single ? "single" : "two-stage";
-}
+// The studio's modes are the library's, in the same order (adaptex::adapt_modes()).
+const char* mode_name(AdaptMode m) { return adaptex::to_string(adaptex::adapt_modes().at(static_cast<size_t>(m))); }
 AdaptMode mode_from(const std::string& s) {
-  return s == "single" ? AdaptMode::Single : s == "two-stage" ? AdaptMode::TwoStage : AdaptMode::None;
+  const auto& modes = adaptex::adapt_modes();
+  for (size_t k = 0; k < modes.size(); ++k)
+    if (s == adaptex::to_string(modes[k])) return AdaptMode(static_cast<int>(k));
+  return AdaptMode::None;
 }
 }  // namespace
 

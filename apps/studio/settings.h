@@ -12,7 +12,7 @@
 namespace adaptex::studio {
 
 enum class Tool { Brush, Eraser, Eyedropper };
-enum class AdaptMode { None, Single, TwoStage };
+enum class AdaptMode { None, Single, TwoStage, DensityFlow };  // names: adaptex::to_string(adaptex::AdaptMode)
 enum class MouseButton { Left = 0, Right = 1, Middle = 2 };
 
 /// Modifier keys held during an event.

@@ -6,6 +6,9 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <vector>
+
+#include "adaptex/adapt/adapt.h"
 #include <cmath>
 
 #include "adaptex/paint/export.h"
@@ -139,9 +142,10 @@ void StudioUi::view_panel(App& app) {
 
 void StudioUi::adapt_panel(App& app) {
   AdaptSettings& a = app.adapt();
-  const char* modes[] = {"none", "single", "two-stage"};
+  std::vector<const char*> modes;
+  for (adaptex::AdaptMode lm : adaptex::adapt_modes()) modes.push_back(adaptex::to_string(lm));
   int m = int(a.mode);
-  if (ImGui::Combo("Mode", &m, modes, 3)) a.mode = AdaptMode(m);
+  if (ImGui::Combo("Mode", &m, modes.data(), static_cast<int>(modes.size()))) a.mode = AdaptMode(m);
   float al = float(a.alpha), be = float(a.beta);
   if (ImGui::SliderFloat("alpha", &al, 0.f, 1.f)) a.alpha = al;
   if (ImGui::SliderFloat("beta", &be, 0.f, 1.f)) a.beta = be;

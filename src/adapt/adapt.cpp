@@ -1,11 +1,13 @@
-// Signal-adaptive re-parameterization, thesis §3.5–§3.8 (two-stage framework: §3.8).
+// Signal-adaptive re-parameterization: the framework around the warp methods (warp_method.h):
+// validation, the method's warp, refinement, the flip-free remap and the geometry safeguard.
 #include "adaptex/adapt/adapt.h"
 
 #include <chrono>
 #include <cmath>
 #include <string>
 
-#include "adaptex/adapt/stretch_map.h"
+#include "adaptex/adapt/refine.h"
+#include "adaptex/adapt/warp_method.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/param/stretch.h"
 
@@ -26,14 +28,47 @@ void validate(const AdaptOptions& o) {
   if (!(o.min_weight > 0 && o.min_weight <= 1)) throw InvalidInputError("min_weight must be in (0, 1]");
   if (!(o.epsilon_texels >= 0) || o.max_iterations < 0 || o.fine_max_iterations < 0)
     throw InvalidInputError("epsilon must be >= 0 and max_iterations >= 0");
+  if (!(o.refine_tolerance_texels > 0) || o.refine_max_levels < 0 || !(o.refine_max_face_factor >= 1))
+    throw InvalidInputError("refinement: tolerance must be > 0, levels >= 0 and the face factor >= 1");
+}
+
+/// Refines the mesh where the warp bends or flips its triangles (refine.h); on success the result's
+/// refined_mesh, refined_layout (old UV domain) and parent_face are set.
+void refine_under_warp(const TriMesh& mesh, const Parameterization& current, int texture_size,
+                       const AdaptOptions& o, AdaptResult& res) {
+  const auto warps = res.warps();
+  auto warp = [&warps](const Vec2& p) {
+    Vec2 q = p;
+    for (const GridWarp* w : warps) q = w->apply(q);
+    return q;
+  };
+  RefineOptions ro;
+  ro.tolerance = o.refine_tolerance_texels / texture_size;
+  ro.max_levels = o.refine_max_levels;
+  ro.max_faces = static_cast<long>(o.refine_max_face_factor * mesh.num_faces());
+  RefineResult rr = refine_for_warp(mesh, current, warp, ro);
+  if (rr.added_faces == 0) return;
+  res.refined_mesh = std::make_shared<const TriMesh>(std::move(rr.mesh));
+  res.refined_layout = std::make_shared<const Parameterization>(std::move(rr.param));
+  res.parent_face = std::move(rr.parent_face);
 }
 }  // namespace
 
 std::vector<const GridWarp*> AdaptResult::warps() const {
   std::vector<const GridWarp*> w;
-  if (coarse.n > 0) w.push_back(&coarse);
-  if (fine.n > 0) w.push_back(&fine);
+  for (const GridWarp& g : grids)
+    if (g.n > 0) w.push_back(&g);
   return w;
+}
+
+std::unique_ptr<WarpMethod> make_warp_method(AdaptMode mode) {
+  switch (mode) {
+    case AdaptMode::Single: return make_single_warp();
+    case AdaptMode::TwoStage: return make_two_stage_warp();
+    case AdaptMode::DensityFlow: return make_density_flow_warp();
+    case AdaptMode::None: break;
+  }
+  throw InvalidInputError("adapt mode 'none' has no warp method");
 }
 
 const char* to_string(AdaptMode mode) {
@@ -41,20 +76,28 @@ const char* to_string(AdaptMode mode) {
     case AdaptMode::None: return "none";
     case AdaptMode::Single: return "single";
     case AdaptMode::TwoStage: return "two-stage";
+    case AdaptMode::DensityFlow: return "density-flow";
   }
   return "?";
 }
 
+const std::vector<AdaptMode>& adapt_modes() {
+  static const std::vector<AdaptMode> modes{AdaptMode::None, AdaptMode::Single, AdaptMode::TwoStage,
+                                            AdaptMode::DensityFlow};
+  return modes;
+}
+
 AdaptMode parse_adapt_mode(const std::string& name) {
-  if (name == "none") return AdaptMode::None;
-  if (name == "single") return AdaptMode::Single;
-  if (name == "two-stage" || name == "two_stage" || name == "twostage") return AdaptMode::TwoStage;
-  throw InvalidInputError("unknown adapt mode '" + name + "' (expected none, single or two-stage)");
+  for (AdaptMode m : adapt_modes())
+    if (name == to_string(m)) return m;
+  if (name == "two_stage" || name == "twostage") return AdaptMode::TwoStage;
+  if (name == "density_flow") return AdaptMode::DensityFlow;
+  throw InvalidInputError("unknown adapt mode '" + name + "' (expected none, single, two-stage or density-flow)");
 }
 
 AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current,
                                    const ImageRGBA8& texture, const TexelMap& current_map,
-                                   const AdaptOptions& o) {
+                                   const AdaptOptions& o, const StrokeFile* history) {
   validate(o);
   if (current.uv_faces.size() != mesh.faces.size())
     throw InvalidInputError("parameterization has " + std::to_string(current.uv_faces.size()) +
@@ -66,6 +109,7 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
   AdaptResult res;
   AdaptReport& rep = res.report;
   rep.mode = o.mode;
+  rep.faces_before = rep.faces_after = mesh.num_faces();
   rep.l2_before = measure_stretch(mesh, current).l2;
   if (o.mode == AdaptMode::None) {
     res.param = current;
@@ -74,86 +118,48 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
     rep.time_total = seconds_since(t_start);
     return res;
   }
-  auto t0 = std::chrono::steady_clock::now();
-  report_progress(o.progress, "importance", 0);
-  res.importance = compute_importance(texture, &current_map, o.importance);
-  size_t with_signal = 0;
-  for (int t : current_map.inside)
-    if (res.importance.data[t] > 1.0f / 512.0f) ++with_signal;
-  rep.signal_fraction = current_map.inside.empty() ? 0.0 : double(with_signal) / current_map.inside.size();
-  rep.time_importance = seconds_since(t0);
+  const std::unique_ptr<WarpMethod> method = make_warp_method(o.mode);
+  method->compute(WarpInput{mesh, current, texture, current_map, history, o}, res);
 
-  t0 = std::chrono::steady_clock::now();
-  report_progress(o.progress, "stretch", 0);
-  if (o.use_geometry_stretch) res.stretch = compute_stretch_map(mesh, current, current_map);
-  rep.time_stretch_map = seconds_since(t0);
-
-  t0 = std::chrono::steady_clock::now();
-  report_progress(o.progress, "ls2", 0);
-  Ls2Options lo;
-  lo.alpha = o.alpha;
-  lo.beta = o.beta;
-  lo.min_weight = o.min_weight;
-  lo.geometry_scale = o.geometry_scale;
-  res.ls2 = compute_ls2(res.importance, res.stretch, lo);
-  rep.time_ls2 = seconds_since(t0);
-
-  const int T = std::max(texture.width, texture.height);
-  RelaxOptions ro;
-  ro.ring = o.ring;
-  ro.slide_boundary = o.slide_boundary;
-  ro.epsilon = o.epsilon_texels / T;
-  ro.max_iterations = o.max_iterations;
-  ro.progress = o.progress;
-  if (o.mode == AdaptMode::TwoStage) {
-    t0 = std::chrono::steady_clock::now();
-    report_progress(o.progress, "coarse", 0);
-    res.coarse = GridWarp::uniform(o.coarse_grid);
-    rep.coarse_iterations = relax_grid(res.coarse, pool_for_grid(res.ls2, o.coarse_grid, o.pool), ro).iterations;
-    rep.time_coarse = seconds_since(t0);
-    t0 = std::chrono::steady_clock::now();
-    report_progress(o.progress, "fine", 0);
-    // The fine stage works in the domain already warped by the coarse stage: its weight field is the
-    // L_s² of the content now at each place (pulled back through the coarse warp).
-    const ImageF pooled = pool_for_grid(res.ls2, o.fine_grid, o.pool);
-    const ImageF field = pull_back_field(pooled, res.coarse, std::max(pooled.width, pooled.height));
-    res.fine = GridWarp::uniform(o.fine_grid);
-    RelaxOptions fo = ro;
-    fo.max_iterations = o.fine_max_iterations;
-    rep.fine_iterations = relax_grid(res.fine, field, fo).iterations;
-    rep.time_fine = seconds_since(t0);
-  } else {
-    t0 = std::chrono::steady_clock::now();
-    report_progress(o.progress, "fine", 0);
-    res.fine = GridWarp::uniform(o.fine_grid);
-    rep.fine_iterations = relax_grid(res.fine, pool_for_grid(res.ls2, o.fine_grid, o.pool), ro).iterations;
-    rep.time_fine = seconds_since(t0);
+  // Refinement: where the warp varies faster than the triangles, split them (same surface).
+  if (o.refine && method->wants_refinement()) {
+    const auto t0 = std::chrono::steady_clock::now();
+    report_progress(o.progress, "refine", 0);
+    refine_under_warp(mesh, current, std::max(texture.width, texture.height), o, res);
+    rep.time_refine = seconds_since(t0);
   }
+  const TriMesh& out_mesh = res.refined_mesh ? *res.refined_mesh : mesh;
+  const Parameterization& src = res.refined_mesh ? *res.refined_layout : current;
+  rep.faces_after = out_mesh.num_faces();
 
-  t0 = std::chrono::steady_clock::now();
+  const auto t0 = std::chrono::steady_clock::now();
   report_progress(o.progress, "remap", 0);
-  SafeRemapResult sr = safe_remap(current, res.warps(), o.remap);
+  SafeRemapResult sr = safe_remap(src, res.warps(), o.remap);
   rep.remap_checks = sr.checks;
   rep.damping = sr.mean_damping;
   rep.global_damping = sr.damping;
   rep.locally_damped = sr.locally_damped;
   res.param = std::move(sr.param);
-  rep.l2_after = measure_stretch(mesh, res.param).l2;
-  if (o.geometry_safeguard && with_signal == 0 && !(rep.l2_after < rep.l2_before) && rep.damping > 0) {
+  rep.l2_after = measure_stretch(out_mesh, res.param).l2;
+  if (o.geometry_safeguard && rep.signal_fraction == 0 && !(rep.l2_after < rep.l2_before) && rep.damping > 0) {
     // No signal: the only goal is lower L2 stretch. Try half the warp, else keep the input.
     std::vector<GridWarp> half;
     for (const GridWarp* w : res.warps()) half.push_back(w->blended(0.5 * rep.damping));
     std::vector<const GridWarp*> ptrs;
     for (auto& w : half) ptrs.push_back(&w);
-    SafeRemapResult h = safe_remap(current, ptrs, o.remap);
+    SafeRemapResult h = safe_remap(src, ptrs, o.remap);
     rep.remap_checks += h.checks;
-    const double l2h = measure_stretch(mesh, h.param).l2;
+    const double l2h = measure_stretch(out_mesh, h.param).l2;
     if (l2h < rep.l2_before) {
       res.param = std::move(h.param);
       rep.damping = 0.5 * rep.damping * h.mean_damping;
       rep.l2_after = l2h;
     } else {
       res.param = current;
+      res.refined_mesh.reset();
+      res.refined_layout.reset();
+      res.parent_face.clear();
+      rep.faces_after = mesh.num_faces();
       rep.damping = 0;
       rep.l2_after = rep.l2_before;
       rep.accepted = false;

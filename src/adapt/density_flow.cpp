@@ -130,6 +130,57 @@ int advect(const Field& f, Vec2& x, double tol, double max_move, int max_steps) 
   return steps;
 }
 
+/// True if cell (i, j) of \p g is a strictly convex, positively oriented quad (then its bilinear map
+/// is one-to-one).
+bool cell_convex(const GridWarp& g, int i, int j) {
+  const Vec2 q[4] = {g.at(i, j), g.at(i + 1, j), g.at(i + 1, j + 1), g.at(i, j + 1)};
+  for (int k = 0; k < 4; ++k) {
+    const Vec2 a = q[(k + 1) % 4] - q[k], b = q[(k + 3) % 4] - q[k];
+    if (!(a.x() * b.y() - a.y() * b.x() > 0)) return false;
+  }
+  return true;
+}
+
+/// Where the advected lattice is folded at the scale of one cell (a cell image so strongly bent or
+/// sheared that the quad of its corners is not convex), Laplacian-smooths the points of the bad cells
+/// and their neighbours, growing the region until every cell is convex. Side points slide along their
+/// side, corners stay. \return the number of bad cells before untangling
+int untangle(GridWarp& g) {
+  const int n = g.n;
+  std::vector<char> bad(static_cast<size_t>(n) * n, 0);
+  int first = -1;
+  for (int round = 0; round < 200; ++round) {
+    int count = 0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const bool b = !cell_convex(g, i, j);
+        count += b;
+        if (b) bad[static_cast<size_t>(j) * n + i] = 1;  // a region only grows
+      }
+    if (first < 0) first = count;
+    if (count == 0) break;
+    const int grow = 1 + round / 10;  // widen the smoothed region when smoothing alone does not untangle
+    std::vector<char> mark(static_cast<size_t>(n + 1) * (n + 1), 0);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        if (bad[static_cast<size_t>(j) * n + i])
+          for (int b = std::max(0, j - grow); b <= std::min(n, j + 1 + grow); ++b)
+            for (int a = std::max(0, i - grow); a <= std::min(n, i + 1 + grow); ++a) mark[static_cast<size_t>(b) * (n + 1) + a] = 1;
+    for (int sweep = 0; sweep < 4; ++sweep)
+      for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+          if (!mark[static_cast<size_t>(j) * (n + 1) + i]) continue;
+          const bool side_x = i == 0 || i == n, side_y = j == 0 || j == n;
+          if (side_x && side_y) continue;  // corner
+          Vec2& p = g.at(i, j);
+          if (side_x) p.y() = 0.5 * (g.at(i, j - 1).y() + g.at(i, j + 1).y());
+          else if (side_y) p.x() = 0.5 * (g.at(i - 1, j).x() + g.at(i + 1, j).x());
+          else p = 0.25 * (g.at(i - 1, j) + g.at(i + 1, j) + g.at(i, j - 1) + g.at(i, j + 1));
+        }
+  }
+  return first;
+}
+
 double cell_signed_area(const GridWarp& g, int i, int j) {
   const Vec2 a = g.at(i, j), b = g.at(i + 1, j), c = g.at(i + 1, j + 1), d = g.at(i, j + 1);
   const auto cross = [](const Vec2& p, const Vec2& q) { return p.x() * q.y() - p.y() * q.x(); };
@@ -181,7 +232,9 @@ GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions
     g.at(k, 0).y() = 0;
     g.at(k, o.cells).y() = 1;
   }
+  const int tangled = untangle(g);
   if (stats) {
+    stats->tangled_cells = tangled;
     stats->total_steps = total;
     stats->max_steps = most;
     stats->max_displacement = g.max_displacement();
@@ -191,7 +244,7 @@ GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions
     for (int j = 0; j < o.cells; ++j)
       for (int i = 0; i < o.cells; ++i) {
         const double a = cell_signed_area(g, i, j);
-        if (a <= 0) ++stats->inverted_cells;
+        if (!cell_convex(g, i, j)) ++stats->inverted_cells;
         const double target = sample_bilinear(density, (i + 0.5) / o.cells, (j + 0.5) / o.cells) / field.mean;
         err += std::abs(a * n2 - target);
       }

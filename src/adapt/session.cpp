@@ -1,6 +1,7 @@
 // PaintSession: the painting loop with signal-adaptive re-parameterization (thesis Fig. 3.1).
 #include "adaptex/adapt/session.h"
 
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 #include <tbb/blocked_range.h>
 
@@ -39,6 +40,39 @@ double reconstruction_mse(const Parameterization& param, const ImageRGBA8& tex, 
       },
       std::plus<double>());
   return sum / (3.0 * pts.size());
+}
+
+/// The surface points \p pts of mesh \p from moved to a refinement \p to of it (parent_face[c] = face of
+/// \p from that child c lies on): the same 3-D points, on the child face that contains them.
+std::vector<SurfacePoint> transfer_points(const std::vector<SurfacePoint>& pts, const TriMesh& from, const TriMesh& to,
+                                          const FaceData<int>& parent_face) {
+  std::vector<int> start(from.faces.size() + 1, 0), children(parent_face.size());
+  for (int p : parent_face) ++start[p + 1];
+  for (size_t f = 0; f < from.faces.size(); ++f) start[f + 1] += start[f];
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (size_t c = 0; c < parent_face.size(); ++c) children[fill[parent_face[c]]++] = static_cast<int>(c);
+  std::vector<SurfacePoint> out(pts.size());
+  tbb::parallel_for(size_t(0), pts.size(), [&](size_t k) {
+    const Vec3 p = point_on_face(from, pts[k].face, pts[k].b0, pts[k].b1);
+    double best = -1e300;
+    for (int q = start[pts[k].face]; q < start[pts[k].face + 1]; ++q) {
+      const int c = children[q];
+      const Face& f = to.faces[c];
+      const Vec3 e1 = to.positions[f[1]] - to.positions[f[0]], e2 = to.positions[f[2]] - to.positions[f[0]];
+      const Vec3 d = p - to.positions[f[0]];
+      const double a11 = e1.dot(e1), a12 = e1.dot(e2), a22 = e2.dot(e2), det = a11 * a22 - a12 * a12;
+      if (!(det > 0)) continue;
+      const double l1 = (a22 * e1.dot(d) - a12 * e2.dot(d)) / det, l2 = (a11 * e2.dot(d) - a12 * e1.dot(d)) / det;
+      const double inside = std::min({1 - l1 - l2, l1, l2});
+      if (inside > best) {
+        best = inside;
+        const double c1 = std::clamp(l1, 0.0, 1.0), c2 = std::clamp(l2, 0.0, 1.0 - c1);
+        out[k] = SurfacePoint{c, 1 - c1 - c2, c1};
+      }
+    }
+    if (best == -1e300) out[k] = SurfacePoint{start[pts[k].face] < start[pts[k].face + 1] ? children[start[pts[k].face]] : pts[k].face, 1.0 / 3, 1.0 / 3};
+  });
+  return out;
 }
 
 // Strokes painted since the last re-parameterization, in resample mode: composited over the
@@ -85,7 +119,12 @@ PaintSessionOptions make_session_options(int size, int padding, const std::strin
 }
 
 struct PaintSession::Impl {
-  TriMesh mesh;
+  TriMesh mesh;  // the input mesh
+  // The mesh of param when a re-parameterization refined it (same surface, more faces); null: mesh.
+  std::shared_ptr<const TriMesh> refined;
+  std::vector<SurfacePoint> refined_samples;  // the safeguard samples moved onto *refined
+  const TriMesh& current_mesh() const { return refined ? *refined : mesh; }
+  const std::vector<SurfacePoint>& current_samples() const { return refined ? refined_samples : samples; }
   PaintSessionOptions opt;
   std::unique_ptr<Parameterization> param;
   std::unique_ptr<Painter> painter;
@@ -138,8 +177,8 @@ struct PaintSession::Impl {
 
   void new_segment() {
     PainterOptions po = painter_options(history.background);
-    segment = std::make_unique<Segment>(Segment{Painter(mesh, *param, po, Vec3(0, 0, 0)),
-                                                Painter(mesh, *param, po, Vec3(1, 1, 1)), true});
+    segment = std::make_unique<Segment>(Segment{Painter(current_mesh(), *param, po, Vec3(0, 0, 0)),
+                                                Painter(current_mesh(), *param, po, Vec3(1, 1, 1)), true});
   }
 
   void paint(const Stroke& s) {
@@ -154,18 +193,23 @@ struct PaintSession::Impl {
   }
 
   double estimate(const Parameterization& p, const ImageRGBA8& tex, const std::vector<Vec3>& exact) {
-    return reconstruction_mse(p, tex, samples, exact);
+    return reconstruction_mse(p, tex, current_samples(), exact);
   }
 
   const AdaptReport& reparameterize() {
     const auto t_all = std::chrono::steady_clock::now();
     AdaptOptions ao = opt.adapt;
-    if (ao.mode == AdaptMode::None) ao.mode = AdaptMode::TwoStage;  // explicit request
+    if (ao.mode == AdaptMode::None) ao.mode = AdaptOptions{}.mode;  // explicit request: the default method
+    // Resample mode maps old texels to new ones face by face: it keeps the mesh.
+    if (opt.update == TextureUpdate::Resample) ao.refine = false;
     const ImageRGBA8& tex = texture();
+    // Each-stroke mode starts from the initial layout on the input mesh, end mode from the current one.
+    const TriMesh& src_mesh = base_param ? mesh : current_mesh();
     const Parameterization& src = base_param ? *base_param : *param;
     auto res = std::make_unique<AdaptResult>(
-        base_painter ? adapt_parameterization(mesh, src, base_painter->texture(), base_painter->texel_map(), ao)
-                     : adapt_parameterization(mesh, src, tex, painter->texel_map(), ao));
+        base_painter ? adapt_parameterization(mesh, src, base_painter->texture(), base_painter->texel_map(), ao, &history)
+                     : adapt_parameterization(src_mesh, src, tex, painter->texel_map(), ao, &history));
+    const TriMesh& cand_mesh = res->refined_mesh ? *res->refined_mesh : src_mesh;
     AdaptReport& rep = res->report;
     if (!opt.debug_dir.empty())
       write_debug_maps(opt.debug_dir, "reparam" + std::to_string(reparam_count), *res);
@@ -178,14 +222,24 @@ struct PaintSession::Impl {
     }
     const PainterOptions po = painter_options(history.background);
     const bool use_safeguard = opt.safeguard && !history.strokes.empty();
-    std::vector<Vec3> exact;
     auto t0 = std::chrono::steady_clock::now();
+    if (use_safeguard && samples.empty()) samples = sample_surface(mesh, opt.safeguard_samples, 0x5eedada);
+    if (refined && refined_samples.size() != samples.size()) refined_samples = sample_surface(*refined, opt.safeguard_samples, 0x5eedada);
+    // The safeguard's points on the candidate's mesh: the source mesh's points, moved onto the
+    // refined mesh when the re-parameterization refined it (the same 3-D points).
+    const std::vector<SurfacePoint>& src_pts = base_param ? samples : current_samples();
+    std::vector<SurfacePoint> cand_samples;
+    if (res->refined_mesh && !src_pts.empty())
+      cand_samples = transfer_points(src_pts, src_mesh, cand_mesh, res->parent_face);
+    const std::vector<SurfacePoint>& cand_pts = res->refined_mesh ? cand_samples : src_pts;
+    std::vector<Vec3> exact;
     if (use_safeguard) {
-      if (samples.empty()) samples = sample_surface(mesh, opt.safeguard_samples, 0x5eedada);
-      StrokeSignal sig(mesh, history);
-      exact = sig.evaluate(samples);
-      rep.error_before = estimate(*param, tex, exact);
+      exact = StrokeSignal(cand_mesh, history).evaluate(cand_pts);
+      rep.error_before = estimate(*param, tex, StrokeSignal(current_mesh(), history).evaluate(current_samples()));
     }
+    auto estimate_candidate = [&](const Parameterization& p, const ImageRGBA8& t) {
+      return reconstruction_mse(p, t, cand_pts, exact);
+    };
     rep.time_safeguard += seconds_since(t0);
 
     // Candidate(s): the full result, then (safeguard only) the result damped by half.
@@ -198,10 +252,11 @@ struct PaintSession::Impl {
         for (const GridWarp* w : res->warps()) half.push_back(w->blended(t * rep.damping));
         std::vector<const GridWarp*> ptrs;
         for (auto& w : half) ptrs.push_back(&w);
-        np = std::make_unique<Parameterization>(safe_remap(src, ptrs, ao.remap).param);
+        np = std::make_unique<Parameterization>(
+            safe_remap(res->refined_layout ? *res->refined_layout : src, ptrs, ao.remap).param);
       }
       auto tm = std::chrono::steady_clock::now();
-      npainter = std::make_unique<Painter>(mesh, *np, po, history.background);
+      npainter = std::make_unique<Painter>(cand_mesh, *np, po, history.background);
       rep.time_texel_map += seconds_since(tm);
       tm = std::chrono::steady_clock::now();
       if (opt.update == TextureUpdate::Replay) {
@@ -224,7 +279,7 @@ struct PaintSession::Impl {
     bool accept = true;
     if (use_safeguard) {
       t0 = std::chrono::steady_clock::now();
-      rep.error_after = estimate(*np, ntex, exact);
+      rep.error_after = estimate_candidate(*np, ntex);
       const double limit = rep.error_before * (1.0 - opt.safeguard_margin);
       accept = rep.error_after < limit;
       rep.time_safeguard += seconds_since(t0);
@@ -234,7 +289,7 @@ struct PaintSession::Impl {
         ImageRGBA8 htex;
         make(0.5, hp, hpainter, htex);
         t0 = std::chrono::steady_clock::now();
-        const double eh = estimate(*hp, htex, exact);
+        const double eh = estimate_candidate(*hp, htex);
         rep.time_safeguard += seconds_since(t0);
         if (eh < limit) {
           np = std::move(hp);
@@ -248,8 +303,15 @@ struct PaintSession::Impl {
     }
     if (accept) {
       res->param = *np;
-      painter = std::move(npainter);  // references *np: keep np alive as the new param
+      painter = std::move(npainter);  // references *np and cand_mesh: keep both alive
       param = std::move(np);
+      if (res->refined_mesh) {
+        refined_samples = std::move(cand_samples);
+        refined = res->refined_mesh;
+      } else if (base_param) {
+        refined.reset();  // each-stroke: an unrefined candidate lives on the input mesh
+        refined_samples.clear();
+      }
       if (opt.update == TextureUpdate::Resample) {
         resampled = true;
         base = std::move(ntex);
@@ -260,7 +322,11 @@ struct PaintSession::Impl {
       rep.accepted = false;
       rep.damping = 0;
       rep.l2_after = rep.l2_before;
+      rep.faces_after = current_mesh().num_faces();
       res->param = *param;
+      res->refined_mesh = refined;
+      res->refined_layout.reset();
+      res->parent_face.clear();
     }
     rep.time_total = seconds_since(t_all);
     reports.push_back(rep);
@@ -339,7 +405,7 @@ void PaintSession::finish() {
 }
 
 const AdaptReport& PaintSession::reparameterize() { return impl_->reparameterize(); }
-const TriMesh& PaintSession::mesh() const { return impl_->mesh; }
+const TriMesh& PaintSession::mesh() const { return impl_->current_mesh(); }
 const Parameterization& PaintSession::param() const { return *impl_->param; }
 const ImageRGBA8& PaintSession::texture() { return impl_->texture(); }
 const TexelMap& PaintSession::texel_map() const { return impl_->painter->texel_map(); }
@@ -353,98 +419,10 @@ double PaintSession::estimate_error() {
   Impl& m = *impl_;
   if (m.history.strokes.empty()) return 0;
   if (m.samples.empty()) m.samples = sample_surface(m.mesh, m.opt.safeguard_samples, 0x5eedada);
-  StrokeSignal sig(m.mesh, m.history);
-  return m.estimate(*m.param, m.texture(), sig.evaluate(m.samples));
-}
-
-void to_json(nlohmann::json& j, const AdaptReport& r) {
-  j = nlohmann::json{{"mode", to_string(r.mode)},
-                     {"accepted", r.accepted},
-                     {"damping", r.damping},
-                     {"global_damping", r.global_damping},
-                     {"locally_damped_wedges", r.locally_damped},
-                     {"l2_before", r.l2_before},
-                     {"l2_after", r.l2_after},
-                     {"coarse_iterations", r.coarse_iterations},
-                     {"fine_iterations", r.fine_iterations},
-                     {"remap_checks", r.remap_checks},
-                     {"flipped_after", r.flipped_after},
-                     {"degenerate_after", r.degenerate_after},
-                     {"signal_fraction", r.signal_fraction},
-                     {"time_ms",
-                      {{"importance", 1e3 * r.time_importance},
-                       {"stretch_map", 1e3 * r.time_stretch_map},
-                       {"ls2", 1e3 * r.time_ls2},
-                       {"coarse", 1e3 * r.time_coarse},
-                       {"fine", 1e3 * r.time_fine},
-                       {"remap", 1e3 * r.time_remap},
-                       {"texel_map", 1e3 * r.time_texel_map},
-                       {"texture_update", 1e3 * r.time_texture_update},
-                       {"safeguard", 1e3 * r.time_safeguard},
-                       {"total", 1e3 * r.time_total}}}};
-  if (r.error_before >= 0) {
-    j["mse_before"] = r.error_before;
-    j["mse_after"] = r.error_after;
-  }
-}
-
-nlohmann::json adapt_reports_json(const std::vector<AdaptReport>& reports) {
-  nlohmann::json arr = nlohmann::json::array();
-  double total = 0;
-  int accepted = 0;
-  for (const auto& r : reports) {
-    arr.push_back(r);
-    total += r.time_total;
-    accepted += r.accepted ? 1 : 0;
-  }
-  return {{"count", reports.size()}, {"accepted", accepted}, {"total_ms", 1e3 * total}, {"reports", arr}};
-}
-
-namespace {
-ImageRGBA8 grey(const ImageF& img) {
-  ImageRGBA8 out(img.width, img.height, {0, 0, 0, 255});
-  for (size_t k = 0; k < img.data.size(); ++k) {
-    const auto v = static_cast<std::uint8_t>(std::lround(std::clamp(img.data[k], 0.0f, 1.0f) * 255));
-    out.data[4 * k] = out.data[4 * k + 1] = out.data[4 * k + 2] = v;
-  }
-  return out;
-}
-void draw_line(ImageRGBA8& img, Vec2 a, Vec2 b, std::array<std::uint8_t, 3> c) {
-  const double len = std::max(std::abs(b.x() - a.x()) * img.width, std::abs(b.y() - a.y()) * img.height);
-  const int steps = std::max(1, static_cast<int>(std::ceil(len)));
-  for (int s = 0; s <= steps; ++s) {
-    const Vec2 p = a + (b - a) * (double(s) / steps);
-    const int i = std::clamp(static_cast<int>(p.x() * img.width), 0, img.width - 1);
-    const int j = std::clamp(static_cast<int>(p.y() * img.height), 0, img.height - 1);
-    std::uint8_t* px = img.texel(i, j);
-    px[0] = c[0];
-    px[1] = c[1];
-    px[2] = c[2];
-  }
-}
-ImageRGBA8 draw_grid(const ImageF& under, const GridWarp& g, int max_lines) {
-  ImageRGBA8 img = grey(under);
-  const int step = std::max(1, g.n / max_lines);
-  for (int j = 0; j <= g.n; ++j)
-    for (int i = 0; i <= g.n; ++i) {
-      if (j % step == 0 && i < g.n) draw_line(img, g.at(i, j), g.at(std::min(g.n, i + 1), j), {220, 30, 30});
-      if (i % step == 0 && j < g.n) draw_line(img, g.at(i, j), g.at(i, std::min(g.n, j + 1)), {220, 30, 30});
-    }
-  return img;
-}
-}  // namespace
-
-void write_debug_maps(const std::filesystem::path& dir, const std::string& prefix, const AdaptResult& r) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw IoError(dir.string() + ": cannot create the debug-map directory: " + ec.message());
-  if (!r.importance.data.empty()) write_png(dir / (prefix + "_importance.png"), grey(r.importance));
-  if (!r.stretch.data.empty()) write_png(dir / (prefix + "_stretch.png"), grey(r.stretch));
-  if (!r.ls2.data.empty()) {
-    write_png(dir / (prefix + "_ls2.png"), grey(r.ls2));
-    if (r.coarse.n > 0) write_png(dir / (prefix + "_grid_coarse.png"), draw_grid(r.ls2, r.coarse, 64));
-    if (r.fine.n > 0) write_png(dir / (prefix + "_grid_fine.png"), draw_grid(r.ls2, r.fine, 64));
-  }
+  if (m.refined && m.refined_samples.empty())  // refined without a safeguard run: sample it directly
+    m.refined_samples = sample_surface(*m.refined, m.opt.safeguard_samples, 0x5eedada);
+  StrokeSignal sig(m.current_mesh(), m.history);
+  return m.estimate(*m.param, m.texture(), sig.evaluate(m.current_samples()));
 }
 
 }  // namespace adaptex

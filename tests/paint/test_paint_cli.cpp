@@ -142,11 +142,13 @@ TEST(PaintCli, PaintsAndExportsEverything) {
 
   const auto rep = nlohmann::json::parse(slurp(out / "report.json"));
   EXPECT_EQ(rep["texture"]["width"], 96);
-  EXPECT_EQ(rep["mesh"]["faces"], in.m.num_faces());
+  // density-flow refines where the warp needs it: more faces, the input's first.
+  EXPECT_EQ(rep["mesh"]["input_faces"], in.m.num_faces());
+  EXPECT_GE(rep["mesh"]["faces"].get<int>(), in.m.num_faces());
   EXPECT_EQ(rep["strokes"]["count"], 4);
   EXPECT_EQ(rep["strokes"]["decals"], 1);
   EXPECT_EQ(rep["strokes"]["dabs"], in.s.num_dabs());
-  EXPECT_EQ(rep["adapt"]["mode"], "two-stage");  // the default
+  EXPECT_EQ(rep["adapt"]["mode"], "density-flow");  // the default
   EXPECT_EQ(rep["adapt"]["reparam"], "end");
   EXPECT_EQ(rep["adapt"]["reparameterizations"]["count"], 1);
   for (const char* phase : {"read", "unwrap", "paint", "export", "total"})
@@ -155,7 +157,11 @@ TEST(PaintCli, PaintsAndExportsEverything) {
 
   // The exported OBJ + PNG reproduce the strokes (the decal included) as well as the texture can.
   const TexturedMesh tm = read_textured_obj(out / "ball.obj");
-  EXPECT_EQ(tm.mesh.positions, in.m.positions);
+  EXPECT_EQ(tm.mesh.num_faces(), rep["mesh"]["faces"].get<int>());
+  ASSERT_GE(tm.mesh.positions.size(), in.m.positions.size());
+  // The input's vertices come first, bit for bit.
+  EXPECT_TRUE(std::equal(in.m.positions.begin(), in.m.positions.end(), tm.mesh.positions.begin()));
+  EXPECT_NEAR(surface_area(tm.mesh), surface_area(in.m), 1e-6 * surface_area(in.m));
   const ImageRGBA8 tex = read_image(out / "ball.png");
   EXPECT_EQ(tex.width, 96);
   EvalOptions eo;
@@ -178,6 +184,19 @@ TEST(PaintCli, PaintsAndExportsEverything) {
   }
   EXPECT_NEAR(pole_colour.y(), 0.9 * 200 / 255.0 + 0.1 * 0.0, 0.35);  // mostly decal green
   EXPECT_GT(pole_colour.y(), pole_colour.x() + 0.2);
+}
+
+TEST(PaintCli, NoRefineKeepsTheInputMeshBitForBit) {
+  Inputs in;
+  const fs::path out = in.tmp.path / "norefine";
+  const auto r = test::run_cli("paint " + q(in.mesh) + " --strokes " + q(in.strokes) + " --size 96 --no-refine -o " +
+                               q(out));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto rep = nlohmann::json::parse(slurp(out / "report.json"));
+  EXPECT_EQ(rep["mesh"]["faces"], in.m.num_faces());
+  const TexturedMesh tm = read_textured_obj(out / "ball.obj");
+  EXPECT_EQ(tm.mesh.positions, in.m.positions);
+  EXPECT_EQ(tm.mesh.faces, in.m.faces);
 }
 
 TEST(PaintCli, NameOptionAndDefaultPadding) {

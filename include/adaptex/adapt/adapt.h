@@ -1,13 +1,23 @@
 #pragma once
 /// \file adapt.h
-/// Signal-adaptive re-parameterization, the whole of thesis §3.5–§3.8 in one call, including the
-/// two-stage framework of §3.8: a coarse grid (default 16 cells) first gathers points in low-signal
-/// regions (shrinking them), then a fine grid (default 256 cells), relaxed in the domain already
-/// warped by the coarse stage, spreads points around high-signal detail (expanding it). The warps
-/// compose: new uv = fine(coarse(old uv)). The remap is flip-, degeneracy- and overlap-free
-/// (remap.h). Texture update: texture_update.h; the painting loop with history: session.h.
+/// Signal-adaptive re-parameterization in one call. The method that computes the warp of the square is
+/// selected by AdaptMode (warp_method.h, one file each):
+/// - `density-flow` (default): the texel density that minimizes the reconstruction error for the
+///   texel budget (error_density.h, measured from the exact stroke history), reached exactly by a
+///   flow-based density-equalizing map that cannot fold (density_flow.h); triangles too large for the
+///   warp are refined conformingly (refine.h);
+/// - `single` / `two-stage`: the thesis' grid relaxation (§3.7 / §3.8): a coarse grid (16 cells) first
+///   gathers points in low-signal regions, then a fine grid (256 cells) relaxed in the domain warped
+///   by the coarse stage spreads points around detail; new uv = fine(coarse(old uv)).
+/// The remap is flip-, degeneracy- and overlap-free for every method (remap.h). Texture update:
+/// texture_update.h; the painting loop with history: session.h. Why the default changed:
+/// docs/error_model.md and docs/quality.md.
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "adaptex/adapt/density_flow.h"
+#include "adaptex/adapt/error_density.h"
 
 #include "adaptex/adapt/grid.h"
 #include "adaptex/adapt/importance.h"
@@ -26,12 +36,13 @@ namespace adaptex {
 enum class AdaptMode {
   None,      ///< Keep the parameterization (the baseline of every comparison).
   Single,    ///< One grid of fine_grid cells (thesis §3.7).
-  TwoStage,  ///< coarse_grid then fine_grid (thesis §3.8). Default.
+  TwoStage,  ///< coarse_grid then fine_grid (thesis §3.8).
+  DensityFlow,  ///< Error-model density + flow-based density-equalizing map. Default.
 };
 
 /// Settings of adapt_parameterization(). Defaults are justified in docs/adaptive.md.
 struct AdaptOptions {
-  AdaptMode mode = AdaptMode::TwoStage;  ///< Single / two-stage / none.
+  AdaptMode mode = AdaptMode::DensityFlow;  ///< density-flow / two-stage / single / none.
   int coarse_grid = 16;   ///< Cells per side of the coarse stage (two-stage only).
   int fine_grid = 256;    ///< Cells per side of the fine stage (and of the single stage).
   double alpha = 1.0;     ///< L_s² weight α of the geometry stretch where there is signal (§3.6).
@@ -54,7 +65,18 @@ struct AdaptOptions {
   /// Only when there is no signal at all (importance map zero): keep the result only if it lowers the
   /// mesh L2 stretch, else try it damped by half, else keep the input (report.accepted = false).
   bool geometry_safeguard = true;
-  ProgressCallback progress;  ///< Phases "importance", "stretch", "ls2", "coarse", "fine", "remap".
+  ErrorDensityOptions density;  ///< density-flow: the error model and its target density.
+  DensityFlowOptions flow;      ///< density-flow: the flow map (its output grid size, accuracy).
+  /// density-flow: refine triangles that are too large for the warp's variation (new vertices on the
+  /// original faces; the surface is unchanged). false keeps the input's vertices (`--no-refine`).
+  bool refine = true;
+  /// Refinement tolerance: largest allowed deviation of the warp from linear along a UV edge, in texels
+  /// of the texture (refine.h).
+  double refine_tolerance_texels = 0.5;
+  int refine_max_levels = 4;    ///< Refinement rounds (each can halve an edge).
+  /// Face budget of the refined mesh, as a multiple of the input's face count.
+  double refine_max_face_factor = 4.0;
+  ProgressCallback progress;  ///< Phases "importance", "stretch", "ls2", "coarse", "fine", "density", "flow", "refine", "remap".
 };
 
 /// Timings (seconds) and figures of one re-parameterization. The texel-map / texture-update times are
@@ -63,6 +85,7 @@ struct AdaptReport {
   AdaptMode mode = AdaptMode::TwoStage;
   double time_importance = 0, time_stretch_map = 0, time_ls2 = 0;
   double time_coarse = 0, time_fine = 0, time_remap = 0;
+  double time_density = 0, time_flow = 0, time_refine = 0;  ///< density-flow phases.
   double time_texel_map = 0, time_texture_update = 0, time_safeguard = 0;
   double time_total = 0;       ///< Everything above.
   double l2_before = 0, l2_after = 0;  ///< Mesh L2 stretch (measure_stretch().l2, 1 = ideal).
@@ -75,6 +98,10 @@ struct AdaptReport {
   double signal_fraction = 0;  ///< Fraction of chart texels with E_h > 0.
   bool accepted = true;        ///< false: a safeguard kept the previous parameterization.
   double error_before = -1, error_after = -1;  ///< Safeguard error estimates (MSE), -1 if not run.
+  double predicted_gain_db = 0;  ///< density-flow: the error model's predicted PSNR gain.
+  int flow_tangled_cells = 0;    ///< density-flow: flow-grid cells untangled (density_flow.h).
+  int flow_inverted_cells = 0;   ///< density-flow: cells still not convex after that (0 expected).
+  int faces_before = 0, faces_after = 0;  ///< Mesh faces before / after refinement.
 };
 
 /// Result of adapt_parameterization().
@@ -83,24 +110,35 @@ struct AdaptResult {
   AdaptReport report;
   ImageF importance;       ///< E_h at texture resolution (§3.5).
   ImageF stretch;          ///< Normalized geometry stretch map at texture resolution (Fig. 3.8).
-  ImageF ls2;              ///< L_s² at texture resolution (§3.6), before pooling.
-  GridWarp coarse;         ///< Optimized coarse grid (empty for Single / None).
-  GridWarp fine;           ///< Optimized fine grid (in the coarse-warped domain for TwoStage).
-  std::vector<const GridWarp*> warps() const;  ///< The non-empty warps in application order.
+  ImageF ls2;              ///< L_s² at texture resolution (§3.6), before pooling (thesis methods).
+  ImageF density;          ///< density-flow: target area density per cell (mean 1; error_density.h).
+  /// The warps in application order: {coarse, fine} for two-stage (fine in the coarse-warped domain),
+  /// {fine} for single, {flow grid} for density-flow; empty for None.
+  std::vector<GridWarp> grids;
+  /// Set when refinement changed the mesh: the refined mesh (same surface, more faces), which
+  /// result.param belongs to. nullptr: param belongs to the input mesh.
+  std::shared_ptr<const TriMesh> refined_mesh;
+  /// With refined_mesh: its layout before the warp (old UV domain), for damping the warp again.
+  std::shared_ptr<const Parameterization> refined_layout;
+  FaceData<int> parent_face;  ///< With refined_mesh: input face id of every refined face (size F').
+  std::vector<const GridWarp*> warps() const;  ///< Pointers to grids, in application order.
 };
 
 /// Re-parameterizes \p current from the signal of \p texture (drawn with \p current; \p current_map
-/// is its texel map, same size as the texture).
+/// is its texel map, same size as the texture) and, if given, the exact stroke \p history (used by
+/// density-flow's error model; without it the texture is the only signal).
 /// \pre mesh, current and current_map are consistent; texture non-empty
 /// \throw InvalidInputError inconsistent sizes, bad options (grid < 1, α/β < 0, ...)
 /// \throw CancelledError the progress callback returned false
 AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current,
                                    const ImageRGBA8& texture, const TexelMap& current_map,
-                                   const AdaptOptions& options = {});
+                                   const AdaptOptions& options = {}, const StrokeFile* history = nullptr);
 
-/// Name of a mode as used on the command line: "none", "single", "two-stage".
+/// Name of a mode as used on the command line: "none", "single", "two-stage", "density-flow".
 const char* to_string(AdaptMode mode);
-/// Parses "none" / "single" / "two-stage". \throw InvalidInputError otherwise
+/// Parses a name of to_string(). \throw InvalidInputError otherwise (the message lists the names)
 AdaptMode parse_adapt_mode(const std::string& name);
+/// Every mode, in the order a UI lists them (None first, the default last).
+const std::vector<AdaptMode>& adapt_modes();
 
 }  // namespace adaptex

@@ -12,7 +12,10 @@
 /// normal velocity vanishes on the sides, boundary points slide along their side and corners stay.
 ///
 /// The result is a GridWarp (grid.h): the advected (n+1)² lattice points; GridWarp::apply then
-/// interpolates the map bilinearly between them, which is how remap.h consumes every warp.
+/// interpolates the map bilinearly between them, which is how remap.h consumes every warp. Where the
+/// flow bends a cell so much that the quad of its advected corners is not convex (sharp density
+/// contrast at the scale of one cell), the lattice is untangled locally by Laplacian smoothing, so
+/// that every cell is convex and the bilinear warp is one-to-one.
 #include "adaptex/adapt/grid.h"
 #include "adaptex/core/image.h"
 
@@ -21,7 +24,7 @@ namespace adaptex {
 /// Settings of density_equalizing_warp().
 struct DensityFlowOptions {
   int cells = 256;             ///< Cells per side n of the output GridWarp (lattice of (n+1)² points).
-  double tolerance = 1e-3;     ///< Local error bound of the adaptive integration, in output cells.
+  double tolerance = 1e-2;     ///< Local error bound of the adaptive integration, in output cells.
   int max_steps = 4000;        ///< Cap on integration steps per point (never reached on sane input).
   bool parallel = true;        ///< Advect points with TBB (results are identical either way).
 };
@@ -31,7 +34,10 @@ struct DensityFlowStats {
   long total_steps = 0;        ///< Accepted integration steps over all points.
   int max_steps = 0;           ///< Most steps any point took.
   double max_displacement = 0; ///< Largest point displacement (uv units).
-  int inverted_cells = 0;      ///< Output cells with non-positive signed area (0 expected).
+  /// Cells of the advected lattice whose corner quad was not convex (the flow bends or shears faster
+  /// than one cell); they and their neighbours were Laplacian-smoothed until every cell was convex.
+  int tangled_cells = 0;
+  int inverted_cells = 0;      ///< Cells still not convex after that (0: the bilinear warp is one-to-one).
   /// Relative L1 error of the achieved cell areas against ρ₀/ρ̄, sampled on the output lattice
   /// (Σ |area·n² − ρ₀/ρ̄| / n²): how exactly the map reached the density.
   double density_error = 0;

@@ -22,9 +22,9 @@
 #include <memory>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "adaptex/adapt/adapt.h"
+#include "adaptex/adapt/adapt_report.h"
+#include "adaptex/adapt/debug_maps.h"
 #include "adaptex/adapt/texture_update.h"
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
@@ -109,16 +109,5 @@ class PaintSession {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
-
-/// JSON of one report (phase times in ms, stretch before/after, damping, iterations, accepted).
-void to_json(nlohmann::json& j, const AdaptReport& report);
-/// JSON array of reports plus totals: {"count", "total_ms", "reports": [...]}.
-nlohmann::json adapt_reports_json(const std::vector<AdaptReport>& reports);
-
-/// Writes the debug pictures of one re-parameterization into \p dir with file prefix \p prefix:
-/// importance, stretch, ls2 (grey levels), coarse/fine grids drawn over the L_s² map (thesis
-/// Figs. 3.8, 3.9). \throw IoError
-void write_debug_maps(const std::filesystem::path& dir, const std::string& prefix,
-                      const AdaptResult& result);
 
 }  // namespace adaptex

@@ -1,0 +1,17 @@
+#pragma once
+/// \file adapt_report.h
+/// JSON of re-parameterization reports (report.json of `adaptex paint` / `adaptex reparam`).
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "adaptex/adapt/adapt.h"
+
+namespace adaptex {
+
+/// JSON of one report (phase times in ms, stretch before/after, damping, iterations, accepted).
+void to_json(nlohmann::json& j, const AdaptReport& report);
+/// JSON array of reports plus totals: {"count", "accepted", "total_ms", "reports": [...]}.
+nlohmann::json adapt_reports_json(const std::vector<AdaptReport>& reports);
+
+}  // namespace adaptex

@@ -1,0 +1,73 @@
+#pragma once
+/// \file error_density.h
+/// The texel density that minimizes the reconstruction error for a fixed texel budget (the
+/// error model behind `--adapt density-flow`; derivation in docs/error_model.md).
+///
+/// Model. Where the layout gives texel spacing h, bilinear reconstruction of the paint leaves a local
+/// mean squared error e(h) = q·h^p: p = 1 across hard edges (MSE ∝ h per unit edge length), p = 4 in
+/// smooth paint (MSE ∝ h⁴|∇²f|²), anything between for soft edges near the texel scale. Both q and p
+/// are *measured* per cell, not assumed: the exact signal is rasterized finer than the texture
+/// (reference raster, from the stroke history) and reconstructed from point samples at the texture's
+/// spacing h_N and at 2·h_N; e(h_N), e(2h_N) give q and p = log2(e(2h_N)/e(h_N)), clamped to
+/// [min_exponent, max_exponent]. Errors are weighted by the surface area each UV cell stands for, so
+/// the model minimizes the error per *surface* area, as quality is measured.
+///
+/// Equidistribution. With ρ the new UV area of a cell relative to its current area (h = h_N·ρ^(−1/2)),
+/// the total error Σ_c q_c ρ_c^(−p_c/2) under the budget Σ_c ρ_c = n_cells is smallest when
+/// (p/2)·q·ρ^(−p/2−1) = μ in every cell (one Lagrange multiplier μ, found by bisection), i.e.
+/// ρ ∝ q^(1/(1+p/2)): ρ ∝ q^(2/3) on hard edges (linear density ∝ contrast^(2/3)), ρ ∝ q^(1/3) in smooth
+/// paint. Where nothing is painted (q = 0) the surface keeps at least `floor` times the uniform
+/// surface texel density: the geometric stretch of the current layout stays in the model, so unpainted
+/// regions are never starved and over-stretched ones are not shrunk further.
+#include "adaptex/core/image.h"
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+#include "adaptex/paint/strokes.h"
+#include "adaptex/paint/texel_map.h"
+
+namespace adaptex {
+
+/// Settings of compute_error_density().
+struct ErrorDensityOptions {
+  int cells = 256;            ///< Cells per side L of the density raster (the flow's raster).
+  /// Reference raster = this × the texture size (stroke history only), capped at max_reference. 2 keeps
+  /// the cost at 4× the texture's texels; the reference must be finer than the texture to see e(h_N).
+  int reference_factor = 2;
+  int max_reference = 2048;   ///< Cap on the reference raster's side in texels.
+  double blur_cells = 4.0;    ///< Gaussian σ, in cells, of the error fields before the density solve.
+  /// Least surface texel density, relative to a uniform-density layout of the same budget, of any cell
+  /// (unpainted regions). 0.02 = spacing at most ~7× the uniform spacing.
+  double floor = 0.15;
+  double max_density = 256;   ///< Cap on the relative area density ρ of a cell (16× linear).
+  double min_exponent = 1.0;  ///< Lower clamp of the measured error exponent p (hard edges).
+  double max_exponent = 4.0;  ///< Upper clamp of p (smooth bilinear regime).
+};
+
+/// Result of compute_error_density().
+struct ErrorDensity {
+  /// L x L, > 0, mean 1 over the square: the UV area each cell of the current layout should get,
+  /// relative to its current area (the density given to density_equalizing_warp()).
+  ImageF density;
+  ImageF error;       ///< L x L: surface-weighted MSE of each cell at the current spacing (display).
+  ImageF exponent;    ///< L x L: measured p (0 where nothing is painted).
+  double signal_fraction = 0;     ///< Fraction of chart cells with a measurable error.
+  double predicted_gain_db = 0;   ///< The model's PSNR gain of the density over the current layout.
+  int reference_size = 0;         ///< Side of the reference raster used.
+};
+
+/// Target density from the exact stroke history: reference raster, error levels and equidistribution as
+/// described above. \p texture / \p map are the current texture and its texel map (the h_N level).
+/// \pre mesh/param consistent; map is the texel map of param at the texture's size
+/// \throw InvalidInputError inconsistent sizes or bad options
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
+                                   const TexelMap& map, const StrokeFile& history,
+                                   const ErrorDensityOptions& options = {});
+
+/// The same without a history (`adaptex reparam`): the texture itself is the reference, and the two
+/// levels are its reconstructions at 2·h_N and 4·h_N (the exponents and the relative densities are the
+/// same model; detail finer than the texture cannot be seen).
+/// \throw InvalidInputError inconsistent sizes or bad options
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
+                                   const TexelMap& map, const ErrorDensityOptions& options = {});
+
+}  // namespace adaptex

@@ -1,0 +1,59 @@
+// JSON of re-parameterization reports.
+#include "adaptex/adapt/adapt_report.h"
+
+#include <nlohmann/json.hpp>
+
+namespace adaptex {
+
+void to_json(nlohmann::json& j, const AdaptReport& r) {
+  j = nlohmann::json{{"mode", to_string(r.mode)},
+                     {"accepted", r.accepted},
+                     {"damping", r.damping},
+                     {"global_damping", r.global_damping},
+                     {"locally_damped_wedges", r.locally_damped},
+                     {"l2_before", r.l2_before},
+                     {"l2_after", r.l2_after},
+                     {"coarse_iterations", r.coarse_iterations},
+                     {"fine_iterations", r.fine_iterations},
+                     {"remap_checks", r.remap_checks},
+                     {"flipped_after", r.flipped_after},
+                     {"degenerate_after", r.degenerate_after},
+                     {"signal_fraction", r.signal_fraction},
+                     {"predicted_gain_db", r.predicted_gain_db},
+                     {"flow_tangled_cells", r.flow_tangled_cells},
+                     {"flow_inverted_cells", r.flow_inverted_cells},
+                     {"faces_before", r.faces_before},
+                     {"faces_after", r.faces_after},
+                     {"time_ms",
+                      {{"importance", 1e3 * r.time_importance},
+                       {"stretch_map", 1e3 * r.time_stretch_map},
+                       {"ls2", 1e3 * r.time_ls2},
+                       {"coarse", 1e3 * r.time_coarse},
+                       {"fine", 1e3 * r.time_fine},
+                       {"density", 1e3 * r.time_density},
+                       {"flow", 1e3 * r.time_flow},
+                       {"refine", 1e3 * r.time_refine},
+                       {"remap", 1e3 * r.time_remap},
+                       {"texel_map", 1e3 * r.time_texel_map},
+                       {"texture_update", 1e3 * r.time_texture_update},
+                       {"safeguard", 1e3 * r.time_safeguard},
+                       {"total", 1e3 * r.time_total}}}};
+  if (r.error_before >= 0) {
+    j["mse_before"] = r.error_before;
+    j["mse_after"] = r.error_after;
+  }
+}
+
+nlohmann::json adapt_reports_json(const std::vector<AdaptReport>& reports) {
+  nlohmann::json arr = nlohmann::json::array();
+  double total = 0;
+  int accepted = 0;
+  for (const auto& r : reports) {
+    arr.push_back(r);
+    total += r.time_total;
+    accepted += r.accepted ? 1 : 0;
+  }
+  return {{"count", reports.size()}, {"accepted", accepted}, {"total_ms", 1e3 * total}, {"reports", arr}};
+}
+
+}  // namespace adaptex

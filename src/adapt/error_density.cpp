@@ -1,0 +1,290 @@
+// Error-model target density (error_density.h; derivation in docs/error_model.md).
+#include "adaptex/adapt/error_density.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/paint/signal.h"
+
+namespace adaptex {
+
+namespace {
+
+/// An RGB raster over [0,1]² (texel centres at (i+0.5)/size), values everywhere (padded outside charts).
+struct Raster {
+  int size = 0;
+  std::vector<Vec3f> rgb;  // size², row-major, row 0 at v = 0
+
+  Vec3f sample(double u, double v) const {  // bilinear, clamp-to-edge (the contract's reconstruction)
+    const double x = std::clamp(u * size - 0.5, 0.0, size - 1.0), y = std::clamp(v * size - 0.5, 0.0, size - 1.0);
+    const int i = std::min(static_cast<int>(x), size - 2 < 0 ? 0 : size - 2);
+    const int j = std::min(static_cast<int>(y), size - 2 < 0 ? 0 : size - 2);
+    const int i1 = std::min(i + 1, size - 1), j1 = std::min(j + 1, size - 1);
+    const float s = static_cast<float>(x - i), t = static_cast<float>(y - j);
+    const auto at = [&](int a, int b) { return rgb[static_cast<size_t>(b) * size + a]; };
+    return (1 - t) * ((1 - s) * at(i, j) + s * at(i1, j)) + t * ((1 - s) * at(i, j1) + s * at(i1, j1));
+  }
+};
+
+/// The texture as a raster (square textures as they are; others resampled bilinearly to max(W, H)²).
+Raster from_texture(const ImageRGBA8& tex) {
+  Raster r;
+  r.size = std::max(tex.width, tex.height);
+  r.rgb.resize(static_cast<size_t>(r.size) * r.size);
+  if (tex.width == tex.height) {
+    for (size_t k = 0; k < r.rgb.size(); ++k)
+      r.rgb[k] = Vec3f(tex.data[4 * k], tex.data[4 * k + 1], tex.data[4 * k + 2]) / 255.0f;
+    return r;
+  }
+  for (int j = 0; j < r.size; ++j)
+    for (int i = 0; i < r.size; ++i)
+      r.rgb[static_cast<size_t>(j) * r.size + i] = sample_bilinear(tex, (i + 0.5) / r.size, (j + 0.5) / r.size).cast<float>();
+  return r;
+}
+
+/// Point samples of \p src (bilinear) at the texel centres of a size² raster: what a texture of that
+/// size would hold if it were made from \p src.
+Raster resampled(const Raster& src, int size) {
+  Raster r;
+  r.size = size;
+  r.rgb.resize(static_cast<size_t>(size) * size);
+  tbb::parallel_for(0, size, [&](int j) {
+    for (int i = 0; i < size; ++i) r.rgb[static_cast<size_t>(j) * size + i] = src.sample((i + 0.5) / size, (j + 0.5) / size);
+  });
+  return r;
+}
+
+/// Outside-chart texels take the mean of their already-filled neighbours, ring after ring (like the
+/// seam padding of a painted texture), so bilinear taps at chart borders see chart colours.
+void pad_outside(Raster& r, std::vector<char> filled, int rings) {
+  const int n = r.size;
+  for (int ring = 0; ring < rings; ++ring) {
+    std::vector<char> next = filled;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const size_t k = static_cast<size_t>(j) * n + i;
+        if (filled[k]) continue;
+        Vec3f sum = Vec3f::Zero();
+        int cnt = 0;
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            const int a = i + di, b = j + dj;
+            if (a < 0 || b < 0 || a >= n || b >= n) continue;
+            const size_t q = static_cast<size_t>(b) * n + a;
+            if (filled[q]) sum += r.rgb[q], ++cnt;
+          }
+        if (cnt) r.rgb[k] = sum / static_cast<float>(cnt), next[k] = 1;
+      }
+    filled.swap(next);
+  }
+}
+
+/// The exact signal at the texel centres of \p map (inside charts), padded outside.
+Raster exact_raster(const TexelMap& map, const StrokeSignal& signal, const Vec3& background) {
+  std::vector<SurfacePoint> pts(map.inside.size());
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const int t = map.inside[k];
+    pts[k] = SurfacePoint{map.face[t], map.bary[t].x(), map.bary[t].y()};
+  }
+  const std::vector<Vec3> c = signal.evaluate(pts);
+  Raster r;
+  r.size = map.width;
+  r.rgb.assign(static_cast<size_t>(map.width) * map.height, background.cast<float>());
+  std::vector<char> filled(r.rgb.size(), 0);
+  for (size_t k = 0; k < pts.size(); ++k) r.rgb[map.inside[k]] = c[k].cast<float>(), filled[map.inside[k]] = 1;
+  pad_outside(r, std::move(filled), 4);
+  return r;
+}
+
+/// Surface area per UV area of every face, relative to the whole layout's (1 = average).
+std::vector<double> surface_per_uv(const TriMesh& mesh, const Parameterization& param) {
+  std::vector<double> ratio(mesh.faces.size(), 0.0);
+  double a3 = 0, a2 = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const double s = face_area(mesh, f), u = std::abs(uv_signed_area(param, f));
+    a3 += s, a2 += u;
+    ratio[f] = u > 0 ? s / u : 0.0;
+  }
+  const double mean = a2 > 0 ? a3 / a2 : 1.0;
+  for (double& r : ratio) r = mean > 0 ? r / mean : 0.0;
+  return ratio;
+}
+
+void gaussian_blur(std::vector<double>& f, int n, double sigma) {
+  if (sigma <= 0) return;
+  const int rad = std::max(1, static_cast<int>(std::ceil(3 * sigma)));
+  std::vector<double> k(2 * rad + 1);
+  for (int d = -rad; d <= rad; ++d) k[d + rad] = std::exp(-0.5 * d * d / (sigma * sigma));
+  auto reflect = [n](int a) { return a < 0 ? -a - 1 : a >= n ? 2 * n - a - 1 : a; };
+  std::vector<double> tmp(f.size());
+  for (int pass = 0; pass < 2; ++pass) {
+    tbb::parallel_for(0, n, [&](int j) {
+      for (int i = 0; i < n; ++i) {
+        double s = 0, w = 0;
+        for (int d = -rad; d <= rad; ++d) {
+          const int a = std::clamp(reflect(i + d), 0, n - 1);
+          const size_t q = pass == 0 ? static_cast<size_t>(j) * n + a : static_cast<size_t>(a) * n + j;
+          s += k[d + rad] * f[q], w += k[d + rad];
+        }
+        tmp[pass == 0 ? static_cast<size_t>(j) * n + i : static_cast<size_t>(i) * n + j] = s / w;
+      }
+    });
+    f.swap(tmp);
+  }
+}
+
+/// Per-cell accumulations over the reference raster.
+struct CellErrors {
+  int n = 0;
+  std::vector<double> ea, eb;   // surface-weighted squared error at the two level spacings
+  std::vector<double> surface;  // surface measure (Σ relative surface-per-uv of the cell's texels)
+  std::vector<double> cover;    // fraction of the cell inside charts
+};
+
+CellErrors accumulate(const Raster& ref, const TexelMap& ref_map, const Raster& a, const Raster& b,
+                      const std::vector<double>& ratio, int n) {
+  CellErrors c;
+  c.n = n;
+  const size_t cells = static_cast<size_t>(n) * n;
+  c.ea.assign(cells, 0), c.eb.assign(cells, 0), c.surface.assign(cells, 0), c.cover.assign(cells, 0);
+  const int R = ref.size;
+  const double per_cell = double(R) * R / cells;  // reference texels per cell
+  // Row bands of cells are independent: parallel over cell rows.
+  tbb::parallel_for(0, n, [&](int cj) {
+    const int j0 = static_cast<int>(std::ceil(double(cj) * R / n - 0.5)), j1 = static_cast<int>(std::ceil(double(cj + 1) * R / n - 0.5));
+    for (int j = std::max(j0, 0); j < std::min(j1, R); ++j)
+      for (int i = 0; i < R; ++i) {
+        const size_t t = static_cast<size_t>(j) * R + i;
+        const int f = ref_map.face[t];
+        if (f < 0) continue;
+        const double u = (i + 0.5) / R, v = (j + 0.5) / R;
+        const int ci = std::min(static_cast<int>(u * n), n - 1);
+        const size_t cell = static_cast<size_t>(cj) * n + ci;
+        const double w = ratio[f];
+        c.ea[cell] += w * (ref.rgb[t] - a.sample(u, v)).squaredNorm() / 3.0;
+        c.eb[cell] += w * (ref.rgb[t] - b.sample(u, v)).squaredNorm() / 3.0;
+        c.surface[cell] += w;
+        c.cover[cell] = std::min(1.0, c.cover[cell] + 1.0 / per_cell);
+      }
+  });
+  return c;
+}
+
+/// Equidistribution (see the header): densities per cell with Σ ρ = n², by bisection on log μ.
+ErrorDensity solve_density(CellErrors& c, double spacing_ratio, const ErrorDensityOptions& o) {
+  const int n = c.n;
+  const size_t cells = static_cast<size_t>(n) * n;
+  gaussian_blur(c.ea, n, o.blur_cells);
+  gaussian_blur(c.eb, n, o.blur_cells);
+  ErrorDensity out;
+  out.density = ImageF(n, n, 1.0f);
+  out.error = ImageF(n, n, 0.0f);
+  out.exponent = ImageF(n, n, 0.0f);
+  double total_surface = 0, total_cover = 0, max_e = 0;
+  for (size_t k = 0; k < cells; ++k) total_surface += c.surface[k], total_cover += c.cover[k], max_e = std::max(max_e, c.ea[k]);
+  const double budget = double(cells) - (double(cells) - total_cover);  // chart part of the square
+  std::vector<double> q(cells, 0), p(cells, 0), lo(cells, 0);
+  const double noise = 1e-9 * max_e + 1e-30;
+  int with_signal = 0, chart_cells = 0;
+  for (size_t k = 0; k < cells; ++k) {
+    if (c.cover[k] <= 0) continue;
+    ++chart_cells;
+    // Least density: floor × the uniform-surface-density share of this cell.
+    lo[k] = total_surface > 0 ? o.floor * budget * c.surface[k] / total_surface / c.cover[k] : o.floor;
+    lo[k] = std::clamp(lo[k], 1e-6, o.max_density);
+    if (c.ea[k] <= noise) continue;
+    ++with_signal;
+    p[k] = std::clamp(std::log2(std::max(c.eb[k], c.ea[k]) / c.ea[k]), o.min_exponent, o.max_exponent);
+    q[k] = c.ea[k] * std::pow(spacing_ratio, p[k]);  // error at the current spacing h_N
+  }
+  out.signal_fraction = chart_cells ? double(with_signal) / chart_cells : 0.0;
+  auto rho_of = [&](size_t k, double log_mu) {
+    if (q[k] <= 0) return lo[k];
+    const double e = 1.0 / (1.0 + 0.5 * p[k]);
+    const double r = std::exp(e * (std::log(0.5 * p[k] * q[k]) - log_mu));
+    return std::clamp(r, lo[k], o.max_density);
+  };
+  auto total = [&](double log_mu) {
+    double s = 0;
+    for (size_t k = 0; k < cells; ++k) s += c.cover[k] * (c.cover[k] > 0 ? rho_of(k, log_mu) : 0.0);
+    return s;
+  };
+  double a = -200, b = 200;  // log μ bracket: total(a) is large, total(b) small
+  for (int it = 0; it < 100; ++it) {
+    const double m = 0.5 * (a + b);
+    (total(m) > budget ? a : b) = m;
+  }
+  const double log_mu = 0.5 * (a + b);
+  double before = 0, after = 0, sum = 0;
+  for (size_t k = 0; k < cells; ++k) {
+    // Cells partly outside every chart: the gutter part keeps its area (ρ = 1).
+    const double r = c.cover[k] > 0 ? c.cover[k] * rho_of(k, log_mu) + (1 - c.cover[k]) : 1.0;
+    out.density.data[k] = static_cast<float>(r);
+    sum += r;
+    out.error.data[k] = static_cast<float>(q[k]);
+    out.exponent.data[k] = static_cast<float>(p[k]);
+    if (q[k] > 0) before += q[k], after += q[k] * std::pow(rho_of(k, log_mu), -0.5 * p[k]);
+  }
+  for (float& v : out.density.data) v = static_cast<float>(v * cells / sum);  // mean exactly 1
+  out.predicted_gain_db = before > 0 && after > 0 ? 10 * std::log10(before / after) : 0.0;
+  return out;
+}
+
+void check(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& tex, const TexelMap& map,
+           const ErrorDensityOptions& o, bool square) {
+  if (param.uv_faces.size() != mesh.faces.size())
+    throw InvalidInputError("error density: parameterization and mesh have different face counts");
+  if (tex.empty() || (square && tex.width != tex.height))
+    throw InvalidInputError(square ? "error density: the texture must be square and non-empty"
+                                   : "error density: empty texture");
+  if (map.width != tex.width || map.height != tex.height)
+    throw InvalidInputError("error density: texel map size differs from the texture size");
+  if (o.cells < 2 || o.cells > 4096) throw InvalidInputError("error density: cells must be in [2, 4096]");
+  if (o.reference_factor < 1 || o.max_reference < 1) throw InvalidInputError("error density: bad reference size");
+  if (!(o.floor > 0 && o.floor <= 1)) throw InvalidInputError("error density: floor must be in (0, 1]");
+  if (!(o.max_density >= 1) || !(o.min_exponent > 0) || !(o.max_exponent >= o.min_exponent) || !(o.blur_cells >= 0))
+    throw InvalidInputError("error density: bad max_density / exponent range / blur");
+}
+
+}  // namespace
+
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
+                                   const TexelMap& map, const StrokeFile& history, const ErrorDensityOptions& o) {
+  check(mesh, param, texture, map, o, true);
+  const int N = texture.width;
+  const int R = std::max(N, std::min(o.reference_factor * N, o.max_reference));
+  const StrokeSignal signal(mesh, history);
+  const TexelMap ref_map = build_texel_map(mesh, param, R, R);
+  const Raster ref = exact_raster(ref_map, signal, history.background);
+  const Raster level_a = from_texture(texture);  // what the painter stored at h_N (padded)
+  const int half = std::max(1, N / 2);
+  const Raster level_b = exact_raster(build_texel_map(mesh, param, half, half), signal, history.background);
+  // The density raster is never finer than the reference raster (every cell holds reference texels).
+  CellErrors c = accumulate(ref, ref_map, level_a, level_b, surface_per_uv(mesh, param), std::min(o.cells, R));
+  ErrorDensity out = solve_density(c, 1.0, o);
+  out.reference_size = R;
+  return out;
+}
+
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
+                                   const TexelMap& map, const ErrorDensityOptions& o) {
+  check(mesh, param, texture, map, o, false);
+  const Raster ref = from_texture(texture);
+  const int N = ref.size;
+  const TexelMap square_map = texture.width == texture.height ? TexelMap{} : build_texel_map(mesh, param, N, N);
+  const Raster level_a = resampled(ref, std::max(1, N / 2));
+  const Raster level_b = resampled(ref, std::max(1, N / 4));
+  CellErrors c = accumulate(ref, texture.width == texture.height ? map : square_map, level_a, level_b,
+                            surface_per_uv(mesh, param), std::min(o.cells, N));
+  // Level a has spacing 2·h_N: the error at h_N extrapolates by 2^(−p).
+  ErrorDensity out = solve_density(c, 0.5, o);
+  out.reference_size = N;
+  return out;
+}
+
+}  // namespace adaptex

@@ -1,0 +1,52 @@
+// `--adapt density-flow`: the texel density that minimizes the reconstruction error for the texel
+// budget (error_density.h, from the exact stroke history when there is one), reached by the flow-based
+// density-equalizing map (density_flow.h). docs/error_model.md explains the model and the choices.
+#include <algorithm>
+#include <chrono>
+
+#include "adaptex/adapt/warp_method.h"
+
+namespace adaptex {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+class DensityFlowWarp final : public WarpMethod {
+ public:
+  bool wants_refinement() const override { return true; }
+
+  void compute(const WarpInput& in, AdaptResult& res) const override {
+    const AdaptOptions& o = in.options;
+    AdaptReport& rep = res.report;
+    auto t0 = std::chrono::steady_clock::now();
+    report_progress(o.progress, "density", 0);
+    ErrorDensity ed = in.history
+                          ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, o.density)
+                          : compute_error_density(in.mesh, in.param, in.texture, in.map, o.density);
+    rep.signal_fraction = ed.signal_fraction;
+    rep.predicted_gain_db = ed.predicted_gain_db;
+    // The error map, scaled to [0,1], is what the studio and the debug maps show as "importance".
+    float top = 0;
+    for (float v : ed.error.data) top = std::max(top, v);
+    res.importance = ed.error;
+    if (top > 0)
+      for (float& v : res.importance.data) v /= top;
+    res.density = std::move(ed.density);
+    rep.time_density = seconds_since(t0);
+
+    t0 = std::chrono::steady_clock::now();
+    report_progress(o.progress, "flow", 0);
+    DensityFlowStats st;
+    res.grids = {density_equalizing_warp(res.density, o.flow, &st)};
+    rep.flow_tangled_cells = st.tangled_cells;
+    rep.flow_inverted_cells = st.inverted_cells;
+    rep.time_flow = seconds_since(t0);
+  }
+};
+}  // namespace
+
+std::unique_ptr<WarpMethod> make_density_flow_warp() { return std::make_unique<DensityFlowWarp>(); }
+
+}  // namespace adaptex

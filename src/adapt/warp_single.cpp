@@ -1,0 +1,71 @@
+// Thesis §3.5–§3.7: importance, geometry stretch, L_s² and one relaxed grid (`--adapt single`).
+#include <chrono>
+
+#include "adaptex/adapt/stretch_map.h"
+#include "adaptex/adapt/warp_method.h"
+
+namespace adaptex {
+
+namespace {
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+class SingleWarp final : public WarpMethod {
+ public:
+  void compute(const WarpInput& in, AdaptResult& res) const override {
+    compute_thesis_weights(in, res);
+    const AdaptOptions& o = in.options;
+    const auto t0 = std::chrono::steady_clock::now();
+    report_progress(o.progress, "fine", 0);
+    GridWarp fine = GridWarp::uniform(o.fine_grid);
+    res.report.fine_iterations =
+        relax_grid(fine, pool_for_grid(res.ls2, o.fine_grid, o.pool), thesis_relax_options(in)).iterations;
+    res.grids = {std::move(fine)};
+    res.report.time_fine = seconds_since(t0);
+  }
+};
+}  // namespace
+
+RelaxOptions thesis_relax_options(const WarpInput& in) {
+  const AdaptOptions& o = in.options;
+  RelaxOptions ro;
+  ro.ring = o.ring;
+  ro.slide_boundary = o.slide_boundary;
+  ro.epsilon = o.epsilon_texels / std::max(in.texture.width, in.texture.height);
+  ro.max_iterations = o.max_iterations;
+  ro.progress = o.progress;
+  return ro;
+}
+
+void compute_thesis_weights(const WarpInput& in, AdaptResult& res) {
+  const AdaptOptions& o = in.options;
+  AdaptReport& rep = res.report;
+  auto t0 = std::chrono::steady_clock::now();
+  report_progress(o.progress, "importance", 0);
+  res.importance = compute_importance(in.texture, &in.map, o.importance);
+  size_t with_signal = 0;
+  for (int t : in.map.inside)
+    if (res.importance.data[t] > 1.0f / 512.0f) ++with_signal;
+  rep.signal_fraction = in.map.inside.empty() ? 0.0 : double(with_signal) / in.map.inside.size();
+  rep.time_importance = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  report_progress(o.progress, "stretch", 0);
+  if (o.use_geometry_stretch) res.stretch = compute_stretch_map(in.mesh, in.param, in.map);
+  rep.time_stretch_map = seconds_since(t0);
+
+  t0 = std::chrono::steady_clock::now();
+  report_progress(o.progress, "ls2", 0);
+  Ls2Options lo;
+  lo.alpha = o.alpha;
+  lo.beta = o.beta;
+  lo.min_weight = o.min_weight;
+  lo.geometry_scale = o.geometry_scale;
+  res.ls2 = compute_ls2(res.importance, res.stretch, lo);
+  rep.time_ls2 = seconds_since(t0);
+}
+
+std::unique_ptr<WarpMethod> make_single_warp() { return std::make_unique<SingleWarp>(); }
+
+}  // namespace adaptex
