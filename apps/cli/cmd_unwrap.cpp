@@ -29,6 +29,7 @@ struct UnwrapArgs {
   int max_augmentations = UnwrapOptions{}.max_augmentations;
   int yoshizawa_iterations = UnwrapOptions{}.yoshizawa_max_iterations;
   bool mean_value = false;
+  std::string charts = "auto";
 };
 
 using Clock = std::chrono::steady_clock;
@@ -52,6 +53,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
   opt.max_augmentations = a.max_augmentations;
   opt.yoshizawa_max_iterations = a.yoshizawa_iterations;
   if (a.mean_value) opt.weights = EmbeddingWeights::MeanValue;
+  opt.charts = a.charts == "single" ? ChartMode::Single : ChartMode::Auto;
   std::set<std::string, std::less<>> seen;
   opt.progress = [&](std::string_view phase, double) {
     if (seen.find(phase) == seen.end()) {
@@ -96,6 +98,8 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
     j["floater_linf"] = r.floater_linf;
     j["final_l2"] = r.final_l2;
     j["final_linf"] = r.final_linf;
+    j["coverage"] = r.coverage;
+    j["effective_texel_share"] = r.effective_texel_share;
     j["area_distortion"] = stats.area_distortion;
     j["angle_distortion"] = stats.angle_distortion;
     j["flipped"] = stats.flipped;
@@ -122,7 +126,8 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
   line << std::setprecision(4) << "unwrap: " << r.num_charts << " chart(s), genus " << r.genus
        << ", " << r.boundary_loops << " boundary loop(s), cut length " << r.cut_length
        << ", L2 stretch " << r.floater_l2 << " (Floater) -> " << r.final_l2 << ", L-inf "
-       << r.final_linf << ", " << std::setprecision(3) << since(t_start) << " s";
+       << r.final_linf << ", effective texel share " << std::setprecision(3)
+       << r.effective_texel_share << ", " << since(t_start) << " s";
   ctx.info(line.str());
 }
 
@@ -154,6 +159,12 @@ void add_unwrap_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   sub->add_flag("--mean-value", args->mean_value,
                 "Mean-value weights for the initial embedding instead of shape-preserving");
+  sub->add_option("--charts", args->charts,
+                  "single: one chart per connected component; auto: segment into several charts "
+                  "only when one chart per component has an effective texel share (coverage / "
+                  "L2^2) below 0.5 (docs/charts.md)")
+      ->check(CLI::IsMember({"single", "auto"}))
+      ->capture_default_str();
   sub->callback([args, &ctx] { run_unwrap(*args, ctx); });
 }
 

@@ -15,6 +15,7 @@
 #include "adaptex/core/orientation.h"
 #include "adaptex/core/pinched.h"
 #include "adaptex/core/topology.h"
+#include "adaptex/param/charts.h"
 #include "adaptex/param/cut.h"
 #include "adaptex/param/disk_param.h"
 #include "adaptex/param/pack.h"
@@ -120,6 +121,285 @@ bool better(const CutScore& a, const CutScore& b, double min_improvement) {
   return a.l2 < b.l2 * (1.0 - min_improvement);
 }
 
+
+/// What every chart of one unwrap() attempt shares: the options, the disk-parameterization
+/// settings, the augmentation budgets and the report being filled.
+struct ChartContext {
+  const UnwrapOptions& options;
+  DiskParamOptions dopt;
+  long augment_faces_left = 0;
+  Clock::time_point augment_deadline;
+  UnwrapReport& rep;
+};
+
+/// Cuts one piece (a component, or a chart of a component) to a disk, augments the cut (GGH 2002
+/// §3.2) and parameterizes the disk (Floater + Yoshizawa). Progress fractions [frac0, frac1].
+Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double frac1) {
+  const UnwrapOptions& options = ctx.options;
+  const DiskParamOptions& dopt = ctx.dopt;
+  UnwrapReport& rep = ctx.rep;
+  Chart chart;
+  // Initial cut and slicing.
+  auto t0 = Clock::now();
+  report_progress(options.progress, "cut", frac0);
+  const EdgeConnectivity ec = build_edges(comp.mesh);
+  const EdgeGraph graph = build_edge_graph(comp.mesh, ec);
+  CutState cur;
+  cur.cut = initial_cut(comp.mesh, ec, graph);
+  cur.disk = slice_along_cut(comp.mesh, ec, cur.cut);
+  rep.time_cut += seconds_since(t0);
+
+  // Cut augmentation (GGH 2002 §3.2): add the shortest path from the vertex of highest stretch
+  // to the cut while the L2 stretch improves; keep the best. As in the thesis, the candidates are
+  // compared with a cheaper parameterization (Floater + a few Yoshizawa iterations); the full
+  // Yoshizawa solve runs once, on the chosen cut.
+  const long chart_faces = comp.mesh.num_faces();
+  const long eval_cost = chart_faces * (1 + std::max(0, std::min(dopt.max_iterations,
+                                                             options.augment_yoshizawa_iterations)));
+  DiskParamOptions cheap = dopt;
+  cheap.max_iterations = std::min(dopt.max_iterations, options.augment_yoshizawa_iterations);
+  cheap.yoshizawa = cheap.max_iterations > 0;
+  cheap.progress = [&](std::string_view, double) {
+    return !options.progress || options.progress("augment", frac0);
+  };
+  // Adds paths to cur while the score improves. The budgets apply while the current
+  // parameterization is valid; one with degenerate UV triangles (squeezed extremities) is
+  // augmented regardless of them, up to max_augmentations. Returns true if the cut changed.
+  auto augment_loop = [&](CutScore cur_score) {
+    const auto ta = Clock::now();
+    bool changed = false;
+    for (int a = 0; a < options.max_augmentations; ++a) {
+      if (cur_score.bad == 0 &&
+          (ctx.augment_faces_left < eval_cost || Clock::now() >= ctx.augment_deadline))
+        break;
+      report_progress(options.progress, "augment",
+                      frac0 + (frac1 - frac0) * a / options.max_augmentations);
+      const std::vector<char> on_cut = cut_vertices(comp.mesh, ec, cur.cut);
+      const int from = worst_vertex(comp, graph, cur, on_cut);
+      if (from < 0) break;
+      CutState cand;
+      cand.cut = cur.cut;
+      for (int e : shortest_path_to_cut(graph, on_cut, from)) cand.cut[e] = 1;
+      cand.disk = slice_along_cut(comp.mesh, ec, cand.cut);
+      cand.param = parameterize_disk(cand.disk.disk, cand.disk.boundary_loop, cheap);
+      ctx.augment_faces_left -= eval_cost;
+      const CutScore cand_score = score(cand);
+      if (!better(cand_score, cur_score, options.augment_min_improvement)) break;
+      cur = std::move(cand);
+      cur_score = cand_score;
+      ++chart.augmentations;
+      changed = true;
+    }
+    rep.time_augment += seconds_since(ta);
+    return changed;
+  };
+  bool evaluated = false;
+  if (options.max_augmentations > 0 && ctx.augment_faces_left >= 2 * eval_cost &&
+      Clock::now() < ctx.augment_deadline) {
+    t0 = Clock::now();
+    report_progress(options.progress, "augment", frac0);
+    cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap);
+    ctx.augment_faces_left -= eval_cost;
+    rep.time_augment += seconds_since(t0);
+    evaluated = true;
+    augment_loop(score(cur));
+  }
+
+  // The parameterization of the disk (Floater, then Yoshizawa).
+  DiskParamOptions full = dopt;
+  full.progress = [&](std::string_view phase, double f) {
+    return !options.progress || options.progress(phase, frac0 + f * (frac1 - frac0));
+  };
+  auto solve_full = [&] {
+    cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, full);
+    rep.time_floater += cur.param.time_floater;
+    rep.time_yoshizawa += cur.param.time_yoshizawa;
+  };
+  solve_full();
+  // Rescue: a chart over the budgets whose result has degenerate triangles is augmented anyway.
+  if (options.max_augmentations > 0 && !evaluated) {
+    const CutScore s = score(cur);
+    if (s.bad > 0 && augment_loop(s)) solve_full();
+  }
+  chart.cut_length = cut_length(graph, cur.cut);
+  chart.state = std::move(cur);
+  double area2 = 0;
+  for (const Face& t : chart.state.disk.disk.faces) {
+    const Vec2 e1 = chart.state.param.uv[t[1]] - chart.state.param.uv[t[0]];
+    const Vec2 e2 = chart.state.param.uv[t[2]] - chart.state.param.uv[t[0]];
+    area2 += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+  }
+  chart.domain_area = area2 > 0 ? area2 : 1.0;
+  return chart;
+}
+
+/// Width / height ratio a of the rectangle that gives the chart the lowest L2 stretch when its
+/// square parameterization is scaled by (sqrt(a), 1 / sqrt(a)): the best of 17 values from 1/4 to 4
+/// (log-spaced). Multi-chart layouts only; a single chart keeps the square.
+double best_aspect(const Chart& chart) {
+  const TriMesh& disk = chart.state.disk.disk;
+  const std::vector<Vec2>& uv = chart.state.param.uv;
+  double best_a = 1.0, best_l2 = measure_stretch(disk, uv).l2;
+  std::vector<Vec2> scaled(uv.size());
+  for (int i = -8; i <= 8; ++i) {
+    if (i == 0) continue;
+    const double a = std::pow(4.0, i / 8.0), sx = std::sqrt(a);
+    for (size_t w = 0; w < uv.size(); ++w) scaled[w] = Vec2(uv[w].x() * sx, uv[w].y() / sx);
+    const double l2 = measure_stretch(disk, scaled).l2;
+    if (l2 < best_l2) best_l2 = l2, best_a = a;
+  }
+  return best_a;
+}
+
+/// Packs the charts of \p pieces with gap \p padding and writes the layout and the layout figures
+/// (charts, cut length, augmentations, stretch, coverage, effective texel share) into \p result.
+void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
+              const std::vector<Chart>& charts, double padding, UnwrapResult& result) {
+  UnwrapReport& rep = result.report;
+  const int nc = static_cast<int>(pieces.size());
+  // Rectangles of area proportional to the chart's 3-D area (equal texel density) and the chart's
+  // best aspect ratio.
+  // Upright rectangles (a < 1) are turned by 90° (a rotation keeps the UV orientation) so that all
+  // are landscape, which the shelf packing fills better.
+  std::vector<Vec2> sizes(nc);
+  std::vector<char> turned(nc, 0);
+  for (int c = 0; c < nc; ++c) {
+    double a = nc > 1 ? best_aspect(charts[c]) : 1.0;
+    const double area = std::max(pieces[c].area, 1e-300);
+    if (a < 1) turned[c] = 1, a = 1 / a;
+    sizes[c] = Vec2(std::sqrt(area * a), std::sqrt(area / a));
+  }
+  const std::vector<RectPlacement> place = pack_rectangles(sizes, padding);
+  Parameterization& param = result.param;
+  param = Parameterization{};
+  param.num_charts = nc;
+  param.uv_faces.resize(mesh.faces.size());
+  param.face_chart.resize(mesh.faces.size());
+  rep.cut_length = 0;
+  rep.augmentations = 0;
+  rep.yoshizawa_iterations = 0;
+  for (int c = 0; c < nc; ++c) {
+    const Chart& chart = charts[c];
+    const Component& comp = pieces[c];
+    const int offset = param.num_wedges();
+    for (size_t w = 0; w < chart.state.param.uv.size(); ++w) {
+      const Vec2& t = chart.state.param.uv[w];
+      Vec2 uv = place[c].offset + place[c].size.cwiseProduct(turned[c] ? Vec2(1 - t.y(), t.x()) : t);
+      uv = uv.cwiseMax(0.0).cwiseMin(1.0);
+      param.uv.push_back(uv);
+      param.wedge_vertex.push_back(comp.vertices[chart.state.disk.wedge_vertex[w]]);
+    }
+    for (size_t lf = 0; lf < comp.faces.size(); ++lf) {
+      const Face& t = chart.state.disk.disk.faces[lf];
+      param.uv_faces[comp.faces[lf]] = {offset + t[0], offset + t[1], offset + t[2]};
+      param.face_chart[comp.faces[lf]] = c;
+    }
+    rep.cut_length += chart.cut_length;
+    rep.augmentations += chart.augmentations;
+    rep.yoshizawa_iterations += chart.state.param.iterations;
+  }
+  rep.num_charts = nc;
+  if (nc > 1) {  // the seams: input edges whose two faces do not share both UV corners
+    const EdgeConnectivity ec = build_edges(mesh);
+    double seams = 0;
+    for (int e = 0; e < ec.num_edges(); ++e) {
+      if (ec.edge_faces[e].size() != 2) continue;
+      auto uv_of = [&](int f, int v) {
+        const Face& t = mesh.faces[f];
+        return param.uv_faces[f][t[0] == v ? 0 : t[1] == v ? 1 : 2];
+      };
+      const int f1 = ec.edge_faces[e][0], f2 = ec.edge_faces[e][1];
+      const int a = ec.edges[e][0], b = ec.edges[e][1];
+      if (uv_of(f1, a) != uv_of(f2, a) || uv_of(f1, b) != uv_of(f2, b))
+        seams += (mesh.positions[a] - mesh.positions[b]).norm();
+    }
+    rep.cut_length = seams;
+  }
+
+  // Mesh-level stretch. The final figures are measured on the packed layout; the Floater figures
+  // are combined from the per-chart ones (the chart's L2 and L∞ are normalized in its own frame
+  // of UV area A2_c and 3-D area A3_c; scaling a chart by k divides its stretch by k; for a
+  // rectangle k is the geometric mean of its sides, so the combined Floater figure is approximate).
+  const StretchStats final_stats = measure_stretch(mesh, param);
+  rep.final_l2 = final_stats.l2;
+  rep.final_linf = final_stats.linf;
+  if (nc == 1) {
+    rep.floater_l2 = charts[0].state.param.floater_l2;
+    rep.floater_linf = charts[0].state.param.floater_linf;
+  } else {
+    double a3 = 0, sum_r = 0, sum_a2 = 0, max_gamma = 0;
+    for (int c = 0; c < nc; ++c) {
+      const double k = std::sqrt(place[c].size.x() * place[c].size.y()), A3 = std::max(pieces[c].area, 1e-300);
+      const double A2 = charts[c].domain_area;
+      const DiskParamResult& r = charts[c].state.param;
+      a3 += A3;
+      sum_r += r.floater_l2 * r.floater_l2 * A3 * A3 / (A2 * k * k);
+      sum_a2 += k * k * A2;
+      max_gamma = std::max(max_gamma, r.floater_linf * std::sqrt(A3 / A2) / k);
+    }
+    rep.floater_l2 = std::sqrt(sum_r / a3) * std::sqrt(sum_a2 / a3);
+    rep.floater_linf = max_gamma * std::sqrt(sum_a2 / a3);
+  }
+  double coverage = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) coverage += std::max(0.0, uv_signed_area(param, f));
+  rep.coverage = std::min(1.0, coverage);
+  rep.effective_texel_share =
+      std::isfinite(rep.final_l2) && rep.final_l2 > 0 ? rep.coverage / (rep.final_l2 * rep.final_l2)
+                                                      : 0.0;
+}
+
+/// Splits every component into about \p total_charts charts in proportion to its area (at least
+/// one each) and returns the pieces with input face/vertex ids.
+std::vector<Component> segment_components(const std::vector<Component>& comps, int total_charts,
+                                          const UnwrapOptions& options) {
+  double total_area = 0;
+  for (const Component& c : comps) total_area += c.area;
+  std::vector<Component> pieces;
+  for (const Component& comp : comps) {
+    ChartSegmentOptions so;
+    so.num_charts = std::max(
+        1, static_cast<int>(std::lround(total_charts * comp.area / std::max(total_area, 1e-300))));
+    so.normal_weight = options.chart_normal_weight;
+    if (so.num_charts == 1 || comp.mesh.num_faces() < 2 * so.num_charts) {
+      pieces.push_back(comp);
+      continue;
+    }
+    const std::vector<int> label = segment_charts(comp.mesh, so);
+    const int k = *std::max_element(label.begin(), label.end()) + 1;
+    for (ChartMesh& cm : extract_charts(comp.mesh, label, k)) {
+      if (cm.faces.empty()) continue;
+      Component piece;
+      piece.mesh = std::move(cm.mesh);
+      for (int f : cm.faces) piece.faces.push_back(comp.faces[f]);
+      for (int v : cm.vertices) piece.vertices.push_back(comp.vertices[v]);
+      piece.area = surface_area(piece.mesh);
+      pieces.push_back(std::move(piece));
+    }
+  }
+  return pieces;
+}
+
+/// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
+void unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
+                   const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
+                   const UnwrapOptions& options, UnwrapResult& result) {
+  ChartContext ctx{options, dopt, options.augment_face_budget,
+                   t_start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                                 std::max(0.0, options.augment_time_budget))),
+                   result.report};
+  const int nc = static_cast<int>(pieces.size());
+  std::vector<Chart> charts;
+  charts.reserve(nc);
+  for (int c = 0; c < nc; ++c)
+    charts.push_back(build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
+                                 static_cast<double>(c + 1) / nc));
+  const auto t0 = Clock::now();
+  report_progress(options.progress, "pack", 0.0);
+  assemble(mesh, pieces, charts, padding, result);
+  report_progress(options.progress, "pack", 1.0);
+  result.report.time_pack += seconds_since(t0);
+}
+
 }  // namespace
 
 UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
@@ -131,8 +411,14 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
     throw InvalidInputError("unwrap: chart_padding " + std::to_string(options.chart_padding) +
                             " is outside [0, 0.25)");
   if (options.max_augmentations < 0 || options.yoshizawa_max_iterations < 0 ||
-      options.augment_yoshizawa_iterations < 0)
-    throw InvalidInputError("unwrap: iteration and augmentation counts must be >= 0");
+      options.augment_yoshizawa_iterations < 0 || options.max_charts < 1)
+    throw InvalidInputError("unwrap: iteration, augmentation and chart counts must be >= 0 (>= 1 "
+                            "for max_charts)");
+  if (!(options.gutter_texels >= 0) || options.gutter_texture_size < 1 ||
+      !(options.gutter_texels / options.gutter_texture_size < 0.25))
+    throw InvalidInputError("unwrap: gutter of " + std::to_string(options.gutter_texels) +
+                            " texels at " + std::to_string(options.gutter_texture_size) +
+                            " is out of range");
 
   auto t0 = Clock::now();
   report_progress(options.progress, "cut", 0.0);
@@ -163,7 +449,7 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   rep.num_components = topo.num_components;
   rep.genus = topo.total_genus();
   rep.boundary_loops = topo.total_loops();
-  std::vector<Component> comps = split_components(mesh, topo);
+  const std::vector<Component> comps = split_components(mesh, topo);
   rep.time_cut += seconds_since(t0);
 
   DiskParamOptions dopt;
@@ -175,167 +461,29 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   dopt.max_iterations = options.yoshizawa_max_iterations;
   dopt.yoshizawa = options.yoshizawa_max_iterations > 0;
 
-  // Augmentation budget (see docs/surgery.md): every re-solve costs about as much as the initial
-  // solve, so the number of augmentation solves is limited by the face budget and the time budget.
-  long augment_faces_left = options.augment_face_budget;
-  const auto augment_deadline =
-      t_start + std::chrono::duration_cast<Clock::duration>(
-                         std::chrono::duration<double>(std::max(0.0, options.augment_time_budget)));
-
-  const int nc = static_cast<int>(comps.size());
-  std::vector<Chart> charts(nc);
-  for (int c = 0; c < nc; ++c) {
-    const Component& comp = comps[c];
-    Chart& chart = charts[c];
-    const double frac0 = static_cast<double>(c) / nc, frac1 = static_cast<double>(c + 1) / nc;
-    // Initial cut and slicing.
-    t0 = Clock::now();
-    report_progress(options.progress, "cut", frac0);
-    const EdgeConnectivity ec = build_edges(comp.mesh);
-    const EdgeGraph graph = build_edge_graph(comp.mesh, ec);
-    CutState cur;
-    cur.cut = initial_cut(comp.mesh, ec, graph);
-    cur.disk = slice_along_cut(comp.mesh, ec, cur.cut);
-    rep.time_cut += seconds_since(t0);
-
-    // Cut augmentation (GGH 2002 §3.2): add the shortest path from the vertex of highest stretch
-    // to the cut while the L2 stretch improves; keep the best. As in the thesis, the candidates are
-    // compared with a cheaper parameterization (Floater + a few Yoshizawa iterations); the full
-    // Yoshizawa solve runs once, on the chosen cut.
-    const long chart_faces = comp.mesh.num_faces();
-    const long eval_cost = chart_faces * (1 + std::max(0, std::min(dopt.max_iterations,
-                                                               options.augment_yoshizawa_iterations)));
-    DiskParamOptions cheap = dopt;
-    cheap.max_iterations = std::min(dopt.max_iterations, options.augment_yoshizawa_iterations);
-    cheap.yoshizawa = cheap.max_iterations > 0;
-    cheap.progress = [&](std::string_view, double) {
-      return !options.progress || options.progress("augment", frac0);
-    };
-    // Adds paths to cur while the score improves. The budgets apply while the current
-    // parameterization is valid; one with degenerate UV triangles (squeezed extremities) is
-    // augmented regardless of them, up to max_augmentations. Returns true if the cut changed.
-    auto augment_loop = [&](CutScore cur_score) {
-      const auto ta = Clock::now();
-      bool changed = false;
-      for (int a = 0; a < options.max_augmentations; ++a) {
-        if (cur_score.bad == 0 &&
-            (augment_faces_left < eval_cost || Clock::now() >= augment_deadline))
-          break;
-        report_progress(options.progress, "augment",
-                        frac0 + (frac1 - frac0) * a / options.max_augmentations);
-        const std::vector<char> on_cut = cut_vertices(comp.mesh, ec, cur.cut);
-        const int from = worst_vertex(comp, graph, cur, on_cut);
-        if (from < 0) break;
-        CutState cand;
-        cand.cut = cur.cut;
-        for (int e : shortest_path_to_cut(graph, on_cut, from)) cand.cut[e] = 1;
-        cand.disk = slice_along_cut(comp.mesh, ec, cand.cut);
-        cand.param = parameterize_disk(cand.disk.disk, cand.disk.boundary_loop, cheap);
-        augment_faces_left -= eval_cost;
-        const CutScore cand_score = score(cand);
-        if (!better(cand_score, cur_score, options.augment_min_improvement)) break;
-        cur = std::move(cand);
-        cur_score = cand_score;
-        ++chart.augmentations;
-        changed = true;
+  // One chart per component (thesis §3.2).
+  unwrap_pieces(mesh, comps, dopt, options.chart_padding, t_start, options, result);
+  // Auto: while the layout wastes too many texels, segment into 4, 8, 16, ... charts (docs/charts.md).
+  if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share) {
+    const double gutter = options.gutter_texels / options.gutter_texture_size;
+    for (int k = std::max(4, 2 * topo.num_components); k <= options.max_charts &&
+                                                       rep.effective_texel_share < options.min_texel_share;
+         k *= 2) {
+      const std::vector<Component> pieces = segment_components(comps, k, options);
+      if (static_cast<int>(pieces.size()) <= rep.num_charts) continue;
+      UnwrapResult attempt;
+      attempt.report = rep;
+      unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, attempt);
+      rep.time_cut = attempt.report.time_cut;  // times add up over all attempts
+      rep.time_floater = attempt.report.time_floater;
+      rep.time_yoshizawa = attempt.report.time_yoshizawa;
+      rep.time_augment = attempt.report.time_augment;
+      rep.time_pack = attempt.report.time_pack;
+      if (attempt.report.effective_texel_share > rep.effective_texel_share) {
+        result.param = std::move(attempt.param);
+        rep = attempt.report;
       }
-      rep.time_augment += seconds_since(ta);
-      return changed;
-    };
-    bool evaluated = false;
-    if (options.max_augmentations > 0 && augment_faces_left >= 2 * eval_cost &&
-        Clock::now() < augment_deadline) {
-      t0 = Clock::now();
-      report_progress(options.progress, "augment", frac0);
-      cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap);
-      augment_faces_left -= eval_cost;
-      rep.time_augment += seconds_since(t0);
-      evaluated = true;
-      augment_loop(score(cur));
     }
-
-    // The parameterization of the disk (Floater, then Yoshizawa).
-    DiskParamOptions full = dopt;
-    full.progress = [&](std::string_view phase, double f) {
-      return !options.progress || options.progress(phase, frac0 + f * (frac1 - frac0));
-    };
-    auto solve_full = [&] {
-      cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, full);
-      rep.time_floater += cur.param.time_floater;
-      rep.time_yoshizawa += cur.param.time_yoshizawa;
-    };
-    solve_full();
-    // Rescue: a chart over the budgets whose result has degenerate triangles is augmented anyway.
-    if (options.max_augmentations > 0 && !evaluated) {
-      const CutScore s = score(cur);
-      if (s.bad > 0 && augment_loop(s)) solve_full();
-    }
-    chart.cut_length = cut_length(graph, cur.cut);
-    chart.state = std::move(cur);
-    double area2 = 0;
-    for (const Face& t : chart.state.disk.disk.faces) {
-      const Vec2 e1 = chart.state.param.uv[t[1]] - chart.state.param.uv[t[0]];
-      const Vec2 e2 = chart.state.param.uv[t[2]] - chart.state.param.uv[t[0]];
-      area2 += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
-    }
-    chart.domain_area = area2 > 0 ? area2 : 1.0;
-  }
-
-  // Packing.
-  t0 = Clock::now();
-  report_progress(options.progress, "pack", 0.0);
-  std::vector<double> areas(nc);
-  for (int c = 0; c < nc; ++c) areas[c] = comps[c].area;
-  const std::vector<ChartPlacement> place = pack_charts(areas, options.chart_padding);
-  Parameterization& param = result.param;
-  param.num_charts = nc;
-  param.uv_faces.resize(mesh.faces.size());
-  param.face_chart.resize(mesh.faces.size());
-  for (int c = 0; c < nc; ++c) {
-    const Chart& chart = charts[c];
-    const Component& comp = comps[c];
-    const int offset = param.num_wedges();
-    for (size_t w = 0; w < chart.state.param.uv.size(); ++w) {
-      Vec2 uv = place[c].offset + place[c].scale * chart.state.param.uv[w];
-      uv = uv.cwiseMax(0.0).cwiseMin(1.0);
-      param.uv.push_back(uv);
-      param.wedge_vertex.push_back(comp.vertices[chart.state.disk.wedge_vertex[w]]);
-    }
-    for (size_t lf = 0; lf < comp.faces.size(); ++lf) {
-      const Face& t = chart.state.disk.disk.faces[lf];
-      param.uv_faces[comp.faces[lf]] = {offset + t[0], offset + t[1], offset + t[2]};
-      param.face_chart[comp.faces[lf]] = c;
-    }
-    rep.cut_length += chart.cut_length;
-    rep.augmentations += chart.augmentations;
-    rep.yoshizawa_iterations += chart.state.param.iterations;
-  }
-  rep.num_charts = nc;
-  report_progress(options.progress, "pack", 1.0);
-  rep.time_pack = seconds_since(t0);
-
-  // Mesh-level stretch. The final figures are measured on the packed layout; the Floater figures
-  // are combined from the per-chart ones (the chart's L2 and L∞ are normalized in its own frame
-  // of UV area A2_c and 3-D area A3_c; scaling a chart by k divides its stretch by k).
-  const StretchStats final_stats = measure_stretch(mesh, param);
-  rep.final_l2 = final_stats.l2;
-  rep.final_linf = final_stats.linf;
-  if (nc == 1) {
-    rep.floater_l2 = charts[0].state.param.floater_l2;
-    rep.floater_linf = charts[0].state.param.floater_linf;
-  } else {
-    double a3 = 0, sum_r = 0, sum_a2 = 0, max_gamma = 0;
-    for (int c = 0; c < nc; ++c) {
-      const double k = place[c].scale, A3 = std::max(comps[c].area, 1e-300);
-      const double A2 = charts[c].domain_area;
-      const DiskParamResult& r = charts[c].state.param;
-      a3 += A3;
-      sum_r += r.floater_l2 * r.floater_l2 * A3 * A3 / (A2 * k * k);
-      sum_a2 += k * k * A2;
-      max_gamma = std::max(max_gamma, r.floater_linf * std::sqrt(A3 / A2) / k);
-    }
-    rep.floater_l2 = std::sqrt(sum_r / a3) * std::sqrt(sum_a2 / a3);
-    rep.floater_linf = max_gamma * std::sqrt(sum_a2 / a3);
   }
   rep.time_total = seconds_since(t_start);
   return result;

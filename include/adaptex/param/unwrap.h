@@ -13,6 +13,16 @@
 
 namespace adaptex {
 
+/// How unwrap() divides the surface into charts (docs/charts.md).
+enum class ChartMode {
+  /// One chart per connected component (thesis §3.2): no seams beyond the cut.
+  Single,
+  /// One chart per component when that layout reaches UnwrapOptions::min_texel_share; otherwise
+  /// the components are segmented into 4, 8, 16, ... charts (up to max_charts) until a layout
+  /// reaches it, and the layout with the highest effective texel share is kept.
+  Auto,
+};
+
 /// Settings of unwrap().
 struct UnwrapOptions {
   /// Weights of the initial embedding. Mean-value by default: on the shared meshes it gives lower
@@ -45,8 +55,25 @@ struct UnwrapOptions {
   /// An augmentation is kept only if it lowers the chart's L2 stretch by this relative amount;
   /// the first one that does not stops the augmentation of that chart.
   double augment_min_improvement = 0.005;
-  /// Gap between packed charts, as a fraction of the unit square.
+  /// Gap between packed charts, as a fraction of the unit square, when every chart is a whole
+  /// connected component.
   double chart_padding = 0.01;
+  /// Single: one chart per component; Auto (default): segment into several charts only when one
+  /// chart per component wastes too many texels (docs/charts.md).
+  ChartMode charts = ChartMode::Auto;
+  /// Auto keeps one chart per component when its effective texel share (coverage / L2², see
+  /// UnwrapReport) is at least this; 0.5 = half of the texture's texels do useful work.
+  double min_texel_share = 0.5;
+  /// Auto: the largest number of charts tried (over the whole mesh, plus the components).
+  int max_charts = 64;
+  /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight).
+  double chart_normal_weight = 4.0;
+  /// Gutter between segmented charts in texels of a gutter_texture_size² texture: the gap is
+  /// gutter_texels / gutter_texture_size of the unit square. 8 texels at 1024 leave room for the
+  /// 4-texel seam padding of both neighbouring charts (paint/padding.h).
+  double gutter_texels = 8;
+  /// See gutter_texels.
+  int gutter_texture_size = 1024;
   /// Progress / cancel callback (phases "cut", "floater", "yoshizawa", "augment", "pack").
   ProgressCallback progress;
 };
@@ -54,15 +81,19 @@ struct UnwrapOptions {
 /// Figures about one unwrap() run (everything the `unwrap --report` JSON needs).
 struct UnwrapReport {
   int num_components = 0;
-  int num_charts = 0;
+  int num_charts = 0;            ///< Charts of the layout (>= num_components).
   int genus = 0;                 ///< Total genus over the components.
   int boundary_loops = 0;        ///< Boundary loops of the input.
   int augmentations = 0;         ///< Cut paths added by augmentation, over all charts.
-  double cut_length = 0;         ///< Total 3-D length of the cut edges (original boundary excluded).
+  double cut_length = 0;         ///< Total 3-D length of the cut edges and chart seams (original
+                                 ///< boundary excluded).
   double floater_l2 = 0;         ///< Mesh L2 stretch of the Floater embedding (before Yoshizawa).
   double floater_linf = 0;
   double final_l2 = 0;           ///< Mesh L2 stretch of the result.
   double final_linf = 0;
+  double coverage = 0;           ///< Fraction of [0,1]^2 covered by UV triangles.
+  double effective_texel_share = 0;  ///< coverage / final_l2²: the share of texels doing useful
+                                     ///< work at the sampling rate of an ideal map.
   int yoshizawa_iterations = 0;  ///< Re-weighting iterations performed (summed over charts).
   double time_cut = 0, time_floater = 0, time_yoshizawa = 0, time_augment = 0, time_pack = 0;  ///< s
   double time_total = 0;         ///< s
@@ -74,7 +105,8 @@ struct UnwrapResult {
   UnwrapReport report;
 };
 
-/// Parameterizes every connected component as one chart, packed into [0,1]^2 without overlap.
+/// Parameterizes every connected component as one chart, or (ChartMode::Auto, when that wastes
+/// texels) as several charts, packed into [0,1]^2 without overlap.
 /// Pinched vertices (several separate fans of faces at one vertex, core/pinched.h) are split and a
 /// mixed face winding is made consistent (core/orientation.h) first: the charts are those of the
 /// split, consistently wound surface; wedges refer to the input vertices and uv_faces to the input
