@@ -75,7 +75,8 @@ bool ordered_ring(const CornerPairs& cp, int v, std::vector<int>& ring) {
 
 /// Floater 2003 mean-value row. Each corner angle's tan(α/2) and each edge length is computed once.
 /// Regularized for degenerate rings (zero-length edges of duplicate points, zero-area slivers): edge
-/// lengths are floored at 1e-3 of the ring's mean, tan(α/2) capped at 1e3 (α within 0.1° of π), and
+/// lengths are floored at 1e-3 of the ring's mean, tan(α/2) capped at 1e6 (α within 1e-4° of π; a
+/// cap of 1e3 already changed the weights of triceratops.off, which has near-flat corners), and
 /// every weight floored at 1e-6 of the row's largest, so the row stays finite, strictly positive and
 /// the system well conditioned enough for the iterative solver. Never active on ordinary meshes.
 /// False only when no length is positive.
@@ -93,8 +94,8 @@ bool mean_value_row(const TriMesh& m, int v, const std::vector<int>& ring, doubl
     const int j = (i + 1) % d;
     const Vec3 a = m.positions[ring[i]] - p, b = m.positions[ring[j]] - p;
     const double den = len[i] * len[j] + a.dot(b);
-    th[i] = den > 0 ? std::min(a.cross(b).norm() / den, 1e3) : 1e3;
-    if (!std::isfinite(th[i])) th[i] = 1e3;
+    th[i] = den > 0 ? std::min(a.cross(b).norm() / den, 1e6) : 1e6;
+    if (!std::isfinite(th[i])) th[i] = 1e6;
   }
   double sum = 0, mx = 0;
   for (int i = 0; i < d; ++i) {
