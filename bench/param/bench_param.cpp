@@ -47,8 +47,8 @@ int main(int argc, char** argv) {
     }
   }
   // Solver backends on the 100k disk (Floater + Yoshizawa).
-  for (auto [b, n] : {std::pair{B::Umfpack, "Umfpack"}, std::pair{B::SparseLU, "SparseLU"},
-                      std::pair{B::Multigrid, "Multigrid"}}) {
+  for (auto [b, n] : {std::pair{B::Klu, "Klu"}, std::pair{B::Umfpack, "Umfpack"},
+                      std::pair{B::SparseLU, "SparseLU"}, std::pair{B::Multigrid, "Multigrid"}}) {
     const std::string label = std::string("Backend/") + n + "/bump100k";
     benchmark::RegisterBenchmark(label.c_str(), [b = b](benchmark::State& s) { run(s, "bump100k", true, b); })
         ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
