@@ -124,6 +124,25 @@ TEST(SolverRobust, ZeroAreaFacesAndDuplicatePointsWithAForcedFallback) {
   EXPECT_NEAR(ok.final_l2, r.final_l2, 1e-6 * r.final_l2);
 }
 
+TEST(SolverRobust, NearDuplicatePointsKeepTheIterativeSolverConverging) {
+  // Like plane_with_zero_area_faces, but the collapsed vertex stays 1e-12 away: the faces are
+  // slivers of non-zero area (a reader keeps them) with mean-value weights ~1e12 times the others
+  // unless regularized. > 2000 unknowns: the AMG hierarchy is used.
+  TriMesh m = shapes::plane(72);
+  const int row = 73;
+  for (int k = 0; k < 12; ++k) {
+    const int a = (2 + 5 * k) * row + 2 + 5 * k;
+    m.positions[a + 1] = m.positions[a] + Vec3(1e-12, 0, 0);
+  }
+  DiskParamOptions opt;
+  opt.weights = EmbeddingWeights::MeanValue;
+  opt.backend = TutteSolver::Backend::Multigrid;
+  const DiskParamResult r = parameterize_disk(m, {}, opt);
+  EXPECT_EQ(r.solver_fallbacks, 0);
+  expect_valid(m, as_param(m, r.uv));
+  EXPECT_TRUE(std::isfinite(r.final_l2));
+}
+
 TEST(SolverRobust, TwoHundredTinyComponentsWithSliversUnwrap) {
   const TriMesh m = shapes::tiny_components(200);
   const MeshTopology topo = analyze_topology(m);
