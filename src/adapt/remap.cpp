@@ -23,6 +23,86 @@ Parameterization remap_parameterization(const Parameterization& param, const std
 }
 
 namespace {
+/// UV boundary edges (wedge pairs used by exactly one face), with their face.
+struct BoundaryEdge {
+  int a, b, face;
+};
+std::vector<BoundaryEdge> uv_boundary_edges(const Parameterization& param) {
+  std::vector<std::pair<long long, int>> keys;
+  keys.reserve(param.uv_faces.size() * 3);
+  for (size_t f = 0; f < param.uv_faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const long long a = std::min(param.uv_faces[f][k], param.uv_faces[f][(k + 1) % 3]);
+      const long long b = std::max(param.uv_faces[f][k], param.uv_faces[f][(k + 1) % 3]);
+      keys.push_back({a * (1LL << 31) + b, static_cast<int>(f)});
+    }
+  std::sort(keys.begin(), keys.end());
+  std::vector<BoundaryEdge> out;
+  for (size_t i = 0; i < keys.size();) {
+    size_t j = i;
+    while (j < keys.size() && keys[j].first == keys[i].first) ++j;
+    if (j - i == 1)
+      out.push_back({static_cast<int>(keys[i].first >> 31), static_cast<int>(keys[i].first & ((1LL << 31) - 1)),
+                     keys[i].second});
+    i = j;
+  }
+  return out;
+}
+
+/// Faces where charts of a multi-chart layout run into each other after a warp: boundary edges that
+/// properly cross another boundary edge (sharing no wedge), and boundary wedges strictly inside a face
+/// of another chart (with the faces containing them). Uniform grids over the boxes.
+std::vector<int> faces_of_crossing_boundaries(const Parameterization& p, const std::vector<BoundaryEdge>& edges) {
+  std::vector<int> out;
+  if (edges.size() < 2) return out;
+  const int n = std::clamp(static_cast<int>(std::sqrt(double(edges.size()))), 1, 1024);
+  auto cell = [n](double x) { return std::clamp(static_cast<int>(x * n), 0, n - 1); };
+  std::vector<std::vector<int>> grid(static_cast<size_t>(n) * n);
+  for (size_t e = 0; e < edges.size(); ++e) {
+    const Vec2 &a = p.uv[edges[e].a], &b = p.uv[edges[e].b];
+    for (int y = cell(std::min(a.y(), b.y())); y <= cell(std::max(a.y(), b.y())); ++y)
+      for (int x = cell(std::min(a.x(), b.x())); x <= cell(std::max(a.x(), b.x())); ++x)
+        grid[static_cast<size_t>(y) * n + x].push_back(static_cast<int>(e));
+  }
+  auto orient = [](const Vec2& a, const Vec2& b, const Vec2& c) {
+    const double d = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+    return (d > 0) - (d < 0);
+  };
+  std::vector<char> hit(p.uv_faces.size(), 0);
+  for (const auto& list : grid)
+    for (size_t i = 0; i < list.size(); ++i)
+      for (size_t j = i + 1; j < list.size(); ++j) {
+        const BoundaryEdge &e = edges[list[i]], &g = edges[list[j]];
+        if (e.a == g.a || e.a == g.b || e.b == g.a || e.b == g.b) continue;
+        const Vec2 &a = p.uv[e.a], &b = p.uv[e.b], &c = p.uv[g.a], &d = p.uv[g.b];
+        if (orient(a, b, c) * orient(a, b, d) < 0 && orient(c, d, a) * orient(c, d, b) < 0)
+          hit[e.face] = hit[g.face] = 1;
+      }
+  // A chart may also have moved wholly inside another: boundary wedges strictly inside a face of
+  // another chart.
+  std::vector<std::vector<int>> faces_in(static_cast<size_t>(n) * n);
+  for (size_t f = 0; f < p.uv_faces.size(); ++f) {
+    const Vec2 &a = p.uv[p.uv_faces[f][0]], &b = p.uv[p.uv_faces[f][1]], &c = p.uv[p.uv_faces[f][2]];
+    const Vec2 lo = a.cwiseMin(b).cwiseMin(c), hi = a.cwiseMax(b).cwiseMax(c);
+    for (int y = cell(lo.y()); y <= cell(hi.y()); ++y)
+      for (int x = cell(lo.x()); x <= cell(hi.x()); ++x) faces_in[static_cast<size_t>(y) * n + x].push_back(static_cast<int>(f));
+  }
+  for (const BoundaryEdge& e : edges) {
+    const Vec2& q = p.uv[e.a];
+    const int chart = p.face_chart.empty() ? -1 : p.face_chart[e.face];
+    for (int f : faces_in[static_cast<size_t>(cell(q.y())) * n + cell(q.x())]) {
+      if (chart >= 0 && p.face_chart[f] == chart) continue;
+      const Face& t = p.uv_faces[f];
+      const int s0 = orient(p.uv[t[0]], p.uv[t[1]], q), s1 = orient(p.uv[t[1]], p.uv[t[2]], q),
+                s2 = orient(p.uv[t[2]], p.uv[t[0]], q);
+      if (s0 != 0 && s0 == s1 && s1 == s2) hit[e.face] = hit[f] = 1;
+    }
+  }
+  for (size_t f = 0; f < hit.size(); ++f)
+    if (hit[f]) out.push_back(static_cast<int>(f));
+  return out;
+}
+
 struct FlipCount {
   int flipped = 0, degenerate = 0;
 };
@@ -95,6 +175,10 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
   // boundary) and the O(F log F) overlap test is unnecessary.
   if (o.check_overlaps && single_chart_on_square(param)) o.check_overlaps = false;
   const long overlaps_before = o.check_overlaps ? count_overlapping_triangles(param) : 0;
+  // Charts that run into each other are damped locally too (their crossing boundary edges' faces),
+  // when the input itself has no crossing boundaries.
+  const std::vector<BoundaryEdge> boundary = o.check_overlaps ? uv_boundary_edges(param) : std::vector<BoundaryEdge>{};
+  const bool damp_crossings = o.check_overlaps && faces_of_crossing_boundaries(param, boundary).empty();
   const Parameterization full = remap_parameterization(param, warps);
   const int F = static_cast<int>(param.uv_faces.size());
   SafeRemapResult res;
@@ -102,14 +186,44 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
   // Candidate at global blend t: uv = old + t * tw_w * (warped - old). Faces that flip or degenerate
   // get their wedges' local factor tw halved, round after round (local damping: a few bad triangles
   // do not cost the whole warp); after max_local_rounds the global bisection on t takes over.
+  // Wedge 1-rings (wedges sharing a UV face), for smoothing the displacement where faces fail.
+  std::vector<int> ring_start(param.uv.size() + 1, 0), ring;
+  for (const Face& f : param.uv_faces)
+    for (int k = 0; k < 3; ++k) ring_start[f[k] + 1] += 2;
+  for (size_t w = 0; w < param.uv.size(); ++w) ring_start[w + 1] += ring_start[w];
+  ring.resize(ring_start.back());
+  {
+    std::vector<int> fill(ring_start.begin(), ring_start.end() - 1);
+    for (const Face& f : param.uv_faces)
+      for (int k = 0; k < 3; ++k) {
+        ring[fill[f[k]]++] = f[(k + 1) % 3];
+        ring[fill[f[k]]++] = f[(k + 2) % 3];
+      }
+  }
+  std::vector<Vec2> disp, next;
+  // Candidate at global blend t: uv = old + disp, disp = t · (warped − old) to start with. The wedges of
+  // faces that flip, degenerate (or, multi-chart, whose boundary edges cross another chart's) get their
+  // displacement replaced by half the mean displacement of their 1-ring, round after round: local
+  // damping that also smooths, so the damped patch does not tear its border (plain halving left
+  // steep displacement jumps at the patch border that flipped the next faces). After max_local_rounds
+  // the global bisection on t takes over.
+  // Per-chart blend factors (multi-chart layouts): a chart whose faces still fail after local damping
+  // is damped as a whole, so one bad chart does not cost the others their warp.
+  std::vector<int> wedge_chart(param.uv.size(), 0);
+  for (int f = 0; f < F; ++f)
+    for (int w : param.uv_faces[f]) wedge_chart[w] = param.face_chart.empty() ? 0 : param.face_chart[f];
+  std::vector<double> chart_t(std::max(1, param.num_charts), 1.0);
+  std::vector<int> still_bad;
   auto attempt = [&](double t, Parameterization& out) {
     ++res.checks;
     out = param;
-    tw.assign(param.uv.size(), 1.0f);
-    auto place = [&](size_t w) { out.uv[w] = param.uv[w] + (t * tw[w]) * (full.uv[w] - param.uv[w]); };
-    tbb::parallel_for(size_t(0), out.uv.size(), place);
+    disp.resize(param.uv.size());
+    tbb::parallel_for(size_t(0), out.uv.size(), [&](size_t w) {
+      disp[w] = t * chart_t[std::min<size_t>(wedge_chart[w], chart_t.size() - 1)] * (full.uv[w] - param.uv[w]);
+      out.uv[w] = param.uv[w] + disp[w];
+    });
     RemapCheck c;
-    std::vector<int> bad;
+    std::vector<int> bad, wedges;
     for (int round = 0; round <= o.max_local_rounds; ++round) {
       bad.clear();
       for (int f = 0; f < F; ++f) {
@@ -117,11 +231,34 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
         if (std::abs(a0) <= o.min_area) continue;
         if (uv_signed_area(out, f) * (a0 > 0 ? 1.0 : -1.0) <= o.min_area) bad.push_back(f);
       }
+      if (bad.empty() && damp_crossings) bad = faces_of_crossing_boundaries(out, boundary);
+      still_bad = bad;
       if (bad.empty() || round == o.max_local_rounds) break;
+      wedges.clear();
       for (int f : bad)
-        for (int w : param.uv_faces[f]) tw[w] *= 0.5f;
-      for (int f : bad)
-        for (int w : param.uv_faces[f]) place(static_cast<size_t>(w));
+        for (int w : param.uv_faces[f]) wedges.push_back(w);
+      std::sort(wedges.begin(), wedges.end());
+      wedges.erase(std::unique(wedges.begin(), wedges.end()), wedges.end());
+      next.resize(wedges.size());
+      for (size_t i = 0; i < wedges.size(); ++i) {
+        const int w = wedges[i];
+        if (o.smooth_local_damping) {
+          Vec2 sum = disp[w];
+          for (int q = ring_start[w]; q < ring_start[w + 1]; ++q) sum += disp[ring[q]];
+          next[i] = 0.5 * sum / double(1 + ring_start[w + 1] - ring_start[w]);
+        } else {
+          next[i] = 0.5 * disp[w];
+        }
+      }
+      for (size_t i = 0; i < wedges.size(); ++i) {
+        disp[wedges[i]] = next[i];
+        out.uv[wedges[i]] = param.uv[wedges[i]] + next[i];
+      }
+    }
+    tw.assign(param.uv.size(), 1.0f);
+    for (size_t w = 0; w < param.uv.size(); ++w) {
+      const double full_len = (full.uv[w] - param.uv[w]).norm();
+      if (full_len > 0) tw[w] = static_cast<float>(std::min(1.0, disp[w].norm() / (t * full_len + 1e-300)));
     }
     const FlipCount fc = count_flips(param, out, o.min_area);
     c.flipped = fc.flipped;
@@ -142,6 +279,13 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
   };
   Parameterization cand;
   RemapCheck c = attempt(1.0, cand);
+  for (int k = 0; k < o.chart_halvings && !c.ok() && !still_bad.empty() && param.num_charts > 1; ++k) {
+    std::vector<char> hit(chart_t.size(), 0);
+    for (int f : still_bad) hit[std::min<size_t>(param.face_chart[f], chart_t.size() - 1)] = 1;
+    for (size_t ch = 0; ch < chart_t.size(); ++ch)
+      if (hit[ch]) chart_t[ch] *= 0.5;
+    c = attempt(1.0, cand);
+  }
   if (c.ok()) {
     res.param = std::move(cand);
     res.check = c;

@@ -22,9 +22,10 @@ class DensityFlowWarp final : public WarpMethod {
     AdaptReport& rep = res.report;
     auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "density", 0);
+    const ErrorDensityOptions& eo = o.density;
     ErrorDensity ed = in.history
-                          ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, o.density)
-                          : compute_error_density(in.mesh, in.param, in.texture, in.map, o.density);
+                          ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, eo)
+                          : compute_error_density(in.mesh, in.param, in.texture, in.map, eo);
     rep.signal_fraction = ed.signal_fraction;
     rep.predicted_gain_db = ed.predicted_gain_db;
     // The error map, scaled to [0,1], is what the studio and the debug maps show as "importance".
