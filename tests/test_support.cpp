@@ -8,10 +8,10 @@
 
 namespace adaptex::test {
 
-CliResult run_cli(const std::string& args) {
+CliResult run_cli(const std::string& args, const std::string& shell_prefix) {
   TempDir tmp;
   const auto out = tmp.path / "out.txt", err = tmp.path / "err.txt";
-  const std::string cmd = std::string("'") + ADAPTEX_CLI_PATH + "' " + args + " > '" + out.string() +
+  const std::string cmd = shell_prefix + "'" + ADAPTEX_CLI_PATH + "' " + args + " > '" + out.string() +
                           "' 2> '" + err.string() + "' < /dev/null";
   const int status = std::system(cmd.c_str());
   CliResult r;

@@ -65,7 +65,8 @@ struct CliResult {
   std::string out, err;
 };
 
-/// Runs the adaptex CLI with \p args (shell-quoted by the caller where needed).
-CliResult run_cli(const std::string& args);
+/// Runs the adaptex CLI with \p args (shell-quoted by the caller where needed). \p shell_prefix is put
+/// before the command (e.g. "ulimit -v 2097152; timeout 30 ").
+CliResult run_cli(const std::string& args, const std::string& shell_prefix = "");
 
 }  // namespace adaptex::test

@@ -13,6 +13,7 @@
 #include "adaptex/adapt/texture_update.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/export.h"
@@ -112,7 +113,7 @@ void run_reparam(const ReparamArgs& a, const Context& ctx) {
   {
     std::ofstream f(tmp);
     f << j.dump(2) << "\n";
-    if (!f) throw IoError((std::filesystem::path(a.outdir) / "report.json").string() + ": cannot write the report");
+    if (!f) throw OutputError((std::filesystem::path(a.outdir) / "report.json").string() + ": cannot write the report");
   }
   out.commit();
   std::ostringstream line;
@@ -140,7 +141,7 @@ void add_reparam_command(CLI::App& app, Context& ctx) {
   sub->add_option("--alpha", a->alpha, "L_s^2 weight of the geometry stretch where there is signal")->capture_default_str();
   sub->add_option("--beta", a->beta, "L_s^2 weight of the signal stretch E_h")->capture_default_str();
   sub->add_option("--size", a->size, "Output texture width = height (default: the input texture's size)")
-      ->check(CLI::Range(1, 8192));
+      ->check(CLI::Range(1, adaptex::kMaxTextureSize));
   sub->add_option("--padding", a->padding, "Seam padding in texels")->check(CLI::Range(0, 64))->capture_default_str();
   sub->add_option("--name", a->name, "Base name of the output files (default: the mesh file's stem)");
   sub->add_option("--debug-maps", a->debug_maps, "Also write importance / stretch / L_s^2 / grid PNGs here");

@@ -1,6 +1,7 @@
 // adaptex command-line tool. Exit codes: 0 success, 2 bad input (one line on stderr, no partial
-// output), 1 internal failure.
+// output), 3 an output could not be written, 4 out of memory, 1 internal failure.
 #include <exception>
+#include <new>
 #include <iostream>
 
 #include "adaptex/core/errors.h"
@@ -34,6 +35,12 @@ int main(int argc, char** argv) {
   } catch (const adaptex::InvalidInputError& e) {
     std::cerr << "adaptex: error: " << e.what() << "\n";
     return 2;
+  } catch (const adaptex::OutputError& e) {
+    std::cerr << "adaptex: error: cannot write output: " << e.what() << "\n";
+    return 3;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "adaptex: error: out of memory (the input is too large for the memory available)\n";
+    return 4;
   } catch (const std::exception& e) {
     std::cerr << "adaptex: internal error: " << e.what() << "\n";
     return 1;

@@ -14,6 +14,7 @@
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
 #include "adaptex/paint/export.h"
@@ -62,8 +63,7 @@ struct AdaptSettings {
   std::filesystem::path debug_maps;  ///< --debug-maps DIR (empty = none)
 };
 
-/// Largest accepted texture size (an N x N painter keeps ~40 bytes per texel).
-inline constexpr int kMaxTextureSize = 8192;
+using adaptex::kMaxTextureSize;  // core/limits.h: the one texture-size cap
 
 /// Adds the `--size N` option (texture width = height, 1..kMaxTextureSize) to \p sub.
 inline CLI::Option* add_size_option(CLI::App* sub, int& size) {
@@ -200,14 +200,14 @@ inline nlohmann::json paint_report(const TriMesh& mesh, const StrokeFile& stroke
       {"files", files_json}};
 }
 
-/// Writes \p text to a file registered in \p out (committed with the rest). \throw IoError
+/// Writes \p text to a file registered in \p out (committed with the rest). \throw OutputError
 inline void write_text(AtomicOutput& out, const std::filesystem::path& path, const std::string& text) {
   const std::filesystem::path tmp = out.add(path);
   std::ofstream f(tmp, std::ios::binary);
-  if (!f) throw IoError(path.string() + ": cannot open for writing");
+  if (!f) throw OutputError(path.string() + ": cannot open for writing");
   f << text;
   f.close();
-  if (!f) throw IoError(path.string() + ": write error");
+  if (!f) throw OutputError(path.string() + ": write error");
 }
 
 }  // namespace adaptex::cli

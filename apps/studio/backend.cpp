@@ -131,7 +131,7 @@ void export_glb(const std::filesystem::path& path, const TriMesh& mesh, const Pa
   {
     std::ofstream o(tmp, std::ios::binary);
     o.write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-    if (!o) throw IoError(path.string() + ": write failed");
+    if (!o) throw OutputError(path.string() + ": write failed");
   }
   out.commit();
 }

@@ -87,15 +87,15 @@ double texture_psnr(const TriMesh& mesh, const Parameterization& param, const Im
 
 /// Reads a stroke file (strict, adaptex::read_strokes). \throw IoError, InvalidInputError
 StrokeFile load_strokes(const std::filesystem::path& path);
-/// Writes a stroke file atomically (adaptex::write_strokes). \throw IoError
+/// Writes a stroke file atomically (adaptex::write_strokes). \throw OutputError
 void save_strokes(const std::filesystem::path& path, const StrokeFile& file);
-/// Writes OBJ + MTL + PNG into \p dir as NAME.obj/.mtl/.png, atomically. \throw IoError
+/// Writes OBJ + MTL + PNG into \p dir as NAME.obj/.mtl/.png, atomically. \throw OutputError
 void export_obj(const std::filesystem::path& dir, const std::string& name, const TriMesh& mesh,
                 const Parameterization& param, const ImageRGBA8& texture);
-/// Writes a binary glTF with the texture embedded, atomically. \throw IoError
+/// Writes a binary glTF with the texture embedded, atomically. \throw OutputError
 void export_glb(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization& param,
                 const ImageRGBA8& texture);
-/// Writes a PNG atomically. \throw IoError
+/// Writes a PNG atomically. \throw OutputError
 void save_png(const std::filesystem::path& path, const ImageRGBA8& img);
 /// Reads an image (decals). \throw IoError
 ImageRGBA8 load_image(const std::filesystem::path& path);

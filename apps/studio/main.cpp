@@ -18,6 +18,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "adaptex/core/limits.h"
 #include "app.h"
 #include "gl_renderer.h"
 #include "ui.h"
@@ -180,7 +181,7 @@ int main(int argc, char** argv) {
     }
     app.view().show_ui = !hide_ui;
     app.view().wireframe = wireframe;
-    if (texture_size > 0) app.adapt().texture_size = std::clamp(texture_size, 16, 8192);
+    if (texture_size > 0) app.adapt().texture_size = std::clamp(texture_size, 16, adaptex::kMaxTextureSize);
     if (adapt_mode == "single") app.adapt().mode = AdaptMode::Single;
     if (adapt_mode == "two-stage") app.adapt().mode = AdaptMode::TwoStage;
     if (!project.empty()) app.open_project(project);

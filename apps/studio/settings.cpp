@@ -8,6 +8,8 @@
 #include "adaptex/adapt/adapt.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
+#include "adaptex/io/input_file.h"
 #include "stroke_json.h"
 
 namespace adaptex::studio {
@@ -50,23 +52,23 @@ void write_project(const std::filesystem::path& path, const Project& p) {
   {
     std::ofstream o(tmp);
     o << j.dump(1) << "\n";
-    if (!o) throw IoError(path.string() + ": write failed");
+    if (!o) throw OutputError(path.string() + ": write failed");
   }
   out.commit();
 }
 
 Project read_project(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw IoError(path.string() + ": cannot open project file");
+  const std::string text = read_input_file(path);
   json j;
   try {
-    j = json::parse(in);
+    j = json::parse(text);
   } catch (const std::exception&) {
     throw IoError(path.string() + ": not valid JSON");
   }
-  if (!j.is_object() || j.value("format", "") != "adaptex.studio-project")
+  if (!j.is_object() || !j.contains("format") || j["format"] != "adaptex.studio-project")
     throw InvalidInputError(path.string() + ": not an adaptex.studio-project file");
-  if (j.value("version", 0) != 1) throw InvalidInputError(path.string() + ": unsupported project version");
+  if (!j.contains("version") || j["version"] != 1)
+    throw InvalidInputError(path.string() + ": unsupported project version");
   try {
     Project p;
     p.mesh_path = j.at("mesh").get<std::string>();
@@ -92,7 +94,7 @@ Project read_project(const std::filesystem::path& path) {
       p.adapt.beta = a.value("beta", p.adapt.beta);
       p.adapt.coarse_grid = a.value("coarse_grid", p.adapt.coarse_grid);
       p.adapt.fine_grid = a.value("fine_grid", p.adapt.fine_grid);
-      p.adapt.texture_size = std::clamp(a.value("texture_size", p.adapt.texture_size), 16, 8192);
+      p.adapt.texture_size = std::clamp(a.value("texture_size", p.adapt.texture_size), 16, kMaxTextureSize);
     }
     if (j.contains("camera")) {
       Camera c;

@@ -58,7 +58,7 @@ struct Project {
   std::optional<Camera> camera;
 };
 
-/// Writes a project file atomically ("format": "adaptex.studio-project", version 1). \throw IoError
+/// Writes a project file atomically ("format": "adaptex.studio-project", version 1). \throw OutputError
 void write_project(const std::filesystem::path& path, const Project& project);
 /// Reads a project file. \throw IoError unreadable / not JSON; InvalidInputError bad content
 Project read_project(const std::filesystem::path& path);

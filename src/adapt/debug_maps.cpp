@@ -46,7 +46,7 @@ ImageRGBA8 draw_grid(const ImageF& under, const GridWarp& g, int max_lines) {
 void write_debug_maps(const std::filesystem::path& dir, const std::string& prefix, const AdaptResult& r) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) throw IoError(dir.string() + ": cannot create the debug-map directory: " + ec.message());
+  if (ec) throw OutputError(dir.string() + ": cannot create the debug-map directory: " + ec.message());
   if (!r.importance.data.empty()) write_png(dir / (prefix + "_importance.png"), grey(r.importance));
   if (!r.stretch.data.empty()) write_png(dir / (prefix + "_stretch.png"), grey(r.stretch));
   if (!r.ls2.data.empty()) write_png(dir / (prefix + "_ls2.png"), grey(r.ls2));

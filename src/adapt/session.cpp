@@ -12,6 +12,7 @@
 
 #include "adaptex/adapt/stretch_map.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/padding.h"
@@ -342,8 +343,8 @@ PaintSession::PaintSession(TriMesh mesh, Parameterization initial, const PaintSe
   if (initial.uv_faces.size() != mesh.faces.size())
     throw InvalidInputError("paint session: parameterization has " + std::to_string(initial.uv_faces.size()) +
                             " faces, mesh has " + std::to_string(mesh.faces.size()));
-  if (options.texture_size < 1 || options.texture_size > 16384)
-    throw InvalidInputError("paint session: texture size must be in [1, 16384], got " +
+  if (options.texture_size < 1 || options.texture_size > kMaxTextureSize)
+    throw InvalidInputError("paint session: texture size must be in [1, " + std::to_string(kMaxTextureSize) + "], got " +
                             std::to_string(options.texture_size));
   if (options.padding < 0) throw InvalidInputError("paint session: padding must be >= 0");
   if (options.safeguard_samples < 0) throw InvalidInputError("paint session: safeguard_samples must be >= 0");

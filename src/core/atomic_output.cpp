@@ -24,7 +24,7 @@ fs::path AtomicOutput::add(const fs::path& final_path) {
     for (fs::path d = dir; !d.empty() && !fs::exists(d); d = d.parent_path()) missing.push_back(d);
     std::error_code ec;
     fs::create_directories(dir, ec);
-    if (ec) throw IoError(dir.string() + ": cannot create directory: " + ec.message());
+    if (ec) throw OutputError(dir.string() + ": cannot create directory: " + ec.message());
     created_dirs_.insert(created_dirs_.end(), missing.rbegin(), missing.rend());
   }
   static thread_local std::mt19937_64 rng{std::random_device{}()};
@@ -38,7 +38,7 @@ void AtomicOutput::commit() {
   for (auto& [tmp, final_path] : files_) {
     std::error_code ec;
     fs::rename(tmp, final_path, ec);
-    if (ec) throw IoError(final_path.string() + ": cannot write: " + ec.message());
+    if (ec) throw OutputError(final_path.string() + ": cannot write: " + ec.message());
   }
   committed_ = true;
 }

@@ -1,6 +1,9 @@
 /// \file image_io.cpp
-/// PNG/JPEG/... input and PNG output through stb_image / stb_image_write (the implementations live
-/// in Debian's libstb.so). Files store the top row first, ImageRGBA8 stores v = 0 first: rows flip.
+/// PNG input and output through stb_image / stb_image_write (the implementations live in Debian's
+/// libstb.so). Files store the top row first, ImageRGBA8 stores v = 0 first: rows flip.
+/// Only PNG is read (stb would decode PSD, GIF, HDR, ... too: a 52-byte PSD header made it allocate
+/// 1 GB; issue 11): the signature and the IHDR size are checked before stb decodes anything, and the
+/// size must be within kMaxTextureSize per side and kMaxImagePixels in all.
 #include "adaptex/io/image_io.h"
 
 #include <stb_image.h>
@@ -9,27 +12,16 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <iterator>
+#include <string_view>
 #include <string>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
+#include "adaptex/io/input_file.h"
 
 namespace adaptex {
 
 namespace {
-
-std::vector<unsigned char> read_file_bytes(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    throw IoError(path.string() + ": cannot read image: file does not exist");
-  if (std::filesystem::is_directory(path, ec))
-    throw IoError(path.string() + ": cannot read image: is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path.string() + ": cannot read image: cannot open file");
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw IoError(path.string() + ": cannot read image: read error");
-  return bytes;
-}
 
 // Copies \p src (rows of \p row_bytes) into \p dst in reverse row order.
 void copy_flipped(const unsigned char* src, unsigned char* dst, int rows, size_t row_bytes) {
@@ -46,23 +38,44 @@ void append_bytes(void* context, void* data, int size) {
 
 void check_image(const ImageRGBA8& img, const std::string& what) {
   if (img.width <= 0 || img.height <= 0)
-    throw IoError(what + ": cannot encode an empty image (" + std::to_string(img.width) + "x" +
+    throw InvalidInputError(what + ": cannot encode an empty image (" + std::to_string(img.width) + "x" +
                   std::to_string(img.height) + ")");
   if (img.data.size() != static_cast<size_t>(img.width) * img.height * 4)
-    throw IoError(what + ": image data size " + std::to_string(img.data.size()) + " does not match " +
+    throw InvalidInputError(what + ": image data size " + std::to_string(img.data.size()) + " does not match " +
                   std::to_string(img.width) + "x" + std::to_string(img.height) + "x4");
+}
+
+/// Checks the PNG signature and the IHDR chunk's size against the caps, before decoding.
+void check_png_header(const std::string& bytes, const std::string& name) {
+  static constexpr std::string_view signature("\x89PNG\r\n\x1a\n", 8);
+  if (bytes.size() < 8 || std::string_view(bytes).substr(0, 8) != signature)
+    throw IoError(name + ": not a PNG file (only PNG images are read)");
+  if (bytes.size() < 33 || bytes.compare(12, 4, "IHDR") != 0)
+    throw IoError(name + ": corrupt PNG: no IHDR chunk after the signature");
+  const auto be32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (int k = 0; k < 4; ++k) v = v << 8 | static_cast<unsigned char>(bytes[at + k]);
+    return v;
+  };
+  const std::uint64_t w = be32(16), h = be32(20);
+  if (w == 0 || h == 0) throw IoError(name + ": corrupt PNG: the header says " + std::to_string(w) + "x" + std::to_string(h));
+  if (w > static_cast<std::uint64_t>(kMaxTextureSize) || h > static_cast<std::uint64_t>(kMaxTextureSize) ||
+      w * h > kMaxImagePixels)
+    throw IoError(name + ": PNG of " + std::to_string(w) + "x" + std::to_string(h) + " pixels is larger than the " +
+                  std::to_string(kMaxTextureSize) + "x" + std::to_string(kMaxTextureSize) + " limit");
 }
 
 }  // namespace
 
 ImageRGBA8 read_image(const std::filesystem::path& path) {
-  const auto bytes = read_file_bytes(path);
-  if (bytes.empty()) throw IoError(path.string() + ": cannot read image: file is empty");
+  const std::string bytes = read_input_file(path);
+  check_png_header(bytes, path.string());
   if (bytes.size() > static_cast<size_t>(INT32_MAX))
     throw IoError(path.string() + ": cannot read image: file too large");
   int w = 0, h = 0, channels = 0;
   unsigned char* pixels =
-      stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &w, &h, &channels, 4);
+      stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<int>(bytes.size()), &w,
+                            &h, &channels, 4);
   if (!pixels) {
     const char* reason = stbi_failure_reason();
     throw IoError(path.string() + ": cannot decode image: " + (reason ? reason : "unknown error"));
@@ -84,7 +97,7 @@ std::vector<unsigned char> encode_png(const ImageRGBA8& img) {
   std::vector<unsigned char> out;
   if (!stbi_write_png_to_func(&append_bytes, &out, img.width, img.height, 4, flipped.data(),
                               static_cast<int>(row_bytes)))
-    throw IoError("PNG encoder: stb_image_write failed for a " + std::to_string(img.width) + "x" +
+    throw OutputError("PNG encoder: stb_image_write failed for a " + std::to_string(img.width) + "x" +
                   std::to_string(img.height) + " image");
   return out;
 }
@@ -93,10 +106,10 @@ void write_png(const std::filesystem::path& path, const ImageRGBA8& img) {
   check_image(img, path.string());
   const auto png = encode_png(img);
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw IoError(path.string() + ": cannot open for writing");
+  if (!out) throw OutputError(path.string() + ": cannot open for writing");
   out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
   out.close();
-  if (!out) throw IoError(path.string() + ": write failed (disk full?)");
+  if (!out) throw OutputError(path.string() + ": write failed (disk full?)");
 }
 
 }  // namespace adaptex

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "adaptex/core/mesh.h"
+#include "adaptex/io/input_file.h"
 #include "adaptex/io/mesh_io.h"
 
 namespace adaptex::io_detail {
@@ -59,8 +60,14 @@ PolygonSoup read_ply_soup(const std::filesystem::path& path);
 PolygonSoup read_stl_soup(const std::filesystem::path& path);
 PolygonSoup read_gltf_soup(const std::filesystem::path& path);
 
-/// Whole file as bytes. \throw IoError missing, a directory, unreadable or empty.
-std::string read_file_text(const std::filesystem::path& path);
+/// Whole file as bytes (read_input_file()). \throw IoError missing, not a regular file, too large,
+/// unreadable or empty.
+inline std::string read_file_text(const std::filesystem::path& path) { return read_input_file(path); }
+
+/// "1 vertex" / "3 vertices": \p n with the singular or plural noun, for messages.
+inline std::string count_str(std::int64_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
 
 /// "x, y, z" with shortest round-trip digits, for messages.
 std::string format_point(const Vec3& p);

@@ -82,8 +82,6 @@ bool refine_numbers(const std::string& name, const std::string& text, const std:
 struct ObjData {
   PolygonSoup soup;
   std::vector<double> texcoords;     ///< 2 per vt.
-  std::vector<int> polygon_material; ///< P: material id (-1 none).
-  std::vector<tinyobj::material_t> materials;
 };
 
 ObjData read_obj_data(const std::filesystem::path& path) {
@@ -92,9 +90,10 @@ ObjData read_obj_data(const std::filesystem::path& path) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;
   config.vertex_color = false;
-  config.mtl_search_path = path.parent_path().string();
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path.string(), config))
+  // From the text already read, with no material text: `mtllib` files are never opened (adaptex does
+  // not use materials on input, and a material path may name anything, e.g. /dev/zero).
+  if (!reader.ParseFromString(text, std::string(), config))
     throw IoError(name + ": corrupt OBJ: " + first_line(reader.Error().empty() ? "tinyobjloader failed" : reader.Error()));
   ObjData data;
   PolygonSoup& soup = data.soup;
@@ -121,10 +120,8 @@ ObjData read_obj_data(const std::filesystem::path& path) {
         soup.tex_indices.push_back(shape.mesh.indices[c].texcoord_index);
       }
       soup.end_polygon();
-      data.polygon_material.push_back(f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1);
     }
   }
-  data.materials = reader.GetMaterials();
   return data;
 }
 
@@ -205,14 +202,6 @@ TexturedMesh read_textured_obj(const std::filesystem::path& path, const ReadOpti
     if (c < 0) c = param.num_charts++;
     param.face_chart[f] = c;
   }
-  // Texture: map_Kd of the first face's material that has one, relative to the OBJ.
-  for (int m : data.polygon_material) {
-    if (m < 0 || m >= static_cast<int>(data.materials.size()) || data.materials[m].diffuse_texname.empty()) continue;
-    std::filesystem::path tex_path = data.materials[m].diffuse_texname;
-    if (tex_path.is_relative()) tex_path = path.parent_path() / tex_path;
-    out.texture_path = std::filesystem::absolute(tex_path, ec).lexically_normal().string();
-    break;
-  }
   return out;
 }
 
@@ -274,10 +263,10 @@ void write_obj(const std::filesystem::path& path, const TriMesh& mesh, const Par
     out += '\n';
   }
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  if (!file) throw IoError(name + ": cannot open for writing");
+  if (!file) throw OutputError(name + ": cannot open for writing");
   file.write(out.data(), static_cast<std::streamsize>(out.size()));
   file.close();
-  if (!file) throw IoError(name + ": write failed (disk full?)");
+  if (!file) throw OutputError(name + ": write failed (disk full?)");
 }
 
 }  // namespace adaptex

@@ -3,12 +3,21 @@
 /// primitive of every node instance, placed by the node's world transform (applied in double; identity
 /// transforms leave the float32 positions of the file bit-exact). Primitives split vertices (per
 /// attribute set), so the soup is welded by identical position afterwards.
+///
+/// assimp trusts the file: a forged GLB chunk length made it allocate 4 GB, and it guesses the format
+/// from the content, so any file named .glb reached every assimp importer (issue 11). So before assimp
+/// sees a file, check_gltf() requires real glTF 2.0 (the GLB container, or a JSON object with
+/// asset.version 2.x), checks every GLB chunk length, buffer, buffer view and accessor against the
+/// bytes that exist, and requires external buffers to be regular files.
 #include <assimp/Importer.hpp>
 #include <assimp/scene.h>
 
 #include <Eigen/Dense>
+#include <cstring>
+#include <nlohmann/json.hpp>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 #include "mesh_soup.h"
 
 namespace adaptex::io_detail {
@@ -47,11 +56,152 @@ void collect(const aiScene* scene, const aiNode* node, const Eigen::Matrix4d& pa
   for (unsigned c = 0; c < node->mNumChildren; ++c) collect(scene, node->mChildren[c], world, soup, skipped_primitives);
 }
 
+using nlohmann::json;
+
+std::string first_line_of(const std::string& msg) { return msg.substr(0, msg.find('\n')); }
+
+std::uint32_t u32_at(const std::string& bytes, std::size_t at) {
+  std::uint32_t v = 0;
+  std::memcpy(&v, bytes.data() + at, 4);  // GLB is little endian, as every platform adaptex builds on
+  return v;
+}
+
+/// Splits a GLB container into its JSON text and the length of its BIN chunk (0 without one).
+std::string split_glb(const std::string& name, const std::string& bytes, std::uint64_t& bin_length) {
+  const std::string corrupt = name + ": corrupt glTF: ";
+  if (bytes.size() < 20) throw IoError(corrupt + "a GLB file needs at least 20 bytes (has " + std::to_string(bytes.size()) + ")");
+  if (u32_at(bytes, 4) != 2) throw IoError(corrupt + "GLB version " + std::to_string(u32_at(bytes, 4)) + " (only 2 is supported)");
+  if (u32_at(bytes, 8) != bytes.size())
+    throw IoError(corrupt + "the GLB header says " + std::to_string(u32_at(bytes, 8)) + " bytes but the file has " +
+                  std::to_string(bytes.size()));
+  std::string json_text;
+  bin_length = 0;
+  for (std::size_t at = 12, chunk = 0; at < bytes.size(); ++chunk) {
+    if (bytes.size() - at < 8) throw IoError(corrupt + "GLB chunk " + std::to_string(chunk) + " header is truncated");
+    const std::uint64_t length = u32_at(bytes, at), type = u32_at(bytes, at + 4);
+    if (length > bytes.size() - at - 8)
+      throw IoError(corrupt + "GLB chunk " + std::to_string(chunk) + " claims " + std::to_string(length) +
+                    " bytes, more than the " + std::to_string(bytes.size() - at - 8) + " left in the file");
+    if (chunk == 0 && type != 0x4E4F534Au) throw IoError(corrupt + "the first GLB chunk is not JSON");
+    if (chunk == 0) json_text = bytes.substr(at + 8, length);
+    if (chunk == 1 && type == 0x004E4942u) bin_length = length;
+    at += 8 + length;
+  }
+  return json_text;
+}
+
+std::uint64_t get_size(const json& obj, const char* key, std::uint64_t fallback, const std::string& what) {
+  const auto it = obj.find(key);
+  if (it == obj.end()) return fallback;
+  if (!it->is_number_unsigned()) throw IoError(what + ": '" + key + "' is not a non-negative integer");
+  return it->get<std::uint64_t>();
+}
+
+/// Byte length of each buffer, checked against the bytes that exist (GLB BIN chunk, data: URI, file).
+std::vector<std::uint64_t> check_buffers(const std::string& corrupt, const json& doc, const std::filesystem::path& dir,
+                                         std::uint64_t bin_length) {
+  std::vector<std::uint64_t> sizes;
+  if (!doc.contains("buffers")) return sizes;
+  if (!doc["buffers"].is_array()) throw IoError(corrupt + "'buffers' is not an array");
+  for (const json& b : doc["buffers"]) {
+    const std::string what = corrupt + "buffer " + std::to_string(sizes.size());
+    if (!b.is_object()) throw IoError(what + " is not an object");
+    const std::uint64_t length = get_size(b, "byteLength", 0, what);
+    std::uint64_t available = bin_length;
+    if (b.contains("uri")) {
+      if (!b["uri"].is_string()) throw IoError(what + ": 'uri' is not a string");
+      const std::string uri = b["uri"].get<std::string>();
+      if (uri.rfind("data:", 0) == 0) {
+        available = (uri.size() - std::min(uri.size(), uri.find(',') + 1)) / 4 * 3;
+      } else {
+        const std::filesystem::path file = dir / uri;
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(file, ec))
+          throw IoError(what + ": '" + uri + "' is not a regular file");
+        available = std::filesystem::file_size(file, ec);
+        if (ec) throw IoError(what + ": cannot get the size of '" + uri + "'");
+      }
+    }
+    if (length > available)
+      throw IoError(what + " claims " + std::to_string(length) + " bytes but only " + std::to_string(available) +
+                    " exist");
+    sizes.push_back(length);
+  }
+  return sizes;
+}
+
+/// Bytes of one accessor item (component size x components); 1 when the accessor does not say.
+std::uint64_t accessor_item_bytes(const json& a) {
+  std::uint64_t component = 1, components = 1;
+  if (const auto it = a.find("componentType"); it != a.end() && it->is_number_unsigned()) {
+    const auto t = it->get<std::uint64_t>();
+    component = t == 5122 || t == 5123 ? 2 : t == 5125 || t == 5126 ? 4 : 1;
+  }
+  if (const auto it = a.find("type"); it != a.end() && it->is_string()) {
+    const std::string t = it->get<std::string>();
+    components = t == "VEC2" ? 2 : t == "VEC3" ? 3 : t == "VEC4" || t == "MAT2" ? 4 : t == "MAT3" ? 9 : t == "MAT4" ? 16 : 1;
+  }
+  return component * components;
+}
+
+/// Every buffer view inside its buffer, every accessor inside its buffer view (or, without one, no
+/// more than kMaxMeshElements items).
+void check_views_and_accessors(const std::string& corrupt, const json& doc, const std::vector<std::uint64_t>& buffers) {
+  std::vector<std::uint64_t> views;
+  if (doc.contains("bufferViews")) {
+    if (!doc["bufferViews"].is_array()) throw IoError(corrupt + "'bufferViews' is not an array");
+    for (const json& v : doc["bufferViews"]) {
+      const std::string what = corrupt + "bufferView " + std::to_string(views.size());
+      if (!v.is_object()) throw IoError(what + " is not an object");
+      const std::uint64_t buffer = get_size(v, "buffer", buffers.size(), what);
+      const std::uint64_t offset = get_size(v, "byteOffset", 0, what), length = get_size(v, "byteLength", 0, what);
+      if (buffer >= buffers.size() || offset > buffers[buffer] || length > buffers[buffer] - offset)
+        throw IoError(what + " lies outside its buffer");
+      views.push_back(length);
+    }
+  }
+  if (!doc.contains("accessors")) return;
+  if (!doc["accessors"].is_array()) throw IoError(corrupt + "'accessors' is not an array");
+  std::size_t index = 0;
+  for (const json& a : doc["accessors"]) {
+    const std::string what = corrupt + "accessor " + std::to_string(index++);
+    if (!a.is_object()) throw IoError(what + " is not an object");
+    const std::uint64_t count = get_size(a, "count", 0, what);
+    if (count > kMaxMeshElements) throw IoError(what + " claims " + std::to_string(count) + " items");
+    if (a.contains("sparse")) throw IoError(what + ": sparse accessors are not supported");
+    if (!a.contains("bufferView")) continue;
+    const std::uint64_t view = get_size(a, "bufferView", 0, what), offset = get_size(a, "byteOffset", 0, what);
+    const std::uint64_t item = accessor_item_bytes(a);
+    if (view >= views.size() || offset > views[view] || count > (views[view] - offset) / item)
+      throw IoError(what + " (" + std::to_string(count) + " items) lies outside its buffer view");
+  }
+}
+
+/// Rejects anything that is not glTF 2.0 whose sizes all agree with the bytes that exist.
+void check_gltf(const std::string& name, const std::filesystem::path& path, const std::string& bytes) {
+  const std::string corrupt = name + ": corrupt glTF: ";
+  std::uint64_t bin_length = 0;
+  const bool glb = bytes.rfind("glTF", 0) == 0;
+  std::size_t first = bytes.find_first_not_of(" \t\r\n");
+  if (!glb && (first == std::string::npos || bytes[first] != '{'))
+    throw IoError(corrupt + "neither a binary glTF (it does not start with 'glTF') nor a glTF JSON object");
+  json doc;
+  try {
+    doc = json::parse(glb ? split_glb(name, bytes, bin_length) : bytes);
+  } catch (const json::exception& e) {
+    throw IoError(corrupt + "the JSON does not parse (" + first_line_of(e.what()) + ")");
+  }
+  if (!doc.is_object() || !doc.contains("asset") || !doc["asset"].is_object() || !doc["asset"].contains("version") ||
+      !doc["asset"]["version"].is_string() || doc["asset"]["version"].get<std::string>().rfind("2.", 0) != 0)
+    throw IoError(corrupt + "not glTF 2.0 (no \"asset\": {\"version\": \"2.x\"})");
+  check_views_and_accessors(corrupt, doc, check_buffers(corrupt, doc, path.parent_path(), bin_length));
+}
+
 }  // namespace
 
 PolygonSoup read_gltf_soup(const std::filesystem::path& path) {
   const std::string name = path.string();
-  (void)read_file_text(path);  // existence, readability and emptiness, with our messages
+  check_gltf(name, path, read_file_text(path));
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFile(path.string(), 0);
   if (!scene || !scene->mRootNode) {

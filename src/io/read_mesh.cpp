@@ -3,38 +3,11 @@
 /// read_cgal.cpp: OFF/PLY/STL through CGAL's stream readers; read_gltf.cpp: assimp), then the shared
 /// validation of mesh_validate.cpp. See docs/io.md for which library reads what and why.
 #include <algorithm>
-#include <fstream>
-#include <iterator>
 
 #include "adaptex/core/errors.h"
 #include "mesh_soup.h"
 
 namespace adaptex {
-namespace io_detail {
-
-std::string read_file_text(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) throw IoError(name + ": cannot read: file does not exist");
-  if (std::filesystem::is_directory(status)) throw IoError(name + ": cannot read: is a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(name + ": cannot read: cannot open the file (permissions?)");
-  std::string text;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec) {
-    text.resize(static_cast<std::size_t>(size));
-    in.read(text.data(), static_cast<std::streamsize>(size));
-    text.resize(static_cast<std::size_t>(in.gcount()));
-  } else {
-    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  if (in.bad()) throw IoError(name + ": cannot read: I/O error while reading");
-  if (text.empty()) throw IoError(name + ": cannot read: file is empty (0 bytes)");
-  return text;
-}
-
-}  // namespace io_detail
 
 namespace {
 

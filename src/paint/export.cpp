@@ -230,7 +230,7 @@ std::vector<unsigned char> encode_glb_png(const TriMesh& mesh, const Parameteriz
   tinygltf::TinyGLTF writer;
   std::ostringstream os;
   if (!writer.WriteGltfSceneToStream(&model, os, false, true))
-    throw IoError("glTF encoder: tinygltf could not write the model");
+    throw OutputError("glTF encoder: tinygltf could not write the model");
   const std::string s = os.str();
   return std::vector<unsigned char>(s.begin(), s.end());
 }
@@ -238,10 +238,10 @@ std::vector<unsigned char> encode_glb_png(const TriMesh& mesh, const Parameteriz
 void write_bytes(AtomicOutput& out, const fs::path& path, const std::vector<unsigned char>& bytes) {
   const fs::path tmp = out.add(path);
   std::ofstream f(tmp, std::ios::binary);
-  if (!f) throw IoError(path.string() + ": cannot open for writing");
+  if (!f) throw OutputError(path.string() + ": cannot open for writing");
   f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
   f.close();
-  if (!f) throw IoError(path.string() + ": write error");
+  if (!f) throw OutputError(path.string() + ": write error");
 }
 
 }  // namespace
@@ -254,7 +254,7 @@ std::vector<unsigned char> encode_glb(const TriMesh& mesh, const Parameterizatio
 
 void write_mtl(const fs::path& path, const std::string& material, const std::string& texture_file) {
   std::ofstream out(path, std::ios::binary);
-  if (!out) throw IoError(path.string() + ": cannot open for writing");
+  if (!out) throw OutputError(path.string() + ": cannot open for writing");
   out << "# adaptex painted material\n"
       << "newmtl " << material << "\n"
       << "Ka 0 0 0\n"
@@ -264,7 +264,7 @@ void write_mtl(const fs::path& path, const std::string& material, const std::str
       << "illum 1\n"
       << "map_Kd " << texture_file << "\n";
   out.close();
-  if (!out) throw IoError(path.string() + ": write error");
+  if (!out) throw OutputError(path.string() + ": write error");
 }
 
 ExportedFiles export_textured_mesh(AtomicOutput& out, const fs::path& dir, const std::string& name,

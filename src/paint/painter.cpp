@@ -18,6 +18,7 @@
 #include <cmath>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 #include "adaptex/paint/padding.h"
 #include "texel_grid.h"
 #if __has_include("adaptex/paint/decal.h")
@@ -92,9 +93,9 @@ struct Painter::Impl {
   Impl(const TriMesh &m, const Parameterization &p, const PainterOptions &o,
        const Vec3 &bg)
       : mesh(m), param(p), options(o), background(bg) {
-    if (o.width <= 0 || o.height <= 0 || o.width > 65535 || o.height > 65535)
+    if (o.width <= 0 || o.height <= 0 || o.width > kMaxTextureSize || o.height > kMaxTextureSize)
       throw InvalidInputError(
-          "painter: texture size must be in [1, 65535] (got " +
+          "painter: texture size must be in [1, " + std::to_string(kMaxTextureSize) + "] (got " +
           std::to_string(o.width) + "x" + std::to_string(o.height) + ")");
     if (o.padding < 0)
       throw InvalidInputError("painter: padding must be >= 0 (got " +

@@ -13,6 +13,7 @@
 
 #include "adaptex/core/errors.h"
 #include "adaptex/io/image_io.h"
+#include "adaptex/io/input_file.h"
 
 namespace adaptex {
 
@@ -291,12 +292,7 @@ StrokeFile parse_strokes(const std::string& text, const std::string& name,
 }
 
 StrokeFile read_strokes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(path.string() + ": cannot open stroke file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IoError(path.string() + ": read error");
-  return parse_strokes(ss.str(), path.string(), path.parent_path());
+  return parse_strokes(read_input_file(path), path.string(), path.parent_path());
 }
 
 namespace {
@@ -307,7 +303,7 @@ void put_vec(std::ostream& os, const Vec3& v) {
 
 void write_strokes(const std::filesystem::path& path, const StrokeFile& file) {
   std::ofstream os(path, std::ios::binary);
-  if (!os) throw IoError(path.string() + ": cannot open for writing");
+  if (!os) throw OutputError(path.string() + ": cannot open for writing");
   os << "{\n  \"format\": \"adaptex.strokes\",\n  \"version\": 1,\n  \"background\": ";
   put_vec(os, file.background);
   os << ",\n  \"strokes\": [";
@@ -337,7 +333,7 @@ void write_strokes(const std::filesystem::path& path, const StrokeFile& file) {
   }
   os << (file.strokes.empty() ? "]\n}\n" : "\n  ]\n}\n");
   os.flush();
-  if (!os) throw IoError(path.string() + ": write error");
+  if (!os) throw OutputError(path.string() + ": write error");
 }
 
 }  // namespace adaptex

@@ -78,8 +78,8 @@ TEST(ImageIo, Errors) {
   } catch (const IoError& e) {
     EXPECT_NE(std::string(e.what()).find("bad.png"), std::string::npos);
   }
-  EXPECT_THROW(encode_png(ImageRGBA8{}), IoError);
-  EXPECT_THROW(write_png(dir.path / "no" / "dir" / "x.png", gradient(2, 2)), IoError);
+  EXPECT_THROW(encode_png(ImageRGBA8{}), InvalidInputError);  // an empty image is a bad argument
+  EXPECT_THROW(write_png(dir.path / "no" / "dir" / "x.png", gradient(2, 2)), OutputError);
 }
 
 }  // namespace

@@ -77,7 +77,9 @@ TEST(InfoCli, UnknownExtension) {
 TEST(InfoCli, Corrupt) {
   TempDir dir;
   test::write_text(dir.path / "bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty floot x\nend_header\n");
-  expect_bad(dir.path / "bad.ply", "PLY vertex element has no float or double property 'x'");
+  expect_bad(dir.path / "bad.ply", "corrupt PLY header: line 4: unknown property type 'floot'");
+  test::write_text(dir.path / "int.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty int x\nend_header\n1\n");
+  expect_bad(dir.path / "int.ply", "PLY vertex element has no float or double property 'x'");
   test::write_text(dir.path / "bad2.ply", "ply\nformat ascii 1.0\nelement vertex 3\n");
   expect_bad(dir.path / "bad2.ply", "corrupt PLY header: no 'end_header' line");
   test::write_text(dir.path / "bad.off", "HELLO\n3 1 0\n");

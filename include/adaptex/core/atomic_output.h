@@ -19,7 +19,7 @@ class AtomicOutput {
   /// Registers \p final_path and returns the temporary path to write it to (same directory).
   /// Creates missing parent directories (and removes them again if nothing is committed).
   std::filesystem::path add(const std::filesystem::path& final_path);
-  /// Renames every temporary into place. \throw IoError if a rename fails.
+  /// Renames every temporary into place. \throw OutputError if a rename fails.
   void commit();
 
  private:

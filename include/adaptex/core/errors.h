@@ -1,7 +1,9 @@
 #pragma once
 /// \file errors.h
 /// The exception hierarchy (after pmp-library). Every message is one line, names the file (when there
-/// is one) and says what is wrong; the CLI prints it as is and exits with code 2 for the input errors.
+/// is one) and says what is wrong. The CLI prints it as is; its exit code says what happened
+/// (README, "Exit codes"): 2 for InvalidInputError and everything derived from it (bad input),
+/// 3 for OutputError (an output could not be written), 4 out of memory, 1 anything else.
 #include <stdexcept>
 #include <string>
 
@@ -25,10 +27,18 @@ class TopologyError : public InvalidInputError {
   using InvalidInputError::InvalidInputError;
 };
 
-/// A file could not be opened, read or written, or is corrupt / truncated.
+/// An input file could not be read (missing, not a regular file, larger than the caps of
+/// core/limits.h, unreadable) or is corrupt / truncated. Bad input: exit code 2.
 class IoError : public InvalidInputError {
  public:
   using InvalidInputError::InvalidInputError;
+};
+
+/// An output could not be written (permission denied, disk full, cannot create a directory or
+/// rename into place, an encoder failed). Not bad input: exit code 3.
+class OutputError : public Error {
+ public:
+  using Error::Error;
 };
 
 /// A numerical solver failed (factorization, non-convergence). Not the user's fault: exit code 1.

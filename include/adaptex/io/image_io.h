@@ -9,11 +9,13 @@
 
 namespace adaptex {
 
-/// Reads any image stb can decode as RGBA8. \throw IoError unreadable or corrupt.
+/// Reads a PNG as RGBA8 (only PNG; regular files only; at most kMaxTextureSize per side and
+/// kMaxImagePixels, checked from the header before decoding).
+/// \throw IoError unreadable, not a PNG, larger than the caps, or corrupt.
 ImageRGBA8 read_image(const std::filesystem::path& path);
-/// Writes a PNG. \throw IoError
+/// Writes a PNG. \throw OutputError the file cannot be written
 void write_png(const std::filesystem::path& path, const ImageRGBA8& img);
-/// Encodes a PNG into memory (for embedding in .glb). \throw IoError empty image
+/// Encodes a PNG into memory (for embedding in .glb). \throw InvalidInputError empty image; OutputError encoding failed
 std::vector<unsigned char> encode_png(const ImageRGBA8& img);
 
 }  // namespace adaptex

@@ -63,10 +63,9 @@ double signed_volume(const TriMesh& mesh);
 struct TexturedMesh {
   TriMesh mesh;
   Parameterization param;
-  std::string texture_path;  ///< map_Kd of the OBJ's material, if any (resolved to an absolute path).
 };
 
-/// Reads an OBJ with texture coordinates. Charts are the connected components of the UV faces
+/// Reads an OBJ with texture coordinates (`mtllib` material files are not opened). Charts are the connected components of the UV faces
 /// (faces sharing a wedge). Wedges are the distinct (vertex, vt) pairs, ordered by vt index, so that
 /// for the usual file (every vt used with one vertex) wedge w is the file's vt number w+1.
 /// Validation as read_mesh() (degenerate faces / unreferenced vertices dropped, the UV faces with them).
@@ -77,7 +76,7 @@ TexturedMesh read_textured_obj(const std::filesystem::path& path, const ReadOpti
 
 /// Writes `v` (input positions, full precision), `vt` and `f v/vt` (1-based). If \p mtllib is set,
 /// writes `mtllib` + `usemtl` lines referring to it. Writes to \p path directly: wrap with
-/// AtomicOutput for all-or-nothing behaviour. \throw IoError
+/// AtomicOutput for all-or-nothing behaviour. \throw OutputError
 void write_obj(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization* param,
                const std::optional<std::string>& mtllib = std::nullopt,
                const std::string& material = "adaptex_paint");

@@ -41,7 +41,7 @@ std::string sanitize_export_name(const std::string& stem);
 /// v = 1) and DIR/NAME.glb through \p out. Nothing is visible until the caller runs out.commit(), so
 /// the caller can add more files (a report) to the same all-or-nothing commit.
 /// \pre param.uv_faces.size() == mesh.faces.size(), !texture.empty()
-/// \throw InvalidInputError bad name or inconsistent input; IoError a file cannot be written
+/// \throw InvalidInputError bad name or inconsistent input; OutputError a file cannot be written
 ExportedFiles export_textured_mesh(AtomicOutput& out, const std::filesystem::path& dir,
                                    const std::string& name, const TriMesh& mesh,
                                    const Parameterization& param, const ImageRGBA8& texture,
@@ -52,12 +52,12 @@ ExportedFiles export_textured_mesh(AtomicOutput& out, const std::filesystem::pat
 /// vertex per wedge (glTF has per-vertex UVs only); a material whose pbrMetallicRoughness
 /// baseColorTexture is the PNG of \p texture embedded in a bufferView (sampler: linear magnification,
 /// trilinear minification, clamp-to-edge).
-/// \throw InvalidInputError inconsistent input; IoError encoding failed
+/// \throw InvalidInputError inconsistent input; OutputError encoding failed
 std::vector<unsigned char> encode_glb(const TriMesh& mesh, const Parameterization& param,
                                       const ImageRGBA8& texture, const ExportOptions& options = {});
 
 /// Writes a one-material MTL file (`newmtl`, `Kd 1 1 1`, `map_Kd`). Writes \p path directly.
-/// \throw IoError
+/// \throw OutputError
 void write_mtl(const std::filesystem::path& path, const std::string& material,
                const std::string& texture_file);
 

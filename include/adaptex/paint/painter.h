@@ -26,7 +26,7 @@ class Painter {
  public:
   /// Builds the texel map, the spatial index of texel points and the seam padding (docs/painting.md).
   /// \pre mesh and param stay alive and unchanged while the painter is used
-  /// \throw InvalidInputError size outside [1, 65535], padding < 0, background outside [0,1],
+  /// \throw InvalidInputError size outside [1, kMaxTextureSize] (core/limits.h), padding < 0, background outside [0,1],
   ///        param not parallel to mesh
   Painter(const TriMesh& mesh, const Parameterization& param, const PainterOptions& options,
           const Vec3& background = Vec3(1, 1, 1));

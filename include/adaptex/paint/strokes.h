@@ -55,7 +55,7 @@ StrokeFile read_strokes(const std::filesystem::path& path);
 /// Parses from a JSON string; \p name is used in messages, \p base_dir resolves decal images.
 StrokeFile parse_strokes(const std::string& json, const std::string& name,
                          const std::filesystem::path& base_dir);
-/// Writes a stroke file (decal image paths are written as stored). \throw IoError
+/// Writes a stroke file (decal image paths are written as stored). \throw OutputError
 void write_strokes(const std::filesystem::path& path, const StrokeFile& strokes);
 
 /// Checks a stroke in memory against the same rules as the parser (for strokes built in code, e.g.

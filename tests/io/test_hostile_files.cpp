@@ -1,0 +1,229 @@
+// Hostile input files (issue 11): each kind found by fuzzing gets, through the CLI, exit code 2 and one
+// line on stderr naming the file and the problem, no output, in bounded time and memory: the CLI
+// runs under a 2 GB address-space limit and a 30 s timeout (the limit is left out in sanitizer builds,
+// whose shadow memory needs more address space). The files are built here, byte by byte.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <cstdint>
+
+#include "adaptex/core/shapes.h"
+#include "adaptex/io/mesh_io.h"
+#include "io_test_files.h"
+#include "test_support.h"
+
+namespace adaptex {
+namespace {
+
+using test::TempDir;
+
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kSanitized = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kSanitized = true;
+#else
+constexpr bool kSanitized = false;
+#endif
+#else
+constexpr bool kSanitized = false;
+#endif
+
+std::string q(const std::filesystem::path& p) {
+  std::string s(1, '\'');
+  s += p.string();
+  s += '\'';
+  return s;
+}
+
+/// Runs the CLI with \p args under `ulimit -v 2 GB` and `timeout 30`.
+test::CliResult run_bounded(const std::string& args) {
+  return test::run_cli(args, std::string(kSanitized ? "" : "ulimit -v 2097152; ") + "timeout 30 ");
+}
+
+/// `adaptex ARGS` must exit 2 with one line naming \p file and containing \p what, and print nothing.
+void expect_rejected(const std::string& args, const std::filesystem::path& file, const std::string& what) {
+  const auto r = run_bounded(args);
+  EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+  EXPECT_EQ(r.err.rfind("adaptex: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(file.filename().string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(what), std::string::npos) << "expected '" << what << "' in: " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(r.out.empty()) << r.out;
+}
+
+void expect_info_rejects(const std::filesystem::path& file, const std::string& what) {
+  expect_rejected("info " + q(file), file, what);
+}
+
+template <class T>
+void put(std::string& s, T x) {
+  s.append(reinterpret_cast<const char*>(&x), sizeof(T));
+}
+
+TEST(HostileFiles, OffColourIndexAndNegativeCounts) {
+  TempDir dir;
+  // 52 bytes: a COFF vertex whose single colour value is a colour-map index far out of range.
+  test::write_text(dir.path / "color.off", "COFF\n3 1 0\n0 0 0 99999999\n1 0 0 1\n0 1 0 2\n3 0 1 2\n");
+  expect_info_rejects(dir.path / "color.off", "vertex 0: colour index 99999999 is out of range");
+  test::write_text(dir.path / "fcolor.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 -7\n");
+  expect_info_rejects(dir.path / "fcolor.off", "face 0: colour index -7 is out of range");
+  test::write_text(dir.path / "neg.off", "OFF\n-3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  expect_info_rejects(dir.path / "neg.off", "negative count in the header");
+  test::write_text(dir.path / "negface.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-3 0 1 2\n");
+  expect_info_rejects(dir.path / "negface.off", "face 0 is missing or unreadable");
+  test::write_text(dir.path / "negidx.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n");
+  expect_info_rejects(dir.path / "negidx.off", "face 0 refers to a vertex index out of range");
+  // Header counts far beyond what the bytes left can hold: rejected before allocating.
+  test::write_text(dir.path / "huge.off", "OFF\n2000000000 2000000000 0\n0 0 0\n");
+  expect_info_rejects(dir.path / "huge.off", "the OFF header claims 2000000000 vertices and 2000000000 faces");
+  test::write_text(dir.path / "hugeface.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n2147483647 0 1 2\n");
+  expect_info_rejects(dir.path / "hugeface.off", "face 0 claims 2147483647 corners");
+  // STOFF: texture coordinates are skipped, the colour before them is checked.
+  test::write_text(dir.path / "st.off", "STCOFF\n3 1 0\n0 0 0 300 0 0\n1 0 0 1 0 0\n0 1 0 1 0 0\n3 0 1 2\n");
+  expect_info_rejects(dir.path / "st.off", "vertex 0: colour index 300 is out of range");
+}
+
+TEST(HostileFiles, PlyPropertyBeforeElementAndHugeOrNegativeLists) {
+  TempDir dir;
+  // 49 bytes: a property before any element.
+  test::write_text(dir.path / "prop.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n");
+  expect_info_rejects(dir.path / "prop.ply", "line 3: a property is declared before any element");
+  const std::string header = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face 1\n"
+                             "property list uint int vertex_indices\nend_header\n";
+  std::string body;
+  for (float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put(body, c);
+  put(body, std::uint32_t{1} << 31);  // the face list claims 2^31 entries
+  for (int i : {0, 1, 2}) put(body, i);
+  test::write_text(dir.path / "list.ply", header + body);
+  expect_info_rejects(dir.path / "list.ply", "the list claims 2147483648 entries");
+  test::write_text(dir.path / "negative.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                   "element face 1\nproperty list int int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n-5 0 1 2\n");
+  expect_info_rejects(dir.path / "negative.ply", "the list claims -5 entries");
+  test::write_text(dir.path / "count.ply",
+                   "ply\nformat ascii 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
+                   "property float z\nend_header\n0 0 0\n");
+  expect_info_rejects(dir.path / "count.ply", "the PLY header claims 4000000000 'vertex' items");
+}
+
+/// A GLB holding \p json as its JSON chunk, optionally with a BIN chunk; \p forged_bin_length replaces
+/// the BIN chunk's length field.
+std::string glb(std::string json, const std::string& bin, std::uint32_t forged_bin_length = 0) {
+  while (json.size() % 4) json += ' ';
+  std::string s = "glTF";
+  put(s, std::uint32_t{2});
+  put(s, static_cast<std::uint32_t>(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size())));
+  put(s, static_cast<std::uint32_t>(json.size()));
+  put(s, std::uint32_t{0x4E4F534A});
+  s += json;
+  if (!bin.empty()) {
+    put(s, forged_bin_length ? forged_bin_length : static_cast<std::uint32_t>(bin.size()));
+    put(s, std::uint32_t{0x004E4942});
+    s += bin;
+  }
+  return s;
+}
+
+TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
+  TempDir dir;
+  const std::string json = R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":36}]})";
+  const std::string bin(36, '\0');
+  test::write_text(dir.path / "forged.glb", glb(json, bin, 0xFFFFFFF0u));
+  expect_info_rejects(dir.path / "forged.glb", "GLB chunk 1 claims 4294967280 bytes");
+  // A PLY (or anything that is not glTF) named .glb never reaches assimp's other importers.
+  test::write_ply_ascii(dir.path / "ply.glb", shapes::icosphere(0));
+  expect_info_rejects(dir.path / "ply.glb", "neither a binary glTF");
+  test::write_text(dir.path / "v1.gltf", R"({"asset":{"version":"1.0"}})");
+  expect_info_rejects(dir.path / "v1.gltf", "not glTF 2.0");
+  test::write_text(dir.path / "big.glb",
+                   glb(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4000000000}]})", bin));
+  expect_info_rejects(dir.path / "big.glb", "buffer 0 claims 4000000000 bytes but only 36 exist");
+  test::write_text(dir.path / "acc.glb", glb(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":36}],
+      "bufferViews":[{"buffer":0,"byteLength":36}],
+      "accessors":[{"bufferView":0,"componentType":5126,"type":"VEC3","count":1000000}]})", bin));
+  expect_info_rejects(dir.path / "acc.glb", "accessor 0 (1000000 items) lies outside its buffer view");
+  // An external buffer that is a device.
+  test::write_text(dir.path / "zero.gltf",
+                   R"({"asset":{"version":"2.0"},"buffers":[{"uri":"../../../../../../../../dev/zero","byteLength":99999999}]})");
+  expect_info_rejects(dir.path / "zero.gltf", "is not a regular file");
+}
+
+TEST(HostileFiles, OnlyRegularFilesAreRead) {
+  TempDir dir;
+  std::filesystem::create_symlink("/dev/zero", dir.path / "zero.off");
+  expect_info_rejects(dir.path / "zero.off", "not a regular file");
+  const auto fifo = dir.path / "pipe.off";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expect_info_rejects(fifo, "not a regular file");
+  // An OBJ whose material file is /dev/zero: material files are never opened, the mesh is read.
+  test::write_text(dir.path / "m.obj",
+                   "mtllib ../../../../../../../../../dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl x\nf 1 2 3\n");
+  const auto r = run_bounded("info " + q(dir.path / "m.obj"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("faces:       1"), std::string::npos) << r.out;
+}
+
+/// The first 52 bytes of a PSD (Photoshop) file declaring 11,000,000 x 25 pixels.
+std::string psd_header() {
+  std::string s = "8BPS";
+  s += std::string("\0\1", 2) + std::string(6, '\0') + std::string("\0\3", 2);
+  auto be32 = [&](std::uint32_t v) {
+    for (int k = 3; k >= 0; --k) s += static_cast<char>((v >> (8 * k)) & 0xFF);
+  };
+  be32(25);
+  be32(11'000'000);
+  s += std::string("\0\x08\0\3", 4);
+  s.resize(52, '\0');
+  return s;
+}
+
+/// A PNG signature and IHDR declaring \p w x \p h pixels, and nothing else.
+std::string png_header(std::uint32_t w, std::uint32_t h) {
+  std::string s("\x89PNG\r\n\x1a\n", 8);
+  s += std::string("\0\0\0\x0d", 4) + "IHDR";
+  for (std::uint32_t v : {w, h})
+    for (int k = 3; k >= 0; --k) s += static_cast<char>((v >> (8 * k)) & 0xFF);
+  s += std::string("\x08\x06\0\0\0", 5) + std::string(4, '\0');
+  return s;
+}
+
+TEST(HostileFiles, ImagesArePngWithinThePixelCap) {
+  TempDir dir;
+  const TriMesh mesh = shapes::plane(2);
+  Parameterization param;  // UV = the plane's x, y: one chart
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    param.uv.emplace_back(mesh.positions[v].x(), mesh.positions[v].y());
+    param.wedge_vertex.push_back(v);
+  }
+  param.uv_faces = mesh.faces;
+  param.face_chart.assign(mesh.faces.size(), 0);
+  param.num_charts = 1;
+  write_obj(dir.path / "m.obj", mesh, &param);
+  test::write_text(dir.path / "psd.png", psd_header());
+  test::write_text(dir.path / "huge.png", png_header(11'000'000, 25));
+  const auto out = dir.path / "out";
+  expect_rejected("reparam " + q(dir.path / "m.obj") + " " + q(dir.path / "psd.png") + " -o " + q(out),
+                  dir.path / "psd.png", "not a PNG file");
+  EXPECT_FALSE(std::filesystem::exists(out));
+  expect_rejected("reparam " + q(dir.path / "m.obj") + " " + q(dir.path / "huge.png") + " -o " + q(out),
+                  dir.path / "huge.png", "PNG of 11000000x25 pixels is larger than the 8192x8192 limit");
+  EXPECT_FALSE(std::filesystem::exists(out));
+  // The same images, and /dev/zero, as decal images of a stroke file.
+  for (const char* image : {"psd.png", "huge.png", "/dev/zero"}) {
+    const auto strokes = dir.path / "s.json";
+    test::write_text(strokes, std::string(R"({"format": "adaptex.strokes", "version": 1, "strokes": [)") +
+                                  R"({"type": "decal", "image": ")" + image +
+                                  R"(", "eye": [0, 0, 3], "target": [0, 0, 0]}]})");
+    const auto normalized = dir.path / "n.json";
+    expect_rejected("strokes check " + q(strokes) + " -o " + q(normalized), strokes,
+                    std::string(image) == "/dev/zero" ? "not a regular file"
+                    : std::string(image) == "psd.png" ? "not a PNG file"
+                                                      : "larger than the 8192x8192 limit");
+    EXPECT_FALSE(std::filesystem::exists(normalized));
+  }
+}
+
+}  // namespace
+}  // namespace adaptex
