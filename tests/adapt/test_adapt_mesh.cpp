@@ -197,12 +197,11 @@ TEST(AdaptMesh, SafeguardNeverAcceptsAWorseLayout) {
   for (const auto& st : strokes.strokes) {
     s.add_stroke(st);
     const AdaptReport& r = s.reports().back();
-    if (r.accepted && r.error_before >= 0) {
-      EXPECT_LT(r.error_after, r.error_before);
-    }
-    if (!r.accepted) {
-      EXPECT_EQ(r.damping, 0.0);
-    }
+    // The safeguard measured both layouts, accepted the new one exactly when it is better, and a
+    // rejected step keeps the old layout (damping 0).
+    ASSERT_GE(r.error_before, 0.0);
+    EXPECT_EQ(r.accepted, r.error_after < r.error_before) << r.error_after << " vs " << r.error_before;
+    EXPECT_TRUE(r.accepted || r.damping == 0.0) << r.damping;
   }
 }
 

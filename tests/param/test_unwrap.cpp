@@ -54,14 +54,16 @@ TEST(Unwrap, WithoutAugmentationOrYoshizawa) {
 TEST(Unwrap, AugmentationLowersStretchOnTheSphere) {
   UnwrapOptions none;
   none.max_augmentations = 0;
-  const TriMesh mesh = shapes::sphere(32, 16);
+  // An icosphere (the UV sphere of 32 x 16 is not augmented: its poles' cut is already good enough).
+  const TriMesh mesh = shapes::icosphere(3);
   const UnwrapResult a = unwrap(mesh, none);
   const UnwrapResult b = unwrap(mesh);
   EXPECT_EQ(a.report.augmentations, 0);
-  EXPECT_LE(b.report.final_l2, a.report.final_l2 * (1 + 1e-12));
-  if (b.report.augmentations > 0) {
-    EXPECT_GT(b.report.cut_length, a.report.cut_length);
-  }
+  // The initial short cut leaves high stretch: the default options must augment it, lengthening the
+  // cut and lowering the stretch (measured: 1 augmentation, cut 3.32 -> 4.98, L2 1.227 -> 1.183).
+  ASSERT_GT(b.report.augmentations, 0);
+  EXPECT_GT(b.report.cut_length, a.report.cut_length);
+  EXPECT_LT(b.report.final_l2, a.report.final_l2);
 }
 
 TEST(Unwrap, ManyComponentsArePacked) {
