@@ -14,6 +14,7 @@
 
 #include <Eigen/Dense>
 #include <cstring>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "adaptex/core/errors.h"
@@ -167,6 +168,11 @@ void check_views_and_accessors(const std::string& corrupt, const json& doc, cons
     const std::string what = corrupt + "accessor " + std::to_string(index++);
     if (!a.is_object()) throw IoError(what + " is not an object");
     const std::uint64_t count = get_size(a, "count", 0, what);
+    const std::uint64_t ctype = get_size(a, "componentType", 0, what);
+    if (ctype < 5120 || ctype > 5126 || ctype == 5124) throw IoError(what + ": unknown componentType " + std::to_string(ctype));
+    static const std::set<std::string> types = {"SCALAR", "VEC2", "VEC3", "VEC4", "MAT2", "MAT3", "MAT4"};
+    if (!a.contains("type") || !a["type"].is_string() || !types.count(a["type"].get<std::string>()))
+      throw IoError(what + ": unknown or missing type");
     if (count > kMaxMeshElements) throw IoError(what + " claims " + std::to_string(count) + " items");
     if (a.contains("sparse")) throw IoError(what + ": sparse accessors are not supported");
     if (!a.contains("bufferView")) continue;
@@ -175,6 +181,74 @@ void check_views_and_accessors(const std::string& corrupt, const json& doc, cons
     if (view >= views.size() || offset > views[view] || count > (views[view] - offset) / item)
       throw IoError(what + " (" + std::to_string(count) + " items) lies outside its buffer view");
   }
+}
+
+/// An optional array member; IoError when present and not an array.
+const json* array_of(const std::string& corrupt, const json& obj, const char* key) {
+  const auto it = obj.find(key);
+  if (it == obj.end()) return nullptr;
+  if (!it->is_array()) throw IoError(corrupt + "'" + key + "' is not an array");
+  return &*it;
+}
+
+/// \p j must be an index below \p n.
+void check_index(const json& j, std::size_t n, const std::string& what) {
+  if (!j.is_number_unsigned() || j.get<std::uint64_t>() >= n)
+    throw IoError(what + " refers to a missing item (" + j.dump() + ", there are " + std::to_string(n) + ")");
+}
+
+/// Every reference assimp follows without checking (a primitive without POSITION crashed it): meshes'
+/// attributes and indices, primitive modes, nodes' meshes and children (no cycles: a node has at
+/// most one parent and is not its own ancestor), scenes' nodes.
+void check_references(const std::string& corrupt, const json& doc) {
+  const json* accessors = array_of(corrupt, doc, "accessors");
+  const std::size_t na = accessors ? accessors->size() : 0;
+  const json* meshes = array_of(corrupt, doc, "meshes");
+  const std::size_t nm = meshes ? meshes->size() : 0;
+  for (std::size_t m = 0; m < nm; ++m) {
+    const std::string what = corrupt + "mesh " + std::to_string(m);
+    const json& mesh = (*meshes)[m];
+    const json* prims = mesh.is_object() ? array_of(corrupt, mesh, "primitives") : nullptr;
+    if (!prims || prims->empty()) throw IoError(what + " has no primitives");
+    for (const json& p : *prims) {
+      if (!p.is_object() || !p.contains("attributes") || !p["attributes"].is_object() ||
+          !p["attributes"].contains("POSITION"))
+        throw IoError(what + ": a primitive has no POSITION attribute");
+      for (const auto& [name, a] : p["attributes"].items()) check_index(a, na, what + " attribute " + name);
+      if (p.contains("indices")) check_index(p["indices"], na, what + " indices");
+      if (p.contains("mode") && (!p["mode"].is_number_unsigned() || p["mode"].get<std::uint64_t>() > 6))
+        throw IoError(what + ": primitive mode must be 0..6");
+      if (p.contains("targets")) throw IoError(what + ": morph targets are not supported");
+    }
+  }
+  const json* nodes = array_of(corrupt, doc, "nodes");
+  const std::size_t nn = nodes ? nodes->size() : 0;
+  std::vector<std::int64_t> parent(nn, -1);
+  for (std::size_t n = 0; n < nn; ++n) {
+    const std::string what = corrupt + "node " + std::to_string(n);
+    const json& node = (*nodes)[n];
+    if (!node.is_object()) throw IoError(what + " is not an object");
+    if (node.contains("mesh")) check_index(node["mesh"], nm, what + " mesh");
+    if (const json* children = array_of(corrupt, node, "children"))
+      for (const json& c : *children) {
+        check_index(c, nn, what + " child");
+        auto& p = parent[c.get<std::size_t>()];
+        if (p >= 0 || c.get<std::size_t>() == n) throw IoError(what + ": node " + c.dump() + " has two parents");
+        p = static_cast<std::int64_t>(n);
+      }
+  }
+  for (std::size_t n = 0; n < nn; ++n) {  // no cycles: walking up from any node ends at a root
+    std::size_t steps = 0;
+    for (std::int64_t x = parent[n]; x >= 0; x = parent[static_cast<std::size_t>(x)])
+      if (++steps > nn) throw IoError(corrupt + "the node hierarchy has a cycle");
+  }
+  if (const json* scenes = array_of(corrupt, doc, "scenes"))
+    for (const json& sc : *scenes) {
+      const json* roots = sc.is_object() ? array_of(corrupt, sc, "nodes") : nullptr;
+      if (roots)
+        for (const json& r : *roots) check_index(r, nn, corrupt + "scene node");
+    }
+  if (doc.contains("scene")) check_index(doc["scene"], doc.contains("scenes") ? doc["scenes"].size() : 0, corrupt + "scene");
 }
 
 /// Rejects anything that is not glTF 2.0 whose sizes all agree with the bytes that exist.
@@ -195,6 +269,7 @@ void check_gltf(const std::string& name, const std::filesystem::path& path, cons
       !doc["asset"]["version"].is_string() || doc["asset"]["version"].get<std::string>().rfind("2.", 0) != 0)
     throw IoError(corrupt + "not glTF 2.0 (no \"asset\": {\"version\": \"2.x\"})");
   check_views_and_accessors(corrupt, doc, check_buffers(corrupt, doc, path.parent_path(), bin_length));
+  check_references(corrupt, doc);
 }
 
 }  // namespace

@@ -144,6 +144,11 @@ TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
       "bufferViews":[{"buffer":0,"byteLength":36}],
       "accessors":[{"bufferView":0,"componentType":5126,"type":"VEC3","count":1000000}]})", bin));
   expect_info_rejects(dir.path / "acc.glb", "accessor 0 (1000000 items) lies outside its buffer view");
+  // Found by fuzz_gltf: a primitive without POSITION made assimp dereference a null pointer.
+  test::write_text(dir.path / "nopos.glb", glb(R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"ittributes":{}}]}]})", bin));
+  expect_info_rejects(dir.path / "nopos.glb", "mesh 0: a primitive has no POSITION attribute");
+  test::write_text(dir.path / "cycle.gltf", R"({"asset":{"version":"2.0"},"nodes":[{"children":[1]},{"children":[0]}]})");
+  expect_info_rejects(dir.path / "cycle.gltf", "the node hierarchy has a cycle");
   // An external buffer that is a device.
   test::write_text(dir.path / "zero.gltf",
                    R"({"asset":{"version":"2.0"},"buffers":[{"uri":"../../../../../../../../dev/zero","byteLength":99999999}]})");
