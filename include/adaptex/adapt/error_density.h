@@ -39,6 +39,9 @@ struct ErrorDensityOptions {
   /// (unpainted regions). 0.02 = spacing at most ~7× the uniform spacing.
   double floor = 0.15;
   double max_density = 256;   ///< Cap on the relative area density ρ of a cell (16× linear).
+  /// Gutters between charts (cells outside every chart) take the cover-weighted mean density of the
+  /// charts within about this many cells (Gaussian σ).
+  double gutter_blur_cells = 3.0;
   double min_exponent = 1.0;  ///< Lower clamp of the measured error exponent p (hard edges).
   double max_exponent = 4.0;  ///< Upper clamp of p (smooth bilinear regime).
 };
