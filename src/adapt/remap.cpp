@@ -214,6 +214,7 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
     for (int w : param.uv_faces[f]) wedge_chart[w] = param.face_chart.empty() ? 0 : param.face_chart[f];
   std::vector<double> chart_t(std::max(1, param.num_charts), 1.0);
   std::vector<int> still_bad;
+  int rounds = o.max_local_rounds;
   auto attempt = [&](double t, Parameterization& out) {
     ++res.checks;
     out = param;
@@ -224,7 +225,7 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
     });
     RemapCheck c;
     std::vector<int> bad, wedges;
-    for (int round = 0; round <= o.max_local_rounds; ++round) {
+    for (int round = 0; round <= rounds; ++round) {
       bad.clear();
       for (int f = 0; f < F; ++f) {
         const double a0 = uv_signed_area(param, f);
@@ -233,7 +234,7 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
       }
       if (bad.empty() && damp_crossings) bad = faces_of_crossing_boundaries(out, boundary);
       still_bad = bad;
-      if (bad.empty() || round == o.max_local_rounds) break;
+      if (bad.empty() || round == rounds) break;
       wedges.clear();
       for (int f : bad)
         for (int w : param.uv_faces[f]) wedges.push_back(w);
@@ -311,6 +312,25 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
   tw = best_tw;
   finish(lo);
   res.check = RemapCheck{};  // the returned layout is t = lo, checked ok (or the input itself)
+  // The global blend damps every face; many more local rounds may keep more of the warp where the
+  // failing faces are few and spread (measured: triceratops lines 256², 65 charts: mean kept 0.03
+  // globally, 0.16 locally; spot: 0.46 globally, 0.20 locally). Keep whichever keeps more.
+  if (o.extended_local_rounds > o.max_local_rounds) {
+    const SafeRemapResult global = res;
+    rounds = o.extended_local_rounds;
+    c = attempt(1.0, cand);
+    if (c.ok()) {
+      res.param = std::move(cand);
+      finish(1.0);
+      if (res.mean_damping > global.mean_damping) {
+        res.check = c;
+        return res;
+      }
+    }
+    const int checks = res.checks;
+    res = global;
+    res.checks = checks;
+  }
   return res;
 }
 

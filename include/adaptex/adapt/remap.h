@@ -41,6 +41,9 @@ struct SafeRemapOptions {
   /// Local damping rounds: the wedges of every face that flips or degenerates are pulled halfway back
   /// to their input UV, this many times at most, before the whole warp is damped.
   int max_local_rounds = 24;
+  /// When local damping alone fails and the global blend is used, local damping is also tried with
+  /// this many rounds; the result that keeps more of the warp (mean blend factor) wins.
+  int extended_local_rounds = 100;
   /// Local damping replaces a failing wedge's displacement by half the mean of its 1-ring's (smooths
   /// as it damps) instead of halving it. Measured on spot lines at 256² (32 charts): smoothing 27.43 /
   /// 27.00 dB (without / with refinement) against halving's 27.72 / 27.67: off by default.
