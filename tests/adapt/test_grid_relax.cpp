@@ -207,6 +207,7 @@ TEST(Remap, AdversarialWarpIsDampedAndNeverFlips) {
   // Local damping disabled: the global bisection alone must also give a valid layout.
   SafeRemapOptions global_only;
   global_only.max_local_rounds = 0;
+  global_only.extended_local_rounds = 0;
   const SafeRemapResult rg = safe_remap(param, {&w}, global_only);
   EXPECT_LT(rg.damping, 1.0);
   EXPECT_TRUE(check_remap(param, rg.param).ok());
