@@ -10,6 +10,8 @@ PACKAGES=(
   libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri mesa-utils
   xvfb xdotool x11-utils
 )
+# --fuzz: also what scripts/fuzz.sh needs (clang and its libFuzzer / sanitizer runtimes); not by default.
+if [ "${1:-}" = "--fuzz" ]; then PACKAGES+=(clang libclang-rt-14-dev); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
