@@ -1,6 +1,6 @@
 # adaptex_set_warnings(<target>): warnings on for our own targets only (no global flags).
 function(adaptex_set_warnings target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wshadow=local>
                          -Wno-missing-field-initializers)
   if(ADAPTEX_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
