@@ -187,7 +187,7 @@ ErrorDensity solve_density(CellErrors& c, double spacing_ratio, const ErrorDensi
   out.exponent = ImageF(n, n, 0.0f);
   double total_surface = 0, total_cover = 0, max_e = 0;
   for (size_t k = 0; k < cells; ++k) total_surface += c.surface[k], total_cover += c.cover[k], max_e = std::max(max_e, c.ea[k]);
-  const double budget = double(cells) - (double(cells) - total_cover);  // chart part of the square
+  const double budget = total_cover;  // the chart part of the square, in cells
   std::vector<double> q(cells, 0), p(cells, 0), lo(cells, 0);
   const double noise = 1e-9 * max_e + 1e-30;
   int with_signal = 0, chart_cells = 0;

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "adaptex/adapt/stretch_map.h"
@@ -55,7 +56,8 @@ std::vector<SurfacePoint> transfer_points(const std::vector<SurfacePoint>& pts, 
   std::vector<SurfacePoint> out(pts.size());
   tbb::parallel_for(size_t(0), pts.size(), [&](size_t k) {
     const Vec3 p = point_on_face(from, pts[k].face, pts[k].b0, pts[k].b1);
-    double best = -1e300;
+    double best = -std::numeric_limits<double>::infinity();
+    bool found = false;
     for (int q = start[pts[k].face]; q < start[pts[k].face + 1]; ++q) {
       const int c = children[q];
       const Face& f = to.faces[c];
@@ -67,11 +69,14 @@ std::vector<SurfacePoint> transfer_points(const std::vector<SurfacePoint>& pts, 
       const double inside = std::min({1 - l1 - l2, l1, l2});
       if (inside > best) {
         best = inside;
+        found = true;
         const double c1 = std::clamp(l1, 0.0, 1.0), c2 = std::clamp(l2, 0.0, 1.0 - c1);
         out[k] = SurfacePoint{c, 1 - c1 - c2, c1};
       }
     }
-    if (best == -1e300) out[k] = SurfacePoint{start[pts[k].face] < start[pts[k].face + 1] ? children[start[pts[k].face]] : pts[k].face, 1.0 / 3, 1.0 / 3};
+    if (!found)  // only degenerate children: any child's centre (same parent face, same surface)
+      out[k] = SurfacePoint{start[pts[k].face] < start[pts[k].face + 1] ? children[start[pts[k].face]] : pts[k].face,
+                            1.0 / 3, 1.0 / 3};
   });
   return out;
 }
@@ -236,7 +241,9 @@ struct PaintSession::Impl {
     std::vector<Vec3> exact;
     if (use_safeguard) {
       exact = StrokeSignal(cand_mesh, history).evaluate(cand_pts);
-      rep.error_before = estimate(*param, tex, StrokeSignal(current_mesh(), history).evaluate(current_samples()));
+      // Without refinement the candidate's points are the current ones: evaluate the signal once.
+      const bool same_points = &cand_pts == &current_samples();
+      rep.error_before = estimate(*param, tex, same_points ? exact : StrokeSignal(current_mesh(), history).evaluate(current_samples()));
     }
     auto estimate_candidate = [&](const Parameterization& p, const ImageRGBA8& t) {
       return reconstruction_mse(p, t, cand_pts, exact);
