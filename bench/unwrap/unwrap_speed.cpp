@@ -1,7 +1,10 @@
 // Speed of the whole unwrap() (cut + Floater + Yoshizawa + augmentation + packing) against thesis
 // Table 4.1 ("Init-param." column, 2005 hardware), issue 8 target: >= 100x the thesis speed at the
 // same face count. Each benchmark reports the median wall time (ms) over its repetitions and the
-// counters target_ms = thesis_s * 1000 / 100, thesis_s, L2 (final mesh L2 stretch) and faces.
+// counters target_ms = thesis_s * 1000 / 100, thesis_s, L2 (final mesh L2 stretch), faces, augm
+// (cut augmentations), charts and share (effective texel share = coverage / L2²). Each mesh runs
+// with the default `ChartMode::Auto` ("auto/") and with one chart per component ("single/", the
+// thesis' layout, the like-for-like comparison with Table 4.1).
 //
 //   build/bench/unwrap/bench_unwrap_speed --benchmark_repetitions=15
 //       --benchmark_report_aggregates_only=true --benchmark_counters_tabular=true   (one line)
@@ -34,16 +37,18 @@ constexpr ThesisRow kRows[] = {
     {"horse", 7500, 4.906, "dino.off"},
 };
 
-void run(benchmark::State& state, const ThesisRow& row) {
+void run(benchmark::State& state, const ThesisRow& row, ChartMode mode) {
   const std::filesystem::path file = std::filesystem::path(ADAPTEX_SHARED_DIR) / "meshes" / row.file;
   if (!std::filesystem::exists(file)) {
     state.SkipWithError("mesh not available (../shared/meshes absent)");
     return;
   }
   const TriMesh mesh = read_mesh(file);
+  UnwrapOptions options;
+  options.charts = mode;
   UnwrapResult r;
   for (auto _ : state) {
-    r = unwrap(mesh);
+    r = unwrap(mesh, options);
     benchmark::DoNotOptimize(r.param.uv.data());
   }
   state.counters["faces"] = mesh.num_faces();
@@ -51,18 +56,24 @@ void run(benchmark::State& state, const ThesisRow& row) {
   state.counters["target_ms"] = row.thesis_seconds * 1000.0 / 100.0;
   state.counters["L2"] = r.report.final_l2;
   state.counters["augm"] = r.report.augmentations;
+  state.counters["charts"] = r.report.num_charts;
+  state.counters["share"] = r.report.effective_texel_share;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (const ThesisRow& row : kRows) {
-    const std::string label = std::string("Unwrap/") + row.thesis_model + "/" + row.file;
-    benchmark::RegisterBenchmark(label.c_str(), [&row](benchmark::State& s) { run(s, row); })
-        ->Unit(benchmark::kMillisecond)
-        ->MeasureProcessCPUTime()
-        ->UseRealTime();
-  }
+  for (const ChartMode mode : {ChartMode::Auto, ChartMode::Single})
+    for (const ThesisRow& row : kRows) {
+      const std::string label = std::string("Unwrap/") +
+                                (mode == ChartMode::Auto ? "auto/" : "single/") + row.thesis_model +
+                                "/" + row.file;
+      benchmark::RegisterBenchmark(label.c_str(),
+                                   [&row, mode](benchmark::State& s) { run(s, row, mode); })
+          ->Unit(benchmark::kMillisecond)
+          ->MeasureProcessCPUTime()
+          ->UseRealTime();
+    }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
