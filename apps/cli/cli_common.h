@@ -3,8 +3,13 @@
 /// Shared plumbing of the `adaptex` command-line tool: every subcommand lives in its own cmd_*.cpp
 /// and registers itself through an add_*_command() function called from main.cpp.
 #include <CLI/CLI.hpp>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <string>
+
+#include "adaptex/core/atomic_output.h"
+#include "adaptex/core/errors.h"
 
 namespace adaptex::cli {
 
@@ -20,6 +25,19 @@ struct Context {
     if (!quiet) std::cerr << msg << "\n";
   }
 };
+
+/// Writes \p text to \p path through \p out (committed with the rest of the command's outputs).
+/// Every text output of the CLI (reports) goes through here, so a failed write is always an
+/// OutputError (exit code 3), never bad input.
+/// \throw OutputError the file cannot be created or written (permission denied, disk full).
+inline void write_text(AtomicOutput& out, const std::filesystem::path& path, const std::string& text) {
+  const std::filesystem::path tmp = out.add(path);
+  std::ofstream f(tmp, std::ios::binary);
+  if (!f) throw OutputError(path.string() + ": cannot open for writing");
+  f << text;
+  f.close();
+  if (!f) throw OutputError(path.string() + ": write error (disk full?)");
+}
 
 void add_info_command(CLI::App& app, Context& ctx);
 void add_unwrap_command(CLI::App& app, Context& ctx);

@@ -109,12 +109,7 @@ void run_reparam(const ReparamArgs& a, const Context& ctx) {
   j["flipped"] = st.flipped;
   j["degenerate"] = st.degenerate;
   j["time_total_ms"] = 1e3 * since(t_start);
-  const auto tmp = out.add(std::filesystem::path(a.outdir) / "report.json");
-  {
-    std::ofstream f(tmp);
-    f << j.dump(2) << "\n";
-    if (!f) throw OutputError((std::filesystem::path(a.outdir) / "report.json").string() + ": cannot write the report");
-  }
+  write_text(out, std::filesystem::path(a.outdir) / "report.json", j.dump(2) + "\n");
   out.commit();
   std::ostringstream line;
   line.precision(4);

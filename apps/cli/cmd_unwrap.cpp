@@ -1,7 +1,6 @@
 // `adaptex unwrap`: cut every component to a disk (§3.2), parameterize it (Floater + Yoshizawa,
 // §2.2/§3.3), pack the charts into [0,1]^2, and write the OBJ (+ report JSON, + layout PNG).
 #include <chrono>
-#include <fstream>
 #include <iomanip>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -10,6 +9,7 @@
 
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/param/layout_image.h"
@@ -116,10 +116,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
                  {"augment", r.time_augment}, {"pack", r.time_pack},
                  {"unwrap", r.time_total},    {"write", time_write},
                  {"total", since(t_start)}};
-    const auto tmp = out.add(a.report);
-    std::ofstream f(tmp);
-    f << j.dump(2) << "\n";
-    if (!f) throw IoError(a.report + ": cannot write the report");
+    write_text(out, a.report, j.dump(2) + "\n");
   }
   out.commit();
   std::ostringstream line;
@@ -144,8 +141,10 @@ void add_unwrap_command(CLI::App& app, Context& ctx) {
   sub->add_option("--report", args->report,
                   "Write a JSON report (counts, genus, loops, cut length, stretch, times)");
   sub->add_option("--layout", args->layout, "Write a PNG of the UV layout coloured by L2 stretch");
-  sub->add_option("--layout-size", args->layout_size, "Size of the layout PNG in pixels")
-      ->check(CLI::Range(16, 16384))
+  // The one texture-size cap of core/limits.h; out of range (or not a number) is bad input, exit 2.
+  sub->add_option("--layout-size", args->layout_size,
+                  "Side of the layout PNG in pixels, 16.." + std::to_string(kMaxTextureSize))
+      ->check(CLI::Range(16, kMaxTextureSize))
       ->capture_default_str();
   sub->add_flag("--repair", args->repair,
                 "Split non-manifold vertices and drop duplicate faces instead of failing");

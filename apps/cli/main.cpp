@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
   adaptex::cli::add_demo_command(app, ctx);
   try {
     app.parse(argc, argv);
+    // Reports printed on stdout (`info --json`, `eval`) are outputs too: a failed write is exit 3.
+    std::cout.flush();
+    if (!std::cout) throw adaptex::OutputError("standard output: write error (closed pipe or disk full?)");
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

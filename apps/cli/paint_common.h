@@ -200,14 +200,4 @@ inline nlohmann::json paint_report(const TriMesh& mesh, const StrokeFile& stroke
       {"files", files_json}};
 }
 
-/// Writes \p text to a file registered in \p out (committed with the rest). \throw OutputError
-inline void write_text(AtomicOutput& out, const std::filesystem::path& path, const std::string& text) {
-  const std::filesystem::path tmp = out.add(path);
-  std::ofstream f(tmp, std::ios::binary);
-  if (!f) throw OutputError(path.string() + ": cannot open for writing");
-  f << text;
-  f.close();
-  if (!f) throw OutputError(path.string() + ": write error");
-}
-
 }  // namespace adaptex::cli

@@ -18,11 +18,13 @@ AtomicOutput::~AtomicOutput() {
 
 fs::path AtomicOutput::add(const fs::path& final_path) {
   fs::path dir = final_path.parent_path();
-  if (!dir.empty() && !fs::exists(dir)) {
+  // The error_code overloads throughout: a directory that cannot even be examined (no search
+  // permission on a parent) is an OutputError too, never a std::filesystem::filesystem_error.
+  std::error_code ec;
+  if (!dir.empty() && !fs::exists(dir, ec)) {
     // Remember every directory level we create so that a failure removes them again.
     std::vector<fs::path> missing;
-    for (fs::path d = dir; !d.empty() && !fs::exists(d); d = d.parent_path()) missing.push_back(d);
-    std::error_code ec;
+    for (fs::path d = dir; !d.empty() && !fs::exists(d, ec); d = d.parent_path()) missing.push_back(d);
     fs::create_directories(dir, ec);
     if (ec) throw OutputError(dir.string() + ": cannot create directory: " + ec.message());
     created_dirs_.insert(created_dirs_.end(), missing.rbegin(), missing.rend());
@@ -35,6 +37,13 @@ fs::path AtomicOutput::add(const fs::path& final_path) {
 }
 
 void AtomicOutput::commit() {
+  // A final path that is a directory would fail its rename after the others were renamed into place:
+  // refuse before renaming anything, so that the command still leaves no partial output.
+  for (auto& [tmp, final_path] : files_) {
+    std::error_code ec;
+    if (fs::is_directory(final_path, ec))
+      throw OutputError(final_path.string() + ": cannot write: is a directory");
+  }
   for (auto& [tmp, final_path] : files_) {
     std::error_code ec;
     fs::rename(tmp, final_path, ec);
