@@ -37,8 +37,10 @@ void validate(const AdaptOptions& o) {
 void refine_under_warp(const TriMesh& mesh, const Parameterization& current, int texture_size,
                        const AdaptOptions& o, AdaptResult& res) {
   const auto warps = res.warps();
-  auto warp = [&warps](const Vec2& p) {
-    Vec2 q = p;
+  const ChartMoveLocator moves(res.chart_moves);
+  const bool moved = !res.chart_moves.empty();
+  auto warp = [&warps, &moves, moved](const Vec2& p) {
+    Vec2 q = moved ? moves.apply(p) : p;
     for (const GridWarp* w : warps) q = w->apply(q);
     return q;
   };
@@ -129,11 +131,16 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
     rep.time_refine = seconds_since(t0);
   }
   const TriMesh& out_mesh = res.refined_mesh ? *res.refined_mesh : mesh;
-  const Parameterization& src = res.refined_mesh ? *res.refined_layout : current;
   rep.faces_after = out_mesh.num_faces();
 
   const auto t0 = std::chrono::steady_clock::now();
   report_progress(o.progress, "remap", 0);
+  // Re-packed charts (multi-chart density-flow): move them first (an exact similarity per chart);
+  // the grids act on the moved charts.
+  if (!res.chart_moves.empty())
+    res.warp_start = std::make_shared<const Parameterization>(
+        move_charts(res.refined_mesh ? *res.refined_layout : current, res.chart_moves));
+  const Parameterization& src = res.start_layout(current);
   SafeRemapResult sr = safe_remap(src, res.warps(), o.remap);
   rep.remap_checks = sr.checks;
   rep.damping = sr.mean_damping;
@@ -158,6 +165,8 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
       res.param = current;
       res.refined_mesh.reset();
       res.refined_layout.reset();
+      res.warp_start.reset();
+      res.chart_moves.clear();
       res.parent_face.clear();
       rep.faces_after = mesh.num_faces();
       rep.damping = 0;

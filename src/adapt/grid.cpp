@@ -34,6 +34,18 @@ inline void locate(int n, const Vec2& uv, int& ci, int& cj, double& s, double& t
 }  // namespace
 
 Vec2 GridWarp::apply(const Vec2& uv) const {
+  if (!whole_square()) {
+    // A wedge on the rectangle's side (round-off of the move that placed it) still belongs to it.
+    constexpr double eps = 1e-12;
+    if (uv.x() < lo.x() - eps || uv.y() < lo.y() - eps || uv.x() > hi.x() + eps || uv.y() > hi.y() + eps) return uv;
+    const Vec2 size = hi - lo;
+    const Vec2 q = ((uv - lo).array() / size.array()).matrix();
+    return lo + apply_lattice(q).cwiseProduct(size);
+  }
+  return apply_lattice(uv);
+}
+
+Vec2 GridWarp::apply_lattice(const Vec2& uv) const {
   int ci, cj;
   double s, t;
   locate(n, uv, ci, cj, s, t);
@@ -47,6 +59,8 @@ Vec2 GridWarp::apply(const Vec2& uv) const {
 GridWarp GridWarp::blended(double t) const {
   GridWarp g = uniform(n);
   for (size_t k = 0; k < points.size(); ++k) g.points[k] = (1 - t) * g.points[k] + t * points[k];
+  g.lo = lo;
+  g.hi = hi;
   return g;
 }
 
@@ -54,7 +68,7 @@ double GridWarp::max_displacement() const {
   double m = 0;
   for (int j = 0; j <= n; ++j)
     for (int i = 0; i <= n; ++i)
-      m = std::max(m, (at(i, j) - Vec2(double(i) / n, double(j) / n)).norm());
+      m = std::max(m, (at(i, j) - Vec2(double(i) / n, double(j) / n)).cwiseProduct(hi - lo).norm());
   return m;
 }
 

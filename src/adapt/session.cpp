@@ -220,7 +220,7 @@ struct PaintSession::Impl {
     if (!opt.debug_dir.empty())
       write_debug_maps(opt.debug_dir, "reparam" + std::to_string(reparam_count), *res);
     ++reparam_count;
-    if (!rep.accepted || rep.damping == 0) {
+    if (!rep.accepted || (rep.damping == 0 && res->chart_moves.empty())) {
       rep.time_total = seconds_since(t_all);
       reports.push_back(rep);
       last = std::move(res);
@@ -261,7 +261,7 @@ struct PaintSession::Impl {
         std::vector<const GridWarp*> ptrs;
         for (auto& w : half) ptrs.push_back(&w);
         np = std::make_unique<Parameterization>(
-            safe_remap(res->refined_layout ? *res->refined_layout : src, ptrs, ao.remap).param);
+            safe_remap(res->start_layout(src), ptrs, ao.remap).param);
       }
       auto tm = std::chrono::steady_clock::now();
       npainter = std::make_unique<Painter>(cand_mesh, *np, po, history.background);

@@ -40,7 +40,18 @@ class DensityFlowWarp final : public WarpMethod {
     t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "flow", 0);
     DensityFlowStats st;
-    res.grids = {density_equalizing_warp(res.density, o.flow, &st)};
+    const std::vector<UvRect> boxes = o.atlas_flow && in.param.num_charts > 1 ? chart_boxes(in.param) : std::vector<UvRect>{};
+    const double gap = boxes.empty() ? 0.0 : smallest_box_gap(boxes);
+    if (gap > 0) {
+      // Charts in disjoint boxes: re-pack them by density, then one flow per chart rectangle, with
+      // the layout's own gutter (atlas_flow.h).
+      ChartRepackOptions ro;
+      ro.padding = std::min(gap, 0.2);
+      res.chart_moves = repack_charts_by_density(boxes, res.density, ro);
+      res.grids = chart_flow_warps(res.chart_moves, res.density, o.flow, 8, &st);
+    } else {
+      res.grids = {density_equalizing_warp(res.density, o.flow, &st)};
+    }
     rep.flow_tangled_cells = st.tangled_cells;
     rep.flow_inverted_cells = st.inverted_cells;
     rep.time_flow = seconds_since(t0);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptex/adapt/atlas_flow.h"
 #include "adaptex/adapt/density_flow.h"
 #include "adaptex/adapt/error_density.h"
 
@@ -67,6 +68,10 @@ struct AdaptOptions {
   bool geometry_safeguard = true;
   ErrorDensityOptions density;  ///< density-flow: the error model and its target density.
   DensityFlowOptions flow;      ///< density-flow: the flow map (its output grid size, accuracy).
+  /// density-flow on a layout of several charts in disjoint boxes: re-pack the charts by their share
+  /// of the density, then one flow per chart rectangle (atlas_flow.h). false: one flow over the whole
+  /// square, damped where charts would meet (kept for comparison; docs/error_model.md §6).
+  bool atlas_flow = true;
   /// density-flow: refine triangles that are too large for the warp's variation (new vertices on the
   /// original faces; the surface is unchanged). false keeps the input's vertices (`--no-refine`).
   bool refine = true;
@@ -121,7 +126,18 @@ struct AdaptResult {
   /// With refined_mesh: its layout before the warp (old UV domain), for damping the warp again.
   std::shared_ptr<const Parameterization> refined_layout;
   FaceData<int> parent_face;  ///< With refined_mesh: input face id of every refined face (size F').
+  /// Multi-chart density-flow (atlas_flow.h): the move of every chart (re-packed by its density
+  /// share), applied before the grids, which then act on the moved charts' rectangles. Empty: the
+  /// charts were not moved (one chart, thesis methods, or a layout whose chart boxes overlap).
+  std::vector<ChartMove> chart_moves;
+  /// With chart_moves: the layout the grids act on (the input layout, or refined_layout, with the
+  /// charts moved). Damping a warp again (blending) starts from here, not from the input layout.
+  std::shared_ptr<const Parameterization> warp_start;
   std::vector<const GridWarp*> warps() const;  ///< Pointers to grids, in application order.
+  /// The layout the grids act on: warp_start, else refined_layout, else \p input.
+  const Parameterization& start_layout(const Parameterization& input) const {
+    return warp_start ? *warp_start : refined_layout ? *refined_layout : input;
+  }
 };
 
 /// Re-parameterizes \p current from the signal of \p texture (drawn with \p current; \p current_map

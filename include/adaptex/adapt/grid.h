@@ -11,10 +11,15 @@
 
 namespace adaptex {
 
-/// A grid warp of [0,1]^2. points has (n+1)^2 entries, row-major: index j * (n+1) + i.
+/// A grid warp of [0,1]^2, or of one axis-aligned rectangle [lo, hi] of it (multi-chart layouts,
+/// atlas_flow.h: one warp per chart rectangle). points has (n+1)^2 entries, row-major: index
+/// j * (n+1) + i, in the rectangle's local coordinates (uv - lo) / (hi - lo), i.e. in [0,1]^2.
 struct GridWarp {
   int n = 0;                 ///< Cells per side (>= 1).
-  std::vector<Vec2> points;  ///< (n+1)^2 optimized point positions, in [0,1]^2.
+  std::vector<Vec2> points;  ///< (n+1)^2 optimized point positions, in [0,1]^2 (local coordinates).
+  /// The rectangle the warp acts on: apply() maps it onto itself and is the identity outside it.
+  /// (0,0)-(1,1), the default, is the whole square.
+  Vec2 lo = Vec2(0, 0), hi = Vec2(1, 1);
 
   /// The identity warp with \p cells cells per side. \pre cells >= 1 \throw InvalidInputError
   static GridWarp uniform(int cells);
@@ -22,9 +27,14 @@ struct GridWarp {
   Vec2& at(int i, int j) { return points[static_cast<size_t>(j) * (n + 1) + i]; }
   const Vec2& at(int i, int j) const { return points[static_cast<size_t>(j) * (n + 1) + i]; }
   /// Bilinear interpolation, in the uniform cell containing \p uv (clamped to [0,1]^2), of the cell's
-  /// four moved corners (thesis §3.7.2). The identity for a uniform grid.
+  /// four moved corners (thesis §3.7.2). The identity for a uniform grid. With a rectangle: \p uv
+  /// outside [lo, hi] is returned unchanged; inside, the lattice acts in local coordinates.
   Vec2 apply(const Vec2& uv) const;
-  /// (1 - t) * identity + t * this: the damped warp (t = 1 full warp, t = 0 identity).
+  /// The lattice map alone, in local coordinates (\p uv clamped to [0,1]^2).
+  Vec2 apply_lattice(const Vec2& uv) const;
+  /// True if the warp acts on the whole square (lo = (0,0), hi = (1,1)).
+  bool whole_square() const { return lo == Vec2(0, 0) && hi == Vec2(1, 1); }
+  /// (1 - t) * identity + t * this: the damped warp (t = 1 full warp, t = 0 identity), same rectangle.
   GridWarp blended(double t) const;
   /// Largest distance of a point from its uniform position.
   double max_displacement() const;

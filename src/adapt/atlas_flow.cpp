@@ -1,0 +1,188 @@
+// density-flow on multi-chart layouts: charts re-packed by their density share, one flow per chart
+// rectangle (atlas_flow.h).
+#include "adaptex/adapt/atlas_flow.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/param/pack.h"
+
+namespace adaptex {
+
+std::vector<UvRect> chart_boxes(const Parameterization& param) {
+  const int C = param.num_charts;
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<UvRect> boxes(C, UvRect{Vec2(inf, inf), Vec2(-inf, -inf)});
+  for (size_t f = 0; f < param.uv_faces.size(); ++f) {
+    UvRect& b = boxes[param.face_chart[f]];
+    for (int w : param.uv_faces[f]) {
+      b.lo = b.lo.cwiseMin(param.uv[w]);
+      b.hi = b.hi.cwiseMax(param.uv[w]);
+    }
+  }
+  for (UvRect& b : boxes)
+    if (!(b.lo.x() <= b.hi.x())) b = UvRect{};
+  return boxes;
+}
+
+double smallest_box_gap(const std::vector<UvRect>& boxes) {
+  double gap = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const UvRect& a = boxes[i];
+    for (size_t j = i + 1; j < boxes.size(); ++j) {
+      const UvRect& b = boxes[j];
+      // Separation along the axis that separates them most (negative: they overlap on both axes).
+      const double dx = std::max(b.lo.x() - a.hi.x(), a.lo.x() - b.hi.x());
+      const double dy = std::max(b.lo.y() - a.hi.y(), a.lo.y() - b.hi.y());
+      gap = std::min(gap, std::max(dx, dy));
+    }
+  }
+  return gap;
+}
+
+namespace {
+/// Mean of \p density over \p r, sampled on a regular grid of about samples_per_cell points per
+/// density cell and axis.
+double mean_density(const ImageF& density, const UvRect& r, int samples_per_cell) {
+  const int L = density.width;
+  const int kx = std::clamp(static_cast<int>(std::ceil(r.size().x() * L * samples_per_cell)), 2, 4 * L);
+  const int ky = std::clamp(static_cast<int>(std::ceil(r.size().y() * L * samples_per_cell)), 2, 4 * L);
+  double sum = 0;
+  for (int j = 0; j < ky; ++j)
+    for (int i = 0; i < kx; ++i)
+      sum += sample_bilinear(density, r.lo.x() + (i + 0.5) / kx * r.size().x(), r.lo.y() + (j + 0.5) / ky * r.size().y());
+  return sum / (double(kx) * ky);
+}
+
+void check_density(const ImageF& density, const char* who) {
+  if (density.width < 1 || density.height < 1 || density.data.empty())
+    throw InvalidInputError(std::string(who) + ": empty density raster");
+}
+}  // namespace
+
+std::vector<ChartMove> repack_charts_by_density(const std::vector<UvRect>& boxes, const ImageF& density,
+                                                const ChartRepackOptions& o) {
+  check_density(density, "repack_charts_by_density");
+  if (!(o.padding >= 0 && o.padding < 0.25)) throw InvalidInputError("repack_charts_by_density: padding must be in [0, 0.25)");
+  if (o.samples_per_cell < 1) throw InvalidInputError("repack_charts_by_density: samples_per_cell must be >= 1");
+  if (boxes.empty()) throw InvalidInputError("repack_charts_by_density: no charts");
+  // The texel budget of a chart is ∫ρ over its rectangle; its new area is proportional to that, so
+  // its linear scale is proportional to sqrt(mean ρ) (pack_rectangles scales all together).
+  std::vector<Vec2> sizes(boxes.size());
+  std::vector<double> factor(boxes.size(), 0.0);
+  for (size_t c = 0; c < boxes.size(); ++c) {
+    if (boxes[c].area() <= 0) continue;  // an unused chart id or a degenerate chart: smallest size
+    factor[c] = std::sqrt(std::max(mean_density(density, boxes[c], o.samples_per_cell), 1e-12));
+    sizes[c] = factor[c] * boxes[c].size();
+  }
+  const std::vector<RectPlacement> placed = pack_rectangles(sizes, o.padding);
+  std::vector<ChartMove> moves(boxes.size());
+  for (size_t c = 0; c < boxes.size(); ++c) {
+    moves[c].src = boxes[c];
+    moves[c].dst_lo = placed[c].offset;
+    const Vec2 s = boxes[c].size();
+    // pack_rectangles keeps each rectangle's aspect; take the scale of its longer side (exact for
+    // that side; the other matches up to round-off) and never exceed the placed rectangle.
+    moves[c].scale = s.maxCoeff() > 0 ? std::min(s.x() > 0 ? placed[c].size.x() / s.x() : 1e300,
+                                                  s.y() > 0 ? placed[c].size.y() / s.y() : 1e300)
+                                      : 1.0;
+  }
+  return moves;
+}
+
+Parameterization move_charts(const Parameterization& param, const std::vector<ChartMove>& moves) {
+  if (static_cast<int>(moves.size()) != param.num_charts)
+    throw InvalidInputError("move_charts: " + std::to_string(moves.size()) + " moves for " +
+                            std::to_string(param.num_charts) + " charts");
+  Parameterization out = param;
+  std::vector<char> done(param.uv.size(), 0);
+  for (size_t f = 0; f < param.uv_faces.size(); ++f)
+    for (int w : param.uv_faces[f])
+      if (!done[w]) {
+        done[w] = 1;
+        const Vec2 p = moves[param.face_chart[f]].apply(param.uv[w]);
+        out.uv[w] = p.cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
+      }
+  return out;
+}
+
+ChartMoveLocator::ChartMoveLocator(const std::vector<ChartMove>& moves) : moves_(&moves) {
+  n_ = std::clamp(static_cast<int>(std::sqrt(double(moves.size()))) * 2, 1, 256);
+  buckets_.resize(static_cast<size_t>(n_) * n_);
+  auto cell = [this](double x) { return std::clamp(static_cast<int>(x * n_), 0, n_ - 1); };
+  for (size_t c = 0; c < moves.size(); ++c) {
+    const UvRect& r = moves[c].src;
+    if (r.area() <= 0 && r.size().maxCoeff() <= 0) continue;
+    for (int y = cell(r.lo.y()); y <= cell(r.hi.y()); ++y)
+      for (int x = cell(r.lo.x()); x <= cell(r.hi.x()); ++x) buckets_[static_cast<size_t>(y) * n_ + x].push_back(static_cast<int>(c));
+  }
+}
+
+Vec2 ChartMoveLocator::apply(const Vec2& uv) const {
+  auto cell = [this](double x) { return std::clamp(static_cast<int>(x * n_), 0, n_ - 1); };
+  constexpr double eps = 1e-12;
+  for (int c : buckets_[static_cast<size_t>(cell(uv.y())) * n_ + cell(uv.x())]) {
+    const ChartMove& m = (*moves_)[c];
+    if (uv.x() >= m.src.lo.x() - eps && uv.x() <= m.src.hi.x() + eps && uv.y() >= m.src.lo.y() - eps &&
+        uv.y() <= m.src.hi.y() + eps)
+      return m.apply(uv).cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
+  }
+  return uv;
+}
+
+std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, const ImageF& density,
+                                       const DensityFlowOptions& flow, int min_cells, DensityFlowStats* stats) {
+  check_density(density, "chart_flow_warps");
+  if (flow.cells < 1 || min_cells < 1) throw InvalidInputError("chart_flow_warps: cells must be >= 1");
+  const int C = static_cast<int>(moves.size());
+  std::vector<GridWarp> warps(C);
+  std::vector<DensityFlowStats> st(C);
+  const int L = density.width;
+  tbb::parallel_for(0, C, [&](int c) {
+    const ChartMove& m = moves[c];
+    const UvRect dst = m.dst();
+    if (m.src.size().minCoeff() <= 0) {  // degenerate chart (no area): the identity
+      warps[c] = GridWarp::uniform(1);
+      return;
+    }
+    // Fine enough for the warp at its new size and for the density's detail at its old size.
+    const double need = std::max(dst.size().maxCoeff() * flow.cells, m.src.size().maxCoeff() * L);
+    const int n = std::clamp(static_cast<int>(std::ceil(need)), std::min(min_cells, flow.cells), flow.cells);
+    ImageF local(n, n, 0.0f);
+    constexpr int sub = 2;  // 2 x 2 samples per local cell
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        double sum = 0;
+        for (int b = 0; b < sub; ++b)
+          for (int a = 0; a < sub; ++a) {
+            const double u = (i + (a + 0.5) / sub) / n, v = (j + (b + 0.5) / sub) / n;
+            sum += sample_bilinear(density, m.src.lo.x() + u * m.src.size().x(), m.src.lo.y() + v * m.src.size().y());
+          }
+        local.at(i, j) = static_cast<float>(std::max(sum / (sub * sub), 1e-9));
+      }
+    DensityFlowOptions fo = flow;
+    fo.cells = n;
+    warps[c] = density_equalizing_warp(local, fo, &st[c]);
+    warps[c].lo = dst.lo;
+    warps[c].hi = dst.hi;
+  });
+  if (stats) {
+    *stats = DensityFlowStats{};
+    for (const DensityFlowStats& s : st) {
+      stats->total_steps += s.total_steps;
+      stats->max_steps = std::max(stats->max_steps, s.max_steps);
+      stats->max_displacement = std::max(stats->max_displacement, s.max_displacement);
+      stats->tangled_cells += s.tangled_cells;
+      stats->inverted_cells += s.inverted_cells;
+      stats->density_error += s.density_error / std::max(1, C);
+    }
+  }
+  return warps;
+}
+
+}  // namespace adaptex

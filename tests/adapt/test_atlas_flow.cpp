@@ -1,0 +1,210 @@
+// density-flow on multi-chart layouts (atlas_flow.h): re-packing by density, one flow per chart
+// rectangle, and the end-to-end gain on a many-chart layout.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "adaptex/adapt/adapt.h"
+#include "adaptex/adapt/atlas_flow.h"
+#include "adaptex/adapt/session.h"
+#include "adaptex/core/shapes.h"
+#include "adaptex/paint/eval.h"
+#include "adaptex/paint/painter.h"
+#include "adaptex/paint/generate.h"
+#include "adaptex/paint/strokes.h"
+#include "adaptex/param/stretch.h"
+#include "adaptex/param/unwrap.h"
+
+namespace adaptex {
+namespace {
+
+/// Four boxes in the quadrants; the density is `hot` in the first box and 1 elsewhere.
+struct FourBoxes {
+  std::vector<UvRect> boxes{{Vec2(0.05, 0.05), Vec2(0.45, 0.35)},
+                            {Vec2(0.55, 0.05), Vec2(0.95, 0.45)},
+                            {Vec2(0.05, 0.55), Vec2(0.30, 0.95)},
+                            {Vec2(0.55, 0.55), Vec2(0.95, 0.95)}};
+  ImageF density;
+  explicit FourBoxes(float hot, int L = 64) : density(L, L, 1.0f) {
+    for (int j = 0; j < L; ++j)
+      for (int i = 0; i < L; ++i) {
+        const double u = (i + 0.5) / L, v = (j + 0.5) / L;
+        if (u > 0.02 && u < 0.48 && v > 0.02 && v < 0.38) density.at(i, j) = hot;
+      }
+  }
+};
+
+TEST(AtlasFlow, BoxesAndGapsOfALayout) {
+  const FourBoxes f(1.0f);
+  EXPECT_NEAR(smallest_box_gap(f.boxes), 0.1, 1e-12);
+  std::vector<UvRect> overlapping = f.boxes;
+  overlapping[1].lo.x() = 0.40;  // now overlaps box 0 on both axes
+  EXPECT_LT(smallest_box_gap(overlapping), 0.0);
+
+  const TriMesh mesh = shapes::two_components();
+  const Parameterization p = unwrap(mesh).param;
+  ASSERT_GE(p.num_charts, 2);
+  const std::vector<UvRect> boxes = chart_boxes(p);
+  ASSERT_EQ(static_cast<int>(boxes.size()), p.num_charts);
+  for (size_t k = 0; k < p.uv_faces.size(); ++k)
+    for (int w : p.uv_faces[k]) {
+      const UvRect& b = boxes[p.face_chart[k]];
+      EXPECT_TRUE(p.uv[w].x() >= b.lo.x() && p.uv[w].x() <= b.hi.x() && p.uv[w].y() >= b.lo.y() && p.uv[w].y() <= b.hi.y());
+    }
+  EXPECT_GT(smallest_box_gap(boxes), 0.0);
+}
+
+TEST(AtlasFlow, RepackSizesChartsByTheirShareOfTheDensity) {
+  for (float hot : {1.0f, 9.0f}) {
+    const FourBoxes f(hot);
+    ChartRepackOptions o;
+    o.padding = 0.01;
+    const std::vector<ChartMove> m = repack_charts_by_density(f.boxes, f.density, o);
+    ASSERT_EQ(m.size(), 4u);
+    for (size_t c = 0; c < m.size(); ++c) {
+      const UvRect d = m[c].dst();
+      EXPECT_GE(d.lo.minCoeff(), o.padding - 1e-12);
+      EXPECT_LE(d.hi.maxCoeff(), 1 - o.padding + 1e-12);
+      // Aspect kept: a similarity.
+      EXPECT_NEAR(d.size().x() / d.size().y(), f.boxes[c].size().x() / f.boxes[c].size().y(), 1e-9);
+      for (size_t e = c + 1; e < m.size(); ++e)
+        EXPECT_GE(smallest_box_gap({d, m[e].dst()}), o.padding - 1e-12) << c << " " << e;
+    }
+    // New area ∝ ∫ρ: box 0 holds `hot` times the density of the others per unit area.
+    const double ratio = (m[0].dst().area() / f.boxes[0].area()) / (m[1].dst().area() / f.boxes[1].area());
+    EXPECT_NEAR(ratio, hot, 0.1 * hot) << "hot " << hot;
+  }
+}
+
+TEST(AtlasFlow, ChartMovesAndRectangleWarpsKeepEveryChartInItsRectangle) {
+  const FourBoxes f(9.0f);
+  const std::vector<ChartMove> m = repack_charts_by_density(f.boxes, f.density);
+  // The locator finds the chart of a point by position and moves it like the chart's move.
+  const ChartMoveLocator loc(m);
+  for (size_t c = 0; c < m.size(); ++c) {
+    const Vec2 p = 0.3 * f.boxes[c].lo + 0.7 * f.boxes[c].hi;
+    EXPECT_LT((loc.apply(p) - m[c].apply(p)).norm(), 1e-12);
+  }
+  EXPECT_EQ(loc.apply(Vec2(0.5, 0.5)), Vec2(0.5, 0.5));  // in no box: unchanged
+
+  // A non-uniform density inside the hot chart: its warp is not the identity, maps its rectangle
+  // onto itself (sides slide, corners stay) and leaves every point outside it alone.
+  ImageF d(64, 64, 1.0f);
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 16; ++i) d.at(i, j) = 12.0f;
+  DensityFlowOptions fo;
+  fo.cells = 64;
+  DensityFlowStats st;
+  const std::vector<GridWarp> w = chart_flow_warps(m, d, fo, 8, &st);
+  ASSERT_EQ(w.size(), m.size());
+  EXPECT_EQ(st.inverted_cells, 0);
+  const UvRect r = m[0].dst();
+  EXPECT_LT((w[0].lo - r.lo).norm() + (w[0].hi - r.hi).norm(), 1e-15);
+  EXPECT_GT(w[0].max_displacement(), 0.01 * r.size().minCoeff());
+  for (const Vec2& corner : {r.lo, r.hi, Vec2(r.lo.x(), r.hi.y()), Vec2(r.hi.x(), r.lo.y())})
+    EXPECT_LT((w[0].apply(corner) - corner).norm(), 1e-9);
+  for (int k = 0; k <= 20; ++k) {
+    const double t = k / 20.0;
+    const Vec2 bottom = w[0].apply(Vec2(r.lo.x() + t * r.size().x(), r.lo.y()));
+    EXPECT_NEAR(bottom.y(), r.lo.y(), 1e-9);
+    for (int l = 0; l <= 20; ++l) {
+      const Vec2 q = w[0].apply(r.lo + Vec2(t * r.size().x(), l / 20.0 * r.size().y()));
+      EXPECT_TRUE(q.x() >= r.lo.x() - 1e-12 && q.x() <= r.hi.x() + 1e-12 && q.y() >= r.lo.y() - 1e-12 &&
+                  q.y() <= r.hi.y() + 1e-12);
+    }
+  }
+  const Vec2 outside = m[1].dst().lo + 0.5 * m[1].dst().size();
+  EXPECT_EQ(w[0].apply(outside), outside);
+  EXPECT_EQ(w[0].blended(0.5).lo, w[0].lo);
+}
+
+/// Thin hard lines in one small region of a genus-2 surface, whose default layout has many charts.
+struct ManyChartLines {
+  TriMesh mesh = shapes::genus_surface(2);
+  Parameterization param = unwrap(mesh).param;
+  StrokeFile strokes = [this] {
+    GenerateOptions go;
+    go.kind = StrokeKind::Lines;
+    go.count = 40;
+    go.seed = 7;
+    StrokeFile f = generate_strokes(mesh, go);
+    for (auto& s : f.strokes) s.radius = 0.003 * bounding_box(mesh).diagonal();
+    return f;
+  }();
+  int N = 128;
+  EvalOptions eo = [] {
+    EvalOptions o;
+    o.samples = 200000;
+    return o;
+  }();
+  double psnr_none = [this] {
+    PainterOptions po;
+    po.width = po.height = N;
+    Painter p(mesh, param, po, strokes.background);
+    p.paint_all(strokes);
+    return evaluate_texture(mesh, param, p.texture(), strokes, eo).psnr;
+  }();
+  std::unique_ptr<PaintSession> run(const AdaptOptions& adapt) const {
+    PaintSessionOptions so;
+    so.texture_size = N;
+    so.adapt = adapt;
+    auto s = std::make_unique<PaintSession>(mesh, param, so, strokes.background);
+    for (const auto& st : strokes.strokes) s->add_stroke(st);
+    s->finish();
+    return s;
+  }
+};
+
+TEST(AtlasFlow, ManyChartLayoutGainsFarMoreThanOneFlowOverTheSquare) {
+  const ManyChartLines c;
+  ASSERT_GT(c.param.num_charts, 4);
+  double psnr[2] = {0, 0};
+  for (bool atlas : {true, false}) {
+    AdaptOptions ao;
+    ao.mode = AdaptMode::DensityFlow;
+    ao.atlas_flow = atlas;
+    const auto s = c.run(ao);
+    ASSERT_EQ(s->reports().size(), 1u);
+    psnr[atlas] = evaluate_texture(s->mesh(), s->param(), s->texture(), c.strokes, c.eo).psnr;
+    const StretchStats st = measure_stretch(s->mesh(), s->param());
+    EXPECT_EQ(st.flipped, 0);
+    EXPECT_EQ(st.degenerate, 0);
+    EXPECT_EQ(count_overlapping_triangles(s->param()), 0);
+  }
+  std::printf("genus-2 lines N=%d (%d charts): none %.2f dB, density-flow one flow %.2f dB, per chart %.2f dB\n", c.N,
+              c.param.num_charts, c.psnr_none, psnr[0], psnr[1]);
+  EXPECT_GT(psnr[1], c.psnr_none + 2.0);
+  EXPECT_GT(psnr[1], psnr[0] + 1.0);
+}
+
+TEST(AtlasFlow, EveryChartEndsInsideItsNewRectangle) {
+  const ManyChartLines c;
+  PainterOptions po;
+  po.width = po.height = c.N;
+  Painter p(c.mesh, c.param, po, c.strokes.background);
+  p.paint_all(c.strokes);
+  AdaptOptions ao;
+  ao.mode = AdaptMode::DensityFlow;
+  const AdaptResult r = adapt_parameterization(c.mesh, c.param, p.texture(), p.texel_map(), ao, &c.strokes);
+  ASSERT_EQ(static_cast<int>(r.chart_moves.size()), c.param.num_charts);
+  ASSERT_TRUE(r.warp_start);
+  EXPECT_EQ(r.report.flow_inverted_cells, 0);
+  const Parameterization& q = r.param;
+  const std::vector<UvRect> after = chart_boxes(q);
+  for (int ch = 0; ch < q.num_charts; ++ch) {
+    const UvRect d = r.chart_moves[ch].dst();
+    EXPECT_GE(after[ch].lo.x(), d.lo.x() - 1e-9);
+    EXPECT_GE(after[ch].lo.y(), d.lo.y() - 1e-9);
+    EXPECT_LE(after[ch].hi.x(), d.hi.x() + 1e-9);
+    EXPECT_LE(after[ch].hi.y(), d.hi.y() + 1e-9);
+  }
+  EXPECT_GT(smallest_box_gap(after), 0.0);
+  // The charts with the paint grew: the chart holding the most stroke samples got more UV area.
+  const std::vector<UvRect> before = chart_boxes(c.param);
+  double grow_max = 0;
+  for (int ch = 0; ch < q.num_charts; ++ch) grow_max = std::max(grow_max, after[ch].area() / std::max(before[ch].area(), 1e-30));
+  EXPECT_GT(grow_max, 2.0);
+}
+
+}  // namespace
+}  // namespace adaptex
