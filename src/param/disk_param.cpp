@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "adaptex/core/errors.h"
@@ -35,8 +36,85 @@ std::vector<int> disk_boundary_loop(const TriMesh& disk) {
 
 }  // namespace
 
-DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& boundary_loop,
-                                  const DiskParamOptions& options) {
+/// The Yoshizawa loop's variables between runs (see DiskParamState in disk_param.h).
+struct DiskParamState {
+  ConvexWeights weights;       ///< Current weights (= those of the best iterate between runs).
+  std::unique_ptr<TutteSolver> solver;  ///< Factorized for the weights of the last iterate.
+  bool floater_ok = false;     ///< The Floater embedding has finite L2 (else Yoshizawa never runs).
+  bool started = false;        ///< face_areas / face_l2 / sigma initialized.
+  bool done = false;           ///< Stopped by the η halvings: no further iteration would run.
+  bool sigma_stale = false;    ///< sigma not yet updated to the best iterate (whose face_l2 is kept).
+  int iterations = 0;          ///< Yoshizawa iterations done.
+  int halvings = 0;            ///< Halvings of η so far.
+  double eta = 0;              ///< Current η.
+  std::vector<double> face_areas;  ///< F 3-D face areas.
+  std::vector<double> face_l2;     ///< F face L2 stretch of the last iterate (Floater before any).
+  std::vector<double> sigma;       ///< V vertex stretch of the best iterate (vertex_stretch()).
+};
+
+void DiskParamStateDeleter::operator()(DiskParamState* s) const { delete s; }
+
+namespace {
+
+/// Runs Yoshizawa iterations iterations+1 .. options.max_iterations on \p res (thesis §3.3).
+void run_yoshizawa(const TriMesh& disk, DiskParamState& s, const DiskParamOptions& options,
+                   DiskParamResult& res) {
+  if (!options.yoshizawa || !s.floater_ok || s.done || s.iterations >= options.max_iterations)
+    return;
+  // Yoshizawa–Belyaev–Seidel: λ_vw ← λ_vw / σ_w^η, re-solve, keep the best iterate. When an iterate
+  // does not lower L2 by min_improvement, restart from the best weights with η halved (a damped step);
+  // stop after max_halvings failed halvings or max_iterations solves.
+  const auto t1 = std::chrono::steady_clock::now();
+  if (!s.started) {
+    const int nf = disk.num_faces();
+    s.face_areas.resize(nf);
+    for (int f = 0; f < nf; ++f) s.face_areas[f] = face_area(disk, f);
+    s.sigma = vertex_stretch(disk, s.face_l2, s.face_areas);  // of the best iterate
+    s.eta = options.eta;
+    s.started = true;
+  } else if (s.sigma_stale) {
+    s.sigma = vertex_stretch(disk, s.face_l2, s.face_areas);
+  }
+  s.sigma_stale = false;
+  std::vector<Vec2> cur;
+  ConvexWeights best_weights = s.weights;
+  for (int it = s.iterations + 1; it <= options.max_iterations; ++it) {
+    report_progress(options.progress, "yoshizawa",
+                    static_cast<double>(it - 1) / options.max_iterations);
+    yoshizawa_reweight(s.weights, s.sigma, s.eta);
+    cur = res.uv;
+    s.solver->solve(s.weights, cur);
+    const StretchStats st = measure_stretch(disk, cur, s.face_l2);
+    res.iterations = s.iterations = it;
+    const double prev_l2 = res.final_l2;
+    const bool better = st.flipped == 0 && st.degenerate == 0 && st.l2 < res.final_l2;
+    if (better) {
+      res.uv.swap(cur);
+      res.final_l2 = st.l2;
+      res.final_linf = st.linf;
+      res.flipped = res.degenerate = 0;
+      best_weights = s.weights;
+      if (it < options.max_iterations) s.sigma = vertex_stretch(disk, s.face_l2, s.face_areas);
+      else s.sigma_stale = true;
+    } else {
+      s.weights = best_weights;
+    }
+    if (!better || st.l2 > prev_l2 * (1.0 - options.min_improvement)) {
+      if (++s.halvings > options.max_halvings) {
+        s.done = true;
+        break;
+      }
+      s.eta *= 0.5;
+    }
+  }
+  res.time_yoshizawa += seconds_since(t1);
+  res.solver_fallbacks = s.solver->fallbacks();
+  report_progress(options.progress, "yoshizawa", 1.0);
+}
+
+/// The Floater embedding of \p disk into res; the weights and solver into \p s.
+DiskParamResult floater_embedding(const TriMesh& disk, const std::vector<int>& boundary_loop,
+                                  const DiskParamOptions& options, DiskParamState& s) {
   if (disk.num_faces() == 0) throw TopologyError("parameterize_disk: mesh has no faces");
   const auto t0 = std::chrono::steady_clock::now();
   report_progress(options.progress, "floater", 0.0);
@@ -55,58 +133,43 @@ DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& b
     is_boundary[boundary.loop[i]] = 1;
     res.uv[boundary.loop[i]] = boundary.uv[i];
   }
-  ConvexWeights weights = compute_embedding_weights(disk, is_boundary, options.weights);
-  TutteSolver solver(weights, is_boundary, options.backend);
-  solver.set_max_iterations(options.max_solver_iterations);
-  solver.solve(weights, res.uv);
-  StretchStats st = measure_stretch(disk, res.uv);
+  s.weights = compute_embedding_weights(disk, is_boundary, options.weights);
+  s.solver = std::make_unique<TutteSolver>(s.weights, is_boundary, options.backend);
+  s.solver->set_max_iterations(options.max_solver_iterations);
+  s.solver->solve(s.weights, res.uv);
+  const StretchStats st = measure_stretch(disk, res.uv, s.face_l2);  // face_l2: for Yoshizawa
   res.floater_l2 = res.final_l2 = st.l2;
   res.floater_linf = res.final_linf = st.linf;
+  res.flipped = st.flipped;
+  res.degenerate = st.degenerate;
+  s.floater_ok = std::isfinite(st.l2);
   res.time_floater = seconds_since(t0);
   report_progress(options.progress, "floater", 1.0);
-  res.solver_fallbacks = solver.fallbacks();
-  if (!options.yoshizawa || options.max_iterations <= 0 || !std::isfinite(st.l2)) return res;
+  res.solver_fallbacks = s.solver->fallbacks();
+  return res;
+}
 
-  // Yoshizawa–Belyaev–Seidel: λ_vw ← λ_vw / σ_w^η, re-solve, keep the best iterate. When an iterate
-  // does not lower L2 by min_improvement, restart from the best weights with η halved (a damped step);
-  // stop after max_halvings failed halvings or max_iterations solves.
-  const auto t1 = std::chrono::steady_clock::now();
-  const int nf = disk.num_faces();
-  std::vector<double> face_areas(nf), face_l2;
-  for (int f = 0; f < nf; ++f) face_areas[f] = face_area(disk, f);
-  measure_stretch(disk, res.uv, face_l2);
-  std::vector<double> sigma = vertex_stretch(disk, face_l2, face_areas);  // of the best iterate
-  std::vector<Vec2> cur = res.uv;
-  ConvexWeights best_weights = weights;
-  double eta = options.eta;
-  int halvings = 0;
-  for (int it = 1; it <= options.max_iterations; ++it) {
-    report_progress(options.progress, "yoshizawa",
-                    static_cast<double>(it - 1) / options.max_iterations);
-    yoshizawa_reweight(weights, sigma, eta);
-    cur = res.uv;
-    solver.solve(weights, cur);
-    st = measure_stretch(disk, cur, face_l2);
-    res.iterations = it;
-    const double prev_l2 = res.final_l2;
-    const bool better = st.flipped == 0 && st.degenerate == 0 && st.l2 < res.final_l2;
-    if (better) {
-      res.uv.swap(cur);
-      res.final_l2 = st.l2;
-      res.final_linf = st.linf;
-      best_weights = weights;
-      if (it < options.max_iterations) sigma = vertex_stretch(disk, face_l2, face_areas);
-    } else {
-      weights = best_weights;
-    }
-    if (!better || st.l2 > prev_l2 * (1.0 - options.min_improvement)) {
-      if (++halvings > options.max_halvings) break;
-      eta *= 0.5;
-    }
-  }
-  res.time_yoshizawa = seconds_since(t1);
-  res.solver_fallbacks = solver.fallbacks();
-  report_progress(options.progress, "yoshizawa", 1.0);
+}  // namespace
+
+DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& boundary_loop,
+                                  const DiskParamOptions& options, DiskParamStatePtr* state) {
+  DiskParamStatePtr s(new DiskParamState);
+  DiskParamResult res = floater_embedding(disk, boundary_loop, options, *s);
+  run_yoshizawa(disk, *s, options, res);
+  if (state) *state = std::move(s);
+  return res;
+}
+
+DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& boundary_loop,
+                                  const DiskParamOptions& options) {
+  return parameterize_disk(disk, boundary_loop, options, nullptr);
+}
+
+DiskParamResult continue_disk_param(const TriMesh& disk, DiskParamState& state,
+                                    const DiskParamResult& previous,
+                                    const DiskParamOptions& options) {
+  DiskParamResult res = previous;
+  run_yoshizawa(disk, state, options, res);
   return res;
 }
 

@@ -150,6 +150,42 @@ StretchStats measure_stretch(const TriMesh& mesh, const std::vector<Vec2>& verte
   return summarize(d);
 }
 
+std::vector<double> l2_stretch_of_aspects(const TriMesh& mesh, const std::vector<Vec2>& vertex_uv,
+                                          const std::vector<double>& aspects) {
+  const int nf = mesh.num_faces();
+  std::vector<double> a3(nf), a2(nf);
+  double P = 0, Q = 0, abs_a2 = 0;
+  for (int f = 0; f < nf; ++f) {
+    const Face& t = mesh.faces[f];
+    const Vec3 &q1 = mesh.positions[t[0]], &q2 = mesh.positions[t[1]], &q3 = mesh.positions[t[2]];
+    const Vec2 &t1 = vertex_uv[t[0]], &t2 = vertex_uv[t[1]], &t3 = vertex_uv[t[2]];
+    const double s2 = signed_area2(t1, t2, t3);  // 2A
+    a3[f] = 0.5 * (q2 - q1).cross(q3 - q1).norm();
+    a2[f] = 0.5 * s2;
+    abs_a2 += std::abs(a2[f]);
+    if (!(s2 > 0)) continue;  // flipped or degenerate: the result is +inf (below)
+    const Vec3 ss = (q1 * (t2.y() - t3.y()) + q2 * (t3.y() - t1.y()) + q3 * (t1.y() - t2.y())) / s2;
+    const Vec3 st = (q1 * (t3.x() - t2.x()) + q2 * (t1.x() - t3.x()) + q3 * (t2.x() - t1.x())) / s2;
+    P += a3[f] * ss.squaredNorm();
+    Q += a3[f] * st.squaredNorm();
+  }
+  // The same classification and normalization as summarize().
+  const double mean_abs = nf > 0 ? abs_a2 / nf : 0.0;
+  double sum_a3 = 0, sum_a2 = 0;
+  bool bad = false;
+  for (int f = 0; f < nf; ++f) {
+    bad = bad || is_degenerate(a2[f], mean_abs) || a2[f] < 0;
+    sum_a3 += a3[f];
+    sum_a2 += std::max(a2[f], 0.0);
+  }
+  std::vector<double> out(aspects.size(), bad ? kInf : 0.0);
+  if (bad || !(sum_a3 > 0)) return out;
+  const double norm = std::sqrt(sum_a2 / sum_a3);
+  for (size_t i = 0; i < aspects.size(); ++i)
+    out[i] = std::sqrt(0.5 * (P / aspects[i] + Q * aspects[i]) / sum_a3) * norm;
+  return out;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Overlap counting.
 

@@ -70,6 +70,7 @@ struct CutState {
   std::vector<char> cut;
   SlicedDisk disk;
   DiskParamResult param;
+  DiskParamStatePtr solve_state;  ///< Where the cheap parameterization stopped (continued by the full one).
 };
 
 /// The chart of one component after the surgery and augmentation.
@@ -113,8 +114,9 @@ struct CutScore {
   double l2 = 0;
 };
 CutScore score(const CutState& s) {
-  const StretchStats st = measure_stretch(s.disk.disk, s.param.uv);
-  return {static_cast<long>(st.degenerate) + st.flipped, std::isfinite(st.l2) ? st.l2 : 0.0};
+  // parameterize_disk() measured its result with measure_stretch() already.
+  const DiskParamResult& p = s.param;
+  return {static_cast<long>(p.degenerate) + p.flipped, std::isfinite(p.final_l2) ? p.final_l2 : 0.0};
 }
 bool better(const CutScore& a, const CutScore& b, double min_improvement) {
   if (a.bad != b.bad) return a.bad < b.bad;
@@ -181,7 +183,8 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
       cand.cut = cur.cut;
       for (int e : shortest_path_to_cut(graph, on_cut, from)) cand.cut[e] = 1;
       cand.disk = slice_along_cut(comp.mesh, ec, cand.cut);
-      cand.param = parameterize_disk(cand.disk.disk, cand.disk.boundary_loop, cheap);
+      cand.param =
+          parameterize_disk(cand.disk.disk, cand.disk.boundary_loop, cheap, &cand.solve_state);
       ctx.augment_faces_left -= eval_cost;
       const CutScore cand_score = score(cand);
       if (!better(cand_score, cur_score, options.augment_min_improvement)) break;
@@ -198,7 +201,7 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
       Clock::now() < ctx.augment_deadline) {
     t0 = Clock::now();
     report_progress(options.progress, "augment", frac0);
-    cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap);
+    cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap, &cur.solve_state);
     ctx.augment_faces_left -= eval_cost;
     rep.time_augment += seconds_since(t0);
     evaluated = true;
@@ -211,9 +214,18 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
     return !options.progress || options.progress(phase, frac0 + f * (frac1 - frac0));
   };
   auto solve_full = [&] {
-    cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, full);
-    rep.time_floater += cur.param.time_floater;
-    rep.time_yoshizawa += cur.param.time_yoshizawa;
+    if (cur.solve_state) {
+      // The chosen cut's cheap parameterization is the start of its full one (same Floater solve,
+      // same first Yoshizawa iterations): continue it.
+      const double t_before = cur.param.time_yoshizawa;
+      cur.param = continue_disk_param(cur.disk.disk, *cur.solve_state, cur.param, full);
+      rep.time_yoshizawa += cur.param.time_yoshizawa - t_before;
+    } else {
+      cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, full);
+      rep.time_floater += cur.param.time_floater;
+      rep.time_yoshizawa += cur.param.time_yoshizawa;
+    }
+    cur.solve_state.reset();
   };
   solve_full();
   // Rescue: a chart over the budgets whose result has degenerate triangles is augmented anyway.

@@ -1,6 +1,7 @@
 // parameterize_disk(): Floater + Yoshizawa on disks built in code (and the two open shared meshes).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "adaptex/core/errors.h"
@@ -142,4 +143,37 @@ TEST(DiskParam, MultigridMatchesDirectOnLargerDisk) {
   for (size_t v = 0; v < a.uv.size(); ++v) max_diff = std::max(max_diff, (a.uv[v] - b.uv[v]).norm());
   EXPECT_LT(max_diff, 1e-7);
   EXPECT_NEAR(a.final_l2, b.final_l2, 1e-8);
+}
+
+TEST(DiskParam, ContinuedRunEqualsOneFullRun) {
+  // A cheap run (0 or 1 Yoshizawa iterations, as the cut augmentation compares cuts) continued to
+  // the full cap gives exactly the uv of one full run: the loop only depends on the cap through its
+  // end (continue_disk_param, unwrap's full solve of the chosen cut).
+  for (const auto& d : adaptex::test::test_disks()) {
+    if (!d.curved) continue;
+    for (int cheap_iterations : {0, 1, 2}) {
+      DiskParamOptions full;
+      full.weights = EmbeddingWeights::MeanValue;
+      full.eta = 1.0;
+      const DiskParamResult direct = parameterize_disk(d.mesh, {}, full);
+      DiskParamOptions cheap = full;
+      cheap.max_iterations = cheap_iterations;
+      cheap.yoshizawa = cheap_iterations > 0;
+      DiskParamStatePtr state;
+      const DiskParamResult first = parameterize_disk(d.mesh, {}, cheap, &state);
+      ASSERT_TRUE(state) << d.name;
+      EXPECT_EQ(first.iterations, std::min(cheap_iterations, direct.iterations)) << d.name;
+      const TriMesh moved = d.mesh;  // the disk may be another object with the same contents
+      const DiskParamResult cont = continue_disk_param(moved, *state, first, full);
+      EXPECT_EQ(cont.iterations, direct.iterations) << d.name << " cheap " << cheap_iterations;
+      EXPECT_EQ(cont.final_l2, direct.final_l2) << d.name << " cheap " << cheap_iterations;
+      EXPECT_EQ(cont.floater_l2, direct.floater_l2) << d.name;
+      EXPECT_EQ(cont.flipped + cont.degenerate, 0) << d.name;
+      ASSERT_EQ(cont.uv.size(), direct.uv.size());
+      double max_diff = 0;
+      for (size_t v = 0; v < cont.uv.size(); ++v)
+        max_diff = std::max(max_diff, (cont.uv[v] - direct.uv[v]).cwiseAbs().maxCoeff());
+      EXPECT_EQ(max_diff, 0.0) << d.name << " cheap " << cheap_iterations;
+    }
+  }
 }

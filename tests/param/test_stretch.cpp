@@ -1,6 +1,7 @@
 // Sander 2001 stretch metrics, overlap counting and texel utilization (stretch.h, thesis §2.1.3).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "adaptex/core/shapes.h"
@@ -152,4 +153,44 @@ TEST(Texels, UtilizationOfSquareAndHalf) {
   p.uv = {{0.25, 0.25}, {0.75, 0.25}, {0.75, 0.75}, {0.25, 0.75}};
   p.uv_faces = {{0, 1, 2}, {0, 2, 3}};
   EXPECT_NEAR(texel_utilization(p, 100), 0.25, 0.02);
+}
+
+TEST(Stretch, L2OfAspectsEqualsMeasuringTheScaledMap) {
+  // A curved disk with a non-trivial map: the hemisphere projected onto its base plane.
+  const TriMesh m = shapes::icosphere(3);
+  TriMesh cap;
+  std::vector<int> id(m.num_vertices(), -1);
+  for (const Face& f : m.faces) {
+    bool keep = true;
+    for (int v : f) keep = keep && m.positions[v].z() > 0.05;
+    if (!keep) continue;
+    Face g;
+    for (int k = 0; k < 3; ++k) {
+      int& j = id[f[k]];
+      if (j < 0) j = static_cast<int>(cap.positions.size()), cap.positions.push_back(m.positions[f[k]]);
+      g[k] = j;
+    }
+    cap.faces.push_back(g);
+  }
+  std::vector<Vec2> uv(cap.positions.size());
+  for (size_t v = 0; v < uv.size(); ++v)
+    uv[v] = Vec2(0.5 + 0.4 * cap.positions[v].x(), 0.5 + 0.25 * cap.positions[v].y());
+  ASSERT_EQ(measure_stretch(cap, uv).flipped, 0);
+  const std::vector<double> aspects = {0.25, 0.6, 1.0, 1.7, 4.0};
+  const std::vector<double> l2 = l2_stretch_of_aspects(cap, uv, aspects);
+  ASSERT_EQ(l2.size(), aspects.size());
+  double lo = 1e300, hi = 0;
+  for (size_t i = 0; i < aspects.size(); ++i) {
+    const double sx = std::sqrt(aspects[i]);
+    std::vector<Vec2> scaled(uv.size());
+    for (size_t v = 0; v < uv.size(); ++v) scaled[v] = Vec2(uv[v].x() * sx, uv[v].y() / sx);
+    const double expected = measure_stretch(cap, scaled).l2;
+    EXPECT_NEAR(l2[i], expected, 1e-12 * expected) << "aspect " << aspects[i];
+    lo = std::min(lo, l2[i]);
+    hi = std::max(hi, l2[i]);
+  }
+  EXPECT_GT(hi, 1.2 * lo);  // the aspects really differ
+  // One flipped triangle: infinite at every aspect.
+  std::swap(cap.faces[0][1], cap.faces[0][2]);
+  for (double x : l2_stretch_of_aspects(cap, uv, aspects)) EXPECT_TRUE(std::isinf(x));
 }

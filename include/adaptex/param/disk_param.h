@@ -3,6 +3,7 @@
 /// Initial parameterization of one disk (thesis §2.2 and §3.3): Floater embedding onto the unit
 /// square, then Yoshizawa–Belyaev–Seidel 2004 stretch minimization ("A fast and simple
 /// stretch-minimizing mesh parameterization", SMI 2004). See docs/parameterization.md.
+#include <memory>
 #include <vector>
 
 #include "adaptex/core/mesh.h"
@@ -46,6 +47,8 @@ struct DiskParamResult {
   double floater_l2 = 0, floater_linf = 0;  ///< Mesh stretch of the Floater embedding (1 = ideal).
   double final_l2 = 0, final_linf = 0;      ///< Mesh stretch of the returned uv.
   int iterations = 0;                       ///< Yoshizawa re-weighting iterations performed.
+  int flipped = 0;     ///< UV triangles of the returned uv with negative area (measure_stretch()).
+  int degenerate = 0;  ///< UV triangles of the returned uv with (numerically) zero area.
   double time_floater = 0, time_yoshizawa = 0;  ///< Seconds.
   bool on_square = true;                    ///< See DiskBoundary::on_square.
   /// Sparse solves whose backend failed (no convergence, failed factorization, inaccurate result)
@@ -64,5 +67,37 @@ struct DiskParamResult {
 /// \throw CancelledError the progress callback returned false
 DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& boundary_loop,
                                   const DiskParamOptions& options = {});
+
+/// Where a parameterize_disk() run stopped: the current weights and their factorized Tutte
+/// system, η and its halvings, the best iterate. Lets a cheap run (few Yoshizawa iterations, as the
+/// cut augmentation uses to compare cuts) be continued instead of redone from the Floater solve.
+struct DiskParamState;
+
+/// Deletes a DiskParamState (the type is opaque).
+struct DiskParamStateDeleter {
+  void operator()(DiskParamState* s) const;
+};
+/// Owner of a DiskParamState.
+using DiskParamStatePtr = std::unique_ptr<DiskParamState, DiskParamStateDeleter>;
+
+/// parameterize_disk() that also returns its state in \p state, for continue_disk_param().
+/// Same result as parameterize_disk(disk, boundary_loop, options).
+/// \pre as parameterize_disk(); state != nullptr
+/// \throw as parameterize_disk()
+DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& boundary_loop,
+                                  const DiskParamOptions& options, DiskParamStatePtr* state);
+
+/// Continues a run of parameterize_disk() with \p options.max_iterations Yoshizawa iterations in
+/// total (those already done included). The result equals that of one parameterize_disk() call
+/// with \p options (up to the progress reports and the timings), because the Yoshizawa loop only
+/// depends on the iteration count through its cap. \p state is updated (it can be continued again).
+/// \param disk the same disk as in the run that made \p state (it may have been moved meanwhile).
+/// \param previous the result of that run (or of the previous continuation).
+/// \pre options equal those of that run except max_iterations (>= the previous one), yoshizawa and
+///   progress; a run with yoshizawa == false can be continued with yoshizawa == true.
+/// \throw SolverError sparse solve failure
+/// \throw CancelledError the progress callback returned false
+DiskParamResult continue_disk_param(const TriMesh& disk, DiskParamState& state,
+                                    const DiskParamResult& previous, const DiskParamOptions& options);
 
 }  // namespace adaptex

@@ -51,6 +51,16 @@ StretchStats measure_stretch(const TriMesh& mesh, const std::vector<Vec2>& verte
 StretchStats measure_stretch(const TriMesh& mesh, const std::vector<Vec2>& vertex_uv,
                              std::vector<double>& face_l2);
 
+/// Mesh L2 stretch (StretchStats::l2) of the per-vertex map \p vertex_uv scaled by (√a, 1/√a), for
+/// every a in \p aspects, in one pass over the faces: the scaling keeps every UV area and maps the
+/// squared Jacobian column lengths |∂p/∂u|², |∂p/∂v|² of a face to 1/a and a times theirs, so
+/// L2(a)² = (P/a + Q·a) / (2 ΣA3) · ΣA2/ΣA3 with P = Σ A3 |∂p/∂u|², Q = Σ A3 |∂p/∂v|² (Sander et
+/// al. 2001). Equals measure_stretch(mesh, scaled uv).l2 up to rounding (+inf for every a when a
+/// UV triangle is flipped or degenerate). Returns aspects.size() values.
+/// \pre vertex_uv.size() == mesh.positions.size(), every a > 0
+std::vector<double> l2_stretch_of_aspects(const TriMesh& mesh, const std::vector<Vec2>& vertex_uv,
+                                          const std::vector<double>& aspects);
+
 /// Number of pairs of UV triangles whose interiors overlap (exact orientation predicates on a
 /// uniform grid of buckets; independent of how the layout was made). Shared edges/vertices do not
 /// count. \param max_pairs stop counting after this many.
