@@ -170,6 +170,92 @@ void remove_ears(const TriMesh& mesh, std::vector<int>& label) {
   }
 }
 
+/// Relabels every edge-connected part of a chart as a chart (numbered in order of first face;
+/// labels left without faces disappear). Returns the number of charts.
+int split_into_parts(const DualGraph& g, std::vector<int>& label) {
+  const int nf = static_cast<int>(label.size());
+  std::vector<int> part(nf, -1);
+  int used = 0;
+  std::vector<int> stack;
+  for (int f0 = 0; f0 < nf; ++f0) {
+    if (part[f0] >= 0) continue;
+    part[f0] = used;
+    stack.push_back(f0);
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      for (int j = g.offsets[f]; j < g.offsets[f + 1]; ++j) {
+        const int h = g.nbr[j];
+        if (part[h] < 0 && label[h] == label[f]) part[h] = used, stack.push_back(h);
+      }
+    }
+    ++used;
+  }
+  label = std::move(part);
+  return used;
+}
+
+/// Number of ears of every chart: vertices where the chart has a single face (a mesh ear, a
+/// boundary vertex with one face, cannot be removed by remove_ears()).
+std::vector<int> count_ears(const VertexFaces& vf, const std::vector<int>& label, int k) {
+  std::vector<int> ears(k, 0);
+  const int nv = static_cast<int>(vf.offsets.size()) - 1;
+  for (int v = 0; v < nv; ++v)
+    for (int i = vf.offsets[v]; i < vf.offsets[v + 1]; ++i) {
+      const int l = label[vf.faces[i]];
+      int same = 0;
+      for (int j = vf.offsets[v]; j < vf.offsets[v + 1]; ++j) same += label[vf.faces[j]] == l;
+      ears[l] += same == 1;
+    }
+  return ears;
+}
+
+/// Splits chart \p c in two: two far-apart seeds inside the chart (farthest point twice, plain
+/// dual distance), grown against each other inside the chart; the second half gets label \p fresh.
+void halve_chart(const DualGraph& g, std::vector<int>& label, int c, int fresh) {
+  const int nf = static_cast<int>(label.size());
+  int start = -1;
+  for (int f = 0; f < nf && start < 0; ++f)
+    if (label[f] == c) start = f;
+  auto inside = [&](int, int j) { return label[g.nbr[j]] == c ? g.length[j] : kInf; };
+  std::vector<double> dist;
+  std::vector<int> from;
+  auto farthest = [&] {
+    int best = start;
+    for (int f = 0; f < nf; ++f)
+      if (dist[f] < kInf && dist[f] > dist[best]) best = f;
+    return best;
+  };
+  grow(g, {start}, inside, dist, from);
+  const int a = farthest();
+  grow(g, {a}, inside, dist, from);
+  const int b = farthest();
+  if (a == b) return;
+  grow(g, {a, b}, inside, dist, from);
+  for (int f = 0; f < nf; ++f)
+    if (from[f] == 1) label[f] = fresh;
+}
+
+/// Ear removal, then: a chart with more than four ears cannot have them all at the corners of its
+/// square (Floater's one-to-one condition; the disk embedding falls back to the circle, L2 about
+/// 2), so it is halved, until no chart has more than four ears (bounded rounds). Every
+/// edge-connected part of a chart becomes a chart. Returns the number of charts.
+int clean_charts(const TriMesh& mesh, const DualGraph& g, std::vector<int>& label) {
+  const VertexFaces vf = build_vertex_faces(mesh);
+  int k = 0;
+  for (int round = 0;; ++round) {
+    remove_ears(mesh, label);
+    k = split_into_parts(g, label);
+    if (round == 8) break;
+    const std::vector<int> ears = count_ears(vf, label, k);
+    int fresh = k;
+    for (int c = 0; c < k; ++c)
+      if (ears[c] > 4) halve_chart(g, label, c, fresh++);
+    if (fresh == k) break;
+  }
+  return k;
+}
+
 }  // namespace
 
 std::vector<int> segment_charts(const TriMesh& mesh, const ChartSegmentOptions& options) {
@@ -207,27 +293,8 @@ std::vector<int> segment_charts(const TriMesh& mesh, const ChartSegmentOptions& 
   // Faces the growth cannot reach (only if the mesh is not connected) join chart 0.
   for (int& l : label)
     if (l < 0) l = 0;
-  remove_ears(mesh, label);
-  // Moving ears can split a chart: every edge-connected part of a chart becomes a chart
-  // (numbered in order of first face; labels left without faces disappear).
-  std::vector<int> part(nf, -1);
-  int used = 0;
-  std::vector<int> stack;
-  for (int f0 = 0; f0 < nf; ++f0) {
-    if (part[f0] >= 0) continue;
-    part[f0] = used;
-    stack.push_back(f0);
-    while (!stack.empty()) {
-      const int f = stack.back();
-      stack.pop_back();
-      for (int j = g.offsets[f]; j < g.offsets[f + 1]; ++j) {
-        const int h = g.nbr[j];
-        if (part[h] < 0 && label[h] == label[f]) part[h] = used, stack.push_back(h);
-      }
-    }
-    ++used;
-  }
-  return part;
+  clean_charts(mesh, g, label);
+  return label;
 }
 
 std::vector<ChartMesh> extract_charts(const TriMesh& mesh, const std::vector<int>& face_chart,

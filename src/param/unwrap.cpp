@@ -247,8 +247,8 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
 
 /// Width / height ratio a of the rectangle that gives the chart the lowest L2 stretch when its
 /// square parameterization is scaled by (sqrt(a), 1 / sqrt(a)): the best of 17 values from 1/4 to 4
-/// (log-spaced). Multi-chart layouts only; a single chart keeps the square.
-double best_aspect(const Chart& chart) {
+/// (log-spaced). Multi-chart layouts only; a single chart keeps the square. Returns (a, that L2).
+std::pair<double, double> best_aspect(const Chart& chart) {
   const TriMesh& disk = chart.state.disk.disk;
   const std::vector<Vec2>& uv = chart.state.param.uv;
   double best_a = 1.0, best_l2 = measure_stretch(disk, uv).l2;
@@ -260,7 +260,7 @@ double best_aspect(const Chart& chart) {
     const double l2 = measure_stretch(disk, scaled).l2;
     if (l2 < best_l2) best_l2 = l2, best_a = a;
   }
-  return best_a;
+  return {best_a, best_l2};
 }
 
 /// Packs the charts of \p pieces with gap \p padding and writes the layout and the layout figures
@@ -269,19 +269,19 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
               const std::vector<Chart>& charts, double padding, UnwrapResult& result) {
   UnwrapReport& rep = result.report;
   const int nc = static_cast<int>(pieces.size());
-  // Rectangles of area proportional to the chart's 3-D area (equal texel density) and the chart's
-  // best aspect ratio.
-  // Upright rectangles (a < 1) are turned by 90° (a rotation keeps the UV orientation) so that all
-  // are landscape, which the shelf packing fills better.
+  // Rectangles of the chart's best aspect ratio and of area proportional to A3_c * L2_c (3-D area
+  // times the chart's own L2 stretch): of all allocations of the square to the charts this one
+  // gives the lowest layout L2 (it becomes the area-weighted mean of the L2_c instead of their
+  // root mean square; docs/charts.md). The packer may turn a rectangle by 90° (a rotation keeps
+  // the UV orientation).
   std::vector<Vec2> sizes(nc);
-  std::vector<char> turned(nc, 0);
   for (int c = 0; c < nc; ++c) {
-    double a = nc > 1 ? best_aspect(charts[c]) : 1.0;
-    const double area = std::max(pieces[c].area, 1e-300);
-    if (a < 1) turned[c] = 1, a = 1 / a;
+    const auto [a, l2] = nc > 1 ? best_aspect(charts[c]) : std::pair<double, double>(1.0, 1.0);
+    const double area = std::max(pieces[c].area, 1e-300) * (std::isfinite(l2) && l2 > 0 ? l2 : 1.0);
     sizes[c] = Vec2(std::sqrt(area * a), std::sqrt(area / a));
   }
-  const std::vector<RectPlacement> place = pack_rectangles(sizes, padding);
+  std::vector<char> turned;
+  const std::vector<RectPlacement> place = pack_rectangles_turning(sizes, padding, turned);
   Parameterization& param = result.param;
   param = Parameterization{};
   param.num_charts = nc;

@@ -1,15 +1,18 @@
 // Multi-chart layouts (docs/charts.md): one test body over a family of meshes built in code
-// (closed genus 0-6, spheres with 1, 5 and 30 holes): every layout is valid (UVs in [0,1]^2, no
-// flipped, degenerate or overlapping triangles, every chart a disk) and auto never does worse than
-// one chart per component. The effective texel share target of 0.5 is recorded per mesh in
-// docs/benchmarks.md; it is asserted where it is met.
+// (closed genus 0-6, spheres with 1, 5 and 30 holes, a pinched hole, 200 tiny components with
+// slivers): every layout is valid (UVs in [0,1]^2, no flipped, degenerate or overlapping
+// triangles, every chart a disk) and auto never does worse than one chart per component. The
+// effective texel share target of 0.5 is recorded per mesh in docs/benchmarks.md; it is asserted
+// where it is met, and the measured value minus a margin elsewhere. Also: rectangle packing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "adaptex/core/shapes.h"
 #include "adaptex/param/charts.h"
+#include "adaptex/param/pack.h"
 #include "unwrap_checks.h"
 
 namespace adaptex {
@@ -23,13 +26,17 @@ struct FamilyMesh {
 
 std::vector<FamilyMesh> family() {
   std::vector<FamilyMesh> out;
-  // Measured (docs/benchmarks.md): genus 0-1 and 1-11 holes reach 0.5; genus 2-6 and 30 holes do
-  // not yet (0.35-0.48), the bound below is what they reach with a margin.
+  // Measured (docs/benchmarks.md): genus 0-1, holes and the pinched hole reach 0.5; genus 2-6
+  // (0.41-0.49) and the tiny components (0.43) do not yet, the bound below is what they reach with
+  // a margin.
   for (int g = 0; g <= 6; ++g)
-    out.push_back({"genus " + std::to_string(g), shapes::genus_surface(g), g <= 1 ? 0.5 : 0.3});
+    out.push_back({"genus " + std::to_string(g), shapes::genus_surface(g), g <= 1 ? 0.5 : 0.38});
   out.push_back({"1 hole", shapes::sphere_with_holes(1, 4), 0.5});
   out.push_back({"5 holes", shapes::sphere_with_holes(5, 4), 0.5});
-  out.push_back({"30 holes", shapes::sphere_with_holes(30, 5), 0.3});
+  out.push_back({"30 holes", shapes::sphere_with_holes(30, 5), 0.5});
+  out.push_back({"pinched hole", shapes::with_pinched_hole(shapes::sphere_with_holes(1, 3)), 0.5});
+  // 200 charts with the 0.01 component padding: the gaps alone take a third of the square.
+  out.push_back({"200 tiny components", shapes::tiny_components(200), 0.4});
   return out;
 }
 
@@ -37,7 +44,7 @@ TEST(Charts, FamilyUnwrapsToValidLayoutsWithHighTexelShare) {
   for (const FamilyMesh& m : family()) {
     SCOPED_TRACE(m.name);
     const MeshTopology topo = analyze_topology(m.mesh);
-    ASSERT_TRUE(topo.is_manifold());
+    ASSERT_TRUE(topo.nonmanifold_edges.empty());  // pinched vertices are split by unwrap()
     UnwrapOptions single;
     single.charts = ChartMode::Single;
     UnwrapResult one, multi;
@@ -47,12 +54,10 @@ TEST(Charts, FamilyUnwrapsToValidLayoutsWithHighTexelShare) {
     EXPECT_GE(multi.report.effective_texel_share, m.min_share);
     EXPECT_NEAR(multi.report.effective_texel_share,
                 multi.report.coverage / (multi.report.final_l2 * multi.report.final_l2), 1e-12);
-    // Auto is conservative: one chart whenever one chart reaches the threshold.
-    if (one.report.effective_texel_share >= 0.5) {
-      EXPECT_EQ(multi.report.num_charts, 1);
-    } else {
-      EXPECT_GT(multi.report.num_charts, 1);
-    }
+    // Auto is conservative: one chart per component whenever that reaches the threshold.
+    EXPECT_TRUE(one.report.effective_texel_share < 0.5 ||
+                multi.report.num_charts == one.report.num_charts);
+    EXPECT_GE(multi.report.num_charts, one.report.num_charts);
   }
 }
 
@@ -73,6 +78,60 @@ TEST(Charts, SegmentationGivesConnectedChartsWithoutEars) {
   }
   EXPECT_THROW(segment_charts(mesh, ChartSegmentOptions{0, 3, 4.0}), InvalidInputError);
   EXPECT_THROW(extract_charts(mesh, std::vector<int>(3, 0), 1), InvalidInputError);
+}
+
+/// Rectangles of mixed shapes (areas 1-11, aspect ratios 1/3-3).
+std::vector<Vec2> mixed_rectangles(int n) {
+  std::vector<Vec2> sizes(n);
+  for (int i = 0; i < n; ++i) {
+    const double area = 1.0 + (i * 37 % 11), aspect = std::pow(3.0, ((i * 13 % 9) - 4) / 4.0);
+    sizes[i] = Vec2(std::sqrt(area * aspect), std::sqrt(area / aspect));
+  }
+  return sizes;
+}
+
+TEST(Pack, RectanglesAreDisjointPaddedInsideAndFillTheSquare) {
+  for (bool turning : {false, true})
+    for (int n : {2, 5, 16, 64, 400}) {
+      SCOPED_TRACE(std::to_string(n) + (turning ? " turning" : ""));
+      const std::vector<Vec2> sizes = mixed_rectangles(n);
+      const double pad = 0.004;
+      std::vector<char> turned;
+      const std::vector<RectPlacement> pl =
+          turning ? pack_rectangles_turning(sizes, pad, turned) : pack_rectangles(sizes, pad);
+      ASSERT_EQ(static_cast<int>(pl.size()), n);
+      ASSERT_EQ(static_cast<int>(turned.size()), turning ? n : 0);
+      double used = 0, scale = -1;
+      for (int i = 0; i < n; ++i) {
+        const bool t = turning && turned[i];
+        const Vec2 shape = t ? Vec2(sizes[i].y(), sizes[i].x()) : sizes[i];
+        // Same uniform scale and the (possibly turned) shape of the input.
+        const double k = pl[i].size.x() / shape.x();
+        EXPECT_NEAR(pl[i].size.y() / shape.y(), k, 1e-9 * k);
+        if (scale < 0) scale = k;
+        EXPECT_NEAR(k, scale, 1e-9 * scale);
+        const Vec2 lo = pl[i].offset, hi = pl[i].offset + pl[i].size;
+        EXPECT_GE(lo.minCoeff(), pad - 1e-12);
+        EXPECT_LE(hi.maxCoeff(), 1.0 - pad + 1e-12);
+        used += pl[i].size.prod();
+        for (int j = 0; j < i; ++j) {
+          const Vec2 lo2 = pl[j].offset, hi2 = pl[j].offset + pl[j].size;
+          const bool apart = hi.x() + pad <= lo2.x() + 1e-12 || hi2.x() + pad <= lo.x() + 1e-12 ||
+                             hi.y() + pad <= lo2.y() + 1e-12 || hi2.y() + pad <= lo.y() + 1e-12;
+          EXPECT_TRUE(apart) << i << " " << j;
+        }
+      }
+      // MaxRects fills most of the square for mixed shapes (the shelf packing alone reached
+      // 0.69-0.79 on chart rectangles); above 300 rectangles only shelves are tried.
+      EXPECT_GT(used, n <= 5 ? 0.5 : n <= 64 ? 0.8 : 0.7);
+    }
+  // A single rectangle fills the unit square, whatever its shape.
+  const std::vector<RectPlacement> one = pack_rectangles({Vec2(3, 1)}, 0.01);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].offset, Vec2(0, 0));
+  EXPECT_EQ(one[0].size, Vec2(1, 1));
+  EXPECT_THROW(pack_rectangles({}, 0.01), InvalidInputError);
+  EXPECT_THROW(pack_rectangles({Vec2(1, 1)}, 0.3), InvalidInputError);
 }
 
 }  // namespace

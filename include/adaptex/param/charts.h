@@ -28,10 +28,13 @@ struct ChartSegmentOptions {
 /// Splits \p mesh into connected charts (through shared edges).
 /// Seeds: farthest-point sampling on the dual graph (step length = distance between face
 /// centroids), starting from the face farthest from face 0. Growth: multi-source Dijkstra with the
-/// cost of ChartSegmentOptions::normal_weight.
+/// cost of ChartSegmentOptions::normal_weight. Then ear removal (a face alone at a vertex of its
+/// chart moves to the chart with most faces there), and every chart with more than four ears left
+/// (mesh boundary vertices with a single face) is halved until none has (a disk with more than four
+/// ears cannot go onto the square without flattening them, docs/charts.md).
 /// \pre mesh has manifold edges (at most two faces per edge) and is connected (one component)
-/// \return F labels in [0, C), C = min(num_charts, F); every label is used and each chart is
-///         connected through edges
+/// \return F labels in [0, C), C about min(num_charts, F) (more where charts were halved or split
+///         into parts); every label is used and each chart is connected through edges
 /// \throw InvalidInputError num_charts < 1, lloyd_iterations < 0, normal_weight < 0, no faces
 std::vector<int> segment_charts(const TriMesh& mesh, const ChartSegmentOptions& options = {});
 

@@ -37,13 +37,26 @@ struct RectPlacement {
 
 /// Packs one rectangle per chart into [0,1]^2 (multi-chart layouts, docs/charts.md): rectangle i
 /// has the shape of \p sizes[i] (width, height; only the ratios between all the sizes matter), all
-/// scaled by the same factor, the largest at which a shelf packing (tallest first, rows left to
-/// right) fits with gap \p padding between rectangles and to the border. A single rectangle fills
-/// the unit square.
+/// scaled by the same factor, the largest at which one of these packings fits with gap \p padding
+/// between rectangles and to the border (bisection on the factor, relative accuracy 1e-4): a shelf
+/// packing (tallest first, rows left to right) and, for at most 300 rectangles, MaxRects (Jylänki
+/// 2010, "A thousand ways to pack the bin") with the bottom-left and the best-short-side-fit rules,
+/// each with the rectangles sorted by height, area, longest side and width. If the gaps alone do
+/// not fit (thousands of rectangles), the gap is halved until they do. A single rectangle fills the
+/// unit square. Rectangles are never turned.
 /// \param sizes C positive (width, height) pairs (non-positive entries get the smallest size)
 /// \param padding as in pack_charts()
-/// \return C placements: pairwise disjoint rectangles at least \p padding apart, inside [0,1]^2
+/// \return C placements: pairwise disjoint rectangles at least \p padding apart, inside [0,1]^2;
+///         placement i has the shape of sizes[i]
 /// \throw InvalidInputError padding out of range, no charts, or they cannot be packed
 std::vector<RectPlacement> pack_rectangles(const std::vector<Vec2>& sizes, double padding);
+
+/// pack_rectangles() where the MaxRects packings may also turn a rectangle by 90° (whichever
+/// orientation scores better for the free box it goes to).
+/// \param turned receives C flags: 1 if placement i has the shape (sizes[i].y(), sizes[i].x())
+/// \return as pack_rectangles(), with the turned shapes
+/// \throw InvalidInputError as pack_rectangles()
+std::vector<RectPlacement> pack_rectangles_turning(const std::vector<Vec2>& sizes, double padding,
+                                                   std::vector<char>& turned);
 
 }  // namespace adaptex

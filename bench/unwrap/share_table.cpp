@@ -1,0 +1,151 @@
+// Effective texel share of the default layout (issue 8 item 3, docs/charts.md): per mesh, one row
+// of Markdown with the auto layout's charts, L2, coverage, share = coverage / L2², how much of the
+// square the charts' bounding rectangles take ("rect fill") and how much of its rectangle a chart
+// covers on average ("chart fill" = coverage / rect fill), flipped and overlapping triangles,
+// UVs outside [0,1]², and wall / CPU seconds. See docs/benchmarks.md.
+//
+//   bench_share_table [--single] [--detail] NAME...
+//
+// NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
+// code: genusG (genus_surface(G)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
+// pinched hole), pinched_annulus, tiny200 (tiny_components(200)), 1M (torus(2000, 250)).
+// --single also prints the share of one chart per component; --detail one line per chart.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cmath>
+#include <ctime>
+#include <cstring>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "adaptex/core/shapes.h"
+#include "adaptex/core/topology.h"
+#include "adaptex/io/mesh_io.h"
+#include "adaptex/param/stretch.h"
+#include "adaptex/param/unwrap.h"
+
+namespace {
+
+using namespace adaptex;
+
+TriMesh make_mesh(const std::string& name) {
+  if (name.rfind("genus", 0) == 0) return shapes::genus_surface(std::stoi(name.substr(5)));
+  if (name.rfind("holes", 0) == 0) return shapes::sphere_with_holes(std::stoi(name.substr(5)));
+  if (name == "pinched") return shapes::with_pinched_hole(shapes::genus_surface(3));
+  if (name == "pinched_annulus") return shapes::pinched_annulus(8);
+  if (name == "tiny200") return shapes::tiny_components(200);
+  if (name == "1M") return shapes::torus(2000, 250);
+  ReadOptions ro;
+  return read_mesh(name, ro);
+}
+
+/// Sum over charts of the area of the chart's UV bounding box.
+double rect_fill(const Parameterization& p) {
+  std::vector<Vec2> lo(p.num_charts, Vec2::Constant(2)), hi(p.num_charts, Vec2::Constant(-1));
+  for (size_t f = 0; f < p.uv_faces.size(); ++f)
+    for (int w : p.uv_faces[f]) {
+      lo[p.face_chart[f]] = lo[p.face_chart[f]].cwiseMin(p.uv[w]);
+      hi[p.face_chart[f]] = hi[p.face_chart[f]].cwiseMax(p.uv[w]);
+    }
+  double sum = 0;
+  for (int c = 0; c < p.num_charts; ++c)
+    if (hi[c].x() >= lo[c].x()) sum += (hi[c] - lo[c]).prod();
+  return sum;
+}
+
+/// --detail: one line per chart (faces, share of the 3-D area, own normalized L2, genus and
+/// boundary loops of the chart's faces before cutting, UV bounding box aspect).
+void detail(const TriMesh& mesh, const Parameterization& p) {
+  const std::vector<double> l2 = face_l2_stretch(mesh, p);
+  double a3 = 0, a2 = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) a3 += face_area(mesh, f), a2 += uv_signed_area(p, f);
+  for (int c = 0; c < p.num_charts; ++c) {
+    TriMesh sub;
+    std::vector<int> local(mesh.num_vertices(), -1);
+    double c3 = 0, c2 = 0, sum = 0;
+    Vec2 lo = Vec2::Constant(2), hi = Vec2::Constant(-1);
+    for (int f = 0; f < mesh.num_faces(); ++f) {
+      if (p.face_chart[f] != c) continue;
+      const double a = face_area(mesh, f);
+      c3 += a, c2 += uv_signed_area(p, f), sum += a * l2[f] * l2[f];
+      Face t;
+      for (int k = 0; k < 3; ++k) {
+        int& l = local[mesh.faces[f][k]];
+        if (l < 0) l = static_cast<int>(sub.positions.size()), sub.positions.push_back(mesh.positions[mesh.faces[f][k]]);
+        t[k] = l;
+        lo = lo.cwiseMin(p.uv[p.uv_faces[f][k]]);
+        hi = hi.cwiseMax(p.uv[p.uv_faces[f][k]]);
+      }
+      sub.faces.push_back(t);
+    }
+    const MeshTopology t = analyze_topology(sub);
+    std::vector<int> valence(sub.num_vertices(), 0);
+    for (const Face& q : sub.faces)
+      for (int v : q) ++valence[v];
+    int ears = 0;
+    for (int v : valence) ears += v == 1;
+    const double own = std::sqrt(sum / c3) * std::sqrt((c2 / c3) / (a2 / a3));
+    std::printf("  chart %d: %d faces, area %.3f, L2 %.3f, genus %d, loops %d, ears %d, aspect %.2f, fill %.2f\n", c,
+                sub.num_faces(), c3 / a3, own, t.total_genus(), t.total_loops(), ears,
+                (hi - lo).x() / (hi - lo).y(), c2 / (hi - lo).prod());
+  }
+}
+
+bool g_detail = false;
+
+void row(const std::string& name, bool single) {
+  const TriMesh mesh = make_mesh(name);
+  double single_share = -1;
+  if (single) {
+    UnwrapOptions o;
+    o.charts = ChartMode::Single;
+    single_share = unwrap(mesh, o).report.effective_texel_share;
+  }
+  const std::clock_t cpu0 = std::clock();
+  const auto t0 = std::chrono::steady_clock::now();
+  const UnwrapResult r = unwrap(mesh);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  const UnwrapReport& p = r.report;
+  const StretchStats s = measure_stretch(mesh, r.param);
+  const long overlaps = count_overlapping_triangles(r.param, 1000);
+  long outside = 0;
+  for (const Vec2& t : r.param.uv) outside += !(t.x() >= 0 && t.x() <= 1 && t.y() >= 0 && t.y() <= 1);
+  const double fill = rect_fill(r.param);
+  const std::string base = std::filesystem::path(name).stem().string();
+  char single_col[32] = "";
+  if (single) std::snprintf(single_col, sizeof single_col, "%.3f | ", single_share);
+  std::printf("| %s | %d | %s%d | %.3f | %.3f | %.3f | %.3f | %.3f | %d | %ld | %ld | %.1f | %.1f | %s |\n",
+              base.c_str(), mesh.num_faces(), single_col, p.num_charts, p.final_l2, p.coverage,
+              fill, fill > 0 ? p.coverage / fill : 0.0, p.effective_texel_share, s.flipped + s.degenerate,
+              overlaps, outside, wall, cpu, p.effective_texel_share >= 0.5 ? "yes" : "**not met**");
+  std::fflush(stdout);
+  if (g_detail) detail(mesh, r.param);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool single = false;
+  std::vector<std::string> names;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--single") == 0) single = true;
+    else if (std::strcmp(argv[i], "--detail") == 0) g_detail = true;
+    else names.emplace_back(argv[i]);
+  }
+  std::printf("| mesh | faces | %scharts | L2 | coverage | rect fill | chart fill | share | flipped+degenerate | "
+              "overlaps | UVs outside | wall s | CPU s | ≥ 0.5 |\n",
+              single ? "single: share | " : "");
+  std::printf("|---|---:|%s---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+              single ? "---:|" : "");
+  for (const std::string& n : names) {
+    try {
+      row(n, single);
+    } catch (const std::exception& e) {
+      std::printf("| %s | error: %s |\n", n.c_str(), e.what());
+    }
+  }
+  return 0;
+}
