@@ -475,12 +475,13 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
 
   // One chart per component (thesis §3.2).
   unwrap_pieces(mesh, comps, dopt, options.chart_padding, t_start, options, result);
-  // Auto: while the layout wastes too many texels, segment into 4, 8, 16, ... charts (docs/charts.md).
+  // Auto: while the layout wastes too many texels, segment into 4, 6, 8, 12, 16, ... charts (steps
+  // of 1.5 and 4/3; docs/charts.md).
   if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share) {
     const double gutter = options.gutter_texels / options.gutter_texture_size;
     for (int k = std::max(4, 2 * topo.num_components); k <= options.max_charts &&
                                                        rep.effective_texel_share < options.min_texel_share;
-         k *= 2) {
+         k = k % 3 == 0 ? k / 3 * 4 : k / 2 * 3) {
       const std::vector<Component> pieces = segment_components(comps, k, options);
       if (static_cast<int>(pieces.size()) <= rep.num_charts) continue;
       UnwrapResult attempt;
