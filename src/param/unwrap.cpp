@@ -8,8 +8,12 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <string>
+#include <string_view>
+
+#include <tbb/parallel_for.h>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/orientation.h"
@@ -134,6 +138,12 @@ struct ChartContext {
   UnwrapReport& rep;
 };
 
+/// Budget units (face-solves, UnwrapOptions::augment_face_budget) of one cheap parameterization of
+/// a chart of \p faces faces: the Floater solve and the cheap Yoshizawa iterations.
+long augment_eval_cost(long faces, const DiskParamOptions& dopt, const UnwrapOptions& options) {
+  return faces * (1 + std::max(0, std::min(dopt.max_iterations, options.augment_yoshizawa_iterations)));
+}
+
 /// Cuts one piece (a component, or a chart of a component) to a disk, augments the cut (GGH 2002
 /// §3.2) and parameterizes the disk (Floater + Yoshizawa). Progress fractions [frac0, frac1].
 Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double frac1) {
@@ -155,9 +165,7 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   // to the cut while the L2 stretch improves; keep the best. As in the thesis, the candidates are
   // compared with a cheaper parameterization (Floater + a few Yoshizawa iterations); the full
   // Yoshizawa solve runs once, on the chosen cut.
-  const long chart_faces = comp.mesh.num_faces();
-  const long eval_cost = chart_faces * (1 + std::max(0, std::min(dopt.max_iterations,
-                                                             options.augment_yoshizawa_iterations)));
+  const long eval_cost = augment_eval_cost(comp.mesh.num_faces(), dopt, options);
   DiskParamOptions cheap = dopt;
   cheap.max_iterations = std::min(dopt.max_iterations, options.augment_yoshizawa_iterations);
   cheap.yoshizawa = cheap.max_iterations > 0;
@@ -391,20 +399,58 @@ std::vector<Component> segment_components(const std::vector<Component>& comps, i
   return pieces;
 }
 
+/// The chart of every piece (build_chart()), phase times added to \p rep. The charts share the
+/// augmentation face budget in piece order; when even the largest use of every chart
+/// ((1 + max_augmentations) cheap evaluations) fits in it, the budget cannot run out, the charts do
+/// not depend on each other, and they are built in parallel (TBB) with the same result. The
+/// progress callback is then called under a mutex with a non-decreasing fraction.
+std::vector<Chart> build_charts(const std::vector<Component>& pieces, const DiskParamOptions& dopt,
+                                Clock::time_point t_start, const UnwrapOptions& options,
+                                UnwrapReport& rep) {
+  const Clock::time_point deadline =
+      t_start + std::chrono::duration_cast<Clock::duration>(
+                    std::chrono::duration<double>(std::max(0.0, options.augment_time_budget)));
+  const int nc = static_cast<int>(pieces.size());
+  long largest_use = 0;
+  for (const Component& p : pieces)
+    largest_use += (1L + options.max_augmentations) * augment_eval_cost(p.mesh.num_faces(), dopt, options);
+  std::vector<Chart> charts(nc);
+  if (nc < 2 || largest_use > options.augment_face_budget) {
+    ChartContext ctx{options, dopt, options.augment_face_budget, deadline, rep};
+    for (int c = 0; c < nc; ++c)
+      charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
+                              static_cast<double>(c + 1) / nc);
+    return charts;
+  }
+  std::mutex mutex;
+  double reported = 0;
+  UnwrapOptions shared = options;
+  if (options.progress)
+    shared.progress = [&](std::string_view phase, double f) {
+      const std::lock_guard<std::mutex> lock(mutex);
+      reported = std::max(reported, f);
+      return options.progress(phase, reported);
+    };
+  std::vector<UnwrapReport> reps(nc);
+  tbb::parallel_for(0, nc, [&](int c) {
+    ChartContext ctx{shared, dopt, largest_use, deadline, reps[c]};  // cannot run out (see above)
+    charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
+                            static_cast<double>(c + 1) / nc);
+  });
+  for (const UnwrapReport& r : reps) {
+    rep.time_cut += r.time_cut;
+    rep.time_floater += r.time_floater;
+    rep.time_yoshizawa += r.time_yoshizawa;
+    rep.time_augment += r.time_augment;
+  }
+  return charts;
+}
+
 /// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
 void unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
                    const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
                    const UnwrapOptions& options, UnwrapResult& result) {
-  ChartContext ctx{options, dopt, options.augment_face_budget,
-                   t_start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
-                                 std::max(0.0, options.augment_time_budget))),
-                   result.report};
-  const int nc = static_cast<int>(pieces.size());
-  std::vector<Chart> charts;
-  charts.reserve(nc);
-  for (int c = 0; c < nc; ++c)
-    charts.push_back(build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
-                                 static_cast<double>(c + 1) / nc));
+  const std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report);
   const auto t0 = Clock::now();
   report_progress(options.progress, "pack", 0.0);
   assemble(mesh, pieces, charts, padding, result);

@@ -140,5 +140,28 @@ TEST(Pack, SquaresAreDisjointPaddedAndInside) {
   EXPECT_THROW(pack_charts({}, 0.01), InvalidInputError);
 }
 
+
+TEST(Unwrap, ParallelChartsGiveTheSequentialLayout) {
+  // Multi-chart layouts build their charts in parallel when the augmentation face budget cannot run
+  // out: (1 + max_augmentations) cheap evaluations of 2 face-solves per face (augment_yoshizawa_
+  // iterations = 1) = 18 F. One unit less forces the sequential path, which then cannot run out
+  // either unless every chart used all 8 augmentations; both must give the same layout bit for bit.
+  const TriMesh m = shapes::genus_surface(2);
+  UnwrapOptions parallel;
+  parallel.augment_face_budget = 18L * m.num_faces();
+  UnwrapOptions sequential = parallel;
+  sequential.augment_face_budget = parallel.augment_face_budget - 1;
+  const UnwrapResult a = unwrap(m, parallel);
+  const UnwrapResult b = unwrap(m, sequential);
+  ASSERT_GT(a.report.num_charts, 1);
+  EXPECT_GT(a.report.augmentations, 0);
+  EXPECT_EQ(a.report.num_charts, b.report.num_charts);
+  EXPECT_EQ(a.report.augmentations, b.report.augmentations);
+  EXPECT_EQ(a.report.final_l2, b.report.final_l2);
+  ASSERT_EQ(a.param.uv.size(), b.param.uv.size());
+  EXPECT_TRUE(a.param.uv == b.param.uv);
+  EXPECT_TRUE(a.param.uv_faces == b.param.uv_faces);
+}
+
 }  // namespace
 }  // namespace adaptex
