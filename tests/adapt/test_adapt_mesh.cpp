@@ -18,6 +18,7 @@
 #include "adaptex/paint/painter.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
+#include "reference_stretch.h"
 #include "test_support.h"
 
 namespace adaptex {
@@ -89,7 +90,10 @@ TEST(AdaptMesh, GeometryOnlyLowersL2Stretch) {
   EXPECT_EQ(r.report.signal_fraction, 0.0);
   EXPECT_TRUE(r.report.accepted);
   EXPECT_LT(r.report.l2_after, r.report.l2_before * 0.98);
-  EXPECT_NEAR(r.report.l2_after, measure_stretch(mesh, r.param).l2, 1e-12);
+  // The reported L2 values against Sander's definition computed in the test (reference_stretch.h),
+  // not against measure_stretch(), which produced them.
+  EXPECT_NEAR(r.report.l2_before, test::reference_l2_stretch(mesh, param), 1e-9 * r.report.l2_before);
+  EXPECT_NEAR(r.report.l2_after, test::reference_l2_stretch(mesh, r.param), 1e-9 * r.report.l2_after);
   EXPECT_EQ(measure_stretch(mesh, r.param).flipped, 0);
 }
 
@@ -132,7 +136,11 @@ TEST(AdaptMesh, QualityTwoStageBeatsFixedParameterizationOnConcentratedLines) {
     const double ad = c.psnr(*s);
     std::printf("sphere lines N=%d: none %.2f dB, two-stage %.2f dB, none at 2N %.2f dB (safeguard %d)\n", c.N,
                 c.none, ad, c.none2, safeguard);
-    EXPECT_GT(ad, c.none + 0.2);  // a real gain, not just "not worse" (measured +0.43 dB)
+    // A real gain, measured against a reference computed here rather than a hard-coded number: at
+    // least 15% of what doubling the texture side (4x the texels) gains on the fixed layout
+    // (measured: +1.00 dB of +3.58 dB, 28%).
+    ASSERT_GT(c.none2, c.none + 1.0);  // the reference gain exists
+    EXPECT_GT(ad, c.none + 0.15 * (c.none2 - c.none));
     EXPECT_EQ(measure_stretch(s->mesh(), s->param()).flipped, 0);
   }
 }
@@ -150,9 +158,11 @@ TEST(AdaptMesh, DensityFlowGainsMostWithRefinementOnConcentratedLines) {
     std::printf("sphere lines N=%d: none %.2f dB, density-flow %.2f dB (refine %d: %d -> %d faces), none at 2N %.2f dB\n",
                 c.N, c.none, ad, refine, r.faces_before, r.faces_after, c.none2);
     EXPECT_TRUE(r.accepted);
-    // Measured: +1.53 dB with refinement (two-stage: +1.0), +0.33 dB without (the coarse triangles
-    // cannot follow the warp, so safe_remap damps it).
-    EXPECT_GT(ad, c.none + (refine ? 1.2 : 0.1));
+    // Against the gain of doubling the texture side on the fixed layout (computed here): measured
+    // +1.54 dB of +3.58 dB (43%) with refinement (two-stage: 28%), +0.93 dB (26%) without (the coarse
+    // triangles cannot follow the warp, so safe_remap damps it).
+    ASSERT_GT(c.none2, c.none + 1.0);
+    EXPECT_GT(ad, c.none + (refine ? 0.33 : 0.1) * (c.none2 - c.none));
     const StretchStats st = measure_stretch(s->mesh(), s->param());
     EXPECT_EQ(st.flipped, 0);
     EXPECT_EQ(st.degenerate, 0);
