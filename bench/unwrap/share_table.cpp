@@ -4,7 +4,7 @@
 // covers on average ("chart fill" = coverage / rect fill), flipped and overlapping triangles,
 // UVs outside [0,1]², and wall / CPU seconds. See docs/benchmarks.md.
 //
-//   bench_share_table [--single] [--detail] NAME...
+//   bench_share_table [--single] [--detail] [--normal-weight W] [--max-charts K] NAME...
 //
 // NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
 // code: genusG (genus_surface(G)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
@@ -94,6 +94,7 @@ void detail(const TriMesh& mesh, const Parameterization& p) {
 }
 
 bool g_detail = false;
+UnwrapOptions g_options;  ///< --normal-weight W, --max-charts K
 
 void row(const std::string& name, bool single) {
   const TriMesh mesh = make_mesh(name);
@@ -105,7 +106,7 @@ void row(const std::string& name, bool single) {
   }
   const std::clock_t cpu0 = std::clock();
   const auto t0 = std::chrono::steady_clock::now();
-  const UnwrapResult r = unwrap(mesh);
+  const UnwrapResult r = unwrap(mesh, g_options);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   const UnwrapReport& p = r.report;
@@ -133,6 +134,10 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--single") == 0) single = true;
     else if (std::strcmp(argv[i], "--detail") == 0) g_detail = true;
+    else if (std::strcmp(argv[i], "--normal-weight") == 0 && i + 1 < argc)
+      g_options.chart_normal_weight = std::stod(argv[++i]);
+    else if (std::strcmp(argv[i], "--max-charts") == 0 && i + 1 < argc)
+      g_options.max_charts = std::stoi(argv[++i]);
     else names.emplace_back(argv[i]);
   }
   std::printf("| mesh | faces | %scharts | L2 | coverage | rect fill | chart fill | share | flipped+degenerate | "

@@ -26,11 +26,10 @@ struct FamilyMesh {
 
 std::vector<FamilyMesh> family() {
   std::vector<FamilyMesh> out;
-  // Measured (docs/benchmarks.md): genus 0-1, holes and the pinched hole reach 0.5; genus 2-6
-  // (0.41-0.49) and the tiny components (0.43) do not yet, the bound below is what they reach with
-  // a margin.
+  // Measured (docs/benchmarks.md): all reach 0.5 except the tiny components (0.43: the bound is
+  // what they reach with a margin).
   for (int g = 0; g <= 6; ++g)
-    out.push_back({"genus " + std::to_string(g), shapes::genus_surface(g), g <= 1 ? 0.5 : 0.38});
+    out.push_back({"genus " + std::to_string(g), shapes::genus_surface(g), 0.5});
   out.push_back({"1 hole", shapes::sphere_with_holes(1, 4), 0.5});
   out.push_back({"5 holes", shapes::sphere_with_holes(5, 4), 0.5});
   out.push_back({"30 holes", shapes::sphere_with_holes(30, 5), 0.5});

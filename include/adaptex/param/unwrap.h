@@ -66,8 +66,9 @@ struct UnwrapOptions {
   double min_texel_share = 0.5;
   /// Auto: the largest number of charts tried (over the whole mesh, plus the components).
   int max_charts = 64;
-  /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight).
-  double chart_normal_weight = 4.0;
+  /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight). 0 (compact
+  /// geodesic charts) gave the highest texel share on every mesh measured (docs/charts.md).
+  double chart_normal_weight = 0.0;
   /// Gutter between segmented charts in texels of a gutter_texture_size² texture: the gap is
   /// gutter_texels / gutter_texture_size of the unit square. 8 texels at 1024 leave room for the
   /// 4-texel seam padding of both neighbouring charts (paint/padding.h).
