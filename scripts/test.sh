@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Quick start, command 2: set up, build with warnings as errors, and run the whole test suite.
 # Under CI (CI=true) or with --sanitize the suite runs once more under AddressSanitizer + UBSan.
+# Then, when clang is there, every libFuzzer target runs for a 15 s smoke (scripts/fuzz.sh smoke).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 sanitize=0
@@ -15,4 +16,17 @@ if [ "$sanitize" = 1 ]; then
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DADAPTEX_BUILD_BENCH=OFF
   ( cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --output-on-failure -j "$jobs" -LE no_sanitize )
+fi
+# Fuzz smoke (issue 11, docs/reliability.md): every libFuzzer target for 15 s from its seeds, when
+# clang and its libFuzzer runtime are there. Under CI (or --sanitize) they are installed first
+# (scripts/setup.sh --fuzz: apt-get only). ADAPTEX_FUZZ_SMOKE=0 skips it.
+if [ "$sanitize" = 1 ] && [ "${ADAPTEX_FUZZ_SMOKE:-1}" != 0 ]; then
+  scripts/setup.sh --fuzz || echo "setup: clang / libclang-rt-14-dev could not be installed"
+fi
+if [ "${ADAPTEX_FUZZ_SMOKE:-1}" != 0 ] && command -v clang++ >/dev/null &&
+   [ -f "$(clang++ -print-file-name=libclang_rt.fuzzer-x86_64.a)" ]; then
+  echo "== fuzz smoke: every libFuzzer target for 15 s (scripts/fuzz.sh smoke) =="
+  scripts/fuzz.sh smoke 15
+else
+  echo "== fuzz smoke skipped: clang / libclang-rt-14-dev not installed (scripts/setup.sh --fuzz) =="
 fi
