@@ -39,7 +39,13 @@ std::vector<int> disk_boundary_loop(const TriMesh& disk) {
 /// The Yoshizawa loop's variables between runs (see DiskParamState in disk_param.h).
 struct DiskParamState {
   ConvexWeights weights;       ///< Current weights (= those of the best iterate between runs).
-  std::unique_ptr<TutteSolver> solver;  ///< Factorized for the weights of the last iterate.
+  /// Factorized for the weights of the last iterate; shared with the runs of sub-disks
+  /// (parameterize_subdisk()).
+  std::shared_ptr<TutteSolver> solver;
+  /// Empty: the solver was built for this disk. Else: per vertex of this disk, the vertex of the
+  /// solver's disk (TutteSolver::solve_subdisk()).
+  std::vector<int> to_pattern;
+  int fallbacks0 = 0;          ///< solver->fallbacks() when this run started.
   bool floater_ok = false;     ///< The Floater embedding has finite L2 (else Yoshizawa never runs).
   bool started = false;        ///< face_areas / face_l2 / sigma initialized.
   bool done = false;           ///< Stopped by the η halvings: no further iteration would run.
@@ -47,6 +53,11 @@ struct DiskParamState {
   int iterations = 0;          ///< Yoshizawa iterations done.
   int halvings = 0;            ///< Halvings of η so far.
   double eta = 0;              ///< Current η.
+  /// Solves the Tutte system of the current weights into \p uv.
+  void solve(std::vector<Vec2>& uv) {
+    if (to_pattern.empty()) solver->solve(weights, uv);
+    else solver->solve_subdisk(weights, to_pattern, uv);
+  }
   std::vector<double> face_areas;  ///< F 3-D face areas.
   std::vector<double> face_l2;     ///< F face L2 stretch of the last iterate (Floater before any).
   std::vector<double> sigma;       ///< V vertex stretch of the best iterate (vertex_stretch()).
@@ -83,7 +94,7 @@ void run_yoshizawa(const TriMesh& disk, DiskParamState& s, const DiskParamOption
                     static_cast<double>(it - 1) / options.max_iterations);
     yoshizawa_reweight(s.weights, s.sigma, s.eta);
     cur = res.uv;
-    s.solver->solve(s.weights, cur);
+    s.solve(cur);
     const StretchStats st = measure_stretch(disk, cur, s.face_l2);
     res.iterations = s.iterations = it;
     const double prev_l2 = res.final_l2;
@@ -108,13 +119,15 @@ void run_yoshizawa(const TriMesh& disk, DiskParamState& s, const DiskParamOption
     }
   }
   res.time_yoshizawa += seconds_since(t1);
-  res.solver_fallbacks = s.solver->fallbacks();
+  res.solver_fallbacks = s.solver->fallbacks() - s.fallbacks0;
   report_progress(options.progress, "yoshizawa", 1.0);
 }
 
-/// The Floater embedding of \p disk into res; the weights and solver into \p s.
+/// The Floater embedding of \p disk into res; the weights and solver into \p s. With \p parent,
+/// the disk is a sub-disk of the solver of \p parent (see parameterize_subdisk()).
 DiskParamResult floater_embedding(const TriMesh& disk, const std::vector<int>& boundary_loop,
-                                  const DiskParamOptions& options, DiskParamState& s) {
+                                  const DiskParamOptions& options, DiskParamState& s,
+                                  const DiskParamState* parent, const std::vector<int>* to_pattern) {
   if (disk.num_faces() == 0) throw TopologyError("parameterize_disk: mesh has no faces");
   const auto t0 = std::chrono::steady_clock::now();
   report_progress(options.progress, "floater", 0.0);
@@ -134,9 +147,15 @@ DiskParamResult floater_embedding(const TriMesh& disk, const std::vector<int>& b
     res.uv[boundary.loop[i]] = boundary.uv[i];
   }
   s.weights = compute_embedding_weights(disk, is_boundary, options.weights);
-  s.solver = std::make_unique<TutteSolver>(s.weights, is_boundary, options.backend);
+  if (parent && parent->solver->backend() != TutteSolver::Backend::Multigrid) {
+    s.solver = parent->solver;
+    s.to_pattern = *to_pattern;
+  } else {
+    s.solver = std::make_shared<TutteSolver>(s.weights, is_boundary, options.backend);
+  }
   s.solver->set_max_iterations(options.max_solver_iterations);
-  s.solver->solve(s.weights, res.uv);
+  s.fallbacks0 = s.solver->fallbacks();
+  s.solve(res.uv);
   const StretchStats st = measure_stretch(disk, res.uv, s.face_l2);  // face_l2: for Yoshizawa
   res.floater_l2 = res.final_l2 = st.l2;
   res.floater_linf = res.final_linf = st.linf;
@@ -145,7 +164,7 @@ DiskParamResult floater_embedding(const TriMesh& disk, const std::vector<int>& b
   s.floater_ok = std::isfinite(st.l2);
   res.time_floater = seconds_since(t0);
   report_progress(options.progress, "floater", 1.0);
-  res.solver_fallbacks = s.solver->fallbacks();
+  res.solver_fallbacks = s.solver->fallbacks() - s.fallbacks0;
   return res;
 }
 
@@ -154,7 +173,7 @@ DiskParamResult floater_embedding(const TriMesh& disk, const std::vector<int>& b
 DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& boundary_loop,
                                   const DiskParamOptions& options, DiskParamStatePtr* state) {
   DiskParamStatePtr s(new DiskParamState);
-  DiskParamResult res = floater_embedding(disk, boundary_loop, options, *s);
+  DiskParamResult res = floater_embedding(disk, boundary_loop, options, *s, nullptr, nullptr);
   run_yoshizawa(disk, *s, options, res);
   if (state) *state = std::move(s);
   return res;
@@ -163,6 +182,20 @@ DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& b
 DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& boundary_loop,
                                   const DiskParamOptions& options) {
   return parameterize_disk(disk, boundary_loop, options, nullptr);
+}
+
+DiskParamResult parameterize_subdisk(const TriMesh& disk, const std::vector<int>& boundary_loop,
+                                     const std::vector<int>& to_pattern, const DiskParamState& parent,
+                                     const DiskParamOptions& options, DiskParamStatePtr* state) {
+  if (static_cast<int>(to_pattern.size()) != disk.num_vertices())
+    throw InvalidInputError("parameterize_subdisk: to_pattern has " +
+                            std::to_string(to_pattern.size()) + " entries for " +
+                            std::to_string(disk.num_vertices()) + " vertices");
+  DiskParamStatePtr s(new DiskParamState);
+  DiskParamResult res = floater_embedding(disk, boundary_loop, options, *s, &parent, &to_pattern);
+  run_yoshizawa(disk, *s, options, res);
+  if (state) *state = std::move(s);
+  return res;
 }
 
 DiskParamResult continue_disk_param(const TriMesh& disk, DiskParamState& state,

@@ -559,13 +559,68 @@ void TutteSolver::solve(const ConvexWeights& w, std::vector<Vec2>& uv) {
     });
   }
   Eigen::MatrixX2d x(n, 2);
+  for (int i = 0; i < n; ++i) x.row(i) = uv[interior_[i]].transpose();  // BiCGSTAB's initial guess
+  solve_assembled(rhs, x);
+  for (int i = 0; i < n; ++i) uv[interior_[i]] = x.row(i).transpose();
+}
+
+void TutteSolver::solve_subdisk(const ConvexWeights& w, const std::vector<int>& to_pattern,
+                                std::vector<Vec2>& uv) {
+  const int n = num_interior();
+  const int nv = w.num_vertices();
+  if (static_cast<int>(to_pattern.size()) != nv || static_cast<int>(uv.size()) != nv)
+    throw InvalidInputError("TutteSolver::solve_subdisk: to_pattern / uv sizes differ from the weights'");
+  Impl& im = *impl_;
+  RowMat& A = im.A;
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  double* val = A.valuePtr();
+  std::fill(val, val + A.nonZeros(), 0.0);
+  auto interior = [&](int v) { return w.offsets[v + 1] > w.offsets[v]; };
+  auto unknown_of = [&](int v) {
+    const int p = to_pattern[v];
+    const int i = p >= 0 && p < static_cast<int>(unknown_.size()) ? unknown_[p] : -1;
+    if (i < 0)
+      throw InvalidInputError("TutteSolver::solve_subdisk: interior vertex " + std::to_string(v) +
+                              " is not an interior vertex of the pattern");
+    return i;
+  };
+  // Rows of the pattern's unknowns that are not interior here stay identity rows (x = 0).
+  for (int i = 0; i < n; ++i) val[im.diag_pos[i]] = 1.0;
+  Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2), x = Eigen::MatrixX2d::Zero(n, 2);
+  for (int v = 0; v < nv; ++v) {
+    if (!interior(v)) continue;
+    const int i = unknown_of(v);
+    x.row(i) = uv[v].transpose();
+    for (int k = w.offsets[v]; k < w.offsets[v + 1]; ++k) {
+      const int nb = w.neighbors[k];
+      if (!interior(nb)) {
+        rhs.row(i) += w.values[k] * uv[nb].transpose();
+        continue;
+      }
+      const int j = unknown_of(nb);
+      const int* pos = std::find(inner + outer[i], inner + outer[i + 1], j);
+      if (pos == inner + outer[i + 1])
+        throw InvalidInputError("TutteSolver::solve_subdisk: edge " + std::to_string(v) + "-" +
+                                std::to_string(nb) + " is not in the pattern");
+      val[pos - inner] = -w.values[k];
+    }
+  }
+  solve_assembled(rhs, x);
+  for (int v = 0; v < nv; ++v)
+    if (interior(v)) uv[v] = x.row(unknown_of(v)).transpose();
+}
+
+void TutteSolver::solve_assembled(const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d& x) {
+  const int n = num_interior();
+  Impl& im = *impl_;
+  RowMat& A = im.A;
   bool ok = false;
   if (backend_ == Backend::Multigrid) {
     try {
       if (!im.amg_analyzed) im.amg.setup(A), im.amg_analyzed = true;
       else im.amg.update(A);
-      detail::AmgPreconditioner::Block xb(n, 2), bb = rhs;
-      for (int i = 0; i < n; ++i) xb.row(i) = uv[interior_[i]].transpose();
+      detail::AmgPreconditioner::Block xb = x, bb = rhs;
       if (!xb.allFinite()) xb.setConstant(0.5);
       const int its = detail::bicgstab(A, im.amg, bb, xb, tolerance_, max_iterations_);
       last_iterations_ += its >= 0 ? its : max_iterations_;
@@ -593,7 +648,6 @@ void TutteSolver::solve(const ConvexWeights& w, std::vector<Vec2>& uv) {
   if (!ok)
     throw SolverError("Tutte system (" + std::to_string(n) +
                       " unknowns): no backend produced a finite solution (non-finite weights?)");
-  for (int i = 0; i < n; ++i) uv[interior_[i]] = x.row(i).transpose();
 }
 
 }  // namespace adaptex

@@ -175,6 +175,8 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   // Adds paths to cur while the score improves. The budgets apply while the current
   // parameterization is valid; one with degenerate UV triangles (squeezed extremities) is
   // augmented regardless of them, up to max_augmentations. Returns true if the cut changed.
+  // Input vertex -> its wedge in the first evaluated disk when it has only one (-2 when several).
+  std::vector<int> pattern_wedge;
   auto augment_loop = [&](CutScore cur_score) {
     const auto ta = Clock::now();
     bool changed = false;
@@ -191,8 +193,18 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
       cand.cut = cur.cut;
       for (int e : shortest_path_to_cut(graph, on_cut, from)) cand.cut[e] = 1;
       cand.disk = slice_along_cut(comp.mesh, ec, cand.cut);
-      cand.param =
-          parameterize_disk(cand.disk.disk, cand.disk.boundary_loop, cheap, &cand.solve_state);
+      if (cur.solve_state && !pattern_wedge.empty()) {
+        // The candidate is cut from the same surface along a larger cut: its Tutte systems are
+        // solved with the pattern (ordering, pivots) of the first evaluated disk.
+        std::vector<int> to_pattern(cand.disk.wedge_vertex.size());
+        for (size_t w = 0; w < to_pattern.size(); ++w)
+          to_pattern[w] = pattern_wedge[cand.disk.wedge_vertex[w]];
+        cand.param = parameterize_subdisk(cand.disk.disk, cand.disk.boundary_loop, to_pattern,
+                                          *cur.solve_state, cheap, &cand.solve_state);
+      } else {
+        cand.param =
+            parameterize_disk(cand.disk.disk, cand.disk.boundary_loop, cheap, &cand.solve_state);
+      }
       ctx.augment_faces_left -= eval_cost;
       const CutScore cand_score = score(cand);
       if (!better(cand_score, cur_score, options.augment_min_improvement)) break;
@@ -210,6 +222,11 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
     t0 = Clock::now();
     report_progress(options.progress, "augment", frac0);
     cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap, &cur.solve_state);
+    pattern_wedge.assign(comp.mesh.num_vertices(), -1);
+    for (size_t w = 0; w < cur.disk.wedge_vertex.size(); ++w) {
+      int& p = pattern_wedge[cur.disk.wedge_vertex[w]];
+      p = p == -1 ? static_cast<int>(w) : -2;
+    }
     ctx.augment_faces_left -= eval_cost;
     rep.time_augment += seconds_since(t0);
     evaluated = true;

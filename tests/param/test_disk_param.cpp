@@ -7,6 +7,7 @@
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/core/topology.h"
+#include "adaptex/param/cut.h"
 #include "adaptex/param/disk_param.h"
 #include "adaptex/param/stretch.h"
 #include "disk_fixtures.h"
@@ -176,4 +177,78 @@ TEST(DiskParam, ContinuedRunEqualsOneFullRun) {
       EXPECT_EQ(max_diff, 0.0) << d.name << " cheap " << cheap_iterations;
     }
   }
+}
+
+namespace {
+
+/// For every vertex of \p sub: its wedge in \p pattern when the input vertex has only one there.
+std::vector<int> map_to_pattern(const SlicedDisk& pattern, const SlicedDisk& sub, int input_vertices) {
+  std::vector<int> single(input_vertices, -1);
+  for (size_t w = 0; w < pattern.wedge_vertex.size(); ++w) {
+    int& p = single[pattern.wedge_vertex[w]];
+    p = p == -1 ? static_cast<int>(w) : -2;
+  }
+  std::vector<int> out(sub.wedge_vertex.size());
+  for (size_t w = 0; w < out.size(); ++w) out[w] = single[sub.wedge_vertex[w]];
+  return out;
+}
+
+double max_uv_difference(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
+  double d = 0;
+  for (size_t v = 0; v < a.size(); ++v) d = std::max(d, (a[v] - b[v]).cwiseAbs().maxCoeff());
+  return d;
+}
+
+}  // namespace
+
+TEST(DiskParam, SubdiskReusesTheSolverWithTheSameResult) {
+  // The cut augmentation's situation: a closed surface cut to a disk, then cut further along two
+  // paths (GGH 2002). parameterize_subdisk() solves the larger cuts' disks with the first disk's
+  // factorized system (identity rows for the vertices that joined the cut) and must give the
+  // layout of a fresh parameterize_disk() of the same disk.
+  const TriMesh m = shapes::icosphere(3);
+  const EdgeConnectivity ec = build_edges(m);
+  const EdgeGraph graph = build_edge_graph(m, ec);
+  std::vector<char> cut = initial_cut(m, ec, graph);
+  const SlicedDisk d0 = slice_along_cut(m, ec, cut);
+  DiskParamOptions cheap;
+  cheap.weights = EmbeddingWeights::MeanValue;
+  cheap.max_iterations = 1;
+  DiskParamStatePtr s0;
+  parameterize_disk(d0.disk, d0.boundary_loop, cheap, &s0);
+  ASSERT_TRUE(s0);
+  DiskParamOptions full = cheap;
+  full.max_iterations = 30;
+  const DiskParamState* parent = s0.get();
+  DiskParamStatePtr s1, s2;
+  for (int step = 0; step < 2; ++step) {
+    const std::vector<char> on_cut = cut_vertices(m, ec, cut);
+    const std::vector<double> dist = distance_to_cut(graph, on_cut);
+    const int from = static_cast<int>(std::max_element(dist.begin(), dist.end()) - dist.begin());
+    for (int e : shortest_path_to_cut(graph, on_cut, from)) cut[e] = 1;
+    const SlicedDisk d = slice_along_cut(m, ec, cut);
+    const std::vector<int> to_pattern = map_to_pattern(d0, d, m.num_vertices());
+    DiskParamStatePtr& s = step == 0 ? s1 : s2;
+    const DiskParamResult sub = parameterize_subdisk(d.disk, d.boundary_loop, to_pattern, *parent,
+                                                     cheap, &s);
+    const DiskParamResult fresh = parameterize_disk(d.disk, d.boundary_loop, cheap);
+    EXPECT_NEAR(sub.floater_l2, fresh.floater_l2, 1e-9 * fresh.floater_l2) << "step " << step;
+    EXPECT_NEAR(sub.final_l2, fresh.final_l2, 1e-9 * fresh.final_l2) << "step " << step;
+    EXPECT_LT(max_uv_difference(sub.uv, fresh.uv), 1e-9) << "step " << step;
+    // Continued to the full cap, too (the solver is shared with s0 and the other sub-disk).
+    const DiskParamResult sub_full = continue_disk_param(d.disk, *s, sub, full);
+    const DiskParamResult fresh_full = parameterize_disk(d.disk, d.boundary_loop, full);
+    EXPECT_EQ(sub_full.iterations, fresh_full.iterations) << "step " << step;
+    EXPECT_NEAR(sub_full.final_l2, fresh_full.final_l2, 1e-9 * fresh_full.final_l2);
+    EXPECT_LT(max_uv_difference(sub_full.uv, fresh_full.uv), 1e-8) << "step " << step;
+    EXPECT_LT(sub_full.final_l2, sub.final_l2);
+    parent = s.get();
+  }
+  // A map that sends interior vertices nowhere, or the wrong size, is refused.
+  const SlicedDisk d = slice_along_cut(m, ec, cut);
+  EXPECT_THROW(parameterize_subdisk(d.disk, d.boundary_loop, std::vector<int>(d.disk.num_vertices(), -1),
+                                    *s0, cheap, nullptr),
+               InvalidInputError);
+  EXPECT_THROW(parameterize_subdisk(d.disk, d.boundary_loop, {}, *s0, cheap, nullptr),
+               InvalidInputError);
 }

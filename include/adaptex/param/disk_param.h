@@ -87,6 +87,25 @@ using DiskParamStatePtr = std::unique_ptr<DiskParamState, DiskParamStateDeleter>
 DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& boundary_loop,
                                   const DiskParamOptions& options, DiskParamStatePtr* state);
 
+/// parameterize_disk() of a disk cut from the same surface as the disk of \p parent's solver, along a
+/// larger cut (unwrap's cut augmentation): its interior vertices are interior vertices of that disk,
+/// joined by the same edges. The Tutte systems are solved by \p parent's solver
+/// (TutteSolver::solve_subdisk: no new ordering or pivoting, only numeric refactorizations), which
+/// the returned \p state shares. The result equals parameterize_disk(disk, boundary_loop, options)
+/// up to rounding. With the Multigrid backend a solver of its own is built instead.
+/// \param to_pattern per vertex of \p disk: the vertex of the solver's disk for interior vertices
+///   (ignored on the boundary). The solver's disk is that of the parameterize_disk() run that
+///   started the chain of parameterize_subdisk() runs.
+/// \param parent the state of that run or of any run sharing its solver; it must not be used
+///   concurrently with the returned state.
+/// \pre as parameterize_disk(); state may be nullptr
+/// \throw InvalidInputError to_pattern has the wrong size or maps an interior vertex or edge outside
+///   the solver's interior
+/// \throw as parameterize_disk()
+DiskParamResult parameterize_subdisk(const TriMesh& disk, const std::vector<int>& boundary_loop,
+                                     const std::vector<int>& to_pattern, const DiskParamState& parent,
+                                     const DiskParamOptions& options, DiskParamStatePtr* state);
+
 /// Continues a run of parameterize_disk() with \p options.max_iterations Yoshizawa iterations in
 /// total (those already done included). The result equals that of one parameterize_disk() call
 /// with \p options (up to the progress reports and the timings), because the Yoshizawa loop only

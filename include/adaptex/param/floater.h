@@ -96,6 +96,22 @@ class TutteSolver {
   ///   solution (only with non-finite weights)
   void solve(const ConvexWeights& weights, std::vector<Vec2>& uv);
 
+  /// Solves the Tutte system of another disk whose interior vertices are interior vertices of the
+  /// pattern's disk, joined by the same edges: a disk cut from the same surface along a larger cut
+  /// (unwrap's cut augmentation). Its matrix is the pattern's with the rows of the pattern's
+  /// unknowns that are not interior here replaced by identity rows and the columns of those
+  /// unknowns zeroed, so the symbolic analysis (and the Klu pivot order) of the pattern is reused
+  /// instead of ordering and factorizing a new pattern; the solution is the same as that of a
+  /// TutteSolver built for the other disk (up to rounding). Interleaves freely with solve().
+  /// \param weights V' rows of the other disk (empty rows on its boundary).
+  /// \param to_pattern V': the vertex of the pattern's disk of each interior vertex (others ignored).
+  /// \param uv V' positions: boundary entries are read, interior entries overwritten.
+  /// \throw InvalidInputError wrong sizes; an interior vertex or an edge between interior vertices
+  ///   that the pattern does not have
+  /// \throw SolverError as solve()
+  void solve_subdisk(const ConvexWeights& weights, const std::vector<int>& to_pattern,
+                     std::vector<Vec2>& uv);
+
   /// The backend in use (Auto resolved).
   Backend backend() const { return backend_; }
   /// Relative residual tolerance of the iterative backend (default 1e-10).
@@ -110,6 +126,10 @@ class TutteSolver {
   int num_interior() const { return static_cast<int>(interior_.size()); }
 
  private:
+  /// Solves the assembled system A x = rhs (x: the initial guess on input) with the backend and
+  /// the direct fallback. \throw SolverError as solve()
+  void solve_assembled(const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d& x);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
   Backend backend_;
