@@ -4,7 +4,7 @@
 // covers on average ("chart fill" = coverage / rect fill), flipped and overlapping triangles,
 // UVs outside [0,1]², and wall / CPU seconds. See docs/benchmarks.md.
 //
-//   bench_share_table [--single] [--detail] [--normal-weight W] [--max-charts K] NAME...
+//   bench_share_table [--single] [--detail] [--normal-weight W] [--max-charts K] [--chart-padding P] NAME...
 //
 // NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
 // code: genusG (genus_surface(G)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
@@ -94,7 +94,7 @@ void detail(const TriMesh& mesh, const Parameterization& p) {
 }
 
 bool g_detail = false;
-UnwrapOptions g_options;  ///< --normal-weight W, --max-charts K
+UnwrapOptions g_options;  ///< --normal-weight W, --max-charts K, --chart-padding P
 
 void row(const std::string& name, bool single) {
   const TriMesh mesh = make_mesh(name);
@@ -136,6 +136,8 @@ int main(int argc, char** argv) {
     else if (std::strcmp(argv[i], "--detail") == 0) g_detail = true;
     else if (std::strcmp(argv[i], "--normal-weight") == 0 && i + 1 < argc)
       g_options.chart_normal_weight = std::stod(argv[++i]);
+    else if (std::strcmp(argv[i], "--chart-padding") == 0 && i + 1 < argc)
+      g_options.chart_padding = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--max-charts") == 0 && i + 1 < argc)
       g_options.max_charts = std::stoi(argv[++i]);
     else names.emplace_back(argv[i]);

@@ -195,8 +195,9 @@ int split_into_parts(const DualGraph& g, std::vector<int>& label) {
   return used;
 }
 
-/// Number of ears of every chart: vertices where the chart has a single face (a mesh ear, a
-/// boundary vertex with one face, cannot be removed by remove_ears()).
+/// Number of ears of every chart: vertices where the chart has a single face (those that
+/// remove_ears() leaves: its greedy moves do not always converge, and a mesh ear, a boundary
+/// vertex with one face, cannot move at all).
 std::vector<int> count_ears(const VertexFaces& vf, const std::vector<int>& label, int k) {
   std::vector<int> ears(k, 0);
   const int nv = static_cast<int>(vf.offsets.size()) - 1;
