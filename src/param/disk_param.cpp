@@ -42,9 +42,10 @@ struct DiskParamState {
   /// Factorized for the weights of the last iterate; shared with the runs of sub-disks
   /// (parameterize_subdisk()).
   std::shared_ptr<TutteSolver> solver;
-  /// Empty: the solver was built for this disk. Else: per vertex of this disk, the vertex of the
-  /// solver's disk (TutteSolver::solve_subdisk()).
-  std::vector<int> to_pattern;
+  /// False: the solver was built for this disk. True: this disk is a sub-disk of the solver's
+  /// (TutteSolver::solve_subdisk() with sub_map).
+  bool subdisk = false;
+  TutteSolver::SubdiskMap sub_map;  ///< See subdisk.
   int fallbacks0 = 0;          ///< solver->fallbacks() when this run started.
   bool floater_ok = false;     ///< The Floater embedding has finite L2 (else Yoshizawa never runs).
   bool started = false;        ///< face_areas / face_l2 / sigma initialized.
@@ -55,8 +56,8 @@ struct DiskParamState {
   double eta = 0;              ///< Current η.
   /// Solves the Tutte system of the current weights into \p uv.
   void solve(std::vector<Vec2>& uv) {
-    if (to_pattern.empty()) solver->solve(weights, uv);
-    else solver->solve_subdisk(weights, to_pattern, uv);
+    if (subdisk) solver->solve_subdisk(weights, sub_map, uv);
+    else solver->solve(weights, uv);
   }
   std::vector<double> face_areas;  ///< F 3-D face areas.
   std::vector<double> face_l2;     ///< F face L2 stretch of the last iterate (Floater before any).
@@ -149,7 +150,8 @@ DiskParamResult floater_embedding(const TriMesh& disk, const std::vector<int>& b
   s.weights = compute_embedding_weights(disk, is_boundary, options.weights);
   if (parent && parent->solver->backend() != TutteSolver::Backend::Multigrid) {
     s.solver = parent->solver;
-    s.to_pattern = *to_pattern;
+    s.sub_map = s.solver->map_subdisk(s.weights, *to_pattern);
+    s.subdisk = true;
   } else {
     s.solver = std::make_shared<TutteSolver>(s.weights, is_boundary, options.backend);
   }
@@ -196,6 +198,16 @@ DiskParamResult parameterize_subdisk(const TriMesh& disk, const std::vector<int>
   run_yoshizawa(disk, *s, options, res);
   if (state) *state = std::move(s);
   return res;
+}
+
+std::vector<double> result_vertex_stretch(const TriMesh& disk, DiskParamState& state,
+                                          const DiskParamResult& result) {
+  if (!state.started) return vertex_stretch(disk, result.uv);
+  if (state.sigma_stale) {
+    state.sigma = vertex_stretch(disk, state.face_l2, state.face_areas);
+    state.sigma_stale = false;
+  }
+  return state.sigma;
 }
 
 DiskParamResult continue_disk_param(const TriMesh& disk, DiskParamState& state,

@@ -564,51 +564,69 @@ void TutteSolver::solve(const ConvexWeights& w, std::vector<Vec2>& uv) {
   for (int i = 0; i < n; ++i) uv[interior_[i]] = x.row(i).transpose();
 }
 
-void TutteSolver::solve_subdisk(const ConvexWeights& w, const std::vector<int>& to_pattern,
+TutteSolver::SubdiskMap TutteSolver::map_subdisk(const ConvexWeights& w,
+                                                 const std::vector<int>& to_pattern) const {
+  const int nv = w.num_vertices();
+  if (static_cast<int>(to_pattern.size()) != nv)
+    throw InvalidInputError("TutteSolver::map_subdisk: to_pattern has " +
+                            std::to_string(to_pattern.size()) + " entries for " +
+                            std::to_string(nv) + " vertices");
+  const RowMat& A = impl_->A;
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  SubdiskMap map;
+  map.unknown.assign(nv, -1);
+  for (int v = 0; v < nv; ++v) {
+    if (w.offsets[v + 1] == w.offsets[v]) continue;  // boundary
+    const int p = to_pattern[v];
+    map.unknown[v] = p >= 0 && p < static_cast<int>(unknown_.size()) ? unknown_[p] : -1;
+    if (map.unknown[v] < 0)
+      throw InvalidInputError("TutteSolver::map_subdisk: interior vertex " + std::to_string(v) +
+                              " is not an interior vertex of the pattern");
+  }
+  map.entry_pos.assign(w.neighbors.size(), -1);
+  for (int v = 0; v < nv; ++v) {
+    const int i = map.unknown[v];
+    if (i < 0) continue;
+    for (int k = w.offsets[v]; k < w.offsets[v + 1]; ++k) {
+      const int j = map.unknown[w.neighbors[k]];
+      if (j < 0) continue;  // boundary neighbour: right-hand side
+      const int* pos = std::find(inner + outer[i], inner + outer[i + 1], j);
+      if (pos == inner + outer[i + 1])
+        throw InvalidInputError("TutteSolver::map_subdisk: edge " + std::to_string(v) + "-" +
+                                std::to_string(w.neighbors[k]) + " is not in the pattern");
+      map.entry_pos[k] = static_cast<int>(pos - inner);
+    }
+  }
+  return map;
+}
+
+void TutteSolver::solve_subdisk(const ConvexWeights& w, const SubdiskMap& map,
                                 std::vector<Vec2>& uv) {
   const int n = num_interior();
   const int nv = w.num_vertices();
-  if (static_cast<int>(to_pattern.size()) != nv || static_cast<int>(uv.size()) != nv)
-    throw InvalidInputError("TutteSolver::solve_subdisk: to_pattern / uv sizes differ from the weights'");
+  if (static_cast<int>(map.unknown.size()) != nv || static_cast<int>(uv.size()) != nv ||
+      map.entry_pos.size() != w.neighbors.size())
+    throw InvalidInputError("TutteSolver::solve_subdisk: map / uv sizes differ from the weights'");
   Impl& im = *impl_;
-  RowMat& A = im.A;
-  const int* outer = A.outerIndexPtr();
-  const int* inner = A.innerIndexPtr();
-  double* val = A.valuePtr();
-  std::fill(val, val + A.nonZeros(), 0.0);
-  auto interior = [&](int v) { return w.offsets[v + 1] > w.offsets[v]; };
-  auto unknown_of = [&](int v) {
-    const int p = to_pattern[v];
-    const int i = p >= 0 && p < static_cast<int>(unknown_.size()) ? unknown_[p] : -1;
-    if (i < 0)
-      throw InvalidInputError("TutteSolver::solve_subdisk: interior vertex " + std::to_string(v) +
-                              " is not an interior vertex of the pattern");
-    return i;
-  };
+  double* val = im.A.valuePtr();
+  std::fill(val, val + im.A.nonZeros(), 0.0);
   // Rows of the pattern's unknowns that are not interior here stay identity rows (x = 0).
   for (int i = 0; i < n; ++i) val[im.diag_pos[i]] = 1.0;
   Eigen::MatrixX2d rhs = Eigen::MatrixX2d::Zero(n, 2), x = Eigen::MatrixX2d::Zero(n, 2);
   for (int v = 0; v < nv; ++v) {
-    if (!interior(v)) continue;
-    const int i = unknown_of(v);
+    const int i = map.unknown[v];
+    if (i < 0) continue;
     x.row(i) = uv[v].transpose();
     for (int k = w.offsets[v]; k < w.offsets[v + 1]; ++k) {
-      const int nb = w.neighbors[k];
-      if (!interior(nb)) {
-        rhs.row(i) += w.values[k] * uv[nb].transpose();
-        continue;
-      }
-      const int j = unknown_of(nb);
-      const int* pos = std::find(inner + outer[i], inner + outer[i + 1], j);
-      if (pos == inner + outer[i + 1])
-        throw InvalidInputError("TutteSolver::solve_subdisk: edge " + std::to_string(v) + "-" +
-                                std::to_string(nb) + " is not in the pattern");
-      val[pos - inner] = -w.values[k];
+      const int p = map.entry_pos[k];
+      if (p >= 0) val[p] = -w.values[k];
+      else rhs.row(i) += w.values[k] * uv[w.neighbors[k]].transpose();
     }
   }
   solve_assembled(rhs, x);
   for (int v = 0; v < nv; ++v)
-    if (interior(v)) uv[v] = x.row(unknown_of(v)).transpose();
+    if (map.unknown[v] >= 0) uv[v] = x.row(map.unknown[v]).transpose();
 }
 
 void TutteSolver::solve_assembled(const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d& x) {

@@ -89,9 +89,11 @@ struct Chart {
 /// per-wedge stretch σ (yoshizawa.h: area-weighted face L2 around the wedge), maximum over wedges.
 /// Vertices next to a degenerate UV triangle (σ = inf: an extremity squeezed to nothing by the
 /// Tutte embedding) come first, the one farthest from the cut (the tip of the extremity) first.
-int worst_vertex(const Component& comp, const EdgeGraph& graph, const CutState& s,
+int worst_vertex(const Component& comp, const EdgeGraph& graph, CutState& s,
                  const std::vector<char>& on_cut) {
-  const std::vector<double> sigma = vertex_stretch(s.disk.disk, s.param.uv);
+  const std::vector<double> sigma = s.solve_state
+                                        ? result_vertex_stretch(s.disk.disk, *s.solve_state, s.param)
+                                        : vertex_stretch(s.disk.disk, s.param.uv);
   const int nv = comp.mesh.num_vertices();
   std::vector<double> per_vertex(nv, 0.0);
   bool any_inf = false;

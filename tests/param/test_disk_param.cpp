@@ -10,6 +10,7 @@
 #include "adaptex/param/cut.h"
 #include "adaptex/param/disk_param.h"
 #include "adaptex/param/stretch.h"
+#include "adaptex/param/yoshizawa.h"
 #include "disk_fixtures.h"
 
 using namespace adaptex;
@@ -251,4 +252,23 @@ TEST(DiskParam, SubdiskReusesTheSolverWithTheSameResult) {
                InvalidInputError);
   EXPECT_THROW(parameterize_subdisk(d.disk, d.boundary_loop, {}, *s0, cheap, nullptr),
                InvalidInputError);
+}
+
+TEST(DiskParam, ResultVertexStretchEqualsMeasuringTheResult) {
+  // σ of the returned uv from the run's own measurements (the best iterate's, also when the last
+  // iterate was worse), with 0, 1 and the full number of Yoshizawa iterations.
+  for (const auto& d : adaptex::test::test_disks()) {
+    for (int iterations : {0, 1, 30}) {
+      DiskParamOptions opt;
+      opt.max_iterations = iterations;
+      opt.yoshizawa = iterations > 0;
+      DiskParamStatePtr state;
+      const DiskParamResult r = parameterize_disk(d.mesh, {}, opt, &state);
+      const std::vector<double> expected = vertex_stretch(d.mesh, r.uv);
+      const std::vector<double> got = result_vertex_stretch(d.mesh, *state, r);
+      ASSERT_EQ(got.size(), expected.size());
+      for (size_t v = 0; v < got.size(); ++v)
+        ASSERT_EQ(got[v], expected[v]) << d.name << " iterations " << iterations << " vertex " << v;
+    }
+  }
 }

@@ -106,6 +106,12 @@ DiskParamResult parameterize_subdisk(const TriMesh& disk, const std::vector<int>
                                      const std::vector<int>& to_pattern, const DiskParamState& parent,
                                      const DiskParamOptions& options, DiskParamStatePtr* state);
 
+/// vertex_stretch(disk, result.uv) (yoshizawa.h: per-vertex σ) from what the run measured already
+/// (the Yoshizawa loop keeps σ of its best iterate); measured afresh when no Yoshizawa iteration ran.
+/// \pre \p result is the latest result of the run of \p state, on \p disk
+std::vector<double> result_vertex_stretch(const TriMesh& disk, DiskParamState& state,
+                                          const DiskParamResult& result);
+
 /// Continues a run of parameterize_disk() with \p options.max_iterations Yoshizawa iterations in
 /// total (those already done included). The result equals that of one parameterize_disk() call
 /// with \p options (up to the progress reports and the timings), because the Yoshizawa loop only

@@ -96,21 +96,31 @@ class TutteSolver {
   ///   solution (only with non-finite weights)
   void solve(const ConvexWeights& weights, std::vector<Vec2>& uv);
 
-  /// Solves the Tutte system of another disk whose interior vertices are interior vertices of the
-  /// pattern's disk, joined by the same edges: a disk cut from the same surface along a larger cut
-  /// (unwrap's cut augmentation). Its matrix is the pattern's with the rows of the pattern's
-  /// unknowns that are not interior here replaced by identity rows and the columns of those
-  /// unknowns zeroed, so the symbolic analysis (and the Klu pivot order) of the pattern is reused
-  /// instead of ordering and factorizing a new pattern; the solution is the same as that of a
-  /// TutteSolver built for the other disk (up to rounding). Interleaves freely with solve().
-  /// \param weights V' rows of the other disk (empty rows on its boundary).
+  /// Where the weight entries of another disk go in this solver's system (solve_subdisk()).
+  struct SubdiskMap {
+    std::vector<int> unknown;    ///< V': unknown of each interior vertex, -1 on the boundary.
+    std::vector<int> entry_pos;  ///< Per weight entry: position in the matrix; -1 for a boundary
+                                 ///< neighbour (right-hand side).
+  };
+  /// The SubdiskMap of another disk whose interior vertices are interior vertices of the pattern's
+  /// disk, joined by the same edges: a disk cut from the same surface along a larger cut (unwrap's
+  /// cut augmentation).
+  /// \param weights V' rows of the other disk (empty rows on its boundary); only the pattern is read.
   /// \param to_pattern V': the vertex of the pattern's disk of each interior vertex (others ignored).
-  /// \param uv V' positions: boundary entries are read, interior entries overwritten.
-  /// \throw InvalidInputError wrong sizes; an interior vertex or an edge between interior vertices
+  /// \throw InvalidInputError wrong size; an interior vertex or an edge between interior vertices
   ///   that the pattern does not have
+  SubdiskMap map_subdisk(const ConvexWeights& weights, const std::vector<int>& to_pattern) const;
+
+  /// Solves the Tutte system of the other disk of \p map. Its matrix is the pattern's with the rows
+  /// of the pattern's unknowns that are not interior there replaced by identity rows and their
+  /// columns zeroed, so the symbolic analysis (and the Klu pivot order) of the pattern is reused
+  /// instead of ordering and factorizing a new pattern; the solution is that of a TutteSolver built
+  /// for the other disk (up to rounding). Interleaves freely with solve().
+  /// \param weights weights with the pattern \p map was made for.
+  /// \param uv V' positions: boundary entries are read, interior entries overwritten.
+  /// \throw InvalidInputError sizes differ from map's
   /// \throw SolverError as solve()
-  void solve_subdisk(const ConvexWeights& weights, const std::vector<int>& to_pattern,
-                     std::vector<Vec2>& uv);
+  void solve_subdisk(const ConvexWeights& weights, const SubdiskMap& map, std::vector<Vec2>& uv);
 
   /// The backend in use (Auto resolved).
   Backend backend() const { return backend_; }
