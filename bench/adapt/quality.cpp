@@ -11,6 +11,8 @@
 //                         [--count N] [--seed S]
 //                         [--grid C,F] [--alpha A] [--beta B] [--schedule end|each-stroke]
 //                         [--update replay|resample] [--no-safeguard] [--no-refine] [--verbose]
+//                         [--charts single|auto] [--floor F] [--density-cells L] [--no-atlas]
+//                         [--refine-factor F]
 //
 // Mode names go to make_session_options() (parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
@@ -73,6 +75,11 @@ struct Args {
   double alpha = -1, beta = -1;
   std::string schedule = "end", update = "replay";
   bool safeguard = true, verbose = false;
+  std::string charts = "auto";  ///< --charts single|auto: the initial layout (unwrap's ChartMode).
+  double floor = -1;            ///< --floor: ErrorDensityOptions::floor (-1: the default).
+  int density_cells = -1;       ///< --density-cells: ErrorDensityOptions::cells (-1: the default).
+  bool atlas = true;            ///< --no-atlas: AdaptOptions::atlas_flow = false (one flow over the square).
+  double refine_factor = -1;    ///< --refine-factor: AdaptOptions::refine_max_face_factor (-1: default).
 };
 
 // ---- Mesh refinement switch (issue 12): the ONE place where this tool sets refinement on/off. ----
@@ -93,6 +100,10 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   PaintSessionOptions o = make_session_options(size, 4, m.name, a.grid, a.alpha, a.beta, a.schedule, a.update);
   o.safeguard = a.safeguard;
   set_refine(o, m.refine);
+  o.adapt.atlas_flow = a.atlas;
+  if (a.floor >= 0) o.adapt.density.floor = a.floor;
+  if (a.density_cells > 0) o.adapt.density.cells = a.density_cells;
+  if (a.refine_factor > 0) o.adapt.refine_max_face_factor = a.refine_factor;
   return o;
 }
 
@@ -129,6 +140,7 @@ Args parse_args(int argc, char** argv) {
     if (k == "--no-safeguard") { a.safeguard = false; continue; }
     if (k == "--no-refine") { no_refine = true; continue; }
     if (k == "--verbose") { a.verbose = true; continue; }
+    if (k == "--no-atlas") { a.atlas = false; continue; }
     if (i + 1 >= argc) throw std::invalid_argument(k + ": unknown option or missing value");
     const std::string v = argv[++i];
     if (k == "--meshes") a.meshes = split(v);
@@ -147,6 +159,10 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--beta") a.beta = std::stod(v);
     else if (k == "--schedule") a.schedule = v;
     else if (k == "--update") a.update = v;
+    else if (k == "--charts") a.charts = v;
+    else if (k == "--floor") a.floor = std::stod(v);
+    else if (k == "--density-cells") a.density_cells = std::stoi(v);
+    else if (k == "--refine-factor") a.refine_factor = std::stod(v);
     else throw std::invalid_argument(k + ": unknown option");
   }
   for (const auto& m : modes) {
@@ -159,6 +175,7 @@ Args parse_args(int argc, char** argv) {
     if (no_refine && colon == std::string::npos) s.label += ":no-refine";
     a.modes.push_back(s);
   }
+  if (a.charts != "single" && a.charts != "auto") throw std::invalid_argument("--charts: single or auto");
   for (int n : a.sizes)
     if (n < 8 || n > 4096) throw std::invalid_argument("--sizes: each N must be in [8, 4096] (4N is painted too)");
   for (const auto& k : a.kinds) (void)parse_stroke_kind(k);
@@ -292,7 +309,9 @@ int main(int argc, char** argv) {
   std::vector<CaseRecord> cases;
   for (const auto& [faces, path] : order) {
     const TriMesh mesh = read_mesh(path);
-    const Parameterization param = unwrap(mesh).param;
+    UnwrapOptions uo;
+    uo.charts = a.charts == "single" ? ChartMode::Single : ChartMode::Auto;
+    const Parameterization param = unwrap(mesh, uo).param;
     const std::string name = fs::path(path).stem().string();
     for (const auto& kind : a.kinds) {
       GenerateOptions go;

@@ -28,6 +28,8 @@ void validate(const AdaptOptions& o) {
   if (!(o.min_weight > 0 && o.min_weight <= 1)) throw InvalidInputError("min_weight must be in (0, 1]");
   if (!(o.epsilon_texels >= 0) || o.max_iterations < 0 || o.fine_max_iterations < 0)
     throw InvalidInputError("epsilon must be >= 0 and max_iterations >= 0");
+  if (!(o.chart_gutter_texels >= 0 && o.chart_gutter_texels <= 64))
+    throw InvalidInputError("chart_gutter_texels must be in [0, 64]");
   if (!(o.refine_tolerance_texels > 0) || o.refine_max_levels < 0 || !(o.refine_max_face_factor >= 1))
     throw InvalidInputError("refinement: tolerance must be > 0, levels >= 0 and the face factor >= 1");
 }

@@ -46,7 +46,8 @@ class DensityFlowWarp final : public WarpMethod {
       // Charts in disjoint boxes: re-pack them by density, then one flow per chart rectangle, with
       // the layout's own gutter (atlas_flow.h).
       ChartRepackOptions ro;
-      ro.padding = std::min(gap, 0.2);
+      const int texels = std::max(in.texture.width, in.texture.height);
+      ro.padding = std::min(std::max(gap, o.chart_gutter_texels / texels), 0.2);
       res.chart_moves = repack_charts_by_density(boxes, res.density, ro);
       res.grids = chart_flow_warps(res.chart_moves, res.density, o.flow, 8, &st);
     } else {

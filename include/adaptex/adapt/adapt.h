@@ -72,6 +72,10 @@ struct AdaptOptions {
   /// of the density, then one flow per chart rectangle (atlas_flow.h). false: one flow over the whole
   /// square, damped where charts would meet (kept for comparison; docs/error_model.md §6).
   bool atlas_flow = true;
+  /// atlas_flow: least gap between re-packed charts, in texels of the texture (the layout's own gap
+  /// is kept when it is larger). Bilinear lookup near a chart border reads the texels next to it, so
+  /// a gap below ~2 texels lets neighbouring charts bleed into each other at small texture sizes.
+  double chart_gutter_texels = 2.0;
   /// density-flow: refine triangles that are too large for the warp's variation (new vertices on the
   /// original faces; the surface is unchanged). false keeps the input's vertices (`--no-refine`).
   bool refine = true;
