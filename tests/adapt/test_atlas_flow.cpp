@@ -118,10 +118,28 @@ TEST(AtlasFlow, ChartMovesAndRectangleWarpsKeepEveryChartInItsRectangle) {
   EXPECT_EQ(w[0].blended(0.5).lo, w[0].lo);
 }
 
-/// Thin hard lines in one small region of a genus-2 surface, whose default layout has many charts.
+/// k x k spheres side by side: k² components, so `--charts single` gives k² charts whatever the
+/// automatic segmentation would choose.
+TriMesh sphere_grid(int k) {
+  TriMesh out;
+  const TriMesh s = shapes::sphere(24, 12);
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) {
+      const int base = out.num_vertices();
+      for (const Vec3& p : s.positions) out.positions.push_back(p + Vec3(3.0 * a, 3.0 * b, 0));
+      for (const Face& f : s.faces) out.faces.push_back({f[0] + base, f[1] + base, f[2] + base});
+    }
+  return out;
+}
+
+/// Thin hard lines in one small region of a 9-component mesh laid out as 9 charts.
 struct ManyChartLines {
-  TriMesh mesh = shapes::genus_surface(2);
-  Parameterization param = unwrap(mesh).param;
+  TriMesh mesh = sphere_grid(3);
+  Parameterization param = [this] {
+    UnwrapOptions uo;
+    uo.charts = ChartMode::Single;
+    return unwrap(mesh, uo).param;
+  }();
   StrokeFile strokes = [this] {
     GenerateOptions go;
     go.kind = StrokeKind::Lines;
@@ -155,9 +173,9 @@ struct ManyChartLines {
   }
 };
 
-TEST(AtlasFlow, ManyChartLayoutGainsFarMoreThanOneFlowOverTheSquare) {
+TEST(AtlasFlow, ManyChartLayoutGainsMoreThanOneFlowOverTheSquare) {
   const ManyChartLines c;
-  ASSERT_GT(c.param.num_charts, 4);
+  ASSERT_EQ(c.param.num_charts, 9);
   double psnr[2] = {0, 0};
   for (bool atlas : {true, false}) {
     AdaptOptions ao;
@@ -171,10 +189,11 @@ TEST(AtlasFlow, ManyChartLayoutGainsFarMoreThanOneFlowOverTheSquare) {
     EXPECT_EQ(st.degenerate, 0);
     EXPECT_EQ(count_overlapping_triangles(s->param()), 0);
   }
-  std::printf("genus-2 lines N=%d (%d charts): none %.2f dB, density-flow one flow %.2f dB, per chart %.2f dB\n", c.N,
+  std::printf("9-sphere lines N=%d (%d charts): none %.2f dB, density-flow one flow %.2f dB, per chart %.2f dB\n", c.N,
               c.param.num_charts, c.psnr_none, psnr[0], psnr[1]);
-  EXPECT_GT(psnr[1], c.psnr_none + 2.0);
-  EXPECT_GT(psnr[1], psnr[0] + 1.0);
+  // Measured: none 24.00 dB, one flow over the square 27.90, one flow per chart after re-packing 29.01.
+  EXPECT_GT(psnr[1], c.psnr_none + 3.0);
+  EXPECT_GT(psnr[1], psnr[0] + 0.5);
 }
 
 TEST(AtlasFlow, EveryChartEndsInsideItsNewRectangle) {
