@@ -13,13 +13,3 @@ pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
 # FFTW3 (DCT Poisson solve of the density-flow warp, src/adapt/density_flow.cpp).
 pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3)
 
-# SuiteSparse (CHOLMOD) ships no CMake config on Debian 12: locate it by hand.
-find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
-find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
-find_library(SUITESPARSE_CONFIG_LIBRARY suitesparseconfig REQUIRED)
-if(NOT TARGET adaptex_cholmod)
-  add_library(adaptex_cholmod INTERFACE)
-  target_include_directories(adaptex_cholmod SYSTEM INTERFACE ${CHOLMOD_INCLUDE_DIR})
-  target_link_libraries(adaptex_cholmod INTERFACE ${CHOLMOD_LIBRARY} ${SUITESPARSE_CONFIG_LIBRARY})
-  target_compile_definitions(adaptex_cholmod INTERFACE ADAPTEX_HAVE_CHOLMOD=1)
-endif()

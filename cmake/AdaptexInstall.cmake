@@ -1,6 +1,6 @@
 include(CMakePackageConfigHelpers)
 install(DIRECTORY include/adaptex DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(TARGETS adaptex adaptex_core adaptex_io adaptex_param adaptex_paint adaptex_adapt adaptex_cholmod
+install(TARGETS adaptex adaptex_core adaptex_io adaptex_param adaptex_paint adaptex_adapt
         EXPORT adaptexTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}

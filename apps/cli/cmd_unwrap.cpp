@@ -10,6 +10,7 @@
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
+#include "adaptex/core/timer.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/param/layout_image.h"
@@ -33,7 +34,6 @@ struct UnwrapArgs {
 };
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
   const auto t_start = Clock::now();
@@ -43,7 +43,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
   ReadReport rr;
   auto t0 = Clock::now();
   const TriMesh mesh = read_mesh(a.input, ro, &rr);
-  const double time_read = since(t0);
+  const double time_read = seconds_since(t0);
   for (const std::string& w : rr.warnings) ctx.warn(w);
   ctx.info("unwrap: " + a.input + ": " + std::to_string(mesh.num_vertices()) + " vertices, " +
            std::to_string(mesh.num_faces()) + " faces");
@@ -59,7 +59,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
     if (seen.find(phase) == seen.end()) {
       seen.emplace(phase);
       std::ostringstream line;
-      line << "unwrap: " << phase << " (" << std::fixed << std::setprecision(2) << since(t_start)
+      line << "unwrap: " << phase << " (" << std::fixed << std::setprecision(2) << seconds_since(t_start)
            << " s)";
       ctx.info(line.str());
     }
@@ -78,7 +78,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
     lo.size = a.layout_size;
     write_png(out.add(a.layout), render_layout(res.param, face_l2_stretch(mesh, res.param), lo));
   }
-  const double time_write = since(t0);
+  const double time_write = seconds_since(t0);
   if (!a.report.empty()) {
     nlohmann::ordered_json j;
     j["input"] = a.input;
@@ -115,7 +115,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
                  {"floater", r.time_floater}, {"yoshizawa", r.time_yoshizawa},
                  {"augment", r.time_augment}, {"pack", r.time_pack},
                  {"unwrap", r.time_total},    {"write", time_write},
-                 {"total", since(t_start)}};
+                 {"total", seconds_since(t_start)}};
     write_text(out, a.report, j.dump(2) + "\n");
   }
   out.commit();
@@ -124,7 +124,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
        << ", " << r.boundary_loops << " boundary loop(s), cut length " << r.cut_length
        << ", L2 stretch " << r.floater_l2 << " (Floater) -> " << r.final_l2 << ", L-inf "
        << r.final_linf << ", effective texel share " << std::setprecision(3)
-       << r.effective_texel_share << ", " << since(t_start) << " s";
+       << r.effective_texel_share << ", " << seconds_since(t_start) << " s";
   ctx.info(line.str());
 }
 

@@ -4,20 +4,11 @@
 #include <numeric>
 
 #include "adaptex/core/orientation.h"
+#include "adaptex/core/union_find.h"
 
 namespace adaptex {
 
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
 
 /// Corner index 3f+k of vertex v in face f (v must be a corner of f).
 int corner_index(const TriMesh& mesh, int f, int v) {

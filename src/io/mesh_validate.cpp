@@ -17,6 +17,7 @@
 #include "adaptex/core/orientation.h"
 #include "adaptex/core/pinched.h"
 #include "adaptex/core/topology.h"
+#include "adaptex/core/union_find.h"
 #include "mesh_soup.h"
 
 namespace adaptex {
@@ -34,21 +35,6 @@ std::string format_point(const Vec3& p) {
 }
 
 namespace {
-
-/// Disjoint sets with path halving.
-struct DisjointSets {
-  std::vector<int> parent;
-  explicit DisjointSets(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
-};
 
 /// Key of a position for welding: -0.0 and 0.0 are the same position.
 struct PositionKey {
@@ -97,7 +83,7 @@ void filter_faces(TriMesh& mesh, const std::vector<char>& keep, std::vector<int>
 int split_nonmanifold(TriMesh& mesh, std::vector<int>& vertex_source) {
   const int nf = mesh.num_faces();
   const EdgeConnectivity ec = build_edges(mesh);
-  DisjointSets corners(3 * nf);
+  UnionFind corners(3 * nf);
   auto corner_of = [&](int f, int v) {
     const Face& t = mesh.faces[f];
     return 3 * f + (t[0] == v ? 0 : t[1] == v ? 1 : 2);

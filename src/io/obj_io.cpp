@@ -17,10 +17,10 @@
 #include <cmath>
 #include <fstream>
 #include <map>
-#include <numeric>
 #include <tuple>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/union_find.h"
 #include "mesh_soup.h"
 
 namespace adaptex {
@@ -185,20 +185,15 @@ TexturedMesh read_textured_obj(const std::filesystem::path& path, const ReadOpti
     for (int k = 0; k < 3; ++k)
       param.uv_faces[f][k] = wedge_of.at({tex[sm.face_corners[f][k]], out.mesh.faces[f][k]});
   // Charts: faces connected through shared wedges.
-  std::vector<int> parent(param.num_wedges());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
+  UnionFind wedges(param.num_wedges());
   for (const Face& t : param.uv_faces) {
-    parent[find(t[1])] = find(t[0]);
-    parent[find(t[2])] = find(t[0]);
+    wedges.unite(t[0], t[1]);
+    wedges.unite(t[0], t[2]);
   }
   std::vector<int> chart_of_root(param.num_wedges(), -1);
   param.face_chart.resize(nf);
   for (int f = 0; f < nf; ++f) {
-    int& c = chart_of_root[find(param.uv_faces[f][0])];
+    int& c = chart_of_root[wedges.find(param.uv_faces[f][0])];
     if (c < 0) c = param.num_charts++;
     param.face_chart[f] = c;
   }

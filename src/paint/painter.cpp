@@ -21,10 +21,7 @@
 #include "adaptex/core/limits.h"
 #include "adaptex/paint/padding.h"
 #include "texel_grid.h"
-#if __has_include("adaptex/paint/decal.h")
 #include "adaptex/paint/decal.h"
-#define ADAPTEX_HAVE_DECAL 1
-#endif
 
 namespace adaptex {
 
@@ -86,9 +83,7 @@ struct Painter::Impl {
   Rect dirty;
   bool painted = false;
   long long updates = 0;
-#ifdef ADAPTEX_HAVE_DECAL
   std::unique_ptr<DecalProjector> projector;
-#endif
 
   Impl(const TriMesh &m, const Parameterization &p, const PainterOptions &o,
        const Vec3 &bg)
@@ -238,7 +233,6 @@ struct Painter::Impl {
 
   void decal_stroke(const Stroke &s) {
     validate_stroke(s, "painter");
-#ifdef ADAPTEX_HAVE_DECAL
     if (!projector)
       projector = std::make_unique<DecalProjector>(mesh);
     tbb::combinable<Rect> rects;
@@ -263,10 +257,6 @@ struct Painter::Impl {
     rects.combine_each([&](const Rect &r) { dirty.add(r); });
     updates += static_cast<long long>(slot_texel.size());
     painted = true;
-#else
-    (void)s;
-    throw Error("decal strokes need the decal module");
-#endif
   }
 
   void refresh() {

@@ -12,10 +12,7 @@
 
 #include "adaptex/core/errors.h"
 #include "cell_hash.h"
-#if __has_include("adaptex/paint/decal.h")
 #include "adaptex/paint/decal.h"
-#define ADAPTEX_HAVE_DECAL 1
-#endif
 
 namespace adaptex {
 
@@ -54,9 +51,7 @@ struct StrokeSignal::Impl {
   std::vector<Level> levels;
   std::vector<double> r2, inv_r, hard, opac;
   std::vector<int> decals;  // stroke indices of decal strokes, ascending
-#ifdef ADAPTEX_HAVE_DECAL
   std::unique_ptr<DecalProjector> projector;
-#endif
 
   Impl(const TriMesh& m, const StrokeFile& f) : mesh(m), file(f) {
     const int S = static_cast<int>(f.strokes.size());
@@ -86,11 +81,7 @@ struct StrokeSignal::Impl {
       by_level[static_cast<int>(std::ceil(std::log2(2.0 * st.radius)))].push_back(s);
     }
     if (!decals.empty()) {
-#ifdef ADAPTEX_HAVE_DECAL
       projector = std::make_unique<DecalProjector>(m);
-#else
-      throw Error("decal strokes need the decal module");
-#endif
     }
     if (by_level.empty()) return;
     const Vec3 origin = lo - Vec3::Constant(rmax);
@@ -169,13 +160,9 @@ struct StrokeSignal::Impl {
     size_t h = 0, d = 0;
     while (h < hits.size() || d < decals.size()) {
       if (d < decals.size() && (h == hits.size() || decals[d] < hits[h].first)) {
-#ifdef ADAPTEX_HAVE_DECAL
         if (face < 0) throw InvalidInputError("stroke signal: decal strokes need the face of every point");
         const Eigen::Vector4d v = projector->evaluate(file.strokes[decals[d]], p, face);
         C = C * (1 - v[3]) + v.head<3>() * v[3];
-#else
-        (void)face;
-#endif
         ++d;
       } else {
         const double a = hits[h].second;
