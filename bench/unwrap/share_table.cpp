@@ -7,7 +7,7 @@
 //   bench_share_table [--single] [--detail] [--normal-weight W] [--max-charts K] [--chart-padding P] NAME...
 //
 // NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
-// code: genusG (genus_surface(G)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
+// code: genusG (genus_surface(G)), sphereS,T (sphere(S, T)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
 // pinched hole), pinched_annulus, tiny200 (tiny_components(200)), 1M (torus(2000, 250)).
 // --single also prints the share of one chart per component; --detail one line per chart.
 #include <algorithm>
@@ -33,6 +33,8 @@ using namespace adaptex;
 TriMesh make_mesh(const std::string& name) {
   if (name.rfind("genus", 0) == 0) return shapes::genus_surface(std::stoi(name.substr(5)));
   if (name.rfind("holes", 0) == 0) return shapes::sphere_with_holes(std::stoi(name.substr(5)));
+  if (name.rfind("sphere", 0) == 0)  // sphereS,T: sphere(S, T)
+    return shapes::sphere(std::stoi(name.substr(6)), std::stoi(name.substr(name.find(',') + 1)));
   if (name == "pinched") return shapes::with_pinched_hole(shapes::genus_surface(3));
   if (name == "pinched_annulus") return shapes::pinched_annulus(8);
   if (name == "tiny200") return shapes::tiny_components(200);
