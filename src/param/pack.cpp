@@ -87,38 +87,50 @@ class MaxRects {
  private:
   static constexpr double kNone = std::numeric_limits<double>::max();
 
+  static bool inside(const Box& a, const Box& b) {
+    return a.x >= b.x && a.y >= b.y && a.x + a.w <= b.x + b.w && a.y + a.h <= b.y + b.h;
+  }
+
+  /// Splits every free box that \p p intersects into its maximal remainders. Boxes untouched by
+  /// \p p were maximal and pairwise non-nested before, so only the new remainders need the
+  /// containment test (against all boxes), and old boxes only against the new ones.
   void split(const Box& p) {
-    std::vector<Box> next;
-    next.reserve(free_.size() + 8);
+    std::vector<Box> old, fresh;
+    old.reserve(free_.size());
     for (const Box& f : free_) {
       if (p.x >= f.x + f.w || p.x + p.w <= f.x || p.y >= f.y + f.h || p.y + p.h <= f.y) {
-        next.push_back(f);
+        old.push_back(f);
         continue;
       }
-      if (p.x > f.x) next.push_back({f.x, f.y, p.x - f.x, f.h});
-      if (p.x + p.w < f.x + f.w) next.push_back({p.x + p.w, f.y, f.x + f.w - p.x - p.w, f.h});
-      if (p.y > f.y) next.push_back({f.x, f.y, f.w, p.y - f.y});
-      if (p.y + p.h < f.y + f.h) next.push_back({f.x, p.y + p.h, f.w, f.y + f.h - p.y - p.h});
+      if (p.x > f.x) fresh.push_back({f.x, f.y, p.x - f.x, f.h});
+      if (p.x + p.w < f.x + f.w) fresh.push_back({p.x + p.w, f.y, f.x + f.w - p.x - p.w, f.h});
+      if (p.y > f.y) fresh.push_back({f.x, f.y, f.w, p.y - f.y});
+      if (p.y + p.h < f.y + f.h) fresh.push_back({f.x, p.y + p.h, f.w, f.y + f.h - p.y - p.h});
     }
-    // Drop the boxes contained in another one (keep one copy of equal boxes).
-    std::vector<char> gone(next.size(), 0);
-    for (size_t i = 0; i < next.size(); ++i)
-      for (size_t j = 0; j < next.size() && !gone[i]; ++j) {
-        if (i == j || gone[j]) continue;
-        const Box &a = next[i], &b = next[j];
-        if (a.x >= b.x && a.y >= b.y && a.x + a.w <= b.x + b.w && a.y + a.h <= b.y + b.h) gone[i] = 1;
-      }
     free_.clear();
-    for (size_t i = 0; i < next.size(); ++i)
-      if (!gone[i]) free_.push_back(next[i]);
+    for (const Box& o : old) {
+      bool gone = false;
+      for (const Box& n : fresh) gone = gone || inside(o, n);
+      if (!gone) free_.push_back(o);
+    }
+    // A new box goes if it lies in an old box or in another new one (of two equal ones the
+    // first is kept).
+    for (size_t i = 0; i < fresh.size(); ++i) {
+      bool gone = false;
+      for (const Box& o : old) gone = gone || inside(fresh[i], o);
+      for (size_t j = 0; j < fresh.size() && !gone; ++j)
+        gone = j != i && inside(fresh[i], fresh[j]) && !(j > i && inside(fresh[j], fresh[i]));
+      if (!gone) free_.push_back(fresh[i]);
+    }
   }
 
   Rule rule_;
   std::vector<Box> free_;
 };
 
-/// Above this many rectangles only the shelf packing is tried (MaxRects costs O(n * free boxes^2)).
-constexpr int kMaxRectsLimit = 300;
+/// Above this many rectangles only the shelf packing is tried (all MaxRects strategies together
+/// take about 0.4 s at 200 rectangles).
+constexpr int kMaxRectsLimit = 200;
 
 /// One packing strategy: an order of the rectangles and a placement method.
 struct Strategy {
@@ -168,8 +180,11 @@ bool pack_with(const std::vector<Vec2>& size, const Strategy& s, double sigma, d
 /// accuracy 1e-4), or 0 if it does not fit at any scale.
 double best_scale(const std::vector<Vec2>& size, const Strategy& s, double gap, bool may_turn) {
   if (!pack_with(size, s, 1e-9, gap, may_turn, nullptr, nullptr)) return 0;
-  double lo = 1e-9, hi = 1.0;
-  // No rectangle is larger than 1 (sizes are normalized by the largest side): sigma <= 1.
+  // No rectangle is larger than 1 (sizes are normalized by the largest side), and the rectangles
+  // cannot cover more than the square: sigma <= min(1, 1 / sqrt(sum of areas)).
+  double area = 0;
+  for (const Vec2& r : size) area += r.x() * r.y();
+  double lo = 1e-9, hi = std::min(1.0, 1.0 / std::sqrt(area));
   if (pack_with(size, s, hi, gap, may_turn, nullptr, nullptr)) return hi;
   while (hi - lo > 1e-4 * hi) {
     const double mid = 0.5 * (lo + hi);

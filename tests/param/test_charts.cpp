@@ -155,7 +155,7 @@ TEST(Pack, RectanglesAreDisjointPaddedInsideAndFillTheSquare) {
         }
       }
       // MaxRects fills most of the square for mixed shapes (the shelf packing alone reached
-      // 0.69-0.79 on chart rectangles); above 300 rectangles only shelves are tried.
+      // 0.69-0.79 on chart rectangles); above 200 rectangles only shelves are tried.
       EXPECT_GT(used, n <= 5 ? 0.5 : n <= 64 ? 0.8 : 0.7);
     }
   // A single rectangle fills the unit square, whatever its shape.

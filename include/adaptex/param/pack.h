@@ -39,7 +39,7 @@ struct RectPlacement {
 /// has the shape of \p sizes[i] (width, height; only the ratios between all the sizes matter), all
 /// scaled by the same factor, the largest at which one of these packings fits with gap \p padding
 /// between rectangles and to the border (bisection on the factor, relative accuracy 1e-4): a shelf
-/// packing (tallest first, rows left to right) and, for at most 300 rectangles, MaxRects (Jylänki
+/// packing (tallest first, rows left to right) and, for at most 200 rectangles, MaxRects (Jylänki
 /// 2010, "A thousand ways to pack the bin") with the bottom-left and the best-short-side-fit rules,
 /// each with the rectangles sorted by height, area, longest side and width. If the gaps alone do
 /// not fit (thousands of rectangles), the gap is halved until they do. A single rectangle fills the
