@@ -278,15 +278,15 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
 std::pair<double, double> best_aspect(const Chart& chart) {
   const TriMesh& disk = chart.state.disk.disk;
   const std::vector<Vec2>& uv = chart.state.param.uv;
-  double best_a = 1.0, best_l2 = measure_stretch(disk, uv).l2;
-  std::vector<Vec2> scaled(uv.size());
-  for (int i = -8; i <= 8; ++i) {
-    if (i == 0) continue;
-    const double a = std::pow(4.0, i / 8.0), sx = std::sqrt(a);
-    for (size_t w = 0; w < uv.size(); ++w) scaled[w] = Vec2(uv[w].x() * sx, uv[w].y() / sx);
-    const double l2 = measure_stretch(disk, scaled).l2;
-    if (l2 < best_l2) best_l2 = l2, best_a = a;
-  }
+  // The chart's own L2 (parameterize_disk() measured it on this uv), then the other 16 aspects in one
+  // pass over the faces (closed form, stretch.h).
+  double best_a = 1.0, best_l2 = chart.state.param.final_l2;
+  std::vector<double> aspects;
+  for (int i = -8; i <= 8; ++i)
+    if (i != 0) aspects.push_back(std::pow(4.0, i / 8.0));
+  const std::vector<double> l2 = l2_stretch_of_aspects(disk, uv, aspects);
+  for (size_t i = 0; i < aspects.size(); ++i)
+    if (l2[i] < best_l2) best_l2 = l2[i], best_a = aspects[i];
   return {best_a, best_l2};
 }
 
