@@ -278,16 +278,21 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
 std::pair<double, double> best_aspect(const Chart& chart) {
   const TriMesh& disk = chart.state.disk.disk;
   const std::vector<Vec2>& uv = chart.state.param.uv;
-  // The chart's own L2 (parameterize_disk() measured it on this uv), then the other 16 aspects in one
-  // pass over the faces (closed form, stretch.h).
-  double best_a = 1.0, best_l2 = chart.state.param.final_l2;
+  // The aspect is chosen on the closed form of the L2 of all 17 aspects (one pass over the faces,
+  // stretch.h); the L2 returned is measured (measure_stretch(), as parameterize_disk() measured the
+  // chart's own L2 for a = 1), so the rectangle sizes do not change by rounding: the packing
+  // reacts to the last bit of a size.
   std::vector<double> aspects;
-  for (int i = -8; i <= 8; ++i)
-    if (i != 0) aspects.push_back(std::pow(4.0, i / 8.0));
+  for (int i = -8; i <= 8; ++i) aspects.push_back(std::pow(4.0, i / 8.0));
   const std::vector<double> l2 = l2_stretch_of_aspects(disk, uv, aspects);
+  size_t best = 8;  // a = 1
   for (size_t i = 0; i < aspects.size(); ++i)
-    if (l2[i] < best_l2) best_l2 = l2[i], best_a = aspects[i];
-  return {best_a, best_l2};
+    if (i != 8 && l2[i] < l2[best]) best = i;
+  if (best == 8) return {1.0, chart.state.param.final_l2};
+  const double sx = std::sqrt(aspects[best]);
+  std::vector<Vec2> scaled(uv.size());
+  for (size_t w = 0; w < uv.size(); ++w) scaled[w] = Vec2(uv[w].x() * sx, uv[w].y() / sx);
+  return {aspects[best], measure_stretch(disk, scaled).l2};
 }
 
 /// Packs the charts of \p pieces with gap \p padding and writes the layout and the layout figures
