@@ -45,6 +45,8 @@ struct DiskParamState {
   /// False: the solver was built for this disk. True: this disk is a sub-disk of the solver's
   /// (TutteSolver::solve_subdisk() with sub_map).
   bool subdisk = false;
+  /// The Floater weights of the solver's disk (before Yoshizawa), shared along sub-disks.
+  std::shared_ptr<const ConvexWeights> pattern_weights;
   TutteSolver::SubdiskMap sub_map;  ///< See subdisk.
   int fallbacks0 = 0;          ///< solver->fallbacks() when this run started.
   bool floater_ok = false;     ///< The Floater embedding has finite L2 (else Yoshizawa never runs).
@@ -125,10 +127,12 @@ void run_yoshizawa(const TriMesh& disk, DiskParamState& s, const DiskParamOption
 }
 
 /// The Floater embedding of \p disk into res; the weights and solver into \p s. With \p parent,
-/// the disk is a sub-disk of the solver of \p parent (see parameterize_subdisk()).
+/// the disk is a sub-disk of the solver of \p parent (see parameterize_subdisk()); without it,
+/// \p keep_pattern keeps a copy of the weights for later sub-disks.
 DiskParamResult floater_embedding(const TriMesh& disk, const std::vector<int>& boundary_loop,
                                   const DiskParamOptions& options, DiskParamState& s,
-                                  const DiskParamState* parent, const std::vector<int>* to_pattern) {
+                                  const DiskParamState* parent, const std::vector<int>* to_pattern,
+                                  bool keep_pattern) {
   if (disk.num_faces() == 0) throw TopologyError("parameterize_disk: mesh has no faces");
   const auto t0 = std::chrono::steady_clock::now();
   report_progress(options.progress, "floater", 0.0);
@@ -147,13 +151,19 @@ DiskParamResult floater_embedding(const TriMesh& disk, const std::vector<int>& b
     is_boundary[boundary.loop[i]] = 1;
     res.uv[boundary.loop[i]] = boundary.uv[i];
   }
-  s.weights = compute_embedding_weights(disk, is_boundary, options.weights);
-  if (parent && parent->solver->backend() != TutteSolver::Backend::Multigrid) {
+  if (parent && parent->pattern_weights) {
+    s.weights = compute_subdisk_weights(disk, is_boundary, options.weights,
+                                        *parent->pattern_weights, *to_pattern);
     s.solver = parent->solver;
+    s.pattern_weights = parent->pattern_weights;
     s.sub_map = s.solver->map_subdisk(s.weights, *to_pattern);
     s.subdisk = true;
   } else {
+    s.weights = compute_embedding_weights(disk, is_boundary, options.weights);
     s.solver = std::make_shared<TutteSolver>(s.weights, is_boundary, options.backend);
+    // Kept for sub-disks only when they can use this solver (a state is returned, direct backend).
+    if (keep_pattern && s.solver->backend() != TutteSolver::Backend::Multigrid)
+      s.pattern_weights = std::make_shared<const ConvexWeights>(s.weights);
   }
   s.solver->set_max_iterations(options.max_solver_iterations);
   s.fallbacks0 = s.solver->fallbacks();
@@ -175,7 +185,8 @@ DiskParamResult floater_embedding(const TriMesh& disk, const std::vector<int>& b
 DiskParamResult parameterize_disk(const TriMesh& disk, const std::vector<int>& boundary_loop,
                                   const DiskParamOptions& options, DiskParamStatePtr* state) {
   DiskParamStatePtr s(new DiskParamState);
-  DiskParamResult res = floater_embedding(disk, boundary_loop, options, *s, nullptr, nullptr);
+  DiskParamResult res =
+      floater_embedding(disk, boundary_loop, options, *s, nullptr, nullptr, state != nullptr);
   run_yoshizawa(disk, *s, options, res);
   if (state) *state = std::move(s);
   return res;
@@ -194,7 +205,8 @@ DiskParamResult parameterize_subdisk(const TriMesh& disk, const std::vector<int>
                             std::to_string(to_pattern.size()) + " entries for " +
                             std::to_string(disk.num_vertices()) + " vertices");
   DiskParamStatePtr s(new DiskParamState);
-  DiskParamResult res = floater_embedding(disk, boundary_loop, options, *s, &parent, &to_pattern);
+  DiskParamResult res =
+      floater_embedding(disk, boundary_loop, options, *s, &parent, &to_pattern, false);
   run_yoshizawa(disk, *s, options, res);
   if (state) *state = std::move(s);
   return res;

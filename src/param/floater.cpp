@@ -175,8 +175,29 @@ bool shape_preserving_row(const TriMesh& m, int v, const std::vector<int>& ring,
 
 }  // namespace
 
-ConvexWeights compute_embedding_weights(const TriMesh& disk, const std::vector<char>& is_boundary,
-                                        EmbeddingWeights weights) {
+namespace {
+
+/// True when row \p p of \p pattern is the row of sub-disk vertex v with ring \p ring: the same
+/// length and, at every position, the same vertex wherever the ring vertex is interior in the
+/// sub-disk (at least one such position, which fixes the ring's rotation).
+bool row_lines_up(const ConvexWeights& pattern, int p, const std::vector<int>& ring,
+                  const std::vector<char>& is_boundary, const std::vector<int>& to_pattern) {
+  if (p < 0 || p >= pattern.num_vertices()) return false;
+  const int b = pattern.offsets[p];
+  if (pattern.offsets[p + 1] - b != static_cast<int>(ring.size())) return false;
+  bool any = false;
+  for (size_t i = 0; i < ring.size(); ++i) {
+    if (is_boundary[ring[i]]) continue;
+    if (to_pattern[ring[i]] != pattern.neighbors[b + static_cast<int>(i)]) return false;
+    any = true;
+  }
+  return any;
+}
+
+/// compute_embedding_weights(); with \p pattern, rows that line up with it are copied.
+ConvexWeights embedding_weights(const TriMesh& disk, const std::vector<char>& is_boundary,
+                                EmbeddingWeights weights, const ConvexWeights* pattern,
+                                const std::vector<int>* to_pattern) {
   const int nv = disk.num_vertices();
   const CornerPairs cp = corner_pairs(disk);
   ConvexWeights w;
@@ -199,6 +220,11 @@ ConvexWeights compute_embedding_weights(const TriMesh& disk, const std::vector<c
       }
       double* out = w.values.data() + w.offsets[v];
       std::copy(ring.begin(), ring.end(), w.neighbors.begin() + w.offsets[v]);
+      if (pattern && row_lines_up(*pattern, (*to_pattern)[v], ring, is_boundary, *to_pattern)) {
+        const int b = pattern->offsets[(*to_pattern)[v]];
+        std::copy(pattern->values.begin() + b, pattern->values.begin() + b + ring.size(), out);
+        continue;
+      }
       bool ok = weights == EmbeddingWeights::ShapePreserving &&
                 shape_preserving_row(disk, v, ring, out, polar, phi);
       if (!ok) ok = mean_value_row(disk, v, ring, out, len, th);
@@ -211,6 +237,23 @@ ConvexWeights compute_embedding_weights(const TriMesh& disk, const std::vector<c
     throw TopologyError("interior vertex " + std::to_string(bad_vertex.load()) +
                         " has an open or non-manifold one-ring; the mesh is not a disk");
   return w;
+}
+
+}  // namespace
+
+ConvexWeights compute_embedding_weights(const TriMesh& disk, const std::vector<char>& is_boundary,
+                                        EmbeddingWeights weights) {
+  return embedding_weights(disk, is_boundary, weights, nullptr, nullptr);
+}
+
+ConvexWeights compute_subdisk_weights(const TriMesh& disk, const std::vector<char>& is_boundary,
+                                      EmbeddingWeights weights, const ConvexWeights& pattern,
+                                      const std::vector<int>& to_pattern) {
+  if (to_pattern.size() != is_boundary.size() || static_cast<int>(to_pattern.size()) != disk.num_vertices())
+    throw InvalidInputError("compute_subdisk_weights: to_pattern has " +
+                            std::to_string(to_pattern.size()) + " entries for " +
+                            std::to_string(disk.num_vertices()) + " vertices");
+  return embedding_weights(disk, is_boundary, weights, &pattern, &to_pattern);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -194,6 +194,24 @@ std::vector<int> map_to_pattern(const SlicedDisk& pattern, const SlicedDisk& sub
   return out;
 }
 
+/// icosphere(3) with its edges, edge graph, initial cut and the disk of that cut.
+struct CutSphere {
+  TriMesh m = shapes::icosphere(3);
+  EdgeConnectivity ec = build_edges(m);
+  EdgeGraph graph = build_edge_graph(m, ec);
+  std::vector<char> cut = initial_cut(m, ec, graph);
+  SlicedDisk d0 = slice_along_cut(m, ec, cut);
+};
+
+/// Adds the shortest path from the vertex farthest from the cut to the cut (the GGH augmentation step).
+void add_farthest_path(const TriMesh& m, const EdgeConnectivity& ec, const EdgeGraph& graph,
+                       std::vector<char>& cut) {
+  const std::vector<char> on_cut = cut_vertices(m, ec, cut);
+  const std::vector<double> dist = distance_to_cut(graph, on_cut);
+  const int from = static_cast<int>(std::max_element(dist.begin(), dist.end()) - dist.begin());
+  for (int e : shortest_path_to_cut(graph, on_cut, from)) cut[e] = 1;
+}
+
 double max_uv_difference(const std::vector<Vec2>& a, const std::vector<Vec2>& b) {
   double d = 0;
   for (size_t v = 0; v < a.size(); ++v) d = std::max(d, (a[v] - b[v]).cwiseAbs().maxCoeff());
@@ -207,28 +225,21 @@ TEST(DiskParam, SubdiskReusesTheSolverWithTheSameResult) {
   // paths (GGH 2002). parameterize_subdisk() solves the larger cuts' disks with the first disk's
   // factorized system (identity rows for the vertices that joined the cut) and must give the
   // layout of a fresh parameterize_disk() of the same disk.
-  const TriMesh m = shapes::icosphere(3);
-  const EdgeConnectivity ec = build_edges(m);
-  const EdgeGraph graph = build_edge_graph(m, ec);
-  std::vector<char> cut = initial_cut(m, ec, graph);
-  const SlicedDisk d0 = slice_along_cut(m, ec, cut);
+  CutSphere f;
   DiskParamOptions cheap;
   cheap.weights = EmbeddingWeights::MeanValue;
   cheap.max_iterations = 1;
   DiskParamStatePtr s0;
-  parameterize_disk(d0.disk, d0.boundary_loop, cheap, &s0);
+  parameterize_disk(f.d0.disk, f.d0.boundary_loop, cheap, &s0);
   ASSERT_TRUE(s0);
   DiskParamOptions full = cheap;
   full.max_iterations = 30;
   const DiskParamState* parent = s0.get();
   DiskParamStatePtr s1, s2;
   for (int step = 0; step < 2; ++step) {
-    const std::vector<char> on_cut = cut_vertices(m, ec, cut);
-    const std::vector<double> dist = distance_to_cut(graph, on_cut);
-    const int from = static_cast<int>(std::max_element(dist.begin(), dist.end()) - dist.begin());
-    for (int e : shortest_path_to_cut(graph, on_cut, from)) cut[e] = 1;
-    const SlicedDisk d = slice_along_cut(m, ec, cut);
-    const std::vector<int> to_pattern = map_to_pattern(d0, d, m.num_vertices());
+    add_farthest_path(f.m, f.ec, f.graph, f.cut);
+    const SlicedDisk d = slice_along_cut(f.m, f.ec, f.cut);
+    const std::vector<int> to_pattern = map_to_pattern(f.d0, d, f.m.num_vertices());
     DiskParamStatePtr& s = step == 0 ? s1 : s2;
     const DiskParamResult sub = parameterize_subdisk(d.disk, d.boundary_loop, to_pattern, *parent,
                                                      cheap, &s);
@@ -246,7 +257,7 @@ TEST(DiskParam, SubdiskReusesTheSolverWithTheSameResult) {
     parent = s.get();
   }
   // A map that sends interior vertices nowhere, or the wrong size, is refused.
-  const SlicedDisk d = slice_along_cut(m, ec, cut);
+  const SlicedDisk d = slice_along_cut(f.m, f.ec, f.cut);
   EXPECT_THROW(parameterize_subdisk(d.disk, d.boundary_loop, std::vector<int>(d.disk.num_vertices(), -1),
                                     *s0, cheap, nullptr),
                InvalidInputError);
@@ -271,4 +282,46 @@ TEST(DiskParam, ResultVertexStretchEqualsMeasuringTheResult) {
         ASSERT_EQ(got[v], expected[v]) << d.name << " iterations " << iterations << " vertex " << v;
     }
   }
+}
+
+TEST(DiskParam, SubdiskWeightsAreTheRowsOfTheFirstDisk) {
+  // A vertex inside both disks keeps its closed one-ring, so compute_subdisk_weights() copies its
+  // row from the first disk's weights; the result must equal computing the sub-disk's weights.
+  CutSphere f;
+  add_farthest_path(f.m, f.ec, f.graph, f.cut);
+  const SlicedDisk d1 = slice_along_cut(f.m, f.ec, f.cut);
+  auto boundary_flags = [](const SlicedDisk& d) {
+    std::vector<char> b(d.disk.num_vertices(), 0);
+    for (int v : d.boundary_loop) b[v] = 1;
+    return b;
+  };
+  const std::vector<char> b0 = boundary_flags(f.d0), b1 = boundary_flags(d1);
+  const std::vector<int> to_pattern = map_to_pattern(f.d0, d1, f.m.num_vertices());
+  for (EmbeddingWeights kind : {EmbeddingWeights::MeanValue, EmbeddingWeights::ShapePreserving}) {
+    const ConvexWeights w0 = compute_embedding_weights(f.d0.disk, b0, kind);
+    const ConvexWeights w1 = compute_embedding_weights(d1.disk, b1, kind);
+    const ConvexWeights copied = compute_subdisk_weights(d1.disk, b1, kind, w0, to_pattern);
+    EXPECT_EQ(copied.offsets, w1.offsets);
+    EXPECT_EQ(copied.neighbors, w1.neighbors);
+    EXPECT_EQ(copied.values, w1.values);
+    // The rows are really taken from the pattern: with doubled pattern values, the rows of
+    // vertices with an interior neighbour come out doubled.
+    ConvexWeights doubled = w0;
+    for (double& x : doubled.values) x *= 2;
+    const ConvexWeights from_doubled = compute_subdisk_weights(d1.disk, b1, kind, doubled, to_pattern);
+    int rows = 0, copied_rows = 0;
+    for (int v = 0; v < w1.num_vertices(); ++v) {
+      if (w1.offsets[v + 1] == w1.offsets[v]) continue;
+      ++rows;
+      bool all_doubled = true;
+      for (int k = w1.offsets[v]; k < w1.offsets[v + 1]; ++k)
+        all_doubled = all_doubled && from_doubled.values[k] == 2 * w1.values[k];
+      copied_rows += all_doubled;
+    }
+    EXPECT_GT(copied_rows, 0.9 * rows);
+  }
+  EXPECT_THROW(compute_subdisk_weights(d1.disk, b1, EmbeddingWeights::MeanValue,
+                                       compute_embedding_weights(f.d0.disk, b0, EmbeddingWeights::MeanValue),
+                                       {}),
+               InvalidInputError);
 }

@@ -61,6 +61,22 @@ DiskBoundary map_boundary_to_square(const TriMesh& disk, const std::vector<int>&
 ConvexWeights compute_embedding_weights(const TriMesh& disk, const std::vector<char>& is_boundary,
                                         EmbeddingWeights weights);
 
+/// compute_embedding_weights() of a disk cut from the same surface as \p pattern's disk along a
+/// larger cut (TutteSolver::map_subdisk's situation). A row depends only on its vertex's closed
+/// one-ring, which every interior vertex of the sub-disk keeps with the same faces in the same order,
+/// so its row is copied from \p pattern when the rows line up (same length, same interior
+/// neighbours at the same positions); otherwise it is computed. Same result as
+/// compute_embedding_weights(disk, is_boundary, weights) when \p pattern was computed by it with
+/// the same \p weights.
+/// \param pattern the weights of the other disk (before any Yoshizawa re-weighting).
+/// \param to_pattern V: the vertex of the other disk of each interior vertex (others ignored).
+/// \pre as compute_embedding_weights()
+/// \throw InvalidInputError to_pattern has the wrong size
+/// \throw TopologyError as compute_embedding_weights()
+ConvexWeights compute_subdisk_weights(const TriMesh& disk, const std::vector<char>& is_boundary,
+                                      EmbeddingWeights weights, const ConvexWeights& pattern,
+                                      const std::vector<int>& to_pattern);
+
 /// Sparse solver of the Tutte system for a fixed sparsity pattern. The symbolic analysis (fill-reducing
 /// ordering) is done once; solve() refactorizes numerically for new weights with the same pattern, so
 /// the Yoshizawa iterations only pay the numeric factorization (after geometry-central's
