@@ -96,7 +96,9 @@ struct UnwrapReport {
   double effective_texel_share = 0;  ///< coverage / final_l2²: the share of texels doing useful
                                      ///< work at the sampling rate of an ideal map.
   int yoshizawa_iterations = 0;  ///< Re-weighting iterations performed (summed over charts).
-  double time_cut = 0, time_floater = 0, time_yoshizawa = 0, time_augment = 0, time_pack = 0;  ///< s
+  /// Phase times in s, summed over charts and attempts (the charts of an attempt may be built in
+  /// parallel, so the sum can exceed time_total).
+  double time_cut = 0, time_floater = 0, time_yoshizawa = 0, time_augment = 0, time_pack = 0;
   double time_total = 0;         ///< s
 };
 
