@@ -54,6 +54,9 @@ struct SafeRemapOptions {
   /// 0.3–0.9 dB against the global blend (the failing faces sit in many charts at once).
   int chart_halvings = 0;
   int bisection_steps = 10;  ///< Bisection steps on the global t if local damping is not enough.
+  /// Untangling rounds before any damping: interior wedges of failing faces and their 1-rings move to
+  /// the mean of their 1-ring's warped positions (0 = off: damp only).
+  int untangle_rounds = 30;
 };
 
 /// Result of safe_remap().
