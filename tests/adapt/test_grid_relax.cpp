@@ -1,6 +1,8 @@
 // Tests of §3.6 (L_s²), §3.7.1 (grid relaxation), §3.7.2 (remap with the no-flip guarantee).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include <cmath>
 
 #include "adaptex/adapt/grid.h"
@@ -231,6 +233,26 @@ TEST(Remap, AdversarialWarpIsDampedAndNeverFlips) {
   for (Vec2& uv : shrunk.uv) uv = 0.1 * Vec2(1, 1) + 0.8 * uv;
   EXPECT_FALSE(single_chart_on_square(shrunk));
   EXPECT_TRUE(check_remap(param, r2.param).ok());
+}
+
+
+TEST(Remap, UntanglingKeepsMoreOfAWarpThanDamping) {
+  const TriMesh mesh = shapes::plane(40);
+  const Parameterization param = plane_param(mesh);
+  // A smooth warp with one small fold: a lattice point pushed just past its right neighbour.
+  GridWarp w = GridWarp::uniform(8);
+  relax_grid(w, blob_field(64, 0.5, 0.5, 0.2, 0.2f));
+  w.at(4, 4) = w.at(5, 4) + Vec2(0.02, 0.0);
+  ASSERT_GT(check_remap(param, remap_parameterization(param, {&w})).flipped, 0);
+  SafeRemapOptions off;
+  off.untangle_rounds = 0;
+  const SafeRemapResult damped = safe_remap(param, {&w}, off);
+  const SafeRemapResult untangled = safe_remap(param, {&w});
+  EXPECT_TRUE(check_remap(param, damped.param).ok());
+  EXPECT_TRUE(check_remap(param, untangled.param).ok());
+  std::printf("mean blend kept: damping %.3f, untangling %.3f\n", damped.mean_damping, untangled.mean_damping);
+  EXPECT_GT(untangled.mean_damping, damped.mean_damping);
+  EXPECT_GT(untangled.mean_damping, 0.9);
 }
 
 }  // namespace
