@@ -206,8 +206,9 @@ TEST(Remap, AdversarialWarpIsDampedAndNeverFlips) {
   EXPECT_LT(r.mean_damping, 1.0);  // damping happened...
   EXPECT_GT(r.mean_damping, 0.5);  // ...but only locally: most of the warp is kept
   EXPECT_GT(r.locally_damped, 0);
-  // Local damping disabled: the global bisection alone must also give a valid layout.
+  // Untangling and local damping disabled: the global bisection alone must also give a valid layout.
   SafeRemapOptions global_only;
+  global_only.untangle_rounds = 0;
   global_only.max_local_rounds = 0;
   global_only.extended_local_rounds = 0;
   const SafeRemapResult rg = safe_remap(param, {&w}, global_only);

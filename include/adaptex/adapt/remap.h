@@ -55,8 +55,10 @@ struct SafeRemapOptions {
   int chart_halvings = 0;
   int bisection_steps = 10;  ///< Bisection steps on the global t if local damping is not enough.
   /// Untangling rounds before any damping: interior wedges of failing faces and their 1-rings move to
-  /// the mean of their 1-ring's warped positions (0 = off: damp only).
-  int untangle_rounds = 30;
+  /// the mean of their 1-ring's warped positions (0 = off: damp only). Stops as soon as no face
+  /// fails; 30 rounds left camelhead lines 256² with 1918 failing faces (texel saving 1.56×), 300
+  /// rounds with none (5.65×), in 1 s.
+  int untangle_rounds = 500;
 };
 
 /// Result of safe_remap().
