@@ -12,7 +12,7 @@
 //                         [--grid C,F] [--alpha A] [--beta B] [--schedule end|each-stroke]
 //                         [--update replay|resample] [--no-safeguard] [--no-refine] [--verbose]
 //                         [--charts single|auto] [--floor F] [--density-cells L] [--no-atlas]
-//                         [--refine-factor F]
+//                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //
 // Mode names go to make_session_options() (parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
@@ -80,6 +80,8 @@ struct Args {
   int density_cells = -1;       ///< --density-cells: ErrorDensityOptions::cells (-1: the default).
   bool atlas = true;            ///< --no-atlas: AdaptOptions::atlas_flow = false (one flow over the square).
   double refine_factor = -1;    ///< --refine-factor: AdaptOptions::refine_max_face_factor (-1: default).
+  double blur = -1;             ///< --blur: ErrorDensityOptions::blur_cells (-1: the default).
+  double max_density = -1;      ///< --max-density: ErrorDensityOptions::max_density (-1: the default).
 };
 
 // ---- Mesh refinement switch (issue 12): the ONE place where this tool sets refinement on/off. ----
@@ -104,6 +106,8 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   if (a.floor >= 0) o.adapt.density.floor = a.floor;
   if (a.density_cells > 0) o.adapt.density.cells = a.density_cells;
   if (a.refine_factor > 0) o.adapt.refine_max_face_factor = a.refine_factor;
+  if (a.blur >= 0) o.adapt.density.blur_cells = a.blur;
+  if (a.max_density > 0) o.adapt.density.max_density = a.max_density;
   return o;
 }
 
@@ -163,6 +167,8 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--floor") a.floor = std::stod(v);
     else if (k == "--density-cells") a.density_cells = std::stoi(v);
     else if (k == "--refine-factor") a.refine_factor = std::stod(v);
+    else if (k == "--blur") a.blur = std::stod(v);
+    else if (k == "--max-density") a.max_density = std::stod(v);
     else throw std::invalid_argument(k + ": unknown option");
   }
   for (const auto& m : modes) {
