@@ -52,6 +52,8 @@ struct PaintSessionOptions {
   /// Accept a candidate only if its estimated MSE is below (1 - margin) x the current one. 0.02
   /// (≈ 0.09 dB): the estimate uses 60,000 samples, and with margin 0 a candidate measured 0.12 dB
   /// worse by the 400,000-sample evaluation was accepted (triceratops lines at 128², density-flow).
+  /// Applies while the current layout is the fixed one; once a re-parameterization was accepted, a
+  /// candidate only has to be better than the current (adapted) layout.
   double safeguard_margin = 0.02;
   std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
 };
