@@ -9,14 +9,12 @@
 #include "adaptex/adapt/refine.h"
 #include "adaptex/adapt/warp_method.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/core/timer.h"
 #include "adaptex/param/stretch.h"
 
 namespace adaptex {
 
 namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 void validate(const AdaptOptions& o) {
   if (o.coarse_grid < 1 || o.fine_grid < 1)
     throw InvalidInputError("grid sizes must be >= 1 cell, got " + std::to_string(o.coarse_grid) + "," +

@@ -14,6 +14,7 @@
 #include "adaptex/adapt/stretch_map.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
+#include "adaptex/core/timer.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/padding.h"
@@ -22,10 +23,6 @@
 namespace adaptex {
 
 namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 double reconstruction_mse(const Parameterization& param, const ImageRGBA8& tex, const std::vector<SurfacePoint>& pts,
                           const std::vector<Vec3>& exact) {
   if (pts.empty()) return 0;

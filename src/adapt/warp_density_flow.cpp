@@ -5,14 +5,11 @@
 #include <chrono>
 
 #include "adaptex/adapt/warp_method.h"
+#include "adaptex/core/timer.h"
 
 namespace adaptex {
 
 namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 class DensityFlowWarp final : public WarpMethod {
  public:
   bool wants_refinement() const override { return true; }

@@ -3,14 +3,11 @@
 
 #include "adaptex/adapt/stretch_map.h"
 #include "adaptex/adapt/warp_method.h"
+#include "adaptex/core/timer.h"
 
 namespace adaptex {
 
 namespace {
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 class SingleWarp final : public WarpMethod {
  public:
   void compute(const WarpInput& in, AdaptResult& res) const override {
