@@ -8,6 +8,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/param/pack.h"
@@ -111,12 +112,12 @@ Parameterization move_charts(const Parameterization& param, const std::vector<Ch
   return out;
 }
 
-ChartMoveLocator::ChartMoveLocator(const std::vector<ChartMove>& moves) : moves_(&moves) {
-  n_ = std::clamp(static_cast<int>(std::sqrt(double(moves.size()))) * 2, 1, 256);
+ChartMoveLocator::ChartMoveLocator(std::vector<ChartMove> moves) : moves_(std::move(moves)) {
+  n_ = std::clamp(static_cast<int>(std::sqrt(double(moves_.size()))) * 2, 1, 256);
   buckets_.resize(static_cast<size_t>(n_) * n_);
   auto cell = [this](double x) { return std::clamp(static_cast<int>(x * n_), 0, n_ - 1); };
-  for (size_t c = 0; c < moves.size(); ++c) {
-    const UvRect& r = moves[c].src;
+  for (size_t c = 0; c < moves_.size(); ++c) {
+    const UvRect& r = moves_[c].src;
     if (r.area() <= 0 && r.size().maxCoeff() <= 0) continue;
     for (int y = cell(r.lo.y()); y <= cell(r.hi.y()); ++y)
       for (int x = cell(r.lo.x()); x <= cell(r.hi.x()); ++x) buckets_[static_cast<size_t>(y) * n_ + x].push_back(static_cast<int>(c));
@@ -127,7 +128,7 @@ Vec2 ChartMoveLocator::apply(const Vec2& uv) const {
   auto cell = [this](double x) { return std::clamp(static_cast<int>(x * n_), 0, n_ - 1); };
   constexpr double eps = 1e-12;
   for (int c : buckets_[static_cast<size_t>(cell(uv.y())) * n_ + cell(uv.x())]) {
-    const ChartMove& m = (*moves_)[c];
+    const ChartMove& m = moves_[c];
     if (uv.x() >= m.src.lo.x() - eps && uv.x() <= m.src.hi.x() + eps && uv.y() >= m.src.lo.y() - eps &&
         uv.y() <= m.src.hi.y() + eps)
       return m.apply(uv).cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));

@@ -73,13 +73,13 @@ Parameterization move_charts(const Parameterization& param, const std::vector<Ch
 /// bucket grid. Thread-safe after construction.
 class ChartMoveLocator {
  public:
-  /// \pre the moves' src rectangles are pairwise disjoint
-  explicit ChartMoveLocator(const std::vector<ChartMove>& moves);
+  /// Keeps a copy of \p moves. \pre the moves' src rectangles are pairwise disjoint
+  explicit ChartMoveLocator(std::vector<ChartMove> moves);
   /// The moved point; points outside every source rectangle are returned unchanged.
   Vec2 apply(const Vec2& uv) const;
 
  private:
-  const std::vector<ChartMove>* moves_;
+  std::vector<ChartMove> moves_;
   int n_ = 1;
   std::vector<std::vector<int>> buckets_;
 };
