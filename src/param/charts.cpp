@@ -56,6 +56,30 @@ DualGraph build_dual_graph(const TriMesh& mesh) {
   return g;
 }
 
+using FaceQueue = std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>,
+                                      std::greater<>>;
+
+/// Dijkstra over the dual graph from the faces in \p pq: \p step_cost(f, k) is the cost of adjacency
+/// entry k of face f; \p on_lower(f, h) is called when face h gets a lower distance through f.
+template <class Cost, class OnLower>
+void run_dijkstra(const DualGraph& g, FaceQueue& pq, Cost step_cost, std::vector<double>& dist,
+                  OnLower on_lower) {
+  while (!pq.empty()) {
+    const auto [d, f] = pq.top();
+    pq.pop();
+    if (d > dist[f]) continue;
+    for (int k = g.offsets[f]; k < g.offsets[f + 1]; ++k) {
+      const int h = g.nbr[k];
+      const double nd = d + step_cost(f, k);
+      if (nd < dist[h]) {
+        dist[h] = nd;
+        on_lower(f, h);
+        pq.push({nd, h});
+      }
+    }
+  }
+}
+
 /// Multi-source Dijkstra over the dual graph. \p step_cost(label, k) is the cost of adjacency
 /// entry k when growing chart \p label. Fills dist and label (-1 where unreachable).
 template <class Cost>
@@ -64,36 +88,36 @@ void grow(const DualGraph& g, const std::vector<int>& seeds, Cost step_cost,
   const int nf = static_cast<int>(g.centroid.size());
   dist.assign(nf, kInf);
   label.assign(nf, -1);
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<>> pq;
+  FaceQueue pq;
   for (size_t s = 0; s < seeds.size(); ++s) {
     dist[seeds[s]] = 0;
     label[seeds[s]] = static_cast<int>(s);
     pq.push({0.0, seeds[s]});
   }
-  while (!pq.empty()) {
-    const auto [d, f] = pq.top();
-    pq.pop();
-    if (d > dist[f]) continue;
-    for (int k = g.offsets[f]; k < g.offsets[f + 1]; ++k) {
-      const int h = g.nbr[k];
-      const double nd = d + step_cost(label[f], k);
-      if (nd < dist[h]) {
-        dist[h] = nd;
-        label[h] = label[f];
-        pq.push({nd, h});
-      }
-    }
-  }
+  run_dijkstra(
+      g, pq, [&](int f, int k) { return step_cost(label[f], k); }, dist,
+      [&](int f, int h) { label[h] = label[f]; });
+}
+
+/// Lowers \p dist (plain dual distance to a set of seeds) to the distance to that set plus face
+/// \p seed: a Dijkstra from the new seed alone that goes on only where the distance drops, so it
+/// visits the new seed's Voronoi cell instead of every face. The distances are the minima over the
+/// same path sums as a multi-source Dijkstra from all seeds (floating-point addition is monotone),
+/// so they are bit-identical to it.
+void add_seed_distance(const DualGraph& g, int seed, std::vector<double>& dist) {
+  FaceQueue pq;
+  dist[seed] = 0;
+  pq.push({0.0, seed});
+  run_dijkstra(
+      g, pq, [&](int, int k) { return g.length[k]; }, dist, [](int, int) {});
 }
 
 /// Farthest-point seeds: the face farthest from face 0, then repeatedly the face farthest from all
-/// seeds so far (plain centroid distance).
+/// seeds so far (plain centroid distance; the distance to the seeds is updated per new seed,
+/// add_seed_distance()).
 std::vector<int> farthest_point_seeds(const DualGraph& g, int k) {
-  std::vector<double> dist;
-  std::vector<int> label;
-  auto plain = [&](int, int j) { return g.length[j]; };
-  grow(g, {0}, plain, dist, label);
+  std::vector<double> dist(g.centroid.size(), kInf);
+  add_seed_distance(g, 0, dist);
   std::vector<int> seeds;
   auto farthest = [&] {
     int best = 0;
@@ -102,8 +126,10 @@ std::vector<int> farthest_point_seeds(const DualGraph& g, int k) {
     return best;
   };
   seeds.push_back(farthest());
-  while (static_cast<int>(seeds.size()) < k) {
-    grow(g, seeds, plain, dist, label);
+  std::fill(dist.begin(), dist.end(), kInf);
+  while (true) {
+    add_seed_distance(g, seeds.back(), dist);
+    if (static_cast<int>(seeds.size()) >= k) break;
     const int f = farthest();
     if (dist[f] <= 0) break;  // every face is a seed already
     seeds.push_back(f);
