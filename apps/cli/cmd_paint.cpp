@@ -11,6 +11,7 @@
 #include "adaptex/paint/strokes.h"
 #include "cli_common.h"
 #include "paint_common.h"
+#include "session_options.h"
 
 namespace adaptex::cli {
 

@@ -22,6 +22,7 @@
 #include "adaptex/paint/strokes.h"
 #include "adaptex/param/unwrap.h"
 #include "cli_common.h"
+#include "session_options.h"
 
 namespace adaptex::cli {
 

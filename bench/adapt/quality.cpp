@@ -14,7 +14,7 @@
 //                         [--charts single|auto] [--floor F] [--density-cells L] [--no-atlas]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //
-// Mode names go to make_session_options() (parse_adapt_mode), so every mode the library knows works.
+// Mode names go to cli::make_session_options() (apps/cli/session_options.h, parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
 // turns it off for every mode. Meshes: paths, or names/stems of ADAPTEX_SHARED_DIR/meshes (default:
 // all of them), run in order of increasing face count.
@@ -41,6 +41,7 @@
 #include "adaptex/paint/texel_saving.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
+#include "session_options.h"  // apps/cli: the option strings of adaptex paint
 
 using namespace adaptex;
 namespace fs = std::filesystem;
@@ -99,7 +100,7 @@ void set_refine(Options& o, bool refine) {
 }
 
 PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) {
-  PaintSessionOptions o = make_session_options(size, 4, m.name, a.grid, a.alpha, a.beta, a.schedule, a.update);
+  PaintSessionOptions o = cli::make_session_options(size, 4, m.name, a.grid, a.alpha, a.beta, a.schedule, a.update);
   o.safeguard = a.safeguard;
   set_refine(o, m.refine);
   o.adapt.atlas_flow = a.atlas;

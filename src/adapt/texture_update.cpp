@@ -37,10 +37,42 @@ ImageRGBA8 resample_texture(const Parameterization& old_param, const ImageRGBA8&
   return out;
 }
 
+void replay_history(Painter& painter, const StrokeFile& history) {
+  for (const Stroke& s : history.strokes) painter.paint_stroke(s);
+}
+
+ImageRGBA8 update_texture(TextureUpdate mode, Painter& new_painter, const StrokeFile& history,
+                          const Parameterization& old_param, const ImageRGBA8& old_texture, int padding) {
+  if (mode == TextureUpdate::Replay) {
+    replay_history(new_painter, history);
+    return new_painter.texture();
+  }
+  auto to8 = [](double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255)); };
+  const Vec3& bg = history.background;
+  return resample_texture(old_param, old_texture, new_painter.texel_map(), padding,
+                          {to8(bg[0]), to8(bg[1]), to8(bg[2]), 0});
+}
+
+ImageRGBA8 composite_over_base(const ImageRGBA8& base, const ImageRGBA8& over_black, const ImageRGBA8& over_white,
+                               const TexelMap& map, int padding) {
+  auto same = [&](const ImageRGBA8& i) { return i.width == map.width && i.height == map.height; };
+  if (!same(base) || !same(over_black) || !same(over_white))
+    throw InvalidInputError("composite_over_base: the textures and the texel map differ in size");
+  ImageRGBA8 out = base;
+  for (int t : map.inside)
+    for (int c = 0; c < 3; ++c) {
+      const size_t k = static_cast<size_t>(t) * 4 + c;
+      const double S = over_black.data[k] / 255.0, T = std::max(0.0, over_white.data[k] / 255.0 - S);
+      out.data[k] = static_cast<std::uint8_t>(std::lround(std::clamp(out.data[k] / 255.0 * T + S, 0.0, 1.0) * 255));
+    }
+  apply_seam_padding(out, build_seam_padding(map, padding));
+  return out;
+}
+
 Painter replay_texture(const TriMesh& mesh, const Parameterization& new_param, const StrokeFile& history,
                        const PainterOptions& options) {
   Painter p(mesh, new_param, options, history.background);
-  for (const Stroke& s : history.strokes) p.paint_stroke(s);
+  replay_history(p, history);
   return p;
 }
 

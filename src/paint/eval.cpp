@@ -21,6 +21,32 @@ inline std::uint64_t mix64(std::uint64_t z) {
 }
 inline double unit(std::uint64_t x) { return static_cast<double>(x >> 11) * 0x1.0p-53; }
 
+/// Sum over \p pts of |truth(k) - reconstruction at pts[k]|^2, in blocks of 4096 points summed in
+/// block order (deterministic whatever the thread count).
+template <class Truth>
+double squared_error_sum(const Parameterization& param, const ImageRGBA8& texture,
+                         const std::vector<SurfacePoint>& pts, const Truth& truth) {
+  constexpr size_t kBlock = 4096;
+  const size_t blocks = (pts.size() + kBlock - 1) / kBlock;
+  std::vector<double> partial(blocks, 0.0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t b = r.begin(); b < r.end(); ++b) {
+      double sum = 0;
+      for (size_t k = b * kBlock; k < std::min(pts.size(), (b + 1) * kBlock); ++k) {
+        const SurfacePoint& sp = pts[k];
+        const Face& t = param.uv_faces[sp.face];
+        const Vec2 uv = sp.b0 * param.uv[t[0]] + sp.b1 * param.uv[t[1]] + (1 - sp.b0 - sp.b1) * param.uv[t[2]];
+        const Vec3 rec = sample_bilinear(texture, uv.x(), uv.y());
+        sum += (truth(k) - rec).squaredNorm();
+      }
+      partial[b] = sum;
+    }
+  });
+  double total = 0;
+  for (double s : partial) total += s;
+  return total;
+}
+
 }  // namespace
 
 std::vector<SurfacePoint> sample_surface(const TriMesh& mesh, long long count, std::uint64_t seed) {
@@ -54,31 +80,24 @@ EvalResult evaluate_texture(const TriMesh& mesh, const Parameterization& param, 
   if (options.samples < 1) throw InvalidInputError("eval: --samples must be >= 1 (got " + std::to_string(options.samples) + ")");
   const StrokeSignal signal(mesh, strokes);
   const std::vector<SurfacePoint> pts = sample_surface(mesh, options.samples, options.seed);
-  constexpr size_t kBlock = 4096;
-  const size_t blocks = (pts.size() + kBlock - 1) / kBlock;
-  std::vector<double> partial(blocks, 0.0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t b = r.begin(); b < r.end(); ++b) {
-      double sum = 0;
-      for (size_t k = b * kBlock; k < std::min(pts.size(), (b + 1) * kBlock); ++k) {
-        const SurfacePoint& sp = pts[k];
-        const Vec3 truth = signal.evaluate(sp);
-        const Face& t = param.uv_faces[sp.face];
-        const Vec2 uv = sp.b0 * param.uv[t[0]] + sp.b1 * param.uv[t[1]] + (1 - sp.b0 - sp.b1) * param.uv[t[2]];
-        const Vec3 rec = sample_bilinear(texture, uv.x(), uv.y());
-        sum += (truth - rec).squaredNorm();
-      }
-      partial[b] = sum;
-    }
-  });
-  double total = 0;
-  for (double s : partial) total += s;
+  const double total = squared_error_sum(param, texture, pts, [&](size_t k) { return signal.evaluate(pts[k]); });
   EvalResult res;
   res.samples = options.samples;
   res.seed = options.seed;
   res.mse = total / (3.0 * static_cast<double>(pts.size()));
   res.psnr = res.mse < 1e-20 ? 200.0 : 10.0 * std::log10(1.0 / res.mse);
   return res;
+}
+
+double reconstruction_mse(const Parameterization& param, const ImageRGBA8& texture,
+                          const std::vector<SurfacePoint>& points, const std::vector<Vec3>& exact) {
+  if (exact.size() != points.size())
+    throw InvalidInputError("reconstruction_mse: " + std::to_string(points.size()) + " points but " +
+                            std::to_string(exact.size()) + " exact values");
+  if (points.empty()) return 0;
+  if (texture.empty()) throw InvalidInputError("reconstruction_mse: the texture is empty");
+  const double total = squared_error_sum(param, texture, points, [&](size_t k) { return exact[k]; });
+  return total / (3.0 * static_cast<double>(points.size()));
 }
 
 }  // namespace adaptex

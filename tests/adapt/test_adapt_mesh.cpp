@@ -227,21 +227,6 @@ TEST(AdaptMesh, SafeguardNeverAcceptsAWorseLayout) {
   }
 }
 
-TEST(AdaptSession, OptionsFromCliStrings) {
-  const PaintSessionOptions o = make_session_options(512, 2, "single", {64}, -1, 0.5, "each-stroke", "resample");
-  EXPECT_EQ(o.texture_size, 512);
-  EXPECT_EQ(o.adapt.mode, AdaptMode::Single);
-  EXPECT_EQ(o.adapt.fine_grid, 64);
-  EXPECT_EQ(o.adapt.alpha, AdaptOptions{}.alpha);
-  EXPECT_EQ(o.adapt.beta, 0.5);
-  EXPECT_EQ(o.schedule, ReparamSchedule::EachStroke);
-  EXPECT_EQ(o.update, TextureUpdate::Resample);
-  EXPECT_THROW(make_session_options(512, 2, "fancy", {}, -1, -1, "end", "replay"), InvalidInputError);
-  EXPECT_THROW(make_session_options(512, 2, "none", {1, 2, 3}, -1, -1, "end", "replay"), InvalidInputError);
-  EXPECT_THROW(make_session_options(512, 2, "none", {}, -1, -1, "sometimes", "replay"), InvalidInputError);
-  EXPECT_THROW(make_session_options(512, 2, "none", {}, -1, -1, "end", "copy"), InvalidInputError);
-}
-
 TEST(ReparamCli, WritesAllOutputsOrNothing) {
   test::TempDir dir;
   // A textured mesh: unwrapped sphere + a painted texture.

@@ -40,7 +40,8 @@ enum class ReparamSchedule {
   End,         ///< Once, in finish().
 };
 
-/// Settings of a PaintSession.
+/// Settings of a PaintSession. (The command line's option strings are parsed in apps/cli,
+/// session_options.h.)
 struct PaintSessionOptions {
   int texture_size = 1024;  ///< Texture width = height in texels.
   int padding = 4;          ///< Seam padding in texels.
@@ -57,20 +58,6 @@ struct PaintSessionOptions {
   double safeguard_margin = 0.02;
   std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
 };
-
-/// Parses "each-stroke" / "end". \throw InvalidInputError
-ReparamSchedule parse_reparam_schedule(const std::string& name);
-/// Parses "replay" / "resample". \throw InvalidInputError
-TextureUpdate parse_texture_update(const std::string& name);
-
-/// Session options from the command-line strings of `adaptex paint` (issue 4 item 8):
-/// mode "none" | "single" | "two-stage"; grid {} (defaults), {FINE} or {COARSE, FINE}; alpha/beta < 0 =
-/// default; reparam "each-stroke" | "end"; update "replay" | "resample"; debug_maps empty = none.
-/// \throw InvalidInputError one-line message naming the bad option
-PaintSessionOptions make_session_options(int size, int padding, const std::string& mode,
-                                         const std::vector<int>& grid, double alpha, double beta,
-                                         const std::string& reparam, const std::string& update,
-                                         const std::filesystem::path& debug_maps = {});
 
 class PaintSession {
  public:

@@ -31,10 +31,31 @@ ImageRGBA8 resample_texture(const Parameterization& old_param, const ImageRGBA8&
                             const TexelMap& new_map, int padding,
                             std::array<std::uint8_t, 4> outside = {255, 255, 255, 255});
 
+/// Paints every stroke of \p history into \p painter, in order (replay on the painter's layout).
+void replay_history(Painter& painter, const StrokeFile& history);
+
+/// The texture of a layout whose Painter \p new_painter was just built: \p mode Replay paints
+/// \p history into \p new_painter and returns its texture; Resample returns \p old_texture (drawn
+/// with \p old_param) resampled onto the painter's texel map, texels outside the charts in
+/// \p history's background (alpha 0), then \p padding texels of seam padding; the painter stays blank.
+/// \pre old_param and the painter's layout have the same faces (Resample)
+/// \throw InvalidInputError as resample_texture
+ImageRGBA8 update_texture(TextureUpdate mode, Painter& new_painter, const StrokeFile& history,
+                          const Parameterization& old_param, const ImageRGBA8& old_texture, int padding);
+
+/// Resample mode's view of strokes painted after a resample (thesis §3.7.3 keeps painting on the
+/// resampled texture): \p base is the resampled texture, \p over_black / \p over_white the same
+/// strokes painted on black / white. Compositing is affine in the colour underneath, so with
+/// S = over_black and T = over_white - S the result is C = base * T + S on every texel inside a chart
+/// of \p map (RGB), then \p padding texels of seam padding.
+/// \pre base, over_black, over_white have map's size
+/// \throw InvalidInputError the sizes differ
+ImageRGBA8 composite_over_base(const ImageRGBA8& base, const ImageRGBA8& over_black, const ImageRGBA8& over_white,
+                               const TexelMap& map, int padding);
+
 /// Replays \p history on \p new_param with a fresh Painter (exact). The Painter keeps references to
 /// \p mesh and \p new_param: they must outlive it.
 Painter replay_texture(const TriMesh& mesh, const Parameterization& new_param,
                        const StrokeFile& history, const PainterOptions& options);
-
 
 }  // namespace adaptex

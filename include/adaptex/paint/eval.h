@@ -35,6 +35,16 @@ struct EvalResult {
 /// \pre mesh has at least one face of positive area. \throw InvalidInputError otherwise
 std::vector<SurfacePoint> sample_surface(const TriMesh& mesh, long long count, std::uint64_t seed);
 
+/// MSE (mean over the points and the 3 channels, RGB in [0,1]) of the reconstruction of \p texture at
+/// \p points (uv interpolated from \p param's corner UVs, then sample_bilinear, as evaluate_texture)
+/// against \p exact[k], the exact signal at points[k]. For callers that keep a fixed set of points and
+/// their exact values, e.g. the safeguard of adapt/session.h. Deterministic (fixed summation order).
+/// \return 0 when \p points is empty
+/// \pre every points[k].face indexes param.uv_faces
+/// \throw InvalidInputError exact.size() != points.size(), or an empty texture with points
+double reconstruction_mse(const Parameterization& param, const ImageRGBA8& texture,
+                          const std::vector<SurfacePoint>& points, const std::vector<Vec3>& exact);
+
 /// MSE/PSNR of the texture \p texture on \p param against the exact signal of \p strokes: the
 /// reconstruction at a sample is sample_bilinear(texture, uv) with uv interpolated from the face's
 /// corner UVs (bilinear, clamp-to-edge, texel centres at (i+0.5)/W, v = 0 bottom row).

@@ -1,0 +1,44 @@
+// Option strings of `adaptex paint` -> PaintSessionOptions.
+#include "session_options.h"
+
+#include <cmath>
+
+#include "adaptex/core/errors.h"
+
+namespace adaptex::cli {
+
+ReparamSchedule parse_reparam_schedule(const std::string& name) {
+  if (name == "each-stroke" || name == "each_stroke") return ReparamSchedule::EachStroke;
+  if (name == "end") return ReparamSchedule::End;
+  throw InvalidInputError("unknown reparam schedule '" + name + "' (expected each-stroke or end)");
+}
+
+TextureUpdate parse_texture_update(const std::string& name) {
+  if (name == "replay") return TextureUpdate::Replay;
+  if (name == "resample") return TextureUpdate::Resample;
+  throw InvalidInputError("unknown texture update '" + name + "' (expected replay or resample)");
+}
+
+PaintSessionOptions make_session_options(int size, int padding, const std::string& mode,
+                                         const std::vector<int>& grid, double alpha, double beta,
+                                         const std::string& reparam, const std::string& update,
+                                         const std::filesystem::path& debug_maps) {
+  PaintSessionOptions o;
+  o.texture_size = size;
+  o.padding = padding;
+  o.adapt.mode = parse_adapt_mode(mode);
+  if (grid.size() > 2) throw InvalidInputError("--grid: give FINE or COARSE,FINE (e.g. 16,256)");
+  for (int g : grid)
+    if (g < 1 || g > 4096) throw InvalidInputError("--grid: sizes must be in [1, 4096], got " + std::to_string(g));
+  if (!grid.empty()) o.adapt.fine_grid = grid.back();
+  if (grid.size() == 2) o.adapt.coarse_grid = grid.front();
+  if (alpha >= 0) o.adapt.alpha = alpha;
+  if (beta >= 0) o.adapt.beta = beta;
+  if (!std::isfinite(alpha) || !std::isfinite(beta)) throw InvalidInputError("--alpha/--beta must be finite");
+  o.schedule = parse_reparam_schedule(reparam);
+  o.update = parse_texture_update(update);
+  o.debug_dir = debug_maps;
+  return o;
+}
+
+}  // namespace adaptex::cli

@@ -1,0 +1,29 @@
+#pragma once
+/// \file session_options.h
+/// Option strings of `adaptex paint` (and of the quality bench, which takes the same strings) turned
+/// into PaintSessionOptions. String parsing belongs to the command line, not to the library
+/// (issue 12 item 4): the library takes enums and numbers.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "adaptex/adapt/session.h"
+
+namespace adaptex::cli {
+
+/// Parses "each-stroke" (or "each_stroke") / "end". \throw InvalidInputError any other string
+ReparamSchedule parse_reparam_schedule(const std::string& name);
+/// Parses "replay" / "resample". \throw InvalidInputError any other string
+TextureUpdate parse_texture_update(const std::string& name);
+
+/// Session options from the command-line strings of `adaptex paint` (issue 4 item 8):
+/// mode as parse_adapt_mode ("none" | "single" | "two-stage" | "density-flow"); grid {} (defaults),
+/// {FINE} or {COARSE, FINE}, each in [1, 4096]; alpha/beta < 0 = default, must be finite;
+/// reparam "each-stroke" | "end"; update "replay" | "resample"; debug_maps empty = none.
+/// \throw InvalidInputError one-line message naming the bad option
+PaintSessionOptions make_session_options(int size, int padding, const std::string& mode,
+                                         const std::vector<int>& grid, double alpha, double beta,
+                                         const std::string& reparam, const std::string& update,
+                                         const std::filesystem::path& debug_maps = {});
+
+}  // namespace adaptex::cli

@@ -1,0 +1,45 @@
+// The option strings of `adaptex paint` -> PaintSessionOptions (apps/cli/session_options.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "adaptex/core/errors.h"
+#include "session_options.h"
+
+using namespace adaptex;
+using namespace adaptex::cli;
+
+TEST(CliSessionOptions, OptionsFromCliStrings) {
+  const PaintSessionOptions o = make_session_options(512, 2, "single", {64}, -1, 0.5, "each-stroke", "resample");
+  EXPECT_EQ(o.texture_size, 512);
+  EXPECT_EQ(o.padding, 2);
+  EXPECT_EQ(o.adapt.mode, AdaptMode::Single);
+  EXPECT_EQ(o.adapt.fine_grid, 64);
+  EXPECT_EQ(o.adapt.coarse_grid, AdaptOptions{}.coarse_grid);
+  EXPECT_EQ(o.adapt.alpha, AdaptOptions{}.alpha);
+  EXPECT_EQ(o.adapt.beta, 0.5);
+  EXPECT_EQ(o.schedule, ReparamSchedule::EachStroke);
+  EXPECT_EQ(o.update, TextureUpdate::Resample);
+  EXPECT_TRUE(o.debug_dir.empty());
+  const PaintSessionOptions t = make_session_options(256, 4, "two-stage", {16, 128}, 0.25, -1, "end", "replay", "dbg");
+  EXPECT_EQ(t.adapt.mode, AdaptMode::TwoStage);
+  EXPECT_EQ(t.adapt.coarse_grid, 16);
+  EXPECT_EQ(t.adapt.fine_grid, 128);
+  EXPECT_EQ(t.adapt.alpha, 0.25);
+  EXPECT_EQ(t.schedule, ReparamSchedule::End);
+  EXPECT_EQ(t.update, TextureUpdate::Replay);
+  EXPECT_EQ(t.debug_dir, std::filesystem::path("dbg"));
+}
+
+TEST(CliSessionOptions, BadStringsThrowInvalidInput) {
+  EXPECT_THROW(make_session_options(512, 2, "fancy", {}, -1, -1, "end", "replay"), InvalidInputError);
+  EXPECT_THROW(make_session_options(512, 2, "none", {1, 2, 3}, -1, -1, "end", "replay"), InvalidInputError);
+  EXPECT_THROW(make_session_options(512, 2, "none", {0}, -1, -1, "end", "replay"), InvalidInputError);
+  EXPECT_THROW(make_session_options(512, 2, "none", {}, std::nan(""), -1, "end", "replay"), InvalidInputError);
+  EXPECT_THROW(make_session_options(512, 2, "none", {}, -1, -1, "sometimes", "replay"), InvalidInputError);
+  EXPECT_THROW(make_session_options(512, 2, "none", {}, -1, -1, "end", "copy"), InvalidInputError);
+  EXPECT_EQ(parse_reparam_schedule("each_stroke"), ReparamSchedule::EachStroke);
+  EXPECT_THROW(parse_reparam_schedule("End"), InvalidInputError);
+  EXPECT_THROW(parse_texture_update(""), InvalidInputError);
+}
