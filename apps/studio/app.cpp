@@ -9,7 +9,6 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
-#include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
 
 namespace adaptex::studio {
@@ -17,14 +16,6 @@ namespace adaptex::studio {
 namespace {
 double ms_since(App::Clock::time_point t) {
   return std::chrono::duration<double, std::milli>(App::Clock::now() - t).count();
-}
-void merge_rect(std::array<int, 4>& a, const std::array<int, 4>& b) {
-  if (b[2] < b[0]) return;
-  if (a[2] < a[0]) {
-    a = b;
-    return;
-  }
-  a = {std::min(a[0], b[0]), std::min(a[1], b[1]), std::max(a[2], b[2]), std::max(a[3], b[3])};
 }
 std::string absolute_path(const std::string& p) {
   if (p.rfind("builtin:", 0) == 0) return p;
@@ -34,67 +25,17 @@ std::string absolute_path(const std::string& p) {
 }
 }  // namespace
 
-struct App::Model {
-  std::string path;
-  TriMesh mesh;
-  std::shared_ptr<const Parameterization> initial;  // the unwrap() result (the fixed baseline)
-  BoundingBox box;
-  std::unique_ptr<RayCaster> caster;
-};
-
-struct App::Surface {
-  std::shared_ptr<const Model> model;
-  std::shared_ptr<const Parameterization> param;
-  std::uint64_t generation = 0;  // history generation the canvas was built for
-  size_t painted = 0;            // history strokes painted into the canvas
-  int size = 0;
-  std::unique_ptr<Canvas> canvas;  // declared last: destroyed before param / model
-};
-
-struct App::LoadResult {
-  std::shared_ptr<const Model> model;
-  std::unique_ptr<Surface> surface;
-  double seconds = 0;
-};
-
-struct App::RebuildResult {
-  std::unique_ptr<Surface> surface;
-  std::vector<std::pair<std::string, double>> phase_ms;
-  std::shared_ptr<const AdaptMaps> maps;
-  bool adapted = false;
-};
-
 // ---- construction ---------------------------------------------------------------------------
 
 App::App(std::unique_ptr<Renderer> renderer, AppOptions options)
-    : renderer_(std::move(renderer)), options_(std::move(options)) {
-  load_config();
-  if (!options_.recovery_dir.empty()) {
-    std::error_code ec;
-    const auto rec = recovery_path();
-    const auto offered = options_.recovery_dir / "recovery.offered.json";
-    if (std::filesystem::exists(rec)) std::filesystem::rename(rec, offered, ec);
-    if (std::filesystem::exists(offered)) {
-      pending_recovery_ = offered;
-      std::cout << "adaptex-studio: recovery file found: " << offered.string() << std::endl;
-      if (options_.auto_recover) accept_recovery();
-    }
-  }
+    : renderer_(std::move(renderer)),
+      options_(std::move(options)),
+      store_(options_.config_dir, options_.recovery_dir, options_.autosave_delay,
+             [this](const std::string& text, bool error) { add_message(text, error); }) {
+  if (store_.pending_recovery() && options_.auto_recover) accept_recovery();
 }
 
-App::~App() {
-  compare_job_.reset();
-  if (load_job_) load_job_->cancel();
-  if (rebuild_job_) rebuild_job_->cancel();
-  autosave_job_.reset();
-  // A clean exit removes this session's recovery file (it exists to survive crashes).
-  if (!options_.recovery_dir.empty()) {
-    std::error_code ec;
-    std::filesystem::remove(recovery_path(), ec);
-  }
-}
-
-std::filesystem::path App::recovery_path() const { return options_.recovery_dir / "recovery.json"; }
+App::~App() { store_.finish(unsaved(), [this] { return snapshot(); }); }
 
 void App::add_message(std::string text, bool error) {
   (error ? std::cerr : std::cout) << "adaptex-studio: " << (error ? "error: " : "") << text << std::endl;
@@ -102,170 +43,187 @@ void App::add_message(std::string text, bool error) {
   while (messages_.size() > 20) messages_.pop_front();
 }
 
-// ---- config (recent files) --------------------------------------------------------------------
+// ---- unsaved work -----------------------------------------------------------------------------
 
-void App::load_config() {
-  if (options_.config_dir.empty()) return;
-  std::ifstream in(options_.config_dir / "studio.json");
-  if (!in) return;
-  try {
-    const auto j = nlohmann::json::parse(in);
-    for (const auto& r : j.value("recent", nlohmann::json::array())) recent_.push_back(r.get<std::string>());
-  } catch (const std::exception&) {
-    add_message("ignoring a corrupt config file " + (options_.config_dir / "studio.json").string(), true);
+bool App::unsaved() const {
+  if (jobs_.loading() && !pending_.from_project && !pending_.strokes.empty()) return true;
+  return store_.unsaved(history().version(), !history().strokes().empty());
+}
+
+Project App::snapshot() const {
+  Project p;
+  if (jobs_.loading() && !pending_.strokes.empty()) {  // the strokes wait for the model being loaded
+    p.mesh_path = jobs_.loading_path();
+    p.strokes.strokes = pending_.strokes;
+    p.strokes.background = pending_.background.value_or(history().background());
+  } else {
+    p.mesh_path = mesh_path();
+    p.strokes = history().to_file();
+  }
+  p.brush = brush_;
+  p.view = view_;
+  p.session = session_;
+  p.camera = camera_;
+  return p;
+}
+
+void App::ask_or_do(Confirm c) {
+  if (!unsaved()) return perform(c);
+  confirm_ = std::move(c);
+  add_message("unsaved strokes: asking Save / Discard / Cancel", false);
+}
+
+void App::perform(const Confirm& c) {
+  switch (c.action) {
+    case Confirm::Action::Quit: quit_ = true; break;
+    case Confirm::Action::OpenMesh: open_mesh(c.path); break;
+    case Confirm::Action::OpenProject: open_project(c.path); break;
+    case Confirm::Action::New: new_scene(); break;
   }
 }
 
-void App::save_config() const {
-  if (options_.config_dir.empty()) return;
-  try {
-    AtomicOutput out;
-    const auto tmp = out.add(options_.config_dir / "studio.json");
-    {
-      std::ofstream o(tmp);
-      o << nlohmann::json{{"recent", recent_}}.dump(1) << "\n";
-    }
-    out.commit();
-  } catch (const std::exception&) {
-  }
+void App::request_quit() { ask_or_do({Confirm::Action::Quit, {}}); }
+void App::request_open_mesh(const std::string& path) { ask_or_do({Confirm::Action::OpenMesh, path}); }
+void App::request_open_project(const std::filesystem::path& path) {
+  ask_or_do({Confirm::Action::OpenProject, path.string()});
+}
+void App::request_new() { ask_or_do({Confirm::Action::New, {}}); }
+
+bool App::confirm_save(const std::filesystem::path& path) {
+  if (!confirm_ || !save_project(path)) return false;
+  const Confirm c = *confirm_;
+  confirm_.reset();
+  perform(c);
+  return true;
 }
 
-void App::add_recent(const std::string& path) {
-  recent_.erase(std::remove(recent_.begin(), recent_.end(), path), recent_.end());
-  recent_.insert(recent_.begin(), path);
-  if (recent_.size() > 10) recent_.resize(10);
-  save_config();
+void App::confirm_discard() {
+  if (!confirm_) return;
+  store_.discard(history().version());
+  pending_ = PendingLoad();
+  const Confirm c = *confirm_;
+  confirm_.reset();
+  add_message("discarded the unsaved strokes", false);
+  perform(c);
 }
 
-// ---- loading ----------------------------------------------------------------------------------
+void App::confirm_cancel() { confirm_.reset(); }
+
+// ---- files ------------------------------------------------------------------------------------
 
 void App::open_mesh(const std::string& path_in) {
   const std::string path = absolute_path(path_in);
-  if (load_job_) {
-    load_job_->cancel();
-    retired_jobs_.push_back(std::move(load_job_));  // never wait for it on the UI thread
-  }
-  loading_path_ = path;
-  const int size = adapt_.texture_size;
-  const Vec3 bg = pending_background_.value_or(history_.background());
-  load_job_ = std::make_unique<Job<LoadResult>>([path, size, bg](Job<LoadResult>& job) {
-    const auto t0 = Clock::now();
-    job.progress("read", 0.0);
-    auto model = std::make_shared<Model>();
-    model->path = path;
-    model->mesh = load_mesh(path);
-    model->box = bounding_box(model->mesh);
-    if (!job.progress("index", 0.0)) throw CancelledError();
-    model->caster = std::make_unique<RayCaster>(model->mesh);
-    auto param = std::make_shared<Parameterization>(
-        unwrap_mesh(model->mesh, [&job](std::string_view phase, double f) { return job.progress(phase, f); }));
-    if (!job.progress("texture", 0.0)) throw CancelledError();
-    model->initial = param;
-    LoadResult r;
-    r.model = model;
-    r.surface = std::make_unique<Surface>();
-    r.surface->model = model;
-    r.surface->param = param;
-    r.surface->size = size;
-    r.surface->canvas = std::make_unique<Canvas>(model->mesh, *param, size, size, bg);
-    r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    r.model = std::move(model);
-    return r;
-  });
+  const Vec3 bg = pending_.background.value_or(history().background());
+  jobs_.start_load(path, session_, bg);
 }
 
-void App::cancel_load() {
-  if (load_job_) load_job_->cancel();
+void App::cancel_load() { jobs_.cancel_load(); }
+
+void App::new_scene() {
+  jobs_.cancel_load();
+  pending_ = PendingLoad();
+  painting_.clear();
+  store_.mark_clean(history().version(), {});
+  last_cycle_.clear();
+  maps_.reset();
+  comparison_.reset();
+  adapt_pending_ = false;
 }
 
 void App::replay(const StrokeFile& file) {
-  if (!model_ || load_job_) {
-    pending_strokes_.insert(pending_strokes_.end(), file.strokes.begin(), file.strokes.end());
-    pending_background_ = file.background;
+  if (!has_model() || jobs_.loading()) {
+    pending_.strokes.insert(pending_.strokes.end(), file.strokes.begin(), file.strokes.end());
+    pending_.background = file.background;
+    pending_.from_project = false;
     return;
   }
-  std::vector<Stroke> all = history_.strokes();
+  std::vector<Stroke> all = history().strokes();
   all.insert(all.end(), file.strokes.begin(), file.strokes.end());
-  history_.reset(std::move(all), history_.strokes().empty() ? file.background : history_.background());
+  painting_.history().reset(std::move(all), history().strokes().empty() ? file.background : history().background());
+  history_changed();
+}
+
+void App::apply_project(Project p, bool from_project, const std::filesystem::path& project_path) {
+  brush_ = p.brush;
+  view_ = p.view;
+  session_ = p.session;
+  pending_ = PendingLoad{std::move(p.strokes.strokes), p.strokes.background, from_project, project_path};
+  open_mesh(p.mesh_path);
 }
 
 void App::open_project(const std::filesystem::path& path) {
   try {
-    Project p = read_project(path);
-    brush_ = p.brush;
-    view_ = p.view;
-    adapt_ = p.adapt;
-    pending_strokes_ = std::move(p.strokes.strokes);
-    pending_background_ = p.strokes.background;
-    open_mesh(p.mesh_path);
+    apply_project(read_project(path), true, std::filesystem::absolute(path).lexically_normal());
     add_message("opened project " + path.string(), false);
   } catch (const std::exception& e) {
     add_message(e.what(), true);
   }
 }
 
-void App::save_project(const std::filesystem::path& path) {
-  try {
-    Project p;
-    p.mesh_path = mesh_path();
-    p.strokes = history_.to_file();
-    p.brush = brush_;
-    p.view = view_;
-    p.adapt = adapt_;
-    p.camera = camera_;
-    write_project(path, p);
-    add_message("saved project " + path.string(), false);
-  } catch (const std::exception& e) {
-    add_message(e.what(), true);
+bool App::save_project(const std::filesystem::path& path) {
+  if (!has_model()) {
+    add_message("nothing to save: open a mesh first", true);
+    return false;
   }
+  return store_.save(std::filesystem::absolute(path).lexically_normal(), snapshot(), history().version());
+}
+
+bool App::save() {
+  if (store_.project_path().empty()) {
+    add_message("no project file yet: use Save As", true);
+    return false;
+  }
+  return save_project(store_.project_path());
+}
+
+std::string App::suggested_project_path() const {
+  if (!store_.project_path().empty()) return store_.project_path().string();
+  std::string stem = has_model() ? std::filesystem::path(mesh_path()).stem().string() : "project";
+  if (stem.rfind("builtin:", 0) == 0) stem = stem.substr(8);
+  return (stem.empty() ? std::string("project") : stem) + ".adaptex.json";
 }
 
 void App::accept_recovery() {
-  if (!pending_recovery_) return;
-  const auto path = *pending_recovery_;
-  pending_recovery_.reset();
   try {
-    Project p = read_project(path);
-    brush_ = p.brush;
-    view_ = p.view;
-    adapt_ = p.adapt;
+    Project p = store_.accept_recovery();
     const size_t n = p.strokes.strokes.size();
-    pending_strokes_ = std::move(p.strokes.strokes);
-    pending_background_ = p.strokes.background;
-    open_mesh(p.mesh_path);
-    add_message("recovered " + std::to_string(n) + " strokes on " + p.mesh_path + " from " + path.string(), false);
+    const std::string mesh = p.mesh_path;
+    apply_project(std::move(p), false, {});
+    add_message("recovered " + std::to_string(n) + " strokes on " + mesh, false);
   } catch (const std::exception& e) {
     add_message(std::string("recovery failed: ") + e.what(), true);
   }
-  std::error_code ec;
-  std::filesystem::remove(path, ec);
 }
 
-void App::discard_recovery() {
-  if (!pending_recovery_) return;
-  std::error_code ec;
-  std::filesystem::remove(*pending_recovery_, ec);
-  pending_recovery_.reset();
-}
+void App::discard_recovery() { store_.discard_recovery(); }
 
 // ---- queries ----------------------------------------------------------------------------------
 
-std::string App::mesh_path() const { return model_ ? model_->path : std::string(); }
-const TriMesh* App::mesh() const { return model_ ? &model_->mesh : nullptr; }
-const Parameterization* App::param() const { return surface_ ? surface_->param.get() : nullptr; }
-const ImageRGBA8* App::texture() const { return surface_ ? &surface_->canvas->texture() : nullptr; }
+std::string App::mesh_path() const { return has_model() ? painting_.model()->path : std::string(); }
+const TriMesh* App::mesh() const { return painting_.surface() ? painting_.surface()->mesh.get() : nullptr; }
+const Parameterization* App::param() const {
+  return painting_.surface() ? painting_.surface()->param.get() : nullptr;
+}
+const ImageRGBA8* App::texture() const {
+  return painting_.surface() ? &painting_.surface()->canvas->texture() : nullptr;
+}
 
 double App::world_radius() const {
-  const double diag = model_ ? model_->box.diagonal() : 1.0;
+  const double diag = has_model() ? painting_.model()->box.diagonal() : 1.0;
   return brush_.radius * (diag > 0 ? diag : 1.0);
 }
 
+bool App::adapt_wanted() const {
+  if (!adapt_pending_ || !painting_.surface()) return false;
+  // With nothing to adapt to, the layout is the initial one (paint_history keeps it).
+  const bool keeps_initial = session_.adapt.mode == AdaptMode::None || history().strokes().empty();
+  return !(keeps_initial && painting_.on_initial_layout());
+}
+
 bool App::idle() const {
-  if (load_job_ || rebuild_job_ || compare_job_ || !pending_strokes_.empty()) return false;
-  if (!surface_) return true;
-  if (surface_->generation != history_.generation() || surface_->painted != history_.strokes().size()) return false;
-  if (adapt_pending_ && adapt_.mode != AdaptMode::None) return false;
-  return true;
+  if (jobs_.busy() || !pending_.strokes.empty()) return false;
+  if (!painting_.surface()) return true;
+  return painting_.in_sync() && !painting_.stale(session_.texture_size) && !adapt_wanted();
 }
 
 bool App::wait_idle(double timeout_seconds) {
@@ -278,40 +236,26 @@ bool App::wait_idle(double timeout_seconds) {
   }
 }
 
-std::optional<Hit> App::pick(double x, double y) const {
-  if (!model_) return std::nullopt;
-  auto h = model_->caster->intersect(camera_.pixel_ray(x, y));
-  if (!h || !h->front_facing) return std::nullopt;
-  return h;
-}
-
-Vec3 App::sample_colour(const Hit& h) const {
-  if (!surface_) return history_.background();
-  const Parameterization& p = *surface_->param;
-  const Face& uf = p.uv_faces[h.face];
-  const Vec2 uv = h.b0 * p.uv[uf[0]] + h.b1 * p.uv[uf[1]] + (1 - h.b0 - h.b1) * p.uv[uf[2]];
-  return sample_bilinear(surface_->canvas->texture(), uv.x(), uv.y());
-}
-
-std::optional<std::pair<std::string, double>> App::progress() const {
-  if (load_job_) return std::make_pair("Loading " + loading_path_ + ": " + load_job_->phase(), load_job_->fraction());
-  if (rebuild_job_) return std::make_pair("Updating texture: " + rebuild_job_->phase(), rebuild_job_->fraction());
-  return std::nullopt;
-}
+std::optional<Hit> App::pick(double x, double y) const { return painting_.pick(camera_.pixel_ray(x, y)); }
 
 std::string App::status_line() const {
   std::string s;
-  if (model_) {
-    s += std::filesystem::path(model_->path).filename().string() + ": " + std::to_string(model_->mesh.num_faces()) +
-         " faces";
-    if (surface_)
-      s += ", " + std::to_string(surface_->param->num_charts) + " charts, texture " + std::to_string(surface_->size) +
-           "^2";
-    s += " | " + std::to_string(history_.strokes().size()) + " strokes, " + std::to_string(history_.num_dabs()) +
+  if (has_model()) {
+    const Model& m = *painting_.model();
+    s += std::filesystem::path(m.path).filename().string() + ": " + std::to_string(m.mesh->num_faces()) + " faces";
+    if (const Surface* sf = painting_.surface()) {
+      if (sf->mesh->num_faces() != m.mesh->num_faces())
+        s += " (refined to " + std::to_string(sf->mesh->num_faces()) + ")";
+      s += ", " + std::to_string(sf->param->num_charts) + " charts, texture " + std::to_string(sf->size) + "^2";
+    }
+    s += " | " + std::to_string(history().strokes().size()) + " strokes, " + std::to_string(history().num_dabs()) +
          " dabs";
+    if (unsaved()) s += " (unsaved)";
   } else {
     s += "no model (drop a mesh file on the window or use Open)";
   }
+  s += " | adapt ";
+  s += to_string(session_.adapt.mode);
   if (!last_cycle_.empty()) {
     s += " | last cycle:";
     char buf[64];
@@ -331,78 +275,58 @@ void App::on_resize(int width, int height) {
 }
 
 void App::on_mouse_button(MouseButton b, bool pressed, Mods mods) {
-  mods_ = mods;
-  if (pressed) {
-    if (drag_ != Drag::None) return;  // one drag at a time
-    if (ui_mouse_) return;            // the UI owns this click
-    if (b == MouseButton::Left) {
-      left_ = true;
-      if (mods.alt) {
-        drag_ = Drag::Orbit;
-      } else if (brush_.tool == Tool::Eyedropper) {
-        drag_ = Drag::Eyedrop;
-        eyedrop(mouse_x_, mouse_y_);
-      } else {
-        drag_ = Drag::Paint;
-        begin_paint(mouse_x_, mouse_y_);
-      }
-    } else if (b == MouseButton::Right) {
-      right_ = true;
-      drag_ = Drag::Orbit;
-    } else {
-      middle_ = true;
-      drag_ = mods.shift ? Drag::Pan : Drag::Orbit;
-    }
-  } else {
-    if (b == MouseButton::Left) left_ = false;
-    if (b == MouseButton::Right) right_ = false;
-    if (b == MouseButton::Middle) middle_ = false;
-    if (drag_ == Drag::Paint && b == MouseButton::Left) end_paint();
-    if (!left_ && !right_ && !middle_) drag_ = Drag::None;
+  if (!pressed) {
+    if (input_.release(b, mods) == Drag::Paint) end_paint();
+    return;
+  }
+  switch (input_.press(b, mods, brush_.tool)) {
+    case Drag::Paint: begin_paint(); break;
+    case Drag::Eyedrop: eyedrop(input_.x(), input_.y()); break;
+    default: break;
   }
 }
 
 void App::on_cursor(double x, double y) {
-  const double dx = x - mouse_x_, dy = y - mouse_y_;
-  switch (drag_) {
+  const double x0 = input_.x(), y0 = input_.y();
+  const auto [dx, dy] = input_.move(x, y);
+  switch (input_.drag()) {
     case Drag::Orbit: camera_.orbit(dx, dy); break;
     case Drag::Pan: camera_.pan(dx, dy); break;
-    case Drag::Paint: continue_paint(x, y); break;
+    case Drag::Paint: continue_paint(x0, y0, x, y); break;
     case Drag::Eyedrop: eyedrop(x, y); break;
     case Drag::None: break;
   }
-  mouse_x_ = x;
-  mouse_y_ = y;
-  update_cursor(x, y);
+  update_cursor();
 }
 
 void App::on_scroll(double steps) {
-  if (ui_mouse_) return;
+  if (input_.ui_mouse()) return;
   camera_.zoom(steps);
-  update_cursor(mouse_x_, mouse_y_);
+  update_cursor();
 }
 
 void App::on_key(int key, bool pressed, Mods mods) {
-  mods_ = mods;
-  if (!pressed || ui_keyboard_) return;
-  if (mods.ctrl) {
-    if (key == 'Z' && mods.shift) redo();
-    else if (key == 'Z') undo();
-    else if (key == 'Y') redo();
-    else if (key == 'Q') request_quit();
-    return;
+  input_.set_mods(mods);
+  if (!pressed || input_.ui_keyboard() || confirm_) return;
+  run_command(key_command(key, mods));
+  update_cursor();
+}
+
+void App::run_command(Command c) {
+  switch (c) {
+    case Command::Undo: undo(); break;
+    case Command::Redo: redo(); break;
+    case Command::Quit: request_quit(); break;
+    case Command::Save: save(); break;
+    case Command::Frame: frame_model(); break;
+    case Command::SmallerBrush: brush_.radius = std::max(1e-4, brush_.radius / 1.15); break;
+    case Command::LargerBrush: brush_.radius = std::min(0.5, brush_.radius * 1.15); break;
+    case Command::Brush: brush_.tool = Tool::Brush; break;
+    case Command::Eraser: brush_.tool = brush_.tool == Tool::Eraser ? Tool::Brush : Tool::Eraser; break;
+    case Command::Eyedropper: brush_.tool = Tool::Eyedropper; break;
+    case Command::Wireframe: view_.wireframe = !view_.wireframe; break;
+    case Command::None: break;
   }
-  switch (key) {
-    case 'F': frame_model(); break;
-    case '[': brush_.radius = std::max(1e-4, brush_.radius / 1.15); break;
-    case ']': brush_.radius = std::min(0.5, brush_.radius * 1.15); break;
-    case 'B': brush_.tool = Tool::Brush; break;
-    case 'E': brush_.tool = brush_.tool == Tool::Eraser ? Tool::Brush : Tool::Eraser; break;
-    case 'I': brush_.tool = Tool::Eyedropper; break;
-    case 'W': view_.wireframe = !view_.wireframe; break;
-    default: break;
-  }
-  update_cursor(mouse_x_, mouse_y_);
 }
 
 void App::on_drop(const std::vector<std::string>& paths) {
@@ -415,7 +339,7 @@ void App::on_drop(const std::vector<std::string>& paths) {
       std::ifstream in(p);
       const auto j = nlohmann::json::parse(in);
       if (j.value("format", "") == "adaptex.studio-project") {
-        open_project(p);
+        request_open_project(p);
       } else {
         replay(load_strokes(p));
         add_message("replaying " + p.string(), false);
@@ -426,69 +350,54 @@ void App::on_drop(const std::vector<std::string>& paths) {
   } else if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") {
     load_decal(p);
   } else {
-    open_mesh(p.string());
+    request_open_mesh(p.string());
   }
 }
 
 void App::frame_model() {
-  if (model_) camera_.frame(model_->box);
+  if (has_model()) camera_.frame(painting_.model()->box);
 }
 
 // ---- painting ---------------------------------------------------------------------------------
 
+void App::history_changed() {
+  if (session_.schedule == ReparamSchedule::EachStroke) adapt_pending_ = true;
+}
+
 Stroke App::brush_style() const {
   Stroke s;
   s.type = Stroke::Type::Brush;
-  s.color = brush_.tool == Tool::Eraser ? history_.background() : brush_.color;
+  s.color = brush_.tool == Tool::Eraser ? history().background() : brush_.color;
   s.radius = world_radius();
   s.hardness = brush_.hardness;
   s.opacity = brush_.opacity;
   return s;
 }
 
-void App::begin_paint(double x, double y) {
-  if (!surface_ || !model_ || stroke_open_) return;
-  maybe_start_rebuild();  // paints redone strokes first, so canvas order == history order
-  current_ = brush_style();
-  stroke_open_ = true;
-  have_last_dab_ = false;
-  surface_->canvas->begin_stroke(current_);
-  if (auto h = pick(x, y)) paint_dab_at(*h, camera_.pixel_ray(x, y));
+void App::begin_paint() {
+  if (!painting_.surface() || painting_.stroke_open()) return;
+  painting_.catch_up();  // paints redone strokes first, so canvas order == history order
+  painting_.begin_stroke(brush_style());
+  if (auto h = pick(input_.x(), input_.y())) paint_dab_at(*h, camera_.pixel_ray(input_.x(), input_.y()));
 }
 
-void App::continue_paint(double x, double y) {
-  if (!stroke_open_) return;
-  const double len = std::hypot(x - mouse_x_, y - mouse_y_);
-  const int n = std::max(1, int(std::ceil(len)));  // one ray per pixel of cursor travel
-  const double step = std::max(1e-12, brush_.spacing) * current_.radius;
+void App::continue_paint(double x0, double y0, double x1, double y1) {
+  if (!painting_.stroke_open()) return;
+  const int n = std::max(1, int(std::ceil(std::hypot(x1 - x0, y1 - y0))));  // one ray per pixel of travel
+  const double step = std::max(1e-12, brush_.spacing) * painting_.open_stroke().radius;
   for (int k = 1; k <= n; ++k) {
     const double t = double(k) / n;
-    const double px = mouse_x_ + (x - mouse_x_) * t, py = mouse_y_ + (y - mouse_y_) * t;
+    const double px = x0 + (x1 - x0) * t, py = y0 + (y1 - y0) * t;
     auto h = pick(px, py);
     if (!h) continue;
-    if (have_last_dab_ && (h->point - last_dab_).norm() < step) continue;
+    if (const auto last = painting_.last_dab(); last && (h->point - *last).norm() < step) continue;
     paint_dab_at(*h, camera_.pixel_ray(px, py));
   }
 }
 
 void App::paint_dab_at(const Hit& h, const Ray& ray) {
   const auto t0 = Clock::now();
-  merge_rect(dirty_, surface_->canvas->add_dab(h.point));
-  current_.dabs.push_back(h.point);
-  last_dab_ = h.point;
-  have_last_dab_ = true;
-  if (brush_.symmetry_axis >= 0 && model_) {
-    const int a = brush_.symmetry_axis;
-    const double c = 0.5 * (model_->box.min[a] + model_->box.max[a]);
-    Ray m = ray;
-    m.origin[a] = 2 * c - m.origin[a];
-    m.dir[a] = -m.dir[a];
-    auto mh = model_->caster->intersect(m);
-    if (mh && mh->front_facing && (mh->point - h.point).norm() > 1e-9 * (1 + model_->box.diagonal())) {
-      merge_rect(dirty_, surface_->canvas->add_dab(mh->point));
-      current_.dabs.push_back(mh->point);
-    }
-  }
+  painting_.add_dab(h, ray, brush_.symmetry_axis);
   stats_.dab_paint_ms.push_back(ms_since(t0));
   if (!first_pending_dab_) {
     first_pending_dab_ = t0;
@@ -497,37 +406,33 @@ void App::paint_dab_at(const Hit& h, const Ray& ray) {
 }
 
 void App::end_paint() {
-  if (!stroke_open_) return;
-  surface_->canvas->end_stroke();
-  stroke_open_ = false;
-  if (current_.dabs.empty()) return;
-  const bool in_sync = surface_->generation == history_.generation() && surface_->painted == history_.strokes().size();
-  history_.push(std::move(current_));
-  current_ = Stroke();
-  if (in_sync) surface_->painted = history_.strokes().size();
-  change_time_ = Clock::time_point{};  // autosave right away
-  if (adapt_.mode != AdaptMode::None) adapt_pending_ = true;
+  if (!painting_.end_stroke()) return;
+  store_.autosave_soon();
+  history_changed();
 }
 
 void App::eyedrop(double x, double y) {
   if (auto h = pick(x, y)) brush_.color = sample_colour(*h);
 }
 
-void App::update_cursor(double x, double y) {
-  cursor_hit_ = (drag_ == Drag::None || drag_ == Drag::Paint) ? pick(x, y) : std::nullopt;
+void App::update_cursor() {
+  const Drag d = input_.drag();
+  cursor_hit_ = (d == Drag::None || d == Drag::Paint) ? pick(input_.x(), input_.y()) : std::nullopt;
 }
 
 void App::undo() {
-  if (stroke_open_) return;
-  history_.undo();
+  if (painting_.undo()) history_changed();
 }
 
 void App::redo() {
-  if (stroke_open_) return;
-  history_.redo();
+  if (painting_.redo()) history_changed();
 }
 
-void App::set_background_colour(const Vec3& bg) { history_.set_background(bg); }
+void App::set_background_colour(const Vec3& bg) {
+  if (bg == history().background()) return;
+  painting_.history().set_background(bg);
+  history_changed();
+}
 
 // ---- decals -----------------------------------------------------------------------------------
 
@@ -542,248 +447,126 @@ void App::load_decal(const std::filesystem::path& path) {
 }
 
 void App::project_decal(double opacity) {
-  if (!decal_image_ || !surface_ || stroke_open_) return;
+  if (!decal_image_ || !painting_.surface() || painting_.stroke_open()) return;
   Stroke s;
   s.type = Stroke::Type::Decal;
   s.image = *decal_image_;
   s.image_path = decal_path_;
   s.opacity = opacity;
   s.camera = camera_.decal_camera();
-  history_.push(std::move(s));
-  change_time_ = Clock::time_point{};
-  if (adapt_.mode != AdaptMode::None) adapt_pending_ = true;
+  painting_.push(std::move(s));
+  store_.autosave_soon();
+  history_changed();
 }
 
 // ---- background jobs --------------------------------------------------------------------------
 
+void App::request_adapt() {
+  if (session_.adapt.mode == AdaptMode::None) return add_message("choose an adaptation mode first", true);
+  adapt_pending_ = true;
+}
+
+void App::session_options_changed() { history_changed(); }
+
+void App::request_compare() {
+  if (const Surface* s = painting_.surface()) jobs_.start_compare(*s, history().to_file());
+}
+
 void App::start_rebuild(bool adapt) {
-  if (rebuild_job_) {
-    rebuild_job_->cancel();
-    retired_jobs_.push_back(std::move(rebuild_job_));
-    if (rebuild_adapting_ && adapt_.mode != AdaptMode::None) adapt_pending_ = true;  // redo it later
-  }
-  rebuild_adapting_ = adapt;
-  auto model = model_;
-  auto param = surface_->param;
-  const std::uint64_t gen = history_.generation();
-  rebuild_generation_ = gen;
-  StrokeFile file = history_.to_file();
-  const int size = adapt_.texture_size;
-  AdaptRequest req;
-  req.mode = static_cast<int>(adapt_.mode);  // index into adaptex::adapt_modes()
-  req.alpha = adapt_.alpha;
-  req.beta = adapt_.beta;
-  req.coarse_grid = adapt_.coarse_grid;
-  req.fine_grid = adapt_.fine_grid;
-  req.texture_size = size;
+  if (jobs_.rebuild_adapting() && !adapt) adapt_pending_ = true;  // the cancelled adaptation runs later
   if (adapt) adapt_pending_ = false;
-  rebuild_job_ = std::make_unique<Job<RebuildResult>>(
-      [model, param, gen, file = std::move(file), size, req, adapt](Job<RebuildResult>& job) {
-        RebuildResult r;
-        const auto t0 = Clock::now();
-        auto s = std::make_unique<Surface>();
-        s->model = model;
-        s->generation = gen;
-        s->size = size;
-        const ProgressCallback progress = [&job](std::string_view ph, double f) { return job.progress(ph, f); };
-        if (adapt) {
-          AdaptOutcome o = adapt_and_replay(model->mesh, *param, file, req, progress);
-          s->param = o.param;
-          s->canvas = std::move(o.canvas);
-          r.phase_ms = std::move(o.phase_ms);
-          r.phase_ms.emplace_back("total", ms_since(t0));
-          auto maps = std::make_shared<AdaptMaps>();
-          maps->importance = std::move(o.importance);
-          maps->stretch = std::move(o.stretch);
-          maps->ls2 = std::move(o.ls2);
-          maps->coarse = std::move(o.coarse);
-          maps->fine = std::move(o.fine);
-          maps->accepted = o.accepted;
-          maps->damping = o.damping;
-          r.maps = std::move(maps);
-          r.adapted = true;
-        } else {
-          s->param = param;
-          s->canvas = std::make_unique<Canvas>(model->mesh, *param, size, size, file.background);
-          for (size_t i = 0; i < file.strokes.size(); ++i) {
-            if (!job.progress("replay", double(i) / file.strokes.size())) throw CancelledError();
-            s->canvas->paint_stroke(file.strokes[i]);
-          }
-          r.phase_ms.emplace_back("replay", ms_since(t0));
-        }
-        s->painted = file.strokes.size();
-        r.surface = std::move(s);
-        return r;
-      });
+  jobs_.start_rebuild(*painting_.surface(), history().generation(), history().to_file(), session_, adapt);
 }
 
 void App::maybe_start_rebuild() {
-  if (!model_ || !surface_ || load_job_) return;
-  const bool stale = surface_->generation != history_.generation() || surface_->size != adapt_.texture_size;
-  if (rebuild_job_) {
+  if (!painting_.surface() || jobs_.loading()) return;
+  if (jobs_.rebuilding()) {
     // A rebuild for an older history generation (undo / redo meanwhile) is abandoned, not awaited.
-    if (rebuild_generation_ != history_.generation()) start_rebuild(false);
+    if (jobs_.rebuild_generation() != history().generation()) start_rebuild(false);
     return;
   }
-  const bool want_adapt = adapt_pending_ && adapt_.mode != AdaptMode::None;
-  if (stale || (want_adapt && !stroke_open_)) {
-    start_rebuild(want_adapt && !stroke_open_);
-    return;
-  }
-  // Pure appends (redo, decals): paint the missing strokes onto the current canvas.
-  if (!stroke_open_) {
-    const auto& strokes = history_.strokes();
-    while (surface_->painted < strokes.size()) {
-      surface_->canvas->paint_stroke(strokes[surface_->painted++]);
-      texture_full_upload_ = true;
-    }
+  if (painting_.stale(session_.texture_size)) return start_rebuild(false);  // quick replay first
+  if (adapt_wanted() && !painting_.stroke_open()) return start_rebuild(true);
+  painting_.catch_up();  // pure appends (redo, decals): painted onto the current canvas
+}
+
+void App::finish_load(Job<LoadResult>& job) {
+  PendingLoad pending = std::exchange(pending_, PendingLoad());
+  try {
+    LoadResult r = job.take();
+    if (painting_.stroke_open()) end_paint();
+    const Vec3 bg = pending.background.value_or(history().background());
+    const auto model = r.model;
+    painting_.set_model(model, std::move(r.surface), std::move(pending.strokes), bg);
+    // Strokes from a project are saved; replayed or recovered ones are not.
+    store_.mark_clean(pending.from_project || history().strokes().empty() ? history().version() : ~0ull,
+                      pending.project_path);
+    last_cycle_.clear();
+    maps_.reset();
+    comparison_.reset();
+    camera_.frame(model->box);
+    store_.add_recent(model->path);
+    history_changed();
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " in %.2f s", r.seconds);
+    add_message("loaded " + model->path + buf, false);
+  } catch (const CancelledError&) {
+    add_message("loading cancelled", false);
+  } catch (const std::exception& e) {
+    add_message(e.what(), true);
   }
 }
 
-void App::swap_surface(std::unique_ptr<Surface> s) {
-  const bool new_param = !surface_ || surface_->param != s->param;
-  surface_ = std::move(s);
-  ++surface_serial_;
-  texture_full_upload_ = true;
-  if (new_param) mesh_upload_ = true;
+void App::finish_rebuild(Job<RebuildResult>& job) {
+  try {
+    RebuildResult r = job.take();
+    auto maps = std::move(r.maps);
+    auto phases = std::move(r.phase_ms);
+    if (painting_.accept_rebuilt(std::move(r.surface), session_.texture_size) && maps) {
+      last_cycle_ = std::move(phases);
+      maps_ = std::move(maps);
+    }
+  } catch (const CancelledError&) {
+  } catch (const std::exception& e) {
+    add_message(e.what(), true);
+    adapt_pending_ = false;
+  }
 }
 
 void App::poll_jobs() {
-  retired_jobs_.erase(std::remove_if(retired_jobs_.begin(), retired_jobs_.end(),
-                                     [](const auto& j) { return j->ready(); }),
-                      retired_jobs_.end());
-  if (compare_job_ && compare_job_->ready()) {
+  jobs_.reap();
+  if (auto job = jobs_.finished_compare()) {
     try {
-      comparison_ = std::make_shared<Comparison>(compare_job_->take());
+      comparison_ = std::make_shared<Comparison>(job->take());
     } catch (const std::exception& e) {
       add_message(std::string("comparison failed: ") + e.what(), true);
     }
-    compare_job_.reset();
   }
-  if (load_job_ && load_job_->ready()) {
-    auto job = std::move(load_job_);
-    try {
-      LoadResult r = job->take();
-      if (stroke_open_) end_paint();
-      model_ = r.model;
-      auto s = std::move(r.surface);
-      history_.reset(std::move(pending_strokes_), pending_background_.value_or(history_.background()));
-      pending_strokes_.clear();
-      pending_background_.reset();
-      if (history_.strokes().empty()) s->generation = history_.generation();
-      swap_surface(std::move(s));
-      camera_.frame(model_->box);
-      add_recent(model_->path);
-      char buf[64];
-      std::snprintf(buf, sizeof buf, " in %.2f s", r.seconds);
-      add_message("loaded " + model_->path + buf, false);
-    } catch (const CancelledError&) {
-      add_message("loading cancelled", false);
-      pending_strokes_.clear();
-    } catch (const std::exception& e) {
-      add_message(e.what(), true);
-      pending_strokes_.clear();
-    }
-  }
-  if (rebuild_job_ && rebuild_job_->ready()) {
-    auto job = std::move(rebuild_job_);
-    try {
-      RebuildResult r = job->take();
-      if (r.surface->generation == history_.generation() && r.surface->model == model_ &&
-          r.surface->size == adapt_.texture_size) {
-        Surface& s = *r.surface;
-        // Strokes finished while the job ran, then the open stroke: replayed before the swap.
-        const auto& strokes = history_.strokes();
-        while (s.painted < strokes.size()) s.canvas->paint_stroke(strokes[s.painted++]);
-        if (stroke_open_) {
-          surface_->canvas->end_stroke();
-          s.canvas->begin_stroke(current_);
-          for (const Vec3& d : current_.dabs) s.canvas->add_dab(d);
-        }
-        if (r.adapted) {
-          last_cycle_ = r.phase_ms;
-          maps_ = r.maps;
-        }
-        swap_surface(std::move(r.surface));
-      }
-    } catch (const CancelledError&) {
-    } catch (const std::exception& e) {
-      add_message(e.what(), true);
-      adapt_pending_ = false;
-    }
-  }
+  if (auto job = jobs_.finished_load()) finish_load(*job);
+  if (auto job = jobs_.finished_rebuild()) finish_rebuild(*job);
   maybe_start_rebuild();
-}
-
-// ---- autosave ---------------------------------------------------------------------------------
-
-void App::autosave_tick() {
-  if (options_.recovery_dir.empty() || !model_) return;
-  if (autosave_job_ && !autosave_job_->ready()) return;
-  if (autosave_job_) {
-    try {
-      autosave_job_->take();
-    } catch (const std::exception& e) {
-      add_message(std::string("autosave failed: ") + e.what(), true);
-    }
-    autosave_job_.reset();
-  }
-  if (history_.version() == saved_version_ || stroke_open_) return;
-  const auto now = Clock::now();
-  if (!change_time_) change_time_ = now;
-  const bool due = *change_time_ == Clock::time_point{} ||
-                   std::chrono::duration<double>(now - *change_time_).count() >= options_.autosave_delay;
-  if (!due) return;
-  Project p;
-  p.mesh_path = model_->path;
-  p.strokes = history_.to_file();
-  p.brush = brush_;
-  p.view = view_;
-  p.adapt = adapt_;
-  p.camera = camera_;
-  saved_version_ = history_.version();
-  change_time_.reset();
-  const auto path = recovery_path();
-  autosave_job_ = std::make_unique<Job<int>>([p = std::move(p), path](Job<int>&) {
-    write_project(path, p);
-    return 0;
-  });
 }
 
 // ---- frame ------------------------------------------------------------------------------------
 
 void App::begin_frame() {
   poll_jobs();
-  autosave_tick();
+  store_.autosave_tick(history().version(), unsaved() && has_model(), !painting_.stroke_open(),
+                       [this] { return snapshot(); });
 }
 
 void App::render() {
-  if (mesh_upload_ && surface_) {
-    renderer_->set_mesh(model_->mesh, *surface_->param);
-    mesh_upload_ = false;
-  }
-  if (surface_ && texture_full_upload_) {
-    renderer_->set_texture(surface_->canvas->texture());
-    texture_full_upload_ = false;
-    dirty_ = {0, 0, -1, -1};
-  } else if (surface_ && dirty_[2] >= dirty_[0]) {
-    renderer_->update_texture(surface_->canvas->texture(), dirty_);
-    dirty_ = {0, 0, -1, -1};
-  }
+  painting_.upload(*renderer_);
   FrameView v;
   v.camera = camera_;
-  v.has_mesh = surface_ != nullptr;
+  v.has_mesh = painting_.surface() != nullptr;
   v.wireframe = view_.wireframe;
   v.background = view_.background;
-  if (cursor_hit_ && brush_.tool != Tool::Eyedropper && model_) {
+  if (cursor_hit_ && brush_.tool != Tool::Eyedropper && has_model()) {
     v.cursors.push_back({cursor_hit_->point, cursor_hit_->normal, world_radius()});
     if (brush_.symmetry_axis >= 0) {
-      const int a = brush_.symmetry_axis;
-      const double c = 0.5 * (model_->box.min[a] + model_->box.max[a]);
-      Ray m = camera_.pixel_ray(mouse_x_, mouse_y_);
-      m.origin[a] = 2 * c - m.origin[a];
-      m.dir[a] = -m.dir[a];
-      if (auto mh = model_->caster->intersect(m); mh && mh->front_facing)
+      const Ray ray = camera_.pixel_ray(input_.x(), input_.y());
+      if (auto mh = painting_.mirror_hit(ray, *cursor_hit_, brush_.symmetry_axis))
         v.cursors.push_back({mh->point, mh->normal, world_radius()});
     }
   }
@@ -813,33 +596,32 @@ void App::end_frame() {
   }
 }
 
-// ---- files ------------------------------------------------------------------------------------
+// ---- outputs ----------------------------------------------------------------------------------
 
 void App::screenshot(const std::filesystem::path& path) { pending_screenshot_ = path; }
 
 void App::save_history(const std::filesystem::path& path) {
   try {
-    save_strokes(path, history_.to_file());
+    save_strokes(path, history().to_file());
   } catch (const std::exception& e) {
     add_message(e.what(), true);
   }
 }
 
 void App::save_texture(const std::filesystem::path& path) {
-  if (!surface_) return add_message("no texture to save", true);
+  if (!texture()) return add_message("no texture to save", true);
   try {
-    save_png(path, surface_->canvas->texture());
+    save_png(path, *texture());
   } catch (const std::exception& e) {
     add_message(e.what(), true);
   }
 }
 
 void App::export_obj(const std::filesystem::path& dir) {
-  if (!surface_) return add_message("nothing to export", true);
+  if (!texture()) return add_message("nothing to export", true);
   try {
-    const std::string name = std::filesystem::path(model_->path).stem().string();
-    studio::export_obj(dir, name.empty() ? "model" : name, model_->mesh, *surface_->param,
-                       surface_->canvas->texture());
+    const std::string name = std::filesystem::path(mesh_path()).stem().string();
+    studio::export_obj(dir, name.empty() ? "model" : name, *mesh(), *param(), *texture());
     add_message("exported OBJ+MTL+PNG to " + dir.string(), false);
   } catch (const std::exception& e) {
     add_message(e.what(), true);
@@ -847,45 +629,13 @@ void App::export_obj(const std::filesystem::path& dir) {
 }
 
 void App::export_glb(const std::filesystem::path& path) {
-  if (!surface_) return add_message("nothing to export", true);
+  if (!texture()) return add_message("nothing to export", true);
   try {
-    studio::export_glb(path, model_->mesh, *surface_->param, surface_->canvas->texture());
+    studio::export_glb(path, *mesh(), *param(), *texture());
     add_message("exported " + path.string(), false);
   } catch (const std::exception& e) {
     add_message(e.what(), true);
   }
 }
 
-void App::request_adapt() {
-  if (adapt_.mode == AdaptMode::None) return add_message("choose an adaptation mode first", true);
-  adapt_pending_ = true;
-}
-
-}  // namespace adaptex::studio
-
-namespace adaptex::studio {
-bool App::load_running() const { return load_job_ != nullptr; }
-bool App::compare_running() const { return compare_job_ != nullptr; }
-
-void App::request_compare() {
-  if (!surface_ || compare_job_) return;
-  auto model = model_;
-  auto adaptive = surface_->param;
-  auto tex = std::make_shared<ImageRGBA8>(surface_->canvas->texture());
-  StrokeFile file = history_.to_file();
-  const int size = surface_->size;
-  compare_job_ = std::make_unique<Job<Comparison>>([model, adaptive, tex, file, size](Job<Comparison>&) {
-    Comparison c;
-    c.fixed_param = model->initial;
-    c.adaptive_param = adaptive;
-    Canvas fixed(model->mesh, *model->initial, size, size, file.background);
-    for (const Stroke& s : file.strokes) fixed.paint_stroke(s);
-    c.fixed_texture = fixed.texture();
-    c.adaptive_texture = *tex;
-    c.psnr_fixed = texture_psnr(model->mesh, *model->initial, c.fixed_texture, file);
-    c.psnr_adaptive = texture_psnr(model->mesh, *adaptive, c.adaptive_texture, file);
-    c.strokes = file.strokes.size();
-    return c;
-  });
-}
 }  // namespace adaptex::studio

@@ -1,11 +1,20 @@
 #pragma once
 /// \file app.h
-/// The state and logic of adaptex-studio, independent of GLFW / OpenGL / ImGui: one App object owns
-/// everything (model, parameterization, canvas, stroke history, camera, settings, background jobs).
+/// The state and logic of adaptex-studio, independent of GLFW / OpenGL / ImGui. The App wires four
+/// parts together and owns the settings:
+///   - InputState (input.h): drags, UI capture, shortcuts;
+///   - Painting (painting.h): model, surface, stroke history, the open stroke, picking, uploads;
+///   - SurfaceJobs (surface_jobs.h): loading, canvas rebuilds, re-parameterization, comparison;
+///   - ProjectStore (storage.h): project file, unsaved work, recovery file, recent files.
+/// Adaptation: the studio paints with the library's PaintSessionOptions (settings.h; by default the
+/// library's best method, density-flow). After every change of the history (schedule each-stroke) a
+/// background job runs `adaptex paint --reparam end` on the whole history from the model's initial
+/// layout (backend.h paint_history): warps never compose, and the layout is a function of the
+/// history and the options, so undo, projects and recovery give back exactly the same layout.
 /// The window layer forwards input events and calls the frame phases in a fixed order:
 ///   1. input events (on_* handlers: camera, dabs painted at once)   2. begin_frame(): finished
 ///   background jobs are swapped in, autosave   3. UI (ImGui, outside App)   4. render()
-///   5. end_frame(): scripted screenshot / exit, statistics.
+///   5. end_frame(): scripted screenshot, statistics.
 #include <chrono>
 #include <deque>
 #include <filesystem>
@@ -14,17 +23,14 @@
 #include <string>
 #include <vector>
 
-#include "adaptex/core/image.h"
-#include "adaptex/core/mesh.h"
-#include "adaptex/core/parameterization.h"
-#include "adaptex/paint/strokes.h"
-#include "backend.h"
+#include "adaptex/adapt/session.h"
 #include "camera.h"
-#include "history.h"
-#include "jobs.h"
-#include "ray_caster.h"
+#include "input.h"
+#include "painting.h"
 #include "renderer.h"
 #include "settings.h"
+#include "storage.h"
+#include "surface_jobs.h"
 
 namespace adaptex::studio {
 
@@ -42,22 +48,6 @@ struct Message {
   bool error = false;
 };
 
-/// Maps of the last adaptive re-parameterization (Inspect panel).
-struct AdaptMaps {
-  ImageF importance, stretch, ls2;  ///< Over the previous parameterization's domain.
-  GridWarp coarse, fine;            ///< Optimized grids (empty when not used).
-  bool accepted = true;             ///< false: the safeguard kept the previous parameterization.
-  double damping = 1;
-};
-
-/// Fixed vs adaptive parameterization on the same strokes at the same texture size (Inspect panel).
-struct Comparison {
-  std::shared_ptr<const Parameterization> fixed_param, adaptive_param;
-  ImageRGBA8 fixed_texture, adaptive_texture;
-  double psnr_fixed = 0, psnr_adaptive = 0;  ///< dB against the exact stroke signal (adaptex eval).
-  size_t strokes = 0;
-};
-
 /// Timing statistics (frame time, dab-to-screen latency).
 struct Stats {
   std::vector<double> frame_ms;       ///< CPU+GPU time of each frame (end_frame to end_frame).
@@ -66,11 +56,19 @@ struct Stats {
   std::vector<double> dab_paint_ms;   ///< Time to paint one dab (incl. mirror) into the texture.
 };
 
+/// An action that would drop unsaved strokes, waiting for Save / Discard / Cancel.
+struct Confirm {
+  enum class Action { Quit, OpenMesh, OpenProject, New };
+  Action action = Action::Quit;
+  std::string path;  ///< File to open (OpenMesh, OpenProject).
+};
+
 class App {
  public:
   using Clock = std::chrono::steady_clock;
 
   App(std::unique_ptr<Renderer> renderer, AppOptions options);
+  /// Unsaved strokes are written to the recovery file; without any, it is removed.
   ~App();
   App(const App&) = delete;
   App& operator=(const App&) = delete;
@@ -83,24 +81,46 @@ class App {
   void on_key(int key, bool pressed, Mods mods);
   void on_drop(const std::vector<std::string>& paths);
   /// What the UI wants (ImGui io.WantCaptureMouse / WantCaptureKeyboard of the last frame).
-  void set_ui_capture(bool mouse, bool keyboard) {
-    ui_mouse_ = mouse;
-    ui_keyboard_ = keyboard;
-  }
+  void set_ui_capture(bool mouse, bool keyboard) { input_.set_ui_capture(mouse, keyboard); }
 
   // ---- 2, 4, 5. frame phases ----
   void begin_frame();
   void render();
   void end_frame();
   bool should_quit() const { return quit_; }
-  void request_quit() { quit_ = true; }
 
-  // ---- commands (UI, command line, tests) ----
+  // ---- unsaved work: these ask Save / Discard / Cancel (confirm()) when unsaved() ----
+  /// Strokes that no project file holds (painted, replayed or recovered since the last save / open).
+  bool unsaved() const;
+  void request_quit();
+  void request_open_mesh(const std::string& path);
+  void request_open_project(const std::filesystem::path& path);
+  void request_new();
+  /// The action waiting for an answer (the UI shows Save / Discard / Cancel).
+  const std::optional<Confirm>& confirm() const { return confirm_; }
+  /// Saves to \p path, then does the waiting action. \return false (nothing done) if saving failed
+  bool confirm_save(const std::filesystem::path& path);
+  /// Drops the unsaved strokes (and the recovery file), then does the waiting action.
+  void confirm_discard();
+  void confirm_cancel();
+  /// Quits without asking (signals, scripted runs); unsaved strokes stay in the recovery file.
+  void quit_now() { quit_ = true; }
+
+  // ---- commands (UI, command line, tests); open_* and new_scene() do not ask ----
   /// Starts loading + unwrapping \p path in the background (replaces the current model when done).
   void open_mesh(const std::string& path);
   void cancel_load();
   void open_project(const std::filesystem::path& path);
-  void save_project(const std::filesystem::path& path);
+  /// Closes the model (empty scene).
+  void new_scene();
+  /// Save As: writes the project to \p path, which becomes the project file. \return success
+  bool save_project(const std::filesystem::path& path);
+  /// Save: to the project file. \return false (with a message) when there is none yet
+  bool save();
+  /// The project file (empty: none yet).
+  std::filesystem::path project_path() const { return store_.project_path(); }
+  /// Where Save As proposes to write: the project file, else MESHNAME.adaptex.json in the current folder.
+  std::string suggested_project_path() const;
   /// Appends the strokes of a stroke file to the history (painted when the model is ready).
   void replay(const StrokeFile& file);
   void undo();
@@ -116,136 +136,123 @@ class App {
   void load_decal(const std::filesystem::path& path);
   /// Projects the loaded decal image from the current view as a decal stroke.
   void project_decal(double opacity = 1.0);
-  /// Re-runs the adaptive re-parameterization now (also runs after each stroke when enabled).
+  /// Re-parameterizes now (with schedule each-stroke it also runs after every change).
   void request_adapt();
+  /// The UI changed session_options(): re-parameterize for them (schedule each-stroke).
+  void session_options_changed();
   void accept_recovery();
   void discard_recovery();
 
   // ---- queries ----
-  bool has_model() const { return model_ != nullptr; }
-  /// True when no background job runs and the texture is up to date with the history.
+  bool has_model() const { return painting_.model() != nullptr; }
+  /// True when no background job runs and the texture is up to date with the history and options.
   bool idle() const;
   /// Blocks until idle() (tests and scripted mode only). \return false on timeout
   bool wait_idle(double timeout_seconds);
   std::string mesh_path() const;
+  /// The painted mesh: the model's, or its refinement after a density-flow re-parameterization.
   const TriMesh* mesh() const;
   const Parameterization* param() const;
   const ImageRGBA8* texture() const;
-  const StrokeHistory& history() const { return history_; }
+  const StrokeHistory& history() const { return painting_.history(); }
   Camera& camera() { return camera_; }
   BrushSettings& brush() { return brush_; }
   ViewSettings& view() { return view_; }
-  AdaptSettings& adapt() { return adapt_; }
-  const AdaptSettings& adapt() const { return adapt_; }
+  /// Texture size and adaptation (the library's options; call session_options_changed() after edits).
+  PaintSessionOptions& session_options() { return session_; }
+  const PaintSessionOptions& session_options() const { return session_; }
   const BrushSettings& brush() const { return brush_; }
   const ViewSettings& view() const { return view_; }
-  const std::vector<std::string>& recent_files() const { return recent_; }
+  const std::vector<std::string>& recent_files() const { return store_.recent(); }
   /// Brush radius in world units.
   double world_radius() const;
   /// The visible front-facing surface under window pixel (x, y).
   std::optional<Hit> pick(double x, double y) const;
   /// Painted colour at a hit (bilinear texture sample).
-  Vec3 sample_colour(const Hit& h) const;
-  bool painting() const { return stroke_open_; }
+  Vec3 sample_colour(const Hit& h) const { return painting_.sample_colour(h); }
+  bool painting() const { return painting_.stroke_open(); }
   const std::deque<Message>& messages() const { return messages_; }
   void clear_messages() { messages_.clear(); }
   std::string status_line() const;
   /// Background work in progress: (label, fraction) or nullopt.
-  std::optional<std::pair<std::string, double>> progress() const;
-  bool load_running() const;
-  std::optional<std::filesystem::path> pending_recovery() const { return pending_recovery_; }
+  std::optional<std::pair<std::string, double>> progress() const { return jobs_.progress(); }
+  bool load_running() const { return jobs_.loading(); }
+  std::optional<std::filesystem::path> pending_recovery() const { return store_.pending_recovery(); }
   const Stats& stats() const { return stats_; }
   void reset_stats() { stats_ = Stats(); }
   Renderer& renderer() { return *renderer_; }
   const std::optional<ImageRGBA8>& decal_image() const { return decal_image_; }
-  /// Phase times of the last re-parameterization cycle (name, ms).
+  /// Phase times of the last re-parameterization (name, ms).
   const std::vector<std::pair<std::string, double>>& last_cycle() const { return last_cycle_; }
   /// Starts the fixed-vs-adaptive comparison in the background.
   void request_compare();
   /// The last comparison (null before the first one).
   const Comparison* comparison() const { return comparison_.get(); }
-  bool compare_running() const;
+  bool compare_running() const { return jobs_.comparing(); }
   /// Maps of the last re-parameterization (null before the first one).
   const AdaptMaps* adapt_maps() const { return maps_.get(); }
   /// Canvas (texture) generation counter: changes whenever a new texture is swapped in.
-  std::uint64_t surface_serial() const { return surface_serial_; }
-  std::filesystem::path recovery_path() const;
+  std::uint64_t surface_serial() const { return painting_.serial(); }
+  std::filesystem::path recovery_path() const { return store_.recovery_path(); }
 
  private:
-  struct Model;
-  struct Surface;
-  struct LoadResult;
-  struct RebuildResult;
+  /// Strokes and settings for the model being loaded.
+  struct PendingLoad {
+    std::vector<Stroke> strokes;
+    std::optional<Vec3> background;
+    bool from_project = false;       ///< The strokes are what project_path holds (nothing unsaved).
+    std::filesystem::path project_path;
+  };
 
   void add_message(std::string text, bool error);
-  void begin_paint(double x, double y);
-  void continue_paint(double x, double y);
-  void end_paint();
+  void ask_or_do(Confirm c);
+  void perform(const Confirm& c);
+  Project snapshot() const;
+  void apply_project(Project p, bool from_project, const std::filesystem::path& project_path);
+  void history_changed();
+  bool adapt_wanted() const;
+  // painting
+  Stroke brush_style() const;
+  void begin_paint();
+  void continue_paint(double x0, double y0, double x1, double y1);
   void paint_dab_at(const Hit& h, const Ray& ray);
+  void end_paint();
   void eyedrop(double x, double y);
-  void update_cursor(double x, double y);
+  void update_cursor();
+  void run_command(Command c);
+  // jobs
   void poll_jobs();
+  void finish_load(Job<LoadResult>& job);
+  void finish_rebuild(Job<RebuildResult>& job);
   void maybe_start_rebuild();
   void start_rebuild(bool adapt);
-  void swap_surface(std::unique_ptr<Surface> s);
-  void autosave_tick();
-  void add_recent(const std::string& path);
-  void load_config();
-  void save_config() const;
-  Stroke brush_style() const;
 
   std::unique_ptr<Renderer> renderer_;
   AppOptions options_;
+  std::deque<Message> messages_;  // before store_, which reports through add_message()
   Camera camera_;
   BrushSettings brush_;
   ViewSettings view_;
-  AdaptSettings adapt_;
-  StrokeHistory history_;
+  PaintSessionOptions session_ = studio_session_options();
 
-  std::shared_ptr<const Model> model_;
-  std::unique_ptr<Surface> surface_;
-  std::unique_ptr<Job<LoadResult>> load_job_;
-  std::unique_ptr<Job<RebuildResult>> rebuild_job_;
-  std::vector<std::unique_ptr<JobBase>> retired_jobs_;  // cancelled; destroyed (joined) once finished
-  std::unique_ptr<Job<int>> autosave_job_;
-  std::unique_ptr<Job<Comparison>> compare_job_;
+  InputState input_;
+  Painting painting_;
+  SurfaceJobs jobs_;
+  ProjectStore store_;
+
+  PendingLoad pending_;
+  bool adapt_pending_ = false;  // the layout is not yet the one of the history and options
+  std::vector<std::pair<std::string, double>> last_cycle_;
+  std::shared_ptr<const AdaptMaps> maps_;
   std::shared_ptr<const Comparison> comparison_;
-  bool adapt_pending_ = false;
-  std::uint64_t rebuild_generation_ = 0;
-  bool rebuild_adapting_ = false;  // history generation the running rebuild job is for
-  std::string loading_path_;
-  std::vector<Stroke> pending_strokes_;  // replayed/recovered strokes waiting for the model
-  std::optional<Vec3> pending_background_;
+  std::optional<Confirm> confirm_;
 
-  // input state
-  bool ui_mouse_ = false, ui_keyboard_ = false;
-  double mouse_x_ = 0, mouse_y_ = 0;
-  bool left_ = false, right_ = false, middle_ = false;
-  enum class Drag { None, Paint, Orbit, Pan, Eyedrop } drag_ = Drag::None;
-  Mods mods_;
-  bool stroke_open_ = false;
-  Stroke current_;
-  Vec3 last_dab_ = Vec3::Zero();
-  bool have_last_dab_ = false;
   std::optional<Hit> cursor_hit_;
-  std::array<int, 4> dirty_{0, 0, -1, -1};
-  bool texture_full_upload_ = false, mesh_upload_ = false;
   std::optional<Clock::time_point> first_pending_dab_;
   int frames_since_dab_ = 0;
-
-  // files
-  std::vector<std::string> recent_;
-  std::optional<std::filesystem::path> pending_recovery_;
   std::optional<std::filesystem::path> pending_screenshot_;
   std::optional<ImageRGBA8> decal_image_;
   std::string decal_path_;
-  std::uint64_t saved_version_ = 0;  // history version last written to the recovery file
-  std::optional<Clock::time_point> change_time_;
-
-  std::deque<Message> messages_;
-  std::vector<std::pair<std::string, double>> last_cycle_;
-  std::shared_ptr<const AdaptMaps> maps_;
-  std::uint64_t surface_serial_ = 0;
   Stats stats_;
   Clock::time_point last_frame_end_ = Clock::now();
   bool quit_ = false;

@@ -42,9 +42,10 @@ struct Canvas::Impl {
   Painter* painter = nullptr;
 };
 
-Canvas::Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background)
+Canvas::Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
+               int padding)
     : impl_(std::make_unique<Impl>()) {
-  impl_->own = std::make_unique<Painter>(mesh, param, PainterOptions{width, height, 4}, background);
+  impl_->own = std::make_unique<Painter>(mesh, param, PainterOptions{width, height, padding}, background);
   impl_->painter = impl_->own.get();
 }
 Canvas::Canvas(std::unique_ptr<PaintSession> session) : impl_(std::make_unique<Impl>()) {
@@ -58,40 +59,49 @@ std::array<int, 4> Canvas::add_dab(const Vec3& c) { return impl_->painter->add_d
 void Canvas::end_stroke() { impl_->painter->end_stroke(); }
 const ImageRGBA8& Canvas::texture() { return impl_->painter->texture(); }
 
-AdaptOutcome adapt_and_replay(const TriMesh& mesh, const Parameterization& current, const StrokeFile& history,
-                              const AdaptRequest& request, const ProgressCallback& progress) {
-  PaintSessionOptions opt;
-  opt.texture_size = request.texture_size;
-  const auto& modes = adapt_modes();
-  opt.adapt.mode = request.mode >= 1 && request.mode < static_cast<int>(modes.size()) ? modes[request.mode]
-                                                                                     : AdaptOptions{}.mode;
-  // The studio keeps one mesh for its whole session (picking, undo, projects): no refinement yet.
-  opt.adapt.refine = false;
-  opt.adapt.alpha = request.alpha;
-  opt.adapt.beta = request.beta;
-  opt.adapt.coarse_grid = request.coarse_grid;
-  opt.adapt.fine_grid = request.fine_grid;
+namespace {
+std::vector<std::pair<std::string, double>> phase_times(const AdaptReport& rep) {
+  std::vector<std::pair<std::string, double>> all = {
+      {"importance", rep.time_importance}, {"stretch", rep.time_stretch_map}, {"ls2", rep.time_ls2},
+      {"coarse", rep.time_coarse},         {"fine", rep.time_fine},           {"density", rep.time_density},
+      {"flow", rep.time_flow},             {"refine", rep.time_refine},       {"remap", rep.time_remap},
+      {"texel map", rep.time_texel_map},   {"texture", rep.time_texture_update},
+      {"safeguard", rep.time_safeguard}};
+  std::vector<std::pair<std::string, double>> out;
+  for (const auto& [name, s] : all)
+    if (s > 0) out.emplace_back(name, s * 1e3);
+  return out;
+}
+}  // namespace
+
+SessionOutcome paint_history(const std::shared_ptr<const TriMesh>& mesh, const Parameterization& initial,
+                             const StrokeFile& history, const PaintSessionOptions& options,
+                             const ProgressCallback& progress) {
+  PaintSessionOptions opt = options;
+  opt.schedule = ReparamSchedule::End;  // one re-parameterization from the initial layout
+  opt.update = TextureUpdate::Replay;   // the canvas keeps painting interactively afterwards
   opt.adapt.progress = progress;
-  opt.schedule = ReparamSchedule::End;
-  auto session = std::make_unique<PaintSession>(mesh, current, opt, history.background);
+  auto session = std::make_unique<PaintSession>(*mesh, initial, opt, history.background);
   for (size_t i = 0; i < history.strokes.size(); ++i) {
     report_progress(progress, "paint", double(i) / double(history.strokes.size()));
     session->add_stroke(history.strokes[i]);
   }
-  const AdaptReport rep = session->reparameterize();
-  AdaptOutcome o;
+  session->finish();
+  SessionOutcome o;
+  o.mesh = session->mesh().num_faces() == mesh->num_faces() ? mesh : std::make_shared<const TriMesh>(session->mesh());
   o.param = std::make_shared<const Parameterization>(session->param());
-  o.accepted = rep.accepted;
-  o.damping = rep.damping;
-  o.phase_ms = {{"importance", rep.time_importance * 1e3}, {"stretch", rep.time_stretch_map * 1e3},
-                {"ls2", rep.time_ls2 * 1e3},               {"coarse", rep.time_coarse * 1e3},
-                {"fine", rep.time_fine * 1e3},             {"remap", rep.time_remap * 1e3},
-                {"texel map", rep.time_texel_map * 1e3},   {"texture", rep.time_texture_update * 1e3},
-                {"safeguard", rep.time_safeguard * 1e3}};
+  if (!session->reports().empty()) {
+    const AdaptReport& rep = session->reports().back();
+    o.adapted = true;
+    o.accepted = rep.accepted;
+    o.damping = rep.damping;
+    o.phase_ms = phase_times(rep);
+  }
   if (const AdaptResult* r = session->last_result()) {
     o.importance = r->importance;
     o.stretch = r->stretch;
     o.ls2 = r->ls2;
+    o.density = r->density;
     if (r->grids.size() == 2) o.coarse = r->grids[0];
     if (!r->grids.empty()) o.fine = r->grids.back();
   }

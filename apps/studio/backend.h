@@ -19,7 +19,8 @@
 
 namespace adaptex {
 class PaintSession;
-}
+struct PaintSessionOptions;
+}  // namespace adaptex
 
 namespace adaptex::studio {
 
@@ -36,7 +37,8 @@ Parameterization unwrap_mesh(const TriMesh& mesh, const ProgressCallback& progre
 class Canvas {
  public:
   /// \pre mesh and param outlive the canvas and do not change
-  Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background);
+  Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
+         int padding = 4);
   /// Takes over an adaptive painting session (its painter becomes this canvas).
   explicit Canvas(std::unique_ptr<PaintSession> session);
   ~Canvas();
@@ -55,31 +57,28 @@ class Canvas {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Settings of one adaptive re-parameterization (adaptex::AdaptOptions subset).
-struct AdaptRequest {
-  int mode = 2;  ///< Index into adaptex::adapt_modes(): 1 single, 2 two-stage, 3 density-flow.
-  double alpha = 0.5, beta = 0.95;
-  int coarse_grid = 16, fine_grid = 256;
-  int texture_size = 1024;
-};
-
-/// Result of adapt_and_replay(): the new parameterization with the history replayed on it, the maps
-/// for the Inspect panel and the phase times for the status line.
-struct AdaptOutcome {
+/// What paint_history() produced: the painted mesh and parameterization with the history replayed
+/// on them, the maps for the Inspect panel and the phase times for the status line.
+struct SessionOutcome {
+  std::shared_ptr<const TriMesh> mesh;  ///< The input mesh, or its refinement (same surface, more faces).
   std::shared_ptr<const Parameterization> param;
-  std::unique_ptr<Canvas> canvas;
+  std::unique_ptr<Canvas> canvas;       ///< The session's painter (references *mesh and *param).
   std::vector<std::pair<std::string, double>> phase_ms;
-  ImageF importance, stretch, ls2;
-  GridWarp coarse, fine;
-  bool accepted = true;  ///< false: the "never worse" safeguard kept the previous parameterization.
+  ImageF importance, stretch, ls2, density;  ///< Whichever maps the method used (empty otherwise).
+  GridWarp coarse, fine;                ///< Two-stage: both; single / density-flow: fine only.
+  bool adapted = false;   ///< A re-parameterization ran (mode != None).
+  bool accepted = true;   ///< false: the "never worse" safeguard kept the initial layout.
   double damping = 1;
 };
 
-/// Paints \p history on \p current, re-parameterizes once (adaptex::PaintSession with its safeguard)
-/// and replays the history onto the new parameterization.
-/// \throw CancelledError when \p progress returns false; InvalidInputError bad settings
-AdaptOutcome adapt_and_replay(const TriMesh& mesh, const Parameterization& current, const StrokeFile& history,
-                              const AdaptRequest& request, const ProgressCallback& progress);
+/// Paints \p history on \p initial and re-parameterizes once: exactly `adaptex paint --reparam end`
+/// (an adaptex::PaintSession with \p options, schedule End, texture update Replay). With
+/// options.adapt.mode None the history is only painted.
+/// \pre initial is a parameterization of *mesh
+/// \throw CancelledError when \p progress returns false; InvalidInputError bad options
+SessionOutcome paint_history(const std::shared_ptr<const TriMesh>& mesh, const Parameterization& initial,
+                             const StrokeFile& history, const PaintSessionOptions& options,
+                             const ProgressCallback& progress);
 
 /// PSNR (dB) of \p texture on \p param against the exact signal of \p history (adaptex eval).
 double texture_psnr(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,

@@ -59,6 +59,11 @@ void install_callbacks(GLFWwindow* w) {
   glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int mods) {
     if (action != GLFW_RELEASE) ctx(win).app->on_key(key, true, mods_of(mods));
   });
+  // Closing the window asks Save / Discard / Cancel when strokes are unsaved (App::request_quit).
+  glfwSetWindowCloseCallback(w, [](GLFWwindow* win) {
+    glfwSetWindowShouldClose(win, GLFW_FALSE);
+    ctx(win).app->request_quit();
+  });
   glfwSetDropCallback(w, [](GLFWwindow* win, int count, const char** paths) {
     std::vector<std::string> p(paths, paths + count);
     ctx(win).app->on_drop(p);
@@ -71,236 +76,335 @@ double percentile(std::vector<double> v, double q) {
   return v[std::min(v.size() - 1, size_t(q * (v.size() - 1) + 0.5))];
 }
 
-}  // namespace
+const std::vector<std::string> kInspectModes = {"texture", "uv", "importance", "stretch", "ls2", "compare", "density"};
 
-int main(int argc, char** argv) {
-  CLI::App cli{"adaptex-studio: paint on 3-D models; the texture adapts to what you paint"};
-  std::string mesh, replay, screenshot, history_out, texture_out, export_dir, project, stats_out, window = "1280x800";
-  std::string config_dir, recovery_dir, adapt_mode;
+/// Everything given on the command line.
+struct CommandLine {
+  std::string mesh, replay, screenshot, history_out, texture_out, export_dir, project, stats_out;
+  std::string window = "1280x800", config_dir, recovery_dir, inspect, decal;
+  std::string adapt_mode = to_string(AdaptOptions{}.mode);
   int exit_after = -1, texture_size = 0, orbit_frames = 0;
-  bool recover = false, hide_ui = false, no_vsync = false, no_recovery = false, wireframe = false;
+  bool recover = false, hide_ui = false, no_vsync = false, no_recovery = false, wireframe = false, no_refine = false;
   double yaw = 0, pitch = 0;
-  cli.add_option("mesh", mesh, "Mesh file to open (OBJ, OFF, PLY, STL, glTF) or builtin:trefoil|sphere|torus|plane");
-  cli.add_option("--project", project, "Open a project file (.json)");
-  cli.add_option("--replay", replay, "Replay a stroke file onto the mesh");
-  cli.add_option("--screenshot", screenshot, "Write a PNG of the window on the last scripted frame");
-  cli.add_option("--exit-after-frames", exit_after,
-                 "Quit after K frames once the model is loaded and the texture is up to date");
-  cli.add_option("--history-out", history_out, "On exit, write the stroke history (stroke file)");
-  cli.add_option("--texture-out", texture_out, "On exit, write the texture (PNG)");
-  cli.add_option("--export-obj", export_dir, "On exit, export OBJ+MTL+PNG into this folder");
-  cli.add_option("--stats", stats_out, "On exit, write frame-time / dab-latency statistics (JSON)");
-  cli.add_option("--window", window, "Window size WxH");
-  cli.add_option("--config-dir", config_dir, "Config folder (recent files); default $XDG_CONFIG_HOME/adaptex");
-  cli.add_option("--recovery-dir", recovery_dir, "Autosave / recovery folder; default the config folder");
-  cli.add_flag("--no-recovery", no_recovery, "Do not autosave a recovery file");
-  cli.add_flag("--recover", recover, "Load an autosaved recovery file without asking");
-  cli.add_flag("--hide-ui", hide_ui, "Hide the panels (clean screenshots)");
-  cli.add_flag("--wireframe", wireframe, "Start with the wireframe overlay on");
-  cli.add_flag("--no-vsync", no_vsync, "Do not wait for vertical sync");
-  cli.add_option("--texture-size", texture_size, "Texture width = height in texels (default 1024)");
-  cli.add_option("--adapt", adapt_mode, "Re-parameterization after each stroke: none|single|two-stage")
-      ->check(CLI::IsMember({"none", "single", "two-stage"}));
-  cli.add_option("--yaw", yaw, "Initial camera yaw (degrees)");
-  cli.add_option("--pitch", pitch, "Initial camera pitch (degrees)");
-  std::string inspect, decal;
-  cli.add_option("--decal", decal, "Once loaded, project this image as a decal from the initial view");
-  cli.add_option("--inspect", inspect, "Open the Inspect panel: texture|uv|importance|stretch|ls2|compare")
-      ->check(CLI::IsMember({"texture", "uv", "importance", "stretch", "ls2", "compare"}));
-  cli.add_option("--orbit-frames", orbit_frames, "Benchmark: orbit the camera for N frames, then quit");
-  CLI11_PARSE(cli, argc, argv);
+  int width = 1280, height = 800;
+};
 
-  int win_w = 1280, win_h = 800;
-  if (std::sscanf(window.c_str(), "%dx%d", &win_w, &win_h) != 2 || win_w < 64 || win_h < 64) {
+/// Parses argv into \p c. \return an exit code when the program should stop (help, bad option).
+std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
+  CLI::App cli{"adaptex-studio: paint on 3-D models; the texture adapts to what you paint"};
+  cli.add_option("mesh", c.mesh, "Mesh file to open (OBJ, OFF, PLY, STL, glTF) or builtin:trefoil|sphere|torus|plane");
+  cli.add_option("--project", c.project, "Open a project file (.json)");
+  cli.add_option("--replay", c.replay, "Replay a stroke file onto the mesh");
+  cli.add_option("--screenshot", c.screenshot, "Write a PNG of the window on the last scripted frame");
+  cli.add_option("--exit-after-frames", c.exit_after,
+                 "Quit after K frames once the model is loaded and the texture is up to date");
+  cli.add_option("--history-out", c.history_out, "On exit, write the stroke history (stroke file)");
+  cli.add_option("--texture-out", c.texture_out, "On exit, write the texture (PNG)");
+  cli.add_option("--export-obj", c.export_dir, "On exit, export OBJ+MTL+PNG into this folder");
+  cli.add_option("--stats", c.stats_out, "On exit, write frame-time / dab-latency statistics (JSON)");
+  cli.add_option("--window", c.window, "Window size WxH");
+  cli.add_option("--config-dir", c.config_dir, "Config folder (recent files); default $XDG_CONFIG_HOME/adaptex");
+  cli.add_option("--recovery-dir", c.recovery_dir, "Autosave / recovery folder; default the config folder");
+  cli.add_flag("--no-recovery", c.no_recovery, "Do not autosave a recovery file");
+  cli.add_flag("--recover", c.recover, "Load an autosaved recovery file without asking");
+  cli.add_flag("--hide-ui", c.hide_ui, "Hide the panels (clean screenshots)");
+  cli.add_flag("--wireframe", c.wireframe, "Start with the wireframe overlay on");
+  cli.add_flag("--no-vsync", c.no_vsync, "Do not wait for vertical sync");
+  cli.add_option("--texture-size", c.texture_size, "Texture width = height in texels (default 1024)");
+  std::vector<std::string> modes;
+  for (AdaptMode m : adapt_modes()) modes.push_back(to_string(m));
+  cli.add_option("--adapt", c.adapt_mode, "Re-parameterization after each stroke (as adaptex paint --adapt)")
+      ->check(CLI::IsMember(modes))
+      ->capture_default_str();
+  cli.add_flag("--no-refine", c.no_refine, "Keep the input's vertices (density-flow refines large triangles)");
+  cli.add_option("--yaw", c.yaw, "Initial camera yaw (degrees)");
+  cli.add_option("--pitch", c.pitch, "Initial camera pitch (degrees)");
+  cli.add_option("--decal", c.decal, "Once loaded, project this image as a decal from the initial view");
+  cli.add_option("--inspect", c.inspect, "Open the Inspect panel: texture|uv|importance|stretch|ls2|compare|density")
+      ->check(CLI::IsMember(kInspectModes));
+  cli.add_option("--orbit-frames", c.orbit_frames, "Benchmark: orbit the camera for N frames, then quit");
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return cli.exit(e);
+  }
+  if (std::sscanf(c.window.c_str(), "%dx%d", &c.width, &c.height) != 2 || c.width < 64 || c.height < 64) {
     std::cerr << "adaptex-studio: --window: expected WxH, e.g. 1280x800\n";
     return 2;
   }
+  return std::nullopt;
+}
+
+/// Config and recovery folders from the command line and the environment.
+AppOptions app_options(const CommandLine& c) {
   AppOptions opt;
-  if (!config_dir.empty()) {
-    opt.config_dir = config_dir;
+  if (!c.config_dir.empty()) {
+    opt.config_dir = c.config_dir;
   } else if (const char* x = std::getenv("XDG_CONFIG_HOME"); x && *x) {
     opt.config_dir = std::filesystem::path(x) / "adaptex";
   } else if (const char* h = std::getenv("HOME"); h && *h) {
     opt.config_dir = std::filesystem::path(h) / ".config" / "adaptex";
   }
-  opt.recovery_dir = no_recovery ? std::filesystem::path() : recovery_dir.empty() ? opt.config_dir : std::filesystem::path(recovery_dir);
-  opt.auto_recover = recover;
+  opt.recovery_dir = c.no_recovery          ? std::filesystem::path()
+                     : c.recovery_dir.empty() ? opt.config_dir
+                                              : std::filesystem::path(c.recovery_dir);
+  opt.auto_recover = c.recover;
   if (!opt.recovery_dir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(opt.recovery_dir, ec);
   }
+  return opt;
+}
 
-  // SIGTERM / SIGINT end the session cleanly (outputs written); read through a signalfd.
-  sigset_t sigs;
-  sigemptyset(&sigs);
-  sigaddset(&sigs, SIGTERM);
-  sigaddset(&sigs, SIGINT);
-  pthread_sigmask(SIG_BLOCK, &sigs, nullptr);
-  const int sig_fd = signalfd(-1, &sigs, SFD_NONBLOCK | SFD_CLOEXEC);
-
-  glfwSetErrorCallback([](int code, const char* msg) { std::cerr << "adaptex-studio: GLFW error " << code << ": " << msg << "\n"; });
-  if (!glfwInit()) {
-    std::cerr << "adaptex-studio: cannot initialize GLFW (no display?)\n";
-    return 1;
+/// SIGTERM / SIGINT end the session without questions (outputs written), read through a signalfd.
+class SignalWatcher {
+ public:
+  SignalWatcher() {
+    sigset_t sigs;
+    sigemptyset(&sigs);
+    sigaddset(&sigs, SIGTERM);
+    sigaddset(&sigs, SIGINT);
+    pthread_sigmask(SIG_BLOCK, &sigs, nullptr);
+    fd_ = signalfd(-1, &sigs, SFD_NONBLOCK | SFD_CLOEXEC);
   }
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  GLFWwindow* window_ptr = glfwCreateWindow(win_w, win_h, "adaptex studio", nullptr, nullptr);
-  if (!window_ptr) {
-    std::cerr << "adaptex-studio: cannot create an OpenGL 3.3 core window\n";
+  ~SignalWatcher() {
+    if (fd_ >= 0) close(fd_);
+  }
+  SignalWatcher(const SignalWatcher&) = delete;
+  SignalWatcher& operator=(const SignalWatcher&) = delete;
+  /// True once per received signal.
+  bool received() {
+    signalfd_siginfo si;
+    return fd_ >= 0 && read(fd_, &si, sizeof si) == ssize_t(sizeof si);
+  }
+
+ private:
+  int fd_ = -1;
+};
+
+/// A GLFW window with an OpenGL 3.3 core context (GLFW initialized for its lifetime).
+class Window {
+ public:
+  Window(int width, int height, bool vsync) {
+    glfwSetErrorCallback(
+        [](int code, const char* msg) { std::cerr << "adaptex-studio: GLFW error " << code << ": " << msg << "\n"; });
+    if (!glfwInit()) {
+      error_ = "cannot initialize GLFW (no display?)";
+      return;
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    window_ = glfwCreateWindow(width, height, "adaptex studio", nullptr, nullptr);
+    if (!window_) {
+      error_ = "cannot create an OpenGL 3.3 core window";
+      return;
+    }
+    glfwMakeContextCurrent(window_);
+    glfwSwapInterval(vsync ? 1 : 0);
+  }
+  ~Window() {
+    if (window_) glfwDestroyWindow(window_);
     glfwTerminate();
-    return 1;
   }
-  glfwMakeContextCurrent(window_ptr);
-  glfwSwapInterval(no_vsync ? 0 : 1);
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+  GLFWwindow* get() const { return window_; }
+  const std::string& error() const { return error_; }
 
-  int rc = 0;
-  {
+ private:
+  GLFWwindow* window_ = nullptr;
+  std::string error_;
+};
+
+/// Dear ImGui with its GLFW + OpenGL 3 backends, attached to the App's window for its lifetime.
+class ImGuiLayer {
+ public:
+  ImGuiLayer(GLFWwindow* w, WindowContext& wctx) {
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;  // layout is not persisted (keeps scripted runs reproducible)
+    ImGui::GetIO().IniFilename = nullptr;  // layout is not persisted (keeps scripted runs reproducible)
     ImGui::StyleColorsDark();
-
-    App app(std::make_unique<GlRenderer>(), opt);
-    WindowContext wctx;
-    wctx.app = &app;
-    glfwSetWindowUserPointer(window_ptr, &wctx);
-    install_callbacks(window_ptr);  // before ImGui's, which chain to ours
-    ImGui_ImplGlfw_InitForOpenGL(window_ptr, true);
+    glfwSetWindowUserPointer(w, &wctx);
+    install_callbacks(w);  // before ImGui's, which chain to ours
+    ImGui_ImplGlfw_InitForOpenGL(w, true);
     ImGui_ImplOpenGL3_Init("#version 330 core");
-    {
-      int fw, fh, ww, wh;
-      glfwGetFramebufferSize(window_ptr, &fw, &fh);
-      glfwGetWindowSize(window_ptr, &ww, &wh);
-      wctx.scale_x = ww > 0 ? double(fw) / ww : 1.0;
-      wctx.scale_y = wh > 0 ? double(fh) / wh : 1.0;
-      app.on_resize(fw, fh);
-    }
-    app.view().show_ui = !hide_ui;
-    app.view().wireframe = wireframe;
-    if (texture_size > 0) app.adapt().texture_size = std::clamp(texture_size, 16, adaptex::kMaxTextureSize);
-    if (adapt_mode == "single") app.adapt().mode = AdaptMode::Single;
-    if (adapt_mode == "two-stage") app.adapt().mode = AdaptMode::TwoStage;
-    if (!project.empty()) app.open_project(project);
-    if (!mesh.empty()) app.open_mesh(mesh);
-    if (!replay.empty()) {
-      try {
-        app.replay(load_strokes(replay));
-      } catch (const std::exception& e) {
-        std::cerr << "adaptex-studio: " << e.what() << "\n";
-        rc = 2;
-      }
-    }
-    const bool apply_view = yaw != 0 || pitch != 0;
-    bool view_applied = false, ready_printed = false;
-    int idle_frames = 0, orbit_done = 0;
-    StudioUi ui;
-    const std::vector<std::string> inspect_modes = {"texture", "uv", "importance", "stretch", "ls2", "compare"};
-    for (size_t k = 0; k < inspect_modes.size(); ++k)
-      if (inspect == inspect_modes[k]) ui.show_inspect(int(k));
-    bool adapt_requested = false, compare_requested = false;
-    bool final_frame = false;  // after SIGTERM / SIGINT: one more frame for the --screenshot
-    while (!glfwWindowShouldClose(window_ptr) && !app.should_quit() && rc == 0) {
-      // 1. input (callbacks run inside glfwPollEvents and act on the App at once)
-      glfwPollEvents();
-      if (final_frame) app.request_quit();
-      if (sig_fd >= 0) {
-        signalfd_siginfo si;
-        if (read(sig_fd, &si, sizeof si) == ssize_t(sizeof si)) {
-          if (!screenshot.empty() && exit_after < 0) {
-            app.screenshot(screenshot);
-            final_frame = true;
-          } else {
-            app.request_quit();
-          }
-        }
-      }
-      // 2. background results, autosave
-      app.begin_frame();
-      const bool idle = app.idle() && app.has_model() && !app.load_running();
-      if (idle && apply_view && !view_applied) {
-        app.camera().yaw = yaw * 3.14159265358979 / 180;
-        app.camera().pitch = pitch * 3.14159265358979 / 180;
-        view_applied = true;
-      }
-      if (app.has_model() && !app.load_running() && !adapt_requested && !replay.empty() &&
-          app.adapt().mode != AdaptMode::None) {
-        app.request_adapt();  // re-parameterize for the replayed strokes, as after a painted stroke
-        adapt_requested = true;
-      }
-      if (idle && inspect == "compare" && !compare_requested) {
-        app.request_compare();
-        compare_requested = true;
-      }
-      if (idle && !decal.empty()) {
-        app.load_decal(decal);
-        app.project_decal(1.0);
-        decal.clear();
-      }
-      if (idle && !ready_printed) {
-        std::cout << "adaptex-studio: ready" << std::endl;
-        app.reset_stats();  // statistics cover the interactive session, not the loading
-        ready_printed = true;
-      }
-      if (orbit_frames > 0 && app.has_model() && !app.load_running()) {
-        app.camera().orbit(4.0, 0.0);
-        if (++orbit_done >= orbit_frames) app.request_quit();
-      }
-      // 3. UI
-      ImGui_ImplOpenGL3_NewFrame();
-      ImGui_ImplGlfw_NewFrame();
-      ImGui::NewFrame();
-      ui.draw(app);
-      ImGui::Render();
-      app.set_ui_capture(io.WantCaptureMouse, io.WantCaptureKeyboard);
-      // 4. scene, then the UI on top
-      app.render();
-      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-      // 5. scripted screenshot / exit, statistics
-      if (idle && exit_after >= 0) {
-        ++idle_frames;
-        if (idle_frames >= exit_after) {
-          if (!screenshot.empty()) app.screenshot(screenshot);
-          app.request_quit();
-        }
-      }
-      if (orbit_frames > 0 || !stats_out.empty()) glFinish();  // measured frames include the GPU work
-      app.end_frame();
-      glfwSwapBuffers(window_ptr);
-    }
-    if (!history_out.empty()) app.save_history(history_out);
-    if (!texture_out.empty()) app.save_texture(texture_out);
-    if (!export_dir.empty()) app.export_obj(export_dir);
-    if (!stats_out.empty()) {
-      const Stats& s = app.stats();
-      std::vector<double> frames(s.frame_ms.begin() + std::min<size_t>(s.frame_ms.size(), 2), s.frame_ms.end());
-      nlohmann::json j;
-      j["frames"] = frames.size();
-      j["frame_ms_median"] = percentile(frames, 0.5);
-      j["frame_ms_p95"] = percentile(frames, 0.95);
-      j["dab_events"] = s.dab_latency_ms.size();
-      j["dab_to_screen_ms_median"] = percentile(s.dab_latency_ms, 0.5);
-      j["dab_to_screen_ms_max"] = percentile(s.dab_latency_ms, 1.0);
-      j["dab_to_screen_frames_max"] =
-          s.dab_latency_frames.empty() ? 0 : *std::max_element(s.dab_latency_frames.begin(), s.dab_latency_frames.end());
-      j["dab_paint_ms_median"] = percentile(s.dab_paint_ms, 0.5);
-      j["dabs"] = s.dab_paint_ms.size();
-      j["faces"] = app.mesh() ? app.mesh()->num_faces() : 0;
-      j["window"] = window;
-      j["texture_size"] = app.adapt().texture_size;
-      std::ofstream(stats_out) << j.dump(1) << "\n";
-    }
-    for (const auto& m : app.messages())
-      if (m.error && exit_after >= 0) rc = rc ? rc : 1;
+    int fw, fh, ww, wh;
+    glfwGetFramebufferSize(w, &fw, &fh);
+    glfwGetWindowSize(w, &ww, &wh);
+    wctx.scale_x = ww > 0 ? double(fw) / ww : 1.0;
+    wctx.scale_y = wh > 0 ? double(fh) / wh : 1.0;
+    wctx.app->on_resize(fw, fh);
+  }
+  ~ImGuiLayer() {
     ImGui_ImplOpenGL3_Shutdown();
     ImGui_ImplGlfw_Shutdown();
     ImGui::DestroyContext();
   }
-  glfwDestroyWindow(window_ptr);
-  glfwTerminate();
-  if (sig_fd >= 0) close(sig_fd);
-  return rc;
+  ImGuiLayer(const ImGuiLayer&) = delete;
+  ImGuiLayer& operator=(const ImGuiLayer&) = delete;
+};
+
+/// Applies the command line's settings and files to a new App. \return 2 if the stroke file is bad
+int configure(App& app, const CommandLine& c) {
+  app.view().show_ui = !c.hide_ui;
+  app.view().wireframe = c.wireframe;
+  PaintSessionOptions& o = app.session_options();
+  if (c.texture_size > 0) o.texture_size = std::clamp(c.texture_size, 16, adaptex::kMaxTextureSize);
+  o.adapt.mode = parse_adapt_mode(c.adapt_mode);
+  if (c.no_refine) o.adapt.refine = false;
+  if (!c.project.empty()) app.open_project(c.project);
+  if (!c.mesh.empty()) app.open_mesh(c.mesh);
+  if (c.replay.empty()) return 0;
+  try {
+    app.replay(load_strokes(c.replay));
+  } catch (const std::exception& e) {
+    std::cerr << "adaptex-studio: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}
+
+/// The scripted steps of a run (tests, documentation, benchmarks), once the model is ready.
+class Script {
+ public:
+  Script(const CommandLine& c, StudioUi& ui) : c_(c), decal_(c.decal) {
+    for (size_t k = 0; k < kInspectModes.size(); ++k)
+      if (c.inspect == kInspectModes[k]) ui.show_inspect(int(k));
+  }
+  /// Before the UI: initial view, comparison, decal, "ready" line, orbit benchmark.
+  void before_ui(App& app) {
+    idle_ = app.idle() && app.has_model() && !app.load_running();
+    if (idle_ && (c_.yaw != 0 || c_.pitch != 0) && !view_applied_) {
+      app.camera().yaw = c_.yaw * 3.14159265358979 / 180;
+      app.camera().pitch = c_.pitch * 3.14159265358979 / 180;
+      view_applied_ = true;
+    }
+    if (idle_ && c_.inspect == "compare" && !compare_requested_) {
+      app.request_compare();
+      compare_requested_ = true;
+    }
+    if (idle_ && !decal_.empty()) {
+      app.load_decal(decal_);
+      app.project_decal(1.0);
+      decal_.clear();
+    }
+    if (idle_ && !ready_printed_) {
+      std::cout << "adaptex-studio: ready" << std::endl;
+      app.reset_stats();  // statistics cover the interactive session, not the loading
+      ready_printed_ = true;
+    }
+    if (c_.orbit_frames > 0 && app.has_model() && !app.load_running()) {
+      app.camera().orbit(4.0, 0.0);
+      if (++orbit_done_ >= c_.orbit_frames) app.quit_now();
+    }
+  }
+  /// After rendering: --exit-after-frames (with the --screenshot of the last frame).
+  void after_render(App& app) {
+    if (!idle_ || c_.exit_after < 0) return;
+    if (++idle_frames_ >= c_.exit_after) {
+      if (!c_.screenshot.empty()) app.screenshot(c_.screenshot);
+      app.quit_now();
+    }
+  }
+  /// SIGTERM / SIGINT: with a --screenshot, one more frame for it; then quit without questions.
+  void on_signal(App& app) {
+    if (!c_.screenshot.empty() && c_.exit_after < 0) {
+      app.screenshot(c_.screenshot);
+      final_frame_ = true;
+    } else {
+      app.quit_now();
+    }
+  }
+  bool final_frame() const { return final_frame_; }
+
+ private:
+  const CommandLine& c_;
+  std::string decal_;
+  bool idle_ = false, view_applied_ = false, ready_printed_ = false, compare_requested_ = false;
+  bool final_frame_ = false;
+  int idle_frames_ = 0, orbit_done_ = 0;
+};
+
+/// One frame: input, background results, UI, scene, scripted steps, swap.
+void frame(GLFWwindow* w, App& app, StudioUi& ui, Script& script, SignalWatcher& signals, bool measure) {
+  glfwPollEvents();  // 1. input: the callbacks act on the App at once
+  if (script.final_frame()) app.quit_now();
+  if (signals.received()) script.on_signal(app);
+  app.begin_frame();  // 2. background results, autosave
+  script.before_ui(app);
+  ImGui_ImplOpenGL3_NewFrame();  // 3. UI
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  ui.draw(app);
+  ImGui::Render();
+  const ImGuiIO& io = ImGui::GetIO();
+  app.set_ui_capture(io.WantCaptureMouse, io.WantCaptureKeyboard);
+  app.render();  // 4. scene, then the UI on top
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  script.after_render(app);  // 5. scripted exit / screenshot, statistics
+  if (measure) glFinish();   // measured frames include the GPU work
+  app.end_frame();
+  glfwSwapBuffers(w);
+}
+
+void write_stats(const App& app, const CommandLine& c) {
+  const Stats& s = app.stats();
+  std::vector<double> frames(s.frame_ms.begin() + std::min<size_t>(s.frame_ms.size(), 2), s.frame_ms.end());
+  nlohmann::json j;
+  j["frames"] = frames.size();
+  j["frame_ms_median"] = percentile(frames, 0.5);
+  j["frame_ms_p95"] = percentile(frames, 0.95);
+  j["dab_events"] = s.dab_latency_ms.size();
+  j["dab_to_screen_ms_median"] = percentile(s.dab_latency_ms, 0.5);
+  j["dab_to_screen_ms_max"] = percentile(s.dab_latency_ms, 1.0);
+  j["dab_to_screen_frames_max"] =
+      s.dab_latency_frames.empty() ? 0 : *std::max_element(s.dab_latency_frames.begin(), s.dab_latency_frames.end());
+  j["dab_paint_ms_median"] = percentile(s.dab_paint_ms, 0.5);
+  j["dabs"] = s.dab_paint_ms.size();
+  j["faces"] = app.mesh() ? app.mesh()->num_faces() : 0;
+  j["window"] = c.window;
+  j["texture_size"] = app.session_options().texture_size;
+  j["adapt"] = to_string(app.session_options().adapt.mode);
+  std::ofstream(c.stats_out) << j.dump(1) << "\n";
+}
+
+/// The --*-out outputs after the last frame. \return 1 if a scripted run reported an error
+int write_outputs(App& app, const CommandLine& c) {
+  if (!c.history_out.empty()) app.save_history(c.history_out);
+  if (!c.texture_out.empty()) app.save_texture(c.texture_out);
+  if (!c.export_dir.empty()) app.export_obj(c.export_dir);
+  if (!c.stats_out.empty()) write_stats(app, c);
+  for (const auto& m : app.messages())
+    if (m.error && c.exit_after >= 0) return 1;
+  return 0;
+}
+
+/// Runs the App in \p w until it quits. \return the exit code
+int run(GLFWwindow* w, const CommandLine& c, SignalWatcher& signals) {
+  App app(std::make_unique<GlRenderer>(), app_options(c));
+  WindowContext wctx;
+  wctx.app = &app;
+  ImGuiLayer imgui(w, wctx);
+  if (const int rc = configure(app, c)) return rc;
+  StudioUi ui;
+  Script script(c, ui);
+  const bool measure = c.orbit_frames > 0 || !c.stats_out.empty();
+  while (!app.should_quit()) frame(w, app, ui, script, signals, measure);
+  return write_outputs(app, c);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CommandLine c;
+  if (const auto rc = parse_command_line(argc, argv, c)) return *rc;
+  SignalWatcher signals;
+  Window window(c.width, c.height, !c.no_vsync);
+  if (!window.get()) {
+    std::cerr << "adaptex-studio: " << window.error() << "\n";
+    return 1;
+  }
+  return run(window.get(), c, signals);
 }

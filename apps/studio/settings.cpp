@@ -20,15 +20,47 @@ Vec3 get_v3(const json& j, const Vec3& def) {
   if (!j.is_array() || j.size() != 3) return def;
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
 }
-// The studio's modes are the library's, in the same order (adaptex::adapt_modes()).
-const char* mode_name(AdaptMode m) { return adaptex::to_string(adaptex::adapt_modes().at(static_cast<size_t>(m))); }
-AdaptMode mode_from(const std::string& s) {
-  const auto& modes = adaptex::adapt_modes();
-  for (size_t k = 0; k < modes.size(); ++k)
-    if (s == adaptex::to_string(modes[k])) return AdaptMode(static_cast<int>(k));
-  return AdaptMode::None;
+json session_to_json(const PaintSessionOptions& o) {
+  const AdaptOptions& a = o.adapt;
+  return {{"mode", to_string(a.mode)},
+          {"alpha", a.alpha},
+          {"beta", a.beta},
+          {"geometry_scale", a.geometry_scale},
+          {"coarse_grid", a.coarse_grid},
+          {"fine_grid", a.fine_grid},
+          {"refine", a.refine},
+          {"texture_size", o.texture_size},
+          {"padding", o.padding},
+          {"reparam", o.schedule == ReparamSchedule::EachStroke ? "each-stroke" : "end"}};
+}
+
+/// Missing keys keep the library's defaults; bad names and sizes are errors (InvalidInputError).
+PaintSessionOptions session_from_json(const json& j) {
+  PaintSessionOptions o = studio_session_options();
+  AdaptOptions& a = o.adapt;
+  if (j.contains("mode")) a.mode = parse_adapt_mode(j["mode"].get<std::string>());
+  a.alpha = j.value("alpha", a.alpha);
+  a.beta = j.value("beta", a.beta);
+  a.geometry_scale = j.value("geometry_scale", a.geometry_scale);
+  a.coarse_grid = std::clamp(j.value("coarse_grid", a.coarse_grid), 2, 4096);
+  a.fine_grid = std::clamp(j.value("fine_grid", a.fine_grid), 2, 4096);
+  a.refine = j.value("refine", a.refine);
+  o.texture_size = std::clamp(j.value("texture_size", o.texture_size), 16, kMaxTextureSize);
+  o.padding = std::clamp(j.value("padding", o.padding), 0, 256);
+  if (j.contains("reparam")) {
+    const std::string r = j["reparam"].get<std::string>();
+    if (r != "each-stroke" && r != "end") throw InvalidInputError("adapt.reparam must be each-stroke or end, got " + r);
+    o.schedule = r == "end" ? ReparamSchedule::End : ReparamSchedule::EachStroke;
+  }
+  return o;
 }
 }  // namespace
+
+PaintSessionOptions studio_session_options() {
+  PaintSessionOptions o;
+  o.schedule = ReparamSchedule::EachStroke;
+  return o;
+}
 
 void write_project(const std::filesystem::path& path, const Project& p) {
   json j;
@@ -41,9 +73,7 @@ void write_project(const std::filesystem::path& path, const Project& p) {
                 {"hardness", b.hardness},    {"opacity", b.opacity},       {"spacing", b.spacing},
                 {"symmetry_axis", b.symmetry_axis}};
   j["view"] = {{"wireframe", p.view.wireframe}, {"background", v3(p.view.background)}};
-  j["adapt"] = {{"mode", mode_name(p.adapt.mode)}, {"alpha", p.adapt.alpha},           {"beta", p.adapt.beta},
-                {"coarse_grid", p.adapt.coarse_grid}, {"fine_grid", p.adapt.fine_grid},
-                {"texture_size", p.adapt.texture_size}};
+  j["adapt"] = session_to_json(p.session);
   if (p.camera)
     j["camera"] = {{"target", v3(p.camera->target)}, {"distance", p.camera->distance}, {"yaw", p.camera->yaw},
                    {"pitch", p.camera->pitch},       {"fov_y", p.camera->fov_y_degrees}};
@@ -88,13 +118,11 @@ Project read_project(const std::filesystem::path& path) {
       p.view.background = get_v3(j["view"].value("background", json()), p.view.background);
     }
     if (j.contains("adapt")) {
-      const json& a = j["adapt"];
-      p.adapt.mode = mode_from(a.value("mode", "none"));
-      p.adapt.alpha = a.value("alpha", p.adapt.alpha);
-      p.adapt.beta = a.value("beta", p.adapt.beta);
-      p.adapt.coarse_grid = a.value("coarse_grid", p.adapt.coarse_grid);
-      p.adapt.fine_grid = a.value("fine_grid", p.adapt.fine_grid);
-      p.adapt.texture_size = std::clamp(a.value("texture_size", p.adapt.texture_size), 16, kMaxTextureSize);
+      try {
+        p.session = session_from_json(j["adapt"]);
+      } catch (const InvalidInputError& e) {
+        throw InvalidInputError(path.string() + ": " + e.what());
+      }
     }
     if (j.contains("camera")) {
       Camera c;

@@ -1,18 +1,18 @@
 #pragma once
 /// \file settings.h
-/// Brush, view and adaptation settings of adaptex-studio, and the project file that stores them
-/// with the stroke history and the mesh reference (JSON, written atomically).
+/// Brush and view settings of adaptex-studio, the library's session options it paints with, and the
+/// project file that stores them with the stroke history and the mesh reference (JSON, atomic).
 #include <filesystem>
 #include <optional>
 #include <string>
 
+#include "adaptex/adapt/session.h"
 #include "adaptex/paint/strokes.h"
 #include "camera.h"
 
 namespace adaptex::studio {
 
 enum class Tool { Brush, Eraser, Eyedropper };
-enum class AdaptMode { None, Single, TwoStage, DensityFlow };  // names: adaptex::to_string(adaptex::AdaptMode)
 enum class MouseButton { Left = 0, Right = 1, Middle = 2 };
 
 /// Modifier keys held during an event.
@@ -41,12 +41,12 @@ struct ViewSettings {
   bool show_ui = true;
 };
 
-struct AdaptSettings {
-  AdaptMode mode = AdaptMode::None;
-  double alpha = 0.5, beta = 0.5;  ///< L_s^2 weights (adapt area defaults).
-  int coarse_grid = 16, fine_grid = 256;
-  int texture_size = 1024;         ///< Texture width = height in texels.
-};
+/// The options the studio paints and re-parameterizes with: the library's PaintSessionOptions with
+/// every library default (adapt.mode = the library's default method, density-flow), except
+/// schedule = EachStroke: an interactive session re-parameterizes after every stroke (End: only when
+/// asked, "Re-parameterize now"). Each re-parameterization is `adaptex paint --reparam end` on the
+/// whole history from the initial layout (app.h), so warps never compose.
+PaintSessionOptions studio_session_options();
 
 /// Everything a project file holds.
 struct Project {
@@ -54,7 +54,7 @@ struct Project {
   StrokeFile strokes;     ///< The stroke history (decal image paths absolute).
   BrushSettings brush;
   ViewSettings view;
-  AdaptSettings adapt;
+  PaintSessionOptions session = studio_session_options();  ///< Texture size and adaptation.
   std::optional<Camera> camera;
 };
 

@@ -45,6 +45,16 @@ ImageRGBA8 heat_image(const ImageF& m) {
   return img;
 }
 
+/// \p m divided by its largest value (density maps have mean 1 and no fixed upper bound).
+ImageF scaled_to_max(const ImageF& m) {
+  ImageF out = m;
+  float mx = 0;
+  for (float v : m.data) mx = std::max(mx, v);
+  if (mx > 0)
+    for (float& v : out.data) v /= mx;
+  return out;
+}
+
 }  // namespace
 
 void StudioUi::draw(App& app) {
@@ -60,25 +70,37 @@ void StudioUi::draw(App& app) {
   ImGui::End();
   if (show_inspect_) inspect_window(app);
   popups(app);
+  confirm_prompt(app);
   status_bar(app);
 }
 
 void StudioUi::file_panel(App& app) {
-  ImGui::InputText("##path", &open_path_);
+  const bool enter = ImGui::InputText("##path", &open_path_, ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
-  if (ImGui::Button("Open") && !open_path_.empty()) app.open_mesh(open_path_);
+  if ((ImGui::Button("Open") || enter) && !open_path_.empty()) app.request_open_mesh(open_path_);
   if (!app.recent_files().empty() && ImGui::BeginCombo("Recent", "recent files...")) {
     for (const auto& r : app.recent_files())
       if (ImGui::Selectable(r.c_str())) {
         open_path_ = r;
-        app.open_mesh(r);
+        app.request_open_mesh(r);
       }
     ImGui::EndCombo();
   }
-  ImGui::InputText("Project", &project_path_);
-  if (ImGui::Button("Save project")) app.save_project(project_path_);
+  if (ImGui::Button("New")) app.request_new();
   ImGui::SameLine();
-  if (ImGui::Button("Open project")) app.open_project(project_path_);
+  ImGui::TextDisabled("%s", app.project_path().empty() ? "(no project file)" : app.project_path().c_str());
+  if (project_path_.empty()) project_path_ = app.suggested_project_path();
+  ImGui::InputText("Project", &project_path_);
+  if (ImGui::Button("Save (Ctrl+S)")) {
+    if (app.project_path().empty())
+      app.save_project(project_path_);
+    else
+      app.save();
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Save As")) app.save_project(project_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Open project")) app.request_open_project(project_path_);
   ImGui::InputText("OBJ dir", &export_dir_);
   ImGui::SameLine();
   if (ImGui::Button("Export OBJ")) app.export_obj(export_dir_);
@@ -141,30 +163,51 @@ void StudioUi::view_panel(App& app) {
 }
 
 void StudioUi::adapt_panel(App& app) {
-  AdaptSettings& a = app.adapt();
-  std::vector<const char*> modes;
-  for (adaptex::AdaptMode lm : adaptex::adapt_modes()) modes.push_back(adaptex::to_string(lm));
-  int m = int(a.mode);
-  if (ImGui::Combo("Mode", &m, modes.data(), static_cast<int>(modes.size()))) a.mode = AdaptMode(m);
-  float al = float(a.alpha), be = float(a.beta);
-  if (ImGui::SliderFloat("alpha", &al, 0.f, 1.f)) a.alpha = al;
-  if (ImGui::SliderFloat("beta", &be, 0.f, 1.f)) a.beta = be;
-  ImGui::InputInt("Coarse grid", &a.coarse_grid);
-  ImGui::InputInt("Fine grid", &a.fine_grid);
-  a.coarse_grid = std::clamp(a.coarse_grid, 2, 4096);
-  a.fine_grid = std::clamp(a.fine_grid, 2, 4096);
+  PaintSessionOptions& o = app.session_options();
+  AdaptOptions& a = o.adapt;
+  bool changed = false;
+  std::vector<const char*> names;
+  const auto& modes = adaptex::adapt_modes();
+  int m = 0;
+  for (size_t k = 0; k < modes.size(); ++k) {
+    names.push_back(adaptex::to_string(modes[k]));
+    if (modes[k] == a.mode) m = int(k);
+  }
+  if (ImGui::Combo("Mode", &m, names.data(), static_cast<int>(names.size()))) {
+    a.mode = modes[size_t(m)];
+    changed = true;
+  }
+  bool each = o.schedule == ReparamSchedule::EachStroke;
+  if (ImGui::Checkbox("After every stroke", &each)) {
+    o.schedule = each ? ReparamSchedule::EachStroke : ReparamSchedule::End;
+    changed = true;
+  }
+  if (a.mode == AdaptMode::DensityFlow) {
+    changed |= ImGui::Checkbox("Refine the mesh", &a.refine);
+  } else if (a.mode != AdaptMode::None) {
+    float al = float(a.alpha), be = float(a.beta);
+    if (ImGui::SliderFloat("alpha", &al, 0.f, 2.f)) a.alpha = al, changed = true;
+    if (ImGui::SliderFloat("beta", &be, 0.f, 2.f)) a.beta = be, changed = true;
+    if (a.mode == AdaptMode::TwoStage) changed |= ImGui::InputInt("Coarse grid", &a.coarse_grid);
+    changed |= ImGui::InputInt("Fine grid", &a.fine_grid);
+    a.coarse_grid = std::clamp(a.coarse_grid, 2, 4096);
+    a.fine_grid = std::clamp(a.fine_grid, 2, 4096);
+  }
   const char* sizes[] = {"256", "512", "1024", "2048", "4096"};
-  int si = std::clamp(int(std::lround(std::log2(a.texture_size))) - 8, 0, 4);
-  if (ImGui::Combo("Texture size", &si, sizes, 5)) a.texture_size = 256 << si;
+  int si = std::clamp(int(std::lround(std::log2(o.texture_size))) - 8, 0, 4);
+  if (ImGui::Combo("Texture size", &si, sizes, 5)) o.texture_size = 256 << si, changed = true;
+  if (changed) app.session_options_changed();
   if (ImGui::Button("Re-parameterize now")) app.request_adapt();
+  ImGui::TextDisabled("Each re-parameterization starts from the initial layout.");
 }
 
 void StudioUi::inspect_window(App& app) {
   ImGui::SetNextWindowSize(ImVec2(340, 420), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - 348, 8), ImGuiCond_FirstUseEver);
   if (!ImGui::Begin("Inspect", &show_inspect_)) return ImGui::End();
-  const char* modes[] = {"texture", "texture + UV", "importance", "stretch", "L_s^2", "fixed vs adaptive"};
-  ImGui::Combo("Show", &inspect_mode_, modes, 6);
+  const char* modes[] = {"texture", "texture + UV", "importance", "stretch", "L_s^2", "fixed vs adaptive",
+                         "density"};
+  ImGui::Combo("Show", &inspect_mode_, modes, 7);
   ImGui::Checkbox("optimized grid", &inspect_grid_);
   const ImageRGBA8* tex = app.texture();
   const Parameterization* p = app.param();
@@ -208,10 +251,14 @@ void StudioUi::inspect_window(App& app) {
                             (std::uint64_t(inspect_mode_) << 1) ^ std::uint64_t(inspect_grid_);
   if (key != inspect_key_ && (++inspect_frames_ % 10 == 1 || app.idle())) {
     inspect_key_ = key;
-    const ImageF* map = !maps ? nullptr : inspect_mode_ == 2 ? &maps->importance : inspect_mode_ == 3 ? &maps->stretch
-                                        : inspect_mode_ == 4 ? &maps->ls2 : nullptr;
+    const ImageF* map = !maps                ? nullptr
+                        : inspect_mode_ == 2 ? &maps->importance
+                        : inspect_mode_ == 3 ? &maps->stretch
+                        : inspect_mode_ == 4 ? &maps->ls2
+                        : inspect_mode_ == 6 ? &maps->density
+                                             : nullptr;
     if (inspect_mode_ >= 2 && map && map->width > 0) {
-      inspect_img_ = heat_image(*map);
+      inspect_img_ = heat_image(inspect_mode_ == 6 ? scaled_to_max(*map) : *map);
     } else if (inspect_mode_ == 1) {
       inspect_img_ = draw_uv_layout(*p, tex, std::min(1024, tex->width));
     } else {
@@ -237,6 +284,11 @@ void StudioUi::inspect_window(App& app) {
     inspect_tex_ = app.renderer().ui_image(0, inspect_img_);
   }
   if (inspect_mode_ >= 2 && !maps) ImGui::TextDisabled("maps appear after the first re-parameterization (Adapt)");
+  if (maps && inspect_mode_ >= 2 && inspect_mode_ != 5) {
+    const ImageF* shown = inspect_mode_ == 2 ? &maps->importance : inspect_mode_ == 3 ? &maps->stretch
+                        : inspect_mode_ == 4 ? &maps->ls2 : &maps->density;
+    if (shown->width == 0) ImGui::TextDisabled("this map is not used by the %s method", to_string(app.session_options().adapt.mode));
+  }
   // ImageRGBA8 rows start at v = 0 (bottom): flip vertically for display.
   if (inspect_tex_) ImGui::Image(inspect_tex_, ImVec2(w, w), ImVec2(0, 1), ImVec2(1, 0));
   ImGui::End();
@@ -286,6 +338,45 @@ void StudioUi::popups(App& app) {
     if (ImGui::Button("Cancel")) app.cancel_load();
     ImGui::End();
   }
+}
+
+void StudioUi::confirm_prompt(App& app) {
+  const char* title = "Unsaved strokes";
+  const auto& c = app.confirm();
+  if (!c) {
+    prompt_open_ = false;
+    return;
+  }
+  if (!prompt_open_) {
+    ImGui::OpenPopup(title);
+    prompt_open_ = true;
+    project_path_ = app.suggested_project_path();
+  }
+  ImGui::SetNextWindowPos(ImVec2(app.camera().width * 0.5f, app.camera().height * 0.5f), ImGuiCond_Appearing,
+                          ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  const char* what = c->action == Confirm::Action::Quit          ? "Quitting"
+                     : c->action == Confirm::Action::OpenMesh    ? "Opening another mesh"
+                     : c->action == Confirm::Action::OpenProject ? "Opening a project"
+                                                                 : "Starting a new scene";
+  ImGui::Text("%s drops the %zu strokes painted since the last save.", what, app.history().strokes().size());
+  ImGui::InputText("Save to", &project_path_);
+  const bool keys = !ImGui::IsAnyItemActive();
+  const bool save = ImGui::Button("Save (S)") || (keys && ImGui::IsKeyPressed('S', false));
+  ImGui::SameLine();
+  const bool discard = ImGui::Button("Discard (D)") || (keys && ImGui::IsKeyPressed('D', false));
+  ImGui::SameLine();
+  const bool cancel = ImGui::Button("Cancel (Esc)") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false);
+  if (save && app.confirm_save(project_path_)) {
+    ImGui::CloseCurrentPopup();
+  } else if (discard) {
+    app.confirm_discard();
+    ImGui::CloseCurrentPopup();
+  } else if (cancel) {
+    app.confirm_cancel();
+    ImGui::CloseCurrentPopup();
+  }
+  ImGui::EndPopup();
 }
 
 void StudioUi::status_bar(App& app) {

@@ -16,7 +16,7 @@ class StudioUi {
   /// Builds this frame's panels (between ImGui::NewFrame and ImGui::Render).
   void draw(App& app);
   /// Opens the Inspect panel showing \p mode (0 texture, 1 texture + UV, 2 importance, 3 stretch,
-  /// 4 L_s^2, 5 fixed vs adaptive).
+  /// 4 L_s^2, 5 fixed vs adaptive, 6 density).
   void show_inspect(int mode) {
     show_inspect_ = true;
     inspect_mode_ = mode;
@@ -29,9 +29,11 @@ class StudioUi {
   void adapt_panel(App& app);
   void inspect_window(App& app);
   void popups(App& app);
+  /// Save / Discard / Cancel before an action that would drop unsaved strokes.
+  void confirm_prompt(App& app);
   void status_bar(App& app);
 
-  std::string open_path_, project_path_ = "project.adaptex.json", export_dir_ = "export",
+  std::string open_path_, project_path_, export_dir_ = "export",
               glb_path_ = "export/model.glb", screenshot_path_ = "screenshot.png", decal_path_;
   bool show_inspect_ = false;
   int inspect_mode_ = 1;       // 0 texture, 1 texture + UV wireframe, 2 importance, 3 stretch, 4 L_s^2
@@ -44,6 +46,7 @@ class StudioUi {
   size_t shown_messages_ = 0;
   std::string error_text_;
   double decal_opacity_ = 1.0;
+  bool prompt_open_ = false;
 };
 
 }  // namespace adaptex::studio

@@ -1,14 +1,18 @@
 /// \file test_studio_app.cpp
 /// Unit tests of the adaptex-studio App logic with the null renderer (no window, no GL):
 /// camera math, picking, brush spacing and symmetry, UI capture, eyedropper, undo/redo over 100 steps,
-/// project round trip, autosave / recovery, bad files, cancel, adaptation while painting.
+/// project round trip, autosave / recovery, bad files, cancel, adaptation while painting, the library's
+/// default method and re-parameterization from the initial layout, unsaved-work prompts, Save / Save As,
+/// and the same layout and texture as `adaptex paint`.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <fstream>
 #include <thread>
 
+#include "adaptex/core/shapes.h"
 #include "adaptex/io/image_io.h"
+#include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/painter.h"
 #include "app.h"
 #include "test_support.h"
@@ -21,12 +25,15 @@ using adaptex::test::TempDir;
 struct Harness {
   NullRenderer* renderer = nullptr;
   std::unique_ptr<App> app;
-  explicit Harness(AppOptions opt = {}, int texture_size = 256, const std::string& mesh = "builtin:sphere") {
+  /// \p mode: the adaptation (None by default here: most tests are about painting mechanics).
+  explicit Harness(AppOptions opt = {}, int texture_size = 256, const std::string& mesh = "builtin:sphere",
+                   AdaptMode mode = AdaptMode::None) {
     auto r = std::make_unique<NullRenderer>();
     renderer = r.get();
     app = std::make_unique<App>(std::move(r), std::move(opt));
     app->on_resize(400, 300);
-    app->adapt().texture_size = texture_size;
+    app->session_options().texture_size = texture_size;
+    app->session_options().adapt.mode = mode;
     if (!mesh.empty()) {
       app->open_mesh(mesh);
       EXPECT_TRUE(app->wait_idle(120));
@@ -49,10 +56,19 @@ struct Harness {
 };
 
 ImageRGBA8 replay_texture(const App& app) {
-  Painter p(*app.mesh(), *app.param(), PainterOptions{app.adapt().texture_size, app.adapt().texture_size, 4},
+  const int n = app.session_options().texture_size;
+  Painter p(*app.mesh(), *app.param(), PainterOptions{n, n, app.session_options().padding},
             app.history().background());
   p.paint_all(app.history().to_file());
   return p.texture();
+}
+
+/// Runs frames (background jobs, autosave) until \p path exists, for up to 4 s.
+void run_frames_until_exists(App& app, const std::filesystem::path& path) {
+  for (int k = 0; k < 400 && !std::filesystem::exists(path); ++k) {
+    app.begin_frame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
 }
 
 int max_abs_diff(const ImageRGBA8& a, const ImageRGBA8& b) {
@@ -235,7 +251,7 @@ TEST(StudioApp, ProjectSaveLoadRoundTrip) {
   h.drag(150, 140, 250, 160);
   h.app->brush().hardness = 0.8;
   h.app->brush().symmetry_axis = 2;
-  h.app->adapt().alpha = 0.3;
+  h.app->session_options().adapt.alpha = 0.3;
   h.app->view().wireframe = true;
   h.app->set_background_colour(Vec3(0.9, 0.9, 0.8));
   const auto path = dir.path / "p.json";
@@ -253,7 +269,10 @@ TEST(StudioApp, ProjectSaveLoadRoundTrip) {
   EXPECT_EQ(g.app->history().background(), Vec3(0.9, 0.9, 0.8));
   EXPECT_EQ(g.app->brush().hardness, 0.8);
   EXPECT_EQ(g.app->brush().symmetry_axis, 2);
-  EXPECT_EQ(g.app->adapt().alpha, 0.3);
+  EXPECT_EQ(g.app->session_options().adapt.alpha, 0.3);
+  EXPECT_EQ(g.app->session_options().adapt.mode, AdaptMode::None);  // the project's, not the default
+  EXPECT_EQ(g.app->project_path(), std::filesystem::absolute(path).lexically_normal());
+  EXPECT_FALSE(g.app->unsaved());
   EXPECT_TRUE(g.app->view().wireframe);
   EXPECT_EQ(max_abs_diff(*g.app->texture(), *h.app->texture()), 0);
 }
@@ -266,22 +285,24 @@ TEST(StudioApp, AutosaveIsOfferedAsRecoveryNextTime) {
   {
     Harness h(opt);
     h.drag(150, 150, 250, 150);
-    for (int k = 0; k < 400 && !std::filesystem::exists(dir.path / "recovery.json"); ++k) {
-      h.app->begin_frame();
-      std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
+    run_frames_until_exists(*h.app, dir.path / "recovery.json");
     ASSERT_TRUE(std::filesystem::exists(dir.path / "recovery.json"));
-    // Simulate a crash: keep the file, as a killed process would.
-    std::filesystem::copy_file(dir.path / "recovery.json", dir.path / "keep.json");
+    EXPECT_TRUE(h.app->unsaved());
   }
-  EXPECT_FALSE(std::filesystem::exists(dir.path / "recovery.json"));  // clean exit removes it
-  std::filesystem::rename(dir.path / "keep.json", dir.path / "recovery.json");
+  // Leaving without saving or discarding keeps the unsaved stroke recoverable.
+  ASSERT_TRUE(std::filesystem::exists(dir.path / "recovery.json"));
   Harness g(opt, 256, "");
   ASSERT_TRUE(g.app->pending_recovery());
   g.app->accept_recovery();
   ASSERT_TRUE(g.app->wait_idle(120));
   EXPECT_EQ(g.app->history().strokes().size(), 1u);
   EXPECT_EQ(g.app->mesh_path(), "builtin:sphere");
+  EXPECT_TRUE(g.app->unsaved());  // recovered work is not saved work
+  // Saving removes the recovery files.
+  ASSERT_TRUE(g.app->save_project(dir.path / "p.json"));
+  EXPECT_FALSE(g.app->unsaved());
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "recovery.json"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "recovery.offered.json"));
 }
 
 TEST(StudioApp, BadFilesShowAnErrorAndKeepTheModel) {
@@ -313,8 +334,8 @@ TEST(StudioApp, LoadingCanBeCancelled) {
 
 TEST(StudioApp, AdaptsInTheBackgroundWhilePaintingContinues) {
   Harness h;
-  h.app->adapt().mode = AdaptMode::TwoStage;
-  h.app->adapt().fine_grid = 64;
+  h.app->session_options().adapt.mode = AdaptMode::TwoStage;
+  h.app->session_options().adapt.fine_grid = 64;
   h.app->brush().radius = 0.05;
   h.app->brush().hardness = 0.9;
   const auto serial = h.app->surface_serial();
@@ -368,6 +389,153 @@ TEST(StudioApp, DecalFromTheViewAndExports) {
   const StrokeFile back = load_strokes(dir.path / "h.json");
   ASSERT_EQ(back.strokes.size(), 1u);
   EXPECT_EQ(back.strokes[0].type, Stroke::Type::Decal);
+}
+
+// ---- the library's options, and the same result as adaptex paint ------------------------------
+
+TEST(StudioApp, AdaptsByDefaultWithTheLibrarysDefaultMethod) {
+  App app(std::make_unique<NullRenderer>(), {});
+  const PaintSessionOptions& o = app.session_options();
+  const AdaptOptions lib;
+  EXPECT_EQ(o.adapt.mode, lib.mode);
+  EXPECT_EQ(o.adapt.mode, AdaptMode::DensityFlow);
+  EXPECT_EQ(o.adapt.alpha, lib.alpha);
+  EXPECT_EQ(o.adapt.beta, lib.beta);
+  EXPECT_EQ(o.adapt.geometry_scale, lib.geometry_scale);
+  EXPECT_EQ(o.adapt.fine_grid, lib.fine_grid);
+  EXPECT_EQ(o.adapt.refine, lib.refine);
+  EXPECT_EQ(o.texture_size, PaintSessionOptions{}.texture_size);
+  EXPECT_EQ(o.padding, PaintSessionOptions{}.padding);
+  EXPECT_EQ(o.schedule, ReparamSchedule::EachStroke);
+}
+
+TEST(StudioApp, EveryReparameterizationStartsFromTheInitialLayout) {
+  Harness h({}, 128, "builtin:sphere", AdaptMode::DensityFlow);
+  const Parameterization initial = *h.app->param();
+  h.app->brush().radius = 0.03;
+  h.app->brush().hardness = 0.9;
+  h.drag(150, 150, 250, 150);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  ASSERT_NE(h.app->adapt_maps(), nullptr);
+  const Parameterization first = *h.app->param();
+  const auto first_mesh = std::make_shared<const TriMesh>(*h.app->mesh());  // refined or not
+  h.app->brush().color = Vec3(0.1, 0.1, 0.9);
+  h.drag(200, 100, 200, 200);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  // The layout is one re-parameterization of the whole history from the initial layout ...
+  const auto sphere = std::make_shared<const TriMesh>(shapes::sphere(64, 32, 1.0));  // builtin:sphere
+  const SessionOutcome fresh = paint_history(sphere, initial, h.app->history().to_file(), h.app->session_options(), {});
+  EXPECT_EQ(h.app->mesh()->faces, fresh.mesh->faces);
+  EXPECT_EQ(h.app->param()->uv, fresh.param->uv);
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), fresh.canvas->texture()), 0);
+  // ... which adapted (it is not the initial layout), and is not the first layout warped again.
+  EXPECT_NE(h.app->param()->uv, initial.uv);
+  const SessionOutcome composed =
+      paint_history(first_mesh, first, h.app->history().to_file(), h.app->session_options(), {});
+  EXPECT_NE(composed.param->uv, fresh.param->uv);
+}
+
+TEST(StudioApp, SameLayoutAndTextureAsAdaptexPaint) {
+  TempDir dir;
+  const auto mesh_path = dir.path / "ball.obj";
+  write_obj(mesh_path, shapes::sphere(48, 24, 1.0), nullptr);
+  Harness h({}, 256, mesh_path.string(), studio_session_options().adapt.mode);
+  h.app->brush().radius = 0.03;
+  h.drag(150, 150, 250, 160);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  h.app->brush().color = Vec3(0.1, 0.6, 0.2);
+  h.drag(190, 90, 210, 210);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  ASSERT_NE(h.app->adapt_maps(), nullptr);  // adaptation ran after the strokes
+  h.app->save_history(dir.path / "h.json");
+  h.app->export_obj(dir.path / "studio");
+  const auto r = test::run_cli("paint '" + mesh_path.string() + "' --strokes '" + (dir.path / "h.json").string() +
+                               "' --size 256 -o '" + (dir.path / "cli").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const TexturedMesh a = read_textured_obj(dir.path / "studio" / "ball.obj");
+  const TexturedMesh b = read_textured_obj(dir.path / "cli" / "ball.obj");
+  EXPECT_EQ(a.mesh.faces, b.mesh.faces);
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_EQ(a.param.uv, b.param.uv);
+  EXPECT_EQ(a.param.uv_faces, b.param.uv_faces);
+  EXPECT_EQ(max_abs_diff(read_image(dir.path / "studio" / "ball.png"), read_image(dir.path / "cli" / "ball.png")), 0);
+}
+
+// ---- never lose work -------------------------------------------------------------------------
+
+TEST(StudioApp, QuitWithUnsavedStrokesAsksAndCancelKeepsRunning) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path;
+  opt.autosave_delay = 0;
+  Harness h(opt);
+  EXPECT_FALSE(h.app->unsaved());
+  h.drag(150, 150, 250, 150);
+  EXPECT_TRUE(h.app->unsaved());
+  run_frames_until_exists(*h.app, dir.path / "recovery.json");
+  ASSERT_TRUE(std::filesystem::exists(dir.path / "recovery.json"));
+  h.app->on_key('Q', true, Mods{false, true, false});  // Ctrl+Q
+  ASSERT_TRUE(h.app->confirm());
+  EXPECT_EQ(h.app->confirm()->action, Confirm::Action::Quit);
+  EXPECT_FALSE(h.app->should_quit());
+  h.app->confirm_cancel();
+  EXPECT_FALSE(h.app->confirm());
+  EXPECT_FALSE(h.app->should_quit());
+  EXPECT_EQ(h.app->history().strokes().size(), 1u);
+  EXPECT_TRUE(std::filesystem::exists(dir.path / "recovery.json"));
+  h.app->request_quit();
+  ASSERT_TRUE(h.app->confirm());
+  h.app->confirm_discard();
+  EXPECT_TRUE(h.app->should_quit());
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "recovery.json"));  // an explicit Discard removes it
+}
+
+TEST(StudioApp, OpeningAnotherMeshOrProjectWithUnsavedStrokesAsks) {
+  TempDir dir;
+  Harness h;
+  h.drag(150, 150, 250, 150);
+  h.app->request_open_mesh("builtin:torus");
+  ASSERT_TRUE(h.app->confirm());
+  EXPECT_EQ(h.app->confirm()->action, Confirm::Action::OpenMesh);
+  EXPECT_FALSE(h.app->load_running());  // nothing happens before the answer
+  ASSERT_TRUE(h.app->confirm_save(dir.path / "a.json"));
+  EXPECT_TRUE(std::filesystem::exists(dir.path / "a.json"));
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_EQ(h.app->mesh_path(), "builtin:torus");
+  EXPECT_TRUE(h.app->history().strokes().empty());
+  EXPECT_FALSE(h.app->unsaved());
+
+  h.drag(150, 150, 250, 150);
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  h.app->request_open_project(dir.path / "a.json");
+  ASSERT_TRUE(h.app->confirm());
+  EXPECT_EQ(h.app->confirm()->action, Confirm::Action::OpenProject);
+  EXPECT_FALSE(h.app->confirm_save(dir.path));  // a folder: the save fails and the question stays
+  ASSERT_TRUE(h.app->confirm());
+  h.app->confirm_discard();
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_EQ(h.app->mesh_path(), "builtin:sphere");
+  EXPECT_EQ(h.app->history().strokes().size(), 1u);  // the project's stroke
+  EXPECT_FALSE(h.app->unsaved());
+
+  h.app->request_new();  // nothing unsaved: no question
+  EXPECT_FALSE(h.app->confirm());
+  EXPECT_FALSE(h.app->has_model());
+}
+
+TEST(StudioApp, SaveAsThenSaveWritesTheProjectFile) {
+  TempDir dir;
+  Harness h;
+  h.drag(150, 150, 250, 150);
+  EXPECT_FALSE(h.app->save());  // no project file yet: Save As first
+  const auto path = dir.path / "p.json";
+  ASSERT_TRUE(h.app->save_project(path));
+  EXPECT_FALSE(h.app->unsaved());
+  h.drag(200, 100, 200, 200);
+  EXPECT_TRUE(h.app->unsaved());
+  h.app->on_key('S', true, Mods{false, true, false});  // Ctrl+S
+  EXPECT_FALSE(h.app->unsaved());
+  EXPECT_EQ(read_project(path).strokes.strokes.size(), 2u);
 }
 
 }  // namespace

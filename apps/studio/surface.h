@@ -1,0 +1,61 @@
+#pragma once
+/// \file surface.h
+/// What the studio paints on: the loaded Model (mesh, its initial layout, picking) and the current
+/// Surface (the layout in use, the mesh it belongs to, its canvas), plus the results the background
+/// jobs hand back (adaptation maps, fixed-vs-adaptive comparison).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "adaptex/adapt/grid.h"
+#include "adaptex/core/image.h"
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+#include "backend.h"
+#include "ray_caster.h"
+
+namespace adaptex::studio {
+
+/// A loaded mesh and its initial parameterization (the unwrap() result: the fixed baseline, and the
+/// layout every re-parameterization starts from).
+struct Model {
+  std::string path;
+  std::shared_ptr<const TriMesh> mesh;
+  std::shared_ptr<const Parameterization> initial;
+  BoundingBox box;
+  std::shared_ptr<const RayCaster> caster;  ///< Picking on *mesh.
+};
+
+/// The layout in use with its texture. mesh is the model's mesh, or its refinement after a
+/// density-flow re-parameterization (same surface, more faces; caster then picks on it).
+struct Surface {
+  std::shared_ptr<const Model> model;
+  std::shared_ptr<const TriMesh> mesh;
+  std::shared_ptr<const RayCaster> caster;
+  std::shared_ptr<const Parameterization> param;
+  std::uint64_t generation = 0;  ///< History generation the canvas was built for.
+  size_t painted = 0;            ///< History strokes painted into the canvas.
+  int size = 0;                  ///< Texture width = height.
+  std::unique_ptr<Canvas> canvas;  ///< Declared last: destroyed before param / mesh.
+};
+
+/// Maps of the last adaptive re-parameterization (Inspect panel).
+struct AdaptMaps {
+  ImageF importance, stretch, ls2;  ///< Thesis methods (over the initial layout's domain).
+  ImageF density;                   ///< density-flow: target texel density (mean 1).
+  GridWarp coarse, fine;            ///< Optimized grids (empty when not used).
+  bool accepted = true;             ///< false: the safeguard kept the initial layout.
+  double damping = 1;
+};
+
+/// Fixed vs adaptive parameterization on the same strokes at the same texture size (Inspect panel).
+struct Comparison {
+  std::shared_ptr<const Parameterization> fixed_param, adaptive_param;
+  ImageRGBA8 fixed_texture, adaptive_texture;
+  double psnr_fixed = 0, psnr_adaptive = 0;  ///< dB against the exact stroke signal (adaptex eval).
+  size_t strokes = 0;
+};
+
+}  // namespace adaptex::studio

@@ -1,0 +1,181 @@
+/// \file surface_jobs.cpp
+/// Background loads, rebuilds and comparisons (see surface_jobs.h).
+#include "surface_jobs.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "adaptex/core/errors.h"
+
+namespace adaptex::studio {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+template <class R>
+std::unique_ptr<Job<R>> take_if_ready(std::unique_ptr<Job<R>>& job) {
+  if (job && job->ready()) return std::move(job);
+  return nullptr;
+}
+
+LoadResult load_model(const std::string& path, const PaintSessionOptions& options, const Vec3& background,
+                      Job<LoadResult>& job) {
+  const auto t0 = Clock::now();
+  job.progress("read", 0.0);
+  auto model = std::make_shared<Model>();
+  model->path = path;
+  auto mesh = std::make_shared<TriMesh>(load_mesh(path));
+  model->mesh = mesh;
+  model->box = bounding_box(*mesh);
+  if (!job.progress("index", 0.0)) throw CancelledError();
+  model->caster = std::make_shared<RayCaster>(*mesh);
+  model->initial = std::make_shared<Parameterization>(
+      unwrap_mesh(*mesh, [&job](std::string_view phase, double f) { return job.progress(phase, f); }));
+  if (!job.progress("texture", 0.0)) throw CancelledError();
+  LoadResult r;
+  r.surface = std::make_unique<Surface>();
+  r.surface->model = model;
+  r.surface->mesh = model->mesh;
+  r.surface->caster = model->caster;
+  r.surface->param = model->initial;
+  r.surface->size = options.texture_size;
+  r.surface->canvas = std::make_unique<Canvas>(*mesh, *model->initial, options.texture_size, options.texture_size,
+                                               background, options.padding);
+  r.model = std::move(model);
+  r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return r;
+}
+
+/// paint_history() from the model's initial layout, as a surface with its maps.
+RebuildResult adapt_surface(const std::shared_ptr<const Model>& model, const StrokeFile& history,
+                            const PaintSessionOptions& options, Surface& s, Job<RebuildResult>& job) {
+  const auto t0 = Clock::now();
+  RebuildResult r;
+  PaintSessionOptions opt = options;
+  if (history.strokes.empty()) opt.adapt.mode = AdaptMode::None;  // nothing to adapt to
+  SessionOutcome o = paint_history(model->mesh, *model->initial, history, opt,
+                                   [&job](std::string_view ph, double f) { return job.progress(ph, f); });
+  s.mesh = o.mesh;
+  s.caster = o.mesh == model->mesh ? model->caster : std::make_shared<const RayCaster>(*o.mesh);
+  // Not re-parameterized: the model's own initial layout (the canvas painted an equal copy).
+  s.param = o.adapted ? o.param : model->initial;
+  s.canvas = std::move(o.canvas);
+  r.phase_ms = std::move(o.phase_ms);
+  r.phase_ms.emplace_back("total", ms_since(t0));
+  if (o.adapted) {
+    auto maps = std::make_shared<AdaptMaps>();
+    maps->importance = std::move(o.importance);
+    maps->stretch = std::move(o.stretch);
+    maps->ls2 = std::move(o.ls2);
+    maps->density = std::move(o.density);
+    maps->coarse = std::move(o.coarse);
+    maps->fine = std::move(o.fine);
+    maps->accepted = o.accepted;
+    maps->damping = o.damping;
+    r.maps = std::move(maps);
+  }
+  return r;
+}
+}  // namespace
+
+SurfaceJobs::~SurfaceJobs() {
+  compare_.reset();
+  if (load_) load_->cancel();
+  if (rebuild_) rebuild_->cancel();
+}
+
+void SurfaceJobs::retire(std::unique_ptr<JobBase> job) {
+  job->cancel();
+  retired_.push_back(std::move(job));  // never wait for it on the UI thread
+}
+
+void SurfaceJobs::reap() {
+  retired_.erase(std::remove_if(retired_.begin(), retired_.end(), [](const auto& j) { return j->ready(); }),
+                 retired_.end());
+}
+
+void SurfaceJobs::start_load(const std::string& path, const PaintSessionOptions& options, const Vec3& background) {
+  if (load_) retire(std::move(load_));
+  loading_path_ = path;
+  load_ = std::make_unique<Job<LoadResult>>(
+      [path, options, background](Job<LoadResult>& job) { return load_model(path, options, background, job); });
+}
+
+void SurfaceJobs::cancel_load() {
+  if (load_) load_->cancel();
+}
+
+std::unique_ptr<Job<LoadResult>> SurfaceJobs::finished_load() { return take_if_ready(load_); }
+
+void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation, StrokeFile history,
+                                const PaintSessionOptions& options, bool adapt) {
+  if (rebuild_) retire(std::move(rebuild_));
+  rebuild_adapting_ = adapt;
+  rebuild_generation_ = generation;
+  auto model = current.model;
+  auto mesh = current.mesh;
+  auto caster = current.caster;
+  auto param = current.param;
+  rebuild_ = std::make_unique<Job<RebuildResult>>(
+      [model, mesh, caster, param, generation, history = std::move(history), options, adapt](Job<RebuildResult>& job) {
+        auto s = std::make_unique<Surface>();
+        s->model = model;
+        s->generation = generation;
+        s->size = options.texture_size;
+        RebuildResult r;
+        if (adapt) {
+          r = adapt_surface(model, history, options, *s, job);
+        } else {
+          const auto t0 = Clock::now();
+          s->mesh = mesh;
+          s->caster = caster;
+          s->param = param;
+          s->canvas = std::make_unique<Canvas>(*mesh, *param, options.texture_size, options.texture_size,
+                                               history.background, options.padding);
+          for (size_t i = 0; i < history.strokes.size(); ++i) {
+            if (!job.progress("replay", double(i) / history.strokes.size())) throw CancelledError();
+            s->canvas->paint_stroke(history.strokes[i]);
+          }
+          r.phase_ms.emplace_back("replay", ms_since(t0));
+        }
+        s->painted = history.strokes.size();
+        r.surface = std::move(s);
+        return r;
+      });
+}
+
+std::unique_ptr<Job<RebuildResult>> SurfaceJobs::finished_rebuild() { return take_if_ready(rebuild_); }
+
+void SurfaceJobs::start_compare(const Surface& current, StrokeFile history) {
+  if (compare_) return;
+  auto model = current.model;
+  auto mesh = current.mesh;
+  auto adaptive = current.param;
+  auto tex = std::make_shared<ImageRGBA8>(current.canvas->texture());
+  const int size = current.size;
+  compare_ = std::make_unique<Job<Comparison>>(
+      [model, mesh, adaptive, tex, history = std::move(history), size](Job<Comparison>&) {
+        Comparison c;
+        c.fixed_param = model->initial;
+        c.adaptive_param = adaptive;
+        Canvas fixed(*model->mesh, *model->initial, size, size, history.background);
+        for (const Stroke& s : history.strokes) fixed.paint_stroke(s);
+        c.fixed_texture = fixed.texture();
+        c.adaptive_texture = *tex;
+        c.psnr_fixed = texture_psnr(*model->mesh, *model->initial, c.fixed_texture, history);
+        c.psnr_adaptive = texture_psnr(*mesh, *adaptive, c.adaptive_texture, history);
+        c.strokes = history.strokes.size();
+        return c;
+      });
+}
+
+std::unique_ptr<Job<Comparison>> SurfaceJobs::finished_compare() { return take_if_ready(compare_); }
+
+std::optional<std::pair<std::string, double>> SurfaceJobs::progress() const {
+  if (load_) return std::make_pair("Loading " + loading_path_ + ": " + load_->phase(), load_->fraction());
+  if (rebuild_) return std::make_pair("Updating texture: " + rebuild_->phase(), rebuild_->fraction());
+  return std::nullopt;
+}
+
+}  // namespace adaptex::studio
