@@ -197,13 +197,13 @@ GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions
     if (!(std::isfinite(v) && v > 0))
       throw InvalidInputError("density_equalizing_warp: densities must be finite and > 0");
   if (o.cells < 1 || o.cells > 8192) throw InvalidInputError("density_equalizing_warp: cells must be in [1, 8192]");
-  if (!(o.tolerance > 0) || o.max_steps < 1)
-    throw InvalidInputError("density_equalizing_warp: tolerance must be > 0 and max_steps >= 1");
+  if (!(o.tolerance > 0) || o.max_steps < 1 || !(o.max_step_cells > 0))
+    throw InvalidInputError("density_equalizing_warp: tolerance and max_step_cells must be > 0 and max_steps >= 1");
 
   const Field field(density, solve_poisson_neumann(density));
   GridWarp g = GridWarp::uniform(o.cells);
   const double tol = o.tolerance / o.cells;
-  const double max_move = 0.5 / std::max(o.cells, density.width);
+  const double max_move = o.max_step_cells / std::max(o.cells, density.width);
   std::atomic<long> total{0};
   std::atomic<int> most{0};
   auto run = [&](int j0, int j1) {

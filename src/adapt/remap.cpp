@@ -219,6 +219,48 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
   std::vector<char> on_border(param.uv.size(), 0);
   for (const BoundaryEdge& e : boundary.empty() ? uv_boundary_edges(param) : boundary) on_border[e.a] = on_border[e.b] = 1;
   std::vector<char> mark(param.uv.size(), 0);
+  // Wedge -> incident UV faces (CSR), for re-testing only the faces around moved wedges.
+  std::vector<int> face_start(param.uv.size() + 1, 0), wedge_faces;
+  for (const Face& f : param.uv_faces)
+    for (int w : f) ++face_start[w + 1];
+  for (size_t w = 0; w < param.uv.size(); ++w) face_start[w + 1] += face_start[w];
+  wedge_faces.resize(face_start.back());
+  {
+    std::vector<int> fill(face_start.begin(), face_start.end() - 1);
+    for (int f = 0; f < F; ++f)
+      for (int w : param.uv_faces[f]) wedge_faces[fill[w]++] = f;
+  }
+  auto fails = [&](const Parameterization& out, int f) {
+    const double a0 = uv_signed_area(param, f);
+    if (std::abs(a0) <= o.min_area) return false;
+    return uv_signed_area(out, f) * (a0 > 0 ? 1.0 : -1.0) <= o.min_area;
+  };
+  // The flipped or degenerate faces of \p out, ascending. moved == nullptr: test every face. Else
+  // \p bad holds the failing faces before the wedges in *moved were changed: only those faces and
+  // the faces around the moved wedges are tested (no other face's corners moved).
+  std::vector<int> to_test;
+  std::vector<char> face_mark(F, 0);
+  auto failing_faces = [&](const Parameterization& out, const std::vector<int>* moved, std::vector<int>& bad) {
+    if (!moved) {
+      bad.clear();
+      for (int f = 0; f < F; ++f)
+        if (fails(out, f)) bad.push_back(f);
+      return;
+    }
+    to_test.clear();
+    auto add_face = [&](int f) {
+      if (!face_mark[f]) face_mark[f] = 1, to_test.push_back(f);
+    };
+    for (int f : bad) add_face(f);
+    for (int w : *moved)
+      for (int q = face_start[w]; q < face_start[w + 1]; ++q) add_face(wedge_faces[q]);
+    std::sort(to_test.begin(), to_test.end());
+    bad.clear();
+    for (int f : to_test) {
+      face_mark[f] = 0;
+      if (fails(out, f)) bad.push_back(f);
+    }
+  };
   // Untangling before damping: the interior wedges of flipped or degenerate faces (and their 1-rings)
   // move to the mean of their 1-ring's *warped* positions, round after round (local Laplacian
   // smoothing in the new domain, as in Tutte's embedding). A few flips of a strong warp are usually
@@ -228,12 +270,10 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
     std::vector<int> bad_faces, ws;
     std::vector<Vec2> pos;
     for (int r = 0; r < o.untangle_rounds; ++r) {
-      bad_faces.clear();
-      for (int f = 0; f < F; ++f) {
-        const double a0 = uv_signed_area(param, f);
-        if (std::abs(a0) <= o.min_area) continue;
-        if (uv_signed_area(out, f) * (a0 > 0 ? 1.0 : -1.0) <= o.min_area) bad_faces.push_back(f);
-      }
+      // Only faces around the wedges moved last round can change state: test those (and the faces
+      // that still failed), not all F faces, after the first round.
+      if (r == 0) failing_faces(out, nullptr, bad_faces);
+      else failing_faces(out, &ws, bad_faces);
       if (bad_faces.empty()) return;
       ws.clear();
       for (int f : bad_faces)
@@ -268,13 +308,11 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
     RemapCheck c;
     std::vector<int> bad, wedges;
     untangle(out, disp);
+    std::vector<int> flipping;
     for (int round = 0; round <= rounds; ++round) {
-      bad.clear();
-      for (int f = 0; f < F; ++f) {
-        const double a0 = uv_signed_area(param, f);
-        if (std::abs(a0) <= o.min_area) continue;
-        if (uv_signed_area(out, f) * (a0 > 0 ? 1.0 : -1.0) <= o.min_area) bad.push_back(f);
-      }
+      if (round == 0) failing_faces(out, nullptr, flipping);
+      else failing_faces(out, &wedges, flipping);
+      bad = flipping;
       if (bad.empty() && damp_crossings) bad = faces_of_crossing_boundaries(out, boundary);
       still_bad = bad;
       if (bad.empty() || round == rounds) break;

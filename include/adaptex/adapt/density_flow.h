@@ -26,6 +26,11 @@ struct DensityFlowOptions {
   int cells = 256;             ///< Cells per side n of the output GridWarp (lattice of (n+1)² points).
   double tolerance = 1e-2;     ///< Local error bound of the adaptive integration, in output cells.
   int max_steps = 4000;        ///< Cap on integration steps per point (never reached on sane input).
+  /// Longest move of a point in one integration step, in cells of the finer of the density raster and
+  /// the output lattice (the step-size control adds its own limit). 2 keeps the measured density error
+  /// of 0.5 (venus, spot, kitten lines at 256²: relative L1 0.092 / 0.015 / 0.019 either way) at a
+  /// quarter of the steps; at 4 the error starts to grow (kitten 0.027).
+  double max_step_cells = 2.0;
   bool parallel = true;        ///< Advect points with TBB (results are identical either way).
 };
 
