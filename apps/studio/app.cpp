@@ -68,7 +68,9 @@ Project App::snapshot() const {
 }
 
 void App::ask_or_do(Confirm c) {
+  if (confirm_) return;  // one question at a time: the first request waits for its answer
   if (!unsaved()) return perform(c);
+  c.save_path = suggested_project_path();
   confirm_ = std::move(c);
   add_message("unsaved strokes: asking Save / Discard / Cancel", false);
 }
@@ -107,7 +109,11 @@ void App::confirm_discard() {
   perform(c);
 }
 
-void App::confirm_cancel() { confirm_.reset(); }
+void App::confirm_cancel() {
+  if (!confirm_) return;
+  confirm_.reset();
+  add_message("cancelled: the unsaved strokes are kept", false);
+}
 
 // ---- files ------------------------------------------------------------------------------------
 
@@ -307,9 +313,20 @@ void App::on_scroll(double steps) {
 
 void App::on_key(int key, bool pressed, Mods mods) {
   input_.set_mods(mods);
-  if (!pressed || input_.ui_keyboard() || confirm_) return;
+  if (!pressed) return;
+  if (confirm_) {
+    if (!input_.ui_text()) answer_key(key);
+    return;
+  }
+  if (input_.ui_keyboard()) return;
   run_command(key_command(key, mods));
   update_cursor();
+}
+
+void App::answer_key(int key) {
+  if (key == keys::Escape) confirm_cancel();
+  if (key == 'D') confirm_discard();
+  if (key == 'S') confirm_save(confirm_->save_path);
 }
 
 void App::run_command(Command c) {

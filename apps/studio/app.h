@@ -60,7 +60,8 @@ struct Stats {
 struct Confirm {
   enum class Action { Quit, OpenMesh, OpenProject, New };
   Action action = Action::Quit;
-  std::string path;  ///< File to open (OpenMesh, OpenProject).
+  std::string path;       ///< File to open (OpenMesh, OpenProject).
+  std::string save_path;  ///< Where Save writes (App::suggested_project_path(); the UI may edit it).
 };
 
 class App {
@@ -80,8 +81,11 @@ class App {
   void on_scroll(double steps);
   void on_key(int key, bool pressed, Mods mods);
   void on_drop(const std::vector<std::string>& paths);
-  /// What the UI wants (ImGui io.WantCaptureMouse / WantCaptureKeyboard of the last frame).
-  void set_ui_capture(bool mouse, bool keyboard) { input_.set_ui_capture(mouse, keyboard); }
+  /// What the UI wants (ImGui io.WantCaptureMouse / WantCaptureKeyboard / WantTextInput of the last
+  /// frame). While Save / Discard / Cancel is asked, S, D and Escape answer unless a text field has
+  /// the keyboard (handled here, from the window's key events: a key pressed and released within one
+  /// slow frame is never lost).
+  void set_ui_capture(bool mouse, bool keyboard, bool text = false) { input_.set_ui_capture(mouse, keyboard, text); }
 
   // ---- 2, 4, 5. frame phases ----
   void begin_frame();
@@ -103,6 +107,8 @@ class App {
   /// Drops the unsaved strokes (and the recovery file), then does the waiting action.
   void confirm_discard();
   void confirm_cancel();
+  /// The Save path of the waiting question. \pre confirm()
+  std::string& confirm_save_path() { return confirm_->save_path; }
   /// Quits without asking (signals, scripted runs); unsaved strokes stay in the recovery file.
   void quit_now() { quit_ = true; }
 
@@ -220,6 +226,7 @@ class App {
   void eyedrop(double x, double y);
   void update_cursor();
   void run_command(Command c);
+  void answer_key(int key);
   // jobs
   void poll_jobs();
   void finish_load(Job<LoadResult>& job);

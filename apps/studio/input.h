@@ -20,13 +20,16 @@ Command key_command(int key, Mods mods);
 
 class InputState {
  public:
-  /// What the UI wants (ImGui io.WantCaptureMouse / WantCaptureKeyboard of the last frame).
-  void set_ui_capture(bool mouse, bool keyboard) {
+  /// What the UI wants (ImGui io.WantCaptureMouse / WantCaptureKeyboard / WantTextInput of the last
+  /// frame).
+  void set_ui_capture(bool mouse, bool keyboard, bool text) {
     ui_mouse_ = mouse;
     ui_keyboard_ = keyboard;
+    ui_text_ = text;
   }
   bool ui_mouse() const { return ui_mouse_; }
   bool ui_keyboard() const { return ui_keyboard_; }
+  bool ui_text() const { return ui_text_; }  ///< A text field has the keyboard.
 
   /// A button press: \return the drag it starts (None: ignored, e.g. the UI owns the click or
   /// another drag runs). \p tool decides what a left drag does.
@@ -43,7 +46,7 @@ class InputState {
   void set_mods(Mods m) { mods_ = m; }
 
  private:
-  bool ui_mouse_ = false, ui_keyboard_ = false;
+  bool ui_mouse_ = false, ui_keyboard_ = false, ui_text_ = false;
   double x_ = 0, y_ = 0;
   bool down_[3] = {false, false, false};
   Drag drag_ = Drag::None;

@@ -340,7 +340,7 @@ void frame(GLFWwindow* w, App& app, StudioUi& ui, Script& script, SignalWatcher&
   ui.draw(app);
   ImGui::Render();
   const ImGuiIO& io = ImGui::GetIO();
-  app.set_ui_capture(io.WantCaptureMouse, io.WantCaptureKeyboard);
+  app.set_ui_capture(io.WantCaptureMouse, io.WantCaptureKeyboard, io.WantTextInput);
   app.render();  // 4. scene, then the UI on top
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   script.after_render(app);  // 5. scripted exit / screenshot, statistics

@@ -343,14 +343,17 @@ void StudioUi::popups(App& app) {
 void StudioUi::confirm_prompt(App& app) {
   const char* title = "Unsaved strokes";
   const auto& c = app.confirm();
-  if (!c) {
+  if (!c) {  // answered by a key (App::on_key): close the pop-up
+    if (prompt_open_ && ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::CloseCurrentPopup();
+      ImGui::EndPopup();
+    }
     prompt_open_ = false;
     return;
   }
   if (!prompt_open_) {
     ImGui::OpenPopup(title);
     prompt_open_ = true;
-    project_path_ = app.suggested_project_path();
   }
   ImGui::SetNextWindowPos(ImVec2(app.camera().width * 0.5f, app.camera().height * 0.5f), ImGuiCond_Appearing,
                           ImVec2(0.5f, 0.5f));
@@ -359,15 +362,15 @@ void StudioUi::confirm_prompt(App& app) {
                      : c->action == Confirm::Action::OpenMesh    ? "Opening another mesh"
                      : c->action == Confirm::Action::OpenProject ? "Opening a project"
                                                                  : "Starting a new scene";
-  ImGui::Text("%s drops the %zu strokes painted since the last save.", what, app.history().strokes().size());
-  ImGui::InputText("Save to", &project_path_);
-  const bool keys = !ImGui::IsAnyItemActive();
-  const bool save = ImGui::Button("Save (S)") || (keys && ImGui::IsKeyPressed('S', false));
+  ImGui::Text("%s loses the strokes painted since the last save.", what);
+  ImGui::InputText("Save to", &app.confirm_save_path());
+  // The S / D / Esc keys are answered by App::on_key.
+  const bool save = ImGui::Button("Save (S)");
   ImGui::SameLine();
-  const bool discard = ImGui::Button("Discard (D)") || (keys && ImGui::IsKeyPressed('D', false));
+  const bool discard = ImGui::Button("Discard (D)");
   ImGui::SameLine();
-  const bool cancel = ImGui::Button("Cancel (Esc)") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false);
-  if (save && app.confirm_save(project_path_)) {
+  const bool cancel = ImGui::Button("Cancel (Esc)");
+  if (save && app.confirm_save(app.confirm_save_path())) {
     ImGui::CloseCurrentPopup();
   } else if (discard) {
     app.confirm_discard();

@@ -1,7 +1,8 @@
 /// \file test_studio_gui.cpp
 /// Acceptance tests of adaptex-studio as a real program: under Xvfb with Mesa's software OpenGL, the
 /// app is driven with real X input events (xdotool) and its outputs are checked; a SIGKILLed session
-/// is recovered from its autosave. Skipped (with a message) when Xvfb or xdotool is missing.
+/// is recovered from its autosave; quitting, closing the window and opening another mesh with unsaved
+/// strokes ask Save / Discard / Cancel. Skipped (with a message) when Xvfb or xdotool is missing.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -19,6 +20,9 @@
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
 #include "test_support.h"
+
+// Last: Xlib's macros (None, Bool, Status, ...) must not reach the headers above.
+#include <X11/Xlib.h>
 
 extern char** environ;
 
@@ -124,6 +128,63 @@ class Xvfb {
     if (!find_program("Xvfb")) GTEST_SKIP() << "Xvfb not installed (apt-get install xvfb): skipping the GUI test"; \
     if (!find_program("xdotool")) GTEST_SKIP() << "xdotool not installed: skipping the GUI test";                \
   } while (0)
+
+/// Runs `xdotool ARGS` on the display of \p x. \return its exit status
+int xdo(const Xvfb& x, const std::string& args) {
+  return std::system(("DISPLAY=" + x.display() + " xdotool " + args).c_str());
+}
+
+/// Asks the studio's window to close as a window manager's close button does (a WM_DELETE_WINDOW
+/// client message; Xvfb runs no window manager). \return false if no window was found
+bool close_window(const Xvfb& x) {
+  FILE* p = popen(("DISPLAY=" + x.display() + " xdotool search --name 'adaptex studio'").c_str(), "r");
+  if (!p) return false;
+  std::vector<unsigned long> ids;
+  char line[64];
+  while (std::fgets(line, sizeof line, p)) ids.push_back(std::strtoul(line, nullptr, 10));
+  pclose(p);
+  if (ids.empty()) return false;
+  Display* d = XOpenDisplay(x.display().c_str());
+  if (!d) return false;
+  for (unsigned long id : ids) {
+    XEvent e{};
+    e.xclient.type = ClientMessage;
+    e.xclient.window = id;
+    e.xclient.message_type = XInternAtom(d, "WM_PROTOCOLS", False);
+    e.xclient.format = 32;
+    e.xclient.data.l[0] = static_cast<long>(XInternAtom(d, "WM_DELETE_WINDOW", False));
+    e.xclient.data.l[1] = CurrentTime;
+    XSendEvent(d, id, False, NoEventMask, &e);
+  }
+  XFlush(d);
+  XCloseDisplay(d);
+  return true;
+}
+
+/// Occurrences of \p needle in the file \p log.
+int count_in(const fs::path& log, const std::string& needle) {
+  const std::string text = slurp(log);
+  int n = 0;
+  for (size_t at = text.find(needle); at != std::string::npos; at = text.find(needle, at + 1)) ++n;
+  return n;
+}
+
+bool running(pid_t pid) {
+  int st = 0;
+  return waitpid(pid, &st, WNOHANG) == 0;
+}
+
+/// A left-button drag across the sphere in the middle of an 800x600 window (right of the panel).
+std::string paint_drag() {
+  std::ostringstream cmd;
+  cmd << "mousemove 330 200 sleep 0.3 mousedown 1 sleep 0.2";
+  for (int px = 340; px <= 470; px += 10) cmd << " mousemove " << px << " 200 sleep 0.05";
+  cmd << " sleep 0.2 mouseup 1 sleep 0.3 mousemove 700 80 sleep 0.5";
+  return cmd.str();
+}
+
+const char* const kAsking = "unsaved strokes: asking Save / Discard / Cancel";
+const char* const kCancelled = "cancelled: the unsaved strokes are kept";
 
 /// Mean RGB of a screen rectangle (x, y from the top-left, inclusive ranges).
 std::array<double, 3> mean_rgb(const adaptex::ImageRGBA8& shot, int x0, int x1, int y0, int y1) {
@@ -257,6 +318,90 @@ TEST(StudioGui, SigkilledSessionIsRecoveredFromTheAutosave) {
   // The recovered strokes were never saved: the scripted exit keeps them in the recovery file.
   EXPECT_TRUE(fs::exists(rec / "recovery.json"));
   EXPECT_NE(slurp(log2).find("unsaved strokes kept in"), std::string::npos) << slurp(log2);
+}
+
+TEST(StudioGui, QuittingWithUnsavedStrokesAsksAndCancelKeepsTheAppRunning) {
+  REQUIRE_X_TOOLS();
+  TempDir dir;
+  Xvfb x(dir.path / "xvfb.log");
+  ASSERT_TRUE(x.ok()) << slurp(dir.path / "xvfb.log");
+  const fs::path log = dir.path / "app.log", rec = dir.path / "rec", hist = dir.path / "h.json";
+  const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "builtin:sphere", "--window", "800x600", "--texture-size", "256",
+                           "--config-dir", (dir.path / "cfg").string(), "--recovery-dir", rec.string(),
+                           "--history-out", hist.string()},
+                          x.env(), log);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_for([&] { return slurp(log).find("adaptex-studio: ready") != std::string::npos; }, 120s))
+      << slurp(log);
+  ASSERT_EQ(xdo(x, paint_drag()), 0);
+  ASSERT_TRUE(wait_for([&] { return fs::exists(rec / "recovery.json"); }, 60s)) << slurp(log);
+
+  // Ctrl+Q asks; Escape (Cancel) keeps the app running with its strokes.
+  ASSERT_EQ(xdo(x, "key ctrl+q"), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, kAsking) == 1; }, 30s)) << slurp(log);
+  std::this_thread::sleep_for(1s);
+  EXPECT_TRUE(running(app));
+  ASSERT_EQ(xdo(x, "key Escape"), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, kCancelled) == 1; }, 30s)) << slurp(log);
+  std::this_thread::sleep_for(1s);
+  EXPECT_TRUE(running(app));
+  EXPECT_TRUE(fs::exists(rec / "recovery.json"));
+
+  // Closing the window asks too.
+  ASSERT_TRUE(close_window(x));
+  ASSERT_TRUE(wait_for([&] { return count_in(log, kAsking) == 2; }, 30s)) << slurp(log);
+  std::this_thread::sleep_for(1s);
+  EXPECT_TRUE(running(app));
+  ASSERT_EQ(xdo(x, "key Escape"), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, kCancelled) == 2; }, 30s)) << slurp(log);
+  EXPECT_TRUE(running(app));
+
+  // Discard (D) quits, and only then is the recovery file removed.
+  ASSERT_EQ(xdo(x, "key ctrl+q"), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, kAsking) == 3; }, 30s)) << slurp(log);
+  ASSERT_EQ(xdo(x, "key d"), 0);
+  const int rc = wait_exit(app, 60s);
+  if (rc < 0) kill(app, SIGKILL), wait_exit(app, 5s);
+  ASSERT_EQ(rc, 0) << slurp(log);
+  EXPECT_FALSE(fs::exists(rec / "recovery.json"));
+  std::ifstream hin(hist);
+  EXPECT_EQ(nlohmann::json::parse(hin)["strokes"].size(), 1u);  // the stroke was there until the end
+}
+
+TEST(StudioGui, OpeningAnotherMeshWithUnsavedStrokesAsks) {
+  REQUIRE_X_TOOLS();
+  TempDir dir;
+  Xvfb x(dir.path / "xvfb.log");
+  ASSERT_TRUE(x.ok()) << slurp(dir.path / "xvfb.log");
+  const fs::path log = dir.path / "app.log", hist = dir.path / "h.json";
+  const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "builtin:sphere", "--window", "800x600", "--texture-size", "256",
+                           "--config-dir", (dir.path / "cfg").string(), "--no-recovery", "--history-out",
+                           hist.string()},
+                          x.env(), log);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_for([&] { return slurp(log).find("adaptex-studio: ready") != std::string::npos; }, 120s))
+      << slurp(log);
+  ASSERT_EQ(xdo(x, paint_drag()), 0);
+  // File panel: type a mesh into the path field (top left of the panel) and press Open.
+  ASSERT_EQ(xdo(x, "mousemove 110 67 click 1 sleep 0.3 type --delay 40 builtin:torus"), 0);
+  ASSERT_EQ(xdo(x, "sleep 0.3 mousemove 236 67 click 1"), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, kAsking) == 1; }, 30s)) << slurp(log);
+  ASSERT_EQ(xdo(x, "key Escape"), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, kCancelled) == 1; }, 30s)) << slurp(log);
+  std::this_thread::sleep_for(2s);
+  EXPECT_EQ(slurp(log).find("loaded builtin:torus"), std::string::npos) << slurp(log);  // nothing was opened
+  // Open asks again; Discard (D) opens the torus.
+  ASSERT_EQ(xdo(x, "mousemove 236 67 click 1"), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, kAsking) == 2; }, 30s)) << slurp(log);
+  ASSERT_EQ(xdo(x, "key d"), 0);
+  ASSERT_TRUE(wait_for([&] { return slurp(log).find("loaded builtin:torus") != std::string::npos; }, 120s))
+      << slurp(log);
+  kill(app, SIGTERM);
+  const int rc = wait_exit(app, 60s);
+  if (rc < 0) kill(app, SIGKILL), wait_exit(app, 5s);
+  ASSERT_EQ(rc, 0) << slurp(log);
+  std::ifstream hin(hist);
+  EXPECT_EQ(nlohmann::json::parse(hin)["strokes"].size(), 0u);  // the torus' empty history
 }
 
 }  // namespace
