@@ -15,9 +15,15 @@
 ///
 /// Never worse (safeguard): with a history, each candidate parameterization is judged by the
 /// reconstruction error of its replayed texture against the exact stroke signal on a fixed set of
-/// surface samples (uniform by area); the candidate, else the candidate damped by half, is kept only
-/// if its error is lower than the current one's; otherwise the session keeps its parameterization
-/// (report.accepted = false).
+/// surface samples (uniform by area; paint/eval.h reconstruction_mse); the candidate, else the
+/// candidate damped by half, is kept only if its error is lower than the reference layout's
+/// (report.error_before); otherwise the session keeps its parameterization (report.accepted = false).
+/// The reference is the initial layout in end mode and in each-stroke mode with replay, so each-stroke
+/// mode is path independent: after every stroke it holds exactly the layout (and replayed texture)
+/// that end mode gives for the history so far; a rejected candidate returns it to the initial layout,
+/// as end mode would keep it (an earlier candidate, computed for part of the history, is not kept on
+/// the strength of the estimate). In resample mode, and when reparameterize() is called again in end
+/// mode, the reference is the current layout.
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -50,11 +56,11 @@ struct PaintSessionOptions {
   TextureUpdate update = TextureUpdate::Replay;     ///< replay | resample.
   bool safeguard = true;       ///< The "never worse" check described above (needs the history).
   int safeguard_samples = 60000;  ///< Surface samples of the safeguard's error estimate.
-  /// Accept a candidate only if its estimated MSE is below (1 - margin) x the current one. 0.02
+  /// Accept a candidate only if its estimated MSE is below (1 - margin) x the reference's. 0.02
   /// (≈ 0.09 dB): the estimate uses 60,000 samples, and with margin 0 a candidate measured 0.12 dB
   /// worse by the 400,000-sample evaluation was accepted (triceratops lines at 128², density-flow).
-  /// Applies while the current layout is the fixed one; once a re-parameterization was accepted, a
-  /// candidate only has to be better than the current (adapted) layout.
+  /// Applies whenever the reference is the fixed (initial) layout; against an adapted current layout
+  /// (resample mode, or end mode re-parameterizing again) a candidate only has to be better.
   double safeguard_margin = 0.02;
   std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
 };
