@@ -10,6 +10,7 @@
 #include <limits>
 #include <mutex>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -24,6 +25,7 @@
 #include "adaptex/param/disk_param.h"
 #include "adaptex/param/pack.h"
 #include "adaptex/param/stretch.h"
+#include "adaptex/param/unfold.h"
 #include "adaptex/param/yoshizawa.h"
 
 namespace adaptex {
@@ -83,6 +85,9 @@ struct Chart {
   double cut_length = 0;
   int augmentations = 0;
   double domain_area = 1;  ///< UV area of the chart in its own [0,1]^2 frame.
+  /// > 0: the width / height of the chart's rectangle is fixed (an unfolded polygon, unfold.h);
+  /// 0: best_aspect() chooses it.
+  double aspect = 0;
 };
 
 /// Input vertex (of the component) with the largest stretch that is not on the cut yet: the
@@ -138,12 +143,77 @@ struct ChartContext {
   long augment_faces_left = 0;
   Clock::time_point augment_deadline;
   UnwrapReport& rep;
+  /// A piece without interior vertices may be unfolded (unfold.h): whole components of a layout
+  /// of several components.
+  bool unfold_polygons;
 };
 
 /// Budget units (face-solves, UnwrapOptions::augment_face_budget) of one cheap parameterization of
 /// a chart of \p faces faces: the Floater solve and the cheap Yoshizawa iterations.
 long augment_eval_cost(long faces, const DiskParamOptions& dopt, const UnwrapOptions& options) {
   return faces * (1 + std::max(0, std::min(dopt.max_iterations, options.augment_yoshizawa_iterations)));
+}
+
+/// L2 stretch of the per-vertex map \p uv of \p disk scaled by (sqrt(a), 1 / sqrt(a)) (measured).
+double l2_at_aspect(const TriMesh& disk, const std::vector<Vec2>& uv, double a) {
+  const double sx = std::sqrt(a);
+  std::vector<Vec2> scaled(uv.size());
+  for (size_t w = 0; w < uv.size(); ++w) scaled[w] = Vec2(uv[w].x() * sx, uv[w].y() / sx);
+  return measure_stretch(disk, scaled).l2;
+}
+
+/// Width / height ratio a of the rectangle that gives the chart the lowest L2 stretch when its
+/// square parameterization is scaled by (sqrt(a), 1 / sqrt(a)): Chart::aspect when fixed, else the
+/// best of 17 values from 1/4 to 4 (log-spaced). Multi-chart layouts only; a single chart keeps the
+/// square. Returns (a, that L2).
+std::pair<double, double> best_aspect(const Chart& chart) {
+  const TriMesh& disk = chart.state.disk.disk;
+  const std::vector<Vec2>& uv = chart.state.param.uv;
+  if (chart.aspect > 0) return {chart.aspect, l2_at_aspect(disk, uv, chart.aspect)};
+  // The aspect is chosen on the closed form of the L2 of all 17 aspects (one pass over the faces,
+  // stretch.h); the L2 returned is measured (measure_stretch(), as parameterize_disk() measured the
+  // chart's own L2 for a = 1), so the rectangle sizes do not change by rounding: the packing
+  // reacts to the last bit of a size.
+  std::vector<double> aspects;
+  for (int i = -8; i <= 8; ++i) aspects.push_back(std::pow(4.0, i / 8.0));
+  const std::vector<double> l2 = l2_stretch_of_aspects(disk, uv, aspects);
+  size_t best = 8;  // a = 1
+  for (size_t i = 0; i < aspects.size(); ++i)
+    if (i != 8 && l2[i] < l2[best]) best = i;
+  if (best == 8) return {1.0, chart.state.param.final_l2};
+  return {aspects[best], l2_at_aspect(disk, uv, aspects[best])};
+}
+
+/// Replaces \p chart by the isometric unfolding of its piece (unfold.h) when the piece is a
+/// triangulated polygon (every vertex on the boundary: the disk parameterization can only map
+/// them onto the square) and the unfolding's own texel share, UV fill of its rectangle / L2² at
+/// its aspect, is higher than the chart's at its best aspect (tiny_components(200): its 10-face
+/// strips go from L2 1.5 at fill 1 to L2 1 at fill 0.91, its slivers from L2 250 to 1; strips of
+/// two faces keep the square, L2 1.06 at fill 1 against fill 0.71).
+void use_unfolding_if_better(const Component& comp, Chart& chart) {
+  std::optional<PolygonLayout> u = unfold_polygon(comp.mesh);
+  if (!u) return;
+  const double l2_u = l2_at_aspect(comp.mesh, u->uv, u->aspect);
+  const double l2_c = best_aspect(chart).second;
+  if (!(std::isfinite(l2_u) && u->fill / (l2_u * l2_u) > chart.domain_area / (l2_c * l2_c))) return;
+  CutState& s = chart.state;
+  s.cut.assign(s.cut.size(), 0);
+  s.disk.disk = comp.mesh;
+  s.disk.wedge_vertex.resize(comp.mesh.num_vertices());
+  std::iota(s.disk.wedge_vertex.begin(), s.disk.wedge_vertex.end(), 0);
+  s.disk.boundary_loop.clear();
+  s.solve_state.reset();
+  const StretchStats st = measure_stretch(comp.mesh, u->uv);  // in the chart's own square frame
+  s.param.uv = std::move(u->uv);
+  s.param.floater_l2 = s.param.final_l2 = st.l2;
+  s.param.floater_linf = s.param.final_linf = st.linf;
+  s.param.iterations = 0;
+  s.param.flipped = s.param.degenerate = 0;
+  s.param.on_square = false;
+  chart.cut_length = 0;
+  chart.augmentations = 0;
+  chart.domain_area = u->fill;
+  chart.aspect = u->aspect;
 }
 
 /// Cuts one piece (a component, or a chart of a component) to a disk, augments the cut (GGH 2002
@@ -269,30 +339,8 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
     area2 += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
   }
   chart.domain_area = area2 > 0 ? area2 : 1.0;
+  if (ctx.unfold_polygons) use_unfolding_if_better(comp, chart);
   return chart;
-}
-
-/// Width / height ratio a of the rectangle that gives the chart the lowest L2 stretch when its
-/// square parameterization is scaled by (sqrt(a), 1 / sqrt(a)): the best of 17 values from 1/4 to 4
-/// (log-spaced). Multi-chart layouts only; a single chart keeps the square. Returns (a, that L2).
-std::pair<double, double> best_aspect(const Chart& chart) {
-  const TriMesh& disk = chart.state.disk.disk;
-  const std::vector<Vec2>& uv = chart.state.param.uv;
-  // The aspect is chosen on the closed form of the L2 of all 17 aspects (one pass over the faces,
-  // stretch.h); the L2 returned is measured (measure_stretch(), as parameterize_disk() measured the
-  // chart's own L2 for a = 1), so the rectangle sizes do not change by rounding: the packing
-  // reacts to the last bit of a size.
-  std::vector<double> aspects;
-  for (int i = -8; i <= 8; ++i) aspects.push_back(std::pow(4.0, i / 8.0));
-  const std::vector<double> l2 = l2_stretch_of_aspects(disk, uv, aspects);
-  size_t best = 8;  // a = 1
-  for (size_t i = 0; i < aspects.size(); ++i)
-    if (i != 8 && l2[i] < l2[best]) best = i;
-  if (best == 8) return {1.0, chart.state.param.final_l2};
-  const double sx = std::sqrt(aspects[best]);
-  std::vector<Vec2> scaled(uv.size());
-  for (size_t w = 0; w < uv.size(); ++w) scaled[w] = Vec2(uv[w].x() * sx, uv[w].y() / sx);
-  return {aspects[best], measure_stretch(disk, scaled).l2};
 }
 
 /// Packs the charts of \p pieces with gap \p padding and writes the layout and the layout figures
@@ -427,10 +475,11 @@ std::vector<Component> segment_components(const std::vector<Component>& comps, i
 /// augmentation face budget in piece order; when even the largest use of every chart
 /// ((1 + max_augmentations) cheap evaluations) fits in it, the budget cannot run out, the charts do
 /// not depend on each other, and they are built in parallel (TBB) with the same result. The
-/// progress callback is then called under a mutex with a non-decreasing fraction.
+/// progress callback is then called under a mutex with a non-decreasing fraction. \p unfold: a
+/// piece without interior vertices may be unfolded (ChartContext::unfold_polygons).
 std::vector<Chart> build_charts(const std::vector<Component>& pieces, const DiskParamOptions& dopt,
                                 Clock::time_point t_start, const UnwrapOptions& options,
-                                UnwrapReport& rep) {
+                                UnwrapReport& rep, bool unfold) {
   const Clock::time_point deadline =
       t_start + std::chrono::duration_cast<Clock::duration>(
                     std::chrono::duration<double>(std::max(0.0, options.augment_time_budget)));
@@ -440,7 +489,7 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
     largest_use += (1L + options.max_augmentations) * augment_eval_cost(p.mesh.num_faces(), dopt, options);
   std::vector<Chart> charts(nc);
   if (nc < 2 || largest_use > options.augment_face_budget) {
-    ChartContext ctx{options, dopt, options.augment_face_budget, deadline, rep};
+    ChartContext ctx{options, dopt, options.augment_face_budget, deadline, rep, unfold};
     for (int c = 0; c < nc; ++c)
       charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
                               static_cast<double>(c + 1) / nc);
@@ -457,7 +506,7 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
     };
   std::vector<UnwrapReport> reps(nc);
   tbb::parallel_for(0, nc, [&](int c) {
-    ChartContext ctx{shared, dopt, largest_use, deadline, reps[c]};  // cannot run out (see above)
+    ChartContext ctx{shared, dopt, largest_use, deadline, reps[c], unfold};  // cannot run out (see above)
     charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
                             static_cast<double>(c + 1) / nc);
   });
@@ -471,10 +520,12 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
 }
 
 /// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
+/// \p unfold as in build_charts().
 void unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
                    const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
-                   const UnwrapOptions& options, UnwrapResult& result) {
-  const std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report);
+                   const UnwrapOptions& options, UnwrapResult& result, bool unfold) {
+  const std::vector<Chart> charts =
+      build_charts(pieces, dopt, t_start, options, result.report, unfold);
   const auto t0 = Clock::now();
   report_progress(options.progress, "pack", 0.0);
   assemble(mesh, pieces, charts, padding, result);
@@ -543,12 +594,16 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   dopt.max_iterations = options.yoshizawa_max_iterations;
   dopt.yoshizawa = options.yoshizawa_max_iterations > 0;
 
-  // One chart per component (thesis §3.2).
-  unwrap_pieces(mesh, comps, dopt, options.chart_padding, t_start, options, result);
+  // One chart per component (thesis §3.2). Every layout of several charts keeps the gutter.
+  const double gutter =
+      std::max(options.chart_padding, options.gutter_texels / options.gutter_texture_size);
+  // Components without interior vertices (strips, single triangles) are unfolded when several
+  // charts share the square; segmented charts are not (their layouts stay those measured in
+  // docs/benchmarks.md).
+  unwrap_pieces(mesh, comps, dopt, gutter, t_start, options, result, comps.size() > 1);
   // Auto: while the layout wastes too many texels, segment into 4, 6, 8, 12, 16, ... charts (steps
   // of 1.5 and 4/3; docs/charts.md).
   if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share) {
-    const double gutter = options.gutter_texels / options.gutter_texture_size;
     for (int k = std::max(4, 2 * topo.num_components); k <= options.max_charts &&
                                                        rep.effective_texel_share < options.min_texel_share;
          k = k % 3 == 0 ? k / 3 * 4 : k / 2 * 3) {
@@ -556,7 +611,7 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
       if (static_cast<int>(pieces.size()) <= rep.num_charts) continue;
       UnwrapResult attempt;
       attempt.report = rep;
-      unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, attempt);
+      unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, attempt, false);
       rep.time_cut = attempt.report.time_cut;  // times add up over all attempts
       rep.time_floater = attempt.report.time_floater;
       rep.time_yoshizawa = attempt.report.time_yoshizawa;

@@ -5,3 +5,4 @@ adaptex_add_test(test_param_unwrap_cli SOURCES test_unwrap_cli.cpp
   LIBS adaptex::adaptex nlohmann_json::nlohmann_json)
 adaptex_add_test(test_param_unwrap_shared SOURCES test_unwrap_shared.cpp LIBS adaptex::adaptex)
 adaptex_add_test(test_param_charts SOURCES test_charts.cpp LIBS adaptex::adaptex)
+adaptex_add_test(test_param_unfold SOURCES test_unfold.cpp LIBS adaptex::adaptex)

@@ -68,14 +68,7 @@ TEST(Unwrap, AugmentationLowersStretchOnTheSphere) {
 
 TEST(Unwrap, ManyComponentsArePacked) {
   // Five tori of different sizes: five charts, sized by their area, no overlap.
-  TriMesh m;
-  for (int i = 0; i < 5; ++i) {
-    TriMesh t = shapes::torus(16 + 4 * i, 8, 1.0 + i, 0.3 + 0.1 * i);
-    const int off = m.num_vertices();
-    for (const Vec3& p : t.positions) m.positions.push_back(p + Vec3(10.0 * i, 0, 0));
-    for (Face f : t.faces) m.faces.push_back({f[0] + off, f[1] + off, f[2] + off});
-  }
-  check_unwrap("five tori", m);
+  check_unwrap("five tori", test::five_tori());
 }
 
 TEST(Unwrap, ProgressAndCancel) {

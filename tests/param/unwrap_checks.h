@@ -7,11 +7,24 @@
 #include <cmath>
 #include <string>
 
+#include "adaptex/core/shapes.h"
 #include "adaptex/core/topology.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
 
 namespace adaptex::test {
+
+/// Five tori of different sizes side by side (five components, about 1.3k faces in all).
+inline TriMesh five_tori() {
+  TriMesh m;
+  for (int i = 0; i < 5; ++i) {
+    TriMesh t = shapes::torus(16 + 4 * i, 8, 1.0 + i, 0.3 + 0.1 * i);
+    const int off = m.num_vertices();
+    for (const Vec3& p : t.positions) m.positions.push_back(p + Vec3(10.0 * i, 0, 0));
+    for (Face f : t.faces) m.faces.push_back({f[0] + off, f[1] + off, f[2] + off});
+  }
+  return m;
+}
 
 /// Every property unwrap() promises, checked independently of how it was made.
 /// Unwraps \p mesh and checks the result; the result is stored in \p out if given.

@@ -55,9 +55,10 @@ struct UnwrapOptions {
   /// An augmentation is kept only if it lowers the chart's L2 stretch by this relative amount;
   /// the first one that does not stops the augmentation of that chart.
   double augment_min_improvement = 0.005;
-  /// Gap between packed charts, as a fraction of the unit square, when every chart is a whole
-  /// connected component.
-  double chart_padding = 0.01;
+  /// Smallest gap between packed charts, as a fraction of the unit square; the gap is the larger of
+  /// this and the gutter (gutter_texels / gutter_texture_size), for whole components as for
+  /// segmented charts. A single chart fills the square.
+  double chart_padding = 0;
   /// Single: one chart per component; Auto (default): segment into several charts only when one
   /// chart per component wastes too many texels (docs/charts.md).
   ChartMode charts = ChartMode::Auto;
@@ -69,9 +70,10 @@ struct UnwrapOptions {
   /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight). 0 (compact
   /// geodesic charts) gave the highest texel share on every mesh measured (docs/charts.md).
   double chart_normal_weight = 0.0;
-  /// Gutter between segmented charts in texels of a gutter_texture_size² texture: the gap is
-  /// gutter_texels / gutter_texture_size of the unit square. 8 texels at 1024 leave room for the
-  /// 4-texel seam padding of both neighbouring charts (paint/padding.h).
+  /// Gutter between packed charts (components or segmented charts) in texels of a
+  /// gutter_texture_size² texture: the gap is gutter_texels / gutter_texture_size of the unit
+  /// square. 8 texels at 1024 leave room for the 4-texel seam padding of both neighbouring charts
+  /// (paint/padding.h); `adaptex paint --size N` sets gutter_texture_size = N.
   double gutter_texels = 8;
   /// See gutter_texels.
   int gutter_texture_size = 1024;
