@@ -2,6 +2,7 @@
 /// \file paint_common.h
 /// Shared by `adaptex paint` and `adaptex demo`: unwrap with progress lines, paint the strokes, and
 /// the report.json they write. Header-only (inline) so the CLI target needs no new source file.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -93,15 +94,24 @@ struct PaintRun {
   double initial_l2 = 0, final_l2 = 0;  ///< L2 stretch of the unwrap and of the final layout.
 };
 
+/// The unwrap options of a paint run: the gutter between charts is in texels of the texture it
+/// paints (options.size), at least both neighbours' seam padding (2 x options.padding) and the
+/// unwrap default (8 texels), and at most a fifth of the square (a tiny texture cannot hold it).
+inline UnwrapOptions paint_unwrap_options(const PaintRunOptions& options, ProgressCallback progress) {
+  UnwrapOptions uo;
+  uo.progress = std::move(progress);
+  uo.gutter_texture_size = options.size;
+  uo.gutter_texels = std::min(std::max(uo.gutter_texels, 2.0 * options.padding), 0.2 * options.size);
+  return uo;
+}
+
 /// Unwraps \p mesh (progress lines on stderr) and paints every stroke of \p strokes.
 /// The adaptive step of issue 4 plugs in here, in the "paint" phase (see the comment there).
 inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
                                  const PaintRunOptions& options, const Context& ctx) {
   PaintRun run;
   Stopwatch sw;
-  UnwrapOptions uo;
-  uo.progress = phase_printer(ctx, "unwrap");
-  UnwrapResult ur = unwrap(mesh, uo);
+  UnwrapResult ur = unwrap(mesh, paint_unwrap_options(options, phase_printer(ctx, "unwrap")));
   run.param = std::move(ur.param);
   run.unwrap = ur.report;
   run.time_unwrap = sw.lap();

@@ -2,15 +2,21 @@
 // layout PNG) and bad input (exit 2, one line on stderr, no partial output).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/image_io.h"
 #include "test_support.h"
+#include "unwrap_checks.h"
 
 namespace adaptex {
 namespace {
@@ -150,6 +156,75 @@ TEST(UnwrapCli, BadInputExitsWithTwoAndLeavesNoFile) {
                           " --report " + q(rep));
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+/// Bounding boxes (lo, hi) of the charts of an OBJ's UV layout: the connected parts of the faces
+/// through shared vt indices.
+std::vector<std::pair<Vec2, Vec2>> obj_chart_boxes(const std::filesystem::path& obj) {
+  std::ifstream in(obj);
+  std::string line;
+  std::vector<Vec2> vt;
+  std::vector<std::vector<int>> faces;
+  while (std::getline(in, line)) {
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "vt") {
+      double u = 0, v = 0;
+      ls >> u >> v;
+      vt.emplace_back(u, v);
+    } else if (tag == "f") {
+      std::vector<int> f;
+      for (std::string c; ls >> c;) f.push_back(std::stoi(c.substr(c.find('/') + 1)) - 1);
+      faces.push_back(f);
+    }
+  }
+  std::vector<int> parent(vt.size());
+  for (size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
+  auto find = [&](int x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const auto& f : faces)
+    for (int k : f) parent[find(k)] = find(f[0]);
+  std::map<int, std::pair<Vec2, Vec2>> box;
+  for (const auto& f : faces)
+    for (int k : f) {
+      auto it = box.try_emplace(find(k), vt[k], vt[k]).first;
+      it->second.first = it->second.first.cwiseMin(vt[k]);
+      it->second.second = it->second.second.cwiseMax(vt[k]);
+    }
+  std::vector<std::pair<Vec2, Vec2>> out;
+  for (const auto& [root, b] : box) out.push_back(b);
+  return out;
+}
+
+TEST(UnwrapCli, PaintUnwrapsWithTheGutterInTexelsOfItsTexture) {
+  // `paint --size 128` (seam padding 4): every two charts are at least 2 x 4 texels of the 128²
+  // texture apart, so that the padding of both fits between them (the unwrap default, 8 texels of
+  // a 1024² texture, would leave one texel).
+  TempDir dir;
+  write_off(dir.path / "tori.off", test::five_tori());
+  const auto gen = run_cli("strokes generate " + q(dir.path / "tori.off") + " --kind blobs -o " +
+                           q(dir.path / "s.json"));
+  ASSERT_EQ(gen.exit_code, 0) << gen.err;
+  for (int size : {128, 512}) {
+    SCOPED_TRACE(size);
+    const auto out = dir.path / ("out" + std::to_string(size));
+    const auto r = run_cli("paint " + q(dir.path / "tori.off") + " --strokes " + q(dir.path / "s.json") +
+                           " --size " + std::to_string(size) + " --adapt none -o " + q(out));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto boxes = obj_chart_boxes(out / "tori.obj");
+    ASSERT_GE(boxes.size(), 5u);
+    double gap = 1;
+    for (size_t i = 0; i < boxes.size(); ++i)
+      for (size_t j = 0; j < i; ++j) {
+        const auto& [a0, a1] = boxes[i];
+        const auto& [b0, b1] = boxes[j];
+        gap = std::min(gap, std::max({b0.x() - a1.x(), a0.x() - b1.x(), b0.y() - a1.y(), a0.y() - b1.y()}));
+      }
+    EXPECT_GE(gap * size, 2 * 4 - 1e-3);
+  }
 }
 
 }  // namespace
