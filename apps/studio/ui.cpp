@@ -45,6 +45,16 @@ ImageRGBA8 heat_image(const ImageF& m) {
   return img;
 }
 
+/// A plain-words tooltip for the last widget.
+void tooltip(const char* text) {
+  if (!ImGui::IsItemHovered()) return;
+  ImGui::BeginTooltip();
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28);
+  ImGui::TextUnformatted(text);
+  ImGui::PopTextWrapPos();
+  ImGui::EndTooltip();
+}
+
 /// \p m divided by its largest value (density maps have mean 1 and no fixed upper bound).
 ImageF scaled_to_max(const ImageF& m) {
   ImageF out = m;
@@ -89,7 +99,11 @@ void StudioUi::file_panel(App& app) {
   if (ImGui::Button("New")) app.request_new();
   ImGui::SameLine();
   ImGui::TextDisabled("%s", app.project_path().empty() ? "(no project file)" : app.project_path().c_str());
-  if (project_path_.empty()) project_path_ = app.suggested_project_path();
+  // The proposed project file follows the model until the user edits it.
+  if (const std::string s = app.suggested_project_path(); project_path_ == suggested_path_) {
+    project_path_ = s;
+    suggested_path_ = s;
+  }
   ImGui::InputText("Project", &project_path_);
   if (ImGui::Button("Save (Ctrl+S)")) {
     if (app.project_path().empty())
@@ -177,28 +191,44 @@ void StudioUi::adapt_panel(App& app) {
     a.mode = modes[size_t(m)];
     changed = true;
   }
+  tooltip("How the texture layout follows your paint. density-flow (default): gives painted detail more "
+          "texels, as many as its edges need, and never folds. two-stage / single: the thesis' grid "
+          "relaxation. none: the layout never changes.");
   bool each = o.schedule == ReparamSchedule::EachStroke;
   if (ImGui::Checkbox("After every stroke", &each)) {
     o.schedule = each ? ReparamSchedule::EachStroke : ReparamSchedule::End;
     changed = true;
   }
+  tooltip("Re-fit the layout in the background after every stroke. Off: only when you press "
+          "Re-parameterize now.");
   if (a.mode == AdaptMode::DensityFlow) {
     changed |= ImGui::Checkbox("Refine the mesh", &a.refine);
+    tooltip("Split triangles that are too large to follow the layout's change inside painted areas. The "
+            "surface keeps its shape; exports carry the extra triangles. Off keeps your vertices.");
   } else if (a.mode != AdaptMode::None) {
     float al = float(a.alpha), be = float(a.beta);
     if (ImGui::SliderFloat("alpha", &al, 0.f, 2.f)) a.alpha = al, changed = true;
+    tooltip("How much the surface's own stretch counts where there is paint (thesis alpha).");
     if (ImGui::SliderFloat("beta", &be, 0.f, 2.f)) a.beta = be, changed = true;
-    if (a.mode == AdaptMode::TwoStage) changed |= ImGui::InputInt("Coarse grid", &a.coarse_grid);
+    tooltip("How much the painted detail counts (thesis beta): higher gathers more texels on detail.");
+    if (a.mode == AdaptMode::TwoStage) {
+      changed |= ImGui::InputInt("Coarse grid", &a.coarse_grid);
+      tooltip("Cells per side of the first, coarse grid: moves texels between large regions.");
+    }
     changed |= ImGui::InputInt("Fine grid", &a.fine_grid);
+    tooltip("Cells per side of the fine grid: spreads texels around small detail.");
     a.coarse_grid = std::clamp(a.coarse_grid, 2, 4096);
     a.fine_grid = std::clamp(a.fine_grid, 2, 4096);
   }
   const char* sizes[] = {"256", "512", "1024", "2048", "4096"};
   int si = std::clamp(int(std::lround(std::log2(o.texture_size))) - 8, 0, 4);
   if (ImGui::Combo("Texture size", &si, sizes, 5)) o.texture_size = 256 << si, changed = true;
+  tooltip("Width and height of the texture in texels.");
   if (changed) app.session_options_changed();
   if (ImGui::Button("Re-parameterize now")) app.request_adapt();
-  ImGui::TextDisabled("Each re-parameterization starts from the initial layout.");
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("Every re-parameterization starts from the initial layout, with the whole history.");
+  ImGui::PopStyleColor();
 }
 
 void StudioUi::inspect_window(App& app) {

@@ -47,6 +47,7 @@ class StudioUi {
   std::string error_text_;
   double decal_opacity_ = 1.0;
   bool prompt_open_ = false;
+  std::string suggested_path_;  // the last App::suggested_project_path() shown in project_path_
 };
 
 }  // namespace adaptex::studio
