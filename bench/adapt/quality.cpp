@@ -13,6 +13,7 @@
 //                         [--update replay|resample] [--no-safeguard] [--no-refine] [--verbose]
 //                         [--charts single|auto] [--floor F] [--density-cells L] [--no-atlas]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
+//                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C]
 //
 // Mode names go to cli::make_session_options() (apps/cli/session_options.h, parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
@@ -83,6 +84,9 @@ struct Args {
   double refine_factor = -1;    ///< --refine-factor: AdaptOptions::refine_max_face_factor (-1: default).
   double blur = -1;             ///< --blur: ErrorDensityOptions::blur_cells (-1: the default).
   double max_density = -1;      ///< --max-density: ErrorDensityOptions::max_density (-1: the default).
+  int refine_levels = -1;       ///< --refine-levels: AdaptOptions::refine_max_levels (-1: the default).
+  double refine_tol = -1;       ///< --refine-tol: AdaptOptions::refine_tolerance_texels (-1: the default).
+  int flow_cells = -1;          ///< --flow-cells: DensityFlowOptions::cells (-1: the default).
 };
 
 // ---- Mesh refinement switch (issue 12): the ONE place where this tool sets refinement on/off. ----
@@ -109,6 +113,9 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   if (a.refine_factor > 0) o.adapt.refine_max_face_factor = a.refine_factor;
   if (a.blur >= 0) o.adapt.density.blur_cells = a.blur;
   if (a.max_density > 0) o.adapt.density.max_density = a.max_density;
+  if (a.refine_levels >= 0) o.adapt.refine_max_levels = a.refine_levels;
+  if (a.refine_tol > 0) o.adapt.refine_tolerance_texels = a.refine_tol;
+  if (a.flow_cells > 0) o.adapt.flow.cells = a.flow_cells;
   return o;
 }
 
@@ -170,6 +177,9 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--refine-factor") a.refine_factor = std::stod(v);
     else if (k == "--blur") a.blur = std::stod(v);
     else if (k == "--max-density") a.max_density = std::stod(v);
+    else if (k == "--refine-levels") a.refine_levels = std::stoi(v);
+    else if (k == "--refine-tol") a.refine_tol = std::stod(v);
+    else if (k == "--flow-cells") a.flow_cells = std::stoi(v);
     else throw std::invalid_argument(k + ": unknown option");
   }
   for (const auto& m : modes) {

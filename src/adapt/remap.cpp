@@ -235,7 +235,8 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
     if (std::abs(a0) <= o.min_area) return false;
     return uv_signed_area(out, f) * (a0 > 0 ? 1.0 : -1.0) <= o.min_area;
   };
-  // The flipped or degenerate faces of \p out, ascending. moved == nullptr: test every face. Else
+  // The flipped or degenerate faces of \p out (every use is order-free: the rounds below compute all
+  // new positions before writing any). moved == nullptr: test every face. Else
   // \p bad holds the failing faces before the wedges in *moved were changed: only those faces and
   // the faces around the moved wedges are tested (no other face's corners moved).
   std::vector<int> to_test;
@@ -254,7 +255,6 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
     for (int f : bad) add_face(f);
     for (int w : *moved)
       for (int q = face_start[w]; q < face_start[w + 1]; ++q) add_face(wedge_faces[q]);
-    std::sort(to_test.begin(), to_test.end());
     bad.clear();
     for (int f : to_test) {
       face_mark[f] = 0;
