@@ -3,7 +3,7 @@
 # with Mesa's software OpenGL (llvmpipe). Usage:
 #   bench/studio/measure_studio.sh BUILD_DIR [MESH...]     (default: every mesh in ../shared/meshes)
 # Prints one JSON line per measurement: the app's --stats output with the mesh and the kind
-# (orbit | paint-none | paint-two-stage). Runs itself inside xvfb-run when DISPLAY is unset.
+# (orbit | paint-none | paint-two-stage | paint-density-flow; density-flow is the default). Runs itself inside xvfb-run when DISPLAY is unset.
 set -euo pipefail
 if [ -z "${DISPLAY:-}" ]; then
   command -v xvfb-run >/dev/null || { echo "xvfb-run missing" >&2; exit 77; }
@@ -26,8 +26,8 @@ for mesh in "${MESHES[@]}"; do
   timeout 900 "$STUDIO" "$mesh" "${COMMON[@]}" --orbit-frames 200 --stats "$TMP/s.json" >/dev/null 2>&1 || true
   [ -f "$TMP/s.json" ] && echo "{\"mesh\":\"$name\",\"kind\":\"orbit\",\"stats\":$(tr -d '\n' < "$TMP/s.json")}"
   rm -f "$TMP/s.json"
-  # 2. Painting: real xdotool drags across the model; then with two-stage adaptation after each stroke.
-  for adapt in none two-stage; do
+  # 2. Painting: real xdotool drags across the model; then with two-stage and density-flow adaptation.
+  for adapt in none two-stage density-flow; do
     "$STUDIO" "$mesh" "${COMMON[@]}" --adapt "$adapt" --stats "$TMP/s.json" > "$TMP/app.log" 2>&1 &
     pid=$!
     for _ in $(seq 1200); do grep -q "adaptex-studio: ready" "$TMP/app.log" && break; sleep 0.5; done
