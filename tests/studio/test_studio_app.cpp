@@ -433,6 +433,12 @@ TEST(StudioApp, EveryReparameterizationStartsFromTheInitialLayout) {
   const SessionOutcome composed =
       paint_history(first_mesh, first, h.app->history().to_file(), h.app->session_options(), {});
   EXPECT_NE(composed.param->uv, fresh.param->uv);
+  // The layout is a function of the history: undo gives back the first stroke's layout and mesh.
+  h.app->undo();
+  ASSERT_TRUE(h.app->wait_idle(300));
+  EXPECT_EQ(h.app->mesh()->faces, first_mesh->faces);
+  EXPECT_EQ(h.app->param()->uv, first.uv);
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), replay_texture(*h.app)), 0);
 }
 
 TEST(StudioApp, SameLayoutAndTextureAsAdaptexPaint) {
