@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <limits>
 #include <numeric>
-#include <queue>
 #include <string>
 
 #include "adaptex/core/errors.h"
@@ -56,8 +55,47 @@ DualGraph build_dual_graph(const TriMesh& mesh) {
   return g;
 }
 
-using FaceQueue = std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>,
-                                      std::greater<>>;
+/// Min-queue of (distance, face) pairs, smallest pair first (ties by face id, as a
+/// std::priority_queue with std::greater would pop them, so the growth is the same): a 4-ary
+/// heap, shallower than a binary one.
+class FaceQueue {
+ public:
+  using Item = std::pair<double, int>;
+  bool empty() const { return heap_.empty(); }
+  const Item& top() const { return heap_.front(); }
+  void push(Item x) {
+    size_t i = heap_.size();
+    heap_.push_back(x);
+    while (i > 0) {
+      const size_t parent = (i - 1) / 4;
+      if (!(x < heap_[parent])) break;
+      heap_[i] = heap_[parent];
+      i = parent;
+    }
+    heap_[i] = x;
+  }
+  void pop() {
+    const Item x = heap_.back();
+    heap_.pop_back();
+    const size_t n = heap_.size();
+    if (n == 0) return;
+    size_t i = 0;
+    for (;;) {
+      const size_t first = 4 * i + 1;
+      if (first >= n) break;
+      size_t best = first;
+      for (size_t c = first + 1; c < std::min(first + 4, n); ++c)
+        if (heap_[c] < heap_[best]) best = c;
+      if (!(heap_[best] < x)) break;
+      heap_[i] = heap_[best];
+      i = best;
+    }
+    heap_[i] = x;
+  }
+
+ private:
+  std::vector<Item> heap_;
+};
 
 /// Dijkstra over the dual graph from the faces in \p pq: \p step_cost(f, k) is the cost of adjacency
 /// entry k of face f; \p on_lower(f, h) is called when face h gets a lower distance through f.
@@ -169,9 +207,15 @@ std::vector<int> chart_centres(const DualGraph& g, const std::vector<int>& label
 void remove_ears(const TriMesh& mesh, std::vector<int>& label) {
   const VertexFaces vf = build_vertex_faces(mesh);
   const int nv = mesh.num_vertices();
+  // A vertex whose fan kept its labels since its last visit, which moved nothing, would move
+  // nothing again: only vertices with a changed fan (dirty) are visited, in the same order, so the
+  // moves are those of visiting every vertex.
+  std::vector<char> dirty(nv, 1);
   for (int pass = 0; pass < 20; ++pass) {
     bool moved = false;
     for (int v = 0; v < nv; ++v) {
+      if (!dirty[v]) continue;
+      dirty[v] = 0;
       const int b = vf.offsets[v], e = vf.offsets[v + 1];
       if (e - b < 2) continue;
       for (int i = b; i < e; ++i) {
@@ -189,6 +233,7 @@ void remove_ears(const TriMesh& mesh, std::vector<int>& label) {
         if (best >= 0) {
           label[f] = best;
           moved = true;
+          for (int w : mesh.faces[f]) dirty[w] = 1;
         }
       }
     }
@@ -304,7 +349,10 @@ std::vector<int> segment_charts(const TriMesh& mesh, const ChartSegmentOptions& 
     return g.length[j] * (1.0 + options.normal_weight * std::max(0.0, dev));
   };
   for (int it = 0;; ++it) {
-    grow(g, seeds, cost, dist, label);
+    if (options.normal_weight == 0)  // the same costs (d * (1 + 0 * x) == d) without reading normals
+      grow(g, seeds, [&](int, int j) { return g.length[j]; }, dist, label);
+    else
+      grow(g, seeds, cost, dist, label);
     if (it == options.lloyd_iterations) break;
     // Re-seed at the chart centres; the chart normal becomes the mean normal of the chart.
     std::vector<Vec3> sum(k, Vec3::Zero());
