@@ -27,29 +27,6 @@ struct PaintCommand {
   double alpha = std::nan(""), beta = std::nan("");
 };
 
-/// Parses "16,256" / "256" into grid sizes. \throw InvalidInputError
-std::vector<int> parse_grid(const std::string& text) {
-  std::vector<int> out;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    size_t used = 0;
-    int v = 0;
-    try {
-      v = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || v < 2 || v > 4096)
-      throw InvalidInputError("--grid: '" + text +
-                              "' must be one or two comma-separated integers in [2, 4096] (e.g. 16,256)");
-    out.push_back(v);
-  }
-  if (out.empty() || out.size() > 2)
-    throw InvalidInputError("--grid: '" + text + "' must be one or two comma-separated integers (e.g. 16,256)");
-  return out;
-}
-
 /// Checks every option before any work is done (so a bad option never costs an unwrap).
 void validate(PaintCommand& c, const Context& ctx) {
   AdaptSettings& a = c.run.adapt;

@@ -6,7 +6,6 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
-#include <vector>
 
 #include "adaptex/adapt/adapt.h"
 #include "adaptex/adapt/session.h"
@@ -20,6 +19,7 @@
 #include "adaptex/paint/texel_map.h"
 #include "adaptex/param/stretch.h"
 #include "cli_common.h"
+#include "session_options.h"
 
 namespace adaptex::cli {
 
@@ -35,35 +35,45 @@ struct ReparamArgs {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-void run_reparam(const ReparamArgs& a, const Context& ctx) {
-  const auto t_start = Clock::now();
+/// The re-parameterization settings of \p a, checked before any file is read. \throw InvalidInputError
+AdaptOptions reparam_options(const ReparamArgs& a) {
   AdaptOptions opt;
   opt.mode = parse_adapt_mode(a.mode);
   if (opt.mode == AdaptMode::None) throw InvalidInputError("--adapt must be density-flow, two-stage or single");
   opt.refine = !a.no_refine;
   opt.alpha = a.alpha;
   opt.beta = a.beta;
-  if (!a.grid.empty()) {
-    std::vector<int> g;
-    std::stringstream ss(a.grid);
-    std::string tok;
-    while (std::getline(ss, tok, ',')) {
-      try {
-        size_t used = 0;
-        g.push_back(std::stoi(tok, &used));
-        if (used != tok.size()) throw std::invalid_argument(tok);
-      } catch (const std::exception&) {
-        throw InvalidInputError("--grid: '" + a.grid + "' is not a list of integers (e.g. 16,256)");
-      }
-    }
-    if (g.empty() || g.size() > 2) throw InvalidInputError("--grid: give FINE or COARSE,FINE (e.g. 16,256)");
-    for (int x : g)
-      if (x < 1 || x > 4096) throw InvalidInputError("--grid: sizes must be in [1, 4096]");
-    opt.fine_grid = g.back();
-    if (g.size() == 2) opt.coarse_grid = g[0];
-  }
+  if (!a.grid.empty()) set_grid(opt, parse_grid(a.grid));
   if (!(opt.alpha >= 0) || !(opt.beta >= 0)) throw InvalidInputError("--alpha and --beta must be >= 0");
   check_export_name(a.name.empty() ? "mesh" : a.name);
+  return opt;
+}
+
+/// report.json of `adaptex reparam` (without the total time).
+nlohmann::ordered_json reparam_report(const ReparamArgs& a, const TexturedMesh& tm, const TriMesh& out_mesh,
+                                      const AdaptResult& res, int W, int H, double time_old_map,
+                                      const StretchStats& st) {
+  nlohmann::ordered_json j;
+  j["input"] = a.mesh;
+  j["texture"] = a.texture;
+  j["faces"] = tm.mesh.num_faces();
+  j["faces_out"] = out_mesh.num_faces();
+  j["charts"] = tm.param.num_charts;
+  j["size"] = {W, H};
+  j["update"] = "resample";
+  nlohmann::json rj = res.report;
+  rj["time_ms"]["old_texel_map"] = 1e3 * time_old_map;
+  j["adapt"] = rj;
+  const StretchStats st0 = measure_stretch(tm.mesh, tm.param);
+  j["flipped_before"] = st0.flipped;  // mirrored charts of the input keep their orientation
+  j["flipped"] = st.flipped;
+  j["degenerate"] = st.degenerate;
+  return j;
+}
+
+void run_reparam(const ReparamArgs& a, const Context& ctx) {
+  const auto t_start = Clock::now();
+  const AdaptOptions opt = reparam_options(a);
 
   const TexturedMesh tm = read_textured_obj(a.mesh);
   const ImageRGBA8 tex = read_image(a.texture);
@@ -93,21 +103,7 @@ void run_reparam(const ReparamArgs& a, const Context& ctx) {
     // Written inside OUTDIR's commit when it is below OUTDIR; otherwise directly.
     write_debug_maps(a.debug_maps, name, res);
   }
-  nlohmann::ordered_json j;
-  j["input"] = a.mesh;
-  j["texture"] = a.texture;
-  j["faces"] = tm.mesh.num_faces();
-  j["faces_out"] = out_mesh.num_faces();
-  j["charts"] = tm.param.num_charts;
-  j["size"] = {W, H};
-  j["update"] = "resample";
-  nlohmann::json rj = res.report;
-  rj["time_ms"]["old_texel_map"] = 1e3 * time_old_map;
-  j["adapt"] = rj;
-  const StretchStats st0 = measure_stretch(tm.mesh, tm.param);
-  j["flipped_before"] = st0.flipped;  // mirrored charts of the input keep their orientation
-  j["flipped"] = st.flipped;
-  j["degenerate"] = st.degenerate;
+  nlohmann::ordered_json j = reparam_report(a, tm, out_mesh, res, W, H, time_old_map, st);
   j["time_total_ms"] = 1e3 * since(t_start);
   write_text(out, std::filesystem::path(a.outdir) / "report.json", j.dump(2) + "\n");
   out.commit();

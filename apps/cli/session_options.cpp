@@ -2,10 +2,41 @@
 #include "session_options.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "adaptex/core/errors.h"
 
 namespace adaptex::cli {
+
+std::vector<int> parse_grid(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    size_t used = 0;
+    int v = 0;
+    try {
+      v = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used == 0 || used != item.size() || v < 2 || v > 4096)
+      throw InvalidInputError("--grid: '" + text +
+                              "' must be one or two comma-separated integers in [2, 4096] (e.g. 16,256)");
+    out.push_back(v);
+  }
+  if (out.empty() || out.size() > 2 || text.back() == ',')
+    throw InvalidInputError("--grid: '" + text + "' must be one or two comma-separated integers (e.g. 16,256)");
+  return out;
+}
+
+void set_grid(AdaptOptions& o, const std::vector<int>& grid) {
+  if (grid.size() > 2) throw InvalidInputError("--grid: give FINE or COARSE,FINE (e.g. 16,256)");
+  for (int g : grid)
+    if (g < 1 || g > 4096) throw InvalidInputError("--grid: sizes must be in [1, 4096], got " + std::to_string(g));
+  if (!grid.empty()) o.fine_grid = grid.back();
+  if (grid.size() == 2) o.coarse_grid = grid.front();
+}
 
 ReparamSchedule parse_reparam_schedule(const std::string& name) {
   if (name == "each-stroke" || name == "each_stroke") return ReparamSchedule::EachStroke;
@@ -27,11 +58,7 @@ PaintSessionOptions make_session_options(int size, int padding, const std::strin
   o.texture_size = size;
   o.padding = padding;
   o.adapt.mode = parse_adapt_mode(mode);
-  if (grid.size() > 2) throw InvalidInputError("--grid: give FINE or COARSE,FINE (e.g. 16,256)");
-  for (int g : grid)
-    if (g < 1 || g > 4096) throw InvalidInputError("--grid: sizes must be in [1, 4096], got " + std::to_string(g));
-  if (!grid.empty()) o.adapt.fine_grid = grid.back();
-  if (grid.size() == 2) o.adapt.coarse_grid = grid.front();
+  set_grid(o.adapt, grid);
   if (alpha >= 0) o.adapt.alpha = alpha;
   if (beta >= 0) o.adapt.beta = beta;
   if (!std::isfinite(alpha) || !std::isfinite(beta)) throw InvalidInputError("--alpha/--beta must be finite");

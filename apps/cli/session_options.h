@@ -11,6 +11,13 @@
 
 namespace adaptex::cli {
 
+/// Parses the text of `--grid`: "FINE" or "COARSE,FINE" (e.g. "16,256"), each in [2, 4096].
+/// \throw InvalidInputError one line naming --grid and the text
+std::vector<int> parse_grid(const std::string& text);
+/// Sets the relaxation grid sizes of \p o from \p grid: {} keeps the defaults, {FINE} or
+/// {COARSE, FINE}. \throw InvalidInputError more than two sizes, or a size outside [1, 4096]
+void set_grid(AdaptOptions& o, const std::vector<int>& grid);
+
 /// Parses "each-stroke" (or "each_stroke") / "end". \throw InvalidInputError any other string
 ReparamSchedule parse_reparam_schedule(const std::string& name);
 /// Parses "replay" / "resample". \throw InvalidInputError any other string

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <vector>
 
 #include "adaptex/core/errors.h"
 #include "session_options.h"
@@ -42,4 +43,20 @@ TEST(CliSessionOptions, BadStringsThrowInvalidInput) {
   EXPECT_EQ(parse_reparam_schedule("each_stroke"), ReparamSchedule::EachStroke);
   EXPECT_THROW(parse_reparam_schedule("End"), InvalidInputError);
   EXPECT_THROW(parse_texture_update(""), InvalidInputError);
+}
+
+TEST(CliSessionOptions, GridTextOfPaintAndReparam) {
+  EXPECT_EQ(parse_grid("16,256"), (std::vector<int>{16, 256}));
+  EXPECT_EQ(parse_grid("64"), (std::vector<int>{64}));
+  for (const char* bad : {"", "16,x", "16,", "1", "8,64,128", "5000", "16 ,64", "0x10"})
+    EXPECT_THROW(parse_grid(bad), InvalidInputError) << bad;
+  AdaptOptions o;
+  set_grid(o, {});
+  EXPECT_EQ(o.fine_grid, AdaptOptions{}.fine_grid);
+  EXPECT_EQ(o.coarse_grid, AdaptOptions{}.coarse_grid);
+  set_grid(o, {8, 64});
+  EXPECT_EQ(o.coarse_grid, 8);
+  EXPECT_EQ(o.fine_grid, 64);
+  EXPECT_THROW(set_grid(o, {8, 64, 128}), InvalidInputError);
+  EXPECT_THROW(set_grid(o, {5000}), InvalidInputError);
 }
