@@ -176,7 +176,7 @@ bool App::save_project(const std::filesystem::path& path) {
 
 bool App::save() {
   if (store_.project_path().empty()) {
-    add_message("no project file yet: use Save As", true);
+    add_message("no project file yet: type a path under File > Project and press Save As", true);
     return false;
   }
   return save_project(store_.project_path());
