@@ -507,30 +507,46 @@ void App::maybe_start_rebuild() {
   painting_.catch_up();  // pure appends (redo, decals): painted onto the current canvas
 }
 
+void App::maybe_unwrap_again() {
+  const auto& m = painting_.model();
+  if (!m || jobs_.loading() || (m->unwrap_size == session_.texture_size && m->unwrap_padding == session_.padding))
+    return;
+  // `adaptex paint --size N` unwraps with a gutter of so many texels of N: so does the studio.
+  pending_ = PendingLoad{{}, history().background(), !unsaved(), store_.project_path(), true};
+  jobs_.start_load(m->path, session_, history().background());
+}
+
 void App::finish_load(Job<LoadResult>& job) {
   PendingLoad pending = std::exchange(pending_, PendingLoad());
   try {
     LoadResult r = job.take();
     if (painting_.stroke_open()) end_paint();
-    const Vec3 bg = pending.background.value_or(history().background());
+    // A reload keeps the history as it is now (strokes painted while it ran included).
+    std::vector<Stroke> strokes = pending.reload ? history().strokes() : std::move(pending.strokes);
+    const Vec3 bg = pending.reload ? history().background() : pending.background.value_or(history().background());
     const auto model = r.model;
-    painting_.set_model(model, std::move(r.surface), std::move(pending.strokes), bg);
+    painting_.set_model(model, std::move(r.surface), std::move(strokes), bg);
     // Strokes from a project are saved; replayed or recovered ones are not.
     store_.mark_clean(pending.from_project || history().strokes().empty() ? history().version() : ~0ull,
                       pending.project_path);
     last_cycle_.clear();
     maps_.reset();
     comparison_.reset();
+    history_changed();
+    if (pending.reload)
+      return add_message("unwrapped again for a " + std::to_string(model->unwrap_size) + "^2 texture", false);
     camera_.frame(model->box);
     store_.add_recent(model->path);
-    history_changed();
     char buf[64];
     std::snprintf(buf, sizeof buf, " in %.2f s", r.seconds);
     add_message("loaded " + model->path + buf, false);
-  } catch (const CancelledError&) {
-    add_message("loading cancelled", false);
   } catch (const std::exception& e) {
-    add_message(e.what(), true);
+    const bool cancelled = dynamic_cast<const CancelledError*>(&e) != nullptr;
+    add_message(cancelled ? "loading cancelled" : e.what(), !cancelled);
+    if (pending.reload && has_model()) {  // keep the layout's texture size (else it would unwrap again)
+      session_.texture_size = painting_.model()->unwrap_size;
+      session_.padding = painting_.model()->unwrap_padding;
+    }
   }
 }
 
@@ -561,6 +577,7 @@ void App::poll_jobs() {
   }
   if (auto job = jobs_.finished_load()) finish_load(*job);
   if (auto job = jobs_.finished_rebuild()) finish_rebuild(*job);
+  maybe_unwrap_again();
   maybe_start_rebuild();
 }
 

@@ -208,6 +208,7 @@ class App {
     std::optional<Vec3> background;
     bool from_project = false;       ///< The strokes are what project_path holds (nothing unsaved).
     std::filesystem::path project_path;
+    bool reload = false;  ///< The same model unwrapped again for another texture size (history kept).
   };
 
   void add_message(std::string text, bool error);
@@ -232,6 +233,7 @@ class App {
   void finish_load(Job<LoadResult>& job);
   void finish_rebuild(Job<RebuildResult>& job);
   void maybe_start_rebuild();
+  void maybe_unwrap_again();
   void start_rebuild(bool adapt);
 
   std::unique_ptr<Renderer> renderer_;

@@ -2,6 +2,7 @@
 /// The studio's bridge to the adaptex library (see backend.h).
 #include "backend.h"
 
+#include <algorithm>
 #include <fstream>
 
 #include "adaptex/adapt/session.h"
@@ -30,9 +31,13 @@ TriMesh load_mesh(const std::string& path) {
   return read_mesh(path);
 }
 
-Parameterization unwrap_mesh(const TriMesh& mesh, const ProgressCallback& progress) {
+Parameterization unwrap_mesh(const TriMesh& mesh, int texture_size, int padding, const ProgressCallback& progress) {
+  // The same options as apps/cli/paint_common.h paint_unwrap_options(): the gutter is at least both
+  // neighbours' seam padding and the unwrap default, at most a fifth of the square.
   UnwrapOptions opt;
   opt.progress = progress;
+  opt.gutter_texture_size = texture_size;
+  opt.gutter_texels = std::min(std::max(opt.gutter_texels, 2.0 * padding), 0.2 * texture_size);
   return unwrap(mesh, opt).param;
 }
 

@@ -29,8 +29,10 @@ namespace adaptex::studio {
 /// \throw IoError, InvalidInputError, TopologyError (one-line messages naming the file)
 TriMesh load_mesh(const std::string& path);
 
-/// Initial parameterization (adaptex::unwrap). \throw CancelledError when \p progress returns false
-Parameterization unwrap_mesh(const TriMesh& mesh, const ProgressCallback& progress);
+/// Initial parameterization (adaptex::unwrap) for a \p texture_size² texture with \p padding texels
+/// of seam padding, with the unwrap options `adaptex paint --size N --padding P` uses (the gutter
+/// between charts in texels of that texture). \throw CancelledError when \p progress returns false
+Parameterization unwrap_mesh(const TriMesh& mesh, int texture_size, int padding, const ProgressCallback& progress);
 
 /// A paintable texture on one parameterization (an adaptex::Painter, or the painter of the
 /// PaintSession that produced an adapted parameterization).

@@ -444,8 +444,21 @@ TEST(StudioApp, EveryReparameterizationStartsFromTheInitialLayout) {
 TEST(StudioApp, SameLayoutAndTextureAsAdaptexPaint) {
   TempDir dir;
   const auto mesh_path = dir.path / "ball.obj";
-  write_obj(mesh_path, shapes::sphere(48, 24, 1.0), nullptr);
-  Harness h({}, 256, mesh_path.string(), studio_session_options().adapt.mode);
+  TriMesh second = shapes::sphere(24, 12, 0.5);
+  for (Vec3& p : second.positions) p += Vec3(0, 0, -2.5);  // behind the first ball: two charts
+  write_obj(mesh_path, shapes::disjoint_union({shapes::sphere(48, 24, 1.0), second}), nullptr);
+  // Loaded for a 512² texture, then switched to 256²: unwrapped again with the gutter of 256² (as
+  // `adaptex paint --size 256` unwraps), keeping the (empty) history.
+  Harness h({}, 512, mesh_path.string(), studio_session_options().adapt.mode);
+  const int charts_512 = h.app->param()->num_charts;
+  const std::vector<Vec2> uv_512 = h.app->param()->uv;
+  h.app->session_options().texture_size = 256;
+  h.app->session_options_changed();
+  ASSERT_TRUE(h.app->wait_idle(120));
+  ASSERT_EQ(charts_512, 2);
+  EXPECT_NE(h.app->param()->uv, uv_512);
+  EXPECT_FALSE(h.app->unsaved());
+  h.app->render();
   h.app->brush().radius = 0.03;
   h.drag(150, 150, 250, 160);
   ASSERT_TRUE(h.app->wait_idle(300));
