@@ -428,6 +428,13 @@ TEST(StudioApp, EveryReparameterizationStartsFromTheInitialLayout) {
   EXPECT_EQ(h.app->mesh()->faces, fresh.mesh->faces);
   EXPECT_EQ(h.app->param()->uv, fresh.param->uv);
   EXPECT_EQ(max_abs_diff(*h.app->texture(), fresh.canvas->texture()), 0);
+  // ... which is also what PaintSession's each-stroke schedule gives after these strokes ...
+  PaintSessionOptions each = h.app->session_options();
+  each.schedule = ReparamSchedule::EachStroke;
+  PaintSession session(*sphere, initial, each, h.app->history().background());
+  for (const Stroke& s : h.app->history().strokes()) session.add_stroke(s);
+  EXPECT_EQ(h.app->param()->uv, session.param().uv);
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), session.texture()), 0);
   // ... which adapted (it is not the initial layout), and is not the first layout warped again.
   EXPECT_NE(h.app->param()->uv, initial.uv);
   const SessionOutcome composed =
