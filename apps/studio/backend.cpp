@@ -64,7 +64,41 @@ std::array<int, 4> Canvas::add_dab(const Vec3& c) { return impl_->painter->add_d
 void Canvas::end_stroke() { impl_->painter->end_stroke(); }
 const ImageRGBA8& Canvas::texture() { return impl_->painter->texture(); }
 
+std::vector<Vec3> smooth_normals(const TriMesh& mesh) {
+  std::vector<Vec3> vn(mesh.positions.size(), Vec3::Zero());
+  for (const Face& f : mesh.faces) {
+    const Vec3 n = (mesh.positions[f[1]] - mesh.positions[f[0]]).cross(mesh.positions[f[2]] - mesh.positions[f[0]]);
+    for (int v : f) vn[size_t(v)] += n;
+  }
+  for (Vec3& n : vn)
+    if (n.norm() > 0) n.normalize();
+  return vn;
+}
+
 namespace {
+/// The input's smooth normals at the vertices of its refinement (parent_face: input face of every
+/// refined face), interpolated with the vertex's barycentric coordinates in that face.
+std::vector<Vec3> refined_normals(const TriMesh& input, const TriMesh& refined, const FaceData<int>& parent_face) {
+  const std::vector<Vec3> vn = smooth_normals(input);
+  std::vector<Vec3> out(refined.positions.size(), Vec3::Zero());
+  std::vector<char> done(refined.positions.size(), 0);
+  for (size_t c = 0; c < refined.faces.size(); ++c) {
+    const Face& P = input.faces[size_t(parent_face[c])];
+    const Vec3 a = input.positions[P[0]], e1 = input.positions[P[1]] - a, e2 = input.positions[P[2]] - a;
+    const double a11 = e1.dot(e1), a12 = e1.dot(e2), a22 = e2.dot(e2), det = a11 * a22 - a12 * a12;
+    for (int v : refined.faces[c]) {
+      if (done[size_t(v)]) continue;
+      done[size_t(v)] = 1;
+      const Vec3 d = refined.positions[size_t(v)] - a;
+      const double l1 = det > 0 ? (a22 * e1.dot(d) - a12 * e2.dot(d)) / det : 0.0;
+      const double l2 = det > 0 ? (a11 * e2.dot(d) - a12 * e1.dot(d)) / det : 0.0;
+      const Vec3 n = (1 - l1 - l2) * vn[P[0]] + l1 * vn[P[1]] + l2 * vn[P[2]];
+      out[size_t(v)] = n.norm() > 0 ? n.normalized() : n;
+    }
+  }
+  return out;
+}
+
 std::vector<std::pair<std::string, double>> phase_times(const AdaptReport& rep) {
   std::vector<std::pair<std::string, double>> all = {
       {"importance", rep.time_importance}, {"stretch", rep.time_stretch_map}, {"ls2", rep.time_ls2},
@@ -107,6 +141,8 @@ SessionOutcome paint_history(const std::shared_ptr<const TriMesh>& mesh, const P
     o.stretch = r->stretch;
     o.ls2 = r->ls2;
     o.density = r->density;
+    if (o.mesh != mesh && r->parent_face.size() == o.mesh->faces.size())
+      o.normals = refined_normals(*mesh, *o.mesh, r->parent_face);
     if (r->grids.size() == 2) o.coarse = r->grids[0];
     if (!r->grids.empty()) o.fine = r->grids.back();
   }

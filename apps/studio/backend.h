@@ -29,6 +29,10 @@ namespace adaptex::studio {
 /// \throw IoError, InvalidInputError, TopologyError (one-line messages naming the file)
 TriMesh load_mesh(const std::string& path);
 
+/// Smooth vertex normals of \p mesh (area-weighted face normals), size V, unit length (zero for an
+/// isolated vertex).
+std::vector<Vec3> smooth_normals(const TriMesh& mesh);
+
 /// Initial parameterization (adaptex::unwrap) for a \p texture_size² texture with \p padding texels
 /// of seam padding, with the unwrap options `adaptex paint --size N --padding P` uses (the gutter
 /// between charts in texels of that texture). \throw CancelledError when \p progress returns false
@@ -63,6 +67,9 @@ class Canvas {
 /// on them, the maps for the Inspect panel and the phase times for the status line.
 struct SessionOutcome {
   std::shared_ptr<const TriMesh> mesh;  ///< The input mesh, or its refinement (same surface, more faces).
+  /// With a refinement: per vertex of *mesh, the input's smooth normals interpolated at the vertex
+  /// (a refined vertex lies inside an input face, whose own normal would shade it flat). Else empty.
+  std::vector<Vec3> normals;
   std::shared_ptr<const Parameterization> param;
   std::unique_ptr<Canvas> canvas;       ///< The session's painter (references *mesh and *param).
   std::vector<std::pair<std::string, double>> phase_ms;

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "backend.h"
+
 namespace adaptex::studio {
 namespace {
 
@@ -122,18 +124,15 @@ GlRenderer::~GlRenderer() {
   for (auto& [slot, t] : I.ui_textures) glDeleteTextures(1, &t.first);
 }
 
-void GlRenderer::set_mesh(const TriMesh& mesh, const Parameterization& param) {
+void GlRenderer::set_mesh(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>* normals) {
   Impl& I = *impl_;
-  // Smooth normals (area weighted), then one vertex per wedge: position, normal, uv.
-  std::vector<Vec3> vn(mesh.positions.size(), Vec3::Zero());
-  for (const Face& f : mesh.faces) {
-    const Vec3 n = (mesh.positions[f[1]] - mesh.positions[f[0]]).cross(mesh.positions[f[2]] - mesh.positions[f[0]]);
-    for (int v : f) vn[v] += n;
-  }
+  // One vertex per wedge: position, normal, uv.
+  const std::vector<Vec3> own = normals ? std::vector<Vec3>() : smooth_normals(mesh);
+  const std::vector<Vec3>& vn = normals ? *normals : own;
   std::vector<float> vb(size_t(param.num_wedges()) * 8);
   for (int w = 0; w < param.num_wedges(); ++w) {
     const int v = param.wedge_vertex[w];
-    const Vec3 n = vn[v].normalized();
+    const Vec3 n = vn[size_t(v)].normalized();
     float* o = &vb[size_t(w) * 8];
     for (int k = 0; k < 3; ++k) o[k] = float(mesh.positions[v][k]);
     for (int k = 0; k < 3; ++k) o[3 + k] = std::isfinite(n[k]) ? float(n[k]) : 0.f;

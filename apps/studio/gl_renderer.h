@@ -13,7 +13,7 @@ class GlRenderer : public Renderer {
  public:
   GlRenderer();
   ~GlRenderer() override;
-  void set_mesh(const TriMesh& mesh, const Parameterization& param) override;
+  void set_mesh(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>* normals) override;
   void set_texture(const ImageRGBA8& tex) override;
   void update_texture(const ImageRGBA8& tex, const std::array<int, 4>& rect) override;
   void draw(const FrameView& view) override;

@@ -141,7 +141,7 @@ Vec3 Painting::sample_colour(const Hit& h) const {
 void Painting::upload(Renderer& renderer) {
   if (!surface_) return;
   if (mesh_upload_) {
-    renderer.set_mesh(*surface_->mesh, *surface_->param);
+    renderer.set_mesh(*surface_->mesh, *surface_->param, surface_->normals.get());
     mesh_upload_ = false;
   }
   if (texture_full_upload_) {

@@ -32,8 +32,9 @@ struct FrameView {
 class Renderer {
  public:
   virtual ~Renderer() = default;
-  /// Uploads the geometry (one vertex per UV wedge, triangles = param.uv_faces).
-  virtual void set_mesh(const TriMesh& mesh, const Parameterization& param) = 0;
+  /// Uploads the geometry (one vertex per UV wedge, triangles = param.uv_faces) with the vertex
+  /// normals \p normals (size V), or smooth_normals(mesh) when null.
+  virtual void set_mesh(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>* normals) = 0;
   /// Uploads the whole texture.
   virtual void set_texture(const ImageRGBA8& tex) = 0;
   /// Uploads the texel rectangle (i0, j0, i1, j1), inclusive, of \p tex.
@@ -49,8 +50,9 @@ class Renderer {
 /// Records what was asked of it; draws nothing.
 class NullRenderer : public Renderer {
  public:
-  void set_mesh(const TriMesh& mesh, const Parameterization& param) override {
+  void set_mesh(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>* normals) override {
     ++mesh_uploads;
+    last_normals = normals ? *normals : std::vector<Vec3>();
     last_faces = mesh.num_faces();
     last_wedges = param.num_wedges();
   }
@@ -74,6 +76,7 @@ class NullRenderer : public Renderer {
   int last_faces = 0, last_wedges = 0;
   std::array<int, 4> last_rect{0, 0, -1, -1};
   ImageRGBA8 last_texture;
+  std::vector<Vec3> last_normals;  ///< Empty when the renderer was to compute them.
   FrameView last_view;
 };
 

@@ -35,6 +35,8 @@ struct Surface {
   std::shared_ptr<const Model> model;
   std::shared_ptr<const TriMesh> mesh;
   std::shared_ptr<const RayCaster> caster;
+  /// Shading normals of a refined mesh (backend.h SessionOutcome::normals); null: smooth_normals(*mesh).
+  std::shared_ptr<const std::vector<Vec3>> normals;
   std::shared_ptr<const Parameterization> param;
   std::uint64_t generation = 0;  ///< History generation the canvas was built for.
   size_t painted = 0;            ///< History strokes painted into the canvas.

@@ -60,6 +60,7 @@ RebuildResult adapt_surface(const std::shared_ptr<const Model>& model, const Str
   SessionOutcome o = paint_history(model->mesh, *model->initial, history, opt,
                                    [&job](std::string_view ph, double f) { return job.progress(ph, f); });
   s.mesh = o.mesh;
+  if (!o.normals.empty()) s.normals = std::make_shared<const std::vector<Vec3>>(std::move(o.normals));
   s.caster = o.mesh == model->mesh ? model->caster : std::make_shared<const RayCaster>(*o.mesh);
   // Not re-parameterized: the model's own initial layout (the canvas painted an equal copy).
   s.param = o.adapted ? o.param : model->initial;
@@ -119,9 +120,10 @@ void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation
   auto model = current.model;
   auto mesh = current.mesh;
   auto caster = current.caster;
+  auto normals = current.normals;
   auto param = current.param;
   rebuild_ = std::make_unique<Job<RebuildResult>>(
-      [model, mesh, caster, param, generation, history = std::move(history), options, adapt](Job<RebuildResult>& job) {
+      [model, mesh, caster, normals, param, generation, history = std::move(history), options, adapt](Job<RebuildResult>& job) {
         auto s = std::make_unique<Surface>();
         s->model = model;
         s->generation = generation;
@@ -132,6 +134,7 @@ void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation
         } else {
           const auto t0 = Clock::now();
           s->mesh = mesh;
+          s->normals = normals;
           s->caster = caster;
           s->param = param;
           s->canvas = std::make_unique<Canvas>(*mesh, *param, options.texture_size, options.texture_size,

@@ -440,6 +440,15 @@ TEST(StudioApp, EveryReparameterizationStartsFromTheInitialLayout) {
   const SessionOutcome composed =
       paint_history(first_mesh, first, h.app->history().to_file(), h.app->session_options(), {});
   EXPECT_NE(composed.param->uv, fresh.param->uv);
+  // The refined mesh is shaded with the sphere's smooth normals (not flat inside each input face).
+  ASSERT_GT(h.app->mesh()->num_faces(), sphere->num_faces());
+  h.app->render();
+  const TriMesh& refined = *h.app->mesh();
+  ASSERT_EQ(h.renderer->last_normals.size(), refined.positions.size());
+  double worst = 0;
+  for (size_t v = 0; v < refined.positions.size(); ++v)
+    worst = std::max(worst, (h.renderer->last_normals[v] - refined.positions[v].normalized()).norm());
+  EXPECT_LT(worst, 0.02);
   // The layout is a function of the history: undo gives back the first stroke's layout and mesh.
   h.app->undo();
   ASSERT_TRUE(h.app->wait_idle(300));
