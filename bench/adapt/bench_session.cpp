@@ -1,0 +1,222 @@
+// A real painting session as a benchmark (issue 10, deliverable 4; docs/bench_adapt.md): a generated
+// `mixed` history of 1,000 strokes (paint/generate.h) painted in each-stroke mode (the studio's
+// schedule) with the library's default re-parameterization (AdaptOptions{}.mode, density-flow), and the
+// time of the re-parameterization cycle at strokes 10, 100 and 1,000 by phase: the AdaptReport's
+// time_* fields (density, flow, refine, remap, texel map, texture update = replay of the history,
+// safeguard = exact-signal evaluation + reconstruction errors) and the session's own clock.
+//
+// The history is `mixed`, generated in batches of 40 strokes (5 blobs, then 35 lines in one region)
+// with seeds 1, 2, ... (session_history below).
+//
+// Running 1,000 each-stroke cycles takes hours on 2 cores, so the cycle at stroke k is measured as
+// follows: a PaintSession in each-stroke mode with adaptation *off* (AdaptMode::None: it only paints)
+// receives the first k strokes, then reparameterize() runs one cycle with adaptation on. That is the
+// work each-stroke mode does after stroke k (same initial layout, same history, same painter), minus
+// the return to the initial layout after a rejection (see --full), which replays the history too.
+//
+//   adaptex_bench_session [--meshes spot,plane] [--strokes 10,100,1000] [--size 512] [--reps 1]
+//                         [--full N]
+//
+// --meshes: names/stems of ADAPTEX_SHARED_DIR/meshes or paths, and "plane" (a generated 100k-face height
+// field, one chart, uv = xy, as in cycle.cpp); a shared mesh that is absent is skipped with a message.
+// --full N: also paint the first N strokes with a true each-stroke session and print every cycle.
+// Prints one markdown row per (mesh, stroke index, repetition), times in ms (wall clock).
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "adaptex/adapt/session.h"
+#include "adaptex/core/shapes.h"
+#include "adaptex/io/mesh_io.h"
+#include "adaptex/paint/generate.h"
+#include "adaptex/param/unwrap.h"
+
+using namespace adaptex;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Args {
+  std::vector<std::string> meshes{"spot", "plane"};
+  std::vector<int> strokes{10, 100, 1000};
+  int size = 512;
+  int reps = 1;
+  int full = 0;
+};
+
+// Comma-separated items of \p s, each passed to \p add.
+template <class F>
+void for_each_item(const std::string& s, F add) {
+  size_t from = 0;
+  while (from <= s.size()) {
+    const size_t to = std::min(s.find(',', from), s.size());
+    if (to > from) add(s.substr(from, to - from));
+    from = to + 1;
+  }
+}
+
+Args parse(int argc, char** argv) {
+  Args a;
+  for (int i = 1; i < argc; ++i) {
+    const std::string k = argv[i];
+    if (i + 1 >= argc) throw std::invalid_argument("missing value after " + k);
+    const std::string v = argv[++i];
+    if (k == "--meshes") {
+      a.meshes.clear();
+      for_each_item(v, [&](const std::string& x) { a.meshes.push_back(x); });
+    } else if (k == "--strokes") {
+      a.strokes.clear();
+      for_each_item(v, [&](const std::string& x) { a.strokes.push_back(std::stoi(x)); });
+    } else if (k == "--size") {
+      a.size = std::stoi(v);
+    } else if (k == "--reps") {
+      a.reps = std::stoi(v);
+    } else if (k == "--full") {
+      a.full = std::stoi(v);
+    } else {
+      throw std::invalid_argument("unknown option " + k);
+    }
+  }
+  return a;
+}
+
+struct Scene {
+  std::string name;
+  TriMesh mesh;
+  Parameterization param;
+};
+
+// n x n quad height field (2 n^2 faces, n = 224: 100,352) with uv = xy: one chart filling the square.
+Scene plane_scene() {
+  Scene s;
+  s.name = "plane100k";
+  s.mesh = shapes::plane(224);
+  for (Vec3& p : s.mesh.positions) p.z() = 0.25 * std::sin(3.0 * p.x()) * std::cos(2.0 * p.y());
+  for (const Vec3& p : s.mesh.positions) s.param.uv.push_back(Vec2(p.x(), p.y()));
+  s.param.uv_faces = s.mesh.faces;
+  for (int k = 0; k < s.mesh.num_vertices(); ++k) s.param.wedge_vertex.push_back(k);
+  s.param.face_chart.assign(s.mesh.faces.size(), 0);
+  s.param.num_charts = 1;
+  return s;
+}
+
+// A shared mesh by stem or path, unwrapped with the default options; false when absent.
+bool shared_scene(const std::string& name, Scene& s) {
+  fs::path path = name;
+  if (!fs::exists(path)) {
+    const fs::path dir = fs::path(ADAPTEX_SHARED_DIR) / "meshes";
+    path.clear();
+    if (fs::is_directory(dir))
+      for (const auto& e : fs::directory_iterator(dir))
+        if (e.path().stem() == name || e.path().filename() == name) path = e.path();
+  }
+  if (path.empty()) return false;
+  s.name = path.stem().string();
+  s.mesh = read_mesh(path);
+  s.param = unwrap(s.mesh).param;
+  return true;
+}
+
+double ms(double seconds) { return 1000.0 * seconds; }
+
+void print_header() {
+  std::printf("| mesh | faces | stroke | dabs so far | accepted | density | flow | refine | remap | texel map |"
+              " replay | safeguard | other | **cycle** |\n");
+  std::printf("|---|---:|---:|---:|:-:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+}
+
+void print_row(const Scene& s, int k, long long dabs, const AdaptReport& r, double wall) {
+  const double known = r.time_density + r.time_flow + r.time_refine + r.time_remap + r.time_texel_map +
+                       r.time_texture_update + r.time_safeguard;
+  std::printf("| %s | %d | %d | %lld | %s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | **%.0f** |\n",
+              s.name.c_str(), s.mesh.num_faces(), k, dabs, r.accepted ? "yes" : "no", ms(r.time_density),
+              ms(r.time_flow), ms(r.time_refine), ms(r.time_remap), ms(r.time_texel_map), ms(r.time_texture_update),
+              ms(r.time_safeguard), ms(std::max(0.0, wall - known)), ms(wall));
+  std::fflush(stdout);
+}
+
+// The history: `mixed` sets of kBatch strokes (each: 1/8 blobs, then lines in one region), seeds 1, 2, ...,
+// concatenated to \p count strokes. One mixed set of 1,000 would be 125 blobs then 875 lines, so
+// strokes 10 and 100 would both be blobs; batches keep the mix the same along the history.
+constexpr int kBatch = 40;
+StrokeFile session_history(const TriMesh& mesh, int count) {
+  StrokeFile out;
+  for (int b = 0; static_cast<int>(out.strokes.size()) < count; ++b) {
+    GenerateOptions go;
+    go.kind = StrokeKind::Mixed;
+    go.count = kBatch;
+    go.seed = 1 + static_cast<std::uint64_t>(b);
+    const StrokeFile f = generate_strokes(mesh, go);
+    if (b == 0) out.background = f.background;
+    for (const Stroke& st : f.strokes)
+      if (static_cast<int>(out.strokes.size()) < count) out.strokes.push_back(st);
+  }
+  return out;
+}
+
+long long dab_count(const StrokeFile& f, int k) {
+  long long n = 0;
+  for (int i = 0; i < k; ++i) n += static_cast<long long>(f.strokes[i].dabs.size());
+  return n;
+}
+
+// The cycle after stroke k: paint k strokes without adaptation, then one re-parameterization.
+void cycle_at(const Scene& s, const StrokeFile& history, int k, int size) {
+  PaintSessionOptions o;
+  o.texture_size = size;
+  o.schedule = ReparamSchedule::EachStroke;
+  o.adapt.mode = AdaptMode::None;  // paint only; reparameterize() uses the default method (session.h)
+  PaintSession session(s.mesh, s.param, o, history.background);
+  for (int i = 0; i < k; ++i) session.add_stroke(history.strokes[i]);
+  const auto t0 = std::chrono::steady_clock::now();
+  const AdaptReport& r = session.reparameterize();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  print_row(s, k, dab_count(history, k), r, wall);
+}
+
+// A true each-stroke session over the first n strokes: every cycle.
+void full_session(const Scene& s, const StrokeFile& history, int n, int size) {
+  PaintSessionOptions o;
+  o.texture_size = size;
+  o.schedule = ReparamSchedule::EachStroke;  // adapt.mode: the library default
+  PaintSession session(s.mesh, s.param, o, history.background);
+  for (int i = 0; i < n; ++i) {
+    const auto t0 = std::chrono::steady_clock::now();
+    session.add_stroke(history.strokes[i]);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    print_row(s, i + 1, dab_count(history, i + 1), session.reports().back(), wall);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    const Args a = parse(argc, argv);
+    const int max_k = std::max(a.full, *std::max_element(a.strokes.begin(), a.strokes.end()));
+    std::printf("texture %d², default adapt mode %s, each-stroke, replay, safeguard on\n\n", a.size,
+                to_string(AdaptOptions{}.mode));
+    print_header();
+    for (const auto& name : a.meshes) {
+      Scene s;
+      if (name == "plane") {
+        s = plane_scene();
+      } else if (!shared_scene(name, s)) {
+        std::printf("(skipped %s: not found in %s/meshes)\n", name.c_str(), ADAPTEX_SHARED_DIR);
+        continue;
+      }
+      const StrokeFile history = session_history(s.mesh, max_k);
+      for (int k : a.strokes)
+        for (int r = 0; r < a.reps; ++r) cycle_at(s, history, k, a.size);
+      if (a.full > 0) full_session(s, history, a.full, a.size);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "adaptex_bench_session: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
