@@ -10,6 +10,8 @@
 // code: genusG (genus_surface(G)), sphereS,T (sphere(S, T)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
 // pinched hole), pinched_annulus, tiny200 (tiny_components(200)), 1M (torus(2000, 250)).
 // --single also prints the share of one chart per component; --detail one line per chart.
+// --chart-padding P: UnwrapOptions::chart_padding, the smallest gap between charts (the gap is the
+// larger of P and the 8-texel gutter at 1024, 0.0078).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
