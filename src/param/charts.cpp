@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <string>
 
@@ -152,28 +153,40 @@ void add_seed_distance(const DualGraph& g, int seed, std::vector<double>& dist) 
 
 /// Farthest-point seeds: the face farthest from face 0, then repeatedly the face farthest from all
 /// seeds so far (plain centroid distance; the distance to the seeds is updated per new seed,
-/// add_seed_distance()).
-std::vector<int> farthest_point_seeds(const DualGraph& g, int k) {
-  std::vector<double> dist(g.centroid.size(), kInf);
-  add_seed_distance(g, 0, dist);
+/// add_seed_distance()). The seeds of k charts are the first k of any longer sequence, so the
+/// sequence is kept and extended on demand (ChartSegmenter reuses it across chart counts).
+struct FarthestPoints {
   std::vector<int> seeds;
-  auto farthest = [&] {
+  std::vector<double> dist;  ///< Distance to the seeds so far.
+  bool exhausted = false;    ///< Every face is at distance 0 (or unreachable): no more seeds.
+
+  int farthest() const {
     int best = 0;
     for (size_t f = 0; f < dist.size(); ++f)
       if (dist[f] < kInf && dist[f] > dist[best]) best = static_cast<int>(f);
     return best;
-  };
-  seeds.push_back(farthest());
-  std::fill(dist.begin(), dist.end(), kInf);
-  while (true) {
-    add_seed_distance(g, seeds.back(), dist);
-    if (static_cast<int>(seeds.size()) >= k) break;
-    const int f = farthest();
-    if (dist[f] <= 0) break;  // every face is a seed already
-    seeds.push_back(f);
   }
-  return seeds;
-}
+  /// The first min(k, available) seeds.
+  std::vector<int> first(const DualGraph& g, int k) {
+    if (seeds.empty()) {
+      dist.assign(g.centroid.size(), kInf);
+      add_seed_distance(g, 0, dist);
+      seeds.push_back(farthest());
+      std::fill(dist.begin(), dist.end(), kInf);
+      add_seed_distance(g, seeds.back(), dist);
+    }
+    while (static_cast<int>(seeds.size()) < k && !exhausted) {
+      const int f = farthest();
+      if (dist[f] <= 0) {  // every face is a seed already
+        exhausted = true;
+        break;
+      }
+      seeds.push_back(f);
+      add_seed_distance(g, f, dist);
+    }
+    return {seeds.begin(), seeds.begin() + std::min<size_t>(k, seeds.size())};
+  }
+};
 
 /// The centre of every chart: the face farthest (plain dual distance) from the chart's border.
 std::vector<int> chart_centres(const DualGraph& g, const std::vector<int>& label, int k) {
@@ -204,8 +217,8 @@ std::vector<int> chart_centres(const DualGraph& g, const std::vector<int>& label
 /// it falls back to the circle and flattens the ear faces into slivers of huge stretch. Each such
 /// face moves to the chart that has the most faces at that vertex; repeated until nothing moves
 /// (bounded). Ears of the mesh itself (a vertex with one face) cannot be removed.
-void remove_ears(const TriMesh& mesh, std::vector<int>& label) {
-  const VertexFaces vf = build_vertex_faces(mesh);
+/// \p vf = build_vertex_faces(mesh).
+void remove_ears(const TriMesh& mesh, const VertexFaces& vf, std::vector<int>& label) {
   const int nv = mesh.num_vertices();
   // A vertex whose fan kept its labels since its last visit, which moved nothing, would move
   // nothing again: only vertices with a changed fan (dirty) are visited, in the same order, so the
@@ -312,11 +325,11 @@ void halve_chart(const DualGraph& g, std::vector<int>& label, int c, int fresh) 
 /// square (Floater's one-to-one condition; the disk embedding falls back to the circle, L2 about
 /// 2), so it is halved, until no chart has more than four ears (bounded rounds). Every
 /// edge-connected part of a chart becomes a chart. Returns the number of charts.
-int clean_charts(const TriMesh& mesh, const DualGraph& g, std::vector<int>& label) {
-  const VertexFaces vf = build_vertex_faces(mesh);
+int clean_charts(const TriMesh& mesh, const DualGraph& g, const VertexFaces& vf,
+                 std::vector<int>& label) {
   int k = 0;
   for (int round = 0;; ++round) {
-    remove_ears(mesh, label);
+    remove_ears(mesh, vf, label);
     k = split_into_parts(g, label);
     if (round == 8) break;
     const std::vector<int> ears = count_ears(vf, label, k);
@@ -330,15 +343,35 @@ int clean_charts(const TriMesh& mesh, const DualGraph& g, std::vector<int>& labe
 
 }  // namespace
 
+struct ChartSegmenter::Impl {
+  const TriMesh& mesh;
+  DualGraph g;
+  VertexFaces vf;
+  FarthestPoints seeds;
+};
+
+ChartSegmenter::ChartSegmenter(const TriMesh& mesh) {
+  if (mesh.faces.empty()) throw InvalidInputError("segment_charts: the mesh has no faces");
+  impl_ = std::make_unique<Impl>(Impl{mesh, build_dual_graph(mesh), build_vertex_faces(mesh), {}});
+}
+
+ChartSegmenter::~ChartSegmenter() = default;
+ChartSegmenter::ChartSegmenter(ChartSegmenter&&) noexcept = default;
+ChartSegmenter& ChartSegmenter::operator=(ChartSegmenter&&) noexcept = default;
+
 std::vector<int> segment_charts(const TriMesh& mesh, const ChartSegmentOptions& options) {
+  return ChartSegmenter(mesh).segment(options);
+}
+
+std::vector<int> ChartSegmenter::segment(const ChartSegmentOptions& options) {
+  const TriMesh& mesh = impl_->mesh;
+  const DualGraph& g = impl_->g;
   const int nf = mesh.num_faces();
-  if (nf == 0) throw InvalidInputError("segment_charts: the mesh has no faces");
   if (options.num_charts < 1 || options.lloyd_iterations < 0 || !(options.normal_weight >= 0))
     throw InvalidInputError("segment_charts: num_charts " + std::to_string(options.num_charts) +
                             ", lloyd_iterations " + std::to_string(options.lloyd_iterations) +
                             " or normal_weight out of range");
-  const DualGraph g = build_dual_graph(mesh);
-  std::vector<int> seeds = farthest_point_seeds(g, std::min(options.num_charts, nf));
+  std::vector<int> seeds = impl_->seeds.first(g, std::min(options.num_charts, nf));
   const int k = static_cast<int>(seeds.size());
   std::vector<Vec3> chart_normal(k);
   for (int c = 0; c < k; ++c) chart_normal[c] = g.normal[seeds[c]];
@@ -368,7 +401,7 @@ std::vector<int> segment_charts(const TriMesh& mesh, const ChartSegmentOptions& 
   // Faces the growth cannot reach (only if the mesh is not connected) join chart 0.
   for (int& l : label)
     if (l < 0) l = 0;
-  clean_charts(mesh, g, label);
+  clean_charts(mesh, g, impl_->vf, label);
   return label;
 }
 

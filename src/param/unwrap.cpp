@@ -441,13 +441,16 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
 }
 
 /// Splits every component into about \p total_charts charts in proportion to its area (at least
-/// one each) and returns the pieces with input face/vertex ids.
+/// one each) and returns the pieces with input face/vertex ids. \p segmenters: one slot per
+/// component, filled on first use and kept across the chart counts of one unwrap() (charts.h).
 std::vector<Component> segment_components(const std::vector<Component>& comps, int total_charts,
-                                          const UnwrapOptions& options) {
+                                          const UnwrapOptions& options,
+                                          std::vector<std::optional<ChartSegmenter>>& segmenters) {
   double total_area = 0;
   for (const Component& c : comps) total_area += c.area;
   std::vector<Component> pieces;
-  for (const Component& comp : comps) {
+  for (size_t c = 0; c < comps.size(); ++c) {
+    const Component& comp = comps[c];
     ChartSegmentOptions so;
     so.num_charts = std::max(
         1, static_cast<int>(std::lround(total_charts * comp.area / std::max(total_area, 1e-300))));
@@ -456,7 +459,8 @@ std::vector<Component> segment_components(const std::vector<Component>& comps, i
       pieces.push_back(comp);
       continue;
     }
-    const std::vector<int> label = segment_charts(comp.mesh, so);
+    if (!segmenters[c]) segmenters[c].emplace(comp.mesh);
+    const std::vector<int> label = segmenters[c]->segment(so);
     const int k = *std::max_element(label.begin(), label.end()) + 1;
     for (ChartMesh& cm : extract_charts(comp.mesh, label, k)) {
       if (cm.faces.empty()) continue;
@@ -604,10 +608,11 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   // Auto: while the layout wastes too many texels, segment into 4, 6, 8, 12, 16, ... charts (steps
   // of 1.5 and 4/3; docs/charts.md).
   if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share) {
+    std::vector<std::optional<ChartSegmenter>> segmenters(comps.size());
     for (int k = std::max(4, 2 * topo.num_components); k <= options.max_charts &&
                                                        rep.effective_texel_share < options.min_texel_share;
          k = k % 3 == 0 ? k / 3 * 4 : k / 2 * 3) {
-      const std::vector<Component> pieces = segment_components(comps, k, options);
+      const std::vector<Component> pieces = segment_components(comps, k, options, segmenters);
       if (static_cast<int>(pieces.size()) <= rep.num_charts) continue;
       UnwrapResult attempt;
       attempt.report = rep;

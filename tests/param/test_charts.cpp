@@ -78,6 +78,23 @@ TEST(Charts, SegmentationGivesConnectedChartsWithoutEars) {
   EXPECT_THROW(segment_charts(mesh, ChartSegmentOptions{0, 3, 4.0}), InvalidInputError);
 }
 
+TEST(Charts, SegmenterKeepsTheLabelsOfSegmentCharts) {
+  // ChartSegmenter keeps the dual graph and the farthest-point seeds between chart counts (the
+  // seeds of k charts are the first k of a longer sequence): in any order of counts, and on a mesh
+  // with fewer faces than the count, it gives segment_charts()' labels.
+  for (const TriMesh& mesh : {shapes::genus_surface(3), shapes::torus(6, 3)}) {
+    ChartSegmenter segmenter(mesh);
+    for (int k : {64, 4, 12, 8, 6, 2, 48})
+      for (double w : {0.0, 4.0}) {
+        ChartSegmentOptions so;
+        so.num_charts = k;
+        so.normal_weight = w;
+        EXPECT_EQ(segmenter.segment(so), segment_charts(mesh, so)) << k << " charts, weight " << w;
+      }
+  }
+  EXPECT_THROW(ChartSegmenter{TriMesh{}}, InvalidInputError);
+}
+
 /// Vertices of \p m with a single face (ears: each must be a corner of the chart's square).
 int count_ears(const TriMesh& m) {
   std::vector<int> valence(m.num_vertices(), 0);

@@ -6,6 +6,7 @@
 /// ("Multi-chart geometry images") and Julius, Kraevoy, Sheffer 2005 ("D-Charts": developable,
 /// compact charts), then re-seeded at their centres a few times. Each chart is then cut to a disk
 /// and parameterized like a component (unwrap.h).
+#include <memory>
 #include <vector>
 
 #include "adaptex/core/mesh.h"
@@ -38,6 +39,28 @@ struct ChartSegmentOptions {
 ///         into parts); every label is used and each chart is connected through edges
 /// \throw InvalidInputError num_charts < 1, lloyd_iterations < 0, normal_weight < 0, no faces
 std::vector<int> segment_charts(const TriMesh& mesh, const ChartSegmentOptions& options = {});
+
+/// segment_charts() for one mesh at several chart counts: keeps the dual graph, the vertex-face
+/// incidences and the farthest-point seed sequence (the seeds of k charts are the first k of any
+/// longer sequence) between calls. segment(o) returns exactly segment_charts(mesh, o).
+/// --charts auto segments each component at 4, 6, 8, 12, ... charts (unwrap.h).
+class ChartSegmenter {
+ public:
+  /// \pre \p mesh outlives the segmenter and is not changed; the preconditions of segment_charts()
+  /// \throw InvalidInputError the mesh has no faces
+  explicit ChartSegmenter(const TriMesh& mesh);
+  ~ChartSegmenter();
+  ChartSegmenter(ChartSegmenter&&) noexcept;
+  ChartSegmenter& operator=(ChartSegmenter&&) noexcept;
+
+  /// segment_charts(mesh, options).
+  /// \throw InvalidInputError as segment_charts()
+  std::vector<int> segment(const ChartSegmentOptions& options);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /// One chart cut out of a mesh: its own vertices (a vertex where the chart's faces meet in several
 /// separate fans gets one vertex per fan, so every chart is edge- and vertex-manifold).
