@@ -17,7 +17,6 @@
 namespace adaptex {
 
 namespace {
-constexpr std::uint64_t kSampleSeed = 0x5eedada;  // seed of the safeguard's surface samples
 
 // Strokes painted since the last re-parameterization, in resample mode: composited over the
 // resampled base (composite_over_base) from the segment painted over black and over white.
@@ -40,6 +39,7 @@ struct SafeguardPoints {
   std::vector<SurfacePoint> moved;                 // the samples on the refined candidate mesh
   const std::vector<SurfacePoint>* kept = nullptr;  // else: the session's samples (candidate kept the mesh)
   std::vector<Vec3> exact;
+  bool from_samples = false;  // the points are the session's samples (the same 3-D points)
   const std::vector<SurfacePoint>& points() const { return kept ? *kept : moved; }
 };
 }  // namespace
@@ -49,6 +49,7 @@ struct PaintSession::Impl {
   // The mesh of param when a re-parameterization refined it (same surface, more faces); null: mesh.
   std::shared_ptr<const TriMesh> refined;
   std::vector<SurfacePoint> refined_samples;  // the safeguard samples moved onto *refined
+  bool refined_moved = false;  // refined_samples are `samples` moved (same 3-D points), not drawn afresh
   const TriMesh& current_mesh() const { return refined ? *refined : mesh; }
   const std::vector<SurfacePoint>& current_samples() const { return refined ? refined_samples : samples; }
   PaintSessionOptions opt;
@@ -72,6 +73,8 @@ struct PaintSession::Impl {
   std::vector<Vec3> open_dabs;
   bool open = false;
   std::vector<SurfacePoint> samples;
+  // The exact history signal at `samples`, updated stroke by stroke (O(stroke), not O(history)).
+  std::unique_ptr<PointSignalCache> signal_cache;
   int reparam_count = 0;
   bool adapted = false;  ///< A re-parameterization has been accepted: the current layout is adapted.
 
@@ -112,9 +115,42 @@ struct PaintSession::Impl {
 
   /// The safeguard's samples on the input mesh (and on the current refined mesh), drawn once.
   void ensure_samples() {
-    if (samples.empty()) samples = sample_surface(mesh, opt.safeguard_samples, kSampleSeed);
-    if (refined && refined_samples.size() != samples.size())  // refined without a safeguard run
-      refined_samples = sample_surface(*refined, opt.safeguard_samples, kSampleSeed);
+    if (samples.empty()) samples = sample_surface(mesh, opt.safeguard_samples, opt.safeguard_seed);
+    if (refined && refined_samples.size() != samples.size()) {  // refined without a safeguard run
+      refined_samples = sample_surface(*refined, opt.safeguard_samples, opt.safeguard_seed);
+      refined_moved = false;
+    }
+  }
+
+  /// Whether \p pts are the samples' 3-D points: `samples`, or refined_samples moved from them.
+  bool are_samples(const std::vector<SurfacePoint>& pts) const {
+    return &pts == &samples || (&pts == &refined_samples && refined_moved);
+  }
+
+  /// The exact history signal at \p pts (the same 3-D points as `samples`, see are_samples) from the
+  /// signal cache, brought up to date; null when the cache does not apply (other points, or decals,
+  /// whose value depends on the face a point lies on): then StrokeSignal evaluates the history.
+  const std::vector<Vec3>* cached_signal(const std::vector<SurfacePoint>& pts) {
+    if (!are_samples(pts) || samples.empty()) return nullptr;
+    if (!signal_cache) signal_cache = std::make_unique<PointSignalCache>(mesh, samples, history.background);
+    signal_cache->update(history);
+    return signal_cache->has_decals() ? nullptr : &signal_cache->values();
+  }
+
+  /// Records \p s in the history; with the safeguard on, composites it into the signal cache now
+  /// (O(stroke)), so a re-parameterization finds the cache up to date.
+  void record_stroke(Stroke s) {
+    history.strokes.push_back(std::move(s));
+    if (!opt.safeguard || opt.safeguard_samples == 0) return;
+    ensure_samples();
+    cached_signal(samples);
+  }
+
+  /// The exact history signal at \p pts of \p m: cached when possible, else evaluated.
+  std::vector<Vec3> exact_signal(const std::vector<SurfacePoint>& src, const TriMesh& m,
+                                 const std::vector<SurfacePoint>& pts) {
+    if (const std::vector<Vec3>* c = cached_signal(src)) return *c;
+    return StrokeSignal(m, history).evaluate(pts);
   }
 
   /// The settings of a re-parameterization requested now.
@@ -155,12 +191,13 @@ struct PaintSession::Impl {
     if (res.refined_mesh && !src_pts.empty())
       sg.moved = transfer_points(src_pts, source_mesh(), cand_mesh, res.parent_face);
     if (!res.refined_mesh) sg.kept = &src_pts;
-    sg.exact = StrokeSignal(cand_mesh, history).evaluate(sg.points());
+    sg.from_samples = are_samples(src_pts);
+    sg.exact = exact_signal(src_pts, cand_mesh, sg.points());
     const bool initial = path_independent();
     const std::vector<SurfacePoint>& ref_pts = initial ? samples : current_samples();
     // Without refinement the candidate's points are the reference's: evaluate the signal once.
-    const std::vector<Vec3> ref_exact =
-        sg.kept == &ref_pts ? std::vector<Vec3>{} : StrokeSignal(initial ? mesh : current_mesh(), history).evaluate(ref_pts);
+    const std::vector<Vec3> ref_exact = sg.kept == &ref_pts ? std::vector<Vec3>{}
+                                                            : exact_signal(ref_pts, initial ? mesh : current_mesh(), ref_pts);
     rep.error_before = reconstruction_mse(initial ? *base_param : *param, initial ? base_painter->texture() : texture(),
                                           ref_pts, sg.kept == &ref_pts ? sg.exact : ref_exact);
     return sg;
@@ -222,11 +259,13 @@ struct PaintSession::Impl {
     painter = std::move(c.painter);  // references *c.param and the candidate's mesh: keep both alive
     param = std::move(c.param);
     if (res.refined_mesh) {
+      refined_moved = sg.from_samples && !sg.moved.empty();
       refined_samples = std::move(sg.moved);
       refined = res.refined_mesh;
     } else if (base_param) {
       refined.reset();  // each-stroke: an unrefined candidate lives on the input mesh
       refined_samples.clear();
+      refined_moved = false;
     }
     if (opt.update == TextureUpdate::Resample) {
       resampled = true;
@@ -243,6 +282,7 @@ struct PaintSession::Impl {
     painter = std::make_unique<Painter>(replay_texture(mesh, *param, history, painter_options()));
     refined.reset();
     refined_samples.clear();
+    refined_moved = false;
     adapted = false;
   }
 
@@ -326,7 +366,7 @@ void PaintSession::add_stroke(const Stroke& stroke) {
   Impl& m = *impl_;
   if (m.open) throw Error("paint session: add_stroke() while an interactive stroke is open");
   m.paint(stroke);
-  m.history.strokes.push_back(stroke);
+  m.record_stroke(stroke);
   if (m.opt.schedule == ReparamSchedule::EachStroke && m.opt.adapt.mode != AdaptMode::None) m.reparameterize();
 }
 
@@ -357,7 +397,7 @@ void PaintSession::end_stroke() {
   s.dabs = std::move(m.open_dabs);
   m.open_dabs.clear();
   if (s.dabs.empty()) return;
-  m.history.strokes.push_back(std::move(s));
+  m.record_stroke(std::move(s));
   if (m.opt.schedule == ReparamSchedule::EachStroke && m.opt.adapt.mode != AdaptMode::None) m.reparameterize();
 }
 
@@ -381,8 +421,8 @@ double PaintSession::estimate_error() {
   Impl& m = *impl_;
   if (m.history.strokes.empty()) return 0;
   m.ensure_samples();
-  return reconstruction_mse(*m.param, m.texture(), m.current_samples(),
-                            StrokeSignal(m.current_mesh(), m.history).evaluate(m.current_samples()));
+  const std::vector<SurfacePoint>& pts = m.current_samples();
+  return reconstruction_mse(*m.param, m.texture(), pts, m.exact_signal(pts, m.current_mesh(), pts));
 }
 
 }  // namespace adaptex

@@ -196,6 +196,86 @@ std::vector<Vec3> StrokeSignal::evaluate(const std::vector<SurfacePoint>& points
 
 bool StrokeSignal::has_decals() const { return !impl_->decals.empty(); }
 
+struct PointSignalCache::Impl {
+  const TriMesh& mesh;
+  std::vector<SurfacePoint> points;
+  std::vector<Vec3> position, value;
+  Vec3 background;
+  int count = 0;
+  bool decal = false;
+
+  /// A brush stroke: max coverage over its dabs (as StrokeSignal::Impl::eval), composited over C.
+  void add_brush(const Stroke& s) {
+    if (s.dabs.empty()) return;
+    Eigen::AlignedBox3d box;
+    for (const Vec3& c : s.dabs) box.extend(c);
+    const Vec3 r = Vec3::Constant(s.radius);
+    box = Eigen::AlignedBox3d(box.min() - r, box.max() + r);
+    const double r2 = s.radius * s.radius, inv_r = 1.0 / s.radius;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 4096), [&](const tbb::blocked_range<size_t>& rg) {
+      for (size_t k = rg.begin(); k < rg.end(); ++k) {
+        const Vec3& p = position[k];
+        if (!box.contains(p)) continue;
+        double a = 0;
+        for (const Vec3& c : s.dabs) {
+          const double d2 = (p - c).squaredNorm();
+          if (d2 >= r2) continue;
+          a = std::max(a, s.opacity * brush_falloff(std::sqrt(d2) * inv_r, s.hardness));
+        }
+        if (a > 0) value[k] = value[k] * (1 - a) + s.color * a;
+      }
+    });
+  }
+
+  /// A decal: C = C (1 - a) + c a is affine in C; the stroke alone over black gives S = c a and over
+  /// white S + (1 - a).
+  void add_decal(const Stroke& s) {
+    StrokeFile one;
+    one.strokes.push_back(s);
+    one.background = Vec3(0, 0, 0);
+    const std::vector<Vec3> S = StrokeSignal(mesh, one).evaluate(points);
+    one.background = Vec3(1, 1, 1);
+    const std::vector<Vec3> W = StrokeSignal(mesh, one).evaluate(points);
+    for (size_t k = 0; k < points.size(); ++k) value[k] = S[k] + value[k].cwiseProduct(W[k] - S[k]);
+    decal = true;
+  }
+};
+
+PointSignalCache::PointSignalCache(const TriMesh& mesh, std::vector<SurfacePoint> points, const Vec3& background)
+    : impl_(std::make_unique<Impl>(Impl{mesh, std::move(points), {}, {}, background})) {
+  Impl& m = *impl_;
+  m.position.resize(m.points.size());
+  for (size_t k = 0; k < m.points.size(); ++k) {
+    const SurfacePoint& sp = m.points[k];
+    if (sp.face < 0 || sp.face >= mesh.num_faces())
+      throw InvalidInputError("point signal cache: point " + std::to_string(k) + " has face " +
+                              std::to_string(sp.face) + ", the mesh has " + std::to_string(mesh.num_faces()));
+    m.position[k] = point_on_face(mesh, sp.face, sp.b0, sp.b1);
+  }
+  m.value.assign(m.points.size(), background);
+}
+PointSignalCache::~PointSignalCache() = default;
+PointSignalCache::PointSignalCache(PointSignalCache&&) noexcept = default;
+PointSignalCache& PointSignalCache::operator=(PointSignalCache&&) noexcept = default;
+
+void PointSignalCache::add_stroke(const Stroke& stroke) {
+  validate_stroke(stroke, "point signal cache");
+  if (stroke.type == Stroke::Type::Decal)
+    impl_->add_decal(stroke);
+  else
+    impl_->add_brush(stroke);
+  ++impl_->count;
+}
+
+void PointSignalCache::update(const StrokeFile& history) {
+  for (size_t k = static_cast<size_t>(impl_->count); k < history.strokes.size(); ++k) add_stroke(history.strokes[k]);
+}
+
+const std::vector<SurfacePoint>& PointSignalCache::points() const { return impl_->points; }
+const std::vector<Vec3>& PointSignalCache::values() const { return impl_->value; }
+int PointSignalCache::strokes() const { return impl_->count; }
+bool PointSignalCache::has_decals() const { return impl_->decal; }
+
 Vec3 evaluate_strokes_reference(const StrokeFile& file, const Vec3& p) {
   Vec3 C = file.background;
   for (const Stroke& s : file.strokes) {

@@ -24,6 +24,10 @@
 /// as end mode would keep it (an earlier candidate, computed for part of the history, is not kept on
 /// the strength of the estimate). In resample mode, and when reparameterize() is called again in end
 /// mode, the reference is the current layout.
+/// The exact signal at the samples is kept up to date stroke by stroke (paint/signal.h
+/// PointSignalCache), so the safeguard does not evaluate the whole history again after every stroke
+/// (issue 10).
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -56,6 +60,7 @@ struct PaintSessionOptions {
   TextureUpdate update = TextureUpdate::Replay;     ///< replay | resample.
   bool safeguard = true;       ///< The "never worse" check described above (needs the history).
   int safeguard_samples = 60000;  ///< Surface samples of the safeguard's error estimate.
+  std::uint64_t safeguard_seed = 0x5eedada;  ///< Seed of those samples (paint/eval.h sample_surface).
   /// Accept a candidate only if its estimated MSE is below (1 - margin) x the reference's. 0.02
   /// (≈ 0.09 dB): the estimate uses 60,000 samples, and with margin 0 a candidate measured 0.12 dB
   /// worse by the 400,000-sample evaluation was accepted (triceratops lines at 128², density-flow).

@@ -46,6 +46,44 @@ class StrokeSignal {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The exact signal C at a fixed set of surface points, kept up to date stroke by stroke: each
+/// add_stroke() composites one stroke over the stored colours (the contract composites strokes in
+/// order, C <- C (1 - a) + colour a), touching only the points inside the stroke's bounding box (a
+/// brush stroke; a decal is evaluated at every point). The cost of a stroke is O(points in its box x
+/// its dabs), independent of how many strokes came before; values() equals StrokeSignal(mesh,
+/// history).evaluate(points()) up to rounding (the same arithmetic in the same order; tested).
+/// Used by PaintSession's safeguard (adapt/session.h) instead of evaluating the whole history again
+/// after every stroke.
+class PointSignalCache {
+ public:
+  /// \param mesh the surface of \p points (kept by reference: must outlive the cache)
+  /// \param points surface points, shape [P]
+  /// \param background colour of unpainted surface, RGB in [0,1]
+  /// \pre 0 <= points[k].face < mesh.num_faces()
+  /// \throw InvalidInputError a face index out of range
+  PointSignalCache(const TriMesh& mesh, std::vector<SurfacePoint> points, const Vec3& background);
+  ~PointSignalCache();
+  PointSignalCache(PointSignalCache&&) noexcept;
+  PointSignalCache& operator=(PointSignalCache&&) noexcept;
+
+  /// Composites \p stroke over the stored colours.
+  /// \throw InvalidInputError the stroke breaks the contract's rules (validate_stroke)
+  void add_stroke(const Stroke& stroke);
+  /// Brings the cache up to date with \p history: adds strokes [strokes(), history.strokes.size()).
+  /// \pre the first strokes() strokes of \p history are the ones added so far, same background
+  /// \throw InvalidInputError as add_stroke
+  void update(const StrokeFile& history);
+
+  const std::vector<SurfacePoint>& points() const;  ///< The points, shape [P].
+  const std::vector<Vec3>& values() const;          ///< C at points()[k], shape [P].
+  int strokes() const;                              ///< Strokes composited so far.
+  bool has_decals() const;                          ///< Some composited stroke was a decal.
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// Brute-force C(p) straight from the contract (every dab of every brush stroke; decals are not
 /// supported and throw InvalidInputError). For tests of the fast paths.
 Vec3 evaluate_strokes_reference(const StrokeFile& strokes, const Vec3& p);
