@@ -118,6 +118,7 @@ void App::confirm_cancel() {
 // ---- files ------------------------------------------------------------------------------------
 
 void App::open_mesh(const std::string& path_in) {
+  if (pending_.reload) pending_ = PendingLoad();  // another mesh replaces the running re-unwrap
   const std::string path = absolute_path(path_in);
   const Vec3 bg = pending_.background.value_or(history().background());
   jobs_.start_load(path, session_, bg);
@@ -137,7 +138,7 @@ void App::new_scene() {
 }
 
 void App::replay(const StrokeFile& file) {
-  if (!has_model() || jobs_.loading()) {
+  if (!has_model() || (jobs_.loading() && !pending_.reload)) {  // a re-unwrap keeps the live history
     pending_.strokes.insert(pending_.strokes.end(), file.strokes.begin(), file.strokes.end());
     pending_.background = file.background;
     pending_.from_project = false;
@@ -509,8 +510,7 @@ void App::maybe_start_rebuild() {
 
 void App::maybe_unwrap_again() {
   const auto& m = painting_.model();
-  if (!m || jobs_.loading() || (m->unwrap_size == session_.texture_size && m->unwrap_padding == session_.padding))
-    return;
+  if (!m || jobs_.loading() || m->unwrap_size == session_.texture_size) return;
   // `adaptex paint --size N` unwraps with a gutter of so many texels of N: so does the studio.
   pending_ = PendingLoad{{}, history().background(), !unsaved(), store_.project_path(), true};
   jobs_.start_load(m->path, session_, history().background());
@@ -545,7 +545,6 @@ void App::finish_load(Job<LoadResult>& job) {
     add_message(cancelled ? "loading cancelled" : e.what(), !cancelled);
     if (pending.reload && has_model()) {  // keep the layout's texture size (else it would unwrap again)
       session_.texture_size = painting_.model()->unwrap_size;
-      session_.padding = painting_.model()->unwrap_padding;
     }
   }
 }

@@ -31,13 +31,14 @@ TriMesh load_mesh(const std::string& path) {
   return read_mesh(path);
 }
 
-Parameterization unwrap_mesh(const TriMesh& mesh, int texture_size, int padding, const ProgressCallback& progress) {
-  // The same options as apps/cli/paint_common.h paint_unwrap_options(): the gutter is at least both
-  // neighbours' seam padding and the unwrap default, at most a fifth of the square.
+Parameterization unwrap_mesh(const TriMesh& mesh, int texture_size, const ProgressCallback& progress) {
+  // The same options as apps/cli/paint_common.h paint_unwrap_options() (test
+  // StudioApp.SameLayoutAndTextureAsAdaptexPaint): a gutter of 2 texels of the texture, at most a
+  // fifth of the square.
   UnwrapOptions opt;
   opt.progress = progress;
   opt.gutter_texture_size = texture_size;
-  opt.gutter_texels = std::min(std::max(opt.gutter_texels, 2.0 * padding), 0.2 * texture_size);
+  opt.gutter_texels = std::min(2.0, 0.2 * texture_size);
   return unwrap(mesh, opt).param;
 }
 

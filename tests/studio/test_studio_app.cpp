@@ -474,6 +474,7 @@ TEST(StudioApp, SameLayoutAndTextureAsAdaptexPaint) {
   ASSERT_EQ(charts_512, 2);
   EXPECT_NE(h.app->param()->uv, uv_512);
   EXPECT_FALSE(h.app->unsaved());
+  EXPECT_EQ(h.app->mesh_path(), std::filesystem::absolute(mesh_path).lexically_normal().string());
   h.app->render();
   h.app->brush().radius = 0.03;
   h.drag(150, 150, 250, 160);
@@ -556,6 +557,29 @@ TEST(StudioApp, OpeningAnotherMeshOrProjectWithUnsavedStrokesAsks) {
   h.app->request_new();  // nothing unsaved: no question
   EXPECT_FALSE(h.app->confirm());
   EXPECT_FALSE(h.app->has_model());
+}
+
+TEST(StudioApp, TextureSizeChangeKeepsTheHistoryAndAnotherMeshDoesNot) {
+  Harness h;
+  h.drag(150, 150, 250, 150);
+  h.app->session_options().texture_size = 128;  // unwraps again for 128², keeping the stroke
+  h.app->session_options_changed();
+  h.app->begin_frame();
+  ASSERT_TRUE(h.app->load_running());
+  h.drag(200, 100, 200, 200);  // painted on the old surface while the re-unwrap runs
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_EQ(h.app->history().strokes().size(), 2u);
+  EXPECT_EQ(h.app->texture()->width, 128);
+  EXPECT_TRUE(h.app->unsaved());
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), replay_texture(*h.app)), 0);
+  h.app->session_options().texture_size = 256;
+  h.app->session_options_changed();
+  h.app->begin_frame();
+  ASSERT_TRUE(h.app->load_running());
+  h.app->open_mesh("builtin:torus");  // replaces the re-unwrap: a fresh model, no strokes
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_EQ(h.app->mesh_path(), "builtin:torus");
+  EXPECT_TRUE(h.app->history().strokes().empty());
 }
 
 TEST(StudioApp, SaveAsThenSaveWritesTheProjectFile) {
