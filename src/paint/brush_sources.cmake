@@ -9,4 +9,5 @@ target_sources(adaptex_paint PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/signal.cpp
   ${CMAKE_CURRENT_LIST_DIR}/eval.cpp
   ${CMAKE_CURRENT_LIST_DIR}/generate.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/texel_saving.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/texel_saving.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/surface_cache.cpp)

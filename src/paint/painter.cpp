@@ -371,6 +371,23 @@ void Painter::end_stroke() {
   m.close();
 }
 
+void Painter::fill_colours(const std::vector<Vec3f> &colours) {
+  Impl &m = *impl_;
+  if (m.open)
+    throw Error("painter: fill_colours() called while a stroke is open");
+  if (colours.size() != m.map.inside.size())
+    throw InvalidInputError("painter: fill_colours() needs " + std::to_string(m.map.inside.size()) +
+                            " colours, got " + std::to_string(colours.size()));
+  tbb::parallel_for(size_t(0), colours.size(), [&](size_t k) {
+    const int s = m.texel_slot[m.map.inside[k]];
+    for (int c = 0; c < 3; ++c)
+      m.colour[s][c] = std::clamp(colours[k][c], 0.0f, 1.0f);
+  });
+  m.dirty.add(0, 0);
+  m.dirty.add(m.options.width - 1, m.options.height - 1);
+  m.painted = true;
+}
+
 const ImageRGBA8 &Painter::texture() {
   impl_->refresh();
   return impl_->tex;

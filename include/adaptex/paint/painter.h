@@ -3,6 +3,7 @@
 /// Texture-space painting: every dab is evaluated exactly (stroke-file contract) at the 3-D point of
 /// each texel it can touch, found through a spatial index of the texel points.
 #include <memory>
+#include <vector>
 
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
@@ -53,6 +54,12 @@ class Painter {
   /// Interactive: closes the open stroke.
   void end_stroke();
 
+  /// Sets the colour of every chart texel at once (e.g. resampled from a surface signal cache,
+  /// paint/surface_cache.h) instead of painting strokes; painting continues over these colours.
+  /// \param colours shape [texel_map().inside.size()]: the colour of texel texel_map().inside[k], RGB in [0,1]
+  /// \throw InvalidInputError wrong size
+  /// \throw Error an interactive stroke is open
+  void fill_colours(const std::vector<Vec3f>& colours);
   /// The texture: chart texels round(255 * colour) with alpha 255; padded texels copy their source
   /// chart texel (alpha 255); other texels the background with alpha 0. Only the region changed
   /// since the last call is converted.
