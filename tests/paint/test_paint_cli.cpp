@@ -280,6 +280,13 @@ TEST(PaintCli, BlenderImportsTheGlb) {
             0);
   const fs::path script = in.tmp.path / "check.py";
   write_file(script,
+             "try:\n"
+             "    import numpy\n"
+             "except ImportError:\n"
+             "    print('BLENDER_NO_NUMPY')\n"
+             "    raise SystemExit(0)\n"
+             "if not hasattr(numpy, 'bool'):\n"
+             "    numpy.bool = bool  # Debian's Blender 3.4 glTF add-on uses np.bool (removed in numpy 1.24)\n"
              "import bpy, sys\n"
              "bpy.ops.wm.read_factory_settings(use_empty=True)\n"
              "bpy.ops.import_scene.gltf(filepath=sys.argv[-1])\n"
@@ -298,5 +305,10 @@ TEST(PaintCli, BlenderImportsTheGlb) {
   char buf[4096];
   while (fgets(buf, sizeof buf, p)) text += buf;
   pclose(p);
-  EXPECT_NE(text.find("BLENDER_OK " + std::to_string(in.m.num_faces())), std::string::npos) << text;
+  if (text.find("BLENDER_NO_NUMPY") != std::string::npos)
+    GTEST_SKIP() << "Blender's glTF add-on needs numpy (Debian package python3-numpy), which is not installed";
+  // The export carries the refined mesh (density-flow refines by default): Blender must see its faces.
+  const TriMesh exported = read_mesh(out / "ball.obj");
+  EXPECT_GE(exported.num_faces(), in.m.num_faces());
+  EXPECT_NE(text.find("BLENDER_OK " + std::to_string(exported.num_faces())), std::string::npos) << text;
 }
