@@ -200,8 +200,8 @@ std::vector<std::pair<Vec2, Vec2>> obj_chart_boxes(const std::filesystem::path& 
 }
 
 TEST(UnwrapCli, PaintUnwrapsWithTheGutterInTexelsOfItsTexture) {
-  // `paint --size N`: every two charts are at least 2 texels of the N² texture apart, the bilinear
-  // footprint of both (the unwrap default, 8 texels of a 1024² texture, would leave one texel at 128²).
+  // `paint --size N` (seam padding 4): every two charts are at least the padding, 4 texels of the N²
+  // texture, apart (the unwrap default, 8 texels of a 1024² texture, would leave one texel at 128²).
   TempDir dir;
   write_off(dir.path / "tori.off", test::five_tori());
   const auto gen = run_cli("strokes generate " + q(dir.path / "tori.off") + " --kind blobs -o " +
@@ -222,7 +222,7 @@ TEST(UnwrapCli, PaintUnwrapsWithTheGutterInTexelsOfItsTexture) {
         const auto& [b0, b1] = boxes[j];
         gap = std::min(gap, std::max({b0.x() - a1.x(), a0.x() - b1.x(), b0.y() - a1.y(), a0.y() - b1.y()}));
       }
-    EXPECT_GE(gap * size, 2 - 1e-3);
+    EXPECT_GE(gap * size, 4 - 1e-3);
   }
 }
 
