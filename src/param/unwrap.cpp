@@ -343,8 +343,28 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   return chart;
 }
 
+/// Total 3-D length of the seams of \p param: input edges whose two faces do not share both UV
+/// corners.
+double seam_length(const TriMesh& mesh, const Parameterization& param) {
+  const EdgeConnectivity ec = build_edges(mesh);
+  double seams = 0;
+  for (int e = 0; e < ec.num_edges(); ++e) {
+    if (ec.edge_faces[e].size() != 2) continue;
+    auto uv_of = [&](int f, int v) {
+      const Face& t = mesh.faces[f];
+      return param.uv_faces[f][t[0] == v ? 0 : t[1] == v ? 1 : 2];
+    };
+    const int f1 = ec.edge_faces[e][0], f2 = ec.edge_faces[e][1];
+    const int a = ec.edges[e][0], b = ec.edges[e][1];
+    if (uv_of(f1, a) != uv_of(f2, a) || uv_of(f1, b) != uv_of(f2, b))
+      seams += (mesh.positions[a] - mesh.positions[b]).norm();
+  }
+  return seams;
+}
+
 /// Packs the charts of \p pieces with gap \p padding and writes the layout and the layout figures
-/// (charts, cut length, augmentations, stretch, coverage, effective texel share) into \p result.
+/// (charts, cut length of the pieces, augmentations, stretch, coverage, effective texel share)
+/// into \p result; unwrap() replaces the cut length of several charts by their seam length.
 void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
               const std::vector<Chart>& charts, double padding, UnwrapResult& result) {
   UnwrapReport& rep = result.report;
@@ -391,22 +411,8 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
     rep.yoshizawa_iterations += chart.state.param.iterations;
   }
   rep.num_charts = nc;
-  if (nc > 1) {  // the seams: input edges whose two faces do not share both UV corners
-    const EdgeConnectivity ec = build_edges(mesh);
-    double seams = 0;
-    for (int e = 0; e < ec.num_edges(); ++e) {
-      if (ec.edge_faces[e].size() != 2) continue;
-      auto uv_of = [&](int f, int v) {
-        const Face& t = mesh.faces[f];
-        return param.uv_faces[f][t[0] == v ? 0 : t[1] == v ? 1 : 2];
-      };
-      const int f1 = ec.edge_faces[e][0], f2 = ec.edge_faces[e][1];
-      const int a = ec.edges[e][0], b = ec.edges[e][1];
-      if (uv_of(f1, a) != uv_of(f2, a) || uv_of(f1, b) != uv_of(f2, b))
-        seams += (mesh.positions[a] - mesh.positions[b]).norm();
-    }
-    rep.cut_length = seams;
-  }
+  // Several charts: cut_length becomes the seam length (seam_length()), measured once on the
+  // layout unwrap() returns.
 
   // Mesh-level stretch. The final figures are measured on the packed layout; the Floater figures
   // are combined from the per-chart ones (the chart's L2 and L∞ are normalized in its own frame
@@ -628,6 +634,7 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
       }
     }
   }
+  if (rep.num_charts > 1) rep.cut_length = seam_length(mesh, result.param);
   rep.time_total = seconds_since(t_start);
   return result;
 }
