@@ -16,10 +16,12 @@
 // the return to the initial layout after a rejection (see --full), which replays the history too.
 //
 //   adaptex_bench_session [--meshes spot,plane] [--strokes 10,100,1000] [--size 512] [--reps 1]
-//                         [--full N]
+//                         [--full N] [--cache Q]
 //
 // --meshes: names/stems of ADAPTEX_SHARED_DIR/meshes or paths, and "plane" (a generated 100k-face height
 // field, one chart, uv = xy, as in cycle.cpp); a shared mesh that is absent is skipped with a message.
+// --cache Q: PaintSessionOptions::surface_cache = Q (the replay reads a surface signal cache of Q
+// samples per texel spacing; 0, the default: exact replay of every dab).
 // --full N: also paint the first N strokes with a true each-stroke session and print every cycle.
 // Prints one markdown row per (mesh, stroke index, repetition), times in ms (wall clock).
 #include <algorithm>
@@ -47,6 +49,7 @@ struct Args {
   int size = 512;
   int reps = 1;
   int full = 0;
+  double cache = 0;  ///< PaintSessionOptions::surface_cache (0: exact replay)
 };
 
 // Comma-separated items of \p s, each passed to \p add.
@@ -76,6 +79,8 @@ Args parse(int argc, char** argv) {
       a.size = std::stoi(v);
     } else if (k == "--reps") {
       a.reps = std::stoi(v);
+    } else if (k == "--cache") {
+      a.cache = std::stod(v);
     } else if (k == "--full") {
       a.full = std::stoi(v);
     } else {
@@ -168,8 +173,9 @@ long long dab_count(const StrokeFile& f, int k) {
 }
 
 // The cycle after stroke k: paint k strokes without adaptation, then one re-parameterization.
-void cycle_at(const Scene& s, const StrokeFile& history, int k, int size) {
+void cycle_at(const Scene& s, const StrokeFile& history, int k, int size, double cache) {
   PaintSessionOptions o;
+  o.surface_cache = cache;
   o.texture_size = size;
   o.schedule = ReparamSchedule::EachStroke;
   o.adapt.mode = AdaptMode::None;  // paint only; reparameterize() uses the default method (session.h)
@@ -184,8 +190,9 @@ void cycle_at(const Scene& s, const StrokeFile& history, int k, int size) {
 }
 
 // A true each-stroke session over the first n strokes: every cycle.
-void full_session(const Scene& s, const StrokeFile& history, int n, int size) {
+void full_session(const Scene& s, const StrokeFile& history, int n, int size, double cache) {
   PaintSessionOptions o;
+  o.surface_cache = cache;
   o.texture_size = size;
   o.schedule = ReparamSchedule::EachStroke;  // adapt.mode: the library default
   PaintSession session(s.mesh, s.param, o, history.background);
@@ -204,8 +211,8 @@ int main(int argc, char** argv) {
   try {
     const Args a = parse(argc, argv);
     const int max_k = std::max(a.full, *std::max_element(a.strokes.begin(), a.strokes.end()));
-    std::printf("texture %d², default adapt mode %s, each-stroke, replay, safeguard on\n\n", a.size,
-                to_string(AdaptOptions{}.mode));
+    std::printf("texture %d², default adapt mode %s, each-stroke, replay, safeguard on, surface cache %g\n\n",
+                a.size, to_string(AdaptOptions{}.mode), a.cache);
     print_header();
     for (const auto& name : a.meshes) {
       Scene s;
@@ -217,8 +224,8 @@ int main(int argc, char** argv) {
       }
       const StrokeFile history = session_history(s.mesh, max_k);
       for (int k : a.strokes)
-        for (int r = 0; r < a.reps; ++r) cycle_at(s, history, k, a.size);
-      if (a.full > 0) full_session(s, history, a.full, a.size);
+        for (int r = 0; r < a.reps; ++r) cycle_at(s, history, k, a.size, a.cache);
+      if (a.full > 0) full_session(s, history, a.full, a.size, a.cache);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "adaptex_bench_session: %s\n", e.what());

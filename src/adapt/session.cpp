@@ -5,6 +5,7 @@
 #include "adaptex/adapt/session.h"
 
 #include <chrono>
+#include <cmath>
 #include <string>
 
 #include "adaptex/adapt/point_transfer.h"
@@ -13,6 +14,7 @@
 #include "adaptex/core/timer.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/signal.h"
+#include "adaptex/paint/surface_cache.h"
 
 namespace adaptex {
 
@@ -75,6 +77,9 @@ struct PaintSession::Impl {
   std::vector<SurfacePoint> samples;
   // The exact history signal at `samples`, updated stroke by stroke (O(stroke), not O(history)).
   std::unique_ptr<PointSignalCache> signal_cache;
+  // opt.surface_cache > 0: the signal on per-face samples of the input mesh, updated stroke by stroke.
+  std::unique_ptr<SurfaceSignalCache> surface;
+  double texel_spacing = 0;  // sqrt(surface area / chart texels) of the initial layout
   int reparam_count = 0;
   bool adapted = false;  ///< A re-parameterization has been accepted: the current layout is adapted.
 
@@ -137,10 +142,28 @@ struct PaintSession::Impl {
     return signal_cache->has_decals() ? nullptr : &signal_cache->values();
   }
 
+  bool uses_surface_cache() const { return opt.surface_cache > 0 && opt.update == TextureUpdate::Replay; }
+
+  /// The surface cache, built on first use and brought up to date with the history.
+  SurfaceSignalCache& surface_cache_now() {
+    if (!surface)
+      surface = std::make_unique<SurfaceSignalCache>(mesh, texel_spacing / opt.surface_cache, history.background);
+    surface->update(history);
+    return *surface;
+  }
+
+  /// \p p's texture from the surface cache (\p p: a fresh painter of a layout of the input mesh, or of
+  /// a refinement of it with \p parent_face).
+  const ImageRGBA8& texture_from_cache(Painter& p, const TriMesh& m, const std::vector<int>* parent_face) {
+    p.fill_colours(surface_cache_now().texel_colours(p.texel_map(), m, parent_face));
+    return p.texture();
+  }
+
   /// Records \p s in the history; with the safeguard on, composites it into the signal cache now
   /// (O(stroke)), so a re-parameterization finds the cache up to date.
   void record_stroke(Stroke s) {
     history.strokes.push_back(std::move(s));
+    if (uses_surface_cache()) surface_cache_now();
     if (!opt.safeguard || opt.safeguard_samples == 0) return;
     ensure_samples();
     cached_signal(samples);
@@ -222,7 +245,10 @@ struct PaintSession::Impl {
     tm = std::chrono::steady_clock::now();
     // Resample: the visible texture is the resampled one; the new painter only provides the texel map
     // (and the segment painters paint the strokes that follow).
-    c.texture = update_texture(opt.update, *c.painter, history, *param, texture(), opt.padding);
+    if (uses_surface_cache() && &source_mesh() == &mesh)
+      c.texture = texture_from_cache(*c.painter, cand_mesh, res.refined_mesh ? &res.parent_face : nullptr);
+    else
+      c.texture = update_texture(opt.update, *c.painter, history, *param, texture(), opt.padding);
     rep.time_texture_update += seconds_since(tm);
     return c;
   }
@@ -279,7 +305,12 @@ struct PaintSession::Impl {
   void return_to_initial() {
     if (!adapted) return;
     param = std::make_unique<Parameterization>(*base_param);
-    painter = std::make_unique<Painter>(replay_texture(mesh, *param, history, painter_options()));
+    if (uses_surface_cache()) {
+      painter = std::make_unique<Painter>(mesh, *param, painter_options(), history.background);
+      texture_from_cache(*painter, mesh, nullptr);
+    } else {
+      painter = std::make_unique<Painter>(replay_texture(mesh, *param, history, painter_options()));
+    }
     refined.reset();
     refined_samples.clear();
     refined_moved = false;
@@ -349,11 +380,14 @@ PaintSession::PaintSession(TriMesh mesh, Parameterization initial, const PaintSe
                             std::to_string(options.texture_size));
   if (options.padding < 0) throw InvalidInputError("paint session: padding must be >= 0");
   if (options.safeguard_samples < 0) throw InvalidInputError("paint session: safeguard_samples must be >= 0");
+  if (!(options.surface_cache >= 0) || !std::isfinite(options.surface_cache))
+    throw InvalidInputError("paint session: surface_cache must be >= 0");
   m.mesh = std::move(mesh);
   m.opt = options;
   m.history.background = background;
   m.param = std::make_unique<Parameterization>(std::move(initial));
   m.painter = std::make_unique<Painter>(m.mesh, *m.param, m.painter_options(), background);
+  m.texel_spacing = std::sqrt(surface_area(m.mesh) / std::max<size_t>(1, m.painter->texel_map().inside.size()));
   if (options.schedule == ReparamSchedule::EachStroke && options.adapt.mode != AdaptMode::None) {
     m.base_param = std::make_unique<Parameterization>(*m.param);
     m.base_painter = std::make_unique<Painter>(m.mesh, *m.base_param, m.painter_options(), background);

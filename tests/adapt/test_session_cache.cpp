@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "adaptex/adapt/session.h"
+#include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/generate.h"
@@ -20,6 +22,20 @@ StrokeFile mixed(const TriMesh& mesh, int count) {
   go.count = count;
   go.seed = 11;
   return generate_strokes(mesh, go);
+}
+
+/// A torus of (major x minor) segments, its unwrap() layout and \p count mixed strokes.
+struct Scene {
+  TriMesh mesh;
+  Parameterization param;
+  StrokeFile strokes;
+};
+Scene torus_scene(int major, int minor, int count) {
+  Scene sc;
+  sc.mesh = shapes::torus(major, minor);
+  sc.param = unwrap(sc.mesh).param;
+  sc.strokes = mixed(sc.mesh, count);
+  return sc;
 }
 
 /// Reconstruction MSE of \p texture on \p param against the whole history, evaluated afresh.
@@ -40,9 +56,10 @@ PaintSessionOptions small_options(ReparamSchedule schedule, AdaptMode mode) {
 }
 
 TEST(PaintSessionCache, EstimateErrorEqualsTheWholeHistoryAfterEveryStroke) {
-  const TriMesh mesh = shapes::torus(40, 20);
-  const Parameterization param = unwrap(mesh).param;
-  const StrokeFile strokes = mixed(mesh, 16);
+  const Scene sc = torus_scene(40, 20, 16);
+  const TriMesh& mesh = sc.mesh;
+  const Parameterization& param = sc.param;
+  const StrokeFile& strokes = sc.strokes;
   const PaintSessionOptions o = small_options(ReparamSchedule::End, AdaptMode::None);
   PaintSession s(mesh, param, o, strokes.background);
   for (const Stroke& st : strokes.strokes) {
@@ -54,9 +71,10 @@ TEST(PaintSessionCache, EstimateErrorEqualsTheWholeHistoryAfterEveryStroke) {
 }
 
 TEST(PaintSessionCache, EachStrokeReferenceErrorEqualsTheWholeHistory) {
-  const TriMesh mesh = shapes::torus(40, 20);
-  const Parameterization param = unwrap(mesh).param;
-  const StrokeFile strokes = mixed(mesh, 12);
+  const Scene sc = torus_scene(40, 20, 12);
+  const TriMesh& mesh = sc.mesh;
+  const Parameterization& param = sc.param;
+  const StrokeFile& strokes = sc.strokes;
   const PaintSessionOptions o = small_options(ReparamSchedule::EachStroke, AdaptOptions{}.mode);
   PaintSession s(mesh, param, o, strokes.background);
   PainterOptions po;
@@ -74,6 +92,58 @@ TEST(PaintSessionCache, EachStrokeReferenceErrorEqualsTheWholeHistory) {
     ++checked;
   }
   EXPECT_GE(checked, 6);
+}
+
+/// Reconstruction PSNR of a session's texture against the exact signal of its history.
+double session_psnr(PaintSession& s) {
+  const std::vector<SurfacePoint> pts = sample_surface(s.mesh(), 100000, 21);
+  const double mse = reconstruction_mse(s.param(), s.texture(), pts, StrokeSignal(s.mesh(), s.history()).evaluate(pts));
+  return 10 * std::log10(1.0 / mse);
+}
+
+TEST(PaintSessionCache, SurfaceCacheEachStrokeIsEndModeForTheHistorySoFar) {
+  const Scene sc = torus_scene(40, 20, 6);
+  PaintSessionOptions each = small_options(ReparamSchedule::EachStroke, AdaptOptions{}.mode);
+  each.surface_cache = 3;
+  PaintSessionOptions end = each;
+  end.schedule = ReparamSchedule::End;
+  PaintSession s(sc.mesh, sc.param, each, sc.strokes.background);
+  for (size_t k = 0; k < sc.strokes.strokes.size(); ++k) {
+    s.add_stroke(sc.strokes.strokes[k]);
+    PaintSession e(sc.mesh, sc.param, end, sc.strokes.background);
+    for (size_t i = 0; i <= k; ++i) e.add_stroke(sc.strokes.strokes[i]);
+    e.finish();
+    EXPECT_EQ(s.mesh().num_faces(), e.mesh().num_faces()) << "stroke " << k + 1;
+    EXPECT_EQ(s.param().uv, e.param().uv) << "stroke " << k + 1;
+    EXPECT_EQ(s.texture().data, e.texture().data) << "stroke " << k + 1;
+  }
+}
+
+TEST(PaintSessionCache, SurfaceCacheQualityIsWithinAFewTenthsOfADecibelOfExactReplay) {
+  const Scene sc = torus_scene(48, 24, 30);
+  PaintSessionOptions o = small_options(ReparamSchedule::End, AdaptOptions{}.mode);
+  o.texture_size = 256;
+  o.safeguard_samples = 20000;
+  PaintSession exact(sc.mesh, sc.param, o, sc.strokes.background);
+  o.surface_cache = 3;
+  PaintSession cached(sc.mesh, sc.param, o, sc.strokes.background);
+  for (const Stroke& st : sc.strokes.strokes) {
+    exact.add_stroke(st);
+    cached.add_stroke(st);
+  }
+  exact.finish();
+  cached.finish();
+  const double pe = session_psnr(exact), pc = session_psnr(cached);
+  std::printf("end mode PSNR: exact replay %.2f dB, surface cache %.2f dB\n", pe, pc);
+  EXPECT_GT(pc, pe - 0.3);
+  EXPECT_LT(pc, pe + 1.0);
+}
+
+TEST(PaintSessionCache, RejectsANegativeSurfaceCache) {
+  const TriMesh mesh = shapes::icosphere(2);
+  PaintSessionOptions o;
+  o.surface_cache = -1;
+  EXPECT_THROW(PaintSession(mesh, unwrap(mesh).param, o), InvalidInputError);
 }
 
 }  // namespace

@@ -67,6 +67,14 @@ struct PaintSessionOptions {
   /// Applies whenever the reference is the fixed (initial) layout; against an adapted current layout
   /// (resample mode, or end mode re-parameterizing again) a candidate only has to be better.
   double safeguard_margin = 0.02;
+  /// Replay through a surface signal cache (paint/surface_cache.h, Mesh Colors): with update = replay,
+  /// the texture of a candidate layout is resampled from per-face samples of the exact signal, updated
+  /// stroke by stroke, in O(texels), instead of replaying every dab of the history on it (issue 10).
+  /// The value is the number of samples per texel spacing of the initial layout (3: the sample
+  /// spacing is a third of a texel's; the texture is then within a fraction of a dB of exact replay,
+  /// tests/paint/test_surface_cache.cpp). 0: exact replay. Applies to layouts computed from the
+  /// input mesh (each-stroke mode, and end mode's first re-parameterization).
+  double surface_cache = 0;
   std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
 };
 
