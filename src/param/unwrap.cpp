@@ -229,7 +229,10 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   const EdgeConnectivity ec = build_edges(comp.mesh);
   const EdgeGraph graph = build_edge_graph(comp.mesh, ec);
   CutState cur;
-  cur.cut = initial_cut(comp.mesh, ec, graph);
+  // A connected piece with Euler characteristic 1 is a disk (one boundary loop, genus 0): its
+  // initial cut is empty (test Cut.ADiskNeedsNoCut), so initial_cut() is skipped.
+  const bool disk = comp.mesh.num_vertices() - ec.num_edges() + comp.mesh.num_faces() == 1;
+  cur.cut = disk ? std::vector<char>(ec.num_edges(), 0) : initial_cut(comp.mesh, ec, graph);
   cur.disk = slice_along_cut(comp.mesh, ec, cur.cut);
   rep.time_cut += seconds_since(t0);
 

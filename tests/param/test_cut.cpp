@@ -1,11 +1,14 @@
 // Topological tests of the §3.2 surgery (cut.h): every component of every shape becomes a disk.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/core/topology.h"
+#include "adaptex/param/charts.h"
 #include "adaptex/param/cut.h"
 
 namespace adaptex {
@@ -73,6 +76,33 @@ TEST(Cut, InitialCutSlicesEveryShapeIntoADisk) {
       EXPECT_EQ(t2.total_loops(), 1);
       EXPECT_EQ(t2.num_components, 1);
     }
+  }
+}
+
+TEST(Cut, ADiskNeedsNoCut) {
+  // unwrap() skips initial_cut() on a connected piece with Euler characteristic 1 (a disk: the
+  // segmented charts mostly are): its face tree crosses every interior edge that separates the
+  // disk, and pruning removes the rest. Disks of several kinds, including every chart of a
+  // segmentation.
+  std::vector<TriMesh> disks = {shapes::plane(8), shapes::sphere_with_holes(1, 3)};
+  const TriMesh g3 = shapes::genus_surface(3);
+  ChartSegmentOptions so;
+  so.num_charts = 12;
+  const std::vector<int> label = segment_charts(g3, so);
+  const int k = *std::max_element(label.begin(), label.end()) + 1;
+  int disk_charts = 0;
+  for (ChartMesh& c : extract_charts(g3, label, k)) {
+    const EdgeConnectivity ec = build_edges(c.mesh);
+    if (c.mesh.num_vertices() - ec.num_edges() + c.mesh.num_faces() != 1) continue;
+    disks.push_back(std::move(c.mesh));
+    ++disk_charts;
+  }
+  EXPECT_GE(disk_charts, 2);  // 4 of the 12 (the others keep a handle or several loops)
+  for (const TriMesh& d : disks) {
+    const EdgeConnectivity ec = build_edges(d);
+    ASSERT_EQ(d.num_vertices() - ec.num_edges() + d.num_faces(), 1);
+    const std::vector<char> cut = initial_cut(d, ec, build_edge_graph(d, ec));
+    EXPECT_EQ(std::count(cut.begin(), cut.end(), 1), 0);
   }
 }
 
