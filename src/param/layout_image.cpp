@@ -8,6 +8,7 @@
 #include <string>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 
 namespace adaptex {
 
@@ -43,9 +44,9 @@ void darken(ImageRGBA8& img, int i, int j) {
 ImageRGBA8 render_layout(const Parameterization& param, const std::vector<double>& face_value,
                          const LayoutImageOptions& options) {
   const int n = options.size;
-  if (n < 1 || n > 16384)
-    throw InvalidInputError("render_layout: image size " + std::to_string(n) +
-                            " is outside [1, 16384]");
+  if (n < 1 || n > kMaxTextureSize)
+    throw InvalidInputError("render_layout: image size " + std::to_string(n) + " is outside [1, " +
+                            std::to_string(kMaxTextureSize) + "]");
   const size_t nf = param.uv_faces.size();
   if (face_value.size() != nf)
     throw InvalidInputError("render_layout: " + std::to_string(face_value.size()) +

@@ -24,7 +24,7 @@ struct LayoutImageOptions {
 /// Rasterizes the layout: image row 0 is v = 0 (ImageRGBA8 convention). Pixels outside every
 /// triangle are white; triangles with a non-finite value are magenta.
 /// \param face_value F values, parallel to param.uv_faces
-/// \throw InvalidInputError size out of [1, 16384] or face_value of the wrong size
+/// \throw InvalidInputError size out of [1, kMaxTextureSize] (core/limits.h) or face_value of the wrong size
 ImageRGBA8 render_layout(const Parameterization& param, const std::vector<double>& face_value,
                          const LayoutImageOptions& options = {});
 
