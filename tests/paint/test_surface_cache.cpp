@@ -86,6 +86,54 @@ TEST(SurfaceSignalCache, ExactWithoutStrokesAndAtLatticePoints) {
   EXPECT_LT(worst, 1e-5);
 }
 
+/// A 2x2 decal projected straight down onto the unit square around (0.4, 0.5), between two brush
+/// strokes, over a grey background.
+StrokeFile decal_history() {
+  StrokeFile f;
+  f.background = Vec3(0.5, 0.5, 0.5);
+  Stroke brush;
+  brush.radius = 0.2;
+  brush.color = Vec3(0.9, 0.1, 0.1);
+  brush.dabs = {Vec3(0.3, 0.3, 0), Vec3(0.5, 0.4, 0)};
+  Stroke decal;
+  decal.type = Stroke::Type::Decal;
+  decal.image = ImageRGBA8(2, 2, {0, 40, 200, 255});  // blue, one transparent texel
+  decal.image.texel(1, 1)[3] = 0;
+  decal.camera = DecalCamera{Vec3(0.4, 0.5, 2.0), Vec3(0.4, 0.5, 0.0), Vec3(0, 1, 0), 20, 1.0};
+  decal.opacity = 0.8;
+  f.strokes = {brush, decal, brush};
+  f.strokes[2].color = Vec3(0.1, 0.2, 0.9);
+  f.strokes[2].dabs = {Vec3(0.6, 0.6, 0)};
+  return f;
+}
+
+TEST(SurfaceSignalCache, DecalsAreExactAtLatticePointsAndInThePointCache) {
+  const TriMesh mesh = shapes::plane(8);
+  const StrokeFile history = decal_history();
+  const StrokeSignal signal(mesh, history);
+  ASSERT_TRUE(signal.has_decals());
+  SurfaceSignalCache cache(mesh, 0.02, history.background);
+  cache.update(history);
+  const std::vector<SurfacePoint> pts = sample_surface(mesh, 4000, 2);
+  PointSignalCache points(mesh, pts, history.background);
+  points.update(history);
+  EXPECT_TRUE(points.has_decals());
+  const std::vector<Vec3> exact = signal.evaluate(pts);
+  double worst_points = 0, worst_corners = 0;
+  int decal_points = 0;
+  for (size_t k = 0; k < pts.size(); ++k) {
+    worst_points = std::max(worst_points, (points.values()[k] - exact[k]).cwiseAbs().maxCoeff());
+    decal_points += std::abs(exact[k].z() - 200.0 / 255 * 0.8 - 0.5 * 0.2) < 0.05;
+  }
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Vec3 want = signal.evaluate(SurfacePoint{f, 0.0, 1.0});
+    worst_corners = std::max(worst_corners, (cache.colour(f, 0.0, 1.0).cast<double>() - want).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LE(worst_points, 1e-12);
+  EXPECT_LT(worst_corners, 1e-5);
+  EXPECT_GT(decal_points, 50);  // the decal is really there
+}
+
 TEST(SurfaceSignalCache, RejectsBadInput) {
   const TriMesh mesh = shapes::icosphere(1);
   EXPECT_THROW(SurfaceSignalCache(mesh, 0.0, Vec3(1, 1, 1)), InvalidInputError);
