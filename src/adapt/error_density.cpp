@@ -120,22 +120,33 @@ void gaussian_blur(std::vector<double>& f, int n, double sigma) {
   const int rad = std::max(1, static_cast<int>(std::ceil(3 * sigma)));
   std::vector<double> k(2 * rad + 1);
   for (int d = -rad; d <= rad; ++d) k[d + rad] = std::exp(-0.5 * d * d / (sigma * sigma));
-  auto reflect = [n](int a) { return a < 0 ? -a - 1 : a >= n ? 2 * n - a - 1 : a; };
-  std::vector<double> tmp(f.size());
-  for (int pass = 0; pass < 2; ++pass) {
-    tbb::parallel_for(0, n, [&](int j) {
-      for (int i = 0; i < n; ++i) {
-        double s = 0, w = 0;
-        for (int d = -rad; d <= rad; ++d) {
-          const int a = std::clamp(reflect(i + d), 0, n - 1);
-          const size_t q = pass == 0 ? static_cast<size_t>(j) * n + a : static_cast<size_t>(a) * n + j;
-          s += k[d + rad] * f[q], w += k[d + rad];
-        }
-        tmp[pass == 0 ? static_cast<size_t>(j) * n + i : static_cast<size_t>(i) * n + j] = s / w;
-      }
-    });
-    f.swap(tmp);
+  double w = 0;
+  for (double x : k) w += x;
+  // Source index of every tap position i + d, reflected at the sides (-1 -> 0, n -> n - 1, ...).
+  std::vector<int> src(n + 2 * rad);
+  for (int a = -rad; a < n + rad; ++a) {
+    const int r = a < 0 ? -a - 1 : a >= n ? 2 * n - a - 1 : a;
+    src[a + rad] = std::clamp(r, 0, n - 1);
   }
+  std::vector<double> tmp(f.size());
+  // Rows, then columns as whole-row sums (contiguous), both in tap order.
+  tbb::parallel_for(0, n, [&](int j) {
+    const double* row = f.data() + static_cast<size_t>(j) * n;
+    for (int i = 0; i < n; ++i) {
+      double acc = 0;
+      for (int d = 0; d <= 2 * rad; ++d) acc += k[d] * row[src[i + d]];
+      tmp[static_cast<size_t>(j) * n + i] = acc / w;
+    }
+  });
+  tbb::parallel_for(0, n, [&](int i) {
+    double* out = f.data() + static_cast<size_t>(i) * n;
+    std::fill(out, out + n, 0.0);
+    for (int d = 0; d <= 2 * rad; ++d) {
+      const double* row = tmp.data() + static_cast<size_t>(src[i + d]) * n;
+      for (int j = 0; j < n; ++j) out[j] += k[d] * row[j];
+    }
+    for (int j = 0; j < n; ++j) out[j] /= w;
+  });
 }
 
 /// Per-cell accumulations over the reference raster.
@@ -203,20 +214,34 @@ ErrorDensity solve_density(CellErrors& c, double spacing_ratio, const ErrorDensi
     q[k] = c.ea[k] * std::pow(spacing_ratio, p[k]);  // error at the current spacing h_N
   }
   out.signal_fraction = chart_cells ? double(with_signal) / chart_cells : 0.0;
+  // ρ = clamp(exp(e·(log(p q / 2) − log μ)), lo, max) with e = 1 / (1 + p/2): the exponent and the
+  // log are per cell, computed once; the bisection then costs one exp per painted cell per step.
+  std::vector<double> ek(cells, 0.0), ak(cells, 0.0);
+  std::vector<size_t> painted;
+  double unpainted = 0;  // Σ cover·lo over chart cells without signal (independent of μ)
+  for (size_t k = 0; k < cells; ++k) {
+    if (c.cover[k] <= 0) continue;
+    if (q[k] <= 0) {
+      unpainted += c.cover[k] * lo[k];
+      continue;
+    }
+    ek[k] = 1.0 / (1.0 + 0.5 * p[k]);
+    ak[k] = std::log(0.5 * p[k] * q[k]);
+    painted.push_back(k);
+  }
   auto rho_of = [&](size_t k, double log_mu) {
     if (q[k] <= 0) return lo[k];
-    const double e = 1.0 / (1.0 + 0.5 * p[k]);
-    const double r = std::exp(e * (std::log(0.5 * p[k] * q[k]) - log_mu));
-    return std::clamp(r, lo[k], o.max_density);
+    return std::clamp(std::exp(ek[k] * (ak[k] - log_mu)), lo[k], o.max_density);
   };
   auto total = [&](double log_mu) {
-    double s = 0;
-    for (size_t k = 0; k < cells; ++k) s += c.cover[k] * (c.cover[k] > 0 ? rho_of(k, log_mu) : 0.0);
+    double s = unpainted;
+    for (size_t k : painted) s += c.cover[k] * rho_of(k, log_mu);
     return s;
   };
   double a = -200, b = 200;  // log μ bracket: total(a) is large, total(b) small
   for (int it = 0; it < 100; ++it) {
     const double m = 0.5 * (a + b);
+    if (m <= a || m >= b) break;  // the bracket is down to adjacent doubles
     (total(m) > budget ? a : b) = m;
   }
   const double log_mu = 0.5 * (a + b);
