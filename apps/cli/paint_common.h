@@ -94,19 +94,12 @@ struct PaintRun {
   double initial_l2 = 0, final_l2 = 0;  ///< L2 stretch of the unwrap and of the final layout.
 };
 
-/// The unwrap options of a paint run: the gutter between charts is the seam padding (options.padding,
-/// at least 2) in texels of the texture it paints (options.size), at most a fifth of the square. Issue
-/// 8 asks for a gutter of at least the padding. Wider costs texels: measured with `adaptex paint` +
-/// `adaptex eval` on spot, triceratops and dino (lines and blobs, 128² and 256², none and density-flow,
-/// 24 pairs), 2 texels beat 4 in 19 of 24 by a median of 0.25 dB, and beat 8 (2 × padding) in 21 of 24
-/// by 0.71 dB (docs/quality.md, "Gutter of a paint run"); `--padding 2` gives the 2-texel gutter. The
-/// old gutter, 8 texels of a 1024² texture, left 1 texel at 128², where blobs lost 8–10 dB.
+/// The unwrap options of a paint run: the gutter for the texture it paints (unwrap_options_for_texture,
+/// param/unwrap.h: the seam padding in texels of options.size).
 inline UnwrapOptions paint_unwrap_options(const PaintRunOptions& options, ProgressCallback progress) {
   UnwrapOptions uo;
   uo.progress = std::move(progress);
-  uo.gutter_texture_size = options.size;
-  uo.gutter_texels = std::min(std::max(2.0, double(options.padding)), 0.2 * options.size);
-  return uo;
+  return unwrap_options_for_texture(options.size, options.padding, std::move(uo));
 }
 
 /// Unwraps \p mesh (progress lines on stderr) and paints every stroke of \p strokes.

@@ -642,4 +642,13 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   return result;
 }
 
+UnwrapOptions unwrap_options_for_texture(int texture_size, int padding, UnwrapOptions base) {
+  if (texture_size < 1 || padding < 0)
+    throw InvalidInputError("unwrap options: texture size must be >= 1 and padding >= 0, got " +
+                            std::to_string(texture_size) + " and " + std::to_string(padding));
+  base.gutter_texture_size = texture_size;
+  base.gutter_texels = std::min(std::max(2.0, static_cast<double>(padding)), 0.2 * texture_size);
+  return base;
+}
+
 }  // namespace adaptex

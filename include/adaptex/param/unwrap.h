@@ -122,4 +122,14 @@ struct UnwrapResult {
 /// \throw CancelledError the progress callback returned false
 UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options = {});
 
+/// \p base with the gutter of a layout that will hold a \p texture_size² texture painted with
+/// \p padding texels of seam padding: the gutter is the padding, at least 2 texels (the bilinear
+/// footprint of both neighbours), at most a fifth of the square. Issue 8 asks for at least the
+/// padding; measured with `adaptex paint` + `adaptex eval` (docs/quality.md, "Gutter of a paint run"),
+/// 2 texels beat 4 by a median 0.25 dB and 8 by 0.71 dB, so a wider gutter only costs texels. Used by
+/// `adaptex paint --size N --padding P` and by the studio, so both lay a mesh out the same way.
+/// \pre texture_size >= 1, padding >= 0
+/// \throw InvalidInputError texture_size < 1 or padding < 0
+UnwrapOptions unwrap_options_for_texture(int texture_size, int padding, UnwrapOptions base = {});
+
 }  // namespace adaptex
