@@ -510,7 +510,8 @@ void App::maybe_start_rebuild() {
 
 void App::maybe_unwrap_again() {
   const auto& m = painting_.model();
-  if (!m || jobs_.loading() || m->unwrap_size == session_.texture_size) return;
+  if (!m || jobs_.loading() || (m->unwrap_size == session_.texture_size && m->unwrap_padding == session_.padding))
+    return;
   // `adaptex paint --size N` unwraps with a gutter of so many texels of N: so does the studio.
   pending_ = PendingLoad{{}, history().background(), !unsaved(), store_.project_path(), true};
   jobs_.start_load(m->path, session_, history().background());
@@ -545,6 +546,7 @@ void App::finish_load(Job<LoadResult>& job) {
     add_message(cancelled ? "loading cancelled" : e.what(), !cancelled);
     if (pending.reload && has_model()) {  // keep the layout's texture size (else it would unwrap again)
       session_.texture_size = painting_.model()->unwrap_size;
+      session_.padding = painting_.model()->unwrap_padding;
     }
   }
 }

@@ -2,7 +2,6 @@
 /// The studio's bridge to the adaptex library (see backend.h).
 #include "backend.h"
 
-#include <algorithm>
 #include <fstream>
 
 #include "adaptex/adapt/session.h"
@@ -31,15 +30,10 @@ TriMesh load_mesh(const std::string& path) {
   return read_mesh(path);
 }
 
-Parameterization unwrap_mesh(const TriMesh& mesh, int texture_size, const ProgressCallback& progress) {
-  // The same options as apps/cli/paint_common.h paint_unwrap_options() (test
-  // StudioApp.SameLayoutAndTextureAsAdaptexPaint): a gutter of 2 texels of the texture, at most a
-  // fifth of the square.
+Parameterization unwrap_mesh(const TriMesh& mesh, int texture_size, int padding, const ProgressCallback& progress) {
   UnwrapOptions opt;
   opt.progress = progress;
-  opt.gutter_texture_size = texture_size;
-  opt.gutter_texels = std::min(2.0, 0.2 * texture_size);
-  return unwrap(mesh, opt).param;
+  return unwrap(mesh, unwrap_options_for_texture(texture_size, padding, std::move(opt))).param;
 }
 
 struct Canvas::Impl {

@@ -33,10 +33,10 @@ TriMesh load_mesh(const std::string& path);
 /// isolated vertex).
 std::vector<Vec3> smooth_normals(const TriMesh& mesh);
 
-/// Initial parameterization (adaptex::unwrap) for a \p texture_size² texture, with the unwrap options
-/// `adaptex paint --size N` uses (the gutter between charts in texels of that texture).
+/// Initial parameterization (adaptex::unwrap) for a \p texture_size² texture with \p padding texels of
+/// seam padding: adaptex::unwrap_options_for_texture(), as `adaptex paint --size N --padding P`.
 /// \throw CancelledError when \p progress returns false
-Parameterization unwrap_mesh(const TriMesh& mesh, int texture_size, const ProgressCallback& progress);
+Parameterization unwrap_mesh(const TriMesh& mesh, int texture_size, int padding, const ProgressCallback& progress);
 
 /// A paintable texture on one parameterization (an adaptex::Painter, or the painter of the
 /// PaintSession that produced an adapted parameterization).

@@ -24,7 +24,7 @@ struct Model {
   std::string path;
   std::shared_ptr<const TriMesh> mesh;
   std::shared_ptr<const Parameterization> initial;
-  int unwrap_size = 0;  ///< Texture size the initial layout is for (its gutter is in texels).
+  int unwrap_size = 0, unwrap_padding = 0;  ///< Texture size and padding the initial layout is for.
   BoundingBox box;
   std::shared_ptr<const RayCaster> caster;  ///< Picking on *mesh.
 };

@@ -30,9 +30,11 @@ LoadResult load_model(const std::string& path, const PaintSessionOptions& option
   model->box = bounding_box(*mesh);
   if (!job.progress("index", 0.0)) throw CancelledError();
   model->caster = std::make_shared<RayCaster>(*mesh);
-  model->initial = std::make_shared<Parameterization>(unwrap_mesh(
-      *mesh, options.texture_size, [&job](std::string_view phase, double f) { return job.progress(phase, f); }));
+  model->initial = std::make_shared<Parameterization>(
+      unwrap_mesh(*mesh, options.texture_size, options.padding,
+                  [&job](std::string_view phase, double f) { return job.progress(phase, f); }));
   model->unwrap_size = options.texture_size;
+  model->unwrap_padding = options.padding;
   if (!job.progress("texture", 0.0)) throw CancelledError();
   LoadResult r;
   r.surface = std::make_unique<Surface>();
