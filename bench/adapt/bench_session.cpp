@@ -23,11 +23,13 @@
 // --cache Q: PaintSessionOptions::surface_cache = Q (the replay reads a surface signal cache of Q
 // samples per texel spacing; 0, the default: exact replay of every dab).
 // --full N: also paint the first N strokes with a true each-stroke session and print every cycle.
-// Prints one markdown row per (mesh, stroke index, repetition), times in ms (wall clock).
+// Prints one markdown row per (mesh, stroke index, repetition), times in ms (wall clock; the last
+// column: CPU time of the process, all threads, for stroke + cycle).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -129,21 +131,29 @@ bool shared_scene(const std::string& name, Scene& s) {
 
 double ms(double seconds) { return 1000.0 * seconds; }
 
+// CPU time of this process, all threads (s): less sensitive than the wall clock to other processes
+// on a shared machine.
+double process_cpu() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
 void print_header() {
   std::printf("| mesh | faces | stroke | dabs so far | accepted | paint stroke | density | flow | refine | remap | texel map |"
-              " replay | safeguard | other | **stroke + cycle** |\n");
-  std::printf("|---|---:|---:|---:|:-:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+              " replay | safeguard | other | **stroke + cycle** | CPU |\n");
+  std::printf("|---|---:|---:|---:|:-:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
 }
 
 // \p paint: painting stroke k and recording it (the session's signal cache included); \p wall: that and
-// the cycle.
-void print_row(const Scene& s, int k, long long dabs, const AdaptReport& r, double paint, double wall) {
+// the cycle; \p cpu: the process CPU time of both (all threads).
+void print_row(const Scene& s, int k, long long dabs, const AdaptReport& r, double paint, double wall, double cpu) {
   const double known = paint + r.time_density + r.time_flow + r.time_refine + r.time_remap + r.time_texel_map +
                        r.time_texture_update + r.time_safeguard;
-  std::printf("| %s | %d | %d | %lld | %s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | **%.0f** |\n",
+  std::printf("| %s | %d | %d | %lld | %s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | **%.0f** | %.0f |\n",
               s.name.c_str(), s.mesh.num_faces(), k, dabs, r.accepted ? "yes" : "no", ms(paint), ms(r.time_density),
               ms(r.time_flow), ms(r.time_refine), ms(r.time_remap), ms(r.time_texel_map), ms(r.time_texture_update),
-              ms(r.time_safeguard), ms(std::max(0.0, wall - known)), ms(wall));
+              ms(r.time_safeguard), ms(std::max(0.0, wall - known)), ms(wall), ms(cpu));
   std::fflush(stdout);
 }
 
@@ -181,12 +191,13 @@ void cycle_at(const Scene& s, const StrokeFile& history, int k, int size, double
   o.adapt.mode = AdaptMode::None;  // paint only; reparameterize() uses the default method (session.h)
   PaintSession session(s.mesh, s.param, o, history.background);
   for (int i = 0; i + 1 < k; ++i) session.add_stroke(history.strokes[i]);
+  const double c0 = process_cpu();
   const auto t0 = std::chrono::steady_clock::now();
   session.add_stroke(history.strokes[k - 1]);
   const double paint = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const AdaptReport& r = session.reparameterize();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  print_row(s, k, dab_count(history, k), r, paint, wall);
+  print_row(s, k, dab_count(history, k), r, paint, wall, process_cpu() - c0);
 }
 
 // A true each-stroke session over the first n strokes: every cycle.
@@ -197,11 +208,12 @@ void full_session(const Scene& s, const StrokeFile& history, int n, int size, do
   o.schedule = ReparamSchedule::EachStroke;  // adapt.mode: the library default
   PaintSession session(s.mesh, s.param, o, history.background);
   for (int i = 0; i < n; ++i) {
+    const double c0 = process_cpu();
     const auto t0 = std::chrono::steady_clock::now();
     session.add_stroke(history.strokes[i]);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const AdaptReport& r = session.reports().back();
-    print_row(s, i + 1, dab_count(history, i + 1), r, std::max(0.0, wall - r.time_total), wall);
+    print_row(s, i + 1, dab_count(history, i + 1), r, std::max(0.0, wall - r.time_total), wall, process_cpu() - c0);
   }
 }
 
