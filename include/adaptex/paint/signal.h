@@ -49,8 +49,8 @@ class StrokeSignal {
 /// The exact signal C at a fixed set of surface points, kept up to date stroke by stroke: each
 /// add_stroke() composites one stroke over the stored colours (the contract composites strokes in
 /// order, C <- C (1 - a) + colour a), touching only the points inside the stroke's bounding box (a
-/// brush stroke; a decal is evaluated at every point). The cost of a stroke is O(points in its box x
-/// its dabs), independent of how many strokes came before; values() equals StrokeSignal(mesh,
+/// brush stroke; a decal is evaluated at every point). The cost of a stroke is one box test per point
+/// plus O(points in its box x its dabs), independent of how many strokes came before; values() equals StrokeSignal(mesh,
 /// history).evaluate(points()) up to rounding (the same arithmetic in the same order; tested).
 /// Used by PaintSession's safeguard (adapt/session.h) instead of evaluating the whole history again
 /// after every stroke.
