@@ -99,7 +99,8 @@ AdaptMode parse_adapt_mode(const std::string& name) {
 
 AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current,
                                    const ImageRGBA8& texture, const TexelMap& current_map,
-                                   const AdaptOptions& o, const StrokeFile* history) {
+                                   const AdaptOptions& o, const StrokeFile* history,
+                                   ErrorDensityReference* density_reference) {
   validate(o);
   if (current.uv_faces.size() != mesh.faces.size())
     throw InvalidInputError("parameterization has " + std::to_string(current.uv_faces.size()) +
@@ -121,7 +122,7 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
     return res;
   }
   const std::unique_ptr<WarpMethod> method = make_warp_method(o.mode);
-  method->compute(WarpInput{mesh, current, texture, current_map, history, o}, res);
+  method->compute(WarpInput{mesh, current, texture, current_map, history, o, density_reference}, res);
 
   // Refinement: where the warp varies faster than the triangles, split them (same surface).
   if (o.refine && method->wants_refinement()) {

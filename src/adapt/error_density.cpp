@@ -84,22 +84,34 @@ void pad_outside(Raster& r, std::vector<char> filled, int rings) {
   }
 }
 
-/// The exact signal at the texel centres of \p map (inside charts), padded outside.
-Raster exact_raster(const TexelMap& map, const StrokeSignal& signal, const Vec3& background) {
+/// The surface points of the texel centres of \p map inside charts, shape [map.inside.size()].
+std::vector<SurfacePoint> texel_points(const TexelMap& map) {
   std::vector<SurfacePoint> pts(map.inside.size());
   for (size_t k = 0; k < pts.size(); ++k) {
     const int t = map.inside[k];
     pts[k] = SurfacePoint{map.face[t], map.bary[t].x(), map.bary[t].y()};
   }
-  const std::vector<Vec3> c = signal.evaluate(pts);
+  return pts;
+}
+
+/// The raster of \p map holding \p c (the signal at texel_points(map)) inside charts, padded outside.
+Raster signal_raster(const TexelMap& map, const std::vector<Vec3>& c, const Vec3& background) {
   Raster r;
   r.size = map.width;
   r.rgb.assign(static_cast<size_t>(map.width) * map.height, background.cast<float>());
   std::vector<char> filled(r.rgb.size(), 0);
-  for (size_t k = 0; k < pts.size(); ++k) r.rgb[map.inside[k]] = c[k].cast<float>(), filled[map.inside[k]] = 1;
+  for (size_t k = 0; k < c.size(); ++k) r.rgb[map.inside[k]] = c[k].cast<float>(), filled[map.inside[k]] = 1;
   pad_outside(r, std::move(filled), 4);
   return r;
 }
+
+/// The exact signal at the texel centres of \p map (inside charts), padded outside.
+Raster exact_raster(const TexelMap& map, const StrokeSignal& signal, const Vec3& background) {
+  return signal_raster(map, signal.evaluate(texel_points(map)), background);
+}
+
+/// Side of the reference raster for a texture of side \p n.
+int reference_side(int n, const ErrorDensityOptions& o) { return std::max(n, std::min(o.reference_factor * n, o.max_reference)); }
 
 /// Surface area per UV area of every face, relative to the whole layout's (1 = average).
 std::vector<double> surface_per_uv(const TriMesh& mesh, const Parameterization& param) {
@@ -287,22 +299,84 @@ void check(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8&
 
 }  // namespace
 
+namespace {
+/// The density from the reference raster \p ref (texel map \p ref_map) and the N/2 level \p level_b of
+/// the exact signal; level a is the texture itself (what the painter stored at h_N).
+ErrorDensity from_levels(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
+                         const Raster& ref, const TexelMap& ref_map, const Raster& level_b, const ErrorDensityOptions& o) {
+  const Raster level_a = from_texture(texture);
+  // The density raster is never finer than the reference raster (every cell holds reference texels).
+  CellErrors c = accumulate(ref, ref_map, level_a, level_b, surface_per_uv(mesh, param), std::min(o.cells, ref.size));
+  ErrorDensity out = solve_density(c, 1.0, o);
+  out.reference_size = ref.size;
+  return out;
+}
+}  // namespace
+
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
                                    const TexelMap& map, const StrokeFile& history, const ErrorDensityOptions& o) {
   check(mesh, param, texture, map, o, true);
   const int N = texture.width;
-  const int R = std::max(N, std::min(o.reference_factor * N, o.max_reference));
+  const int R = reference_side(N, o);
   const StrokeSignal signal(mesh, history);
   const TexelMap ref_map = build_texel_map(mesh, param, R, R);
   const Raster ref = exact_raster(ref_map, signal, history.background);
-  const Raster level_a = from_texture(texture);  // what the painter stored at h_N (padded)
   const int half = std::max(1, N / 2);
   const Raster level_b = exact_raster(build_texel_map(mesh, param, half, half), signal, history.background);
-  // The density raster is never finer than the reference raster (every cell holds reference texels).
-  CellErrors c = accumulate(ref, ref_map, level_a, level_b, surface_per_uv(mesh, param), std::min(o.cells, R));
-  ErrorDensity out = solve_density(c, 1.0, o);
-  out.reference_size = R;
-  return out;
+  return from_levels(mesh, param, texture, ref, ref_map, level_b, o);
+}
+
+struct ErrorDensityReference::Impl {
+  const TriMesh* mesh = nullptr;
+  std::vector<Vec2> uv;              // the layout it was built for
+  std::vector<Face> uv_faces;
+  int texture_size = 0, reference = 0, half = 0;
+  Vec3 background;
+  TexelMap ref_map, half_map;
+  PointSignalCache ref_signal, half_signal;
+};
+
+ErrorDensityReference::ErrorDensityReference(const TriMesh& mesh, const Parameterization& param, int texture_size,
+                                             const Vec3& background, const ErrorDensityOptions& o) {
+  if (param.uv_faces.size() != mesh.faces.size() || texture_size < 1)
+    throw InvalidInputError("error density reference: layout and mesh differ, or texture size < 1");
+  if (o.reference_factor < 1 || o.max_reference < 1) throw InvalidInputError("error density: bad reference size");
+  const int R = reference_side(texture_size, o), half = std::max(1, texture_size / 2);
+  TexelMap ref_map = build_texel_map(mesh, param, R, R);
+  TexelMap half_map = build_texel_map(mesh, param, half, half);
+  PointSignalCache ref_signal(mesh, texel_points(ref_map), background);
+  PointSignalCache half_signal(mesh, texel_points(half_map), background);
+  impl_ = std::make_unique<Impl>(Impl{&mesh, param.uv, param.uv_faces, texture_size, R, half, background,
+                                      std::move(ref_map), std::move(half_map), std::move(ref_signal),
+                                      std::move(half_signal)});
+}
+
+ErrorDensityReference::~ErrorDensityReference() = default;
+ErrorDensityReference::ErrorDensityReference(ErrorDensityReference&&) noexcept = default;
+ErrorDensityReference& ErrorDensityReference::operator=(ErrorDensityReference&&) noexcept = default;
+
+bool ErrorDensityReference::matches(const TriMesh& mesh, const Parameterization& param, int texture_size,
+                                    const ErrorDensityOptions& o) const {
+  return &mesh == impl_->mesh && texture_size == impl_->texture_size && reference_side(texture_size, o) == impl_->reference &&
+         param.uv == impl_->uv && param.uv_faces == impl_->uv_faces;
+}
+
+void ErrorDensityReference::update(const StrokeFile& history) {
+  impl_->ref_signal.update(history);
+  impl_->half_signal.update(history);
+}
+
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
+                                   const TexelMap& map, const StrokeFile& history, ErrorDensityReference& reference,
+                                   const ErrorDensityOptions& o) {
+  check(mesh, param, texture, map, o, true);
+  if (!reference.matches(mesh, param, texture.width, o))
+    throw InvalidInputError("error density: the reference was built for another layout or texture size");
+  reference.update(history);
+  const ErrorDensityReference::Impl& r = reference.impl();
+  const Raster ref = signal_raster(r.ref_map, r.ref_signal.values(), history.background);
+  const Raster level_b = signal_raster(r.half_map, r.half_signal.values(), history.background);
+  return from_levels(mesh, param, texture, ref, r.ref_map, level_b, o);
 }
 
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,

@@ -79,6 +79,9 @@ struct PaintSession::Impl {
   std::unique_ptr<PointSignalCache> signal_cache;
   // opt.surface_cache > 0: the signal on per-face samples of the input mesh, updated stroke by stroke.
   std::unique_ptr<SurfaceSignalCache> surface;
+  // Each-stroke mode, density-flow: the history's signal on the initial layout's error-model rasters,
+  // updated stroke by stroke (error_density.h), so the error model does not re-evaluate the history.
+  std::unique_ptr<ErrorDensityReference> density_reference;
   double texel_spacing = 0;  // sqrt(surface area / chart texels) of the initial layout
   int reparam_count = 0;
   bool adapted = false;  ///< A re-parameterization has been accepted: the current layout is adapted.
@@ -164,6 +167,9 @@ struct PaintSession::Impl {
   void record_stroke(Stroke s) {
     history.strokes.push_back(std::move(s));
     if (uses_surface_cache()) surface_cache_now();
+    // Each-stroke schedule: the error model's cache follows every stroke too (also when adaptation is
+    // off, since reparameterize() then runs the default method, density-flow).
+    density_reference_now(adapt_options());
     if (!opt.safeguard || opt.safeguard_samples == 0) return;
     ensure_samples();
     cached_signal(samples);
@@ -198,12 +204,27 @@ struct PaintSession::Impl {
   const TriMesh& source_mesh() const { return base_param ? mesh : current_mesh(); }
   const Parameterization& source_param() const { return base_param ? *base_param : *param; }
 
+  /// Each-stroke schedule with replay, density-flow: the error model's history signal on the source
+  /// layout, built once for it and brought up to date (O(new strokes)); null otherwise.
+  ErrorDensityReference* density_reference_now(const AdaptOptions& ao) {
+    if (opt.schedule != ReparamSchedule::EachStroke || opt.update != TextureUpdate::Replay ||
+        ao.mode != AdaptMode::DensityFlow)
+      return nullptr;
+    const TriMesh& m = source_mesh();
+    const Parameterization& src = source_param();
+    if (!density_reference || !density_reference->matches(m, src, opt.texture_size, ao.density))
+      density_reference = std::make_unique<ErrorDensityReference>(m, src, opt.texture_size, history.background, ao.density);
+    density_reference->update(history);
+    return density_reference.get();
+  }
+
   std::unique_ptr<AdaptResult> compute(const AdaptOptions& ao) {
+    ErrorDensityReference* ref = density_reference_now(ao);
     if (base_painter)
-      return std::make_unique<AdaptResult>(
-          adapt_parameterization(mesh, *base_param, base_painter->texture(), base_painter->texel_map(), ao, &history));
+      return std::make_unique<AdaptResult>(adapt_parameterization(mesh, *base_param, base_painter->texture(),
+                                                                  base_painter->texel_map(), ao, &history, ref));
     return std::make_unique<AdaptResult>(
-        adapt_parameterization(current_mesh(), *param, texture(), painter->texel_map(), ao, &history));
+        adapt_parameterization(current_mesh(), *param, texture(), painter->texel_map(), ao, &history, ref));
   }
 
   /// Moves the samples to the candidate's mesh, evaluates the exact signal there and the reference

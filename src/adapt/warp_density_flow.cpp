@@ -20,9 +20,11 @@ class DensityFlowWarp final : public WarpMethod {
     auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "density", 0);
     const ErrorDensityOptions& eo = o.density;
-    ErrorDensity ed = in.history
-                          ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, eo)
-                          : compute_error_density(in.mesh, in.param, in.texture, in.map, eo);
+    ErrorDensityReference* cache = in.density_reference;
+    const bool cached = in.history && cache && cache->matches(in.mesh, in.param, in.texture.width, eo);
+    ErrorDensity ed = cached      ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, *cache, eo)
+                      : in.history ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, eo)
+                                   : compute_error_density(in.mesh, in.param, in.texture, in.map, eo);
     rep.signal_fraction = ed.signal_fraction;
     rep.predicted_gain_db = ed.predicted_gain_db;
     // The error map, scaled to [0,1], is what the studio and the debug maps show as "importance".

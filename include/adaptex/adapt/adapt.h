@@ -146,13 +146,16 @@ struct AdaptResult {
 
 /// Re-parameterizes \p current from the signal of \p texture (drawn with \p current; \p current_map
 /// is its texel map, same size as the texture) and, if given, the exact stroke \p history (used by
-/// density-flow's error model; without it the texture is the only signal).
+/// density-flow's error model; without it the texture is the only signal). \p density_reference, if
+/// given, caches that signal for \p current at the texture's size (error_density.h); it is used when it
+/// matches and makes the error model's cost independent of the history's length.
 /// \pre mesh, current and current_map are consistent; texture non-empty
 /// \throw InvalidInputError inconsistent sizes, bad options (grid < 1, α/β < 0, ...)
 /// \throw CancelledError the progress callback returned false
 AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current,
                                    const ImageRGBA8& texture, const TexelMap& current_map,
-                                   const AdaptOptions& options = {}, const StrokeFile* history = nullptr);
+                                   const AdaptOptions& options = {}, const StrokeFile* history = nullptr,
+                                   ErrorDensityReference* density_reference = nullptr);
 
 /// Name of a mode as used on the command line: "none", "single", "two-stage", "density-flow".
 const char* to_string(AdaptMode mode);

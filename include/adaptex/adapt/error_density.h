@@ -19,6 +19,8 @@
 /// paint. Where nothing is painted (q = 0) the surface keeps at least `floor` times the uniform
 /// surface texel density: the geometric stretch of the current layout stays in the model, so unpainted
 /// regions are never starved and over-stretched ones are not shrunk further.
+#include <memory>
+
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
@@ -58,12 +60,52 @@ struct ErrorDensity {
   int reference_size = 0;         ///< Side of the reference raster used.
 };
 
+/// The exact history signal that compute_error_density() reads, for one layout at one texture size:
+/// at the texel centres of the reference raster (R = reference_factor · N, capped at max_reference) and
+/// of the N/2 level, kept up to date stroke by stroke (paint/signal.h, PointSignalCache). A painting
+/// session re-parameterizes from its initial layout after every stroke (session.h): with this cache
+/// the error model evaluates only the new strokes' dabs, not the whole history (issue 10).
+class ErrorDensityReference {
+ public:
+  /// \param mesh, param the layout (the mesh is kept by reference: it must outlive this object)
+  /// \param texture_size N, the side of the texture the layout is painted at
+  /// \param background the history's background colour, RGB in [0,1]
+  /// \throw InvalidInputError param inconsistent with mesh, texture_size < 1, bad options
+  ErrorDensityReference(const TriMesh& mesh, const Parameterization& param, int texture_size,
+                        const Vec3& background, const ErrorDensityOptions& options = {});
+  ~ErrorDensityReference();
+  ErrorDensityReference(ErrorDensityReference&&) noexcept;
+  ErrorDensityReference& operator=(ErrorDensityReference&&) noexcept;
+
+  /// True if this reference was built for \p mesh (the same object) and \p param (same UVs and faces)
+  /// at \p texture_size with the raster sizes that \p options give.
+  bool matches(const TriMesh& mesh, const Parameterization& param, int texture_size,
+               const ErrorDensityOptions& options) const;
+  /// Composites the strokes of \p history not added yet. \pre the strokes added so far are the first
+  /// ones of \p history \throw InvalidInputError a stroke breaks the contract's rules
+  void update(const StrokeFile& history);
+
+  struct Impl;
+  const Impl& impl() const { return *impl_; }  ///< For compute_error_density().
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
 /// Target density from the exact stroke history: reference raster, error levels and equidistribution as
 /// described above. \p texture / \p map are the current texture and its texel map (the h_N level).
 /// \pre mesh/param consistent; map is the texel map of param at the texture's size
 /// \throw InvalidInputError inconsistent sizes or bad options
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
                                    const TexelMap& map, const StrokeFile& history,
+                                   const ErrorDensityOptions& options = {});
+
+/// The same, with the history's signal from \p reference (brought up to date with \p history first):
+/// equal to the overload above, at a cost that does not grow with the history.
+/// \pre reference.matches(mesh, param, texture.width, options)
+/// \throw InvalidInputError inconsistent sizes, bad options, or a reference for another layout
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
+                                   const TexelMap& map, const StrokeFile& history, ErrorDensityReference& reference,
                                    const ErrorDensityOptions& options = {});
 
 /// The same without a history (`adaptex reparam`): the texture itself is the reference, and the two

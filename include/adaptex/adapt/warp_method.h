@@ -22,6 +22,9 @@ struct WarpInput {
   const TexelMap& map;            ///< Texel map of param at the texture's size.
   const StrokeFile* history;      ///< Exact stroke history, or nullptr (texture only).
   const AdaptOptions& options;
+  /// Optional cache of the history's signal for this layout (error_density.h); used by density-flow
+  /// when it matches the layout, so the error model's cost does not grow with the history.
+  ErrorDensityReference* density_reference = nullptr;
 };
 
 /// A re-parameterization method: computes the warp of [0,1]² (homeomorphism keeping the square).
