@@ -400,7 +400,9 @@ PaintSession::PaintSession(TriMesh mesh, Parameterization initial, const PaintSe
     throw InvalidInputError("paint session: texture size must be in [1, " + std::to_string(kMaxTextureSize) + "], got " +
                             std::to_string(options.texture_size));
   if (options.padding < 0) throw InvalidInputError("paint session: padding must be >= 0");
-  if (options.safeguard_samples < 0) throw InvalidInputError("paint session: safeguard_samples must be >= 0");
+  if (options.safeguard_samples < 0 || options.safeguard_samples > kMaxSafeguardSamples)
+    throw InvalidInputError("paint session: safeguard_samples must be in [0, " + std::to_string(kMaxSafeguardSamples) +
+                            "], got " + std::to_string(options.safeguard_samples));
   if (!(options.surface_cache >= 0) || !std::isfinite(options.surface_cache))
     throw InvalidInputError("paint session: surface_cache must be >= 0");
   m.mesh = std::move(mesh);
@@ -412,6 +414,15 @@ PaintSession::PaintSession(TriMesh mesh, Parameterization initial, const PaintSe
   if (options.schedule == ReparamSchedule::EachStroke && options.adapt.mode != AdaptMode::None) {
     m.base_param = std::make_unique<Parameterization>(*m.param);
     m.base_painter = std::make_unique<Painter>(m.mesh, *m.base_param, m.painter_options(), background);
+  }
+  // The surface cache now, so that a lattice too large fails here and not at some later stroke.
+  if (m.uses_surface_cache()) {
+    try {
+      m.surface = std::make_unique<SurfaceSignalCache>(m.mesh, m.texel_spacing / options.surface_cache, background,
+                                                       kMaxSurfaceCacheSamples);
+    } catch (const InvalidInputError& e) {
+      throw InvalidInputError("paint session: surface_cache " + std::to_string(options.surface_cache) + ": " + e.what());
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/errors.h"
@@ -108,6 +109,7 @@ TEST(PaintSessionCache, SurfaceCacheEachStrokeIsEndModeForTheHistorySoFar) {
   PaintSessionOptions end = each;
   end.schedule = ReparamSchedule::End;
   PaintSession s(sc.mesh, sc.param, each, sc.strokes.background);
+  int accepted = 0;
   for (size_t k = 0; k < sc.strokes.strokes.size(); ++k) {
     s.add_stroke(sc.strokes.strokes[k]);
     PaintSession e(sc.mesh, sc.param, end, sc.strokes.background);
@@ -116,7 +118,10 @@ TEST(PaintSessionCache, SurfaceCacheEachStrokeIsEndModeForTheHistorySoFar) {
     EXPECT_EQ(s.mesh().num_faces(), e.mesh().num_faces()) << "stroke " << k + 1;
     EXPECT_EQ(s.param().uv, e.param().uv) << "stroke " << k + 1;
     EXPECT_EQ(s.texture().data, e.texture().data) << "stroke " << k + 1;
+    accepted += s.reports().back().accepted;
   }
+  // Not vacuous: some candidates were taken (else both sessions just hold the initial layout).
+  EXPECT_GT(accepted, 0);
 }
 
 TEST(PaintSessionCache, SurfaceCacheQualityIsWithinAFewTenthsOfADecibelOfExactReplay) {
@@ -135,15 +140,36 @@ TEST(PaintSessionCache, SurfaceCacheQualityIsWithinAFewTenthsOfADecibelOfExactRe
   cached.finish();
   const double pe = session_psnr(exact), pc = session_psnr(cached);
   std::printf("end mode PSNR: exact replay %.2f dB, surface cache %.2f dB\n", pe, pc);
+  // Not vacuous: the cached session adapted and its texture is the cache's, not a replay.
+  ASSERT_TRUE(cached.reports().back().accepted);
+  EXPECT_NE(cached.texture().data, exact.texture().data);
   EXPECT_GT(pc, pe - 0.3);
   EXPECT_LT(pc, pe + 1.0);
 }
 
-TEST(PaintSessionCache, RejectsANegativeSurfaceCache) {
+TEST(PaintSessionCache, RejectsBadCacheOptionsAtConstruction) {
   const TriMesh mesh = shapes::icosphere(2);
-  PaintSessionOptions o;
-  o.surface_cache = -1;
-  EXPECT_THROW(PaintSession(mesh, unwrap(mesh).param, o), InvalidInputError);
+  const Parameterization param = unwrap(mesh).param;
+  for (double q : {-1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+    PaintSessionOptions o;
+    o.surface_cache = q;
+    EXPECT_THROW(PaintSession(mesh, param, o), InvalidInputError) << q;
+  }
+  // A lattice past kMaxSurfaceCacheSamples (~1e4 samples per texel spacing) fails before any stroke.
+  PaintSessionOptions big;
+  big.surface_cache = 1e4;
+  EXPECT_THROW(PaintSession(mesh, param, big), InvalidInputError);
+  for (int n : {-1, kMaxSafeguardSamples + 1}) {
+    PaintSessionOptions o;
+    o.safeguard_samples = n;
+    EXPECT_THROW(PaintSession(mesh, param, o), InvalidInputError) << n;
+  }
+  // The largest accepted values construct (the samples are drawn at the first stroke, not here).
+  PaintSessionOptions ok;
+  ok.safeguard_samples = kMaxSafeguardSamples;
+  ok.surface_cache = 3;
+  ok.texture_size = 64;
+  EXPECT_NO_THROW(PaintSession(mesh, param, ok));
 }
 
 }  // namespace

@@ -50,6 +50,13 @@ enum class ReparamSchedule {
   End,         ///< Once, in finish().
 };
 
+/// Largest PaintSessionOptions::safeguard_samples: the samples and their cached signal take ~100 bytes
+/// each (1 GB here).
+inline constexpr int kMaxSafeguardSamples = 10'000'000;
+/// Largest surface signal cache of a session (PaintSessionOptions::surface_cache): 50 million samples
+/// (~2.5 GB).
+inline constexpr long long kMaxSurfaceCacheSamples = 50'000'000;
+
 /// Settings of a PaintSession. (The command line's option strings are parsed in apps/cli,
 /// session_options.h.)
 struct PaintSessionOptions {
@@ -59,7 +66,8 @@ struct PaintSessionOptions {
   ReparamSchedule schedule = ReparamSchedule::End;  ///< each-stroke | end.
   TextureUpdate update = TextureUpdate::Replay;     ///< replay | resample.
   bool safeguard = true;       ///< The "never worse" check described above (needs the history).
-  int safeguard_samples = 60000;  ///< Surface samples of the safeguard's error estimate.
+  /// Surface samples of the safeguard's error estimate, in [0, kMaxSafeguardSamples] (0: no estimate).
+  int safeguard_samples = 60000;
   std::uint64_t safeguard_seed = 0x5eedada;  ///< Seed of those samples (paint/eval.h sample_surface).
   /// Accept a candidate only if its estimated MSE is below (1 - margin) x the reference's. 0.02
   /// (≈ 0.09 dB): the estimate uses 60,000 samples, and with margin 0 a candidate measured 0.12 dB
@@ -73,7 +81,8 @@ struct PaintSessionOptions {
   /// The value is the number of samples per texel spacing of the initial layout (3: the sample
   /// spacing is a third of a texel's; the texture is then within a fraction of a dB of exact replay,
   /// tests/paint/test_surface_cache.cpp). 0: exact replay. Applies to layouts computed from the
-  /// input mesh (each-stroke mode, and end mode's first re-parameterization).
+  /// input mesh (each-stroke mode, and end mode's first re-parameterization). Its lattice is built
+  /// when the session is constructed and holds at most kMaxSurfaceCacheSamples samples (~50 bytes each with its spatial index).
   double surface_cache = 0;
   std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
 };
@@ -83,7 +92,9 @@ class PaintSession {
   /// \param mesh the surface (moved into the session)
   /// \param initial its initial parameterization (e.g. unwrap(mesh).param)
   /// \param background colour of unpainted surface (the history's background)
-  /// \throw InvalidInputError bad options or param/mesh mismatch
+  /// \throw InvalidInputError bad options (texture size outside [1, kMaxTextureSize], negative padding,
+  ///        safeguard_samples outside [0, kMaxSafeguardSamples], surface_cache negative or not finite, or
+  ///        a surface cache of more than kMaxSurfaceCacheSamples samples) or param/mesh mismatch
   PaintSession(TriMesh mesh, Parameterization initial, const PaintSessionOptions& options,
                const Vec3& background = Vec3(1, 1, 1));
   ~PaintSession();
