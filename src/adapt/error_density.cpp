@@ -297,9 +297,6 @@ void check(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8&
     throw InvalidInputError("error density: bad max_density / exponent range / blur");
 }
 
-}  // namespace
-
-namespace {
 /// The density from the reference raster \p ref (texel map \p ref_map) and the N/2 level \p level_b of
 /// the exact signal; level a is the texture itself (what the painter stored at h_N).
 ErrorDensity from_levels(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
@@ -330,8 +327,7 @@ struct ErrorDensityReference::Impl {
   const TriMesh* mesh = nullptr;
   std::vector<Vec2> uv;              // the layout it was built for
   std::vector<Face> uv_faces;
-  int texture_size = 0, reference = 0, half = 0;
-  Vec3 background;
+  int texture_size = 0, reference = 0;
   TexelMap ref_map, half_map;
   PointSignalCache ref_signal, half_signal;
 };
@@ -346,7 +342,7 @@ ErrorDensityReference::ErrorDensityReference(const TriMesh& mesh, const Paramete
   TexelMap half_map = build_texel_map(mesh, param, half, half);
   PointSignalCache ref_signal(mesh, texel_points(ref_map), background);
   PointSignalCache half_signal(mesh, texel_points(half_map), background);
-  impl_ = std::make_unique<Impl>(Impl{&mesh, param.uv, param.uv_faces, texture_size, R, half, background,
+  impl_ = std::make_unique<Impl>(Impl{&mesh, param.uv, param.uv_faces, texture_size, R,
                                       std::move(ref_map), std::move(half_map), std::move(ref_signal),
                                       std::move(half_signal)});
 }
@@ -373,7 +369,7 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
   if (!reference.matches(mesh, param, texture.width, o))
     throw InvalidInputError("error density: the reference was built for another layout or texture size");
   reference.update(history);
-  const ErrorDensityReference::Impl& r = reference.impl();
+  const ErrorDensityReference::Impl& r = *reference.impl_;
   const Raster ref = signal_raster(r.ref_map, r.ref_signal.values(), history.background);
   const Raster level_b = signal_raster(r.half_map, r.half_signal.values(), history.background);
   return from_levels(mesh, param, texture, ref, r.ref_map, level_b, o);

@@ -167,9 +167,7 @@ struct PaintSession::Impl {
   void record_stroke(Stroke s) {
     history.strokes.push_back(std::move(s));
     if (uses_surface_cache()) surface_cache_now();
-    // Each-stroke schedule: the error model's cache follows every stroke too (also when adaptation is
-    // off, since reparameterize() then runs the default method, density-flow).
-    density_reference_now(adapt_options());
+    density_reference_now(adapt_options());  // each-stroke density-flow: O(stroke) now, not O(history) later
     if (!opt.safeguard || opt.safeguard_samples == 0) return;
     ensure_samples();
     cached_signal(samples);
@@ -204,16 +202,15 @@ struct PaintSession::Impl {
   const TriMesh& source_mesh() const { return base_param ? mesh : current_mesh(); }
   const Parameterization& source_param() const { return base_param ? *base_param : *param; }
 
-  /// Each-stroke schedule with replay, density-flow: the error model's history signal on the source
-  /// layout, built once for it and brought up to date (O(new strokes)); null otherwise.
+  /// Each-stroke mode (an initial layout on the input mesh, both fixed for the session's life) with
+  /// replay and density-flow: the error model's history signal on that layout, built once and brought
+  /// up to date stroke by stroke (O(new strokes)); null otherwise, where the layout a re-parameterization
+  /// starts from changes and a cache would be rebuilt every time (and could outlive a refined mesh).
   ErrorDensityReference* density_reference_now(const AdaptOptions& ao) {
-    if (opt.schedule != ReparamSchedule::EachStroke || opt.update != TextureUpdate::Replay ||
-        ao.mode != AdaptMode::DensityFlow)
-      return nullptr;
-    const TriMesh& m = source_mesh();
-    const Parameterization& src = source_param();
-    if (!density_reference || !density_reference->matches(m, src, opt.texture_size, ao.density))
-      density_reference = std::make_unique<ErrorDensityReference>(m, src, opt.texture_size, history.background, ao.density);
+    if (!base_param || opt.update != TextureUpdate::Replay || ao.mode != AdaptMode::DensityFlow) return nullptr;
+    if (!density_reference)
+      density_reference =
+          std::make_unique<ErrorDensityReference>(mesh, *base_param, opt.texture_size, history.background, ao.density);
     density_reference->update(history);
     return density_reference.get();
   }

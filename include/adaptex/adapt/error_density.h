@@ -86,9 +86,11 @@ class ErrorDensityReference {
   void update(const StrokeFile& history);
 
   struct Impl;
-  const Impl& impl() const { return *impl_; }  ///< For compute_error_density().
 
  private:
+  friend ErrorDensity compute_error_density(const TriMesh&, const Parameterization&, const ImageRGBA8&,
+                                            const TexelMap&, const StrokeFile&, ErrorDensityReference&,
+                                            const ErrorDensityOptions&);
   std::unique_ptr<Impl> impl_;
 };
 
