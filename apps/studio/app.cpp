@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <thread>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/io/input_file.h"
+#include "adaptex/paint/strokes.h"
 
 namespace adaptex::studio {
 
@@ -352,18 +353,19 @@ void App::on_drop(const std::vector<std::string>& paths) {
   const std::filesystem::path p = paths.front();
   const std::string ext = p.extension().string();
   if (ext == ".json") {
-    // A project or a stroke file.
+    // A project or a stroke file, read once (regular files only, bounded size: a dropped FIFO or
+    // directory is an error, not a hang). Every error message names the file.
     try {
-      std::ifstream in(p);
-      const auto j = nlohmann::json::parse(in);
-      if (j.value("format", "") == "adaptex.studio-project") {
+      const std::string text = read_input_file(p);
+      const auto j = nlohmann::json::parse(text, nullptr, false);
+      if (j.is_object() && j.value("format", "") == "adaptex.studio-project") {
         request_open_project(p);
       } else {
-        replay(load_strokes(p));
+        replay(parse_strokes(text, p.string(), p.parent_path()));
         add_message("replaying " + p.string(), false);
       }
     } catch (const std::exception& e) {
-      add_message(p.string() + ": " + e.what(), true);
+      add_message(e.what(), true);
     }
   } else if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") {
     load_decal(p);

@@ -2,6 +2,8 @@
 /// Project file read / write (see settings.h).
 #include "settings.h"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -79,11 +81,11 @@ void write_project(const std::filesystem::path& path, const Project& p) {
                    {"pitch", p.camera->pitch},       {"fov_y", p.camera->fov_y_degrees}};
   AtomicOutput out;
   const auto tmp = out.add(path);
-  {
-    std::ofstream o(tmp);
-    o << j.dump(1) << "\n";
-    if (!o) throw OutputError(path.string() + ": write failed");
-  }
+  std::ofstream o(tmp);
+  if (!o) throw OutputError(path.string() + ": cannot write (" + std::strerror(errno) + ")");
+  o << j.dump(1) << "\n";
+  o.close();  // flushes: a full disk is reported here, before the file replaces the old one
+  if (!o) throw OutputError(path.string() + ": write failed");
   out.commit();
 }
 

@@ -6,12 +6,16 @@
 /// and the same layout and texture as `adaptex paint`.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <thread>
 
+#include <sys/stat.h>
+
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/image_io.h"
+#include "adaptex/io/input_file.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/painter.h"
 #include "app.h"
@@ -322,6 +326,72 @@ TEST(StudioApp, BadFilesShowAnErrorAndKeepTheModel) {
   EXPECT_EQ(h.app->mesh_path(), good);
   h.app->on_drop({(dir.path / "nope.json").string()});
   EXPECT_TRUE(h.app->messages().back().error);
+}
+
+/// The last message is an error naming \p name.
+void expect_error_naming(const App& app, const std::string& name) {
+  ASSERT_FALSE(app.messages().empty());
+  EXPECT_TRUE(app.messages().back().error);
+  EXPECT_NE(app.messages().back().text.find(name), std::string::npos) << app.messages().back().text;
+}
+
+TEST(StudioApp, BadDroppedJsonFilesNameTheFileAndChangeNothing) {
+  TempDir dir;
+  Harness h;
+  h.drag(150, 150, 250, 150);
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  const auto drop = [&](const std::filesystem::path& p) {
+    h.app->clear_messages();
+    h.app->on_drop({p.string()});
+    EXPECT_FALSE(h.app->confirm());
+    EXPECT_FALSE(h.app->load_running());
+    EXPECT_EQ(h.app->history().strokes().size(), 1u);
+  };
+  drop(dir.path / "missing.json");
+  expect_error_naming(*h.app, "missing.json");
+  std::filesystem::create_directory(dir.path / "folder.json");
+  drop(dir.path / "folder.json");
+  expect_error_naming(*h.app, "folder.json");
+  ASSERT_EQ(mkfifo((dir.path / "pipe.json").c_str(), 0600), 0);
+  drop(dir.path / "pipe.json");  // a FIFO: an error at once, not a UI thread waiting for a writer
+  expect_error_naming(*h.app, "pipe.json");
+  std::ofstream(dir.path / "junk.json") << "{\"format\": \"adaptex.strokes\", ";
+  drop(dir.path / "junk.json");
+  expect_error_naming(*h.app, "junk.json");
+  std::ofstream(dir.path / "list.json") << "[1, 2, 3]";
+  drop(dir.path / "list.json");
+  expect_error_naming(*h.app, "list.json");
+  std::ofstream(dir.path / "bad_stroke.json")
+      << R"({"format": "adaptex.strokes", "version": 1, "strokes": [{"type": "brush", "dabs": []}]})";
+  drop(dir.path / "bad_stroke.json");
+  expect_error_naming(*h.app, "bad_stroke.json");
+}
+
+TEST(StudioApp, SaveAsToAnUnwritablePlaceKeepsTheWorkAndLeavesNoFile) {
+  TempDir dir;
+  Harness h;
+  h.drag(150, 150, 250, 150);
+  const auto good = dir.path / "p.json";
+  ASSERT_TRUE(h.app->save_project(good));
+  const std::string saved = read_input_file(good);
+  h.drag(200, 100, 200, 200);
+  ASSERT_TRUE(h.app->unsaved());
+  std::ofstream(dir.path / "file") << "a regular file";
+  for (const std::filesystem::path& bad : {dir.path / "file" / "p.json", dir.path, std::filesystem::path("/proc/p.json")}) {
+    h.app->clear_messages();
+    EXPECT_FALSE(h.app->save_project(bad)) << bad;
+    expect_error_naming(*h.app, bad.string());
+    EXPECT_TRUE(h.app->unsaved()) << bad;
+    EXPECT_EQ(h.app->project_path(), good) << bad;  // Save still writes to the last good file
+  }
+  EXPECT_EQ(read_input_file(good), saved);  // untouched by the failed attempts
+  EXPECT_FALSE(std::filesystem::exists("/proc/p.json"));
+  std::vector<std::string> left;
+  for (const auto& e : std::filesystem::directory_iterator(dir.path)) left.push_back(e.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"file", "p.json"}));  // no temporary left behind
+  ASSERT_TRUE(h.app->save());
+  EXPECT_EQ(read_project(good).strokes.strokes.size(), 2u);
 }
 
 TEST(StudioApp, LoadingCanBeCancelled) {
