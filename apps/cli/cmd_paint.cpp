@@ -25,18 +25,19 @@ struct PaintCommand {
   PaintRunOptions run;
   std::string grid;  // raw --grid text
   double alpha = std::nan(""), beta = std::nan("");
+  bool grid_given = false, alpha_given = false, beta_given = false;  // the option was on the command line
 };
 
 /// Checks every option before any work is done (so a bad option never costs an unwrap).
 void validate(PaintCommand& c, const Context& ctx) {
   AdaptSettings& a = c.run.adapt;
   a.refine = !c.no_refine;
-  if (!c.grid.empty()) a.grid = parse_grid(c.grid);
-  if (!std::isnan(c.alpha)) {
+  if (c.grid_given) a.grid = parse_grid(c.grid);  // --grid "" is an error, not the default
+  if (c.alpha_given) {  // --alpha nan is an error, not the default
     if (!std::isfinite(c.alpha) || c.alpha < 0) throw InvalidInputError("--alpha must be a finite number >= 0");
     a.alpha = c.alpha;
   }
-  if (!std::isnan(c.beta)) {
+  if (c.beta_given) {
     if (!std::isfinite(c.beta) || c.beta < 0) throw InvalidInputError("--beta must be a finite number >= 0");
     a.beta = c.beta;
   }
@@ -46,6 +47,7 @@ void validate(PaintCommand& c, const Context& ctx) {
     throw InvalidInputError("--grid: single-stage needs one size, e.g. 256");
   if (a.mode == "none" && (!a.grid.empty() || a.alpha || a.beta || !a.debug_maps.empty()))
     ctx.warn("--grid/--alpha/--beta/--debug-maps have no effect with --adapt none");
+  if (a.mode == "density-flow" && !a.grid.empty()) ctx.warn("--grid has no effect with --adapt density-flow");
   // Let the session validate the combination now, before any work is done.
   (void)make_session_options(c.run.size, c.run.padding, a.mode, a.grid, a.alpha.value_or(-1.0),
                              a.beta.value_or(-1.0), a.reparam, a.update, a.debug_maps);
@@ -118,9 +120,12 @@ void add_paint_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   sub->add_flag("--no-refine", cmd->no_refine,
                 "Keep the input's vertices (density-flow refines triangles too large for the warp)");
-  sub->add_option("--grid", cmd->grid, "Relaxation grid size(s): coarse,fine for two-stage (e.g. 16,256)");
-  sub->add_option("--alpha", cmd->alpha, "L_s^2 weight of the geometric stretch");
-  sub->add_option("--beta", cmd->beta, "L_s^2 weight of the signal stretch");
+  sub->add_option("--grid", cmd->grid, "Relaxation grid size(s): coarse,fine for two-stage (e.g. 16,256)")
+      ->each([cmd](const std::string&) { cmd->grid_given = true; });
+  sub->add_option("--alpha", cmd->alpha, "L_s^2 weight of the geometric stretch")
+      ->each([cmd](const std::string&) { cmd->alpha_given = true; });
+  sub->add_option("--beta", cmd->beta, "L_s^2 weight of the signal stretch")
+      ->each([cmd](const std::string&) { cmd->beta_given = true; });
   sub->add_option("--reparam", cmd->run.adapt.reparam, "When to re-parameterize: each-stroke | end")
       ->check(CLI::IsMember({"each-stroke", "end"}))
       ->capture_default_str();

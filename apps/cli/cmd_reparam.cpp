@@ -2,6 +2,7 @@
 // signal of the texture (thesis §3.5–§3.8), in resample mode (§3.7.3): what a user with an old asset
 // runs. Writes NAME.obj/.mtl/.png/.glb and report.json into OUTDIR, all or nothing.
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -28,6 +29,7 @@ namespace {
 struct ReparamArgs {
   std::string mesh, texture, outdir, name, grid, mode = to_string(AdaptOptions{}.mode), debug_maps;
   bool no_refine = false;
+  bool grid_given = false;  // --grid was on the command line
   double alpha = AdaptOptions{}.alpha, beta = AdaptOptions{}.beta;
   int size = 0, padding = 4;
 };
@@ -43,8 +45,9 @@ AdaptOptions reparam_options(const ReparamArgs& a) {
   opt.refine = !a.no_refine;
   opt.alpha = a.alpha;
   opt.beta = a.beta;
-  if (!a.grid.empty()) set_grid(opt, parse_grid(a.grid));
-  if (!(opt.alpha >= 0) || !(opt.beta >= 0)) throw InvalidInputError("--alpha and --beta must be >= 0");
+  if (a.grid_given) set_grid(opt, parse_grid(a.grid));  // --grid "" is an error, not the default
+  if (!(opt.alpha >= 0) || !(opt.beta >= 0) || !std::isfinite(opt.alpha) || !std::isfinite(opt.beta))
+    throw InvalidInputError("--alpha and --beta must be finite numbers >= 0");
   check_export_name(a.name.empty() ? "mesh" : a.name);
   return opt;
 }
@@ -128,7 +131,8 @@ void add_reparam_command(CLI::App& app, Context& ctx) {
   sub->add_option("--adapt", a->mode, "density-flow | two-stage | single")->capture_default_str();
   sub->add_flag("--no-refine", a->no_refine,
                 "Keep the input's vertices (density-flow refines triangles too large for the warp)");
-  sub->add_option("--grid", a->grid, "Grid cells per side: FINE or COARSE,FINE (default 16,256)");
+  sub->add_option("--grid", a->grid, "Grid cells per side: FINE or COARSE,FINE (default 16,256)")
+      ->each([a](const std::string&) { a->grid_given = true; });
   sub->add_option("--alpha", a->alpha, "L_s^2 weight of the geometry stretch where there is signal")->capture_default_str();
   sub->add_option("--beta", a->beta, "L_s^2 weight of the signal stretch E_h")->capture_default_str();
   sub->add_option("--size", a->size, "Output texture width = height (default: the input texture's size)")

@@ -1,6 +1,7 @@
 // Option strings of `adaptex paint` -> PaintSessionOptions.
 #include "session_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -13,20 +14,19 @@ std::vector<int> parse_grid(const std::string& text) {
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {
-    size_t used = 0;
-    int v = 0;
-    try {
-      v = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != item.size() || v < 2 || v > 4096)
+    // Digits only: std::stoi alone would also take " 16" and "+16".
+    const bool digits = !item.empty() && item.size() <= 4 &&
+                        std::all_of(item.begin(), item.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+    const int v = digits ? std::stoi(item) : 0;
+    if (v < 2 || v > 4096)
       throw InvalidInputError("--grid: '" + text +
                               "' must be one or two comma-separated integers in [2, 4096] (e.g. 16,256)");
     out.push_back(v);
   }
   if (out.empty() || out.size() > 2 || text.back() == ',')
     throw InvalidInputError("--grid: '" + text + "' must be one or two comma-separated integers (e.g. 16,256)");
+  if (out.size() == 2 && out[0] > out[1])
+    throw InvalidInputError("--grid: '" + text + "': the coarse grid must not be finer than the fine one (e.g. 16,256)");
   return out;
 }
 

@@ -11,7 +11,8 @@
 
 namespace adaptex::cli {
 
-/// Parses the text of `--grid`: "FINE" or "COARSE,FINE" (e.g. "16,256"), each in [2, 4096].
+/// Parses the text of `--grid`: "FINE" or "COARSE,FINE" (e.g. "16,256"), decimal digits, each in
+/// [2, 4096], COARSE <= FINE.
 /// \throw InvalidInputError one line naming --grid and the text
 std::vector<int> parse_grid(const std::string& text);
 /// Sets the relaxation grid sizes of \p o from \p grid: {} keeps the defaults, {FINE} or

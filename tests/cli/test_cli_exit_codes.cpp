@@ -151,5 +151,18 @@ TEST_F(CliExitCodes, LayoutSizeOutOfRangeIsBadInput) {
   EXPECT_EQ(img.height, 16);
 }
 
+TEST_F(CliExitCodes, ReparamBadGridAndWeightsAreBadInput) {
+  // The options are checked before the files are read (the mesh stands in for the texture here).
+  const std::string base = "-q reparam " + q(mesh) + " " + q(mesh) + " -o " + q(dir.path / "r");
+  for (const std::string bad : {"--grid ''", "--grid ' 16'", "--grid 256,16", "--grid 16,", "--alpha inf",
+                                "--beta nan", "--alpha -1"}) {
+    const auto r = run_cli(base + " " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find(bad.substr(0, 6)), std::string::npos) << r.err;  // names the option
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_EQ(files_in(dir.path), std::vector<std::string>{"ball.obj"});
+}
+
 }  // namespace
 }  // namespace adaptex

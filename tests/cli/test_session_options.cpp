@@ -48,7 +48,9 @@ TEST(CliSessionOptions, BadStringsThrowInvalidInput) {
 TEST(CliSessionOptions, GridTextOfPaintAndReparam) {
   EXPECT_EQ(parse_grid("16,256"), (std::vector<int>{16, 256}));
   EXPECT_EQ(parse_grid("64"), (std::vector<int>{64}));
-  for (const char* bad : {"", "16,x", "16,", "1", "8,64,128", "5000", "16 ,64", "0x10"})
+  EXPECT_EQ(parse_grid("64,64"), (std::vector<int>{64, 64}));
+  for (const char* bad : {"", "16,x", "16,", ",16", "1", "8,64,128", "5000", "16 ,64", " 16", "+16", "-16", "0x10",
+                          "256,16", "99999999999"})
     EXPECT_THROW(parse_grid(bad), InvalidInputError) << bad;
   AdaptOptions o;
   set_grid(o, {});

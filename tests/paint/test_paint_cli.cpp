@@ -233,6 +233,11 @@ TEST(PaintCli, BadInputsExit2WithOneLineAndNoFiles) {
   expect_clean_failure(test::run_cli(good + " --adapt two-stage --grid 16,x"), "--grid", out);
   expect_clean_failure(test::run_cli(good + " --adapt two-stage --alpha -1"), "--alpha", out);
   expect_clean_failure(test::run_cli(good + " --grid 16,x"), "--grid", out);
+  expect_clean_failure(test::run_cli(good + " --grid ''"), "--grid", out);  // given empty: not the default
+  expect_clean_failure(test::run_cli(good + " --grid ' 64'"), "--grid", out);
+  expect_clean_failure(test::run_cli(good + " --adapt two-stage --grid 256,16"), "--grid", out);
+  expect_clean_failure(test::run_cli(good + " --alpha nan"), "--alpha", out);
+  expect_clean_failure(test::run_cli(good + " --beta inf"), "--beta", out);
   expect_clean_failure(test::run_cli(good + " --reparam often"), "--reparam", out);
   expect_clean_failure(test::run_cli(good + " --update guess"), "--update", out);
   expect_clean_failure(test::run_cli(good + " --name 'a b'"), "name", out);
