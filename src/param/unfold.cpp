@@ -7,7 +7,9 @@
 #include <limits>
 #include <numeric>
 #include <queue>
+#include <string>
 
+#include "adaptex/core/errors.h"
 #include "adaptex/core/parameterization.h"
 #include "adaptex/core/topology.h"
 #include "adaptex/param/stretch.h"
@@ -110,13 +112,24 @@ std::vector<Vec2> convex_hull(std::vector<Vec2> p) {
 }  // namespace
 
 std::optional<PolygonLayout> unfold_polygon(const TriMesh& disk) {
+  const int nv = disk.num_vertices();
+  for (const Face& t : disk.faces)
+    for (int v : t)
+      if (v < 0 || v >= nv)
+        throw InvalidInputError("unfold_polygon: face index " + std::to_string(v) + " is outside [0, " +
+                                std::to_string(nv) + ")");
+  for (const Vec3& p : disk.positions)
+    if (!p.allFinite()) throw InvalidInputError("unfold_polygon: a vertex position is not finite");
   // A triangulated polygon has F = V - 2 (V boundary edges, 2E = 3F + V, V - E + F = 1): an O(1)
   // test that turns away every other mesh before its edges are built.
   if (disk.faces.empty() || disk.num_faces() != disk.num_vertices() - 2) return std::nullopt;
   const EdgeConnectivity ec = build_edges(disk);
   if (!is_triangulated_polygon(disk, ec)) return std::nullopt;
   std::vector<Vec2> uv = unfold_faces(disk, ec);
-  if (uv.empty()) return std::nullopt;
+  // Finite positions can still overflow (coordinates near 1e308): such a layout has no rectangle,
+  // and the hull's sort needs comparable (non-NaN) points.
+  if (uv.empty() || !std::all_of(uv.begin(), uv.end(), [](const Vec2& q) { return q.allFinite(); }))
+    return std::nullopt;
 
   // Smallest bounding rectangle: one of its sides lies along an edge of the convex hull.
   const std::vector<Vec2> hull = convex_hull(uv);

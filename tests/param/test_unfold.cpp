@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
+#include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unfold.h"
@@ -109,6 +111,34 @@ TEST(Unfold, RejectsInteriorVerticesAndOverlaps) {
   saddle.positions.resize(7);
   EXPECT_TRUE(unfold_polygon(saddle).has_value());
   EXPECT_FALSE(unfold_polygon(TriMesh{}).has_value());
+}
+
+TEST(Unfold, BadInputThrowsOrHasNoLayout) {
+  // Indices outside the positions and non-finite positions: InvalidInputError, not a read out of
+  // bounds or a sort of NaN points.
+  TriMesh bad_index = strip(5);
+  bad_index.faces[2][1] = 7;
+  EXPECT_THROW(unfold_polygon(bad_index), InvalidInputError);
+  bad_index.faces[2][1] = -1;
+  EXPECT_THROW(unfold_polygon(bad_index), InvalidInputError);
+  for (double x : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    TriMesh nan = strip(40);
+    nan.positions[20].y() = x;
+    EXPECT_THROW(unfold_polygon(nan), InvalidInputError) << x;
+  }
+  // Finite coordinates near the largest double (up to 5.5e307): the squared edge lengths overflow,
+  // so there is no layout.
+  TriMesh huge = strip(10);
+  for (Vec3& p : huge.positions) p *= 1e307;
+  EXPECT_FALSE(unfold_polygon(huge).has_value());
+  // Every face with zero area (all vertices on a line): no layout.
+  TriMesh line = strip(10);
+  for (Vec3& p : line.positions) p = Vec3(p.x(), 0, 0);
+  EXPECT_FALSE(unfold_polygon(line).has_value());
+  // A face wound against its neighbours lands on top of its parent: no layout.
+  TriMesh flipped = strip(5);
+  std::swap(flipped.faces[2][1], flipped.faces[2][2]);
+  EXPECT_FALSE(unfold_polygon(flipped).has_value());
 }
 
 TEST(Unfold, TinyComponentsReachHalfTheTexelsWithTheGutter) {

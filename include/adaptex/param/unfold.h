@@ -33,10 +33,11 @@ struct PolygonLayout {
 /// triangle is flipped or degenerate (measure_stretch()) or two overlap
 /// (count_overlapping_triangles()): an unfolding may wrap around a vertex with more than 2π of
 /// angle, and a zero-area face has no layout.
-/// \pre \p disk has consistently wound faces with valid indices
+/// \pre \p disk has consistently wound faces (faces wound against their neighbours give a folded
+///      layout, hence std::nullopt)
 /// \return the layout, or std::nullopt when \p disk is not a triangulated polygon or its unfolding
-///         folds, overlaps or degenerates
-/// \throw nothing beyond std::bad_alloc
+///         folds, overlaps, degenerates or overflows (a zero-area face, coordinates near 1e308)
+/// \throw InvalidInputError a face index outside [0, V) or a position that is not finite
 std::optional<PolygonLayout> unfold_polygon(const TriMesh& disk);
 
 }  // namespace adaptex
