@@ -17,6 +17,7 @@
 #include <tbb/parallel_for.h>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 #include "adaptex/core/orientation.h"
 #include "adaptex/core/pinched.h"
 #include "adaptex/core/topology.h"
@@ -618,10 +619,12 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   // of 1.5 and 4/3; docs/charts.md).
   if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share) {
     std::vector<std::optional<ChartSegmenter>> segmenters(comps.size());
-    for (int k = std::max(4, 2 * topo.num_components); k <= options.max_charts &&
-                                                       rep.effective_texel_share < options.min_texel_share;
+    // 64-bit counts: with max_charts near INT_MAX the next count would overflow an int.
+    for (long long k = std::max(4, 2 * topo.num_components);
+         k <= options.max_charts && rep.effective_texel_share < options.min_texel_share;
          k = k % 3 == 0 ? k / 3 * 4 : k / 2 * 3) {
-      const std::vector<Component> pieces = segment_components(comps, k, options, segmenters);
+      const std::vector<Component> pieces =
+          segment_components(comps, static_cast<int>(k), options, segmenters);
       if (static_cast<int>(pieces.size()) <= rep.num_charts) continue;
       UnwrapResult attempt;
       attempt.report = rep;
@@ -643,8 +646,9 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
 }
 
 UnwrapOptions unwrap_options_for_texture(int texture_size, int padding, UnwrapOptions base) {
-  if (texture_size < 1 || padding < 0)
-    throw InvalidInputError("unwrap options: texture size must be >= 1 and padding >= 0, got " +
+  if (texture_size < 1 || texture_size > kMaxTextureSize || padding < 0)
+    throw InvalidInputError("unwrap options: texture size must be in [1, " +
+                            std::to_string(kMaxTextureSize) + "] and padding >= 0, got " +
                             std::to_string(texture_size) + " and " + std::to_string(padding));
   base.gutter_texture_size = texture_size;
   base.gutter_texels = std::min(std::max(2.0, static_cast<double>(padding)), 0.2 * texture_size);

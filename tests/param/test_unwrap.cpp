@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "adaptex/core/errors.h"
@@ -95,6 +96,18 @@ TEST(Unwrap, RejectsNonManifoldAndEmptyInput) {
   UnwrapOptions bad;
   bad.chart_padding = 0.5;
   EXPECT_THROW(unwrap(shapes::plane(2), bad), InvalidInputError);
+}
+
+TEST(Unwrap, AutoStopsAtTheLargestChartCount) {
+  // An unreachable share and the largest max_charts: auto tries 4, 6, 8, ... up to INT_MAX and
+  // stops (the count after 3 * 2^29 does not fit an int; it used to wrap and cycle for ever).
+  UnwrapOptions o;
+  o.min_texel_share = 2;
+  o.max_charts = std::numeric_limits<int>::max();
+  const TriMesh m = shapes::plane(2);
+  const UnwrapResult r = unwrap(m, o);
+  EXPECT_GE(r.report.num_charts, 1);
+  EXPECT_LE(r.report.num_charts, m.num_faces());
 }
 
 TEST(Pack, SquaresAreDisjointPaddedAndInside) {

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 #include "adaptex/param/unwrap.h"
 
 namespace adaptex {
@@ -17,6 +18,8 @@ TEST(UnwrapOptions, GutterIsThePaddingInTexelsOfTheTexture) {
   EXPECT_DOUBLE_EQ(unwrap_options_for_texture(256, 0).gutter_texels, 2.0);   // at least 2 texels
   EXPECT_DOUBLE_EQ(unwrap_options_for_texture(16, 8).gutter_texels, 3.2);    // at most a fifth
   EXPECT_THROW(unwrap_options_for_texture(0, 4), InvalidInputError);
+  EXPECT_EQ(unwrap_options_for_texture(kMaxTextureSize, 4).gutter_texture_size, kMaxTextureSize);
+  EXPECT_THROW(unwrap_options_for_texture(kMaxTextureSize + 1, 4), InvalidInputError);
   EXPECT_THROW(unwrap_options_for_texture(256, -1), InvalidInputError);
 }
 

@@ -18,7 +18,7 @@ enum class ChartMode {
   /// One chart per connected component (thesis §3.2): no seams beyond the cut.
   Single,
   /// One chart per component when that layout reaches UnwrapOptions::min_texel_share; otherwise
-  /// the components are segmented into 4, 8, 16, ... charts (up to max_charts) until a layout
+  /// the components are segmented into 4, 6, 8, 12, 16, ... charts (up to max_charts) until a layout
   /// reaches it, and the layout with the highest effective texel share is kept.
   Auto,
 };
@@ -118,6 +118,8 @@ struct UnwrapResult {
 /// corners (so a face wound against its neighbours has a UV triangle of negative signed area).
 /// \pre mesh has manifold edges, valid indices and no degenerate faces (as read_mesh() returns it)
 /// \throw TopologyError non-manifold edges, a non-orientable component
+/// \throw InvalidInputError an option out of range (chart_padding outside [0, 0.25), negative
+///        counts, max_charts < 1, a gutter of a quarter of the square or more)
 /// \throw SolverError the sparse solve failed
 /// \throw CancelledError the progress callback returned false
 UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options = {});
@@ -128,8 +130,8 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options = {});
 /// padding; measured with `adaptex paint` + `adaptex eval` (docs/quality.md, "Gutter of a paint run"),
 /// 2 texels beat 4 by a median 0.25 dB and 8 by 0.71 dB, so a wider gutter only costs texels. Used by
 /// `adaptex paint --size N --padding P` and by the studio, so both lay a mesh out the same way.
-/// \pre texture_size >= 1, padding >= 0
-/// \throw InvalidInputError texture_size < 1 or padding < 0
+/// \pre 1 <= texture_size <= kMaxTextureSize (core/limits.h), padding >= 0
+/// \throw InvalidInputError texture_size outside [1, kMaxTextureSize] or padding < 0
 UnwrapOptions unwrap_options_for_texture(int texture_size, int padding, UnwrapOptions base = {});
 
 }  // namespace adaptex
