@@ -7,24 +7,21 @@
 //       --benchmark_report_aggregates_only=true   (one line)
 #include <benchmark/benchmark.h>
 
-#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "adaptex/io/mesh_io.h"
 #include "adaptex/param/charts.h"
+#include "bench_shared_mesh.h"
 
 using namespace adaptex;
 
 namespace {
 
 void run(benchmark::State& state, const std::string& file, int charts) {
-  const std::filesystem::path path = std::filesystem::path(ADAPTEX_SHARED_DIR) / "meshes" / file;
-  if (!std::filesystem::exists(path)) {
-    state.SkipWithError("mesh not available (../shared/meshes absent)");
-    return;
-  }
-  const TriMesh mesh = read_mesh(path);
+  const std::optional<TriMesh> loaded = bench::shared_mesh_or_skip(state, file);
+  if (!loaded) return;
+  const TriMesh& mesh = *loaded;
   ChartSegmentOptions options;
   options.num_charts = charts;
   options.normal_weight = 0;  // UnwrapOptions::chart_normal_weight default
@@ -38,12 +35,9 @@ void run(benchmark::State& state, const std::string& file, int charts) {
 /// The chart counts auto tries on dino (4, 6, 8, 12), with one ChartSegmenter kept across them
 /// (\p reuse, as unwrap() does) or segment_charts() each time.
 void run_sequence(benchmark::State& state, const std::string& file, bool reuse) {
-  const std::filesystem::path path = std::filesystem::path(ADAPTEX_SHARED_DIR) / "meshes" / file;
-  if (!std::filesystem::exists(path)) {
-    state.SkipWithError("mesh not available (../shared/meshes absent)");
-    return;
-  }
-  const TriMesh mesh = read_mesh(path);
+  const std::optional<TriMesh> loaded = bench::shared_mesh_or_skip(state, file);
+  if (!loaded) return;
+  const TriMesh& mesh = *loaded;
   for (auto _ : state) {
     ChartSegmenter segmenter(mesh);
     for (int k : {4, 6, 8, 12}) {
@@ -60,24 +54,12 @@ void run_sequence(benchmark::State& state, const std::string& file, bool reuse) 
 
 int main(int argc, char** argv) {
   for (const char* file : {"triceratops.off", "dino.off"})
-    for (int k : {4, 6, 8, 12, 64}) {
-      const std::string label = std::string("Segment/") + file + "/" + std::to_string(k);
-      benchmark::RegisterBenchmark(label.c_str(), [file, k](benchmark::State& s) { run(s, file, k); })
-          ->Unit(benchmark::kMillisecond)
-          ->MeasureProcessCPUTime()
-          ->UseRealTime();
-    }
+    for (int k : {4, 6, 8, 12, 64})
+      bench::register_ms(std::string("Segment/") + file + "/" + std::to_string(k),
+                         [file, k](benchmark::State& s) { run(s, file, k); });
   for (const char* file : {"triceratops.off", "dino.off"})
-    for (bool reuse : {false, true}) {
-      const std::string label = std::string("Sequence/") + file + (reuse ? "/reused" : "/fresh");
-      benchmark::RegisterBenchmark(label.c_str(),
-                                   [file, reuse](benchmark::State& s) { run_sequence(s, file, reuse); })
-          ->Unit(benchmark::kMillisecond)
-          ->MeasureProcessCPUTime()
-          ->UseRealTime();
-    }
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+    for (bool reuse : {false, true})
+      bench::register_ms(std::string("Sequence/") + file + (reuse ? "/reused" : "/fresh"),
+                         [file, reuse](benchmark::State& s) { run_sequence(s, file, reuse); });
+  return bench::run_benchmarks(argc, argv);
 }

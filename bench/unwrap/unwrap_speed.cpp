@@ -14,11 +14,11 @@
 // Results: docs/benchmarks.md.
 #include <benchmark/benchmark.h>
 
-#include <filesystem>
+#include <optional>
 #include <string>
 
-#include "adaptex/io/mesh_io.h"
 #include "adaptex/param/unwrap.h"
+#include "bench_shared_mesh.h"
 
 using namespace adaptex;
 
@@ -38,12 +38,9 @@ constexpr ThesisRow kRows[] = {
 };
 
 void run(benchmark::State& state, const ThesisRow& row, ChartMode mode) {
-  const std::filesystem::path file = std::filesystem::path(ADAPTEX_SHARED_DIR) / "meshes" / row.file;
-  if (!std::filesystem::exists(file)) {
-    state.SkipWithError("mesh not available (../shared/meshes absent)");
-    return;
-  }
-  const TriMesh mesh = read_mesh(file);
+  const std::optional<TriMesh> loaded = bench::shared_mesh_or_skip(state, row.file);
+  if (!loaded) return;
+  const TriMesh& mesh = *loaded;
   UnwrapOptions options;
   options.charts = mode;
   UnwrapResult r;
@@ -64,18 +61,9 @@ void run(benchmark::State& state, const ThesisRow& row, ChartMode mode) {
 
 int main(int argc, char** argv) {
   for (const ChartMode mode : {ChartMode::Auto, ChartMode::Single})
-    for (const ThesisRow& row : kRows) {
-      const std::string label = std::string("Unwrap/") +
-                                (mode == ChartMode::Auto ? "auto/" : "single/") + row.thesis_model +
-                                "/" + row.file;
-      benchmark::RegisterBenchmark(label.c_str(),
-                                   [&row, mode](benchmark::State& s) { run(s, row, mode); })
-          ->Unit(benchmark::kMillisecond)
-          ->MeasureProcessCPUTime()
-          ->UseRealTime();
-    }
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+    for (const ThesisRow& row : kRows)
+      bench::register_ms(std::string("Unwrap/") + (mode == ChartMode::Auto ? "auto/" : "single/") +
+                             row.thesis_model + "/" + row.file,
+                         [&row, mode](benchmark::State& s) { run(s, row, mode); });
+  return bench::run_benchmarks(argc, argv);
 }
