@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <map>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -15,6 +15,7 @@
 
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/image_io.h"
+#include "adaptex/io/mesh_io.h"
 #include "test_support.h"
 #include "unwrap_checks.h"
 
@@ -158,45 +159,19 @@ TEST(UnwrapCli, BadInputExitsWithTwoAndLeavesNoFile) {
   EXPECT_TRUE(std::filesystem::exists(out));
 }
 
-/// Bounding boxes (lo, hi) of the charts of an OBJ's UV layout: the connected parts of the faces
-/// through shared vt indices.
+/// Bounding boxes (lo, hi) of the charts of an OBJ's UV layout (read_textured_obj(): the charts are
+/// the connected parts of the UV faces).
 std::vector<std::pair<Vec2, Vec2>> obj_chart_boxes(const std::filesystem::path& obj) {
-  std::ifstream in(obj);
-  std::string line;
-  std::vector<Vec2> vt;
-  std::vector<std::vector<int>> faces;
-  while (std::getline(in, line)) {
-    std::istringstream ls(line);
-    std::string tag;
-    ls >> tag;
-    if (tag == "vt") {
-      double u = 0, v = 0;
-      ls >> u >> v;
-      vt.emplace_back(u, v);
-    } else if (tag == "f") {
-      std::vector<int> f;
-      for (std::string c; ls >> c;) f.push_back(std::stoi(c.substr(c.find('/') + 1)) - 1);
-      faces.push_back(f);
+  const Parameterization p = read_textured_obj(obj).param;
+  const Vec2 inf = Vec2::Constant(std::numeric_limits<double>::infinity());
+  std::vector<std::pair<Vec2, Vec2>> box(p.num_charts, {inf, -inf});
+  for (size_t f = 0; f < p.uv_faces.size(); ++f)
+    for (int w : p.uv_faces[f]) {
+      auto& [lo, hi] = box[p.face_chart[f]];
+      lo = lo.cwiseMin(p.uv[w]);
+      hi = hi.cwiseMax(p.uv[w]);
     }
-  }
-  std::vector<int> parent(vt.size());
-  for (size_t i = 0; i < parent.size(); ++i) parent[i] = static_cast<int>(i);
-  auto find = [&](int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& f : faces)
-    for (int k : f) parent[find(k)] = find(f[0]);
-  std::map<int, std::pair<Vec2, Vec2>> box;
-  for (const auto& f : faces)
-    for (int k : f) {
-      auto it = box.try_emplace(find(k), vt[k], vt[k]).first;
-      it->second.first = it->second.first.cwiseMin(vt[k]);
-      it->second.second = it->second.second.cwiseMax(vt[k]);
-    }
-  std::vector<std::pair<Vec2, Vec2>> out;
-  for (const auto& [root, b] : box) out.push_back(b);
-  return out;
+  return box;
 }
 
 TEST(UnwrapCli, PaintUnwrapsWithTheGutterInTexelsOfItsTexture) {
