@@ -8,7 +8,7 @@ PACKAGES=(
   libembree-dev libcgal-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri mesa-utils
-  xvfb xdotool x11-utils
+  xvfb xdotool x11-utils libx11-dev
 )
 # --fuzz: also what scripts/fuzz.sh needs (clang and its libFuzzer / sanitizer runtimes); not by default.
 if [ "${1:-}" = "--fuzz" ]; then PACKAGES+=(clang libclang-rt-14-dev); fi

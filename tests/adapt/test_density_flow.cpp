@@ -89,6 +89,28 @@ TEST(DensityFlow, RejectsBadDensities) {
   d.at(3, 3) = std::nanf("");
   EXPECT_THROW(density_equalizing_warp(d), InvalidInputError);
   EXPECT_THROW(density_equalizing_warp(ImageF(8, 4, 1.0f)), InvalidInputError);
+  for (double step : {0.0, -1.0, std::nan("")}) {
+    DensityFlowOptions o;
+    o.max_step_cells = step;
+    EXPECT_THROW(density_equalizing_warp(ImageF(8, 8, 1.0f), o), InvalidInputError) << step;
+  }
+}
+
+TEST(DensityFlow, LongerStepsReachTheSameDensity) {
+  // max_step_cells only limits the step; the error control keeps the accuracy (density_flow.h).
+  const ImageF d = bump(64, 12.0, 0.1, 0.45, 0.5);
+  DensityFlowOptions fine, coarse;
+  fine.cells = coarse.cells = 64;
+  fine.max_step_cells = 0.5;
+  coarse.max_step_cells = 2.0;
+  DensityFlowStats sf, sc;
+  const GridWarp a = density_equalizing_warp(d, fine, &sf), b = density_equalizing_warp(d, coarse, &sc);
+  EXPECT_LT(sc.total_steps, sf.total_steps);          // fewer steps ...
+  EXPECT_LT(sc.density_error, sf.density_error + 0.01);  // ... and the same density
+  double most = 0;
+  for (int j = 0; j <= a.n; ++j)
+    for (int i = 0; i <= a.n; ++i) most = std::max(most, (a.at(i, j) - b.at(i, j)).norm());
+  EXPECT_LT(most, 0.5 / 64);  // within half a cell everywhere
 }
 
 TEST(DensityFlow, SharpContrastIsUntangledIntoAOneToOneGrid) {
