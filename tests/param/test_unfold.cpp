@@ -135,6 +135,16 @@ TEST(Unfold, BadInputThrowsOrHasNoLayout) {
   TriMesh line = strip(10);
   for (Vec3& p : line.positions) p = Vec3(p.x(), 0, 0);
   EXPECT_FALSE(unfold_polygon(line).has_value());
+  // A face with a repeated vertex (zero area, as a "triangle" of a scan's duplicate points): no
+  // layout.
+  for (const Face& f : {Face{0, 0, 1}, Face{2, 2, 2}}) {
+    TriMesh repeated = strip(5);
+    repeated.faces[2] = f;
+    EXPECT_FALSE(unfold_polygon(repeated).has_value());
+  }
+  TriMesh one = strip(1);
+  one.faces[0] = {0, 1, 1};
+  EXPECT_FALSE(unfold_polygon(one).has_value());
   // A face wound against its neighbours lands on top of its parent: no layout.
   TriMesh flipped = strip(5);
   std::swap(flipped.faces[2][1], flipped.faces[2][2]);
