@@ -18,6 +18,7 @@
 #include "adaptex/paint/painter.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
+#include "test_scene.h"
 #include "reference_stretch.h"
 #include "test_support.h"
 
@@ -206,12 +207,10 @@ TEST(AdaptMesh, ReplayEqualsFreshPaintAndResampleLosesSomething) {
 }
 
 TEST(AdaptMesh, SafeguardNeverAcceptsAWorseLayout) {
-  const TriMesh mesh = shapes::torus(40, 20);
-  const Parameterization param = unwrap(mesh).param;
-  GenerateOptions go;
-  go.kind = StrokeKind::Blobs;
-  go.count = 3;
-  const StrokeFile strokes = generate_strokes(mesh, go);
+  const test::Scene sc = test::torus_scene(40, 20, StrokeKind::Blobs, 3);
+  const TriMesh& mesh = sc.mesh;
+  const Parameterization& param = sc.param;
+  const StrokeFile& strokes = sc.strokes;
   PaintSessionOptions so;
   so.texture_size = 64;
   so.schedule = ReparamSchedule::EachStroke;

@@ -8,17 +8,16 @@
 #include "adaptex/paint/generate.h"
 #include "adaptex/paint/painter.h"
 #include "adaptex/param/unwrap.h"
+#include "test_scene.h"
 
 namespace adaptex {
 namespace {
 
 TEST(ErrorDensity, CachedHistoryGivesTheSameDensityAfterEveryStroke) {
-  const TriMesh mesh = shapes::torus(48, 24);
-  const Parameterization param = unwrap(mesh).param;
-  GenerateOptions go;
-  go.kind = StrokeKind::Mixed;
-  go.count = 6;
-  const StrokeFile all = generate_strokes(mesh, go);
+  const test::Scene sc = test::torus_scene(48, 24, StrokeKind::Mixed, 6);
+  const TriMesh& mesh = sc.mesh;
+  const Parameterization& param = sc.param;
+  const StrokeFile& all = sc.strokes;
   ASSERT_EQ(all.strokes.size(), 6u);
   const int N = 64;
   Painter painter(mesh, param, PainterOptions{N, N, 4}, all.background);

@@ -13,31 +13,15 @@
 #include "adaptex/paint/generate.h"
 #include "adaptex/paint/signal.h"
 #include "adaptex/param/unwrap.h"
+#include "test_scene.h"
 
 namespace adaptex {
 namespace {
 
-StrokeFile mixed(const TriMesh& mesh, int count) {
-  GenerateOptions go;
-  go.kind = StrokeKind::Mixed;
-  go.count = count;
-  go.seed = 11;
-  return generate_strokes(mesh, go);
-}
+using test::Scene;
 
-/// A torus of (major x minor) segments, its unwrap() layout and \p count mixed strokes.
-struct Scene {
-  TriMesh mesh;
-  Parameterization param;
-  StrokeFile strokes;
-};
-Scene torus_scene(int major, int minor, int count) {
-  Scene sc;
-  sc.mesh = shapes::torus(major, minor);
-  sc.param = unwrap(sc.mesh).param;
-  sc.strokes = mixed(sc.mesh, count);
-  return sc;
-}
+/// A torus of (major x minor) segments, its unwrap() layout and \p count mixed strokes (seed 11).
+Scene torus_scene(int major, int minor, int count) { return test::torus_scene(major, minor, StrokeKind::Mixed, count, 11); }
 
 /// Reconstruction MSE of \p texture on \p param against the whole history, evaluated afresh.
 double exact_mse(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,

@@ -13,6 +13,7 @@
 #include "adaptex/paint/signal.h"
 #include "adaptex/paint/surface_cache.h"
 #include "adaptex/param/unwrap.h"
+#include "test_scene.h"
 
 namespace adaptex {
 namespace {
@@ -31,13 +32,10 @@ double texel_mse(const ImageRGBA8& a, const ImageRGBA8& b, const TexelMap& map) 
 double psnr(double mse) { return 10 * std::log10(1.0 / mse); }
 
 TEST(SurfaceSignalCache, TextureFromTheCacheIsWithinBoundOfExactReplay) {
-  const TriMesh mesh = shapes::torus(48, 24);
-  const Parameterization param = unwrap(mesh).param;
-  GenerateOptions go;
-  go.kind = StrokeKind::Mixed;
-  go.count = 40;
-  go.seed = 4;
-  const StrokeFile strokes = generate_strokes(mesh, go);
+  const test::Scene sc = test::torus_scene(48, 24, StrokeKind::Mixed, 40, 4);
+  const TriMesh& mesh = sc.mesh;
+  const Parameterization& param = sc.param;
+  const StrokeFile& strokes = sc.strokes;
   const int N = 256;
   PainterOptions po;
   po.width = po.height = N;
