@@ -42,9 +42,10 @@ Parameterization unwrap_mesh(const TriMesh& mesh, int texture_size, int padding,
 /// PaintSession that produced an adapted parameterization).
 class Canvas {
  public:
+  /// \p padding: seam padding in texels (PaintSessionOptions::padding of the session).
   /// \pre mesh and param outlive the canvas and do not change
   Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
-         int padding = 4);
+         int padding);
   /// Takes over an adaptive painting session (its painter becomes this canvas).
   explicit Canvas(std::unique_ptr<PaintSession> session);
   ~Canvas();

@@ -165,7 +165,9 @@ void SurfaceJobs::start_compare(const Surface& current, StrokeFile history) {
         Comparison c;
         c.fixed_param = model->initial;
         c.adaptive_param = adaptive;
-        Canvas fixed(*model->mesh, *model->initial, size, size, history.background);
+        // The initial layout's own seam padding (the adaptive canvas uses the session's, the same
+        // once the layout is unwrapped for the current options).
+        Canvas fixed(*model->mesh, *model->initial, size, size, history.background, model->unwrap_padding);
         for (const Stroke& s : history.strokes) fixed.paint_stroke(s);
         c.fixed_texture = fixed.texture();
         c.adaptive_texture = *tex;

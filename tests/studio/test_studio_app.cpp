@@ -567,6 +567,32 @@ TEST(StudioApp, SameLayoutAndTextureAsAdaptexPaint) {
   EXPECT_EQ(max_abs_diff(read_image(dir.path / "studio" / "ball.png"), read_image(dir.path / "cli" / "ball.png")), 0);
 }
 
+TEST(StudioApp, ComparisonWithoutAdaptationFindsTheSameTextureTwice) {
+  // Without adaptation the "adaptive" texture is the fixed one: the comparison paints the same
+  // texture on the initial layout (same size, paper colour and seam padding, here not the default).
+  Harness h({}, 128);
+  h.app->session_options().padding = 7;
+  h.app->session_options_changed();
+  ASSERT_TRUE(h.app->wait_idle(120));
+  h.app->render();
+  h.app->set_background_colour(Vec3(0.2, 0.4, 0.6));
+  h.app->brush().radius = 0.1;
+  h.drag(100, 150, 300, 160);
+  ASSERT_TRUE(h.app->wait_idle(120));
+  h.app->request_compare();
+  for (int k = 0; k < 2000 && !h.app->comparison(); ++k) {
+    h.app->begin_frame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  const Comparison* c = h.app->comparison();
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->strokes, 1u);
+  EXPECT_EQ(c->fixed_param, c->adaptive_param);
+  EXPECT_EQ(max_abs_diff(c->fixed_texture, c->adaptive_texture), 0);
+  EXPECT_EQ(max_abs_diff(c->fixed_texture, replay_texture(*h.app)), 0);
+  EXPECT_EQ(c->psnr_fixed, c->psnr_adaptive);
+}
+
 // ---- never lose work -------------------------------------------------------------------------
 
 TEST(StudioApp, QuitWithUnsavedStrokesAsksAndCancelKeepsRunning) {
