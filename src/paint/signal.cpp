@@ -203,6 +203,8 @@ struct PointSignalCache::Impl {
   Vec3 background;
   int count = 0;
   bool decal = false;
+  std::unique_ptr<DecalProjector> projector;  // built at the first decal stroke
+  std::vector<int> face;                      // points[k].face, for the projector's batch form
 
   /// A brush stroke: max coverage over its dabs (as StrokeSignal::Impl::eval), composited over C.
   void add_brush(const Stroke& s) {
@@ -227,16 +229,17 @@ struct PointSignalCache::Impl {
     });
   }
 
-  /// A decal: C = C (1 - a) + c a is affine in C; the stroke alone over black gives S = c a and over
-  /// white S + (1 - a).
+  /// A decal: (colour, a) at every point from one projector (its BVH built at the first decal and
+  /// kept), composited as StrokeSignal does: C <- C (1 - a) + colour a.
   void add_decal(const Stroke& s) {
-    StrokeFile one;
-    one.strokes.push_back(s);
-    one.background = Vec3(0, 0, 0);
-    const std::vector<Vec3> S = StrokeSignal(mesh, one).evaluate(points);
-    one.background = Vec3(1, 1, 1);
-    const std::vector<Vec3> W = StrokeSignal(mesh, one).evaluate(points);
-    for (size_t k = 0; k < points.size(); ++k) value[k] = S[k] + value[k].cwiseProduct(W[k] - S[k]);
+    if (!projector) {
+      projector = std::make_unique<DecalProjector>(mesh);
+      face.resize(points.size());
+      for (size_t k = 0; k < points.size(); ++k) face[k] = points[k].face;
+    }
+    std::vector<Eigen::Vector4d> v(points.size());
+    projector->evaluate(s, position, face, v);
+    for (size_t k = 0; k < points.size(); ++k) value[k] = value[k] * (1 - v[k][3]) + v[k].head<3>() * v[k][3];
     decal = true;
   }
 };
