@@ -37,14 +37,10 @@ ImageRGBA8 resample_texture(const Parameterization& old_param, const ImageRGBA8&
   return out;
 }
 
-void replay_history(Painter& painter, const StrokeFile& history) {
-  for (const Stroke& s : history.strokes) painter.paint_stroke(s);
-}
-
 ImageRGBA8 update_texture(TextureUpdate mode, Painter& new_painter, const StrokeFile& history,
                           const Parameterization& old_param, const ImageRGBA8& old_texture, int padding) {
   if (mode == TextureUpdate::Replay) {
-    replay_history(new_painter, history);
+    new_painter.paint_all(history);
     return new_painter.texture();
   }
   auto to8 = [](double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255)); };
@@ -72,7 +68,7 @@ ImageRGBA8 composite_over_base(const ImageRGBA8& base, const ImageRGBA8& over_bl
 Painter replay_texture(const TriMesh& mesh, const Parameterization& new_param, const StrokeFile& history,
                        const PainterOptions& options) {
   Painter p(mesh, new_param, options, history.background);
-  replay_history(p, history);
+  p.paint_all(history);
   return p;
 }
 

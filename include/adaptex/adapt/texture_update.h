@@ -31,9 +31,6 @@ ImageRGBA8 resample_texture(const Parameterization& old_param, const ImageRGBA8&
                             const TexelMap& new_map, int padding,
                             std::array<std::uint8_t, 4> outside = {255, 255, 255, 255});
 
-/// Paints every stroke of \p history into \p painter, in order (replay on the painter's layout).
-void replay_history(Painter& painter, const StrokeFile& history);
-
 /// The texture of a layout whose Painter \p new_painter was just built: \p mode Replay paints
 /// \p history into \p new_painter and returns its texture; Resample returns \p old_texture (drawn
 /// with \p old_param) resampled onto the painter's texel map, texels outside the charts in
