@@ -378,6 +378,8 @@ void Painter::fill_colours(const std::vector<Vec3f> &colours) {
   if (colours.size() != m.map.inside.size())
     throw InvalidInputError("painter: fill_colours() needs " + std::to_string(m.map.inside.size()) +
                             " colours, got " + std::to_string(colours.size()));
+  if (!std::all_of(colours.begin(), colours.end(), [](const Vec3f &c) { return c.allFinite(); }))
+    throw InvalidInputError("painter: fill_colours() got a colour that is not finite");
   tbb::parallel_for(size_t(0), colours.size(), [&](size_t k) {
     const int s = m.texel_slot[m.map.inside[k]];
     for (int c = 0; c < 3; ++c)

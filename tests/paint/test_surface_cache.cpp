@@ -145,5 +145,27 @@ TEST(SurfaceSignalCache, RejectsBadInput) {
   EXPECT_THROW(cache.texel_colours(map, shapes::icosphere(2)), InvalidInputError);
 }
 
+TEST(SurfaceSignalCache, FillColoursRejectsBadColoursAndKeepsTheTexture) {
+  const TriMesh mesh = shapes::icosphere(1);
+  const Parameterization param = unwrap(mesh).param;
+  PainterOptions po;
+  po.width = po.height = 32;
+  Painter painter(mesh, param, po, Vec3(1, 1, 1));
+  const size_t n = painter.texel_map().inside.size();
+  const ImageRGBA8 before = painter.texture();
+  EXPECT_THROW(painter.fill_colours(std::vector<Vec3f>(n + 1, Vec3f(0, 0, 0))), InvalidInputError);
+  std::vector<Vec3f> bad(n, Vec3f(0, 0, 0));
+  bad[n / 2].y() = std::nanf("");
+  EXPECT_THROW(painter.fill_colours(bad), InvalidInputError);
+  EXPECT_EQ(painter.texture().data, before.data);  // nothing was written
+  painter.fill_colours(std::vector<Vec3f>(n, Vec3f(0, 2, -1)));  // clamped to [0, 1]
+  const int t = painter.texel_map().inside[0];
+  EXPECT_EQ(painter.texture().data[size_t(t) * 4 + 0], 0);
+  EXPECT_EQ(painter.texture().data[size_t(t) * 4 + 1], 255);
+  EXPECT_EQ(painter.texture().data[size_t(t) * 4 + 2], 0);
+  painter.begin_stroke(Stroke{});
+  EXPECT_THROW(painter.fill_colours(std::vector<Vec3f>(n, Vec3f(0, 0, 0))), Error);
+}
+
 }  // namespace
 }  // namespace adaptex

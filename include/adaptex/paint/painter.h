@@ -57,7 +57,8 @@ class Painter {
   /// Sets the colour of every chart texel at once (e.g. resampled from a surface signal cache,
   /// paint/surface_cache.h) instead of painting strokes; painting continues over these colours.
   /// \param colours shape [texel_map().inside.size()]: the colour of texel texel_map().inside[k], RGB in [0,1]
-  /// \throw InvalidInputError wrong size
+  ///        (clamped to it)
+  /// \throw InvalidInputError wrong size, or a colour not finite (nothing is changed then)
   /// \throw Error an interactive stroke is open
   void fill_colours(const std::vector<Vec3f>& colours);
   /// The texture: chart texels round(255 * colour) with alpha 255; padded texels copy their source
