@@ -114,6 +114,15 @@ Project read_project(const std::filesystem::path& path) {
       p.brush.opacity = b.value("opacity", p.brush.opacity);
       p.brush.spacing = b.value("spacing", p.brush.spacing);
       p.brush.symmetry_axis = std::clamp(b.value("symmetry_axis", -1), -1, 2);
+      // The brush paints strokes: the stroke contract's rules (colour, hardness, opacity in [0, 1],
+      // radius > 0) apply, here rather than as an exception in the middle of a drag.
+      Stroke style;
+      style.color = p.brush.color;
+      style.radius = p.brush.radius;
+      style.hardness = p.brush.hardness;
+      style.opacity = p.brush.opacity;
+      style.dabs = {Vec3::Zero()};
+      validate_stroke(style, path.string() + ": brush");
     }
     if (j.contains("view")) {
       p.view.wireframe = j["view"].value("wireframe", false);

@@ -394,6 +394,27 @@ TEST(StudioApp, SaveAsToAnUnwritablePlaceKeepsTheWorkAndLeavesNoFile) {
   EXPECT_EQ(read_project(good).strokes.strokes.size(), 2u);
 }
 
+TEST(StudioApp, ProjectWithABadBrushIsAnErrorAndKeepsTheModel) {
+  // Such a brush used to be accepted and then throw out of the first drag (a crash of the window).
+  TempDir dir;
+  Harness h;
+  const std::string good = h.app->mesh_path();
+  for (const char* brush : {R"({"opacity": 7})", R"({"radius": -1})", R"({"hardness": 2})",
+                            R"({"color": [0, 2, 0]})"}) {
+    const auto p = dir.path / "p.json";
+    std::ofstream(p) << R"({"format": "adaptex.studio-project", "version": 1, "mesh": "builtin:torus",
+      "strokes": {"format": "adaptex.strokes", "version": 1, "strokes": []}, "brush": )"
+                     << brush << "}";
+    h.app->clear_messages();
+    h.app->open_project(p);
+    expect_error_naming(*h.app, p.string() + ": brush");
+    ASSERT_TRUE(h.app->wait_idle(60));
+    EXPECT_EQ(h.app->mesh_path(), good) << brush;
+    h.drag(150, 150, 250, 150);  // the brush is still the old one: painting works
+  }
+  EXPECT_EQ(h.app->history().strokes().size(), 4u);
+}
+
 TEST(StudioApp, LoadingCanBeCancelled) {
   Harness h({}, 256, "");
   h.app->open_mesh("builtin:trefoil");
