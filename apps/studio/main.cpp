@@ -18,6 +18,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "adaptex/core/atomic_output.h"
+#include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
 #include "app.h"
 #include "gl_renderer.h"
@@ -367,7 +369,12 @@ void write_stats(const App& app, const CommandLine& c) {
   j["window"] = c.window;
   j["texture_size"] = app.session_options().texture_size;
   j["adapt"] = to_string(app.session_options().adapt.mode);
-  std::ofstream(c.stats_out) << j.dump(1) << "\n";
+  AtomicOutput out;  // all or nothing, as every other output
+  std::ofstream o(out.add(c.stats_out));
+  o << j.dump(1) << "\n";
+  o.close();
+  if (!o) throw OutputError(c.stats_out + ": cannot write the statistics");
+  out.commit();
 }
 
 /// The --*-out outputs after the last frame. \return 1 if a scripted run reported an error
@@ -375,7 +382,14 @@ int write_outputs(App& app, const CommandLine& c) {
   if (!c.history_out.empty()) app.save_history(c.history_out);
   if (!c.texture_out.empty()) app.save_texture(c.texture_out);
   if (!c.export_dir.empty()) app.export_obj(c.export_dir);
-  if (!c.stats_out.empty()) write_stats(app, c);
+  if (!c.stats_out.empty()) {
+    try {
+      write_stats(app, c);
+    } catch (const std::exception& e) {
+      std::cerr << "adaptex-studio: error: " << e.what() << "\n";
+      return 1;
+    }
+  }
   for (const auto& m : app.messages())
     if (m.error && c.exit_after >= 0) return 1;
   return 0;
