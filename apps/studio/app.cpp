@@ -155,7 +155,8 @@ void App::apply_project(Project p, bool from_project, const std::filesystem::pat
   brush_ = p.brush;
   view_ = p.view;
   session_ = p.session;
-  pending_ = PendingLoad{std::move(p.strokes.strokes), p.strokes.background, from_project, project_path};
+  pending_ = PendingLoad{std::move(p.strokes.strokes), p.strokes.background, from_project, project_path, false,
+                         p.camera};
   open_mesh(p.mesh_path);
 }
 
@@ -538,7 +539,15 @@ void App::finish_load(Job<LoadResult>& job) {
     history_changed();
     if (pending.reload)
       return add_message("unwrapped again for a " + std::to_string(model->unwrap_size) + "^2 texture", false);
-    camera_.frame(model->box);
+    camera_.frame(model->box);  // sets the clip planes' scene radius
+    if (pending.camera) {         // the project's view
+      camera_.target = pending.camera->target;
+      camera_.distance = pending.camera->distance;
+      camera_.yaw = pending.camera->yaw;
+      camera_.pitch = pending.camera->pitch;
+      camera_.fov_y_degrees = pending.camera->fov_y_degrees;
+      camera_.orbit(0, 0);  // keeps the pitch in the camera's range
+    }
     store_.add_recent(model->path);
     char buf[64];
     std::snprintf(buf, sizeof buf, " in %.2f s", r.seconds);

@@ -209,6 +209,7 @@ class App {
     bool from_project = false;       ///< The strokes are what project_path holds (nothing unsaved).
     std::filesystem::path project_path;
     bool reload = false;  ///< The same model unwrapped again for another texture size (history kept).
+    std::optional<Camera> camera;  ///< The project's view (else the model is framed).
   };
 
   void add_message(std::string text, bool error);

@@ -143,6 +143,8 @@ Project read_project(const std::filesystem::path& path) {
       c.yaw = cj.value("yaw", 0.0);
       c.pitch = cj.value("pitch", 0.0);
       c.fov_y_degrees = cj.value("fov_y", c.fov_y_degrees);
+      if (!(c.distance > 0) || !(c.fov_y_degrees > 0 && c.fov_y_degrees < 180) || !c.target.allFinite())
+        throw InvalidInputError(path.string() + ": camera: distance must be > 0 and fov_y in (0, 180)");
       p.camera = c;
     }
     return p;

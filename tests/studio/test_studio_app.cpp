@@ -258,6 +258,9 @@ TEST(StudioApp, ProjectSaveLoadRoundTrip) {
   h.app->session_options().adapt.alpha = 0.3;
   h.app->view().wireframe = true;
   h.app->set_background_colour(Vec3(0.9, 0.9, 0.8));
+  h.app->camera().orbit(40, 25);
+  h.app->camera().pan(12, -7);
+  h.app->camera().zoom(2);
   const auto path = dir.path / "p.json";
   h.app->save_project(path);
   ASSERT_TRUE(std::filesystem::exists(path));
@@ -279,6 +282,12 @@ TEST(StudioApp, ProjectSaveLoadRoundTrip) {
   EXPECT_FALSE(g.app->unsaved());
   EXPECT_TRUE(g.app->view().wireframe);
   EXPECT_EQ(max_abs_diff(*g.app->texture(), *h.app->texture()), 0);
+  // The view is the saved one (not the model framed again).
+  EXPECT_EQ(g.app->camera().target, h.app->camera().target);
+  EXPECT_EQ(g.app->camera().distance, h.app->camera().distance);
+  EXPECT_EQ(g.app->camera().yaw, h.app->camera().yaw);
+  EXPECT_EQ(g.app->camera().pitch, h.app->camera().pitch);
+  EXPECT_EQ(g.app->camera().fov_y_degrees, h.app->camera().fov_y_degrees);
 }
 
 TEST(StudioApp, AutosaveIsOfferedAsRecoveryNextTime) {
@@ -413,6 +422,12 @@ TEST(StudioApp, ProjectWithABadBrushIsAnErrorAndKeepsTheModel) {
     h.drag(150, 150, 250, 150);  // the brush is still the old one: painting works
   }
   EXPECT_EQ(h.app->history().strokes().size(), 4u);
+  // A camera that cannot show anything is refused too.
+  const auto p = dir.path / "cam.json";
+  std::ofstream(p) << R"({"format": "adaptex.studio-project", "version": 1, "mesh": "builtin:torus",
+    "strokes": {"format": "adaptex.strokes", "version": 1, "strokes": []}, "camera": {"distance": 0}})";
+  h.app->open_project(p);
+  expect_error_naming(*h.app, p.string() + ": camera");
 }
 
 TEST(StudioApp, LoadingCanBeCancelled) {
