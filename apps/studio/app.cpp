@@ -3,6 +3,7 @@
 #include "app.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -352,7 +353,8 @@ void App::run_command(Command c) {
 void App::on_drop(const std::vector<std::string>& paths) {
   if (paths.empty()) return;
   const std::filesystem::path p = paths.front();
-  const std::string ext = p.extension().string();
+  std::string ext = p.extension().string();  // any case: PHOTO.JPG is an image
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
   if (ext == ".json") {
     // A project or a stroke file, read once (regular files only, bounded size: a dropped FIFO or
     // directory is an error, not a hang). Every error message names the file.

@@ -470,6 +470,10 @@ TEST(StudioApp, DecalFromTheViewAndExports) {
   ImageRGBA8 img(16, 16, {20, 200, 40, 255});
   write_png(dir.path / "d.png", img);
   const ImageRGBA8 before = *h.app->texture();
+  std::filesystem::copy_file(dir.path / "d.png", dir.path / "D.PNG");
+  h.app->on_drop({(dir.path / "D.PNG").string()});  // an image in any case of extension is a decal
+  ASSERT_TRUE(h.app->decal_image());
+  EXPECT_FALSE(h.app->load_running());
   h.app->load_decal(dir.path / "d.png");
   h.app->project_decal(1.0);
   ASSERT_TRUE(h.app->wait_idle(60));
