@@ -171,11 +171,19 @@ void App::open_project(const std::filesystem::path& path) {
 }
 
 bool App::save_project(const std::filesystem::path& path) {
-  if (!has_model()) {
+  // Strokes waiting for their model (a recovered or replayed session still loading) are work too.
+  const bool waiting = jobs_.loading() && !pending_.reload && !pending_.strokes.empty();
+  if (!has_model() && !waiting) {
     add_message("nothing to save: open a mesh first", true);
     return false;
   }
-  return store_.save(std::filesystem::absolute(path).lexically_normal(), snapshot(), history().version());
+  const auto file = std::filesystem::absolute(path).lexically_normal();
+  if (!store_.save(file, snapshot(), history().version())) return false;
+  if (waiting) {  // once loaded, they are what the file holds
+    pending_.from_project = true;
+    pending_.project_path = file;
+  }
+  return true;
 }
 
 bool App::save() {

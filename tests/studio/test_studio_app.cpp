@@ -318,6 +318,31 @@ TEST(StudioApp, AutosaveIsOfferedAsRecoveryNextTime) {
   EXPECT_FALSE(std::filesystem::exists(dir.path / "recovery.offered.json"));
 }
 
+TEST(StudioApp, RecoveredStrokesCanBeSavedWhileTheirModelLoads) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path;
+  Project rec;
+  rec.mesh_path = "builtin:sphere";
+  Stroke s;
+  s.dabs = {Vec3(0, 0, 1), Vec3(0.1, 0, 0.99)};
+  rec.strokes.strokes = {s};
+  write_project(dir.path / "recovery.json", rec);
+  Harness h(opt, 256, "");
+  ASSERT_TRUE(h.app->pending_recovery());
+  h.app->accept_recovery();
+  ASSERT_FALSE(h.app->has_model());  // loading: the stroke waits for its model
+  ASSERT_TRUE(h.app->unsaved());
+  const auto path = dir.path / "p.json";
+  ASSERT_TRUE(h.app->save_project(path));
+  EXPECT_EQ(read_project(path).strokes.strokes.size(), 1u);
+  EXPECT_FALSE(h.app->unsaved());
+  ASSERT_TRUE(h.app->wait_idle(120));
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  EXPECT_FALSE(h.app->unsaved());  // still saved once the model is there
+  EXPECT_EQ(h.app->project_path(), path);
+}
+
 TEST(StudioApp, BadFilesShowAnErrorAndKeepTheModel) {
   TempDir dir;
   Harness h;
