@@ -465,7 +465,7 @@ std::vector<Component> segment_components(const std::vector<Component>& comps, i
     so.num_charts = std::max(
         1, static_cast<int>(std::lround(total_charts * comp.area / std::max(total_area, 1e-300))));
     so.normal_weight = options.chart_normal_weight;
-    if (so.num_charts == 1 || comp.mesh.num_faces() < 2 * so.num_charts) {
+    if (so.num_charts == 1 || comp.mesh.num_faces() < 2 * static_cast<long long>(so.num_charts)) {
       pieces.push_back(comp);
       continue;
     }
