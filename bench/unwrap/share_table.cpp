@@ -4,12 +4,15 @@
 // covers on average ("chart fill" = coverage / rect fill), flipped and overlapping triangles,
 // UVs outside [0,1]², and wall / CPU seconds. See docs/benchmarks.md.
 //
-//   bench_share_table [--single] [--detail] [--normal-weight W] [--max-charts K] [--chart-padding P] NAME...
+//   bench_share_table [--single] [--detail] [--no-probe] [--normal-weight W] [--max-charts K] [--chart-padding P] NAME...
 //
 // NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
 // code: genusG (genus_surface(G)), sphereS,T (sphere(S, T)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
 // pinched hole), pinched_annulus, tiny200 (tiny_components(200)), 1M (torus(2000, 250)).
 // --single also prints the share of one chart per component; --detail one line per chart.
+// --no-probe: UnwrapOptions::single_probe_l2 = 0 (auto as before the probe: the single chart in
+// full, then 4, 6, 8, ... charts). "cut+seams" = UnwrapReport::cut_length (the cut of a single
+// chart, the seams of several) in bounding-box diagonals.
 // --chart-padding P: UnwrapOptions::chart_padding, the smallest gap between charts (the gap is the
 // larger of P and the 8-texel gutter at 1024, 0.0078).
 #include <algorithm>
@@ -119,11 +122,14 @@ void row(const std::string& name, bool single) {
   long outside = 0;
   for (const Vec2& t : r.param.uv) outside += !(t.x() >= 0 && t.x() <= 1 && t.y() >= 0 && t.y() <= 1);
   const double fill = rect_fill(r.param);
+  Vec3 lo = mesh.positions.front(), hi = lo;
+  for (const Vec3& q : mesh.positions) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  const double seams = p.cut_length / std::max((hi - lo).norm(), 1e-300);
   const std::string base = std::filesystem::path(name).stem().string();
   char single_col[32] = "";
   if (single) std::snprintf(single_col, sizeof single_col, "%.3f | ", single_share);
-  std::printf("| %s | %d | %s%d | %.3f | %.3f | %.3f | %.3f | %.3f | %d | %ld | %ld | %.1f | %.1f | %s |\n",
-              base.c_str(), mesh.num_faces(), single_col, p.num_charts, p.final_l2, p.coverage,
+  std::printf("| %s | %d | %s%d | %.2f | %.3f | %.3f | %.3f | %.3f | %.3f | %d | %ld | %ld | %.1f | %.1f | %s |\n",
+              base.c_str(), mesh.num_faces(), single_col, p.num_charts, seams, p.final_l2, p.coverage,
               fill, fill > 0 ? p.coverage / fill : 0.0, p.effective_texel_share, s.flipped + s.degenerate,
               overlaps, outside, wall, cpu, p.effective_texel_share >= 0.5 ? "yes" : "**not met**");
   std::fflush(stdout);
@@ -138,6 +144,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--single") == 0) single = true;
     else if (std::strcmp(argv[i], "--detail") == 0) g_detail = true;
+    else if (std::strcmp(argv[i], "--no-probe") == 0) g_options.single_probe_l2 = 0;
     else if (std::strcmp(argv[i], "--normal-weight") == 0 && i + 1 < argc)
       g_options.chart_normal_weight = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--chart-padding") == 0 && i + 1 < argc)
@@ -146,10 +153,10 @@ int main(int argc, char** argv) {
       g_options.max_charts = std::stoi(argv[++i]);
     else names.emplace_back(argv[i]);
   }
-  std::printf("| mesh | faces | %scharts | L2 | coverage | rect fill | chart fill | share | flipped+degenerate | "
+  std::printf("| mesh | faces | %scharts | cut+seams (bbox diag.) | L2 | coverage | rect fill | chart fill | share | flipped+degenerate | "
               "overlaps | UVs outside | wall s | CPU s | ≥ 0.5 |\n",
               single ? "single: share | " : "");
-  std::printf("|---|---:|%s---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
+  std::printf("|---|---:|%s---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n",
               single ? "---:|" : "");
   for (const std::string& n : names) {
     try {

@@ -89,6 +89,9 @@ struct Chart {
   /// > 0: the width / height of the chart's rectangle is fixed (an unfolded polygon, unfold.h);
   /// 0: best_aspect() chooses it.
   double aspect = 0;
+  /// The chart was given up after its first cheap parameterization (ChartContext::give_up_l2):
+  /// only `state.param` (that parameterization) is meaningful.
+  bool abandoned = false;
 };
 
 /// Input vertex (of the component) with the largest stretch that is not on the cut yet: the
@@ -147,6 +150,10 @@ struct ChartContext {
   /// A piece without interior vertices may be unfolded (unfold.h): whole components of a layout
   /// of several components.
   bool unfold_polygons;
+  /// > 0: a chart whose first cheap parameterization (Floater + augment_yoshizawa_iterations
+  /// Yoshizawa iterations, before any augmentation) has degenerate or flipped UV triangles or an
+  /// L2 above this is abandoned there (Chart::abandoned; UnwrapOptions::single_probe_l2).
+  double give_up_l2 = 0;
 };
 
 /// Budget units (face-solves, UnwrapOptions::augment_face_budget) of one cheap parameterization of
@@ -306,7 +313,13 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
     ctx.augment_faces_left -= eval_cost;
     rep.time_augment += seconds_since(t0);
     evaluated = true;
-    augment_loop(score(cur));
+    const CutScore first = score(cur);
+    if (ctx.give_up_l2 > 0 && (first.bad > 0 || first.l2 > ctx.give_up_l2)) {
+      chart.abandoned = true;
+      chart.state = std::move(cur);
+      return chart;
+    }
+    augment_loop(first);
   }
 
   // The parameterization of the disk (Floater, then Yoshizawa).
@@ -493,7 +506,7 @@ std::vector<Component> segment_components(const std::vector<Component>& comps, i
 /// piece without interior vertices may be unfolded (ChartContext::unfold_polygons).
 std::vector<Chart> build_charts(const std::vector<Component>& pieces, const DiskParamOptions& dopt,
                                 Clock::time_point t_start, const UnwrapOptions& options,
-                                UnwrapReport& rep, bool unfold) {
+                                UnwrapReport& rep, bool unfold, double give_up_l2 = 0) {
   const Clock::time_point deadline =
       t_start + std::chrono::duration_cast<Clock::duration>(
                     std::chrono::duration<double>(std::max(0.0, options.augment_time_budget)));
@@ -503,7 +516,7 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
     largest_use += (1L + options.max_augmentations) * augment_eval_cost(p.mesh.num_faces(), dopt, options);
   std::vector<Chart> charts(nc);
   if (nc < 2 || largest_use > options.augment_face_budget) {
-    ChartContext ctx{options, dopt, options.augment_face_budget, deadline, rep, unfold};
+    ChartContext ctx{options, dopt, options.augment_face_budget, deadline, rep, unfold, give_up_l2};
     for (int c = 0; c < nc; ++c)
       charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
                               static_cast<double>(c + 1) / nc);
@@ -520,7 +533,7 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
     };
   std::vector<UnwrapReport> reps(nc);
   tbb::parallel_for(0, nc, [&](int c) {
-    ChartContext ctx{shared, dopt, largest_use, deadline, reps[c], unfold};  // cannot run out (see above)
+    ChartContext ctx{shared, dopt, largest_use, deadline, reps[c], unfold, give_up_l2};  // cannot run out
     charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
                             static_cast<double>(c + 1) / nc);
   });
@@ -534,17 +547,79 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
 }
 
 /// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
-/// \p unfold as in build_charts().
-void unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
+/// \p unfold as in build_charts(); \p give_up_l2 as ChartContext::give_up_l2. Returns false, and
+/// leaves the layout of \p result alone (only its phase times grow), when a chart was abandoned.
+bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
                    const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
-                   const UnwrapOptions& options, UnwrapResult& result, bool unfold) {
+                   const UnwrapOptions& options, UnwrapResult& result, bool unfold,
+                   double give_up_l2 = 0) {
   const std::vector<Chart> charts =
-      build_charts(pieces, dopt, t_start, options, result.report, unfold);
+      build_charts(pieces, dopt, t_start, options, result.report, unfold, give_up_l2);
+  for (const Chart& c : charts)
+    if (c.abandoned) return false;
   const auto t0 = Clock::now();
   report_progress(options.progress, "pack", 0.0);
   assemble(mesh, pieces, charts, padding, result);
   report_progress(options.progress, "pack", 1.0);
   result.report.time_pack += seconds_since(t0);
+  return true;
+}
+
+/// Copies the phase times of \p from (they add up over the attempts of one unwrap()) into \p to.
+void copy_phase_times(const UnwrapReport& from, UnwrapReport& to) {
+  to.time_cut = from.time_cut;
+  to.time_floater = from.time_floater;
+  to.time_yoshizawa = from.time_yoshizawa;
+  to.time_augment = from.time_augment;
+  to.time_pack = from.time_pack;
+}
+
+/// The chart counts that ChartMode::Auto tries, in order (docs/charts.md): max(4, 2 × components),
+/// then steps of 1.5 and 4/3 (4, 6, 8, 12, 16, 24, 32, 48, 64, ...) up to \p max_charts. \p first > 0:
+/// the counts >= \p first come first (in increasing order), then the smaller ones.
+std::vector<long long> auto_chart_counts(int num_components, int max_charts, int first) {
+  std::vector<long long> counts;
+  // 64-bit counts: with max_charts near INT_MAX the next count would overflow an int.
+  for (long long k = std::max(4, 2 * num_components); k <= max_charts;
+       k = k % 3 == 0 ? k / 3 * 4 : k / 2 * 3)
+    counts.push_back(k);
+  if (first > 0)
+    std::stable_partition(counts.begin(), counts.end(), [&](long long k) { return k >= first; });
+  return counts;
+}
+
+/// ChartMode::Auto after the layout of one chart per component: segments the components into the
+/// counts of auto_chart_counts() until a layout reaches min_texel_share; \p result keeps the layout
+/// with the highest share (its phase times add up over the attempts). \p reordered: the single
+/// layout was abandoned (\p result holds no layout): the counts from probe_first_charts on are
+/// tried first, and a segmentation is skipped when its number of pieces was tried already;
+/// otherwise when it has no more pieces than the best layout so far.
+void segment_until_good(const TriMesh& mesh, const std::vector<Component>& comps,
+                        const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
+                        const UnwrapOptions& options, bool reordered, UnwrapResult& result) {
+  UnwrapReport& rep = result.report;
+  std::vector<std::optional<ChartSegmenter>> segmenters(comps.size());
+  std::vector<size_t> tried;
+  const int nc = static_cast<int>(comps.size());
+  for (const long long k :
+       auto_chart_counts(nc, options.max_charts, reordered ? options.probe_first_charts : 0)) {
+    if (rep.effective_texel_share >= options.min_texel_share) break;
+    const std::vector<Component> pieces =
+        segment_components(comps, static_cast<int>(k), options, segmenters);
+    if (reordered ? pieces.size() <= comps.size() ||
+                        std::find(tried.begin(), tried.end(), pieces.size()) != tried.end()
+                  : static_cast<int>(pieces.size()) <= rep.num_charts)
+      continue;
+    tried.push_back(pieces.size());
+    UnwrapResult attempt;
+    attempt.report = rep;
+    unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, attempt, false);
+    copy_phase_times(attempt.report, rep);  // times add up over all attempts
+    if (attempt.report.effective_texel_share > rep.effective_texel_share) {
+      result.param = std::move(attempt.param);
+      rep = attempt.report;
+    }
+  }
 }
 
 }  // namespace
@@ -558,9 +633,10 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
     throw InvalidInputError("unwrap: chart_padding " + std::to_string(options.chart_padding) +
                             " is outside [0, 0.25)");
   if (options.max_augmentations < 0 || options.yoshizawa_max_iterations < 0 ||
-      options.augment_yoshizawa_iterations < 0 || options.max_charts < 1)
-    throw InvalidInputError("unwrap: iteration, augmentation and chart counts must be >= 0 (>= 1 "
-                            "for max_charts)");
+      options.augment_yoshizawa_iterations < 0 || options.max_charts < 1 ||
+      options.probe_first_charts < 0 || !(options.single_probe_l2 >= 0))
+    throw InvalidInputError("unwrap: iteration, augmentation and chart counts and single_probe_l2 "
+                            "must be >= 0 (>= 1 for max_charts)");
   if (!(options.gutter_texels >= 0) || options.gutter_texture_size < 1 ||
       !(options.gutter_texels / options.gutter_texture_size < 0.25))
     throw InvalidInputError("unwrap: gutter of " + std::to_string(options.gutter_texels) +
@@ -614,30 +690,24 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   // Components without interior vertices (strips, single triangles) are unfolded when several
   // charts share the square; segmented charts are not (their layouts stay those measured in
   // docs/benchmarks.md).
-  unwrap_pieces(mesh, comps, dopt, gutter, t_start, options, result, comps.size() > 1);
-  // Auto: while the layout wastes too many texels, segment into 4, 6, 8, 12, 16, ... charts (steps
-  // of 1.5 and 4/3; docs/charts.md).
+  // Auto on one component: the single chart is given up after its first cheap parameterization
+  // when that predicts it cannot reach min_texel_share (UnwrapOptions::single_probe_l2).
+  const bool probe =
+      options.charts == ChartMode::Auto && comps.size() == 1 && options.single_probe_l2 > 0;
+  const bool single_built = unwrap_pieces(mesh, comps, dopt, gutter, t_start, options, result,
+                                          comps.size() > 1, probe ? options.single_probe_l2 : 0);
   if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share) {
-    std::vector<std::optional<ChartSegmenter>> segmenters(comps.size());
-    // 64-bit counts: with max_charts near INT_MAX the next count would overflow an int.
-    for (long long k = std::max(4, 2 * topo.num_components);
-         k <= options.max_charts && rep.effective_texel_share < options.min_texel_share;
-         k = k % 3 == 0 ? k / 3 * 4 : k / 2 * 3) {
-      const std::vector<Component> pieces =
-          segment_components(comps, static_cast<int>(k), options, segmenters);
-      if (static_cast<int>(pieces.size()) <= rep.num_charts) continue;
-      UnwrapResult attempt;
-      attempt.report = rep;
-      unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, attempt, false);
-      rep.time_cut = attempt.report.time_cut;  // times add up over all attempts
-      rep.time_floater = attempt.report.time_floater;
-      rep.time_yoshizawa = attempt.report.time_yoshizawa;
-      rep.time_augment = attempt.report.time_augment;
-      rep.time_pack = attempt.report.time_pack;
-      if (attempt.report.effective_texel_share > rep.effective_texel_share) {
-        result.param = std::move(attempt.param);
-        rep = attempt.report;
-      }
+    segment_until_good(mesh, comps, dopt, gutter, t_start, options, !single_built, result);
+    if (!single_built && rep.effective_texel_share < options.min_texel_share) {
+      // No segmentation reached the share: the single chart after all (never below it).
+      UnwrapResult single;
+      single.report = rep;
+      unwrap_pieces(mesh, comps, dopt, gutter, t_start, options, single, false);
+      if (single.report.effective_texel_share > rep.effective_texel_share ||
+          result.param.uv_faces.empty())
+        result = std::move(single);
+      else
+        copy_phase_times(single.report, rep);
     }
   }
   if (rep.num_charts > 1) rep.cut_length = seam_length(mesh, result.param);

@@ -18,6 +18,15 @@ namespace {
 
 using test::check_unwrap;
 
+/// \p a and \p b are the same layout, bit for bit.
+void expect_same_layout(const UnwrapResult& a, const UnwrapResult& b) {
+  EXPECT_EQ(a.report.num_charts, b.report.num_charts);
+  EXPECT_EQ(a.report.final_l2, b.report.final_l2);
+  ASSERT_EQ(a.param.uv.size(), b.param.uv.size());
+  EXPECT_TRUE(a.param.uv == b.param.uv);
+  EXPECT_TRUE(a.param.uv_faces == b.param.uv_faces);
+}
+
 /// Flips the winding of every face (as the CW-wound shared meshes are).
 TriMesh flipped(TriMesh m) {
   for (Face& t : m.faces) std::swap(t[1], t[2]);
@@ -110,6 +119,61 @@ TEST(Unwrap, AutoStopsAtTheLargestChartCount) {
   EXPECT_LE(r.report.num_charts, m.num_faces());
 }
 
+TEST(Unwrap, ProbeSkipsAHopelessSingleChartAndOnlyReordersTheCounts) {
+  // Genus 3: the single chart's first cheap parameterization has an L2 of about 11 (> 3), so auto
+  // gives it up and starts the segmentation at probe_first_charts = 12 (docs/charts.md).
+  const TriMesh m = shapes::genus_surface(3);
+  UnwrapResult probed;
+  test::check_unwrap("probe", m, UnwrapOptions{}, &probed);
+  EXPECT_GE(probed.report.num_charts, 12);
+  EXPECT_GE(probed.report.effective_texel_share, 0.5);
+  // Starting at 4 charts, the probe only skips the single chart: the layout is the one auto made
+  // without the probe (single chart in full, then 4, 6, ...), bit for bit.
+  UnwrapOptions from4;
+  from4.probe_first_charts = 4;
+  UnwrapOptions no_probe;
+  no_probe.single_probe_l2 = 0;
+  const UnwrapResult a = unwrap(m, from4);
+  const UnwrapResult b = unwrap(m, no_probe);
+  ASSERT_GT(b.report.num_charts, 1);
+  EXPECT_LT(b.report.num_charts, 12);
+  expect_same_layout(a, b);
+}
+
+TEST(Unwrap, ProbeKeepsAGoodSingleChartAndFallsBackToIt) {
+  // A sphere: its single chart reaches the share, and the probe (L2 about 1.2 < 3) keeps it.
+  const TriMesh m = shapes::genus_surface(0);
+  UnwrapOptions single;
+  single.charts = ChartMode::Single;
+  const UnwrapResult one = unwrap(m, single);
+  const UnwrapResult def = unwrap(m);
+  EXPECT_EQ(def.report.num_charts, 1);
+  EXPECT_TRUE(def.param.uv == one.param.uv);
+  // A probe that gives up every chart (every L2 is >= 1) and no chart count to try (max_charts
+  // < 4): the single chart is built after all, the same layout as ChartMode::Single.
+  UnwrapOptions give_up;
+  give_up.single_probe_l2 = 0.5;
+  give_up.max_charts = 3;
+  const UnwrapResult fallback = unwrap(m, give_up);
+  EXPECT_EQ(fallback.report.num_charts, 1);
+  expect_same_layout(fallback, one);
+  // An unreachable share: every count is tried, and the result is never below the single chart.
+  give_up.max_charts = 16;
+  give_up.min_texel_share = 2;
+  UnwrapResult best;
+  test::check_unwrap("unreachable share", m, give_up, &best);
+  EXPECT_GE(best.report.effective_texel_share, one.report.effective_texel_share);
+  // Bad probe options.
+  UnwrapOptions bad;
+  bad.single_probe_l2 = -1;
+  EXPECT_THROW(unwrap(m, bad), InvalidInputError);
+  bad.single_probe_l2 = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(unwrap(m, bad), InvalidInputError);
+  bad = UnwrapOptions{};
+  bad.probe_first_charts = -1;
+  EXPECT_THROW(unwrap(m, bad), InvalidInputError);
+}
+
 TEST(Pack, SquaresAreDisjointPaddedAndInside) {
   for (int n : {1, 2, 3, 7, 40, 500}) {
     std::vector<double> areas(n);
@@ -161,12 +225,8 @@ TEST(Unwrap, ParallelChartsGiveTheSequentialLayout) {
   const UnwrapResult b = unwrap(m, sequential);
   ASSERT_GT(a.report.num_charts, 1);
   EXPECT_GT(a.report.augmentations, 0);
-  EXPECT_EQ(a.report.num_charts, b.report.num_charts);
   EXPECT_EQ(a.report.augmentations, b.report.augmentations);
-  EXPECT_EQ(a.report.final_l2, b.report.final_l2);
-  ASSERT_EQ(a.param.uv.size(), b.param.uv.size());
-  EXPECT_TRUE(a.param.uv == b.param.uv);
-  EXPECT_TRUE(a.param.uv_faces == b.param.uv_faces);
+  expect_same_layout(a, b);
 }
 
 }  // namespace

@@ -19,7 +19,9 @@ enum class ChartMode {
   Single,
   /// One chart per component when that layout reaches UnwrapOptions::min_texel_share; otherwise
   /// the components are segmented into 4, 6, 8, 12, 16, ... charts (up to max_charts) until a layout
-  /// reaches it, and the layout with the highest effective texel share is kept.
+  /// reaches it, and the layout with the highest effective texel share is kept. On one component,
+  /// a single chart predicted to fail (UnwrapOptions::single_probe_l2) is skipped and the counts
+  /// from probe_first_charts on are tried first.
   Auto,
 };
 
@@ -67,6 +69,17 @@ struct UnwrapOptions {
   double min_texel_share = 0.5;
   /// Auto: the largest number of charts tried (over the whole mesh, plus the components).
   int max_charts = 64;
+  /// Auto, meshes of one component: when the first cheap parameterization of the single chart
+  /// (Floater + augment_yoshizawa_iterations Yoshizawa iterations, before the cut augmentation)
+  /// has degenerate or flipped UV triangles or an L2 stretch above this, the single chart is not
+  /// finished (no augmentation, no full Yoshizawa solve) and the segmentation starts at
+  /// probe_first_charts charts; it is built after all only if no segmentation reaches
+  /// min_texel_share. 3: every shared and code-built mesh whose single chart reaches a share of
+  /// 0.5 starts at an L2 of at most 2.47 (venus); docs/charts.md. 0 disables the probe.
+  double single_probe_l2 = 3.0;
+  /// Auto, after the probe above gave up the single chart: the chart counts >= this are tried
+  /// first (12, 16, 24, ...), then the smaller ones (4, 6, 8). docs/charts.md.
+  int probe_first_charts = 12;
   /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight). 0 (compact
   /// geodesic charts) gave the highest texel share on every mesh measured (docs/charts.md).
   double chart_normal_weight = 0.0;
