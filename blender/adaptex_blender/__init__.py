@@ -1,0 +1,309 @@
+"""adaptex for Blender: unwrap a mesh with adaptex, and adapt a painted texture's layout to its
+paint (a smaller texture that keeps the detail). docs/blender.md."""
+import bpy
+from bpy.props import BoolProperty, EnumProperty, IntProperty, StringProperty
+
+from . import backend, meshdata
+
+bl_info = {
+    "name": "adaptex",
+    "author": "adaptex",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "3D View / UV Editor > Sidebar > adaptex; UV Editor > UV menu",
+    "description": "Unwrap with adaptex; adapt the UV layout to the painted texture (signal-adaptive "
+                   "re-parameterization)",
+    "category": "UV",
+}
+
+
+class AdaptexPreferences(bpy.types.AddonPreferences):
+    bl_idname = __package__
+    backend: EnumProperty(
+        name="Run adaptex with",
+        items=[("AUTO", "Automatic", "The Python module where Blender can import it, else the CLI"),
+               ("MODULE", "Python module", "The adaptex Python module only"),
+               ("CLI", "Command line", "The adaptex command-line tool only")],
+        default="AUTO")
+    module_path: StringProperty(name="Module folder", subtype="DIR_PATH",
+                                description="Folder holding the adaptex package (if Blender cannot import it)")
+    cli_path: StringProperty(name="adaptex CLI", subtype="FILE_PATH",
+                             description="The adaptex executable (default: $ADAPTEX_CLI, then PATH)")
+
+    def draw(self, context):
+        for p in ("backend", "module_path", "cli_path"):
+            self.layout.prop(self, p)
+
+
+def choose_backend(context):
+    prefs = context.preferences.addons[__package__].preferences
+    return backend.choose(prefs.backend, bpy.path.abspath(prefs.module_path), bpy.path.abspath(prefs.cli_path))
+
+
+def set_status(context, text):
+    if getattr(context, "workspace", None) is not None:
+        context.workspace.status_text_set(text)
+
+
+class AdaptexJobOperator:
+    """Runs prepare()'s work as a Job: in the background with a progress bar and Esc to cancel when
+    invoked from the UI, synchronously from scripts (execute) and in background Blender."""
+    _job = None
+    _timer = None
+
+    def execute(self, context):
+        work = self.prepare(context)
+        if work is None:
+            return {"CANCELLED"}
+        return self.finish(context, backend.Job(work).run())
+
+    def invoke(self, context, event):
+        if bpy.app.background:
+            return self.execute(context)
+        work = self.prepare(context)
+        if work is None:
+            return {"CANCELLED"}
+        self._job = backend.Job(work)
+        self._job.start()
+        wm = context.window_manager
+        wm.progress_begin(0, 100)
+        self._timer = wm.event_timer_add(0.1, window=context.window)
+        wm.modal_handler_add(self)
+        set_status(context, f"adaptex ({self.backend.name}): starting; Esc cancels")
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        job = self._job
+        if event.type == "ESC" and event.value == "PRESS":
+            job.cancel()
+            return {"RUNNING_MODAL"}
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}
+        context.window_manager.progress_update(int(100 * job.fraction))
+        set_status(context, f"adaptex ({self.backend.name}): {job.phase} {100 * job.fraction:.0f}%"
+                            f"{' - cancelling' if job.cancelled else '; Esc cancels'}")
+        if not job.done:
+            return {"PASS_THROUGH"}
+        context.window_manager.event_timer_remove(self._timer)
+        context.window_manager.progress_end()
+        set_status(context, None)
+        return self.finish(context, job)
+
+    def finish(self, context, job):
+        if isinstance(job.error, backend.Cancelled):
+            self.report({"WARNING"}, "adaptex: cancelled; nothing was changed")
+            return {"CANCELLED"}
+        if job.error is not None:
+            self.report({"ERROR"}, f"adaptex: {job.error}")
+            return {"CANCELLED"}
+        try:
+            return self.apply(context, job.result)
+        except (ValueError, RuntimeError) as e:
+            self.report({"ERROR"}, f"adaptex: {e}")
+            return {"CANCELLED"}
+
+    def target(self, context):
+        """The active mesh object and its triangles, or None (with an error report)."""
+        obj = context.active_object
+        if obj is None or obj.type != "MESH":
+            self.report({"ERROR"}, "adaptex: select a mesh object")
+            return None
+        if obj.mode == "EDIT":
+            obj.update_from_editmode()
+        self.object_name = obj.name
+        self.V, self.F, self.loops = meshdata.triangles(obj.data)
+        if len(self.F) == 0:
+            self.report({"ERROR"}, "adaptex: the mesh has no faces")
+            return None
+        try:
+            self.backend = choose_backend(context)
+        except RuntimeError as e:
+            self.report({"ERROR"}, f"adaptex: {e}")
+            return None
+        return obj
+
+    def target_mesh(self):
+        """The mesh again after the job (it may have been deleted or edited meanwhile)."""
+        obj = bpy.data.objects.get(self.object_name)
+        if obj is None or obj.type != "MESH":
+            raise RuntimeError("the object was deleted while adaptex ran")
+        me = obj.data
+        me.calc_loop_triangles()
+        if len(me.loop_triangles) != len(self.F):
+            raise RuntimeError("the mesh was edited while adaptex ran; run it again")
+        return me
+
+
+class ADAPTEX_OT_unwrap(AdaptexJobOperator, bpy.types.Operator):
+    """Unwrap the active mesh with adaptex (cut to disks, stretch-minimizing layout, packing) into a new UV map"""
+    bl_idname = "adaptex.unwrap"
+    bl_label = "Unwrap with adaptex"
+    bl_options = {"REGISTER", "UNDO"}
+
+    uv_name: StringProperty(name="UV map", default="adaptex", description="Name of the new UV map")
+
+    @classmethod
+    def poll(cls, context):
+        return context.active_object is not None and context.active_object.type == "MESH"
+
+    def prepare(self, context):
+        if self.target(context) is None:
+            return None
+        V, F, b = self.V, self.F, self.backend
+        return lambda report: b.unwrap(V, F, report)
+
+    def apply(self, context, result):
+        me = self.target_mesh()
+        UV, FT = result
+        per_loop, conflicts = meshdata.loop_uvs(me, self.loops, UV, FT)
+        layer = meshdata.add_uv_map(me, self.uv_name, per_loop)
+        me.update()
+        msg = f"adaptex: new UV map '{layer.name}' ({self.backend.name})"
+        if conflicts:
+            msg += f"; {conflicts} polygon corners lie on a seam through a polygon: triangulate for an exact layout"
+        self.report({"INFO"}, msg)
+        return {"FINISHED"}
+
+
+def painted_image(context, obj):
+    """The image being painted: the UV editor's, else the active paint slot's, else the first image
+    texture node of the active material."""
+    space = getattr(context, "space_data", None)
+    if space is not None and space.type == "IMAGE_EDITOR" and space.image is not None:
+        return space.image
+    mat = obj.active_material
+    if mat is None:
+        return None
+    if len(mat.texture_paint_images) > 0:
+        return mat.texture_paint_images[min(mat.paint_active_slot, len(mat.texture_paint_images) - 1)]
+    if mat.use_nodes:
+        for node in mat.node_tree.nodes:
+            if node.type == "TEX_IMAGE" and node.image is not None:
+                return node.image
+    return None
+
+
+class ADAPTEX_OT_adapt_layout(AdaptexJobOperator, bpy.types.Operator):
+    """Re-parameterize the mesh by its painted image (texels go where the paint has detail) and resample
+    the image into a new UV map and a new image, keeping the originals"""
+    bl_idname = "adaptex.adapt_layout"
+    bl_label = "Adapt layout to paint"
+    bl_options = {"REGISTER", "UNDO"}
+
+    image: StringProperty(name="Image", description="The painted image (default: the one being painted)")
+    scale: EnumProperty(
+        name="New size",
+        items=[("1", "Same size", "Keep the image size"),
+               ("2", "2x smaller", "Half the width and height"),
+               ("4", "4x smaller", "A quarter of the width and height (4K -> 1K)"),
+               ("8", "8x smaller", "An eighth of the width and height"),
+               ("CUSTOM", "Custom", "The size below")],
+        default="4")
+    size: IntProperty(name="Size", default=1024, min=8, max=8192, description="Width = height of the new image (Custom)")
+    assign: BoolProperty(name="Show the result", default=True,
+                         description="Make the new UV map active and put the new image in the material's "
+                                     "image node (the originals are kept)")
+
+    @classmethod
+    def poll(cls, context):
+        return context.active_object is not None and context.active_object.type == "MESH"
+
+    def draw(self, context):
+        for p in ("image", "scale", "size", "assign"):
+            self.layout.prop(self, p)
+
+    def prepare(self, context):
+        obj = self.target(context)
+        if obj is None:
+            return None
+        img = bpy.data.images.get(self.image) if self.image else painted_image(context, obj)
+        if img is None or img.size[0] == 0:
+            self.report({"ERROR"}, "adaptex: no painted image (paint one, or give its name)")
+            return None
+        uv_layer = obj.data.uv_layers.active
+        if uv_layer is None:
+            self.report({"ERROR"}, "adaptex: the mesh has no UV map")
+            return None
+        self.image, self.uv_source = img.name, uv_layer.name
+        texture = meshdata.image_pixels(img)
+        n = self.size if self.scale == "CUSTOM" else max(8, max(img.size) // int(self.scale))
+        UV, FT = meshdata.wedges(obj.data, uv_layer, self.loops)
+        self.old = (UV, FT, texture)
+        V, F, b = self.V, self.F, self.backend
+        return lambda report: b.reparam(V, F, UV, FT, texture, n, report)
+
+    def apply(self, context, result):
+        me = self.target_mesh()
+        UV, FT, texture = result
+        if isinstance(texture, str):  # the CLI's PNG
+            texture = meshdata.read_png(bpy, texture)
+        n = texture.shape[0]
+        old_uv, old_ft, old_tex = self.old
+        plain = meshdata.area_resize(old_tex, n, n)
+        psnr_adapted, psnr_plain = meshdata.psnr_against(
+            (old_uv, old_ft, old_tex), [(UV, FT, texture), (old_uv, old_ft, plain)], self.V, self.F)
+        per_loop, _ = meshdata.loop_uvs(me, self.loops, UV, FT)
+        layer = meshdata.add_uv_map(me, self.uv_source + "_adaptex", per_loop)
+        img = meshdata.new_image(bpy, f"{self.image}_adaptex_{n}", texture)
+        if self.assign:
+            layer.active_render = True
+            obj = bpy.data.objects[self.object_name]
+            for slot in obj.material_slots:
+                if slot.material is not None and slot.material.use_nodes:
+                    for node in slot.material.node_tree.nodes:
+                        if node.type == "TEX_IMAGE" and node.image is not None and node.image.name == self.image:
+                            node.image = img
+        me.update()
+        result = {"image": img.name, "uv_map": layer.name, "size": n, "psnr": psnr_adapted,
+                  "psnr_plain": psnr_plain, "gain": psnr_adapted - psnr_plain, "backend": self.backend.name}
+        context.scene["adaptex_last"] = result
+        self.report({"INFO"}, f"adaptex: {n}x{n} '{img.name}', UV map '{layer.name}': PSNR {psnr_adapted:.2f} dB, "
+                              f"{psnr_adapted - psnr_plain:+.2f} dB over plain downsizing to {n}x{n}")
+        return {"FINISHED"}
+
+
+def draw_buttons(layout):
+    layout.operator(ADAPTEX_OT_unwrap.bl_idname, icon="UV")
+    layout.operator(ADAPTEX_OT_adapt_layout.bl_idname, icon="TEXTURE")
+
+
+class VIEW3D_PT_adaptex(bpy.types.Panel):
+    bl_label = "adaptex"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "adaptex"
+
+    def draw(self, context):
+        draw_buttons(self.layout)
+
+
+class IMAGE_PT_adaptex(bpy.types.Panel):
+    bl_label = "adaptex"
+    bl_space_type = "IMAGE_EDITOR"
+    bl_region_type = "UI"
+    bl_category = "adaptex"
+
+    def draw(self, context):
+        draw_buttons(self.layout)
+
+
+def uv_menu(self, context):
+    self.layout.separator()
+    draw_buttons(self.layout)
+
+
+classes = (AdaptexPreferences, ADAPTEX_OT_unwrap, ADAPTEX_OT_adapt_layout, VIEW3D_PT_adaptex, IMAGE_PT_adaptex)
+
+
+def register():
+    for c in classes:
+        bpy.utils.register_class(c)
+    bpy.types.IMAGE_MT_uvs.append(uv_menu)
+    bpy.types.VIEW3D_MT_uv_map.append(uv_menu)
+
+
+def unregister():
+    bpy.types.VIEW3D_MT_uv_map.remove(uv_menu)
+    bpy.types.IMAGE_MT_uvs.remove(uv_menu)
+    for c in reversed(classes):
+        bpy.utils.unregister_class(c)
