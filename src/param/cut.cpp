@@ -108,6 +108,27 @@ std::vector<char> genus0_cut(const TriMesh& mesh, const EdgeConnectivity& ec, co
   return cut;
 }
 
+/// True if every vertex of \p g is reachable from vertex 0 (an isolated vertex makes it false).
+bool connected_by_edges(const EdgeGraph& g) {
+  const int nv = static_cast<int>(g.offsets.size()) - 1;
+  if (nv <= 1) return true;
+  std::vector<char> seen(nv, 0);
+  std::vector<int> stack{0};
+  seen[0] = 1;
+  int count = 1;
+  while (!stack.empty()) {
+    const int v = stack.back();
+    stack.pop_back();
+    for (int k = g.offsets[v]; k < g.offsets[v + 1]; ++k)
+      if (!seen[g.nbr[k]]) {
+        seen[g.nbr[k]] = 1;
+        ++count;
+        stack.push_back(g.nbr[k]);
+      }
+  }
+  return count == nv;
+}
+
 }  // namespace
 
 EdgeGraph build_edge_graph(const TriMesh& mesh, const EdgeConnectivity& ec) {
@@ -137,6 +158,12 @@ EdgeGraph build_edge_graph(const TriMesh& mesh, const EdgeConnectivity& ec) {
 std::vector<char> initial_cut(const TriMesh& mesh, const EdgeConnectivity& ec, const EdgeGraph& g) {
   const int nv = mesh.num_vertices(), nf = mesh.num_faces(), ne = ec.num_edges();
   if (nf == 0) throw TopologyError("initial_cut: the mesh has no faces");
+  // A closed connected surface with Euler characteristic 2 (genus 0): the cut graph of steps 1-3
+  // is a spanning tree of the vertices (E - F + 1 = V - 1 edges left by the face tree, no cycle),
+  // which the pruning removes entirely; step 4 decides directly.
+  bool closed = true;
+  for (int e = 0; e < ne && closed; ++e) closed = !ec.is_boundary(e);
+  if (closed && nv - ne + nf == 2 && connected_by_edges(g)) return genus0_cut(mesh, ec, g);
 
   // 1. Shortest-path forest T rooted at the boundary (or at one base vertex of a closed surface).
   std::vector<int> sources;
