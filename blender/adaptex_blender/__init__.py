@@ -36,13 +36,38 @@ class AdaptexPreferences(bpy.types.AddonPreferences):
 
 
 def choose_backend(context):
-    prefs = context.preferences.addons[__package__].preferences
+    addon = context.preferences.addons.get(__package__)  # None when registered by a script, not enabled
+    if addon is None:
+        return backend.choose()
+    prefs = addon.preferences
     return backend.choose(prefs.backend, bpy.path.abspath(prefs.module_path), bpy.path.abspath(prefs.cli_path))
 
 
 def set_status(context, text):
     if getattr(context, "workspace", None) is not None:
         context.workspace.status_text_set(text)
+
+
+def leave_edit_mode(obj):
+    """Object mode for an object in edit mode (a new UV map is written to the mesh data)."""
+    if obj.mode == "EDIT":
+        bpy.ops.object.mode_set(mode="OBJECT")
+
+
+def show_result(context, text, seconds=15.0):
+    """\p text in the status bar for \p seconds (a report alone disappears after a moment)."""
+    workspace = getattr(context, "workspace", None)
+    if workspace is None or bpy.app.background:
+        return
+    workspace.status_text_set(text)
+
+    def clear():
+        try:
+            workspace.status_text_set(None)
+        except ReferenceError:  # the workspace was removed meanwhile
+            pass
+
+    bpy.app.timers.register(clear, first_interval=seconds)
 
 
 class AdaptexJobOperator:
@@ -108,8 +133,7 @@ class AdaptexJobOperator:
         if obj is None or obj.type != "MESH":
             self.report({"ERROR"}, "adaptex: select a mesh object")
             return None
-        if obj.mode == "EDIT":
-            obj.update_from_editmode()
+        leave_edit_mode(obj)
         self.object_name = obj.name
         self.V, self.F, self.loops = meshdata.triangles(obj.data)
         if len(self.F) == 0:
@@ -141,12 +165,25 @@ class ADAPTEX_OT_unwrap(AdaptexJobOperator, bpy.types.Operator):
     bl_options = {"REGISTER", "UNDO"}
 
     uv_name: StringProperty(name="UV map", default="adaptex", description="Name of the new UV map")
+    triangulate: BoolProperty(
+        name="Triangulate first", default=False,
+        description="Triangulate the mesh before unwrapping: adaptex cuts along triangle edges, and a seam "
+                    "through a quad or n-gon cannot be stored in its UV map")
 
     @classmethod
     def poll(cls, context):
         return context.active_object is not None and context.active_object.type == "MESH"
 
     def prepare(self, context):
+        obj = context.active_object
+        if self.triangulate and obj is not None and obj.type == "MESH":
+            import bmesh
+            leave_edit_mode(obj)
+            bm = bmesh.new()
+            bm.from_mesh(obj.data)
+            bmesh.ops.triangulate(bm, faces=bm.faces[:])
+            bm.to_mesh(obj.data)
+            bm.free()
         if self.target(context) is None:
             return None
         V, F, b = self.V, self.F, self.backend
@@ -160,7 +197,8 @@ class ADAPTEX_OT_unwrap(AdaptexJobOperator, bpy.types.Operator):
         me.update()
         msg = f"adaptex: new UV map '{layer.name}' ({self.backend.name})"
         if conflicts:
-            msg += f"; {conflicts} polygon corners lie on a seam through a polygon: triangulate for an exact layout"
+            msg += (f"; {conflicts} polygon corners lie on a seam through a polygon: run it again with "
+                    "'Triangulate first' for an exact layout")
         self.report({"INFO"}, msg)
         return {"FINISHED"}
 
@@ -253,12 +291,18 @@ class ADAPTEX_OT_adapt_layout(AdaptexJobOperator, bpy.types.Operator):
                     for node in slot.material.node_tree.nodes:
                         if node.type == "TEX_IMAGE" and node.image is not None and node.image.name == self.image:
                             node.image = img
+                            # An explicit UV Map node feeding it must follow (else the active render map is used).
+                            for link in node.inputs["Vector"].links:
+                                if link.from_node.type == "UVMAP" and link.from_node.uv_map in ("", self.uv_source):
+                                    link.from_node.uv_map = layer.name
         me.update()
         result = {"image": img.name, "uv_map": layer.name, "size": n, "psnr": psnr_adapted,
                   "psnr_plain": psnr_plain, "gain": psnr_adapted - psnr_plain, "backend": self.backend.name}
         context.scene["adaptex_last"] = result
-        self.report({"INFO"}, f"adaptex: {n}x{n} '{img.name}', UV map '{layer.name}': PSNR {psnr_adapted:.2f} dB, "
-                              f"{psnr_adapted - psnr_plain:+.2f} dB over plain downsizing to {n}x{n}")
+        text = (f"adaptex: {n}x{n} '{img.name}', UV map '{layer.name}': PSNR {psnr_adapted:.2f} dB, "
+                f"{psnr_adapted - psnr_plain:+.2f} dB over plain downsizing to {n}x{n}")
+        self.report({"INFO"}, text)
+        show_result(context, text)
         return {"FINISHED"}
 
 
@@ -267,24 +311,11 @@ def draw_buttons(layout):
     layout.operator(ADAPTEX_OT_adapt_layout.bl_idname, icon="TEXTURE")
 
 
-class VIEW3D_PT_adaptex(bpy.types.Panel):
-    bl_label = "adaptex"
-    bl_space_type = "VIEW_3D"
-    bl_region_type = "UI"
-    bl_category = "adaptex"
-
-    def draw(self, context):
-        draw_buttons(self.layout)
-
-
-class IMAGE_PT_adaptex(bpy.types.Panel):
-    bl_label = "adaptex"
-    bl_space_type = "IMAGE_EDITOR"
-    bl_region_type = "UI"
-    bl_category = "adaptex"
-
-    def draw(self, context):
-        draw_buttons(self.layout)
+def sidebar_panel(space):
+    """The adaptex tab of \p space's sidebar (3D View: object and texture paint modes; UV editor)."""
+    return type(f"{space.split('_')[0]}_PT_adaptex", (bpy.types.Panel,), {
+        "bl_label": "adaptex", "bl_space_type": space, "bl_region_type": "UI", "bl_category": "adaptex",
+        "draw": lambda self, context: draw_buttons(self.layout)})
 
 
 def uv_menu(self, context):
@@ -292,7 +323,8 @@ def uv_menu(self, context):
     draw_buttons(self.layout)
 
 
-classes = (AdaptexPreferences, ADAPTEX_OT_unwrap, ADAPTEX_OT_adapt_layout, VIEW3D_PT_adaptex, IMAGE_PT_adaptex)
+classes = (AdaptexPreferences, ADAPTEX_OT_unwrap, ADAPTEX_OT_adapt_layout, sidebar_panel("VIEW_3D"),
+           sidebar_panel("IMAGE_EDITOR"))
 
 
 def register():

@@ -61,20 +61,10 @@ chosen = adaptex_blender.choose_backend(bpy.context)
 check(chosen.name == {"MODULE": "Python module", "CLI": "adaptex CLI"}[which], chosen.name)
 
 # ---- a painted mesh: a sphere painted with the CLI on its own layout at 512 x 512 --------------
-sl, st = 64, 32
-V = [(0.0, 0.0, 1.0)]
-for i in range(1, st):
-    th = np.pi * i / st
-    V += [(np.sin(th) * np.cos(2 * np.pi * j / sl), np.sin(th) * np.sin(2 * np.pi * j / sl), np.cos(th))
-          for j in range(sl)]
-V.append((0.0, 0.0, -1.0))
-ring = lambda i, j: 1 + i * sl + j % sl  # noqa: E731
-F = [(0, ring(0, j), ring(0, j + 1)) for j in range(sl)]
-for i in range(st - 2):
-    for j in range(sl):
-        F += [(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)), (ring(i, j), ring(i + 1, j + 1), ring(i, j + 1))]
-F += [(len(V) - 1, ring(st - 2, j + 1), ring(st - 2, j)) for j in range(sl)]
-V, F = np.array(V), np.array(F, dtype=np.int32)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from shapes import uv_sphere  # noqa: E402
+
+V, F = uv_sphere(64, 32)
 backend.write_obj(os.path.join(work, "ball.obj"), V, F)
 run_cli("strokes", "generate", os.path.join(work, "ball.obj"), "--kind", "lines", "--seed", 2,
         "-o", os.path.join(work, "s.json"))
