@@ -226,9 +226,32 @@ const ImageRGBA8* App::texture() const {
   return painting_.surface() ? &painting_.surface()->canvas->texture() : nullptr;
 }
 
-double App::world_radius() const {
+double App::diagonal() const {
   const double diag = has_model() ? painting_.model()->box.diagonal() : 1.0;
-  return brush_.radius * (diag > 0 ? diag : 1.0);
+  return diag > 0 ? diag : 1.0;
+}
+
+Vec3 App::brush_anchor() const { return cursor_hit_ ? cursor_hit_->point : camera_.target; }
+
+double App::world_radius() const { return brush_world_radius(brush_, camera_, brush_anchor(), diagonal()); }
+
+std::vector<ScreenCircle> App::brush_cursors() const {
+  if (resize_) return {{resize_->centre, resize_->pixels}};
+  if (!cursor_hit_ || input_.ui_mouse() || brush_.tool == Tool::Eyedropper || !has_model()) return {};
+  const Drag d = input_.drag();
+  if (d != Drag::None && d != Drag::Paint) return {};
+  std::vector<ScreenCircle> out;
+  // Centred on the cursor; the world radius (the stroke's) shown at each circle's own depth.
+  const double r = world_radius();
+  out.push_back({Vec2(input_.x(), input_.y()), r / camera_.pixel_size_at(cursor_hit_->point)});
+  if (brush_.symmetry_axis >= 0) {
+    const Ray ray = camera_.pixel_ray(input_.x(), input_.y());
+    if (auto mh = painting_.mirror_hit(ray, *cursor_hit_, brush_.symmetry_axis)) {
+      const Vec3 s = camera_.project(mh->point);
+      if (s.z() < 1) out.push_back({Vec2(s.x(), s.y()), r / camera_.pixel_size_at(mh->point)});
+    }
+  }
+  return out;
 }
 
 bool App::adapt_wanted() const {
@@ -293,11 +316,16 @@ void App::on_resize(int width, int height) {
 }
 
 void App::on_mouse_button(MouseButton b, bool pressed, Mods mods) {
+  if (resize_) {  // an F resize: a left click keeps it, a right click cancels it (as Blender)
+    if (pressed && b == MouseButton::Left) end_resize(true);
+    if (pressed && b == MouseButton::Right) end_resize(false);
+    return;
+  }
   if (!pressed) {
     if (input_.release(b, mods) == Drag::Paint) end_paint();
     return;
   }
-  switch (input_.press(b, mods, brush_.tool)) {
+  switch (input_.press(b, mods, brush_.tool, stencil_.has_value())) {
     case Drag::Paint: begin_paint(); break;
     case Drag::Eyedrop: eyedrop(input_.x(), input_.y()); break;
     default: break;
@@ -312,8 +340,10 @@ void App::on_cursor(double x, double y) {
     case Drag::Pan: camera_.pan(dx, dy); break;
     case Drag::Paint: continue_paint(x0, y0, x, y); break;
     case Drag::Eyedrop: eyedrop(x, y); break;
+    case Drag::Stencil: edit_stencil(*stencil_, input_.stencil_edit(), x0, y0, x, y); break;
     case Drag::None: break;
   }
+  if (resize_) update_brush_resize(*resize_, brush_, camera_, diagonal(), x, y);
   update_cursor();
 }
 
@@ -328,6 +358,11 @@ void App::on_key(int key, bool pressed, Mods mods) {
   if (!pressed) return;
   if (confirm_) {
     if (!input_.ui_text()) answer_key(key);
+    return;
+  }
+  if (resize_) {
+    if (key == keys::Escape) end_resize(false);
+    if (key == 'F' || key == keys::Enter || key == keys::KeypadEnter) end_resize(true);
     return;
   }
   if (input_.ui_keyboard()) return;
@@ -348,8 +383,13 @@ void App::run_command(Command c) {
     case Command::Quit: request_quit(); break;
     case Command::Save: save(); break;
     case Command::Frame: frame_model(); break;
-    case Command::SmallerBrush: brush_.radius = std::max(1e-4, brush_.radius / 1.15); break;
-    case Command::LargerBrush: brush_.radius = std::min(0.5, brush_.radius * 1.15); break;
+    case Command::SmallerBrush: scale_brush(brush_, 1 / 1.15); break;
+    case Command::LargerBrush: scale_brush(brush_, 1.15); break;
+    case Command::ResizeBrush: start_resize(); break;
+    case Command::ProjectStencil: project_decal(decal_opacity_); break;
+    case Command::Checker: view_.checker = !view_.checker; break;
+    case Command::FixedLayout: view_.fixed_layout = !view_.fixed_layout; break;
+    case Command::Help: view_.show_help = !view_.show_help; break;
     case Command::Brush: brush_.tool = Tool::Brush; break;
     case Command::Eraser: brush_.tool = brush_.tool == Tool::Eraser ? Tool::Brush : Tool::Eraser; break;
     case Command::Eyedropper: brush_.tool = Tool::Eyedropper; break;
@@ -408,8 +448,10 @@ Stroke App::brush_style() const {
 void App::begin_paint() {
   if (!painting_.surface() || painting_.stroke_open()) return;
   painting_.catch_up();  // paints redone strokes first, so canvas order == history order
+  const auto h = pick(input_.x(), input_.y());
+  if (h) cursor_hit_ = h;  // a screen-space radius is taken at the depth of the first dab
   painting_.begin_stroke(brush_style());
-  if (auto h = pick(input_.x(), input_.y())) paint_dab_at(*h, camera_.pixel_ray(input_.x(), input_.y()));
+  if (h) paint_dab_at(*h, camera_.pixel_ray(input_.x(), input_.y()));
 }
 
 void App::continue_paint(double x0, double y0, double x1, double y1) {
@@ -446,6 +488,16 @@ void App::eyedrop(double x, double y) {
   if (auto h = pick(x, y)) brush_.color = sample_colour(*h);
 }
 
+void App::start_resize() {
+  if (!has_model() || input_.drag() != Drag::None || input_.ui_mouse()) return;
+  resize_ = begin_brush_resize(brush_, camera_, brush_anchor(), diagonal(), input_.x(), input_.y());
+}
+
+void App::end_resize(bool keep) {
+  if (!keep && resize_) brush_ = resize_->before;
+  resize_.reset();
+}
+
 void App::update_cursor() {
   const Drag d = input_.drag();
   cursor_hit_ = (d == Drag::None || d == Drag::Paint) ? pick(input_.x(), input_.y()) : std::nullopt;
@@ -471,7 +523,10 @@ void App::load_decal(const std::filesystem::path& path) {
   try {
     decal_image_ = load_image(path);
     decal_path_ = std::filesystem::absolute(path).lexically_normal().string();
-    add_message("decal image " + path.string() + " loaded: use Project decal", false);
+    stencil_ = fit_stencil(camera_, double(decal_image_->width) / std::max(1, decal_image_->height));
+    add_message("decal image " + path.string() +
+                    " loaded as a stencil: right drag moves it, Shift scales, Ctrl rotates; P projects it",
+                false);
   } catch (const std::exception& e) {
     add_message(e.what(), true);
   }
@@ -484,10 +539,18 @@ void App::project_decal(double opacity) {
   s.image = *decal_image_;
   s.image_path = decal_path_;
   s.opacity = opacity;
-  s.camera = camera_.decal_camera();
+  s.camera = stencil_ ? stencil_->decal_camera(camera_) : camera_.decal_camera();
   painting_.push(std::move(s));
   store_.autosave_soon();
   history_changed();
+  add_message(stencil_ ? "projected the stencil" : "projected the decal from the view", false);
+}
+
+void App::clear_decal() {
+  decal_image_.reset();
+  decal_path_.clear();
+  stencil_.reset();
+  if (input_.drag() == Drag::Stencil) input_.release(MouseButton::Right, input_.mods());
 }
 
 // ---- background jobs --------------------------------------------------------------------------
@@ -618,14 +681,7 @@ void App::render() {
   v.has_mesh = painting_.surface() != nullptr;
   v.wireframe = view_.wireframe;
   v.background = view_.background;
-  if (cursor_hit_ && brush_.tool != Tool::Eyedropper && has_model()) {
-    v.cursors.push_back({cursor_hit_->point, cursor_hit_->normal, world_radius()});
-    if (brush_.symmetry_axis >= 0) {
-      const Ray ray = camera_.pixel_ray(input_.x(), input_.y());
-      if (auto mh = painting_.mirror_hit(ray, *cursor_hit_, brush_.symmetry_axis))
-        v.cursors.push_back({mh->point, mh->normal, world_radius()});
-    }
-  }
+  v.checker = view_.checker;
   renderer_->draw(v);
 }
 

@@ -24,11 +24,13 @@
 #include <vector>
 
 #include "adaptex/adapt/session.h"
+#include "brush.h"
 #include "camera.h"
 #include "input.h"
 #include "painting.h"
 #include "renderer.h"
 #include "settings.h"
+#include "stencil.h"
 #include "storage.h"
 #include "surface_jobs.h"
 
@@ -139,9 +141,18 @@ class App {
   void save_texture(const std::filesystem::path& path);
   /// Screenshot of the window (taken at the end of the current frame, UI included).
   void screenshot(const std::filesystem::path& path);
+  /// Loads a decal image and shows it as a stencil over the view (fit_stencil), nothing projected yet.
   void load_decal(const std::filesystem::path& path);
-  /// Projects the loaded decal image from the current view as a decal stroke.
+  /// Projects the loaded decal image through its stencil (stencil.h) as a decal stroke, from the
+  /// current view; the stencil stays for another projection.
   void project_decal(double opacity = 1.0);
+  /// Removes the decal image and its stencil.
+  void clear_decal();
+  /// The stencil of the loaded decal image (nullopt without one); the UI and tests may edit it.
+  std::optional<Stencil>& stencil() { return stencil_; }
+  const std::optional<Stencil>& stencil() const { return stencil_; }
+  /// Opacity the P key and the Project button project the stencil with.
+  double& decal_opacity() { return decal_opacity_; }
   /// Re-parameterizes now (with schedule each-stroke it also runs after every change).
   void request_adapt();
   /// The UI changed session_options(): re-parameterize for them (schedule each-stroke).
@@ -170,8 +181,14 @@ class App {
   const BrushSettings& brush() const { return brush_; }
   const ViewSettings& view() const { return view_; }
   const std::vector<std::string>& recent_files() const { return store_.recent(); }
-  /// Brush radius in world units.
+  /// Brush radius in world units at the surface under the cursor (else at the camera's target):
+  /// what a stroke begun there records (brush.h).
   double world_radius() const;
+  /// The brush circles to draw on the screen this frame (the cursor, its mirror with symmetry, the
+  /// circle of an F resize): none while the mouse is over the UI or with the eyedropper.
+  std::vector<ScreenCircle> brush_cursors() const;
+  /// An F resize runs (the next click or F keeps it, Esc or a right click cancels it).
+  bool resizing_brush() const { return resize_.has_value(); }
   /// The visible front-facing surface under window pixel (x, y).
   std::optional<Hit> pick(double x, double y) const;
   /// Painted colour at a hit (bilinear texture sample).
@@ -227,6 +244,12 @@ class App {
   void end_paint();
   void eyedrop(double x, double y);
   void update_cursor();
+  /// Model diagonal (1 without a model).
+  double diagonal() const;
+  /// The surface point the brush radius is measured at: under the cursor, else the camera's target.
+  Vec3 brush_anchor() const;
+  void start_resize();
+  void end_resize(bool keep);
   void run_command(Command c);
   void answer_key(int key);
   // jobs
@@ -263,6 +286,9 @@ class App {
   std::optional<std::filesystem::path> pending_screenshot_;
   std::optional<ImageRGBA8> decal_image_;
   std::string decal_path_;
+  std::optional<Stencil> stencil_;
+  double decal_opacity_ = 1.0;
+  std::optional<BrushResize> resize_;
   Stats stats_;
   Clock::time_point last_frame_end_ = Clock::now();
   bool quit_ = false;

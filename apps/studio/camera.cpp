@@ -85,6 +85,11 @@ void Camera::frame(const BoundingBox& box) {
   distance = scene_radius / std::sin(half) * 1.05;
 }
 
+double Camera::pixel_size_at(const Vec3& p) const {
+  const double depth = std::max((p - eye()).dot(forward()), near_plane());
+  return 2.0 * depth * std::tan(fov_y_degrees * 3.14159265358979 / 360.0) / std::max(1, height);
+}
+
 DecalCamera Camera::decal_camera() const {
   DecalCamera d;
   d.eye = eye();

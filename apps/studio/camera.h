@@ -53,6 +53,9 @@ struct Camera {
   /// Frames a bounding box: target at its centre, the whole box visible.
   void frame(const BoundingBox& box);
 
+  /// World length of one window pixel at the depth of \p p (along the view direction).
+  double pixel_size_at(const Vec3& p) const;
+
   /// The decal camera equal to this view (eye, target, up, fov, aspect).
   DecalCamera decal_camera() const;
 };

@@ -41,6 +41,7 @@ in vec2 v_uv;
 uniform sampler2D u_tex;
 uniform int u_mode;  // 0 = lit textured, 1 = flat colour
 uniform vec4 u_color;
+uniform float u_checker;  // > 0: checker squares per unit of uv (texture size / texels per square)
 out vec4 frag;
 void main() {
   if (u_mode == 1) { frag = u_color; return; }
@@ -51,6 +52,11 @@ void main() {
   vec3 h = normalize(l + v);
   float s = pow(abs(dot(n, h)), 48.0) * 0.12;
   vec3 albedo = texture(u_tex, v_uv).rgb;
+  if (u_checker > 0.0) {  // texel-density checker: every square holds the same number of texels
+    vec2 c = floor(v_uv * u_checker);
+    float odd = mod(c.x + c.y, 2.0);
+    albedo = mix(albedo, mix(vec3(0.93), vec3(0.18, 0.2, 0.28), odd), 0.7);
+  }
   frag = vec4(albedo * (0.35 + 0.65 * d) + vec3(s), 1.0);
 })";
 
@@ -72,7 +78,6 @@ GLuint compile(GLenum type, const char* src) {
 
 struct GlRenderer::Impl {
   GLuint program = 0, vao = 0, vbo = 0, ibo = 0, tex = 0;
-  GLuint line_vao = 0, line_vbo = 0;
   GLsizei index_count = 0;
   int tex_w = 0, tex_h = 0;
   std::map<int, std::pair<GLuint, std::pair<int, int>>> ui_textures;
@@ -93,15 +98,6 @@ GlRenderer::GlRenderer() : impl_(std::make_unique<Impl>()) {
   glGenVertexArrays(1, &I.vao);
   glGenBuffers(1, &I.vbo);
   glGenBuffers(1, &I.ibo);
-  glGenVertexArrays(1, &I.line_vao);
-  glGenBuffers(1, &I.line_vbo);
-  glBindVertexArray(I.line_vao);
-  glBindBuffer(GL_ARRAY_BUFFER, I.line_vbo);
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-  glVertexAttrib3f(1, 0, 0, 1);
-  glVertexAttrib2f(2, 0, 0);
-  glBindVertexArray(0);
   glGenTextures(1, &I.tex);
   glBindTexture(GL_TEXTURE_2D, I.tex);
   const unsigned char white[4] = {255, 255, 255, 255};
@@ -116,10 +112,8 @@ GlRenderer::~GlRenderer() {
   Impl& I = *impl_;
   glDeleteProgram(I.program);
   glDeleteVertexArrays(1, &I.vao);
-  glDeleteVertexArrays(1, &I.line_vao);
   glDeleteBuffers(1, &I.vbo);
   glDeleteBuffers(1, &I.ibo);
-  glDeleteBuffers(1, &I.line_vbo);
   glDeleteTextures(1, &I.tex);
   for (auto& [slot, t] : I.ui_textures) glDeleteTextures(1, &t.first);
 }
@@ -197,6 +191,8 @@ void GlRenderer::draw(const FrameView& view) {
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, I.tex);
   glUniform1i(mode, 0);
+  glUniform1f(glGetUniformLocation(I.program, "u_checker"),
+              view.checker && I.tex_w > 0 ? float(I.tex_w) / float(kCheckerTexels) : 0.f);
   glBindVertexArray(I.vao);
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(1.f, 1.f);
@@ -208,32 +204,6 @@ void GlRenderer::draw(const FrameView& view) {
     glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
     glDrawElements(GL_TRIANGLES, I.index_count, GL_UNSIGNED_INT, nullptr);
     glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-  }
-  if (!view.cursors.empty()) {
-    // Brush circles in the tangent plane, drawn over the surface (depth test off, two colours).
-    std::vector<float> pts;
-    constexpr int kSeg = 64;
-    for (const CursorCircle& c : view.cursors) {
-      Vec3 n = c.normal.normalized();
-      Vec3 t = n.unitOrthogonal(), b = n.cross(t);
-      const Vec3 lift = n * c.radius * 0.02;
-      for (int k = 0; k < kSeg; ++k) {
-        const double a = 2 * 3.14159265358979 * k / kSeg;
-        const Vec3 q = c.centre + lift + c.radius * (std::cos(a) * t + std::sin(a) * b);
-        pts.insert(pts.end(), {float(q.x()), float(q.y()), float(q.z())});
-      }
-    }
-    glBindVertexArray(I.line_vao);
-    glBindBuffer(GL_ARRAY_BUFFER, I.line_vbo);
-    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(pts.size() * sizeof(float)), pts.data(), GL_STREAM_DRAW);
-    glDisable(GL_DEPTH_TEST);
-    glUniform1i(mode, 1);
-    for (size_t c = 0; c < view.cursors.size(); ++c) {
-      glUniform4f(colour, 0.f, 0.f, 0.f, 1.f);
-      glLineWidth(1.f);
-      glDrawArrays(GL_LINE_LOOP, GLint(c * kSeg), kSeg);
-    }
-    glEnable(GL_DEPTH_TEST);
   }
   glBindVertexArray(0);
   glUseProgram(0);

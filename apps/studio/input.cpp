@@ -13,7 +13,12 @@ Command key_command(int key, Mods mods) {
     return Command::None;
   }
   switch (key) {
-    case 'F': return Command::Frame;
+    case keys::F1: return Command::Help;
+    case keys::Home: return Command::Frame;
+    case 'F': return Command::ResizeBrush;
+    case 'P': return Command::ProjectStencil;
+    case 'C': return Command::Checker;
+    case 'L': return Command::FixedLayout;
     case '[': return Command::SmallerBrush;
     case ']': return Command::LargerBrush;
     case 'B': return Command::Brush;
@@ -24,13 +29,41 @@ Command key_command(int key, Mods mods) {
   }
 }
 
-Drag InputState::press(MouseButton b, Mods mods, Tool tool) {
+const std::vector<Shortcut>& shortcuts() {
+  static const std::vector<Shortcut> list = {
+      {"Left drag", "paint (with the eyedropper: pick a colour)"},
+      {"Middle drag, Alt + left drag", "orbit"},
+      {"Right drag", "orbit; with a stencil shown: move the stencil"},
+      {"Shift + right drag", "scale the stencil"},
+      {"Ctrl + right drag", "rotate the stencil"},
+      {"Shift + middle drag", "pan"},
+      {"Wheel", "zoom"},
+      {"[  ]", "smaller / larger brush"},
+      {"F", "resize the brush with the mouse; click or F to keep, Esc or right click to cancel"},
+      {"B / E / I", "brush / eraser / eyedropper"},
+      {"P", "project the stencil onto the model"},
+      {"C", "texel-density checker on the model"},
+      {"L", "show the fixed layout (hold the same texture size) instead of the adaptive one"},
+      {"W", "wireframe"},
+      {"Home", "frame the model"},
+      {"Ctrl+Z, Ctrl+Shift+Z / Ctrl+Y", "undo, redo"},
+      {"Ctrl+S", "save the project"},
+      {"Ctrl+Q", "quit (asks when strokes are unsaved)"},
+      {"F1", "this help"},
+  };
+  return list;
+}
+
+Drag InputState::press(MouseButton b, Mods mods, Tool tool, bool stencil) {
   mods_ = mods;
   if (drag_ != Drag::None || ui_mouse_) return Drag::None;  // one drag at a time; the UI owns its clicks
   down_[static_cast<int>(b)] = true;
   if (b == MouseButton::Left)
     drag_ = mods.alt ? Drag::Orbit : tool == Tool::Eyedropper ? Drag::Eyedrop : Drag::Paint;
-  else if (b == MouseButton::Right)
+  else if (b == MouseButton::Right && stencil) {
+    drag_ = Drag::Stencil;
+    stencil_edit_ = mods.ctrl ? StencilEdit::Rotate : mods.shift ? StencilEdit::Scale : StencilEdit::Move;
+  } else if (b == MouseButton::Right)
     drag_ = Drag::Orbit;
   else
     drag_ = mods.shift ? Drag::Pan : Drag::Orbit;

@@ -3,17 +3,29 @@
 /// Mouse and keyboard state of adaptex-studio: which drag a button press starts (paint, orbit, pan,
 /// eyedropper), whether the UI owns the mouse / keyboard this frame, and the keyboard shortcuts as
 /// commands. The App executes what it returns.
+#include <vector>
+
 #include "settings.h"
+#include "stencil.h"
 
 namespace adaptex::studio {
 
-/// What a mouse drag does.
-enum class Drag { None, Paint, Orbit, Pan, Eyedrop };
+/// What a mouse drag does (Stencil: a right drag while a decal stencil is shown, see stencil.h).
+enum class Drag { None, Paint, Orbit, Pan, Eyedrop, Stencil };
 
 /// A keyboard shortcut's meaning.
 enum class Command {
-  None, Undo, Redo, Quit, Save, Frame, SmallerBrush, LargerBrush, Brush, Eraser, Eyedropper, Wireframe
+  None, Undo, Redo, Quit, Save, Frame, SmallerBrush, LargerBrush, ResizeBrush, Brush, Eraser, Eyedropper,
+  Wireframe, ProjectStencil, Checker, FixedLayout, Help
 };
+
+/// One shortcut for the menus and the F1 help: its keys and what it does.
+struct Shortcut {
+  const char* keys;
+  const char* what;
+};
+/// Every keyboard and mouse shortcut, in the order the help lists them.
+const std::vector<Shortcut>& shortcuts();
 
 /// The shortcut of \p key with \p mods (keys::* and upper-case ASCII codes).
 Command key_command(int key, Mods mods);
@@ -32,8 +44,11 @@ class InputState {
   bool ui_text() const { return ui_text_; }  ///< A text field has the keyboard.
 
   /// A button press: \return the drag it starts (None: ignored, e.g. the UI owns the click or
-  /// another drag runs). \p tool decides what a left drag does.
-  Drag press(MouseButton b, Mods mods, Tool tool);
+  /// another drag runs). \p tool decides what a left drag does; with a \p stencil shown a right
+  /// drag edits it (Shift: scale, Ctrl: rotate, else move) instead of orbiting.
+  Drag press(MouseButton b, Mods mods, Tool tool, bool stencil = false);
+  /// What the running Stencil drag does.
+  StencilEdit stencil_edit() const { return stencil_edit_; }
   /// A button release: \return the drag that ended (None if buttons are still held or none ran).
   Drag release(MouseButton b, Mods mods);
   /// Moves the cursor; \return the motion since the last position.
@@ -50,6 +65,7 @@ class InputState {
   double x_ = 0, y_ = 0;
   bool down_[3] = {false, false, false};
   Drag drag_ = Drag::None;
+  StencilEdit stencil_edit_ = StencilEdit::Move;
   Mods mods_;
 };
 

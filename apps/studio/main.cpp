@@ -30,11 +30,36 @@ namespace {
 using namespace adaptex;
 using namespace adaptex::studio;
 
+/// A mouse event held until Dear ImGui has seen the frame's mouse position (see WindowContext).
+struct MouseEvent {
+  enum class Kind { Button, Cursor, Scroll } kind = Kind::Cursor;
+  MouseButton button = MouseButton::Left;
+  bool pressed = false;
+  Mods mods;
+  double x = 0, y = 0;  // cursor position (framebuffer pixels) or scroll steps (y)
+};
+
 /// Everything the GLFW callbacks need (reached through the window user pointer, not a global).
+/// Mouse events are queued and given to the App after ImGui::NewFrame(), with io.WantCaptureMouse of
+/// that frame: a scroll or click just after the cursor entered a panel goes to the panel, not to the
+/// 3-D view (with last frame's flag it went to the view).
 struct WindowContext {
   App* app = nullptr;
   double scale_x = 1, scale_y = 1;  // framebuffer pixels per window unit
+  std::vector<MouseEvent> mouse;    // queued since the last frame, in order
 };
+
+/// Gives the queued mouse events to the App, in order.
+void dispatch_mouse(WindowContext& w) {
+  for (const MouseEvent& e : w.mouse) {
+    switch (e.kind) {
+      case MouseEvent::Kind::Button: w.app->on_mouse_button(e.button, e.pressed, e.mods); break;
+      case MouseEvent::Kind::Cursor: w.app->on_cursor(e.x, e.y); break;
+      case MouseEvent::Kind::Scroll: w.app->on_scroll(e.y); break;
+    }
+  }
+  w.mouse.clear();
+}
 
 Mods mods_of(int m) { return Mods{(m & GLFW_MOD_SHIFT) != 0, (m & GLFW_MOD_CONTROL) != 0, (m & GLFW_MOD_ALT) != 0}; }
 WindowContext& ctx(GLFWwindow* w) { return *static_cast<WindowContext*>(glfwGetWindowUserPointer(w)); }
@@ -52,12 +77,20 @@ void install_callbacks(GLFWwindow* w) {
     const MouseButton b = button == GLFW_MOUSE_BUTTON_LEFT    ? MouseButton::Left
                           : button == GLFW_MOUSE_BUTTON_RIGHT ? MouseButton::Right
                                                               : MouseButton::Middle;
-    ctx(win).app->on_mouse_button(b, action == GLFW_PRESS, mods_of(mods));
+    MouseEvent e{MouseEvent::Kind::Button, b, action == GLFW_PRESS, mods_of(mods)};
+    ctx(win).mouse.push_back(e);
   });
   glfwSetCursorPosCallback(w, [](GLFWwindow* win, double x, double y) {
-    ctx(win).app->on_cursor(x * ctx(win).scale_x, y * ctx(win).scale_y);
+    MouseEvent e{MouseEvent::Kind::Cursor};
+    e.x = x * ctx(win).scale_x;
+    e.y = y * ctx(win).scale_y;
+    ctx(win).mouse.push_back(e);
   });
-  glfwSetScrollCallback(w, [](GLFWwindow* win, double, double dy) { ctx(win).app->on_scroll(dy); });
+  glfwSetScrollCallback(w, [](GLFWwindow* win, double, double dy) {
+    MouseEvent e{MouseEvent::Kind::Scroll};
+    e.y = dy;
+    ctx(win).mouse.push_back(e);
+  });
   glfwSetKeyCallback(w, [](GLFWwindow* win, int key, int, int action, int mods) {
     if (action != GLFW_RELEASE) ctx(win).app->on_key(key, true, mods_of(mods));
   });
@@ -83,7 +116,7 @@ const std::vector<std::string> kInspectModes = {"texture", "uv", "importance", "
 /// Everything given on the command line.
 struct CommandLine {
   std::string mesh, replay, screenshot, history_out, texture_out, export_dir, project, stats_out;
-  std::string window = "1280x800", config_dir, recovery_dir, inspect, decal;
+  std::string window = "1280x800", config_dir, recovery_dir, inspect, decal, stencil;
   std::string adapt_mode = to_string(AdaptOptions{}.mode);
   int exit_after = -1, texture_size = 0, orbit_frames = 0;
   bool recover = false, hide_ui = false, no_vsync = false, no_recovery = false, wireframe = false, no_refine = false;
@@ -121,7 +154,8 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
   cli.add_flag("--no-refine", c.no_refine, "Keep the input's vertices (density-flow refines large triangles)");
   cli.add_option("--yaw", c.yaw, "Initial camera yaw (degrees)");
   cli.add_option("--pitch", c.pitch, "Initial camera pitch (degrees)");
-  cli.add_option("--decal", c.decal, "Once loaded, project this image as a decal from the initial view");
+  cli.add_option("--decal", c.decal, "Once loaded, project this image as a decal through its stencil (kept shown)");
+  cli.add_option("--stencil", c.stencil, "Once loaded, show this image as a decal stencil (P projects it)");
   cli.add_option("--inspect", c.inspect, "Open the Inspect panel: texture|uv|importance|stretch|ls2|compare|density")
       ->check(CLI::IsMember(kInspectModes));
   cli.add_option("--orbit-frames", c.orbit_frames, "Benchmark: orbit the camera for N frames, then quit");
@@ -271,7 +305,7 @@ int configure(App& app, const CommandLine& c) {
 /// The scripted steps of a run (tests, documentation, benchmarks), once the model is ready.
 class Script {
  public:
-  Script(const CommandLine& c, StudioUi& ui) : c_(c), decal_(c.decal) {
+  Script(const CommandLine& c, StudioUi& ui) : c_(c), decal_(c.decal), stencil_(c.stencil) {
     for (size_t k = 0; k < kInspectModes.size(); ++k)
       if (c.inspect == kInspectModes[k]) ui.show_inspect(int(k));
   }
@@ -291,6 +325,10 @@ class Script {
       app.load_decal(decal_);
       app.project_decal(1.0);
       decal_.clear();
+    }
+    if (idle_ && !stencil_.empty()) {
+      app.load_decal(stencil_);
+      stencil_.clear();
     }
     if (idle_ && !ready_printed_) {
       std::cout << "adaptex-studio: ready" << std::endl;
@@ -323,7 +361,7 @@ class Script {
 
  private:
   const CommandLine& c_;
-  std::string decal_;
+  std::string decal_, stencil_;
   bool idle_ = false, view_applied_ = false, ready_printed_ = false, compare_requested_ = false;
   bool final_frame_ = false;
   int idle_frames_ = 0, orbit_done_ = 0;
@@ -331,7 +369,7 @@ class Script {
 
 /// One frame: input, background results, UI, scene, scripted steps, swap.
 void frame(GLFWwindow* w, App& app, StudioUi& ui, Script& script, SignalWatcher& signals, bool measure) {
-  glfwPollEvents();  // 1. input: the callbacks act on the App at once
+  glfwPollEvents();  // 1. input: keys act on the App at once, mouse events are queued
   if (script.final_frame()) app.quit_now();
   if (signals.received()) script.on_signal(app);
   app.begin_frame();  // 2. background results, autosave
@@ -339,9 +377,11 @@ void frame(GLFWwindow* w, App& app, StudioUi& ui, Script& script, SignalWatcher&
   ImGui_ImplOpenGL3_NewFrame();  // 3. UI
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
+  const ImGuiIO& io = ImGui::GetIO();
+  app.set_ui_capture(io.WantCaptureMouse, io.WantCaptureKeyboard, io.WantTextInput);
+  dispatch_mouse(ctx(w));  // routed by this frame's WantCaptureMouse (dabs are painted here)
   ui.draw(app);
   ImGui::Render();
-  const ImGuiIO& io = ImGui::GetIO();
   app.set_ui_capture(io.WantCaptureMouse, io.WantCaptureKeyboard, io.WantTextInput);
   app.render();  // 4. scene, then the UI on top
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

@@ -13,12 +13,8 @@
 
 namespace adaptex::studio {
 
-/// A circle drawn on the surface (the brush cursor).
-struct CursorCircle {
-  Vec3 centre = Vec3::Zero();
-  Vec3 normal = Vec3::UnitZ();
-  double radius = 0;
-};
+/// Side of one checker square in texels (FrameView::checker).
+inline constexpr int kCheckerTexels = 16;
 
 /// What one frame of the 3-D view shows.
 struct FrameView {
@@ -26,7 +22,9 @@ struct FrameView {
   bool has_mesh = false;
   bool wireframe = false;
   Vec3 background = Vec3(0.22, 0.22, 0.25);
-  std::vector<CursorCircle> cursors;
+  /// Texel-density checker over the texture: squares of kCheckerTexels x kCheckerTexels texels, so
+  /// smaller squares on the model mean more texels there.
+  bool checker = false;
 };
 
 class Renderer {

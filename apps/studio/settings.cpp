@@ -73,7 +73,8 @@ void write_project(const std::filesystem::path& path, const Project& p) {
   const BrushSettings& b = p.brush;
   j["brush"] = {{"tool", int(b.tool)},       {"color", v3(b.color)},       {"radius", b.radius},
                 {"hardness", b.hardness},    {"opacity", b.opacity},       {"spacing", b.spacing},
-                {"symmetry_axis", b.symmetry_axis}};
+                {"symmetry_axis", b.symmetry_axis}, {"screen_space", b.screen_space},
+                {"pixel_radius", b.pixel_radius}};
   j["view"] = {{"wireframe", p.view.wireframe}, {"background", v3(p.view.background)}};
   j["adapt"] = session_to_json(p.session);
   if (p.camera)
@@ -114,6 +115,10 @@ Project read_project(const std::filesystem::path& path) {
       p.brush.opacity = b.value("opacity", p.brush.opacity);
       p.brush.spacing = b.value("spacing", p.brush.spacing);
       p.brush.symmetry_axis = std::clamp(b.value("symmetry_axis", -1), -1, 2);
+      p.brush.screen_space = b.value("screen_space", p.brush.screen_space);
+      p.brush.pixel_radius = b.value("pixel_radius", p.brush.pixel_radius);
+      if (!(p.brush.pixel_radius >= 1 && p.brush.pixel_radius <= 1000))
+        throw InvalidInputError(path.string() + ": brush: pixel_radius must be in [1, 1000]");
       // The brush paints strokes: the stroke contract's rules (colour, hardness, opacity in [0, 1],
       // radius > 0) apply, here rather than as an exception in the middle of a drag.
       Stroke style;

@@ -22,13 +22,15 @@ struct Mods {
 
 /// Key codes: printable keys use their upper-case ASCII code (as GLFW does).
 namespace keys {
-constexpr int Escape = 256, Delete = 261;
+constexpr int Escape = 256, Enter = 257, Delete = 261, Home = 268, F1 = 290, KeypadEnter = 335;
 }
 
 struct BrushSettings {
   Tool tool = Tool::Brush;
   Vec3 color = Vec3(0.85, 0.10, 0.10);
-  double radius = 0.02;   ///< Brush radius as a fraction of the model's bounding-box diagonal.
+  bool screen_space = true;  ///< The radius is pixels on the screen (as Blender / Substance); else world.
+  double pixel_radius = 25;  ///< Screen-space radius in window pixels (at the depth of the surface).
+  double radius = 0.02;   ///< World-space radius as a fraction of the model's bounding-box diagonal.
   double hardness = 0.5;  ///< Stroke-file hardness h.
   double opacity = 1.0;
   double spacing = 0.25;  ///< Dab spacing as a fraction of the radius.
@@ -37,6 +39,9 @@ struct BrushSettings {
 
 struct ViewSettings {
   bool wireframe = false;
+  bool checker = false;       ///< Texel-density checker on the model (C): one square = a block of texels.
+  bool fixed_layout = false;  ///< Show the fixed (initial) layout instead of the adaptive one (L).
+  bool show_help = false;     ///< The shortcuts window (F1).
   Vec3 background = Vec3(0.22, 0.22, 0.25);
   bool show_ui = true;
 };

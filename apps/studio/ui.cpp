@@ -68,6 +68,7 @@ ImageF scaled_to_max(const ImageF& m) {
 }  // namespace
 
 void StudioUi::draw(App& app) {
+  overlay_.draw(app);  // over the 3-D view, under the panels; also with the panels hidden
   if (!app.view().show_ui) return;
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
@@ -127,12 +128,7 @@ void StudioUi::file_panel(App& app) {
   ImGui::InputText("Decal", &decal_path_);
   ImGui::SameLine();
   if (ImGui::Button("Load")) app.load_decal(decal_path_);
-  if (app.decal_image()) {
-    float op = float(decal_opacity_);
-    ImGui::SliderFloat("Decal opacity", &op, 0.f, 1.f);
-    decal_opacity_ = op;
-    if (ImGui::Button("Project decal from this view")) app.project_decal(decal_opacity_);
-  }
+  if (app.decal_image()) stencil_controls(app);
   ImGui::BeginDisabled(!app.history().can_undo());
   if (ImGui::Button("Undo")) app.undo();
   ImGui::EndDisabled();
@@ -140,6 +136,17 @@ void StudioUi::file_panel(App& app) {
   ImGui::BeginDisabled(!app.history().can_redo());
   if (ImGui::Button("Redo")) app.redo();
   ImGui::EndDisabled();
+}
+
+void StudioUi::stencil_controls(App& app) {
+  float op = float(app.decal_opacity());
+  if (ImGui::SliderFloat("Decal opacity", &op, 0.f, 1.f)) app.decal_opacity() = op;
+  ImGui::TextDisabled("Stencil: right drag moves, Shift scales, Ctrl rotates");
+  if (ImGui::Button("Project stencil (P)")) app.project_decal(app.decal_opacity());
+  ImGui::SameLine();
+  if (ImGui::Button("Fit")) app.stencil() = fit_stencil(app.camera(), app.stencil() ? app.stencil()->aspect : 1.0);
+  ImGui::SameLine();
+  if (ImGui::Button("Remove")) app.clear_decal();
 }
 
 void StudioUi::brush_panel(App& app) {
@@ -153,9 +160,20 @@ void StudioUi::brush_panel(App& app) {
   b.tool = Tool(tool);
   float c[3] = {float(b.color.x()), float(b.color.y()), float(b.color.z())};
   if (ImGui::ColorEdit3("Colour", c)) b.color = Vec3(c[0], c[1], c[2]);
-  float r = float(b.radius), h = float(b.hardness), o = float(b.opacity), s = float(b.spacing);
-  if (ImGui::SliderFloat("Radius ([ ])", &r, 0.001f, 0.25f, "%.4f", ImGuiSliderFlags_Logarithmic)) b.radius = r;
-  ImGui::Text("  = %.4g world units", app.world_radius());
+  float h = float(b.hardness), o = float(b.opacity), s = float(b.spacing);
+  ImGui::Checkbox("Screen-space radius", &b.screen_space);
+  tooltip("On: the brush keeps its size on the screen while you zoom (a stroke takes its size in the model "
+          "where it starts). Off: the size is fixed on the model.");
+  if (b.screen_space) {
+    float px = float(b.pixel_radius);
+    if (ImGui::SliderFloat("Radius px", &px, float(kMinPixelRadius), 300.f, "%.0f", ImGuiSliderFlags_Logarithmic))
+      b.pixel_radius = px;
+  } else {
+    float r = float(b.radius);
+    if (ImGui::SliderFloat("Radius", &r, 0.001f, 0.25f, "%.4f", ImGuiSliderFlags_Logarithmic)) b.radius = r;
+  }
+  tooltip("[ and ] change it; F then move the mouse resizes it on the model (click to keep, Esc to cancel).");
+  ImGui::TextDisabled("  = %.4g model units here", app.world_radius());
   if (ImGui::SliderFloat("Hardness", &h, 0.f, 1.f)) b.hardness = h;
   if (ImGui::SliderFloat("Opacity", &o, 0.f, 1.f)) b.opacity = o;
   if (ImGui::SliderFloat("Spacing", &s, 0.02f, 2.f, "%.2f")) b.spacing = s;

@@ -8,6 +8,7 @@
 
 #include "adaptex/core/image.h"
 #include "app.h"
+#include "overlay.h"
 
 namespace adaptex::studio {
 
@@ -25,6 +26,7 @@ class StudioUi {
  private:
   void file_panel(App& app);
   void brush_panel(App& app);
+  void stencil_controls(App& app);
   void view_panel(App& app);
   void adapt_panel(App& app);
   void inspect_window(App& app);
@@ -45,9 +47,9 @@ class StudioUi {
   ImageRGBA8 inspect_img_;
   size_t shown_messages_ = 0;
   std::string error_text_;
-  double decal_opacity_ = 1.0;
   bool prompt_open_ = false;
   std::string suggested_path_;  // the last App::suggested_project_path() shown in project_path_
+  Overlay overlay_;
 };
 
 }  // namespace adaptex::studio

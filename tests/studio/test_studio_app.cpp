@@ -36,6 +36,7 @@ struct Harness {
     renderer = r.get();
     app = std::make_unique<App>(std::move(r), std::move(opt));
     app->on_resize(400, 300);
+    app->brush().screen_space = false;  // world-space radius: most tests set brush().radius (model units)
     app->session_options().texture_size = texture_size;
     app->session_options().adapt.mode = mode;
     if (!mesh.empty()) {
@@ -524,6 +525,153 @@ TEST(StudioApp, DecalFromTheViewAndExports) {
   const StrokeFile back = load_strokes(dir.path / "h.json");
   ASSERT_EQ(back.strokes.size(), 1u);
   EXPECT_EQ(back.strokes[0].type, Stroke::Type::Decal);
+}
+
+// ---- brush size and stencil (Blender's Texture Paint conventions) -----------------------------
+
+TEST(StudioBrush, ScreenSpaceRadiusKeepsItsSizeOnScreenWhileZooming) {
+  Harness h;
+  BrushSettings& b = h.app->brush();
+  b.screen_space = true;
+  b.pixel_radius = 20;
+  h.app->on_cursor(200, 150);
+  auto c = h.app->brush_cursors();
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_NEAR(c[0].radius, 20, 1e-9);
+  EXPECT_NEAR(c[0].centre.x(), 200, 1e-9);
+  const double world_far = h.app->world_radius();
+  h.app->on_scroll(4);  // zoom in
+  h.app->on_cursor(200, 150);
+  c = h.app->brush_cursors();
+  ASSERT_EQ(c.size(), 1u);
+  EXPECT_NEAR(c[0].radius, 20, 1e-9);           // the same on the screen ...
+  const double world_near = h.app->world_radius();
+  EXPECT_LT(world_near, world_far * 0.8);       // ... so smaller on the model
+  // A stroke records the world radius of its first dab's depth: 20 pixels there.
+  h.drag(200, 150, 230, 150);
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  const Stroke& s = h.app->history().strokes()[0];
+  EXPECT_NEAR(s.radius, 20 * h.app->camera().pixel_size_at(s.dabs.front()), 1e-9);
+  // World-space mode: the circle grows on the screen when zooming in.
+  b.screen_space = false;
+  h.app->on_cursor(200, 150);
+  const double before = h.app->brush_cursors().at(0).radius;
+  h.app->on_scroll(2);
+  h.app->on_cursor(200, 150);
+  EXPECT_GT(h.app->brush_cursors().at(0).radius, before * 1.2);
+}
+
+TEST(StudioBrush, BracketsAndFResizeChangeTheActiveRadiusAndEscapeCancels) {
+  Harness h;
+  BrushSettings& b = h.app->brush();
+  b.screen_space = true;
+  b.pixel_radius = 20;
+  h.app->on_key(']', true, {});
+  EXPECT_NEAR(b.pixel_radius, 23, 1e-9);
+  h.app->on_key('[', true, {});
+  EXPECT_NEAR(b.pixel_radius, 20, 1e-9);
+  // F: the circle stays, its radius follows the cursor; a left click keeps it and paints nothing.
+  h.app->on_cursor(200, 150);
+  h.app->on_key('F', true, {});
+  ASSERT_TRUE(h.app->resizing_brush());
+  EXPECT_NEAR(h.app->brush_cursors().at(0).centre.x(), 180, 1e-9);
+  h.app->on_cursor(240, 150);
+  EXPECT_NEAR(b.pixel_radius, 60, 1e-9);
+  EXPECT_NEAR(h.app->brush_cursors().at(0).radius, 60, 1e-9);
+  h.click(240, 150);
+  EXPECT_FALSE(h.app->resizing_brush());
+  EXPECT_NEAR(b.pixel_radius, 60, 1e-9);
+  EXPECT_TRUE(h.app->history().strokes().empty());
+  // Escape restores the radius from before the resize.
+  h.app->on_key('F', true, {});
+  h.app->on_cursor(300, 150);
+  EXPECT_GT(b.pixel_radius, 100);
+  h.app->on_key(keys::Escape, true, {});
+  EXPECT_FALSE(h.app->resizing_brush());
+  EXPECT_NEAR(b.pixel_radius, 60, 1e-9);
+  // World-space mode: F sets the radius so that it is that many pixels on the model.
+  b.screen_space = false;
+  h.app->on_cursor(200, 150);
+  const auto hit = h.app->pick(200, 150);
+  ASSERT_TRUE(hit);
+  h.app->on_key('F', true, {});
+  const double cx = h.app->brush_cursors().at(0).centre.x();
+  h.app->on_cursor(cx + 50, 150);
+  h.app->on_key('F', true, {});  // F again keeps it
+  EXPECT_FALSE(h.app->resizing_brush());
+  EXPECT_NEAR(h.app->world_radius() / h.app->camera().pixel_size_at(hit->point), 50, 1e-6);
+}
+
+TEST(StudioBrush, NoCursorCircleOverTheUi) {
+  Harness h;
+  h.app->on_cursor(200, 150);
+  EXPECT_EQ(h.app->brush_cursors().size(), 1u);
+  h.app->set_ui_capture(true, false);
+  EXPECT_TRUE(h.app->brush_cursors().empty());
+  h.app->set_ui_capture(false, false);
+  h.app->brush().tool = Tool::Eyedropper;
+  EXPECT_TRUE(h.app->brush_cursors().empty());
+}
+
+TEST(StudioStencil, RightDragsMoveScaleAndRotateTheStencilAndOnlyItsRegionIsPainted) {
+  TempDir dir;
+  Harness h;
+  write_png(dir.path / "d.png", ImageRGBA8(32, 16, {20, 200, 40, 255}));
+  h.app->load_decal(dir.path / "d.png");
+  ASSERT_TRUE(h.app->stencil());
+  EXPECT_TRUE(h.app->history().strokes().empty());  // loading projects nothing
+  const Stencil fitted = *h.app->stencil();
+  EXPECT_NEAR(fitted.centre.x(), 200, 1e-9);
+  EXPECT_NEAR(fitted.aspect, 2.0, 1e-12);
+  const double yaw = h.app->camera().yaw;
+  auto right_drag = [&](double x0, double y0, double x1, double y1, Mods m) {
+    h.app->on_cursor(x0, y0);
+    h.app->on_mouse_button(MouseButton::Right, true, m);
+    h.app->on_cursor((x0 + x1) / 2, (y0 + y1) / 2);
+    h.app->on_cursor(x1, y1);
+    h.app->on_mouse_button(MouseButton::Right, false, m);
+  };
+  right_drag(200, 150, 150, 130, {});  // move
+  EXPECT_NEAR(h.app->stencil()->centre.x(), 150, 1e-9);
+  EXPECT_NEAR(h.app->stencil()->centre.y(), 130, 1e-9);
+  EXPECT_EQ(h.app->camera().yaw, yaw);  // no orbit while a stencil is shown
+  right_drag(190, 130, 170, 130, Mods{true, false, false});  // Shift: scale by 20/40
+  EXPECT_NEAR(h.app->stencil()->height, fitted.height * 0.5, 1e-9);
+  right_drag(190, 130, 150, 90, Mods{false, true, false});  // Ctrl: rotate by 90 degrees
+  EXPECT_NEAR(h.app->stencil()->angle, 3.14159265358979 / 2, 1e-9);
+  EXPECT_TRUE(h.app->history().strokes().empty());
+  // P projects it; the surface under the preview gets the decal, nothing outside it.
+  h.app->on_key('P', true, {});
+  ASSERT_TRUE(h.app->wait_idle(60));
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  const Stencil& st = *h.app->stencil();
+  int inside = 0, outside = 0, inside_unpainted = 0, outside_painted = 0;
+  for (int y = 20; y < 290; y += 6)
+    for (int x = 20; x < 390; x += 6) {
+      const auto hit = h.app->pick(x, y);
+      if (!hit) continue;
+      const bool green = (h.app->sample_colour(*hit) - Vec3(20, 200, 40) / 255.0).norm() < 0.05;
+      const bool white = (h.app->sample_colour(*hit) - Vec3(1, 1, 1)).norm() < 0.05;
+      // Away from the outline (texture filtering, seams): inside green, outside unpainted.
+      Stencil smaller = st, larger = st;
+      smaller.height *= 0.85, larger.height *= 1.15;
+      const bool in = smaller.contains(h.app->camera(), x, y), out = !larger.contains(h.app->camera(), x, y);
+      inside += in;
+      outside += out;
+      inside_unpainted += in && !green;
+      outside_painted += out && !white;
+    }
+  EXPECT_GT(inside, 20);
+  EXPECT_GT(outside, 200);
+  EXPECT_EQ(inside_unpainted, 0);
+  EXPECT_EQ(outside_painted, 0);
+  // The stencil is rotated by 90 degrees: taller than wide on the screen (the image is 2:1).
+  const auto c = st.corners(h.app->camera());
+  EXPECT_GT(std::abs(c[1].y() - c[0].y()), 2.5 * std::abs(c[1].x() - c[0].x()));
+  // Without a stencil a right drag orbits again.
+  h.app->clear_decal();
+  right_drag(200, 150, 260, 150, {});
+  EXPECT_NE(h.app->camera().yaw, yaw);
 }
 
 // ---- the library's options, and the same result as adaptex paint ------------------------------
