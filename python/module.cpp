@@ -299,16 +299,16 @@ py::dict py_stretch(py::handle V, py::handle F, py::handle UV, py::handle FT) {
 /// adaptex's exception hierarchy (core/errors.h) as Python classes: bad input is a ValueError, a file
 /// that cannot be read or written an OSError.
 void register_errors(py::module_& m) {
-  auto make = [&m](const char* name, std::vector<py::handle> bases, const char* doc) {
+  auto make = [&m](const char* name, std::vector<py::handle> bases, const char* doc) -> PyObject* {
     py::tuple b(bases.size());
     for (size_t i = 0; i < bases.size(); ++i) b[i] = py::reinterpret_borrow<py::object>(bases[i]);
     const std::string full = std::string("adaptex.") + name;
     py::object cls = py::reinterpret_steal<py::object>(PyErr_NewExceptionWithDoc(full.c_str(), doc, b.ptr(), nullptr));
     if (!cls) throw py::error_already_set();
     m.attr(name) = cls;
-    return cls;
+    return cls.release().ptr();  // kept for the life of the process (no destructor after Py_Finalize)
   };
-  static py::object error, invalid, topology, io, output, solver, cancelled;
+  static PyObject *error, *invalid, *topology, *io, *output, *solver, *cancelled;
   error = make("Error", {PyExc_RuntimeError}, "Base of every adaptex error.");
   invalid = make("InvalidInputError", {error, PyExc_ValueError}, "Invalid input: arrays, options, file content.");
   topology = make("TopologyError", {invalid}, "A mesh topology the operation cannot handle (non-manifold, ...).");
@@ -320,19 +320,19 @@ void register_errors(py::module_& m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const CancelledError& e) {
-      PyErr_SetString(cancelled.ptr(), e.what());
+      PyErr_SetString(cancelled, e.what());
     } catch (const TopologyError& e) {
-      PyErr_SetString(topology.ptr(), e.what());
+      PyErr_SetString(topology, e.what());
     } catch (const IoError& e) {
-      PyErr_SetString(io.ptr(), e.what());
+      PyErr_SetString(io, e.what());
     } catch (const InvalidInputError& e) {
-      PyErr_SetString(invalid.ptr(), e.what());
+      PyErr_SetString(invalid, e.what());
     } catch (const OutputError& e) {
-      PyErr_SetString(output.ptr(), e.what());
+      PyErr_SetString(output, e.what());
     } catch (const SolverError& e) {
-      PyErr_SetString(solver.ptr(), e.what());
+      PyErr_SetString(solver, e.what());
     } catch (const Error& e) {
-      PyErr_SetString(error.ptr(), e.what());
+      PyErr_SetString(error, e.what());
     }
   });
 }
