@@ -144,6 +144,19 @@ if which == "MODULE":  # the CLI backend gives the same UVs and texture bytes as
     check(texm.tobytes() == meshdata.read_png(bpy, png).tobytes(), "module and CLI textures differ")
     check(np.array_equal(texm, new_pixels), "the operator's image is not the module's texture")
 
+# ---- a quad mesh: "Triangulate first" gives an exact layout; no painted image is an error ---------
+bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12, location=(4, 0, 0))
+quads = bpy.context.active_object
+check(bpy.ops.adaptex.unwrap(triangulate=True) == {"FINISHED"}, "unwrap of a quad mesh failed")
+check(all(len(p.vertices) == 3 for p in quads.data.polygons), "not triangulated")
+check_layout(quads.data, quads.data.uv_layers["adaptex"], meshdata.triangles(quads.data)[2])
+try:
+    bpy.ops.adaptex.adapt_layout()
+    check(False, "adapt without a painted image did not fail")
+except RuntimeError as e:
+    check("no painted image" in str(e), str(e))
+bpy.context.view_layer.objects.active = obj
+
 # ---- a background job cancels -------------------------------------------------------------------
 job = backend.Job(lambda report: chosen.reparam(V, F, UVp, FTp, original_pixels, 128, report))
 job.cancel()
