@@ -297,6 +297,7 @@ std::string App::status_line() const {
   }
   s += " | adapt ";
   s += to_string(session_.adapt.mode);
+  if (view_.fixed_layout) s += showing_fixed_layout() ? " | showing the FIXED layout (L)" : " | fixed layout: painting...";
   if (!last_cycle_.empty()) {
     s += " | last cycle:";
     char buf[64];
@@ -388,7 +389,7 @@ void App::run_command(Command c) {
     case Command::ResizeBrush: start_resize(); break;
     case Command::ProjectStencil: project_decal(decal_opacity_); break;
     case Command::Checker: view_.checker = !view_.checker; break;
-    case Command::FixedLayout: view_.fixed_layout = !view_.fixed_layout; break;
+    case Command::FixedLayout: toggle_fixed_layout(); break;
     case Command::Help: view_.show_help = !view_.show_help; break;
     case Command::Brush: brush_.tool = Tool::Brush; break;
     case Command::Eraser: brush_.tool = brush_.tool == Tool::Eraser ? Tool::Brush : Tool::Eraser; break;
@@ -448,6 +449,7 @@ Stroke App::brush_style() const {
 void App::begin_paint() {
   if (!painting_.surface() || painting_.stroke_open()) return;
   painting_.catch_up();  // paints redone strokes first, so canvas order == history order
+  view_.fixed_layout = false;  // paint on (and look at) the adaptive layout
   const auto h = pick(input_.x(), input_.y());
   if (h) cursor_hit_ = h;  // a screen-space radius is taken at the depth of the first dab
   painting_.begin_stroke(brush_style());
@@ -563,7 +565,32 @@ void App::request_adapt() {
 void App::session_options_changed() { history_changed(); }
 
 void App::request_compare() {
-  if (const Surface* s = painting_.surface()) jobs_.start_compare(*s, history().to_file());
+  if (const Surface* s = painting_.surface()) {
+    jobs_.start_compare(*s, history().to_file());
+    compare_version_ = history().version();
+  }
+}
+
+void App::toggle_fixed_layout() {
+  view_.fixed_layout = !view_.fixed_layout;
+  if (!view_.fixed_layout || !has_model()) return;
+  if ((!comparison_ || compare_version_ != history().version()) && !jobs_.comparing()) request_compare();
+  add_message("fixed layout at the same texture size (L returns to the adaptive one)", false);
+}
+
+void App::upload_view() {
+  const Comparison* c = comparison_.get();
+  const bool fixed = view_.fixed_layout && c && has_model() && compare_version_ == history().version() &&
+                     !jobs_.comparing() && c->fixed_param->num_wedges() > 0;
+  if (!fixed) {
+    if (shown_fixed_) painting_.invalidate_uploads();
+    shown_fixed_ = nullptr;
+    return painting_.upload(*renderer_);
+  }
+  if (shown_fixed_.get() == c) return;
+  renderer_->set_mesh(*painting_.model()->mesh, *c->fixed_param, nullptr);
+  renderer_->set_texture(c->fixed_texture);
+  shown_fixed_ = comparison_;
 }
 
 void App::start_rebuild(bool adapt) {
@@ -675,7 +702,7 @@ void App::begin_frame() {
 }
 
 void App::render() {
-  painting_.upload(*renderer_);
+  upload_view();
   FrameView v;
   v.camera = camera_;
   v.has_mesh = painting_.surface() != nullptr;

@@ -209,6 +209,13 @@ class App {
   const std::vector<std::pair<std::string, double>>& last_cycle() const { return last_cycle_; }
   /// Starts the fixed-vs-adaptive comparison in the background.
   void request_compare();
+  /// The L key: shows the model with its fixed (initial) layout, the same strokes painted at the same
+  /// texture size (the comparison's), instead of the adaptive one; again: back. Computed in the
+  /// background when the comparison is missing or older than the history; painting returns to the
+  /// adaptive layout.
+  void toggle_fixed_layout();
+  /// The 3-D view shows the fixed layout now (toggled on and its comparison is up to date).
+  bool showing_fixed_layout() const { return shown_fixed_ != nullptr; }
   /// The last comparison (null before the first one).
   const Comparison* comparison() const { return comparison_.get(); }
   bool compare_running() const { return jobs_.comparing(); }
@@ -259,6 +266,8 @@ class App {
   void maybe_start_rebuild();
   void maybe_unwrap_again();
   void start_rebuild(bool adapt);
+  /// Uploads what the 3-D view shows: the painted surface, or the fixed layout (toggle_fixed_layout).
+  void upload_view();
 
   std::unique_ptr<Renderer> renderer_;
   AppOptions options_;
@@ -278,6 +287,8 @@ class App {
   std::vector<std::pair<std::string, double>> last_cycle_;
   std::shared_ptr<const AdaptMaps> maps_;
   std::shared_ptr<const Comparison> comparison_;
+  std::uint64_t compare_version_ = ~0ull;  // history version the last comparison was started for
+  std::shared_ptr<const Comparison> shown_fixed_;  // the comparison whose fixed layout the renderer holds
   std::optional<Confirm> confirm_;
 
   std::optional<Hit> cursor_hit_;

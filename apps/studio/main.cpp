@@ -120,6 +120,7 @@ struct CommandLine {
   std::string adapt_mode = to_string(AdaptOptions{}.mode);
   int exit_after = -1, texture_size = 0, orbit_frames = 0;
   bool recover = false, hide_ui = false, no_vsync = false, no_recovery = false, wireframe = false, no_refine = false;
+  bool checker = false;
   double yaw = 0, pitch = 0;
   int width = 1280, height = 800;
 };
@@ -144,6 +145,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
   cli.add_flag("--recover", c.recover, "Load an autosaved recovery file without asking");
   cli.add_flag("--hide-ui", c.hide_ui, "Hide the panels (clean screenshots)");
   cli.add_flag("--wireframe", c.wireframe, "Start with the wireframe overlay on");
+  cli.add_flag("--checker", c.checker, "Start with the texel-density checker on the model (C)");
   cli.add_flag("--no-vsync", c.no_vsync, "Do not wait for vertical sync");
   cli.add_option("--texture-size", c.texture_size, "Texture width = height in texels (default 1024)");
   std::vector<std::string> modes;
@@ -286,6 +288,7 @@ class ImGuiLayer {
 int configure(App& app, const CommandLine& c) {
   app.view().show_ui = !c.hide_ui;
   app.view().wireframe = c.wireframe;
+  app.view().checker = c.checker;
   PaintSessionOptions& o = app.session_options();
   if (c.texture_size > 0) o.texture_size = std::clamp(c.texture_size, 16, adaptex::kMaxTextureSize);
   o.adapt.mode = parse_adapt_mode(c.adapt_mode);

@@ -65,6 +65,8 @@ class Painting {
 
   /// Uploads the mesh / texture changes since the last call.
   void upload(Renderer& renderer);
+  /// The renderer shows something else (the fixed layout): the next upload() sends everything.
+  void invalidate_uploads() { mesh_upload_ = texture_full_upload_ = surface_ != nullptr; }
   /// Changes whenever a new surface is swapped in.
   std::uint64_t serial() const { return serial_; }
 

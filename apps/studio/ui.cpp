@@ -29,20 +29,47 @@ void draw_line(ImageRGBA8& img, double x0, double y0, double x1, double y1, std:
   }
 }
 
-/// Blue -> cyan -> yellow -> red heat map of a [0,1] map (values clamped).
+/// Blue -> cyan -> yellow -> red heat colour of t in [0,1] (clamped), 8-bit RGB.
+std::array<uint8_t, 3> heat_rgb(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  const double r = std::clamp(2.0 * t - 0.5, 0.0, 1.0), g = std::clamp(t < 0.5 ? 2 * t : 2 - 2 * t + 0.3, 0.0, 1.0),
+               b = std::clamp(1.0 - 2.0 * t, 0.0, 1.0);
+  return {uint8_t(255 * r), uint8_t(255 * g), uint8_t(255 * b)};
+}
+
+/// Heat map of a [0,1] map (values clamped).
 ImageRGBA8 heat_image(const ImageF& m) {
   ImageRGBA8 img(m.width, m.height, {0, 0, 0, 255});
   for (int j = 0; j < m.height; ++j)
     for (int i = 0; i < m.width; ++i) {
-      const double t = std::clamp(double(m.at(i, j)), 0.0, 1.0);
-      const double r = std::clamp(2.0 * t - 0.5, 0.0, 1.0), g = std::clamp(t < 0.5 ? 2 * t : 2 - 2 * t + 0.3, 0.0, 1.0),
-                   b = std::clamp(1.0 - 2.0 * t, 0.0, 1.0);
-      uint8_t* p = img.texel(i, j);
-      p[0] = uint8_t(255 * r);
-      p[1] = uint8_t(255 * g);
-      p[2] = uint8_t(255 * b);
+      const auto c = heat_rgb(m.at(i, j));
+      std::copy(c.begin(), c.end(), img.texel(i, j));
     }
   return img;
+}
+
+/// A colour bar of heat_rgb from \p low to \p high (the words at its ends), full width.
+void heat_bar(const char* low, const char* high) {
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  const float w = std::max(64.f, ImGui::GetContentRegionAvail().x), h = ImGui::GetFontSize() * 0.8f;
+  constexpr int kSteps = 32;
+  for (int k = 0; k < kSteps; ++k) {
+    const auto c = heat_rgb((k + 0.5) / kSteps);
+    dl->AddRectFilled(ImVec2(p.x + w * k / kSteps, p.y), ImVec2(p.x + w * (k + 1) / kSteps, p.y + h),
+                      IM_COL32(c[0], c[1], c[2], 255));
+  }
+  ImGui::Dummy(ImVec2(w, h));
+  ImGui::TextUnformatted(low);
+  ImGui::SameLine(std::max(0.f, w - ImGui::CalcTextSize(high).x));
+  ImGui::TextUnformatted(high);
+}
+
+/// Largest value of a map (0 for an empty one).
+float max_value(const ImageF& m) {
+  float mx = 0;
+  for (float v : m.data) mx = std::max(mx, v);
+  return mx;
 }
 
 /// A plain-words tooltip for the last widget.
@@ -58,8 +85,7 @@ void tooltip(const char* text) {
 /// \p m divided by its largest value (density maps have mean 1 and no fixed upper bound).
 ImageF scaled_to_max(const ImageF& m) {
   ImageF out = m;
-  float mx = 0;
-  for (float v : m.data) mx = std::max(mx, v);
+  const float mx = max_value(m);
   if (mx > 0)
     for (float& v : out.data) v /= mx;
   return out;
@@ -244,6 +270,14 @@ void StudioUi::adapt_panel(App& app) {
   tooltip("Width and height of the texture in texels.");
   if (changed) app.session_options_changed();
   if (ImGui::Button("Re-parameterize now")) app.request_adapt();
+  tooltip("Fit the layout to everything painted so far, now (also when After every stroke is off).");
+  ImGui::Checkbox("Checker on the model (C)", &app.view().checker);
+  tooltip("A checker of equal texel blocks on the model: small squares = many texels there. Painted areas "
+          "get smaller squares when the layout adapts.");
+  bool fixed = app.view().fixed_layout;
+  if (ImGui::Checkbox("Show the fixed layout (L)", &fixed)) app.toggle_fixed_layout();
+  tooltip("Shows the same strokes painted on the layout that does not adapt, at the same texture size: "
+          "compare the sharpness (and the checker) with the adaptive one.");
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("Every re-parameterization starts from the initial layout, with the whole history.");
   ImGui::PopStyleColor();
@@ -339,7 +373,42 @@ void StudioUi::inspect_window(App& app) {
   }
   // ImageRGBA8 rows start at v = 0 (bottom): flip vertically for display.
   if (inspect_tex_) ImGui::Image(inspect_tex_, ImVec2(w, w), ImVec2(0, 1), ImVec2(1, 0));
+  inspect_legend(maps);
   ImGui::End();
+}
+
+void StudioUi::inspect_legend(const AdaptMaps* maps) const {
+  ImGui::PushTextWrapPos(0);
+  switch (inspect_mode_) {
+    case 0: ImGui::TextUnformatted("The texture as stored: every island is a piece of the surface (a chart)."); break;
+    case 1:
+      ImGui::TextUnformatted("The texture with the layout's triangles: a triangle that is large here gets many "
+                             "texels on the model.");
+      break;
+    case 2:
+      heat_bar("no painted detail", "most detail");
+      ImGui::TextUnformatted("Importance: how much painted detail each part of the layout holds.");
+      break;
+    case 3:
+      heat_bar("even", "most stretched");
+      ImGui::TextUnformatted("Stretch: where the layout spreads texels thinly over the surface.");
+      break;
+    case 4:
+      heat_bar("low", "high");
+      ImGui::TextUnformatted("L_s^2: the texture-stretch error of the painted signal, where detail is lost.");
+      break;
+    case 6: {
+      char hi[48];
+      std::snprintf(hi, sizeof hi, "%.1fx the mean", maps ? max_value(maps->density) : 0.f);
+      heat_bar("few texels", hi);
+      ImGui::TextUnformatted("Density: the texels per area the layout aims at; red gets the most.");
+      break;
+    }
+    default: break;
+  }
+  if (inspect_grid_ && maps && inspect_mode_ != 5 && (maps->coarse.n > 0 || maps->fine.n > 0))
+    ImGui::TextUnformatted("Grid lines: orange = coarse grid, blue = fine grid, as optimized (uniform = no change).");
+  ImGui::PopTextWrapPos();
 }
 
 void StudioUi::popups(App& app) {

@@ -30,6 +30,8 @@ class StudioUi {
   void view_panel(App& app);
   void adapt_panel(App& app);
   void inspect_window(App& app);
+  /// Plain-words legend (colour bar and meaning) of the map shown in Inspect.
+  void inspect_legend(const AdaptMaps* maps) const;
   void popups(App& app);
   /// Save / Discard / Cancel before an action that would drop unsaved strokes.
   void confirm_prompt(App& app);

@@ -674,6 +674,52 @@ TEST(StudioStencil, RightDragsMoveScaleAndRotateTheStencilAndOnlyItsRegionIsPain
   EXPECT_NE(h.app->camera().yaw, yaw);
 }
 
+// ---- making the adaptation visible ------------------------------------------------------------
+
+TEST(StudioView, CheckerKeyTurnsTheTexelDensityCheckerOnAndOff) {
+  Harness h;
+  h.app->render();
+  EXPECT_FALSE(h.renderer->last_view.checker);
+  h.app->on_key('C', true, {});
+  h.app->render();
+  EXPECT_TRUE(h.renderer->last_view.checker);
+  h.app->on_key('C', true, {});
+  h.app->render();
+  EXPECT_FALSE(h.renderer->last_view.checker);
+}
+
+TEST(StudioView, LKeyShowsTheFixedLayoutAtTheSameTextureSizeAndBack) {
+  Harness h({}, 256, "builtin:sphere", studio_session_options().adapt.mode);  // the default method
+  h.app->brush().radius = 0.05;
+  h.drag(150, 150, 250, 160);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  ASSERT_NE(h.app->adapt_maps(), nullptr);  // the layout adapted to the stroke
+  h.app->on_key('L', true, {});
+  for (int k = 0; k < 3000 && !h.app->showing_fixed_layout(); ++k) {
+    h.app->begin_frame();
+    h.app->render();
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(h.app->showing_fixed_layout());
+  const Comparison* c = h.app->comparison();
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->fixed_texture.width, 256);  // the same texture size
+  EXPECT_EQ(max_abs_diff(h.renderer->last_texture, c->fixed_texture), 0);
+  EXPECT_EQ(h.renderer->last_wedges, c->fixed_param->num_wedges());
+  EXPECT_NE(h.app->status_line().find("FIXED layout"), std::string::npos);
+  // L again: the adaptive layout and its texture are sent again.
+  h.app->on_key('L', true, {});
+  h.app->render();
+  EXPECT_FALSE(h.app->showing_fixed_layout());
+  EXPECT_EQ(h.renderer->last_faces, h.app->mesh()->num_faces());
+  EXPECT_EQ(h.renderer->last_wedges, h.app->param()->num_wedges());
+  EXPECT_EQ(max_abs_diff(h.renderer->last_texture, *h.app->texture()), 0);
+  // Painting returns to the adaptive layout.
+  h.app->on_key('L', true, {});
+  h.drag(160, 120, 200, 120);
+  EXPECT_FALSE(h.app->view().fixed_layout);
+}
+
 // ---- the library's options, and the same result as adaptex paint ------------------------------
 
 TEST(StudioApp, AdaptsByDefaultWithTheLibrarysDefaultMethod) {
