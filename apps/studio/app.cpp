@@ -639,6 +639,9 @@ void App::finish_load(Job<LoadResult>& job) {
     history_changed();
     if (pending.reload)
       return add_message("unwrapped again for a " + std::to_string(model->unwrap_size) + "^2 texture", false);
+    // From the front (+Z, the glTF and Stanford convention), whatever the last model's view was.
+    camera_.yaw = 0;
+    camera_.pitch = 0;
     camera_.frame(model->box);  // sets the clip planes' scene radius
     if (pending.camera) {         // the project's view
       camera_.target = pending.camera->target;

@@ -96,25 +96,120 @@ ImageF scaled_to_max(const ImageF& m) {
 void StudioUi::draw(App& app) {
   overlay_.draw(app);  // over the 3-D view, under the panels; also with the panels hidden
   if (!app.view().show_ui) return;
-  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
-  ImGui::Begin("adaptex studio");
-  if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) file_panel(app);
-  if (ImGui::CollapsingHeader("Brush", ImGuiTreeNodeFlags_DefaultOpen)) brush_panel(app);
-  if (ImGui::CollapsingHeader("View")) view_panel(app);
-  if (ImGui::CollapsingHeader("Adapt")) adapt_panel(app);
-  ImGui::Checkbox("Inspect panel", &show_inspect_);
-  ImGui::End();
-  if (show_inspect_) inspect_window(app);
+  const float menu_h = menu_bar(app);
+  side_panel(app, menu_h);
+  if (show_inspect_) inspect_window(app, menu_h);
+  if (app.view().show_help) help_window(app);
   popups(app);
   confirm_prompt(app);
   status_bar(app);
 }
 
-void StudioUi::file_panel(App& app) {
-  const bool enter = ImGui::InputText("##path", &open_path_, ImGuiInputTextFlags_EnterReturnsTrue);
+float StudioUi::menu_bar(App& app) {
+  if (!ImGui::BeginMainMenuBar()) return 0;
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("New")) app.request_new();
+    if (ImGui::MenuItem("Open mesh...")) focus_ = Focus::OpenPath;
+    if (ImGui::MenuItem("Open project...")) focus_ = Focus::ProjectPath;
+    if (ImGui::MenuItem("Save", "Ctrl+S")) save(app);
+    if (ImGui::MenuItem("Save As...")) focus_ = Focus::ProjectPath;
+    if (ImGui::MenuItem("Export OBJ")) app.export_obj(export_dir_);
+    if (ImGui::MenuItem("Export GLB")) app.export_glb(glb_path_);
+    if (ImGui::MenuItem("Screenshot")) app.screenshot(screenshot_path_);
+    if (ImGui::MenuItem("Load decal (stencil)...")) focus_ = Focus::DecalPath;
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) app.request_quit();
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Edit")) {
+    if (ImGui::MenuItem("Undo", "Ctrl+Z", false, app.history().can_undo())) app.undo();
+    if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, app.history().can_redo())) app.redo();
+    ImGui::Separator();
+    if (ImGui::MenuItem("Brush", "B", app.brush().tool == Tool::Brush)) app.brush().tool = Tool::Brush;
+    if (ImGui::MenuItem("Eraser", "E", app.brush().tool == Tool::Eraser)) app.brush().tool = Tool::Eraser;
+    if (ImGui::MenuItem("Eyedropper", "I", app.brush().tool == Tool::Eyedropper)) app.brush().tool = Tool::Eyedropper;
+    if (ImGui::MenuItem("Smaller brush", "[")) scale_brush(app.brush(), 1 / 1.15);
+    if (ImGui::MenuItem("Larger brush", "]")) scale_brush(app.brush(), 1.15);
+    if (ImGui::MenuItem("Project stencil", "P", false, app.stencil().has_value())) app.project_decal(app.decal_opacity());
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("View")) {
+    if (ImGui::MenuItem("Frame the model", "Home")) app.frame_model();
+    ImGui::MenuItem("Wireframe", "W", &app.view().wireframe);
+    ImGui::MenuItem("Texel-density checker", "C", &app.view().checker);
+    if (ImGui::MenuItem("Fixed layout", "L", app.view().fixed_layout)) app.toggle_fixed_layout();
+    ImGui::MenuItem("Inspect panel", nullptr, &show_inspect_);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Help")) {
+    ImGui::MenuItem("Shortcuts", "F1", &app.view().show_help);
+    ImGui::EndMenu();
+  }
+  const float h = ImGui::GetWindowSize().y;
+  ImGui::EndMainMenuBar();
+  return h;
+}
+
+void StudioUi::side_panel(App& app, float top) {
+  // Left of the view, from the menu bar to the status line; its right edge can be dragged.
+  const float bottom = ImGui::GetFrameHeight() + 8, h = std::max(100.f, float(app.camera().height) - top - bottom);
+  const float w = std::clamp(float(app.camera().width) * 0.3f, kMinPanelWidth, kPanelWidth);
+  ImGui::SetNextWindowPos(ImVec2(0, top), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(w, h), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kMinPanelWidth, h),
+                                      ImVec2(std::max(kPanelWidth, float(app.camera().width) * 0.6f), h));
+  ImGui::Begin("adaptex studio", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoTitleBar);
+  // Widgets leave room for the longest label on their right: labels never clip.
+  ImGui::PushItemWidth(-ImGui::CalcTextSize("Decal opacity ").x);
+  if (ImGui::CollapsingHeader("File", ImGuiTreeNodeFlags_DefaultOpen)) file_panel(app);
+  if (ImGui::CollapsingHeader("Brush", ImGuiTreeNodeFlags_DefaultOpen)) brush_panel(app);
+  if (ImGui::CollapsingHeader("View")) view_panel(app);
+  if (ImGui::CollapsingHeader("Adapt", ImGuiTreeNodeFlags_DefaultOpen)) adapt_panel(app);
+  ImGui::Checkbox("Inspect panel", &show_inspect_);
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+void StudioUi::help_window(App& app) {
+  ImGui::SetNextWindowPos(ImVec2(app.camera().width * 0.5f, app.camera().height * 0.5f), ImGuiCond_Appearing,
+                          ImVec2(0.5f, 0.5f));
+  if (!ImGui::Begin("Shortcuts (F1)", &app.view().show_help, ImGuiWindowFlags_AlwaysAutoResize)) return ImGui::End();
+  if (ImGui::BeginTable("keys", 2, ImGuiTableFlags_RowBg)) {
+    for (const Shortcut& k : shortcuts()) {
+      ImGui::TableNextRow();
+      ImGui::TableSetColumnIndex(0);
+      ImGui::TextUnformatted(k.keys);
+      ImGui::TableSetColumnIndex(1);
+      ImGui::TextUnformatted(k.what);
+    }
+    ImGui::EndTable();
+  }
+  ImGui::End();
+}
+
+bool StudioUi::path_row(const char* id, const char* hint, std::string& path, const char* button, Focus focus) {
+  const ImGuiStyle& st = ImGui::GetStyle();
+  const float bw = ImGui::CalcTextSize(button).x + 2 * st.FramePadding.x;
+  ImGui::SetNextItemWidth(std::max(40.f, ImGui::GetContentRegionAvail().x - bw - st.ItemSpacing.x));
+  if (focus_ == focus && focus != Focus::None) {
+    ImGui::SetKeyboardFocusHere();
+    focus_ = Focus::None;
+  }
+  const bool enter = ImGui::InputTextWithHint(id, hint, &path, ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
-  if ((ImGui::Button("Open") || enter) && !open_path_.empty()) app.request_open_mesh(open_path_);
+  return (ImGui::Button(button) || enter) && !path.empty();
+}
+
+void StudioUi::save(App& app) {
+  if (app.project_path().empty())
+    app.save_project(project_path_);
+  else
+    app.save();
+}
+
+void StudioUi::file_panel(App& app) {
+  if (path_row("##open", "mesh file or builtin:NAME", open_path_, "Open", Focus::OpenPath))
+    app.request_open_mesh(open_path_);
   if (!app.recent_files().empty() && ImGui::BeginCombo("Recent", "recent files...")) {
     for (const auto& r : app.recent_files())
       if (ImGui::Selectable(r.c_str())) {
@@ -131,29 +226,15 @@ void StudioUi::file_panel(App& app) {
     project_path_ = s;
     suggested_path_ = s;
   }
-  ImGui::InputText("Project", &project_path_);
-  if (ImGui::Button("Save (Ctrl+S)")) {
-    if (app.project_path().empty())
-      app.save_project(project_path_);
-    else
-      app.save();
-  }
-  ImGui::SameLine();
-  if (ImGui::Button("Save As")) app.save_project(project_path_);
+  if (path_row("##project", "project file (.json)", project_path_, "Save As", Focus::ProjectPath))
+    app.save_project(project_path_);
+  if (ImGui::Button("Save (Ctrl+S)")) save(app);
   ImGui::SameLine();
   if (ImGui::Button("Open project")) app.request_open_project(project_path_);
-  ImGui::InputText("OBJ dir", &export_dir_);
-  ImGui::SameLine();
-  if (ImGui::Button("Export OBJ")) app.export_obj(export_dir_);
-  ImGui::InputText("GLB", &glb_path_);
-  ImGui::SameLine();
-  if (ImGui::Button("Export GLB")) app.export_glb(glb_path_);
-  ImGui::InputText("PNG", &screenshot_path_);
-  ImGui::SameLine();
-  if (ImGui::Button("Screenshot")) app.screenshot(screenshot_path_);
-  ImGui::InputText("Decal", &decal_path_);
-  ImGui::SameLine();
-  if (ImGui::Button("Load")) app.load_decal(decal_path_);
+  if (path_row("##obj", "export folder", export_dir_, "Export OBJ")) app.export_obj(export_dir_);
+  if (path_row("##glb", "GLB file", glb_path_, "Export GLB")) app.export_glb(glb_path_);
+  if (path_row("##png", "screenshot PNG", screenshot_path_, "Screenshot")) app.screenshot(screenshot_path_);
+  if (path_row("##decal", "decal image (PNG)", decal_path_, "Load decal", Focus::DecalPath)) app.load_decal(decal_path_);
   if (app.decal_image()) stencil_controls(app);
   ImGui::BeginDisabled(!app.history().can_undo());
   if (ImGui::Button("Undo")) app.undo();
@@ -167,7 +248,9 @@ void StudioUi::file_panel(App& app) {
 void StudioUi::stencil_controls(App& app) {
   float op = float(app.decal_opacity());
   if (ImGui::SliderFloat("Decal opacity", &op, 0.f, 1.f)) app.decal_opacity() = op;
-  ImGui::TextDisabled("Stencil: right drag moves, Shift scales, Ctrl rotates");
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("Stencil: right drag moves, Shift scales, Ctrl rotates");
+  ImGui::PopStyleColor();
   if (ImGui::Button("Project stencil (P)")) app.project_decal(app.decal_opacity());
   ImGui::SameLine();
   if (ImGui::Button("Fit")) app.stencil() = fit_stencil(app.camera(), app.stencil() ? app.stencil()->aspect : 1.0);
@@ -283,9 +366,9 @@ void StudioUi::adapt_panel(App& app) {
   ImGui::PopStyleColor();
 }
 
-void StudioUi::inspect_window(App& app) {
-  ImGui::SetNextWindowSize(ImVec2(340, 420), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - 348, 8), ImGuiCond_FirstUseEver);
+void StudioUi::inspect_window(App& app, float top) {
+  ImGui::SetNextWindowSize(ImVec2(340, std::min(560.f, float(app.camera().height) - top - 48)), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - 348, top + 8), ImGuiCond_FirstUseEver);
   if (!ImGui::Begin("Inspect", &show_inspect_)) return ImGui::End();
   const char* modes[] = {"texture", "texture + UV", "importance", "stretch", "L_s^2", "fixed vs adaptive",
                          "density"};

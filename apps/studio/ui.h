@@ -24,12 +24,27 @@ class StudioUi {
   }
 
  private:
+  /// Which path field takes the keyboard next frame (the File menu's "..." items).
+  enum class Focus { None, OpenPath, ProjectPath, DecalPath };
+  /// Default width of the side panel: 30% of the window within these bounds (its right edge can be
+  /// dragged wider, up to 60% of the window).
+  static constexpr float kMinPanelWidth = 300, kPanelWidth = 380;
+
+  /// File / Edit / View / Help. \return its height
+  float menu_bar(App& app);
+  void side_panel(App& app, float top);
+  /// The F1 window: every shortcut (input.h shortcuts()).
+  void help_window(App& app);
+  /// A path field as wide as the panel allows beside its \p button. \return the button or Enter
+  /// was pressed with a path
+  bool path_row(const char* id, const char* hint, std::string& path, const char* button, Focus focus = Focus::None);
+  void save(App& app);
   void file_panel(App& app);
   void brush_panel(App& app);
   void stencil_controls(App& app);
   void view_panel(App& app);
   void adapt_panel(App& app);
-  void inspect_window(App& app);
+  void inspect_window(App& app, float top);
   /// Plain-words legend (colour bar and meaning) of the map shown in Inspect.
   void inspect_legend(const AdaptMaps* maps) const;
   void popups(App& app);
@@ -52,6 +67,7 @@ class StudioUi {
   bool prompt_open_ = false;
   std::string suggested_path_;  // the last App::suggested_project_path() shown in project_path_
   Overlay overlay_;
+  Focus focus_ = Focus::None;
 };
 
 }  // namespace adaptex::studio

@@ -674,6 +674,39 @@ TEST(StudioStencil, RightDragsMoveScaleAndRotateTheStencilAndOnlyItsRegionIsPain
   EXPECT_NE(h.app->camera().yaw, yaw);
 }
 
+// ---- layout ------------------------------------------------------------------------------------
+
+TEST(StudioApp, AnotherModelIsFramedFromTheFrontAndTheStatusLineForgetsTheLastCycle) {
+  Harness h({}, 256, "builtin:sphere", studio_session_options().adapt.mode);
+  h.app->brush().radius = 0.05;
+  h.drag(150, 150, 250, 160);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  EXPECT_NE(h.app->status_line().find("last cycle"), std::string::npos) << h.app->status_line();
+  h.app->camera().orbit(120, 40);
+  ASSERT_NE(h.app->camera().yaw, 0);
+  h.app->open_mesh("builtin:torus");
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_EQ(h.app->camera().yaw, 0);  // from the front (+Z)
+  EXPECT_EQ(h.app->camera().pitch, 0);
+  EXPECT_EQ(h.app->status_line().find("last cycle"), std::string::npos) << h.app->status_line();
+  EXPECT_NE(h.app->status_line().find("torus"), std::string::npos);
+}
+
+TEST(StudioApp, F1TogglesTheShortcutsAndEveryCommandKeyIsListed) {
+  Harness h;
+  h.app->on_key(keys::F1, true, {});
+  EXPECT_TRUE(h.app->view().show_help);
+  h.app->on_key(keys::F1, true, {});
+  EXPECT_FALSE(h.app->view().show_help);
+  // Every single-key command appears in the help's list of keys.
+  std::string listed;
+  for (const Shortcut& s : shortcuts()) listed += std::string(s.keys) + " ";
+  for (char k : std::string("[]FBEIPCLW")) {
+    ASSERT_NE(key_command(k, {}), Command::None) << k;
+    EXPECT_NE(listed.find(k), std::string::npos) << k;
+  }
+}
+
 // ---- making the adaptation visible ------------------------------------------------------------
 
 TEST(StudioView, CheckerKeyTurnsTheTexelDensityCheckerOnAndOff) {

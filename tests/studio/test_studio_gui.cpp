@@ -414,17 +414,17 @@ TEST_F(StudioGui, OpeningAnotherMeshWithUnsavedStrokesAsks) {
   ASSERT_GT(app, 0);
   ASSERT_TRUE(wait_ready(log)) << slurp(log);
   ASSERT_EQ(xdo(*x, paint_drag()), 0);
-  // File panel: type a mesh into the path field (top left of the panel) and press Open. Clicks hold the
+  // File panel: type a mesh into the path field (below the menu bar) and press Open. Clicks hold the
   // button for 0.2 s: Dear ImGui 1.86 misses a press and release that fall in one (slow) frame.
-  ASSERT_EQ(xdo(*x, "mousemove 110 67 mousedown 1 sleep 0.2 mouseup 1 sleep 0.3 type --delay 40 builtin:torus"), 0);
-  ASSERT_EQ(xdo(*x, "sleep 0.3 mousemove 236 67 mousedown 1 sleep 0.2 mouseup 1"), 0);
+  ASSERT_EQ(xdo(*x, "mousemove 110 59 mousedown 1 sleep 0.2 mouseup 1 sleep 0.3 type --delay 40 builtin:torus"), 0);
+  ASSERT_EQ(xdo(*x, "sleep 0.3 mousemove 259 59 mousedown 1 sleep 0.2 mouseup 1"), 0);
   ASSERT_TRUE(wait_for([&] { return count_in(log, kAsking) == 1; }, 30s)) << slurp(log);
   ASSERT_EQ(xdo(*x, "key Escape"), 0);
   ASSERT_TRUE(wait_for([&] { return count_in(log, kCancelled) == 1; }, 30s)) << slurp(log);
   std::this_thread::sleep_for(2s);
   EXPECT_EQ(slurp(log).find("loaded builtin:torus"), std::string::npos) << slurp(log);  // nothing was opened
   // Open asks again; Discard (D) opens the torus.
-  ASSERT_EQ(xdo(*x, "mousemove 236 67 mousedown 1 sleep 0.2 mouseup 1"), 0);
+  ASSERT_EQ(xdo(*x, "mousemove 259 59 mousedown 1 sleep 0.2 mouseup 1"), 0);
   ASSERT_TRUE(wait_for([&] { return count_in(log, kAsking) == 2; }, 30s)) << slurp(log);
   ASSERT_EQ(xdo(*x, "key d"), 0);
   ASSERT_TRUE(wait_for([&] { return slurp(log).find("loaded builtin:torus") != std::string::npos; }, 120s))
