@@ -136,6 +136,26 @@ Vec2 ChartMoveLocator::apply(const Vec2& uv) const {
   return uv;
 }
 
+std::vector<int> chart_lattice_cells(const std::vector<ChartMove>& moves, int cells, int min_cells) {
+  if (cells < 1 || min_cells < 1) throw InvalidInputError("chart_lattice_cells: cells must be >= 1");
+  const int lo = std::min(min_cells, cells);
+  // As fine as one lattice of `cells` over the square, at the chart's larger size (old or new).
+  std::vector<double> side(moves.size());
+  double points = 0;
+  for (size_t c = 0; c < moves.size(); ++c) {
+    side[c] = std::max(moves[c].dst().size().maxCoeff(), moves[c].src.size().maxCoeff()) * cells;
+    points += (side[c] + 1) * (side[c] + 1);
+  }
+  // Elongated boxes (the lattice is square) and the larger of the two sizes can add up to several
+  // square lattices: scale down to one.
+  const double budget = double(cells + 1) * (cells + 1);
+  const double scale = points > budget ? std::sqrt(budget / points) : 1.0;
+  std::vector<int> n(moves.size());
+  for (size_t c = 0; c < moves.size(); ++c)
+    n[c] = std::clamp(static_cast<int>(std::ceil(side[c] * scale)), lo, cells);
+  return n;
+}
+
 std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, const ImageF& density,
                                        const DensityFlowOptions& flow, int min_cells, DensityFlowStats* stats) {
   check_density(density, "chart_flow_warps");
@@ -143,7 +163,7 @@ std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, cons
   const int C = static_cast<int>(moves.size());
   std::vector<GridWarp> warps(C);
   std::vector<DensityFlowStats> st(C);
-  const int L = density.width;
+  const std::vector<int> cells = chart_lattice_cells(moves, flow.cells, min_cells);
   tbb::parallel_for(0, C, [&](int c) {
     const ChartMove& m = moves[c];
     const UvRect dst = m.dst();
@@ -151,9 +171,7 @@ std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, cons
       warps[c] = GridWarp::uniform(1);
       return;
     }
-    // Fine enough for the warp at its new size and for the density's detail at its old size.
-    const double need = std::max(dst.size().maxCoeff() * flow.cells, m.src.size().maxCoeff() * L);
-    const int n = std::clamp(static_cast<int>(std::ceil(need)), std::min(min_cells, flow.cells), flow.cells);
+    const int n = cells[c];
     ImageF local(n, n, 0.0f);
     constexpr int sub = 2;  // 2 x 2 samples per local cell
     for (int j = 0; j < n; ++j)

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "adaptex/core/errors.h"
@@ -245,18 +246,34 @@ ErrorDensity solve_density(CellErrors& c, double spacing_ratio, const ErrorDensi
     if (q[k] <= 0) return lo[k];
     return std::clamp(std::exp(ek[k] * (ak[k] - log_mu)), lo[k], o.max_density);
   };
-  auto total = [&](double log_mu) {
-    double s = unpainted;
-    for (size_t k : painted) s += c.cover[k] * rho_of(k, log_mu);
+  // total(log μ) and its derivative: d ρ / d log μ = −e·ρ where ρ is not clamped.
+  auto total = [&](double log_mu, double* slope) {
+    double s = unpainted, d = 0;
+    for (size_t k : painted) {
+      const double r = std::exp(ek[k] * (ak[k] - log_mu));
+      if (r <= lo[k]) s += c.cover[k] * lo[k];
+      else if (r >= o.max_density) s += c.cover[k] * o.max_density;
+      else s += c.cover[k] * r, d -= c.cover[k] * ek[k] * r;
+    }
+    if (slope) *slope = d;
     return s;
   };
+  // Safeguarded Newton on the decreasing function total(log μ) − budget inside a bisection bracket:
+  // about 10 evaluations where plain bisection down to adjacent doubles took about 60 (one exp per
+  // painted cell each; measured: the larger part of solve_density's time).
   double a = -200, b = 200;  // log μ bracket: total(a) is large, total(b) small
-  for (int it = 0; it < 100; ++it) {
-    const double m = 0.5 * (a + b);
-    if (m <= a || m >= b) break;  // the bracket is down to adjacent doubles
-    (total(m) > budget ? a : b) = m;
+  double x = 0.5 * (a + b);
+  for (int it = 0; it < 200; ++it) {
+    double slope = 0;
+    const double f = total(x, &slope) - budget;
+    if (std::abs(f) <= 1e-12 * budget) break;
+    (f > 0 ? a : b) = x;
+    const double newton = slope < 0 ? x - f / slope : std::numeric_limits<double>::quiet_NaN();
+    const double next = newton > a && newton < b ? newton : 0.5 * (a + b);
+    if (next <= a || next >= b || next == x) break;  // the bracket is down to adjacent doubles
+    x = next;
   }
-  const double log_mu = 0.5 * (a + b);
+  const double log_mu = x;
   // Gutters between charts take the density of the charts around them (a cover-weighted blur), so the
   // flow is as smooth across a gutter as inside a chart; a fixed gutter density (ρ = 1) next to
   // compressed unpainted charts made steep density steps at every chart border, and the sheared

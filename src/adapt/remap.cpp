@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
+#include "adaptex/adapt/overlap_certificate.h"
 #include "adaptex/param/stretch.h"
 
 namespace adaptex {
@@ -174,7 +176,17 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
   // the map is then globally injective (a local homeomorphism of a disk that is injective on its
   // boundary) and the O(F log F) overlap test is unnecessary.
   if (o.check_overlaps && single_chart_on_square(param)) o.check_overlaps = false;
-  const long overlaps_before = o.check_overlaps ? count_overlapping_triangles(param) : 0;
+  // A flip-free candidate usually has its charts in disjoint boxes and simple boundaries: then it is
+  // proven overlap-free in linear time (overlap_certificate.h) and the O(F log F) pair counts of the
+  // input and the candidate are not needed (measured: most of the remap's time on atlas layouts).
+  std::unique_ptr<OverlapCertificate> certificate;
+  if (o.check_overlaps) certificate = std::make_unique<OverlapCertificate>(param, o.min_area);
+  long overlaps_before = -1;  // counted on first need
+  auto new_overlaps = [&](const Parameterization& out) {
+    if (certificate->certifies(out)) return 0L;
+    if (overlaps_before < 0) overlaps_before = count_overlapping_triangles(param);
+    return std::max(0L, count_overlapping_triangles(out) - overlaps_before);
+  };
   // Charts that run into each other are damped locally too (their crossing boundary edges' faces),
   // when the input itself has no crossing boundaries.
   const std::vector<BoundaryEdge> boundary = o.check_overlaps ? uv_boundary_edges(param) : std::vector<BoundaryEdge>{};
@@ -261,8 +273,9 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
       if (fails(out, f)) bad.push_back(f);
     }
   };
-  // Untangling before damping: the interior wedges of flipped or degenerate faces (and their 1-rings)
-  // move to the mean of their 1-ring's *warped* positions, round after round (local Laplacian
+  // Untangling before damping: the interior wedges of flipped or degenerate faces (with
+  // untangle_rings, their 1-rings too) move to the mean of their 1-ring's *warped* positions, round
+  // after round (local Laplacian
   // smoothing in the new domain, as in Tutte's embedding). A few flips of a strong warp are usually
   // slivers that the warp turns over; smoothing them keeps the warp around them, where damping them
   // toward their old position tears their neighbours (measured: halving turned 152 flips into 396).
@@ -279,6 +292,7 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
       for (int f : bad_faces)
         for (int w : param.uv_faces[f]) {
           if (!mark[w]) ws.push_back(w), mark[w] = 1;
+          if (!o.untangle_rings) continue;
           for (int q = ring_start[w]; q < ring_start[w + 1]; ++q)
             if (!mark[ring[q]]) ws.push_back(ring[q]), mark[ring[q]] = 1;
         }
@@ -345,8 +359,7 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
     const FlipCount fc = count_flips(param, out, o.min_area);
     c.flipped = fc.flipped;
     c.degenerate = fc.degenerate;
-    if (o.check_overlaps && c.flipped == 0 && c.degenerate == 0)
-      c.overlaps = std::max(0L, count_overlapping_triangles(out) - overlaps_before);
+    if (o.check_overlaps && c.flipped == 0 && c.degenerate == 0) c.overlaps = new_overlaps(out);
     return c;
   };
   auto finish = [&](double t) {

@@ -29,10 +29,12 @@ struct DensityFlowOptions {
   int cells = 128;
   double tolerance = 1e-2;     ///< Local error bound of the adaptive integration, in output cells.
   int max_steps = 4000;        ///< Cap on integration steps per point (never reached on sane input).
-  /// Longest move of a point in one integration step, in cells of the finer of the density raster and
-  /// the output lattice (the step-size control adds its own limit). 2 keeps the measured density error
-  /// of 0.5 (venus, spot, kitten lines at 256²: relative L1 0.092 / 0.015 / 0.019 either way) at a
-  /// quarter of the steps; at 4 the error starts to grow (kitten 0.027).
+  /// Longest move of a point in one integration step, in cells of the output lattice (the step-size
+  /// control adds its own limit). Session 4 measured it in cells of the finer of the density raster
+  /// and the lattice (2: a quarter of the steps of 0.5 at the same density error); session 5 counts
+  /// lattice cells, which on the default 128-cell lattice over a 256² density doubles the step of a
+  /// one-chart flow (venus lines 256²: 703k -> 403k steps, density error 0.175 -> 0.184; the texel
+  /// saving within noise, docs/benchmarks.md). Per-chart flows were already counted this way.
   double max_step_cells = 2.0;
   bool parallel = true;        ///< Advect points with TBB (results are identical either way).
 };

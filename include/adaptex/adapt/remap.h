@@ -34,9 +34,11 @@ struct SafeRemapOptions {
   /// A UV triangle with signed area <= this (in [0,1]^2 units) counts as degenerate. 1e-12 is a
   /// triangle about 10^-6 of the square wide: far below a texel but above round-off.
   double min_area = 1e-12;
-  /// Check for overlapping triangles (count_overlapping_triangles) as well; only pairs that were not
-  /// already overlapping in the input count. Costs O(F log F). Skipped (provably unnecessary) for a
-  /// single chart whose boundary lies on the square's sides (single_chart_on_square()).
+  /// Check for overlapping triangles as well; only pairs that were not already overlapping in the
+  /// input count. A flip-free candidate is first tested by OverlapCertificate (O(F),
+  /// overlap_certificate.h); only if that proof fails are the pairs counted
+  /// (count_overlapping_triangles, O(F log F)). Skipped (provably unnecessary) for a single chart
+  /// whose boundary lies on the square's sides (single_chart_on_square()).
   bool check_overlaps = true;
   /// Local damping rounds: the wedges of every face that flips or degenerates are pulled halfway back
   /// to their input UV, this many times at most, before the whole warp is damped.
@@ -59,6 +61,10 @@ struct SafeRemapOptions {
   /// fails; 30 rounds left camelhead lines 256² with 1918 failing faces (texel saving 1.56×), 300
   /// rounds with none (5.65×), in 1 s.
   int untangle_rounds = 500;
+  /// Untangling also moves the 1-rings of the failing faces' wedges (as before session 5). Off: only
+  /// the failing faces' own wedges move, which disturbs fewer good faces; measured on the shared
+  /// meshes' lines at 256², the rounds needed went 13-493 -> 10-249 (docs/error_model.md §6).
+  bool untangle_rings = false;
 };
 
 /// Result of safe_remap().
