@@ -55,7 +55,7 @@ void main() {
   if (u_checker > 0.0) {  // texel-density checker: every square holds the same number of texels
     vec2 c = floor(v_uv * u_checker);
     float odd = mod(c.x + c.y, 2.0);
-    albedo = mix(albedo, mix(vec3(0.93), vec3(0.18, 0.2, 0.28), odd), 0.7);
+    albedo = mix(albedo, mix(vec3(0.93), vec3(0.18, 0.2, 0.28), odd), 0.45);
   }
   frag = vec4(albedo * (0.35 + 0.65 * d) + vec3(s), 1.0);
 })";

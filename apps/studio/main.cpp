@@ -116,11 +116,11 @@ const std::vector<std::string> kInspectModes = {"texture", "uv", "importance", "
 /// Everything given on the command line.
 struct CommandLine {
   std::string mesh, replay, screenshot, history_out, texture_out, export_dir, project, stats_out;
-  std::string window = "1280x800", config_dir, recovery_dir, inspect, decal, stencil;
+  std::string window = "1280x800", config_dir, recovery_dir, inspect, decal, stencil, stencil_place;
   std::string adapt_mode = to_string(AdaptOptions{}.mode);
   int exit_after = -1, texture_size = 0, orbit_frames = 0;
   bool recover = false, hide_ui = false, no_vsync = false, no_recovery = false, wireframe = false, no_refine = false;
-  bool checker = false;
+  bool checker = false, fixed_layout = false;
   double yaw = 0, pitch = 0;
   int width = 1280, height = 800;
 };
@@ -146,6 +146,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
   cli.add_flag("--hide-ui", c.hide_ui, "Hide the panels (clean screenshots)");
   cli.add_flag("--wireframe", c.wireframe, "Start with the wireframe overlay on");
   cli.add_flag("--checker", c.checker, "Start with the texel-density checker on the model (C)");
+  cli.add_flag("--fixed-layout", c.fixed_layout, "Once loaded, show the fixed layout at the same texture size (L)");
   cli.add_flag("--no-vsync", c.no_vsync, "Do not wait for vertical sync");
   cli.add_option("--texture-size", c.texture_size, "Texture width = height in texels (default 1024)");
   std::vector<std::string> modes;
@@ -158,6 +159,8 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
   cli.add_option("--pitch", c.pitch, "Initial camera pitch (degrees)");
   cli.add_option("--decal", c.decal, "Once loaded, project this image as a decal through its stencil (kept shown)");
   cli.add_option("--stencil", c.stencil, "Once loaded, show this image as a decal stencil (P projects it)");
+  cli.add_option("--stencil-place", c.stencil_place,
+                 "Stencil of --stencil / --decal: X,Y,HEIGHT,DEGREES (window pixels; default centred)");
   cli.add_option("--inspect", c.inspect, "Open the Inspect panel: texture|uv|importance|stretch|ls2|compare|density")
       ->check(CLI::IsMember(kInspectModes));
   cli.add_option("--orbit-frames", c.orbit_frames, "Benchmark: orbit the camera for N frames, then quit");
@@ -165,6 +168,12 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return cli.exit(e);
+  }
+  double sx, sy, sh, sd;
+  if (!c.stencil_place.empty() &&
+      (std::sscanf(c.stencil_place.c_str(), "%lf,%lf,%lf,%lf", &sx, &sy, &sh, &sd) != 4 || !(sh >= 8))) {
+    std::cerr << "adaptex-studio: --stencil-place: expected X,Y,HEIGHT,DEGREES with HEIGHT >= 8, e.g. 640,400,300,15\n";
+    return 2;
   }
   if (std::sscanf(c.window.c_str(), "%dx%d", &c.width, &c.height) != 2 || c.width < 64 || c.height < 64) {
     std::cerr << "adaptex-studio: --window: expected WxH, e.g. 1280x800\n";
@@ -325,13 +334,17 @@ class Script {
       compare_requested_ = true;
     }
     if (idle_ && !decal_.empty()) {
-      app.load_decal(decal_);
+      load_stencil(app, decal_);
       app.project_decal(1.0);
       decal_.clear();
     }
     if (idle_ && !stencil_.empty()) {
-      app.load_decal(stencil_);
+      load_stencil(app, stencil_);
       stencil_.clear();
+    }
+    if (idle_ && c_.fixed_layout && !fixed_requested_) {
+      app.toggle_fixed_layout();
+      fixed_requested_ = true;
     }
     if (idle_ && !ready_printed_) {
       std::cout << "adaptex-studio: ready" << std::endl;
@@ -363,9 +376,20 @@ class Script {
   bool final_frame() const { return final_frame_; }
 
  private:
+  /// Loads \p image as the stencil, placed by --stencil-place.
+  void load_stencil(App& app, const std::string& image) const {
+    app.load_decal(image);
+    double x, y, h, deg;
+    if (!app.stencil() || std::sscanf(c_.stencil_place.c_str(), "%lf,%lf,%lf,%lf", &x, &y, &h, &deg) != 4) return;
+    app.stencil()->centre = Vec2(x, y);
+    app.stencil()->height = h;
+    app.stencil()->angle = deg * 3.14159265358979 / 180;
+  }
+
   const CommandLine& c_;
   std::string decal_, stencil_;
   bool idle_ = false, view_applied_ = false, ready_printed_ = false, compare_requested_ = false;
+  bool fixed_requested_ = false;
   bool final_frame_ = false;
   int idle_frames_ = 0, orbit_done_ = 0;
 };

@@ -409,7 +409,7 @@ void StudioUi::inspect_window(App& app, float top) {
     ImGui::Image(compare_tex_[0], ImVec2(half, half), ImVec2(0, 1), ImVec2(1, 0));
     ImGui::SameLine();
     ImGui::Image(compare_tex_[1], ImVec2(half, half), ImVec2(0, 1), ImVec2(1, 0));
-    ImGui::Text("%zu strokes, same texture size; PSNR over 200k surface samples", c->strokes);
+    ImGui::TextWrapped("%zu strokes, same texture size; PSNR over 200k surface samples", c->strokes);
     return ImGui::End();
   }
   const std::uint64_t key = (app.surface_serial() << 24) ^ (app.history().version() << 8) ^
