@@ -745,6 +745,7 @@ void App::screenshot(const std::filesystem::path& path) { pending_screenshot_ = 
 void App::save_history(const std::filesystem::path& path) {
   try {
     save_strokes(path, history().to_file());
+    add_message("saved the stroke history to " + path.string(), false);
   } catch (const std::exception& e) {
     add_message(e.what(), true);
   }
@@ -754,6 +755,7 @@ void App::save_texture(const std::filesystem::path& path) {
   if (!texture()) return add_message("no texture to save", true);
   try {
     save_png(path, *texture());
+    add_message("saved the texture to " + path.string(), false);
   } catch (const std::exception& e) {
     add_message(e.what(), true);
   }

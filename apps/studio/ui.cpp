@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "adaptex/paint/export.h"
+#include "native_dialog.h"
 
 namespace adaptex::studio {
 namespace {
@@ -100,6 +101,7 @@ void StudioUi::draw(App& app) {
   side_panel(app, menu_h);
   if (show_inspect_) inspect_window(app, menu_h);
   if (app.view().show_help) help_window(app);
+  browser_window(app);
   popups(app);
   confirm_prompt(app);
   status_bar(app);
@@ -109,14 +111,19 @@ float StudioUi::menu_bar(App& app) {
   if (!ImGui::BeginMainMenuBar()) return 0;
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("New")) app.request_new();
-    if (ImGui::MenuItem("Open mesh...")) focus_ = Focus::OpenPath;
-    if (ImGui::MenuItem("Open project...")) focus_ = Focus::ProjectPath;
+    if (ImGui::MenuItem("Open mesh...")) choose(app, FileKind::OpenMesh);
+    if (ImGui::BeginMenu("Open recent", !app.recent_files().empty())) {
+      for (const auto& r : app.recent_files())
+        if (ImGui::MenuItem(r.c_str())) act(app, FileKind::OpenMesh, r);
+      ImGui::EndMenu();
+    }
+    if (ImGui::MenuItem("Open project...")) choose(app, FileKind::OpenProject);
     if (ImGui::MenuItem("Save", "Ctrl+S")) save(app);
-    if (ImGui::MenuItem("Save As...")) focus_ = Focus::ProjectPath;
-    if (ImGui::MenuItem("Export OBJ")) app.export_obj(export_dir_);
-    if (ImGui::MenuItem("Export GLB")) app.export_glb(glb_path_);
-    if (ImGui::MenuItem("Screenshot")) app.screenshot(screenshot_path_);
-    if (ImGui::MenuItem("Load decal (stencil)...")) focus_ = Focus::DecalPath;
+    if (ImGui::MenuItem("Save As...")) choose(app, FileKind::SaveProject);
+    if (ImGui::MenuItem("Export OBJ...")) choose(app, FileKind::ExportObjFolder);
+    if (ImGui::MenuItem("Export GLB...")) choose(app, FileKind::ExportGlb);
+    if (ImGui::MenuItem("Screenshot...")) choose(app, FileKind::Screenshot);
+    if (ImGui::MenuItem("Load decal (stencil)...")) choose(app, FileKind::LoadImage);
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) app.request_quit();
     ImGui::EndMenu();
@@ -168,6 +175,70 @@ void StudioUi::side_panel(App& app, float top) {
   ImGui::Checkbox("Inspect panel", &show_inspect_);
   ImGui::PopItemWidth();
   ImGui::End();
+}
+
+void StudioUi::choose(App& app, FileKind kind) {
+  const FileRequest r = file_request(kind);
+  std::error_code ec;
+  const std::string folder = std::filesystem::current_path(ec).string();
+  if (native_dialogs_available()) {
+    if (const auto path = run_native_dialog(r, folder)) act(app, kind, *path);
+    return;
+  }
+  browser_ = r;  // the in-app browser (browser_window)
+  browser_dir_ = folder;
+  browser_name_.clear();
+}
+
+void StudioUi::act(App& app, FileKind kind, const std::string& path) {
+  switch (kind) {
+    case FileKind::OpenMesh: open_path_ = path, app.request_open_mesh(path); break;
+    case FileKind::OpenProject: project_path_ = path, app.request_open_project(path); break;
+    case FileKind::SaveProject: project_path_ = path, app.save_project(path); break;
+    case FileKind::ExportGlb: glb_path_ = path, app.export_glb(path); break;
+    case FileKind::ExportObjFolder: export_dir_ = path, app.export_obj(path); break;
+    case FileKind::LoadImage: decal_path_ = path, app.load_decal(path); break;
+    case FileKind::Screenshot: screenshot_path_ = path, app.screenshot(path); break;
+  }
+}
+
+void StudioUi::browser_window(App& app) {
+  if (!browser_) return;
+  const char* id = "Choose a file";
+  if (!ImGui::IsPopupOpen(id)) ImGui::OpenPopup(id);
+  ImGui::SetNextWindowSize(ImVec2(560, 420), ImGuiCond_Appearing);
+  if (!ImGui::BeginPopupModal(id, nullptr)) return;
+  ImGui::TextUnformatted(browser_->title);
+  ImGui::InputText("Folder", &browser_dir_);
+  const std::filesystem::path dir(browser_dir_);
+  std::optional<std::string> chosen;
+  ImGui::BeginChild("entries", ImVec2(0, -2.5f * ImGui::GetFrameHeightWithSpacing()), true);
+  if (ImGui::Selectable("[..]", false, ImGuiSelectableFlags_AllowDoubleClick) && ImGui::IsMouseDoubleClicked(0))
+    browser_dir_ = dir.parent_path().string();
+  for (const BrowserEntry& e : list_folder(dir, browser_->folder ? std::vector<std::string>{} : browser_->extensions)) {
+    if (browser_->folder && !e.folder) continue;
+    const std::string label = e.folder ? "[" + e.name + "]" : e.name;
+    if (!ImGui::Selectable(label.c_str(), browser_name_ == e.name, ImGuiSelectableFlags_AllowDoubleClick)) continue;
+    browser_name_ = e.name;
+    if (!ImGui::IsMouseDoubleClicked(0)) continue;
+    if (e.folder && !browser_->folder) browser_dir_ = (dir / e.name).string(), browser_name_.clear();
+    else chosen = (dir / e.name).string();
+  }
+  ImGui::EndChild();
+  const bool enter = ImGui::InputText("Name", &browser_name_, ImGuiInputTextFlags_EnterReturnsTrue);
+  if ((ImGui::Button(browser_->save ? "Save" : "Open") || enter)) {
+    chosen = browser_name_.empty() ? (browser_->folder ? browser_dir_ : std::string()) : (dir / browser_name_).string();
+    if (chosen->empty()) chosen.reset();
+  }
+  ImGui::SameLine();
+  const bool cancel = ImGui::Button("Cancel");
+  if (chosen || cancel) {
+    const FileKind kind = browser_->kind;
+    browser_.reset();
+    ImGui::CloseCurrentPopup();
+    if (chosen) act(app, kind, *chosen);
+  }
+  ImGui::EndPopup();
 }
 
 void StudioUi::help_window(App& app) {
@@ -514,8 +585,15 @@ void StudioUi::popups(App& app) {
   }
   const auto& msgs = app.messages();
   if (msgs.size() < shown_messages_) shown_messages_ = 0;
-  for (; shown_messages_ < msgs.size(); ++shown_messages_)
-    if (msgs[shown_messages_].error) error_text_ = msgs[shown_messages_].text;
+  for (; shown_messages_ < msgs.size(); ++shown_messages_) {
+    if (msgs[shown_messages_].error) {
+      error_text_ = msgs[shown_messages_].text;
+    } else {  // saved, exported, loaded...: shown for a few seconds above the status line
+      toast_text_ = msgs[shown_messages_].text;
+      toast_until_ = ImGui::GetTime() + 4.0;
+    }
+  }
+  if (!toast_text_.empty() && ImGui::GetTime() < toast_until_) toast(app);
   if (!error_text_.empty()) {
     ImGui::OpenPopup("Error");
     if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
@@ -538,6 +616,20 @@ void StudioUi::popups(App& app) {
     if (ImGui::Button("Cancel")) app.cancel_load();
     ImGui::End();
   }
+}
+
+void StudioUi::toast(App& app) {
+  const float pad = ImGui::GetFrameHeight() + 16;
+  ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - 12, float(app.camera().height) - pad), ImGuiCond_Always,
+                          ImVec2(1, 1));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("##toast", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoInputs |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav);
+  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40);
+  ImGui::TextUnformatted(toast_text_.c_str());
+  ImGui::PopTextWrapPos();
+  ImGui::End();
 }
 
 void StudioUi::confirm_prompt(App& app) {

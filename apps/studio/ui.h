@@ -8,6 +8,7 @@
 
 #include "adaptex/core/image.h"
 #include "app.h"
+#include "file_browser.h"
 #include "overlay.h"
 
 namespace adaptex::studio {
@@ -39,6 +40,12 @@ class StudioUi {
   /// was pressed with a path
   bool path_row(const char* id, const char* hint, std::string& path, const char* button, Focus focus = Focus::None);
   void save(App& app);
+  /// Asks for a file: the desktop's dialog (native_dialog.h), else the in-app browser.
+  void choose(App& app, FileKind kind);
+  /// Does what \p kind asked for with the chosen \p path.
+  void act(App& app, FileKind kind, const std::string& path);
+  /// The in-app browser while a request is open.
+  void browser_window(App& app);
   void file_panel(App& app);
   void brush_panel(App& app);
   void stencil_controls(App& app);
@@ -48,6 +55,8 @@ class StudioUi {
   /// Plain-words legend (colour bar and meaning) of the map shown in Inspect.
   void inspect_legend(const AdaptMaps* maps) const;
   void popups(App& app);
+  /// The last message that is not an error (saved, exported, ...), for a few seconds.
+  void toast(App& app);
   /// Save / Discard / Cancel before an action that would drop unsaved strokes.
   void confirm_prompt(App& app);
   void status_bar(App& app);
@@ -63,11 +72,14 @@ class StudioUi {
   void* compare_tex_[2] = {nullptr, nullptr};
   ImageRGBA8 inspect_img_;
   size_t shown_messages_ = 0;
-  std::string error_text_;
+  std::string error_text_, toast_text_;
+  double toast_until_ = 0;
   bool prompt_open_ = false;
   std::string suggested_path_;  // the last App::suggested_project_path() shown in project_path_
   Overlay overlay_;
   Focus focus_ = Focus::None;
+  std::optional<FileRequest> browser_;  // the in-app browser's open request
+  std::string browser_dir_, browser_name_;
 };
 
 }  // namespace adaptex::studio

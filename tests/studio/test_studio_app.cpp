@@ -19,6 +19,7 @@
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/painter.h"
 #include "app.h"
+#include "file_browser.h"
 #include "test_support.h"
 
 namespace adaptex::studio {
@@ -672,6 +673,28 @@ TEST(StudioStencil, RightDragsMoveScaleAndRotateTheStencilAndOnlyItsRegionIsPain
   h.app->clear_decal();
   right_drag(200, 150, 260, 150, {});
   EXPECT_NE(h.app->camera().yaw, yaw);
+}
+
+// ---- file dialogs -------------------------------------------------------------------------------
+
+TEST(StudioFiles, InAppBrowserListsFoldersFirstThenMatchingFilesInAnyCase) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.path / "b_meshes");
+  std::filesystem::create_directories(dir.path / "A_old");
+  std::filesystem::create_directories(dir.path / ".hidden");
+  for (const char* f : {"cow.OBJ", "bunny.ply", "notes.txt", "a.obj", ".secret.obj", "pic.png"})
+    std::ofstream(dir.path / f) << "x";
+  const auto mesh = list_folder(dir.path, file_request(FileKind::OpenMesh).extensions);
+  std::vector<std::string> names;
+  for (const auto& e : mesh) names.push_back(e.name + (e.folder ? "/" : ""));
+  EXPECT_EQ(names, (std::vector<std::string>{"A_old/", "b_meshes/", "a.obj", "bunny.ply", "cow.OBJ"}));
+  const auto images = list_folder(dir.path, file_request(FileKind::LoadImage).extensions);
+  ASSERT_EQ(images.size(), 3u);
+  EXPECT_EQ(images[2].name, "pic.png");
+  EXPECT_TRUE(list_folder(dir.path / "missing", {}).empty());  // unreadable: empty, no throw
+  EXPECT_TRUE(file_request(FileKind::SaveProject).save);
+  EXPECT_TRUE(file_request(FileKind::ExportObjFolder).folder);
+  EXPECT_FALSE(file_request(FileKind::OpenProject).save);
 }
 
 // ---- layout ------------------------------------------------------------------------------------
