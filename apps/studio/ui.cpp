@@ -225,6 +225,7 @@ void StudioUi::browser_window(App& app) {
     else chosen = (dir / e.name).string();
   }
   ImGui::EndChild();
+  if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();  // type a name (or a whole path) at once
   const bool enter = ImGui::InputText("Name", &browser_name_, ImGuiInputTextFlags_EnterReturnsTrue);
   if ((ImGui::Button(browser_->save ? "Save" : "Open") || enter)) {
     chosen = browser_name_.empty() ? (browser_->folder ? browser_dir_ : std::string()) : (dir / browser_name_).string();
