@@ -7,19 +7,12 @@
 #include <utility>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/predicates.h"
 
 namespace adaptex {
 
 namespace {
-/// Sign of the orientation of c relative to a->b; 0 when a static error bound (Shewchuk's first stage)
-/// cannot certify it. A 0 only ever makes the certificate more cautious.
-int orient(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const double l = (a.x() - c.x()) * (b.y() - c.y());
-  const double r = (a.y() - c.y()) * (b.x() - c.x());
-  const double det = l - r;
-  const double bound = 3.3306690738754716e-16 * (std::abs(l) + std::abs(r));
-  return det > bound ? 1 : det < -bound ? -1 : 0;
-}
+int orient(const Vec2& a, const Vec2& b, const Vec2& c) { return orient2d_filtered(a, b, c); }
 
 /// True if the closed segments ab and cd (no shared endpoint) may intersect or touch.
 bool segments_may_touch(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {

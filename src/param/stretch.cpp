@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 
+#include "adaptex/core/predicates.h"
+
 namespace adaptex {
 
 namespace {
@@ -191,17 +193,7 @@ std::vector<double> l2_stretch_of_aspects(const TriMesh& mesh, const std::vector
 
 namespace {
 
-/// Orientation of c relative to the line a->b with a static error filter (Shewchuk's orient2d
-/// first-stage bound): returns 0 when the sign cannot be certified, i.e. c is (numerically) on the line.
-int orient(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const double l = (a.x() - c.x()) * (b.y() - c.y());
-  const double r = (a.y() - c.y()) * (b.x() - c.x());
-  const double det = l - r;
-  const double bound = 3.3306690738754716e-16 * (std::abs(l) + std::abs(r));
-  if (det > bound) return 1;
-  if (det < -bound) return -1;
-  return 0;
-}
+int orient(const Vec2& a, const Vec2& b, const Vec2& c) { return orient2d_filtered(a, b, c); }
 
 /// True when the interiors of the (non-degenerate) triangles a and b intersect: no edge of either
 /// triangle is a (weakly) separating line (separating-axis theorem for convex polygons).
