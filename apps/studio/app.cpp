@@ -391,6 +391,7 @@ void App::run_command(Command c) {
     case Command::Checker: view_.checker = !view_.checker; break;
     case Command::FixedLayout: toggle_fixed_layout(); break;
     case Command::Help: view_.show_help = !view_.show_help; break;
+    case Command::OpenMeshDialog: open_dialog_requested_ = true; break;
     case Command::Brush: brush_.tool = Tool::Brush; break;
     case Command::Eraser: brush_.tool = brush_.tool == Tool::Eraser ? Tool::Brush : Tool::Eraser; break;
     case Command::Eyedropper: brush_.tool = Tool::Eyedropper; break;

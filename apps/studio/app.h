@@ -187,6 +187,8 @@ class App {
   /// The brush circles to draw on the screen this frame (the cursor, its mirror with symmetry, the
   /// circle of an F resize): none while the mouse is over the UI or with the eyedropper.
   std::vector<ScreenCircle> brush_cursors() const;
+  /// Ctrl+O was pressed since the last call: the UI shows the open-mesh dialog. \return whether it was
+  bool take_open_dialog_request() { return std::exchange(open_dialog_requested_, false); }
   /// An F resize runs (the next click or F keeps it, Esc or a right click cancels it).
   bool resizing_brush() const { return resize_.has_value(); }
   /// The visible front-facing surface under window pixel (x, y).
@@ -300,6 +302,7 @@ class App {
   std::optional<Stencil> stencil_;
   double decal_opacity_ = 1.0;
   std::optional<BrushResize> resize_;
+  bool open_dialog_requested_ = false;
   Stats stats_;
   Clock::time_point last_frame_end_ = Clock::now();
   bool quit_ = false;

@@ -10,6 +10,7 @@ Command key_command(int key, Mods mods) {
     if (key == 'Y') return Command::Redo;
     if (key == 'Q') return Command::Quit;
     if (key == 'S') return Command::Save;
+    if (key == 'O') return Command::OpenMeshDialog;
     return Command::None;
   }
   switch (key) {
@@ -47,6 +48,7 @@ const std::vector<Shortcut>& shortcuts() {
       {"W", "wireframe"},
       {"Home", "frame the model"},
       {"Ctrl+Z, Ctrl+Shift+Z / Ctrl+Y", "undo, redo"},
+      {"Ctrl+O", "open a mesh (file dialog)"},
       {"Ctrl+S", "save the project"},
       {"Ctrl+Q", "quit (asks when strokes are unsaved)"},
       {"F1", "this help"},

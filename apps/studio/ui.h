@@ -80,6 +80,7 @@ class StudioUi {
   Focus focus_ = Focus::None;
   std::optional<FileRequest> browser_;  // the in-app browser's open request
   std::string browser_dir_, browser_name_;
+  bool browser_ready_ = false;  // its Name field has had the keyboard
 };
 
 }  // namespace adaptex::studio

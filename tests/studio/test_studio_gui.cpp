@@ -557,8 +557,8 @@ TEST_F(StudioGui, BrushKeepsItsOnScreenSizeWhileZooming) {
 }
 
 TEST_F(StudioGui, FileMenuOpensAMeshThroughTheInAppBrowser) {
-  // ADAPTEX_STUDIO_DIALOG=builtin: the in-app browser instead of GTK's dialog (which xdotool cannot
-  // drive reliably without a window manager). The browser opens with the keyboard in its Name field.
+  // ADAPTEX_STUDIO_DIALOG=builtin: the in-app browser instead of GTK's dialog (which xdotool did not
+  // drive without a window manager). The browser opens with the keyboard in its Name field.
   const fs::path log = dir.path / "app.log", mesh = dir.path / "ring.obj";
   adaptex::write_obj(mesh, adaptex::shapes::torus(24, 12, 1.0, 0.3), nullptr);
   std::vector<std::string> env = x->env();
@@ -568,12 +568,13 @@ TEST_F(StudioGui, FileMenuOpensAMeshThroughTheInAppBrowser) {
                           env, log);
   ASSERT_GT(app, 0);
   ASSERT_TRUE(wait_ready(log)) << slurp(log);
-  // File (menu bar), then its second item, Open mesh... (buttons held across frames, as above).
-  ASSERT_EQ(xdo(*x, "mousemove 25 9 mousedown 1 sleep 0.2 mouseup 1 sleep 0.8 mousemove 60 50 sleep 0.3 "
-                    "mousedown 1 sleep 0.2 mouseup 1 sleep 1"),
-            0);
+  // Ctrl+O (File > Open mesh...), held across frames as Ctrl+Q above; the browser says when it is open.
+  ASSERT_EQ(xdo(*x, "mousemove 600 300 sleep 0.2 keydown ctrl+o sleep 0.3 keyup ctrl+o"), 0);
+  // Printed once the browser's Name field has the keyboard.
+  ASSERT_TRUE(wait_for([&] { return slurp(log).find("file browser: Open mesh") != std::string::npos; }, 60s))
+      << slurp(log);
   ASSERT_EQ(xdo(*x, "type --delay 40 '" + mesh.string() + "'"), 0);
-  ASSERT_EQ(xdo(*x, "sleep 0.3 key Return"), 0);
+  ASSERT_EQ(xdo(*x, "sleep 0.3 keydown Return sleep 0.3 keyup Return"), 0);
   ASSERT_TRUE(wait_for([&] { return slurp(log).find("loaded " + mesh.string()) != std::string::npos; }, 120s))
       << slurp(log);
   ASSERT_EQ(terminate(app), 0) << slurp(log);
