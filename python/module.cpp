@@ -271,7 +271,7 @@ py::dict py_reparam(py::handle V, py::handle F, py::handle UV, py::handle FT, py
 }
 
 py::dict py_evaluate(py::handle V, py::handle F, py::handle UV, py::handle FT, py::handle texture, py::handle strokes,
-                     py::kwargs kwargs) {
+                     py::object progress, py::kwargs kwargs) {
   const TriMesh mesh = mesh_from_arrays(V, F, "evaluate");
   const Parameterization param = param_from_arrays(mesh, UV, FT, "evaluate");
   const ImageRGBA8 tex = image_from_array(texture, "evaluate", "texture");
@@ -279,8 +279,9 @@ py::dict py_evaluate(py::handle V, py::handle F, py::handle UV, py::handle FT, p
   EvalOptions options;
   set_options(options, kwargs, "evaluate");
   if (options.samples < 1) throw InvalidInputError("evaluate: samples must be >= 1");
-  Progress no_progress{py::none()};
-  const EvalResult r = no_progress.run([&] { return evaluate_texture(mesh, param, tex, file, options); });
+  Progress p(std::move(progress));
+  options.progress = p.callback();
+  const EvalResult r = p.run([&] { return evaluate_texture(mesh, param, tex, file, options); });
   return py::dict(py::arg("mse") = r.mse, py::arg("psnr") = r.psnr, py::arg("samples") = r.samples,
                   py::arg("seed") = r.seed);
 }
@@ -382,7 +383,8 @@ PYBIND11_MODULE(_adaptex, m) {
         "reparam`) into a size x size texture (default: the input's size). AdaptOptions fields as keywords; "
         "refine=False keeps the mesh.");
   m.def("evaluate", &py_evaluate, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("FT"), py::arg("texture"),
-        py::arg("strokes"), "evaluate(V, F, UV, FT, texture, strokes, *, samples=, seed=) -> dict(mse, psnr, samples, "
+        py::arg("strokes"), py::kw_only(), py::arg("progress") = py::none(),
+        "evaluate(V, F, UV, FT, texture, strokes, *, progress=None, samples=, seed=) -> dict(mse, psnr, samples, "
         "seed): the texture against the exact stroke signal, as `adaptex eval`.");
   m.def("stretch", &py_stretch, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("FT"),
         "stretch(V, F, UV, FT) -> dict(l2, linf, area_distortion, angle_distortion, flipped, degenerate, face_l2 #F).");

@@ -22,26 +22,33 @@ inline std::uint64_t mix64(std::uint64_t z) {
 inline double unit(std::uint64_t x) { return static_cast<double>(x >> 11) * 0x1.0p-53; }
 
 /// Sum over \p pts of |truth(k) - reconstruction at pts[k]|^2, in blocks of 4096 points summed in
-/// block order (deterministic whatever the thread count).
+/// block order (deterministic whatever the thread count). The blocks run in about 32 parallel rounds;
+/// \p progress (may be empty) hears ("eval", fraction) after each, on the calling thread.
 template <class Truth>
 double squared_error_sum(const Parameterization& param, const ImageRGBA8& texture,
-                         const std::vector<SurfacePoint>& pts, const Truth& truth) {
+                         const std::vector<SurfacePoint>& pts, const Truth& truth,
+                         const ProgressCallback& progress = {}) {
   constexpr size_t kBlock = 4096;
   const size_t blocks = (pts.size() + kBlock - 1) / kBlock;
+  const size_t per_round = std::max<size_t>(1, (blocks + 31) / 32);
   std::vector<double> partial(blocks, 0.0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t b = r.begin(); b < r.end(); ++b) {
-      double sum = 0;
-      for (size_t k = b * kBlock; k < std::min(pts.size(), (b + 1) * kBlock); ++k) {
-        const SurfacePoint& sp = pts[k];
-        const Face& t = param.uv_faces[sp.face];
-        const Vec2 uv = sp.b0 * param.uv[t[0]] + sp.b1 * param.uv[t[1]] + (1 - sp.b0 - sp.b1) * param.uv[t[2]];
-        const Vec3 rec = sample_bilinear(texture, uv.x(), uv.y());
-        sum += (truth(k) - rec).squaredNorm();
+  for (size_t first = 0; first < blocks; first += per_round) {
+    const size_t last = std::min(blocks, first + per_round);
+    tbb::parallel_for(tbb::blocked_range<size_t>(first, last), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t b = r.begin(); b < r.end(); ++b) {
+        double sum = 0;
+        for (size_t k = b * kBlock; k < std::min(pts.size(), (b + 1) * kBlock); ++k) {
+          const SurfacePoint& sp = pts[k];
+          const Face& t = param.uv_faces[sp.face];
+          const Vec2 uv = sp.b0 * param.uv[t[0]] + sp.b1 * param.uv[t[1]] + (1 - sp.b0 - sp.b1) * param.uv[t[2]];
+          const Vec3 rec = sample_bilinear(texture, uv.x(), uv.y());
+          sum += (truth(k) - rec).squaredNorm();
+        }
+        partial[b] = sum;
       }
-      partial[b] = sum;
-    }
-  });
+    });
+    report_progress(progress, "eval", static_cast<double>(last) / static_cast<double>(blocks));
+  }
   double total = 0;
   for (double s : partial) total += s;
   return total;
@@ -79,8 +86,10 @@ EvalResult evaluate_texture(const TriMesh& mesh, const Parameterization& param, 
                             " faces, the mesh " + std::to_string(mesh.faces.size()));
   if (options.samples < 1) throw InvalidInputError("eval: --samples must be >= 1 (got " + std::to_string(options.samples) + ")");
   const StrokeSignal signal(mesh, strokes);
+  report_progress(options.progress, "eval", 0.0);
   const std::vector<SurfacePoint> pts = sample_surface(mesh, options.samples, options.seed);
-  const double total = squared_error_sum(param, texture, pts, [&](size_t k) { return signal.evaluate(pts[k]); });
+  const double total = squared_error_sum(
+      param, texture, pts, [&](size_t k) { return signal.evaluate(pts[k]); }, options.progress);
   EvalResult res;
   res.samples = options.samples;
   res.seed = options.seed;

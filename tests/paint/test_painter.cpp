@@ -2,9 +2,11 @@
 // whole stroke, rect), seam padding, stroke signal (fast == brute force), eval (PSNR vs size).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <string_view>
 
 #include "adaptex/core/shapes.h"
 #include "adaptex/paint/eval.h"
@@ -298,6 +300,33 @@ TEST(Eval, PsnrRisesWithTextureSizeAndExceeds45dBAt2048) {
   EXPECT_LT(psnr[0], psnr[1]);
   EXPECT_LT(psnr[1], psnr[2]);
   EXPECT_GT(psnr[2], 45.0) << psnr[0] << " " << psnr[1] << " " << psnr[2];
+}
+
+TEST(Eval, ProgressRisesToOneCancelsAndLeavesTheResultUnchanged) {
+  const TriMesh mesh = shapes::plane(8);
+  const Parameterization param = planar_param(mesh);
+  const StrokeFile file = plane_strokes();
+  Painter painter(mesh, param, {64, 64, 4});
+  painter.paint_all(file);
+  EvalOptions opt;
+  opt.samples = 300000;
+  const EvalResult quiet = evaluate_texture(mesh, param, painter.texture(), file, opt);
+  std::vector<double> seen;
+  opt.progress = [&](std::string_view phase, double f) {
+    EXPECT_EQ(phase, "eval");
+    seen.push_back(f);
+    return true;
+  };
+  const EvalResult reported = evaluate_texture(mesh, param, painter.texture(), file, opt);
+  EXPECT_EQ(reported.mse, quiet.mse);  // bit-identical: the same block sums in the same order
+  ASSERT_GT(seen.size(), 10u);
+  EXPECT_EQ(seen.front(), 0.0);
+  EXPECT_EQ(seen.back(), 1.0);
+  EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+  int calls = 0;
+  opt.progress = [&](std::string_view, double f) { return ++calls, f < 0.5; };
+  EXPECT_THROW(evaluate_texture(mesh, param, painter.texture(), file, opt), CancelledError);
+  EXPECT_LT(calls, static_cast<int>(seen.size()));
 }
 
 TEST(Eval, SamplesAreUniformByAreaAndReproducible) {

@@ -225,6 +225,18 @@ def test_progress_reports_phases_and_a_false_return_cancels(sphere, strokes):
         adaptex.paint(V, F, UV, FT, strokes, size=32, progress=lambda p, f: f < 0.5)
     with pytest.raises(adaptex.CancelledError):
         adaptex.reparam(V, F, UV, FT, tex, progress=lambda p, f: False)
+    fractions = []
+    done = adaptex.evaluate(V, F, UV, FT, tex, strokes, samples=200000,
+                            progress=lambda p, f: fractions.append((p, f)))
+    assert done["samples"] == 200000
+    assert {p for p, _ in fractions} == {"eval"} and len(fractions) > 10
+    assert fractions[0][1] == 0.0 and fractions[-1][1] == 1.0
+    assert all(a[1] <= b[1] for a, b in zip(fractions, fractions[1:]))
+    halfway = []
+    with pytest.raises(adaptex.CancelledError):
+        adaptex.evaluate(V, F, UV, FT, tex, strokes, samples=200000,
+                         progress=lambda p, f: halfway.append(f) or f < 0.5)
+    assert 0.5 <= halfway[-1] < 1.0  # stopped at the first report past half way
 
 
 def test_an_exception_in_the_callback_cancels_and_propagates(sphere):

@@ -9,6 +9,7 @@
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
+#include "adaptex/core/progress.h"
 #include "adaptex/paint/signal.h"
 #include "adaptex/paint/strokes.h"
 
@@ -20,6 +21,9 @@ struct EvalOptions {
   long long samples = 1000000;
   /// Seed of the sample positions (same seed, mesh and K: the same points, bit for bit).
   std::uint64_t seed = 1;
+  /// Called with ("eval", fraction) on the calling thread as the samples are evaluated (in about 32
+  /// steps); returning false cancels: evaluate_texture() throws CancelledError. Empty: no reports.
+  ProgressCallback progress;
 };
 
 /// Result of evaluate_texture().
@@ -50,6 +54,7 @@ double reconstruction_mse(const Parameterization& param, const ImageRGBA8& textu
 /// corner UVs (bilinear, clamp-to-edge, texel centres at (i+0.5)/W, v = 0 bottom row).
 /// Parallel (TBB), deterministic (fixed summation order).
 /// \throw InvalidInputError empty texture, param not matching the mesh, K < 1
+/// \throw CancelledError options.progress returned false
 EvalResult evaluate_texture(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
                             const StrokeFile& strokes, const EvalOptions& options = {});
 
