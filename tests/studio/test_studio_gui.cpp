@@ -529,14 +529,18 @@ TEST_F(StudioGui, BrushKeepsItsOnScreenSizeWhileZooming) {
     const fs::path log = dir.path / names[zoomed][0], shot = dir.path / names[zoomed][1],
                    hist = dir.path / names[zoomed][2];
     const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "builtin:sphere", "--window", "800x600", "--texture-size", "256",
-                             "--adapt", "none", "--hide-ui", "--config-dir", (dir.path / "cfg").string(),
-                             "--no-recovery", "--history-out", hist.string(), "--screenshot", shot.string()},
+                             "--adapt", "none", "--config-dir", (dir.path / "cfg").string(), "--no-recovery",
+                             "--history-out", hist.string(), "--screenshot", shot.string()},
                             x->env(), log);
     ASSERT_GT(app, 0);
     ASSERT_TRUE(wait_ready(log)) << slurp(log);
-    // Three wheel steps up (zoom in) for the second session, none for the first.
-    const std::string wheel = zoomed ? "click 4 sleep 0.2 click 4 sleep 0.2 click 4 sleep 0.3" : "sleep 0.1";
-    ASSERT_EQ(xdo(*x, "mousemove 400 300 sleep 0.3 " + wheel), 0);
+    // Three wheel steps up over the view (zoom in) for the second session. The first scrolls right
+    // after the cursor enters the side panel: the panel's scroll, not the view's. (This does not catch
+    // routing by the previous frame's capture flag: at these frame rates the move and the wheel fall in
+    // different frames; tried with the old order, it passed too.)
+    const std::string wheel = zoomed ? "mousemove 400 300 sleep 0.3 click 4 sleep 0.2 click 4 sleep 0.2 click 4"
+                                     : "mousemove 600 300 sleep 0.3 mousemove 150 300 click 4 click 4 click 4";
+    ASSERT_EQ(xdo(*x, wheel + " sleep 0.3"), 0);
     ASSERT_EQ(xdo(*x, "mousemove 380 200 sleep 0.3 mousedown 1 sleep 0.2 mousemove 400 200 sleep 0.1 mousemove 420 200 "
                      "sleep 0.2 mouseup 1 sleep 0.3 mousemove 400 300 sleep 0.2 mousemove 401 300 sleep 1"),
               0);
@@ -550,7 +554,7 @@ TEST_F(StudioGui, BrushKeepsItsOnScreenSizeWhileZooming) {
     ASSERT_EQ(h["strokes"].size(), 1u);
     world[zoomed] = h["strokes"][0]["radius"].get<double>();
   }
-  EXPECT_GT(edge[1], edge[0] + 40) << edge[0] << " " << edge[1];  // the wheel did zoom in
+  EXPECT_GT(edge[1], edge[0] + 40) << edge[0] << " " << edge[1];  // the wheel zoomed in over the view only
   EXPECT_NEAR(radius[0], 25, 3);                                  // the default 25-pixel radius
   EXPECT_NEAR(radius[1], radius[0], 1) << radius[0] << " " << radius[1];  // the same size on screen
   EXPECT_LT(world[1], world[0] * 0.85) << world[0] << " " << world[1];    // so smaller on the model
