@@ -18,9 +18,9 @@ std::vector<int> parse_grid(const std::string& text) {
     const bool digits = !item.empty() && item.size() <= 4 &&
                         std::all_of(item.begin(), item.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
     const int v = digits ? std::stoi(item) : 0;
-    if (v < 2 || v > 4096)
-      throw InvalidInputError("--grid: '" + text +
-                              "' must be one or two comma-separated integers in [2, 4096] (e.g. 16,256)");
+    if (v < 2 || v > kMaxGridCells)
+      throw InvalidInputError("--grid: '" + text + "' must be one or two comma-separated integers in [2, " +
+                              std::to_string(kMaxGridCells) + "] (e.g. 16,256)");
     out.push_back(v);
   }
   if (out.empty() || out.size() > 2 || text.back() == ',')
@@ -33,7 +33,9 @@ std::vector<int> parse_grid(const std::string& text) {
 void set_grid(AdaptOptions& o, const std::vector<int>& grid) {
   if (grid.size() > 2) throw InvalidInputError("--grid: give FINE or COARSE,FINE (e.g. 16,256)");
   for (int g : grid)
-    if (g < 1 || g > 4096) throw InvalidInputError("--grid: sizes must be in [1, 4096], got " + std::to_string(g));
+    if (g < 1 || g > kMaxGridCells)
+      throw InvalidInputError("--grid: sizes must be in [1, " + std::to_string(kMaxGridCells) + "], got " +
+                              std::to_string(g));
   if (!grid.empty()) o.fine_grid = grid.back();
   if (grid.size() == 2) o.coarse_grid = grid.front();
 }

@@ -44,8 +44,8 @@ PaintSessionOptions session_from_json(const json& j) {
   a.alpha = j.value("alpha", a.alpha);
   a.beta = j.value("beta", a.beta);
   a.geometry_scale = j.value("geometry_scale", a.geometry_scale);
-  a.coarse_grid = std::clamp(j.value("coarse_grid", a.coarse_grid), 2, 4096);
-  a.fine_grid = std::clamp(j.value("fine_grid", a.fine_grid), 2, 4096);
+  a.coarse_grid = std::clamp(j.value("coarse_grid", a.coarse_grid), 2, kMaxGridCells);
+  a.fine_grid = std::clamp(j.value("fine_grid", a.fine_grid), 2, kMaxGridCells);
   a.refine = j.value("refine", a.refine);
   o.texture_size = std::clamp(j.value("texture_size", o.texture_size), 16, kMaxTextureSize);
   o.padding = std::clamp(j.value("padding", o.padding), 0, 256);

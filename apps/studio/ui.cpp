@@ -423,8 +423,8 @@ void StudioUi::adapt_panel(App& app) {
     }
     changed |= ImGui::InputInt("Fine grid", &a.fine_grid);
     tooltip("Cells per side of the fine grid: spreads texels around small detail.");
-    a.coarse_grid = std::clamp(a.coarse_grid, 2, 4096);
-    a.fine_grid = std::clamp(a.fine_grid, 2, 4096);
+    a.coarse_grid = std::clamp(a.coarse_grid, 2, kMaxGridCells);
+    a.fine_grid = std::clamp(a.fine_grid, 2, kMaxGridCells);
   }
   const char* sizes[] = {"256", "512", "1024", "2048", "4096"};
   int si = std::clamp(int(std::lround(std::log2(o.texture_size))) - 8, 0, 4);

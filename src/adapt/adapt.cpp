@@ -19,8 +19,8 @@ void validate(const AdaptOptions& o) {
   if (o.coarse_grid < 1 || o.fine_grid < 1)
     throw InvalidInputError("grid sizes must be >= 1 cell, got " + std::to_string(o.coarse_grid) + "," +
                             std::to_string(o.fine_grid));
-  if (o.coarse_grid > 4096 || o.fine_grid > 4096)
-    throw InvalidInputError("grid sizes must be <= 4096 cells per side");
+  if (o.coarse_grid > kMaxGridCells || o.fine_grid > kMaxGridCells)
+    throw InvalidInputError("grid sizes must be <= " + std::to_string(kMaxGridCells) + " cells per side");
   if (!(o.alpha >= 0) || !(o.beta >= 0) || !std::isfinite(o.alpha) || !std::isfinite(o.beta))
     throw InvalidInputError("alpha and beta must be finite and >= 0");
   if (!(o.min_weight > 0 && o.min_weight <= 1)) throw InvalidInputError("min_weight must be in (0, 1]");

@@ -41,11 +41,15 @@ enum class AdaptMode {
   DensityFlow,  ///< Error-model density + flow-based density-equalizing map. Default.
 };
 
+/// Largest grid of the thesis' relaxation, in cells per side (AdaptOptions::coarse_grid, fine_grid;
+/// a 4096² grid already has 16.8 M points, far past any texture this library paints).
+inline constexpr int kMaxGridCells = 4096;
+
 /// Settings of adapt_parameterization(). Defaults are justified in docs/adaptive.md.
 struct AdaptOptions {
   AdaptMode mode = AdaptMode::DensityFlow;  ///< density-flow / two-stage / single / none.
-  int coarse_grid = 16;   ///< Cells per side of the coarse stage (two-stage only).
-  int fine_grid = 256;    ///< Cells per side of the fine stage (and of the single stage).
+  int coarse_grid = 16;   ///< Cells per side of the coarse stage (two-stage only), in [1, kMaxGridCells].
+  int fine_grid = 256;    ///< Cells per side of the fine stage (and of the single stage), in [1, kMaxGridCells].
   double alpha = 1.0;     ///< L_s² weight α of the geometry stretch where there is signal (§3.6).
   /// Share of the normalized geometry stretch in L_s² (L2 ← geometry_scale · L2n in both cases of
   /// §3.6). 1 is the thesis as written; lower values let the signal dominate (docs/adaptive.md).
