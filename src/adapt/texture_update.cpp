@@ -16,12 +16,16 @@ ImageRGBA8 resample_texture(const Parameterization& old_param, const ImageRGBA8&
                             const TexelMap& new_map, int padding, std::array<std::uint8_t, 4> outside) {
   if (old_texture.empty()) throw InvalidInputError("resample_texture: empty old texture");
   if (new_map.width <= 0 || new_map.height <= 0) throw InvalidInputError("resample_texture: empty texel map");
-  ImageRGBA8 out(new_map.width, new_map.height, outside);
   const int F = static_cast<int>(old_param.uv_faces.size());
+  for (int t : new_map.inside)
+    if (new_map.face[t] < 0 || new_map.face[t] >= F)
+      throw InvalidInputError("resample_texture: the texel map covers face " + std::to_string(new_map.face[t]) +
+                              ", the old parameterization has " + std::to_string(F) +
+                              " faces (the two layouts must be of the same mesh)");
+  ImageRGBA8 out(new_map.width, new_map.height, outside);
   tbb::parallel_for(size_t(0), new_map.inside.size(), [&](size_t k) {
     const int t = new_map.inside[k];
     const int f = new_map.face[t];
-    if (f >= F) return;
     const auto& b = new_map.bary[t];
     const Face& w = old_param.uv_faces[f];
     // Same face, same barycentrics, old UVs: the old texture coordinate of the same surface point.

@@ -131,6 +131,10 @@ TEST_F(TwoLayouts, ResampleRejectsEmptyInputs) {
   const TexelMap map = build_texel_map(mesh, new_param, 16, 16);
   EXPECT_THROW(resample_texture(old_param, ImageRGBA8(), map, 0), InvalidInputError);
   EXPECT_THROW(resample_texture(old_param, ImageRGBA8(4, 4), TexelMap(), 0), InvalidInputError);
+  // A layout of another mesh (fewer faces than the map covers): an error, not silently blank texels.
+  Parameterization fewer = old_param;
+  fewer.uv_faces.resize(fewer.uv_faces.size() / 2);
+  EXPECT_THROW(resample_texture(fewer, ImageRGBA8(4, 4), map, 0), InvalidInputError);
 }
 
 TEST_F(TwoLayouts, ReplayIsAFreshPaintingOfTheHistoryOnTheNewLayout) {

@@ -26,7 +26,7 @@ enum class TextureUpdate {
 /// parameterization, same faces). Texels outside the new charts get \p outside, then seam padding of
 /// \p padding texels is applied (paint/padding.h, as the Painter does).
 /// \pre old/new parameterization have the same faces as the mesh the map was built from
-/// \throw InvalidInputError empty texture/map or face counts differ
+/// \throw InvalidInputError empty texture/map, or the map covers a face that \p old_param lacks
 ImageRGBA8 resample_texture(const Parameterization& old_param, const ImageRGBA8& old_texture,
                             const TexelMap& new_map, int padding,
                             std::array<std::uint8_t, 4> outside = {255, 255, 255, 255});
