@@ -76,6 +76,11 @@ class AdaptexJobOperator:
     _job = None
     _timer = None
 
+    @classmethod
+    def poll(cls, context):
+        """Both operators work on the active mesh object."""
+        return context.active_object is not None and context.active_object.type == "MESH"
+
     def execute(self, context):
         work = self.prepare(context)
         if work is None:
@@ -170,10 +175,6 @@ class ADAPTEX_OT_unwrap(AdaptexJobOperator, bpy.types.Operator):
         description="Triangulate the mesh before unwrapping: adaptex cuts along triangle edges, and a seam "
                     "through a quad or n-gon cannot be stored in its UV map")
 
-    @classmethod
-    def poll(cls, context):
-        return context.active_object is not None and context.active_object.type == "MESH"
-
     def prepare(self, context):
         obj = context.active_object
         if self.triangulate and obj is not None and obj.type == "MESH":
@@ -241,10 +242,6 @@ class ADAPTEX_OT_adapt_layout(AdaptexJobOperator, bpy.types.Operator):
     assign: BoolProperty(name="Show the result", default=True,
                          description="Make the new UV map active and put the new image in the material's "
                                      "image node (the originals are kept)")
-
-    @classmethod
-    def poll(cls, context):
-        return context.active_object is not None and context.active_object.type == "MESH"
 
     def draw(self, context):
         for p in ("image", "scale", "size", "assign"):
