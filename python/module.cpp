@@ -14,6 +14,7 @@
 #include "adaptex/adapt/adapt_report.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/adapt/texture_update.h"
+#include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
 #include "adaptex/io/image_io.h"
@@ -157,7 +158,9 @@ void py_write_obj(py::handle path, py::handle V, py::handle F, py::handle UV, py
   if (UV.is_none() != FT.is_none()) throw InvalidInputError("write_obj: give both UV and FT, or neither");
   std::optional<Parameterization> param;
   if (!UV.is_none()) param = param_from_arrays(mesh, UV, FT, "write_obj");
-  write_obj(fspath(path), mesh, param ? &*param : nullptr);
+  AtomicOutput out;  // a failed write leaves nothing behind (and never a truncated earlier file)
+  write_obj(out.add(fspath(path)), mesh, param ? &*param : nullptr);
+  out.commit();
 }
 
 py::tuple py_unwrap(py::handle V, py::handle F, py::object progress, std::optional<int> texture_size,
@@ -355,12 +358,16 @@ PYBIND11_MODULE(_adaptex, m) {
   m.def("read_textured_obj", &py_read_textured_obj, py::arg("path"),
         "read_textured_obj(path) -> (V, F, UV, FT): an OBJ with vt and f v/vt (UV #W x 2 float64, FT #F x 3 int32).");
   m.def("write_obj", &py_write_obj, py::arg("path"), py::arg("V"), py::arg("F"), py::arg("UV") = py::none(),
-        py::arg("FT") = py::none(), "write_obj(path, V, F, UV=None, FT=None): v / vt / f v/vt at round-trip precision.");
+        py::arg("FT") = py::none(), "write_obj(path, V, F, UV=None, FT=None): v / vt / f v/vt at round-trip precision; all or nothing "
+        "(written under a temporary name, renamed on success; missing folders are created).");
   m.def("read_image", [](py::handle path) { return image_array(adaptex::read_image(fspath(path))); }, py::arg("path"),
         "read_image(path) -> texture H x W x 4 uint8, row 0 = v = 0 (the bottom row of the PNG).");
   m.def("write_image", [](py::handle path, py::handle texture) {
-          adaptex::write_png(fspath(path), image_from_array(texture, "write_image", "texture"));
-        }, py::arg("path"), py::arg("texture"), "write_image(path, texture): PNG (row 0 of texture = bottom row).");
+          const adaptex::ImageRGBA8 image = image_from_array(texture, "write_image", "texture");
+          adaptex::AtomicOutput out;  // as write_obj: all or nothing
+          adaptex::write_png(out.add(fspath(path)), image);
+          out.commit();
+        }, py::arg("path"), py::arg("texture"), "write_image(path, texture): PNG (row 0 of texture = bottom row); all or nothing, as write_obj.");
   m.def("unwrap", &py_unwrap, py::arg("V"), py::arg("F"), py::kw_only(), py::arg("progress") = py::none(),
         py::arg("texture_size") = py::none(), py::arg("padding") = py::none(),
         "unwrap(V, F, *, progress=None, texture_size=None, padding=None, **options) -> (UV, FT, report): cut, "

@@ -185,9 +185,19 @@ def test_library_errors_map_to_python_types(tmp_path, sphere):
     with pytest.raises(adaptex.IoError) as e:
         adaptex.read_mesh(tmp_path / "missing.obj")
     assert isinstance(e.value, OSError) and isinstance(e.value, ValueError) and "missing.obj" in str(e.value)
+    (tmp_path / "a_file").write_text("not a folder")
+    before = sorted(p.name for p in tmp_path.iterdir())
     with pytest.raises(OSError) as e:
-        adaptex.write_image(tmp_path / "no" / "dir" / "t.png", np.zeros((2, 2, 4), np.uint8))
+        adaptex.write_image(tmp_path / "a_file" / "t.png", np.zeros((2, 2, 4), np.uint8))
     assert isinstance(e.value, adaptex.OutputError) and not isinstance(e.value, ValueError)
+    with pytest.raises(adaptex.OutputError):
+        adaptex.write_obj(tmp_path / "a_file" / "m.obj", V, F)
+    assert sorted(p.name for p in tmp_path.iterdir()) == before  # no partial or temporary file left
+    # An existing file is replaced only by a complete one: a bad array leaves it untouched.
+    (tmp_path / "keep.png").write_bytes(b"old")
+    with pytest.raises(adaptex.InvalidInputError):
+        adaptex.write_image(tmp_path / "keep.png", np.zeros((2, 2, 3), np.uint8))
+    assert (tmp_path / "keep.png").read_bytes() == b"old"
     fan_V = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1]], dtype=float)
     fan_F = np.array([[0, 1, 2], [1, 0, 3], [0, 1, 4]])
     with pytest.raises(adaptex.TopologyError) as e:
