@@ -80,8 +80,9 @@ struct UnwrapOptions {
   /// Auto, after the probe above gave up the single chart: the chart counts >= this are tried
   /// first (e.g. 12: 12, 16, 24, ..., then 4, 6, 8). The default 4 keeps the order 4, 6, 8, ...:
   /// the probe then only skips the single chart, and the fewest charts that reach the share are
-  /// kept, because fewer, larger charts give the adaptive warp more room (12 charts instead of 8
-  /// cut triceratops' texel saving from about 4x to under 2x; docs/charts.md).
+  /// kept. 12 first is 3-4x faster on multi-chart meshes; its effect on the adaptive warp depends on
+  /// the mesh (triceratops' texel saving fell from ~4x to ~1.5x, armadillo and code-built genus 2/3
+  /// gained), and 4 first has the better worst case over the shared study (docs/charts.md).
   int probe_first_charts = 4;
   /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight). 0 (compact
   /// geodesic charts) gave the highest texel share on every mesh measured (docs/charts.md).
