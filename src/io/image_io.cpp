@@ -68,17 +68,20 @@ void check_png_header(const std::string& bytes, const std::string& name) {
 }  // namespace
 
 ImageRGBA8 read_image(const std::filesystem::path& path) {
-  const std::string bytes = read_input_file(path);
-  check_png_header(bytes, path.string());
-  if (bytes.size() > static_cast<size_t>(INT32_MAX))
-    throw IoError(path.string() + ": cannot read image: file too large");
+  return read_image_from_memory(read_input_file(path), path.string());
+}
+
+ImageRGBA8 read_image_from_memory(const std::string& bytes, const std::string& name) {
+  check_input_size(bytes.size(), name);
+  check_png_header(bytes, name);
+  if (bytes.size() > static_cast<size_t>(INT32_MAX)) throw IoError(name + ": cannot read image: file too large");
   int w = 0, h = 0, channels = 0;
   unsigned char* pixels =
       stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<int>(bytes.size()), &w,
                             &h, &channels, 4);
   if (!pixels) {
     const char* reason = stbi_failure_reason();
-    throw IoError(path.string() + ": cannot decode image: " + (reason ? reason : "unknown error"));
+    throw IoError(name + ": cannot decode image: " + (reason ? reason : "unknown error"));
   }
   ImageRGBA8 img;
   img.width = w;

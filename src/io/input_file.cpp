@@ -20,17 +20,22 @@ std::string read_input_file(const std::filesystem::path& path) {
     throw IoError(name + ": cannot read: not a regular file (a device, FIFO or socket); only regular files are read");
   const auto size = std::filesystem::file_size(path, ec);
   if (ec) throw IoError(name + ": cannot read: cannot get the file size (" + ec.message() + ")");
-  if (size > kMaxInputFileBytes)
-    throw IoError(name + ": cannot read: file is " + std::to_string(size) + " bytes, more than the " +
-                  std::to_string(kMaxInputFileBytes) + "-byte limit for input files");
+  if (size > kMaxInputFileBytes) check_input_size(size, name);  // before allocating anything
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(name + ": cannot read: cannot open the file (permissions?)");
   std::string text(static_cast<std::size_t>(size), '\0');
   in.read(text.data(), static_cast<std::streamsize>(size));
   text.resize(static_cast<std::size_t>(in.gcount()));
   if (in.bad()) throw IoError(name + ": cannot read: I/O error while reading");
-  if (text.empty()) throw IoError(name + ": cannot read: file is empty (0 bytes)");
+  check_input_size(text.size(), name);
   return text;
+}
+
+void check_input_size(std::uint64_t size, const std::string& name) {
+  if (size == 0) throw IoError(name + ": cannot read: file is empty (0 bytes)");
+  if (size > kMaxInputFileBytes)
+    throw IoError(name + ": cannot read: file is " + std::to_string(size) + " bytes, more than the " +
+                  std::to_string(kMaxInputFileBytes) + "-byte limit for input files");
 }
 
 }  // namespace adaptex

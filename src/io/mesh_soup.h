@@ -53,16 +53,19 @@ TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOption
 SoupMesh soup_to_mesh(PolygonSoup soup, const std::string& name, const ReadOptions& options,
                       ReadReport* report);
 
-/// Format readers (io/read_*.cpp). Each throws IoError for unreadable, corrupt or truncated files.
-PolygonSoup read_obj_soup(const std::filesystem::path& path);
-PolygonSoup read_off_soup(const std::filesystem::path& path);
-PolygonSoup read_ply_soup(const std::filesystem::path& path);
-PolygonSoup read_stl_soup(const std::filesystem::path& path);
-PolygonSoup read_gltf_soup(const std::filesystem::path& path);
+/// Where the bytes given to a format reader came from.
+struct SoupSource {
+  std::string name;               ///< The file name (or the caller's stand-in), used in every message.
+  std::filesystem::path base_dir; ///< Folder that resolves relative references (a glTF's external buffers).
+};
 
-/// Whole file as bytes (read_input_file()). \throw IoError missing, not a regular file, too large,
-/// unreadable or empty.
-inline std::string read_file_text(const std::filesystem::path& path) { return read_input_file(path); }
+/// Format readers (io/read_*.cpp), on the whole file already in memory (read_input_file() or a
+/// read_mesh_from_memory() caller's bytes). Each throws IoError for corrupt or truncated input.
+PolygonSoup read_obj_soup(const std::string& bytes, const SoupSource& source);
+PolygonSoup read_off_soup(const std::string& bytes, const SoupSource& source);
+PolygonSoup read_ply_soup(const std::string& bytes, const SoupSource& source);
+PolygonSoup read_stl_soup(const std::string& bytes, const SoupSource& source);
+PolygonSoup read_gltf_soup(const std::string& bytes, const SoupSource& source);
 
 /// "1 vertex" / "3 vertices": \p n with the singular or plural noun, for messages.
 inline std::string count_str(std::int64_t n, const char* one, const char* many) {

@@ -84,9 +84,7 @@ struct ObjData {
   std::vector<double> texcoords;     ///< 2 per vt.
 };
 
-ObjData read_obj_data(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  const std::string text = read_file_text(path);
+ObjData read_obj_data(const std::string& text, const std::string& name) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;
   config.vertex_color = false;
@@ -127,7 +125,9 @@ ObjData read_obj_data(const std::filesystem::path& path) {
 
 }  // namespace
 
-PolygonSoup read_obj_soup(const std::filesystem::path& path) { return read_obj_data(path).soup; }
+PolygonSoup read_obj_soup(const std::string& bytes, const SoupSource& source) {
+  return read_obj_data(bytes, source.name).soup;
+}
 
 }  // namespace io_detail
 
@@ -136,7 +136,7 @@ TexturedMesh read_textured_obj(const std::filesystem::path& path, const ReadOpti
   const std::string name = path.string();
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw IoError(name + ": cannot read: file does not exist");
-  ObjData data = read_obj_data(path);
+  ObjData data = read_obj_data(read_input_file(path), name);
   const PolygonSoup& soup = data.soup;
   const auto nt = static_cast<std::int64_t>(data.texcoords.size() / 2);
   for (std::int64_t p = 0; p < soup.num_polygons(); ++p)

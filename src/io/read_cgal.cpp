@@ -14,9 +14,8 @@
 namespace adaptex::io_detail {
 
 // ---------------------------------------------------------------------------------------------- STL
-PolygonSoup read_stl_soup(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  const std::string text = read_file_text(path);
+PolygonSoup read_stl_soup(const std::string& text, const SoupSource& source) {
+  const std::string& name = source.name;
   std::size_t first = 0;
   while (first < text.size() && std::isspace(static_cast<unsigned char>(text[first]))) ++first;
   const bool solid = text.compare(first, 5, "solid") == 0;

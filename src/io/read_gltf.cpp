@@ -9,7 +9,11 @@
 /// sees a file, check_gltf() requires real glTF 2.0 (the GLB container, or a JSON object with
 /// asset.version 2.x), checks every GLB chunk length, buffer, buffer view and accessor against the
 /// bytes that exist, and requires external buffers to be regular files.
+/// assimp then reads the checked bytes themselves (ReadFileFromMemory), not the file again; external
+/// buffers are opened from the folder check_buffers() looked in (BaseDirIOSystem).
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/Importer.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/scene.h>
 
 #include <Eigen/Dense>
@@ -115,6 +119,8 @@ std::vector<std::uint64_t> check_buffers(const std::string& corrupt, const json&
       if (uri.rfind("data:", 0) == 0) {
         available = (uri.size() - std::min(uri.size(), uri.find(',') + 1)) / 4 * 3;
       } else {
+        // assimp's in-memory reader answers this name with the glTF itself, not a file.
+        if (uri.rfind(AI_MEMORYIO_MAGIC_FILENAME, 0) == 0) throw IoError(what + ": '" + uri + "' is a reserved name");
         const std::filesystem::path file = dir / uri;
         std::error_code ec;
         if (!std::filesystem::is_regular_file(file, ec))
@@ -252,7 +258,7 @@ void check_references(const std::string& corrupt, const json& doc) {
 }
 
 /// Rejects anything that is not glTF 2.0 whose sizes all agree with the bytes that exist.
-void check_gltf(const std::string& name, const std::filesystem::path& path, const std::string& bytes) {
+void check_gltf(const std::string& name, const std::filesystem::path& base_dir, const std::string& bytes) {
   const std::string corrupt = name + ": corrupt glTF: ";
   std::uint64_t bin_length = 0;
   const bool glb = bytes.rfind("glTF", 0) == 0;
@@ -268,17 +274,38 @@ void check_gltf(const std::string& name, const std::filesystem::path& path, cons
   if (!doc.is_object() || !doc.contains("asset") || !doc["asset"].is_object() || !doc["asset"].contains("version") ||
       !doc["asset"]["version"].is_string() || doc["asset"]["version"].get<std::string>().rfind("2.", 0) != 0)
     throw IoError(corrupt + "not glTF 2.0 (no \"asset\": {\"version\": \"2.x\"})");
-  check_views_and_accessors(corrupt, doc, check_buffers(corrupt, doc, path.parent_path(), bin_length));
+  check_views_and_accessors(corrupt, doc, check_buffers(corrupt, doc, base_dir, bin_length));
   check_references(corrupt, doc);
 }
 
+/// assimp's file system seen from the glTF's folder: relative names (external buffers) resolve there,
+/// as check_buffers() resolved them, and only regular files open.
+class BaseDirIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  explicit BaseDirIOSystem(std::filesystem::path base_dir) : base_dir_(std::move(base_dir)) {}
+  bool Exists(const char* file) const override {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(resolve(file), ec);
+  }
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    return Exists(file) ? DefaultIOSystem::Open(resolve(file).string().c_str(), mode) : nullptr;
+  }
+
+ private:
+  std::filesystem::path resolve(const char* file) const { return base_dir_ / file; }  // absolute names stay
+  std::filesystem::path base_dir_;
+};
+
 }  // namespace
 
-PolygonSoup read_gltf_soup(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  check_gltf(name, path, read_file_text(path));
+PolygonSoup read_gltf_soup(const std::string& bytes, const SoupSource& source) {
+  const std::string& name = source.name;
+  check_gltf(name, source.base_dir, bytes);
+  const bool glb = bytes.rfind("glTF", 0) == 0;
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(path.string(), 0);
+  importer.SetIOHandler(new BaseDirIOSystem(source.base_dir));  // the importer owns it
+  // The format hint is the container check_gltf() accepted, so only the glTF 2.0 importer reads it.
+  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, glb ? "glb" : "gltf");
   if (!scene || !scene->mRootNode) {
     std::string err = importer.GetErrorString();
     for (char& c : err)
@@ -286,7 +313,7 @@ PolygonSoup read_gltf_soup(const std::filesystem::path& path) {
     throw IoError(name + ": corrupt glTF: " + (err.empty() ? std::string("assimp could not read it") : err));
   }
   PolygonSoup soup;
-  soup.format = path.extension() == ".glb" || path.extension() == ".GLB" ? "glb" : "gltf";
+  soup.format = glb ? "glb" : "gltf";
   soup.weld = true;
   int skipped = 0;
   collect(scene, scene->mRootNode, Eigen::Matrix4d::Identity(), soup, skipped);

@@ -97,9 +97,8 @@ std::vector<std::string_view> vertex_color(std::vector<std::string_view> rest, c
 
 }  // namespace
 
-PolygonSoup read_off_soup(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  const std::string text = read_file_text(path);
+PolygonSoup read_off_soup(const std::string& text, const SoupSource& source) {
+  const std::string& name = source.name;
   TextScanner s{text, 0, true};
   OffHeader h;
   std::int64_t nv = 0, nf = 0;

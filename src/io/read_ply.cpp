@@ -262,9 +262,8 @@ void read_element(const std::string& name, const PlyElement& el, const ElementRo
 
 }  // namespace
 
-PolygonSoup read_ply_soup(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  const std::string text = read_file_text(path);
+PolygonSoup read_ply_soup(const std::string& text, const SoupSource& source) {
+  const std::string& name = source.name;
   if (text.rfind("ply", 0) != 0) throw IoError(name + ": not a PLY file (it does not start with 'ply')");
   const PlyHeader h = parse_ply_header(name, text);
   // Every element count against the bytes after the header, before anything is allocated.

@@ -1,12 +1,18 @@
-// libFuzzer target: one input format per build (ADAPTEX_FUZZ_FORMAT, see CMakeLists.txt). The bytes are
-// written to a file with the format's extension and read through the same entry point as the CLI
-// (read_mesh with its validation, read_strokes, read_image, studio's read_project). Every adaptex::Error
-// is an accepted outcome; anything else (a crash, a sanitizer report, another exception, a timeout or
-// running out of memory) is a finding.
+// libFuzzer target: one input format per build (ADAPTEX_FUZZ_EXTENSION and the ADAPTEX_FUZZ_* flags, see
+// CMakeLists.txt). The bytes go through the same code as the CLI after its file checks: the in-memory
+// entry points that the path-based readers call once they have read the file (read_mesh_from_memory
+// with the CLI's validation and repair, parse_strokes, read_image_from_memory). The studio's project
+// reader has no in-memory entry point, so fuzz_project writes each input to a file and calls
+// read_project. With ADAPTEX_FUZZ_VIA_FILE=1 in the environment every target does that (writes the
+// input to a file, calls the path-based reader: read_mesh, read_strokes, read_image), the harness of
+// before the in-memory entry points; set TMPDIR=/dev/shm for it, or each run waits on the disk.
+// Every adaptex::Error is an accepted outcome; anything else (a crash, a sanitizer report, another
+// exception, a timeout or running out of memory) is a finding.
 #include <unistd.h>
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -21,6 +27,7 @@
 
 namespace {
 
+/// The file each input stands for (written only in file mode; its folder is the base of relative paths).
 const std::filesystem::path& input_path() {
   static const std::filesystem::path path = [] {
     const auto dir = std::filesystem::temp_directory_path() / ("adaptex-fuzz-" + std::to_string(::getpid()));
@@ -30,7 +37,25 @@ const std::filesystem::path& input_path() {
   return path;
 }
 
-void read_input(const std::filesystem::path& path) {
+bool via_file() {
+#if ADAPTEX_FUZZ_PROJECT
+  return true;
+#else
+  static const bool file = [] {
+    const char* v = std::getenv("ADAPTEX_FUZZ_VIA_FILE");
+    return v && std::string(v) == "1";
+  }();
+  return file;
+#endif
+}
+
+[[maybe_unused]] adaptex::ReadOptions mesh_options() {
+  adaptex::ReadOptions options;
+  options.repair = true;  // the repair code paths too
+  return options;
+}
+
+void read_file(const std::filesystem::path& path) {
 #if ADAPTEX_FUZZ_STROKES
   (void)adaptex::read_strokes(path);
 #elif ADAPTEX_FUZZ_PNG
@@ -38,9 +63,19 @@ void read_input(const std::filesystem::path& path) {
 #elif ADAPTEX_FUZZ_PROJECT
   (void)adaptex::studio::read_project(path);
 #else
-  adaptex::ReadOptions options;
-  options.repair = true;  // the repair code paths too
-  (void)adaptex::read_mesh(path, options);
+  (void)adaptex::read_mesh(path, mesh_options());
+#endif
+}
+
+void read_memory([[maybe_unused]] const std::string& bytes, [[maybe_unused]] const std::filesystem::path& path) {
+#if ADAPTEX_FUZZ_STROKES
+  (void)adaptex::parse_strokes(bytes, path.string(), path.parent_path());
+#elif ADAPTEX_FUZZ_PNG
+  (void)adaptex::read_image_from_memory(bytes, path.string());
+#elif ADAPTEX_FUZZ_PROJECT
+  // not reached: via_file()
+#else
+  (void)adaptex::read_mesh_from_memory(bytes, ADAPTEX_FUZZ_EXTENSION, path, mesh_options());
 #endif
 }
 
@@ -48,12 +83,16 @@ void read_input(const std::filesystem::path& path) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto& path = input_path();
-  {
-    std::ofstream out(path, std::ios::binary | std::ios::trunc);
-    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-  }
   try {
-    read_input(path);
+    if (via_file()) {
+      {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+      }
+      read_file(path);
+    } else {
+      read_memory(std::string(reinterpret_cast<const char*>(data), size), path);
+    }
   } catch (const adaptex::Error&) {
     // A clean rejection: the CLI prints the message and exits 2.
   }

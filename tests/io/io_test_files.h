@@ -107,4 +107,46 @@ inline void write_stl_ascii(const std::filesystem::path& p, const TriMesh& m) {
   write_text(p, s);
 }
 
+/// A GLB holding \p json as its JSON chunk, optionally with a BIN chunk; \p forged_bin_length replaces
+/// the BIN chunk's length field.
+inline std::string glb(std::string json, const std::string& bin, std::uint32_t forged_bin_length = 0) {
+  while (json.size() % 4) json += ' ';
+  std::string s = "glTF";
+  put(s, std::uint32_t{2});
+  put(s, static_cast<std::uint32_t>(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size())));
+  put(s, static_cast<std::uint32_t>(json.size()));
+  put(s, std::uint32_t{0x4E4F534A});
+  s += json;
+  if (!bin.empty()) {
+    put(s, forged_bin_length ? forged_bin_length : static_cast<std::uint32_t>(bin.size()));
+    put(s, std::uint32_t{0x004E4942});
+    s += bin;
+  }
+  return s;
+}
+
+/// The first 52 bytes of a PSD (Photoshop) file declaring 11,000,000 x 25 pixels.
+inline std::string psd_header() {
+  std::string s = "8BPS";
+  s += std::string("\0\1", 2) + std::string(6, '\0') + std::string("\0\3", 2);
+  auto be32 = [&](std::uint32_t v) {
+    for (int k = 3; k >= 0; --k) s += static_cast<char>((v >> (8 * k)) & 0xFF);
+  };
+  be32(25);
+  be32(11'000'000);
+  s += std::string("\0\x08\0\3", 4);
+  s.resize(52, '\0');
+  return s;
+}
+
+/// A PNG signature and IHDR declaring \p w x \p h pixels, and nothing else.
+inline std::string png_header(std::uint32_t w, std::uint32_t h) {
+  std::string s("\x89PNG\r\n\x1a\n", 8);
+  s += std::string("\0\0\0\x0d", 4) + "IHDR";
+  for (std::uint32_t v : {w, h})
+    for (int k = 3; k >= 0; --k) s += static_cast<char>((v >> (8 * k)) & 0xFF);
+  s += std::string("\x08\x06\0\0\0", 5) + std::string(4, '\0');
+  return s;
+}
+
 }  // namespace adaptex::test

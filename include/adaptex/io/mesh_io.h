@@ -48,6 +48,18 @@ struct ReadReport {
 TriMesh read_mesh(const std::filesystem::path& path, const ReadOptions& options = {},
                   ReadReport* report = nullptr);
 
+/// read_mesh() on bytes already in memory: everything read_mesh() does after reading the file (the
+/// same format reader, validation and repair), so a file and its bytes give the same mesh or the same
+/// error. For callers that hold the bytes (the fuzz targets, tests, network or archive input).
+/// \p format is the extension that selects the reader ("obj", ".OFF", "glb", ...; case-insensitive).
+/// \p name is the file the bytes stand for: messages name it, and its folder resolves a .gltf's
+/// external buffers (which must be regular files there, as for read_mesh()).
+/// \pre none (every problem is reported by an exception).
+/// \throw IoError unknown format, \p bytes empty or larger than kMaxInputFileBytes, corrupt or truncated
+/// \throw InvalidInputError, TopologyError as read_mesh()
+TriMesh read_mesh_from_memory(const std::string& bytes, const std::string& format, const std::filesystem::path& name,
+                              const ReadOptions& options = {}, ReadReport* report = nullptr);
+
 /// Validates an in-memory mesh the same way read_mesh() does (degenerate/unreferenced are dropped,
 /// pinched vertices are split, the rest throws); \p name is used in messages in place of a file name.
 /// \throw InvalidInputError, TopologyError as read_mesh()
