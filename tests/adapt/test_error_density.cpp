@@ -1,5 +1,7 @@
 // Error-model density (error_density.h): the history signal cached per layout (ErrorDensityReference)
-// gives the same density as evaluating the whole history, stroke after stroke.
+// gives the same density as evaluating the whole history, stroke after stroke; the uncached path, which
+// evaluates the history only where a dab may reach, gives the same rasters as the cache, which
+// composites every stroke at every texel.
 #include <gtest/gtest.h>
 
 #include "adaptex/adapt/error_density.h"
@@ -7,6 +9,7 @@
 #include "adaptex/core/shapes.h"
 #include "adaptex/paint/generate.h"
 #include "adaptex/paint/painter.h"
+#include "adaptex/paint/signal.h"
 #include "adaptex/param/unwrap.h"
 #include "test_scene.h"
 
@@ -39,6 +42,51 @@ TEST(ErrorDensity, CachedHistoryGivesTheSameDensityAfterEveryStroke) {
     EXPECT_EQ(full.reference_size, cached.reference_size);
   }
   EXPECT_GT(compute_error_density(mesh, param, painter.texture(), painter.texel_map(), history).predicted_gain_db, 0.5);
+}
+
+// The uncached path skips texels that no dab can reach (their signal is the background); the cache
+// evaluates every texel. Both must give the same rasters, bit for bit, on local strokes (lines, dots),
+// broad ones (blobs) and both (mixed), on a one-chart torus and a multi-chart genus-3 surface.
+TEST(ErrorDensity, SkippingUnreachedTexelsChangesNothing) {
+  struct Case {
+    TriMesh mesh;
+    StrokeKind kind;
+    int count;
+  };
+  const std::vector<Case> cases{{shapes::torus(48, 24), StrokeKind::Lines, 12},
+                                {shapes::torus(48, 24), StrokeKind::Dots, 60},
+                                {shapes::torus(48, 24), StrokeKind::Blobs, 3},
+                                {shapes::genus_surface(3, 6), StrokeKind::Mixed, 16},
+                                {shapes::genus_surface(3, 6), StrokeKind::Dots, 80}};
+  for (const Case& cs : cases) {
+    const Parameterization param = unwrap(cs.mesh).param;
+    GenerateOptions go;
+    go.kind = cs.kind;
+    go.count = cs.count;
+    const StrokeFile history = generate_strokes(cs.mesh, go);
+    const int N = 96;
+    Painter painter(cs.mesh, param, PainterOptions{N, N, 4}, history.background);
+    for (const Stroke& s : history.strokes) painter.paint_stroke(s);
+    const ErrorDensity fast = compute_error_density(cs.mesh, param, painter.texture(), painter.texel_map(), history);
+    ErrorDensityReference reference(cs.mesh, param, N, history.background);
+    const ErrorDensity every =
+        compute_error_density(cs.mesh, param, painter.texture(), painter.texel_map(), history, reference);
+    const std::string what = "kind " + std::to_string(static_cast<int>(cs.kind)) + ", " +
+                             std::to_string(cs.mesh.num_faces()) + " faces";
+    ASSERT_EQ(fast.density.data.size(), every.density.data.size()) << what;
+    EXPECT_EQ(fast.density.data, every.density.data) << what;
+    EXPECT_EQ(fast.error.data, every.error.data) << what;
+    EXPECT_EQ(fast.exponent.data, every.exponent.data) << what;
+    EXPECT_EQ(fast.predicted_gain_db, every.predicted_gain_db) << what;
+    EXPECT_EQ(fast.signal_fraction, every.signal_fraction) << what;
+    EXPECT_GT(fast.predicted_gain_db, 0.1) << what;  // the strokes were seen
+    // Not vacuous: part of the surface is unpainted (the skip applies), part is painted.
+    EXPECT_GT(fast.signal_fraction, 0.0) << what;
+    const StrokeSignal signal(cs.mesh, history);
+    int untouched = 0;
+    for (int f = 0; f < cs.mesh.num_faces(); ++f) untouched += signal.evaluate(SurfacePoint{f, 0.3, 0.3}) == history.background;
+    EXPECT_GT(untouched, 0) << what;
+  }
 }
 
 TEST(ErrorDensity, ReferenceOfAnotherLayoutOrSizeIsRefused) {
