@@ -83,6 +83,7 @@ void pad_outside(Raster& r, std::vector<char> filled, int rings) {
         if (cnt) r.rgb[k] = sum / static_cast<float>(cnt), next[k] = 1;
       }
     });
+    if (next == filled) break;  // nothing was filled: the later rings would change nothing either
     filled.swap(next);
   }
 }
@@ -117,7 +118,9 @@ Raster signal_raster(const TexelMap& map, const std::vector<Vec3>& c, const Vec3
 /// marking would take more than \p budget rows of cells.
 class DabReach {
  public:
-  DabReach(const StrokeFile& history, double budget) {
+  /// \param slack grows every ball (world units): a bound on how far the points given to may_reach()
+  ///        may lie from the points StrokeSignal is evaluated at (texel_map's float positions)
+  DabReach(const StrokeFile& history, double budget, double slack) {
     Eigen::AlignedBox3d box;
     double r_min = std::numeric_limits<double>::infinity();
     for (const Stroke& st : history.strokes) {
@@ -129,6 +132,8 @@ class DabReach {
     if (box.isEmpty()) return;  // no dab at all: nothing is reached
     const double extent = box.sizes().maxCoeff();
     cell_ = std::max({extent / kCells, r_min, 1e-300});
+    inv_cell_ = 1.0 / cell_;
+    grow_ = slack + 1e-6 * cell_;  // and a rounding margin
     origin_ = box.min() - Vec3::Constant(cell_);
     for (int a = 0; a < 3; ++a) dim_[a] = static_cast<int>(std::ceil(box.sizes()[a] / cell_)) + 3;
     // Cost of marking: the rows of cells of every dab's bounding box.
@@ -143,12 +148,12 @@ class DabReach {
       for (const Vec3& c : st.dabs) mark_ball(c, st.radius);
   }
 
-  bool may_reach(const Vec3& p) const {
+  bool may_reach(const Vec3f& p) const {
     if (all_) return true;
     if (mark_.empty()) return false;
     int q[3];
     for (int a = 0; a < 3; ++a) {
-      const double f = std::floor((p[a] - origin_[a]) / cell_);
+      const double f = std::floor((p[a] - origin_[a]) * inv_cell_);
       if (!(f >= 0 && f < dim_[a])) return false;  // outside the grid: farther than any radius from every dab
       q[a] = static_cast<int>(f);
     }
@@ -158,26 +163,37 @@ class DabReach {
  private:
   static constexpr double kCells = 128;  // cells along the longest side of the dabs' box (at most): ≤ 2.2 MB
   bool all_ = true;
-  double cell_ = 1;
+  double cell_ = 1, inv_cell_ = 1;
+  double grow_ = 0;  // added to every radius when marking
   Vec3 origin_ = Vec3::Zero();
   int dim_[3] = {0, 0, 0};
   std::vector<char> mark_;
 
   size_t index(int x, int y, int z) const { return (static_cast<size_t>(z) * dim_[1] + y) * dim_[0] + x; }
 
-  /// Marks every cell that meets the bounding box of the ball (\p c, \p r), grown by a rounding margin
-  /// (a row of cells at a time: no per-cell test).
-  void mark_ball(const Vec3& c, double r) {
-    const double margin = 1e-6 * cell_;
+  /// Marks every cell that meets the bounding box of the ball (\p c, \p radius + grow_) (a row of cells
+  /// at a time: no per-cell test).
+  void mark_ball(const Vec3& c, double radius) {
+    const double r = radius + grow_;
     int lo[3], hi[3];
     for (int k = 0; k < 3; ++k) {
-      lo[k] = std::clamp(static_cast<int>(std::floor((c[k] - r - margin - origin_[k]) / cell_)), 0, dim_[k] - 1);
-      hi[k] = std::clamp(static_cast<int>(std::floor((c[k] + r + margin - origin_[k]) / cell_)), 0, dim_[k] - 1);
+      lo[k] = std::clamp(static_cast<int>(std::floor((c[k] - r - origin_[k]) / cell_)), 0, dim_[k] - 1);
+      hi[k] = std::clamp(static_cast<int>(std::floor((c[k] + r - origin_[k]) / cell_)), 0, dim_[k] - 1);
     }
     for (int z = lo[2]; z <= hi[2]; ++z)
       for (int y = lo[1]; y <= hi[1]; ++y) std::fill_n(mark_.begin() + index(lo[0], y, z), hi[0] - lo[0] + 1, char(1));
   }
 };
+
+/// How far a texel map's float position can lie from the point StrokeSignal is evaluated at
+/// (point_on_face with the map's float barycentrics): both round at 2^-24 relative, once for the
+/// coordinates and once per barycentric times an edge; 1e-6 of the size bounds it with a wide margin.
+double position_slack(const TriMesh& mesh) {
+  Eigen::AlignedBox3d box;
+  for (const Vec3& p : mesh.positions) box.extend(p);
+  if (box.isEmpty()) return 0;
+  return 1e-6 * (box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).maxCoeff() + box.diagonal().norm());
+}
 
 /// The exact signal at the texel centres of \p map (inside charts), padded outside: evaluated where
 /// \p reach says a dab may reach the texel's point, the background elsewhere (what StrokeSignal gives
@@ -194,8 +210,8 @@ Raster exact_raster(const TriMesh& mesh, const TexelMap& map, const StrokeSignal
       const int f = map.face[t];
       if (f < 0) continue;
       filled[t] = 1;
-      const Vec3 p = point_on_face(mesh, f, map.bary[t].x(), map.bary[t].y());
-      if (reach.may_reach(p)) r.rgb[t] = signal.evaluate(p, f).cast<float>();
+      if (reach.may_reach(map.position[t]))
+        r.rgb[t] = signal.evaluate(point_on_face(mesh, f, map.bary[t].x(), map.bary[t].y()), f).cast<float>();
     }
   });
   pad_outside(r, std::move(filled), 4);
@@ -454,8 +470,8 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
   const int R = reference_side(N, o);
   const StrokeSignal signal(mesh, history);
   const TexelMap ref_map = build_texel_map(mesh, param, R, R);
-  // Marking may cost up to about one visit per reference texel (far less than evaluating them).
-  const DabReach reach(history, 2.0 * R * R);
+  // Marking may fill up to two rows of cells per reference texel (far less than evaluating them).
+  const DabReach reach(history, 2.0 * R * R, position_slack(mesh));
   const Raster ref = exact_raster(mesh, ref_map, signal, reach, history.background);
   const int half = std::max(1, N / 2);
   const Raster level_b = exact_raster(mesh, build_texel_map(mesh, param, half, half), signal, reach, history.background);
