@@ -153,9 +153,9 @@ class DabReach {
     if (mark_.empty()) return false;
     int q[3];
     for (int a = 0; a < 3; ++a) {
-      const double f = std::floor((p[a] - origin_[a]) * inv_cell_);
+      const double f = (p[a] - origin_[a]) * inv_cell_;
       if (!(f >= 0 && f < dim_[a])) return false;  // outside the grid: farther than any radius from every dab
-      q[a] = static_cast<int>(f);
+      q[a] = static_cast<int>(f);                  // = floor(f), f >= 0
     }
     return mark_[index(q[0], q[1], q[2])];
   }
