@@ -11,6 +11,10 @@
 // Time is the process CPU time (all threads) of reparameterize(); painting is not timed. The counters
 // are the report's phases (wall ms per iteration): model (error model, or importance + relaxation),
 // flow, refine, remap, texture (texel map + replay), safeguard, total.
+//
+// BM_ErrorDensity times density-flow's error model alone (compute_error_density from the history, as
+// end mode calls it: 2N reference raster, levels, equidistribution) in process CPU time, the phase
+// the wall-time counter "model" shows above for density-flow.
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -23,6 +27,7 @@
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/generate.h"
+#include "adaptex/paint/painter.h"
 #include "adaptex/param/unwrap.h"
 
 namespace {
@@ -108,6 +113,29 @@ void BM_EndModeReparam(benchmark::State& state) {
   for (const auto& [k, v] : phase) state.counters[k] = benchmark::Counter(v, benchmark::Counter::kAvgIterations);
 }
 
+void BM_ErrorDensity(benchmark::State& state) {
+  const std::string& name = scene_names()[static_cast<size_t>(state.range(0))];
+  const Scene* s = scene(name);
+  if (!s) {
+    state.SkipWithError(("shared mesh '" + name + "' is absent").c_str());
+    return;
+  }
+  state.SetLabel(name);
+  Painter painter(s->mesh, s->param, PainterOptions{256, 256, PaintSessionOptions{}.padding}, s->strokes.background);
+  painter.paint_all(s->strokes);
+  const ErrorDensityOptions o = AdaptOptions{}.density;
+  double gain = 0;
+  for (auto _ : state) {
+    const ErrorDensity d = compute_error_density(s->mesh, s->param, painter.texture(), painter.texel_map(), s->strokes, o);
+    gain = d.predicted_gain_db;  // read after the loop (DoNotOptimize on a double returned garbage here)
+  }
+  state.counters["gain_db"] = benchmark::Counter(gain);  // the model's predicted gain (equal before and after a speed-up)
+}
+
+void mesh_args(benchmark::internal::Benchmark* b) {
+  for (int m = 0; m < static_cast<int>(scene_names().size()); ++m) b->Args({m});
+}
+
 void scene_args(benchmark::internal::Benchmark* b) {
   for (int m = 0; m < static_cast<int>(scene_names().size()); ++m)
     for (int mode = 0; mode < 2; ++mode) b->Args({m, mode});
@@ -115,4 +143,5 @@ void scene_args(benchmark::internal::Benchmark* b) {
 }  // namespace
 
 BENCHMARK(BM_EndModeReparam)->Apply(scene_args)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(3);
+BENCHMARK(BM_ErrorDensity)->Apply(mesh_args)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->Iterations(5);
 BENCHMARK_MAIN();
