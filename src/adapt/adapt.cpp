@@ -39,8 +39,10 @@ void refine_under_warp(const TriMesh& mesh, const Parameterization& current, int
   const auto warps = res.warps();
   const ChartMoveLocator moves(res.chart_moves);
   const bool moved = !res.chart_moves.empty();
-  auto warp = [&warps, &moves, moved](const Vec2& p) {
+  const FlowWarp* flow = res.flow.get();
+  auto warp = [&warps, &moves, moved, flow](const Vec2& p) {
     Vec2 q = moved ? moves.apply(p) : p;
+    if (flow) return flow->apply(q);  // the exact flow (DensityFlowOptions::direct)
     for (const GridWarp* w : warps) q = w->apply(q);
     return q;
   };
@@ -142,7 +144,13 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
     res.warp_start = std::make_shared<const Parameterization>(
         move_charts(res.refined_mesh ? *res.refined_layout : current, res.chart_moves));
   const Parameterization& src = res.start_layout(current);
-  SafeRemapResult sr = safe_remap(src, res.warps(), o.remap);
+  if (res.flow) {  // direct: every wedge through the flow itself, not through the grids
+    auto warped = std::make_shared<Parameterization>(src);
+    res.flow->apply_all(warped->uv);
+    res.warped_layout = std::move(warped);
+  }
+  SafeRemapResult sr = res.warped_layout ? safe_remap_layout(src, *res.warped_layout, o.remap)
+                                         : safe_remap(src, res.warps(), o.remap);
   rep.remap_checks = sr.checks;
   rep.damping = sr.mean_damping;
   rep.global_damping = sr.damping;
@@ -155,7 +163,9 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
     for (const GridWarp* w : res.warps()) half.push_back(w->blended(0.5 * rep.damping));
     std::vector<const GridWarp*> ptrs;
     for (auto& w : half) ptrs.push_back(&w);
-    SafeRemapResult h = safe_remap(src, ptrs, o.remap);
+    SafeRemapResult h = res.warped_layout
+                            ? safe_remap_layout(src, blend_layouts(src, *res.warped_layout, 0.5 * rep.damping), o.remap)
+                            : safe_remap(src, ptrs, o.remap);
     rep.remap_checks += h.checks;
     const double l2h = measure_stretch(out_mesh, h.param).l2;
     if (l2h < rep.l2_before) {
@@ -169,6 +179,8 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
       res.warp_start.reset();
       res.chart_moves.clear();
       res.parent_face.clear();
+      res.flow.reset();
+      res.warped_layout.reset();
       rep.faces_after = mesh.num_faces();
       rep.damping = 0;
       rep.l2_after = rep.l2_before;

@@ -156,6 +156,26 @@ std::vector<int> chart_lattice_cells(const std::vector<ChartMove>& moves, int ce
   return n;
 }
 
+namespace {
+/// \p density over the chart's src rectangle, resampled on an n x n raster (2 x 2 samples per cell),
+/// floored at 1e-9 (the flow needs ρ > 0).
+ImageF local_density(const ImageF& density, const UvRect& src, int n) {
+  ImageF local(n, n, 0.0f);
+  constexpr int sub = 2;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      double sum = 0;
+      for (int b = 0; b < sub; ++b)
+        for (int a = 0; a < sub; ++a) {
+          const double u = (i + (a + 0.5) / sub) / n, v = (j + (b + 0.5) / sub) / n;
+          sum += sample_bilinear(density, src.lo.x() + u * src.size().x(), src.lo.y() + v * src.size().y());
+        }
+      local.at(i, j) = static_cast<float>(std::max(sum / (sub * sub), 1e-9));
+    }
+  return local;
+}
+}  // namespace
+
 std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, const ImageF& density,
                                        const DensityFlowOptions& flow, int min_cells, DensityFlowStats* stats) {
   check_density(density, "chart_flow_warps");
@@ -172,18 +192,7 @@ std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, cons
       return;
     }
     const int n = cells[c];
-    ImageF local(n, n, 0.0f);
-    constexpr int sub = 2;  // 2 x 2 samples per local cell
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        double sum = 0;
-        for (int b = 0; b < sub; ++b)
-          for (int a = 0; a < sub; ++a) {
-            const double u = (i + (a + 0.5) / sub) / n, v = (j + (b + 0.5) / sub) / n;
-            sum += sample_bilinear(density, m.src.lo.x() + u * m.src.size().x(), m.src.lo.y() + v * m.src.size().y());
-          }
-        local.at(i, j) = static_cast<float>(std::max(sum / (sub * sub), 1e-9));
-      }
+    const ImageF local = local_density(density, m.src, n);
     DensityFlowOptions fo = flow;
     fo.cells = n;
     warps[c] = density_equalizing_warp(local, fo, &st[c]);
@@ -202,6 +211,29 @@ std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, cons
     }
   }
   return warps;
+}
+
+FlowWarp chart_flows(const std::vector<ChartMove>& moves, const ImageF& density, const DensityFlowOptions& flow,
+                     int min_cells) {
+  check_density(density, "chart_flows");
+  if (min_cells < 2) throw InvalidInputError("chart_flows: min_cells must be >= 2");
+  const int C = static_cast<int>(moves.size());
+  FlowWarp fw;
+  fw.options = flow;
+  fw.parts.resize(C);
+  const int L = std::max(density.width, density.height);
+  tbb::parallel_for(0, C, [&](int c) {
+    const ChartMove& m = moves[c];
+    const UvRect dst = m.dst();
+    fw.parts[c].lo = dst.lo;
+    fw.parts[c].hi = dst.hi;
+    if (m.src.size().minCoeff() <= 0) return;  // degenerate chart (no area): the identity
+    // The density raster's own resolution over the chart's rectangle (its longer side): the flow's
+    // cost is its DCT and the points advected, not its raster.
+    const int n = std::clamp(static_cast<int>(std::ceil(m.src.size().maxCoeff() * L)), min_cells, 2 * L);
+    fw.parts[c].flow = std::make_shared<const DensityFlow>(local_density(density, m.src, n));
+  });
+  return fw;
 }
 
 }  // namespace adaptex

@@ -58,8 +58,10 @@ std::vector<double> solve_poisson_neumann(const ImageF& rho) {
   return a;
 }
 
+}  // namespace
+
 /// Flux J = −∇φ and ρ₀ on the (L+1)² corner lattice; v(x, t) = J / ((1−t)ρ₀ + tρ̄), bilinear.
-struct Field {
+struct DensityFlow::Field {
   /// One lattice corner: a velocity evaluation reads 4 corners in 2 adjacent pairs, so the three
   /// values are interleaved (two cache lines per evaluation instead of up to six).
   struct Corner {
@@ -103,11 +105,23 @@ struct Field {
   }
 };
 
+namespace {
+
 Vec2 clamp01(const Vec2& p) { return Vec2(std::clamp(p.x(), 0.0, 1.0), std::clamp(p.y(), 0.0, 1.0)); }
+
+void check_density(const ImageF& density) {
+  if (density.width != density.height || density.width < 2)
+    throw InvalidInputError("density_equalizing_warp: the density must be a square raster of >= 2 cells, got " +
+                            std::to_string(density.width) + "x" + std::to_string(density.height));
+  for (float v : density.data)
+    if (!(std::isfinite(v) && v > 0))
+      throw InvalidInputError("density_equalizing_warp: densities must be finite and > 0");
+}
 
 /// Advects one point from t = 0 to 1 (Bogacki–Shampine 3(2), FSAL, per-point step control).
 /// \return the number of accepted steps
-int advect(const Field& f, Vec2& x, double tol, double max_move, int max_steps) {
+template <class Field>
+int advect_point(const Field& f, Vec2& x, double tol, double max_move, int max_steps) {
   double t = 0, h = 0.02;
   Vec2 k1 = f.velocity(x, 0);
   int steps = 0;
@@ -196,18 +210,98 @@ double cell_signed_area(const GridWarp& g, int i, int j) {
 
 }  // namespace
 
-GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions& o, DensityFlowStats* stats) {
-  if (density.width != density.height || density.width < 2)
-    throw InvalidInputError("density_equalizing_warp: the density must be a square raster of >= 2 cells, got " +
-                            std::to_string(density.width) + "x" + std::to_string(density.height));
-  for (float v : density.data)
-    if (!(std::isfinite(v) && v > 0))
-      throw InvalidInputError("density_equalizing_warp: densities must be finite and > 0");
-  if (o.cells < 1 || o.cells > 8192) throw InvalidInputError("density_equalizing_warp: cells must be in [1, 8192]");
-  if (!(o.tolerance > 0) || o.max_steps < 1 || !(o.max_step_cells > 0))
-    throw InvalidInputError("density_equalizing_warp: tolerance and max_step_cells must be > 0 and max_steps >= 1");
+DensityFlow::DensityFlow(const ImageF& density) {
+  check_density(density);
+  field_ = std::make_shared<const Field>(density, solve_poisson_neumann(density));
+}
 
-  const Field field(density, solve_poisson_neumann(density));
+int DensityFlow::cells() const { return field_->L; }
+
+Vec2 DensityFlow::advect(const Vec2& x, double tolerance, double max_move, int max_steps, int* steps) const {
+  Vec2 p = clamp01(x);
+  const int s = advect_point(*field_, p, tolerance, max_move, max_steps);
+  if (steps) *steps = s;
+  return p;
+}
+
+Vec2 DensityFlow::advect(const Vec2& x, const DensityFlowOptions& o, int* steps) const {
+  const double cell = 1.0 / field_->L;
+  return advect(x, o.direct_tolerance * cell, o.direct_max_step_cells * cell, o.max_steps, steps);
+}
+
+Vec2 FlowWarp::apply(const Vec2& uv, int* steps) const {
+  constexpr double eps = 1e-12;
+  if (steps) *steps = 0;
+  for (const Part& part : parts) {
+    if (uv.x() < part.lo.x() - eps || uv.x() > part.hi.x() + eps || uv.y() < part.lo.y() - eps ||
+        uv.y() > part.hi.y() + eps)
+      continue;
+    if (!part.flow) return uv;
+    const Vec2 size = part.hi - part.lo;
+    const Vec2 local = (uv - part.lo).cwiseQuotient(size);
+    return part.lo + part.flow->advect(local, options, steps).cwiseProduct(size);
+  }
+  return uv;
+}
+
+long FlowWarp::apply_all(std::vector<Vec2>& uv) const {
+  std::atomic<long> total{0};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, uv.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
+    long local = 0;
+    for (size_t k = r.begin(); k < r.end(); ++k) {
+      int s = 0;
+      uv[k] = apply(uv[k], &s);
+      local += s;
+    }
+    total += local;
+  });
+  return total;
+}
+
+FlowShape flow_shape(const ImageF& density, const std::function<Vec2(const Vec2&)>& map, int n, double threshold) {
+  check_density(density);
+  if (n < 1 || !(threshold > 0)) throw InvalidInputError("flow_shape: n must be >= 1 and the threshold > 0");
+  GridWarp g = GridWarp::uniform(n);
+  tbb::parallel_for(size_t(0), g.points.size(), [&](size_t k) { g.points[k] = map(g.points[k]); });
+  double mean = 0;
+  for (float v : density.data) mean += v;
+  mean /= static_cast<double>(density.data.size());
+  FlowShape fs;
+  double aniso = 0;
+  const double n2 = double(n) * n;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double area = cell_signed_area(g, i, j);
+      const double target = sample_bilinear(density, (i + 0.5) / n, (j + 0.5) / n) / mean;
+      fs.density_error += std::abs(area * n2 - target) / n2;
+      fs.folded_cells += area <= 0;
+      if (target <= threshold) continue;
+      fs.dense_target += target / n2;
+      fs.dense_area += area;
+      // Singular values of the cell's Jacobian (mean of its two edge pairs), scaled by n.
+      const Vec2 du = 0.5 * n * (g.at(i + 1, j) - g.at(i, j) + g.at(i + 1, j + 1) - g.at(i, j + 1));
+      const Vec2 dv = 0.5 * n * (g.at(i, j + 1) - g.at(i, j) + g.at(i + 1, j + 1) - g.at(i + 1, j));
+      const double a = du.squaredNorm(), c = dv.squaredNorm(), b = du.dot(dv);
+      const double root = std::sqrt(std::max(0.0, 0.25 * (a - c) * (a - c) + b * b));
+      const double s1 = std::sqrt(0.5 * (a + c) + root), s2 = std::sqrt(std::max(0.0, 0.5 * (a + c) - root));
+      aniso += std::max(area, 0.0) * (s2 > 0 ? std::min(s1 / s2, 50.0) : 50.0);
+    }
+  fs.dense_anisotropy = fs.dense_area > 0 ? aniso / fs.dense_area : 0;
+  return fs;
+}
+
+GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions& o, DensityFlowStats* stats) {
+  check_density(density);
+  if (o.cells < 1 || o.cells > 8192) throw InvalidInputError("density_equalizing_warp: cells must be in [1, 8192]");
+  if (!(o.tolerance > 0) || o.max_steps < 1 || !(o.max_step_cells > 0) || !(o.direct_tolerance > 0) ||
+      !(o.direct_max_step_cells > 0))
+    throw InvalidInputError(
+        "density_equalizing_warp: tolerances and step limits must be > 0 and max_steps >= 1");
+
+  const DensityFlow flow(density);
+  double mean = 0;
+  for (float v : density.data) mean += v;
+  mean /= static_cast<double>(density.data.size());
   GridWarp g = GridWarp::uniform(o.cells);
   const double tol = o.tolerance / o.cells;
   const double max_move = o.max_step_cells / o.cells;
@@ -218,7 +312,8 @@ GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions
     int local_most = 0;
     for (int j = j0; j < j1; ++j)
       for (int i = 0; i <= o.cells; ++i) {
-        const int s = advect(field, g.at(i, j), tol, max_move, o.max_steps);
+        int s = 0;
+        g.at(i, j) = flow.advect(g.at(i, j), tol, max_move, o.max_steps, &s);
         local += s;
         local_most = std::max(local_most, s);
       }
@@ -252,7 +347,7 @@ GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions
       for (int i = 0; i < o.cells; ++i) {
         const double a = cell_signed_area(g, i, j);
         if (!cell_convex(g, i, j)) ++stats->inverted_cells;
-        const double target = sample_bilinear(density, (i + 0.5) / o.cells, (j + 0.5) / o.cells) / field.mean;
+        const double target = sample_bilinear(density, (i + 0.5) / o.cells, (j + 0.5) / o.cells) / mean;
         err += std::abs(a * n2 - target);
       }
     stats->density_error = err / n2;

@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <string>
 
 #include "adaptex/adapt/overlap_certificate.h"
+#include "adaptex/core/errors.h"
 #include "adaptex/param/stretch.h"
 
 namespace adaptex {
@@ -168,8 +170,27 @@ bool single_chart_on_square(const Parameterization& param) {
   return true;
 }
 
+Parameterization blend_layouts(const Parameterization& from, const Parameterization& to, double t) {
+  if (from.uv.size() != to.uv.size())
+    throw InvalidInputError("blend_layouts: " + std::to_string(from.uv.size()) + " and " +
+                            std::to_string(to.uv.size()) + " wedges");
+  Parameterization out = from;
+  for (size_t w = 0; w < out.uv.size(); ++w)
+    out.uv[w] = ((1 - t) * from.uv[w] + t * to.uv[w]).cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
+  return out;
+}
+
 SafeRemapResult safe_remap(const Parameterization& param, const std::vector<const GridWarp*>& warps,
-                           const SafeRemapOptions& o_in) {
+                           const SafeRemapOptions& options) {
+  return safe_remap_layout(param, remap_parameterization(param, warps), options);
+}
+
+SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameterization& full,
+                                  const SafeRemapOptions& o_in) {
+  if (full.uv.size() != param.uv.size() || full.uv_faces.size() != param.uv_faces.size())
+    throw InvalidInputError("safe_remap_layout: the warped layout has " + std::to_string(full.uv.size()) +
+                            " wedges and " + std::to_string(full.uv_faces.size()) + " faces, the input " +
+                            std::to_string(param.uv.size()) + " and " + std::to_string(param.uv_faces.size()));
   SafeRemapOptions o = o_in;
   // One chart whose boundary lies on the square's sides: grid points on the sides only slide along
   // them (here: stay fixed), so the boundary maps injectively onto itself; with no flipped triangle
@@ -191,7 +212,6 @@ SafeRemapResult safe_remap(const Parameterization& param, const std::vector<cons
   // when the input itself has no crossing boundaries.
   const std::vector<BoundaryEdge> boundary = o.check_overlaps ? uv_boundary_edges(param) : std::vector<BoundaryEdge>{};
   const bool damp_crossings = o.check_overlaps && faces_of_crossing_boundaries(param, boundary).empty();
-  const Parameterization full = remap_parameterization(param, warps);
   const int F = static_cast<int>(param.uv_faces.size());
   SafeRemapResult res;
   std::vector<float> tw;

@@ -251,11 +251,14 @@ struct PaintSession::Impl {
     if (t == 1.0) {
       c.param = std::make_unique<Parameterization>(res.param);
     } else {
+      const Parameterization& start = res.start_layout(source_param());
       std::vector<GridWarp> damped;
       for (const GridWarp* w : res.warps()) damped.push_back(w->blended(t * rep.damping));
       std::vector<const GridWarp*> ptrs;
       for (auto& w : damped) ptrs.push_back(&w);
-      c.param = std::make_unique<Parameterization>(safe_remap(res.start_layout(source_param()), ptrs, ao.remap).param);
+      c.param = std::make_unique<Parameterization>(
+          res.warped_layout ? safe_remap_layout(start, blend_layouts(start, *res.warped_layout, t * rep.damping), ao.remap).param
+                            : safe_remap(start, ptrs, ao.remap).param);
     }
     auto tm = std::chrono::steady_clock::now();
     c.painter = std::make_unique<Painter>(cand_mesh, *c.param, painter_options(), history.background);

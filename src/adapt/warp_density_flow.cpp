@@ -3,6 +3,7 @@
 // density-equalizing map (density_flow.h). docs/error_model.md explains the model and the choices.
 #include <algorithm>
 #include <chrono>
+#include <memory>
 
 #include "adaptex/adapt/warp_method.h"
 #include "adaptex/core/timer.h"
@@ -49,8 +50,15 @@ class DensityFlowWarp final : public WarpMethod {
       ro.padding = std::min(std::max(gap, o.chart_gutter_texels / texels), 0.2);
       res.chart_moves = repack_charts_by_density(boxes, res.density, ro);
       res.grids = chart_flow_warps(res.chart_moves, res.density, o.flow, 8, &st);
+      if (o.flow.direct) res.flow = std::make_shared<const FlowWarp>(chart_flows(res.chart_moves, res.density, o.flow));
     } else {
       res.grids = {density_equalizing_warp(res.density, o.flow, &st)};
+      if (o.flow.direct) {
+        FlowWarp fw;
+        fw.options = o.flow;
+        fw.parts = {FlowWarp::Part{Vec2(0, 0), Vec2(1, 1), std::make_shared<const DensityFlow>(res.density)}};
+        res.flow = std::make_shared<const FlowWarp>(std::move(fw));
+      }
     }
     rep.flow_tangled_cells = st.tangled_cells;
     rep.flow_inverted_cells = st.inverted_cells;

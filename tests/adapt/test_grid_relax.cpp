@@ -237,6 +237,33 @@ TEST(Remap, AdversarialWarpIsDampedAndNeverFlips) {
 }
 
 
+TEST(Remap, AWarpGivenAsALayoutIsTheGridWarpGivenAsPoints) {
+  // safe_remap_layout (the warp's result given per wedge, as direct flow advection gives it) is
+  // safe_remap on the same positions; blend_layouts damps it.
+  const TriMesh mesh = shapes::plane(40);
+  const Parameterization param = plane_param(mesh);
+  GridWarp w = GridWarp::uniform(8);
+  w.at(3, 4) = Vec2(0.9, 0.5);  // folding, so that untangling and damping run
+  w.at(5, 4) = Vec2(0.1, 0.5);
+  const SafeRemapResult a = safe_remap(param, {&w});
+  const SafeRemapResult b = safe_remap_layout(param, remap_parameterization(param, {&w}));
+  ASSERT_EQ(a.param.uv.size(), b.param.uv.size());
+  for (size_t k = 0; k < a.param.uv.size(); ++k) EXPECT_EQ(a.param.uv[k], b.param.uv[k]);
+  EXPECT_EQ(a.mean_damping, b.mean_damping);
+  EXPECT_LT(b.mean_damping, 1.0);
+  EXPECT_TRUE(check_remap(param, b.param).ok());
+  // Blending toward the warped layout is blending the lattice (bilinear in its points).
+  const Parameterization full = remap_parameterization(param, {&w});
+  const GridWarp half = w.blended(0.5);
+  const Parameterization by_grid = remap_parameterization(param, {&half});
+  const Parameterization by_layout = blend_layouts(param, full, 0.5);
+  for (size_t k = 0; k < param.uv.size(); ++k) EXPECT_NEAR((by_grid.uv[k] - by_layout.uv[k]).norm(), 0.0, 1e-12);
+  Parameterization fewer = param;
+  fewer.uv.pop_back();
+  EXPECT_THROW(blend_layouts(param, fewer, 0.5), InvalidInputError);
+  EXPECT_THROW(safe_remap_layout(param, fewer), InvalidInputError);
+}
+
 TEST(Remap, UntanglingKeepsMoreOfAWarpThanDamping) {
   const TriMesh mesh = shapes::plane(40);
   const Parameterization param = plane_param(mesh);

@@ -141,6 +141,13 @@ struct AdaptResult {
   /// With chart_moves: the layout the grids act on (the input layout, or refined_layout, with the
   /// charts moved). Damping a warp again (blending) starts from here, not from the input layout.
   std::shared_ptr<const Parameterization> warp_start;
+  /// density-flow with DensityFlowOptions::direct: the flows themselves (density_flow.h). Refinement
+  /// and the remap then advect the wedges of start_layout() through them instead of through grids
+  /// (which only draw pictures). nullptr: the grids are the warp.
+  std::shared_ptr<const FlowWarp> flow;
+  /// With flow: start_layout() with every wedge advected (the undamped warp). Damping the warp again
+  /// blends toward it (blend_layouts, remap.h).
+  std::shared_ptr<const Parameterization> warped_layout;
   std::vector<const GridWarp*> warps() const;  ///< Pointers to grids, in application order.
   /// The layout the grids act on: warp_start, else refined_layout, else \p input.
   const Parameterization& start_layout(const Parameterization& input) const {

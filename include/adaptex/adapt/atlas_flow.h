@@ -101,4 +101,13 @@ std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, cons
                                        const DensityFlowOptions& flow, int min_cells = 8,
                                        DensityFlowStats* stats = nullptr);
 
+/// The exact flows that chart_flow_warps() samples on lattices (density_flow.h, FlowWarp): one part
+/// per chart on its dst() rectangle, solved on \p density over its src rectangle, resampled at the
+/// density raster's resolution along the rectangle's longer side (at least \p min_cells, at most
+/// twice the raster's). Degenerate charts get no flow (the identity). Charts in parallel.
+/// \param flow the integration settings the FlowWarp keeps (direct_tolerance, direct_max_step_cells)
+/// \throw InvalidInputError empty density or min_cells < 2
+FlowWarp chart_flows(const std::vector<ChartMove>& moves, const ImageF& density, const DensityFlowOptions& flow,
+                     int min_cells = 8);
+
 }  // namespace adaptex

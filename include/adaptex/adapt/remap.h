@@ -90,4 +90,15 @@ RemapCheck check_remap(const Parameterization& before, const Parameterization& a
 SafeRemapResult safe_remap(const Parameterization& param, const std::vector<const GridWarp*>& warps,
                            const SafeRemapOptions& options = {});
 
+/// safe_remap() with the full warp given as its result: \p warped is \p param with every wedge
+/// already moved (e.g. advected through a FlowWarp, density_flow.h). Damping blends toward it.
+/// \pre warped has param's faces and wedges (same uv.size(), uv_faces, face_chart)
+/// \throw InvalidInputError the wedge counts differ
+SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameterization& warped,
+                                  const SafeRemapOptions& options = {});
+
+/// \p from with every wedge moved to (1 − t)·from + t·to (clamped to [0,1]²): a warped layout damped
+/// toward its start. \pre same wedge count \throw InvalidInputError the wedge counts differ
+Parameterization blend_layouts(const Parameterization& from, const Parameterization& to, double t);
+
 }  // namespace adaptex
