@@ -47,9 +47,10 @@ struct DensityFlowOptions {
   /// relative L1 error 0.010 against the lattice's 0.26; 0.077 against 0.77 at blur 2), but the texel
   /// saving does not follow: the flow's map is strongly anisotropic where it magnifies (mean
   /// σmax/σmin 5.3 in the cells with ρ > 1.5, the lattice's 3.3; at blur 2 13 against 2.0) and the
-  /// error model counts area only. Measured on 6 small meshes × dots × 128²/256² (docs/quality.md,
-  /// session 6): median 3.19 (blur 4) / 3.72 (blur 3) / 3.71 (blur 2) against the lattice's 3.61, with
-  /// swings of ±1.5× per case either way, and 2–40× the refinement time. Off by default.
+  /// error model counts area only. Measured on small meshes × dots × 128²/256² (docs/quality.md,
+  /// session 6): median texel saving 3.19 (blur 4, 4 meshes) / 3.72 (blur 3) / 3.71 (blur 2, 6 meshes)
+  /// against the lattice's 3.61 at blur 4, with per-case swings of 0.5× to 1.7× the lattice's, and
+  /// refinement 37× slower (venus dots 256²: 517 ms against 14 ms). Off by default.
   bool direct = false;
   /// direct: local error bound of the integration, in cells of the density raster the flow was
   /// solved on (the velocity varies at that scale, not at the lattice's).
