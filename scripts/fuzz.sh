@@ -28,8 +28,10 @@ mkdir -p "$build/findings"
 # the disk: 270 executions per second instead of thousands).
 if [ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ]; then export TMPDIR=/dev/shm; fi
 # run_target TARGET SECONDS CORPUS [EXTRA...]: one libFuzzer run with the documented limits.
+# FUZZ_ASAN_OPTIONS adds to ASAN_OPTIONS (the long runs use malloc_context_size=0: no allocation stack
+# is recorded per malloc, ~1.2x faster; a finding is re-run from its saved input for the full report).
 run_target() {
-  ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ASAN_OPTIONS=detect_leaks=1${FUZZ_ASAN_OPTIONS:+:$FUZZ_ASAN_OPTIONS} UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
     "$build/tests/fuzz/fuzz_$1" "$3" -max_total_time="$2" -timeout=10 -rss_limit_mb=2048 \
     -malloc_limit_mb=2048 -max_len=65536 -artifact_prefix="$build/findings/$1-" -print_final_stats=1 "${@:4}"
 }
