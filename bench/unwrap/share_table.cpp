@@ -4,7 +4,7 @@
 // covers on average ("chart fill" = coverage / rect fill), flipped and overlapping triangles,
 // UVs outside [0,1]², and wall / CPU seconds. See docs/benchmarks.md.
 //
-//   bench_share_table [--single] [--detail] [--no-probe] [--normal-weight W] [--max-charts K] [--chart-padding P] NAME...
+//   bench_share_table [--single] [--detail] [--hash] [--speculative S] [--no-probe] [--normal-weight W] [--max-charts K] [--chart-padding P] NAME...
 //
 // NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
 // code: genusG (genus_surface(G)), sphereS,T (sphere(S, T)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
@@ -15,6 +15,9 @@
 // chart, the seams of several) in bounding-box diagonals.
 // --chart-padding P: UnwrapOptions::chart_padding, the smallest gap between charts (the gap is the
 // larger of P and the 8-texel gutter at 1024, 0.0078).
+// --hash: after each row, a 64-bit FNV-1a hash of the layout (every UV's bits and every face's
+// wedges): equal hashes before and after a speed change show that the layout did not change.
+// --speculative S: UnwrapOptions::speculative_attempts (chart counts built at the same time).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -101,7 +104,20 @@ void detail(const TriMesh& mesh, const Parameterization& p) {
 }
 
 bool g_detail = false;
-UnwrapOptions g_options;  ///< --normal-weight W, --max-charts K, --chart-padding P
+/// 64-bit FNV-1a over the bytes of every UV and every face's wedge ids (--hash).
+unsigned long long layout_hash(const Parameterization& param) {
+  unsigned long long h = 1469598103934665603ULL;
+  auto add = [&h](const void* data, std::size_t n) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ULL;
+  };
+  for (const Vec2& t : param.uv) add(t.data(), 2 * sizeof(double));
+  for (const auto& f : param.uv_faces) add(f.data(), f.size() * sizeof(f[0]));
+  return h;
+}
+
+bool g_hash = false;  ///< --hash
+UnwrapOptions g_options;  ///< --normal-weight W, --max-charts K, --chart-padding P, --speculative S
 
 void row(const std::string& name, bool single) {
   const TriMesh mesh = make_mesh(name);
@@ -132,6 +148,7 @@ void row(const std::string& name, bool single) {
               base.c_str(), mesh.num_faces(), single_col, p.num_charts, seams, p.final_l2, p.coverage,
               fill, fill > 0 ? p.coverage / fill : 0.0, p.effective_texel_share, s.flipped + s.degenerate,
               overlaps, outside, wall, cpu, p.effective_texel_share >= 0.5 ? "yes" : "**not met**");
+  if (g_hash) std::printf("  layout hash %s: %016llx\n", base.c_str(), layout_hash(r.param));
   std::fflush(stdout);
   if (g_detail) detail(mesh, r.param);
 }
@@ -144,6 +161,9 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--single") == 0) single = true;
     else if (std::strcmp(argv[i], "--detail") == 0) g_detail = true;
+    else if (std::strcmp(argv[i], "--hash") == 0) g_hash = true;
+    else if (std::strcmp(argv[i], "--speculative") == 0 && i + 1 < argc)
+      g_options.speculative_attempts = std::stoi(argv[++i]);
     else if (std::strcmp(argv[i], "--no-probe") == 0) g_options.single_probe_l2 = 0;
     else if (std::strcmp(argv[i], "--normal-weight") == 0 && i + 1 < argc)
       g_options.chart_normal_weight = std::stod(argv[++i]);

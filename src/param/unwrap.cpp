@@ -5,9 +5,13 @@
 #include "adaptex/param/unwrap.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
+#include <functional>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <optional>
@@ -15,6 +19,8 @@
 #include <string_view>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
@@ -504,9 +510,12 @@ std::vector<Component> segment_components(const std::vector<Component>& comps, i
 /// not depend on each other, and they are built in parallel (TBB) with the same result. The
 /// progress callback is then called under a mutex with a non-decreasing fraction. \p unfold: a
 /// piece without interior vertices may be unfolded (ChartContext::unfold_polygons).
+/// \p on_last_started (if set) is called once, when the last chart starts (segment_until_good()
+/// then starts the next chart count on the threads this attempt no longer needs).
 std::vector<Chart> build_charts(const std::vector<Component>& pieces, const DiskParamOptions& dopt,
                                 Clock::time_point t_start, const UnwrapOptions& options,
-                                UnwrapReport& rep, bool unfold, double give_up_l2 = 0) {
+                                UnwrapReport& rep, bool unfold, double give_up_l2 = 0,
+                                const std::function<void()>& on_last_started = {}) {
   const Clock::time_point deadline =
       t_start + std::chrono::duration_cast<Clock::duration>(
                     std::chrono::duration<double>(std::max(0.0, options.augment_time_budget)));
@@ -517,9 +526,11 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
   std::vector<Chart> charts(nc);
   if (nc < 2 || largest_use > options.augment_face_budget) {
     ChartContext ctx{options, dopt, options.augment_face_budget, deadline, rep, unfold, give_up_l2};
-    for (int c = 0; c < nc; ++c)
+    for (int c = 0; c < nc; ++c) {
+      if (c == nc - 1 && on_last_started) on_last_started();
       charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
                               static_cast<double>(c + 1) / nc);
+    }
     return charts;
   }
   std::mutex mutex;
@@ -532,11 +543,24 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
       return options.progress(phase, reported);
     };
   std::vector<UnwrapReport> reps(nc);
-  tbb::parallel_for(0, nc, [&](int c) {
-    ChartContext ctx{shared, dopt, largest_use, deadline, reps[c], unfold, give_up_l2};  // cannot run out
-    charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
-                            static_cast<double>(c + 1) / nc);
+  // Largest pieces first, each taken by the next free thread: the longest chart does not start
+  // last (a chart's result does not depend on the order).
+  std::vector<int> order(nc);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return pieces[a].mesh.num_faces() > pieces[b].mesh.num_faces();
   });
+  std::atomic<int> started{0};
+  tbb::parallel_for(
+      0, nc,
+      [&](int i) {
+        if (++started == nc && on_last_started) on_last_started();
+        const int c = order[i];
+        ChartContext ctx{shared, dopt, largest_use, deadline, reps[c], unfold, give_up_l2};  // cannot run out
+        charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
+                                static_cast<double>(c + 1) / nc);
+      },
+      tbb::simple_partitioner{});
   for (const UnwrapReport& r : reps) {
     rep.time_cut += r.time_cut;
     rep.time_floater += r.time_floater;
@@ -547,14 +571,15 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
 }
 
 /// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
-/// \p unfold as in build_charts(); \p give_up_l2 as ChartContext::give_up_l2. Returns false, and
+/// \p unfold and \p on_last_started as in build_charts(); \p give_up_l2 as
+/// ChartContext::give_up_l2. Returns false, and
 /// leaves the layout of \p result alone (only its phase times grow), when a chart was abandoned.
 bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
                    const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
                    const UnwrapOptions& options, UnwrapResult& result, bool unfold,
-                   double give_up_l2 = 0) {
-  const std::vector<Chart> charts =
-      build_charts(pieces, dopt, t_start, options, result.report, unfold, give_up_l2);
+                   double give_up_l2 = 0, const std::function<void()>& on_last_started = {}) {
+  const std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report,
+                                                 unfold, give_up_l2, on_last_started);
   for (const Chart& c : charts)
     if (c.abandoned) return false;
   const auto t0 = Clock::now();
@@ -588,36 +613,190 @@ std::vector<long long> auto_chart_counts(int num_components, int max_charts, int
   return counts;
 }
 
+/// Adds the phase times of \p from to \p to.
+void add_phase_times(const UnwrapReport& from, UnwrapReport& to) {
+  to.time_cut += from.time_cut;
+  to.time_floater += from.time_floater;
+  to.time_yoshizawa += from.time_yoshizawa;
+  to.time_augment += from.time_augment;
+  to.time_pack += from.time_pack;
+}
+
+/// One chart count of segment_until_good(): its pieces and the layout built from them in a TBB
+/// task, possibly before the earlier counts are decided (speculatively).
+struct Attempt {
+  std::vector<Component> pieces;
+  bool launched = false;         ///< A task builds the layout (else the count is skipped).
+  UnwrapResult result;           ///< Valid after wait() when error is empty.
+  std::exception_ptr error;      ///< What the task threw (CancelledError after cancel).
+  std::atomic<bool> cancel{false};  ///< Set: the task stops at its next progress call.
+  std::atomic<bool> tail{false};    ///< Its last chart has started (build_charts()).
+  /// The attempt's own arena: a thread waiting for it runs only its tasks (a thread waiting in a
+  /// shared arena could pick up a chart of a later, speculative attempt and finish it first).
+  tbb::task_arena arena;
+  tbb::task_group group;
+  /// Waits for the task (in the attempt's arena).
+  void wait() {
+    arena.execute([this] { group.wait(); });
+  }
+};
+
+/// The chart counts of segment_until_good() in their order: segmented in the calling thread (the
+/// segmenters keep their state across counts), their layouts built by TBB tasks. The count being
+/// decided (the head) always runs; with UnwrapOptions::speculative_attempts = S > 1, each of the
+/// next S - 1 counts starts once the count before it has started its last chart, on the threads
+/// that count no longer needs, and the next count is segmented while the head is built. Each
+/// layout depends only on its pieces and the options (build_charts()), so which counts ran
+/// speculatively does not change any layout. The destructor stops the launches and cancels and
+/// waits for every task (the tasks refer to the pipeline).
+class CountPipeline {
+ public:
+  CountPipeline(const TriMesh& mesh, const std::vector<Component>& comps,
+                const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
+                const UnwrapOptions& options, bool reordered, const UnwrapReport& base)
+      : mesh_(mesh), comps_(comps), dopt_(dopt), gutter_(gutter), t_start_(t_start),
+        options_(options), reordered_(reordered), base_(base),
+        counts_(auto_chart_counts(static_cast<int>(comps.size()), options.max_charts,
+                                  reordered ? options.probe_first_charts : 0)),
+        segmenters_(comps.size()), attempts_(counts_.size()) {
+    base_.time_cut = base_.time_floater = base_.time_yoshizawa = base_.time_augment =
+        base_.time_pack = 0;  // each attempt reports its own phase times
+  }
+  CountPipeline(const CountPipeline&) = delete;
+  CountPipeline& operator=(const CountPipeline&) = delete;
+  ~CountPipeline() {
+    {
+      const std::lock_guard<std::mutex> lock(launch_mutex_);
+      stopped_ = true;
+    }
+    for (auto& a : attempts_)
+      if (a && a->launched) a->cancel = true;
+    for (auto& a : attempts_)
+      if (a && a->launched) a->wait();  // the tasks catch everything: wait() does not throw
+  }
+
+  size_t size() const { return counts_.size(); }
+
+  /// Makes count \p i (called with 0, 1, 2, ...) the one being decided: segments and launches
+  /// it. Returns nullptr when it is skipped (no more pieces than components; reordered: a number
+  /// of pieces tried already), else the attempt (wait() for its layout).
+  Attempt* decide(size_t i) {
+    segment_until(i + 1);
+    {
+      const std::lock_guard<std::mutex> lock(launch_mutex_);
+      head_ = i;
+      launch_ready();
+    }
+    if (options_.speculative_attempts > 1) {
+      segment_until(i + 2);  // wasted only after the count that is kept
+      const std::lock_guard<std::mutex> lock(launch_mutex_);
+      launch_ready();
+    }
+    return attempts_[i]->launched ? attempts_[i].get() : nullptr;
+  }
+
+ private:
+  /// Segments counts_[segmented_, end).
+  void segment_until(size_t end) {
+    while (segmented_ < std::min(end, counts_.size())) {
+      auto a = std::make_unique<Attempt>();
+      a->pieces = segment_components(comps_, static_cast<int>(counts_[segmented_]), options_,
+                                     segmenters_);
+      const std::lock_guard<std::mutex> lock(launch_mutex_);
+      attempts_[segmented_++] = std::move(a);
+    }
+  }
+
+  /// Under launch_mutex_: launches (or skips) the segmented counts that may run now, in order.
+  void launch_ready() {
+    const size_t window = static_cast<size_t>(std::max(1, options_.speculative_attempts));
+    for (; !stopped_ && next_ < segmented_ && next_ < head_.load() + window; ++next_) {
+      Attempt& a = *attempts_[next_];
+      if (a.pieces.size() <= comps_.size() ||
+          (reordered_ && std::find(tried_.begin(), tried_.end(), a.pieces.size()) != tried_.end()))
+        continue;
+      if (next_ > head_.load() && last_launched_ >= 0 && !attempts_[last_launched_]->tail) break;
+      tried_.push_back(a.pieces.size());
+      a.launched = true;
+      last_launched_ = static_cast<long>(next_);
+      a.result.report = base_;
+      a.arena.execute([this, i = next_] { attempts_[i]->group.run([this, i] { build(i); }); });
+    }
+  }
+
+  /// The task of attempt \p i: its layout, or the exception in Attempt::error.
+  void build(size_t i) {
+    Attempt& a = *attempts_[i];
+    UnwrapOptions o = options_;
+    o.progress = [this, &a, i](std::string_view phase, double f) {
+      if (a.cancel.load(std::memory_order_relaxed)) return false;
+      if (!options_.progress || head_.load() != i) return true;  // only the head reports
+      const std::lock_guard<std::mutex> lock(progress_mutex_);
+      return options_.progress(phase, f);
+    };
+    const std::function<void()> on_last_started = [this, &a] {
+      const std::lock_guard<std::mutex> lock(launch_mutex_);
+      a.tail = true;
+      launch_ready();
+    };
+    try {
+      unwrap_pieces(mesh_, a.pieces, dopt_, gutter_, t_start_, o, a.result, false, 0,
+                    on_last_started);
+    } catch (...) {
+      a.error = std::current_exception();
+    }
+  }
+
+  const TriMesh& mesh_;
+  const std::vector<Component>& comps_;
+  const DiskParamOptions& dopt_;
+  const double gutter_;
+  const Clock::time_point t_start_;
+  const UnwrapOptions& options_;
+  const bool reordered_;
+  UnwrapReport base_;  ///< The figures of the mesh, phase times zero.
+  const std::vector<long long> counts_;
+  std::vector<std::optional<ChartSegmenter>> segmenters_;  ///< One per component.
+  std::vector<std::unique_ptr<Attempt>> attempts_;  ///< [0, segmented_) are set.
+  std::atomic<size_t> head_{0};  ///< The count being decided.
+  std::mutex progress_mutex_;
+  std::mutex launch_mutex_;      ///< Guards the members below and Attempt::launched.
+  size_t segmented_ = 0;         ///< Written by the calling thread under launch_mutex_.
+  size_t next_ = 0;              ///< attempts_[0, next_) are launched or skipped.
+  long last_launched_ = -1;
+  std::vector<size_t> tried_;    ///< Piece counts launched.
+  bool stopped_ = false;         ///< No more launches (destructor).
+};
+
 /// ChartMode::Auto after the layout of one chart per component: segments the components into the
 /// counts of auto_chart_counts() until a layout reaches min_texel_share; \p result keeps the layout
 /// with the highest share (its phase times add up over the attempts). \p reordered: the single
 /// layout was abandoned (\p result holds no layout): the counts from probe_first_charts on are
 /// tried first, and a segmentation is skipped when its number of pieces was tried already;
-/// otherwise when it has no more pieces than the best layout so far.
+/// otherwise when it has no more pieces than the best layout so far. The counts are decided one
+/// after the other with this rule, whatever CountPipeline built ahead (speculative_attempts), so
+/// the result is that of building them one after the other, bit for bit.
 void segment_until_good(const TriMesh& mesh, const std::vector<Component>& comps,
                         const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
                         const UnwrapOptions& options, bool reordered, UnwrapResult& result) {
   UnwrapReport& rep = result.report;
-  std::vector<std::optional<ChartSegmenter>> segmenters(comps.size());
-  std::vector<size_t> tried;
-  const int nc = static_cast<int>(comps.size());
-  for (const long long k :
-       auto_chart_counts(nc, options.max_charts, reordered ? options.probe_first_charts : 0)) {
+  CountPipeline pipeline(mesh, comps, dopt, gutter, t_start, options, reordered, rep);
+  for (size_t i = 0; i < pipeline.size(); ++i) {
     if (rep.effective_texel_share >= options.min_texel_share) break;
-    const std::vector<Component> pieces =
-        segment_components(comps, static_cast<int>(k), options, segmenters);
-    if (reordered ? pieces.size() <= comps.size() ||
-                        std::find(tried.begin(), tried.end(), pieces.size()) != tried.end()
-                  : static_cast<int>(pieces.size()) <= rep.num_charts)
+    Attempt* a = pipeline.decide(i);
+    if (!a) continue;
+    if (!reordered && static_cast<int>(a->pieces.size()) <= rep.num_charts) {
+      a->cancel = true;  // the sequential rule skips it
       continue;
-    tried.push_back(pieces.size());
-    UnwrapResult attempt;
-    attempt.report = rep;
-    unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, attempt, false);
-    copy_phase_times(attempt.report, rep);  // times add up over all attempts
-    if (attempt.report.effective_texel_share > rep.effective_texel_share) {
-      result.param = std::move(attempt.param);
-      rep = attempt.report;
+    }
+    a->wait();
+    if (a->error) std::rethrow_exception(a->error);  // a cancel by the callback, a solver error
+    add_phase_times(a->result.report, rep);  // times add up over all attempts
+    if (a->result.report.effective_texel_share > rep.effective_texel_share) {
+      const UnwrapReport times = rep;
+      result.param = std::move(a->result.param);
+      rep = a->result.report;
+      copy_phase_times(times, rep);
     }
   }
 }
@@ -634,9 +813,10 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
                             " is outside [0, 0.25)");
   if (options.max_augmentations < 0 || options.yoshizawa_max_iterations < 0 ||
       options.augment_yoshizawa_iterations < 0 || options.max_charts < 1 ||
-      options.probe_first_charts < 0 || !(options.single_probe_l2 >= 0))
+      options.probe_first_charts < 0 || !(options.single_probe_l2 >= 0) ||
+      options.speculative_attempts < 1)
     throw InvalidInputError("unwrap: iteration, augmentation and chart counts and single_probe_l2 "
-                            "must be >= 0 (>= 1 for max_charts)");
+                            "must be >= 0 (>= 1 for max_charts and speculative_attempts)");
   if (!(options.gutter_texels >= 0) || options.gutter_texture_size < 1 ||
       !(options.gutter_texels / options.gutter_texture_size < 0.25))
     throw InvalidInputError("unwrap: gutter of " + std::to_string(options.gutter_texels) +

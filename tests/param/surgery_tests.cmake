@@ -1,6 +1,6 @@
 # Tests of the §3.2 surgery, packing and unwrap().
 adaptex_add_test(test_param_cut SOURCES test_cut.cpp LIBS adaptex::adaptex)
-adaptex_add_test(test_param_unwrap SOURCES test_unwrap.cpp LIBS adaptex::adaptex)
+adaptex_add_test(test_param_unwrap SOURCES test_unwrap.cpp LIBS adaptex::adaptex TBB::tbb)
 adaptex_add_test(test_param_unwrap_cli SOURCES test_unwrap_cli.cpp
   LIBS adaptex::adaptex nlohmann_json::nlohmann_json)
 adaptex_add_test(test_param_unwrap_shared SOURCES test_unwrap_shared.cpp LIBS adaptex::adaptex)

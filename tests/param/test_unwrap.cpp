@@ -1,5 +1,6 @@
 // unwrap() (§3.2 surgery + packing) on meshes built in code: one test body, many meshes.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <cmath>
 #include <limits>
@@ -173,6 +174,59 @@ TEST(Unwrap, ProbeKeepsAGoodSingleChartAndFallsBackToIt) {
   EXPECT_THROW(unwrap(m, bad), InvalidInputError);
   bad = UnwrapOptions{};
   bad.probe_first_charts = -1;
+  EXPECT_THROW(unwrap(m, bad), InvalidInputError);
+}
+
+TEST(Unwrap, SpeculativeAttemptsGiveTheSequentialLayout) {
+  // Genus 4: the probe gives the single chart up and auto builds 4, 6, 8 and 12 charts (12 is
+  // kept). With speculation the next counts are built while one is decided; the layout must be the
+  // one of one count after the other on one thread, bit for bit, for any window and thread count.
+  const TriMesh m = shapes::genus_surface(4);
+  UnwrapOptions sequential;
+  sequential.speculative_attempts = 1;
+  UnwrapResult ref;
+  {
+    const tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+    ref = unwrap(m, sequential);
+  }
+  ASSERT_GE(ref.report.num_charts, 8);  // several counts were tried
+  EXPECT_GE(ref.report.effective_texel_share, 0.5);
+  for (const int window : {1, 2, 3, 8}) {
+    for (const int threads : {1, 2, 4}) {
+      SCOPED_TRACE("window " + std::to_string(window) + ", threads " + std::to_string(threads));
+      const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      UnwrapOptions o;
+      o.speculative_attempts = window;
+      expect_same_layout(unwrap(m, o), ref);
+    }
+  }
+  // The path without the probe (single chart built in full, then 4, 6, ... charts, each count
+  // skipped unless it has more pieces than the best layout so far) and the path where no count
+  // reaches the share (the best of all counts is kept).
+  UnwrapOptions no_probe;
+  no_probe.single_probe_l2 = 0;
+  no_probe.speculative_attempts = 1;
+  const UnwrapResult ref_no_probe = unwrap(m, no_probe);
+  no_probe.speculative_attempts = 4;
+  expect_same_layout(unwrap(m, no_probe), ref_no_probe);
+  UnwrapOptions unreachable;
+  unreachable.min_texel_share = 2;
+  unreachable.max_charts = 16;
+  unreachable.speculative_attempts = 1;
+  const UnwrapResult ref_best = unwrap(m, unreachable);
+  unreachable.speculative_attempts = 3;
+  expect_same_layout(unwrap(m, unreachable), ref_best);
+  EXPECT_GT(ref_best.report.num_charts, 1);
+  // A cancel while several counts are being built (at the packing of the first count, 4 charts,
+  // while the next ones are under way) is still a CancelledError, and bad windows are rejected.
+  UnwrapOptions cancel;
+  cancel.speculative_attempts = 4;
+  int packs = 0;
+  cancel.progress = [&](std::string_view phase, double) { return phase != "pack" || ++packs > 1; };
+  EXPECT_THROW(unwrap(m, cancel), CancelledError);
+  EXPECT_EQ(packs, 1);
+  UnwrapOptions bad;
+  bad.speculative_attempts = 0;
   EXPECT_THROW(unwrap(m, bad), InvalidInputError);
 }
 

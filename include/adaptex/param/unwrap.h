@@ -84,6 +84,14 @@ struct UnwrapOptions {
   /// the mesh (triceratops' texel saving fell from ~4x to ~1.5x, armadillo and code-built genus 2/3
   /// gained), and 4 first has the better worst case over the shared study (docs/charts.md).
   int probe_first_charts = 4;
+  /// Auto: how many chart counts may be built at the same time (TBB tasks). With S > 1, each of the
+  /// next S - 1 counts starts on the threads the count before it no longer needs (once that one has
+  /// started its last chart) and is cancelled and discarded if an earlier count is kept. The counts
+  /// are decided in their order with the same rule, so the layout does not depend on S or on the
+  /// number of threads (test Unwrap.SpeculativeAttemptsGiveTheSequentialLayout). 1 (default): one
+  /// count after the other, the least CPU time; on 2 cores 2 gave no reliable wall-time gain and
+  /// 10-20 % more CPU time (docs/benchmarks.md).
+  int speculative_attempts = 1;
   /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight). 0 (compact
   /// geodesic charts) gave the highest texel share on every mesh measured (docs/charts.md).
   double chart_normal_weight = 0.0;
