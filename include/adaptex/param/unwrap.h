@@ -89,8 +89,8 @@ struct UnwrapOptions {
   /// started its last chart) and is cancelled and discarded if an earlier count is kept. The counts
   /// are decided in their order with the same rule, so the layout does not depend on S or on the
   /// number of threads (test Unwrap.SpeculativeAttemptsGiveTheSequentialLayout). 1 (default): one
-  /// count after the other, the least CPU time; on 2 cores 2 gave no reliable wall-time gain and
-  /// 10-20 % more CPU time (docs/benchmarks.md).
+  /// count after the other, the least CPU time; on 2 cores 2 gave no wall-time gain that stood out
+  /// of the noise and up to 20 % more CPU time (docs/benchmarks.md).
   int speculative_attempts = 1;
   /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight). 0 (compact
   /// geodesic charts) gave the highest texel share on every mesh measured (docs/charts.md).
