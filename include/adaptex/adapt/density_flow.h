@@ -49,7 +49,8 @@ struct DensityFlowOptions {
   /// σmax/σmin 5.3 in the cells with ρ > 1.5, the lattice's 3.3; at blur 2 13 against 2.0) and the
   /// error model counts area only. Measured on small meshes × dots × 128²/256² (docs/quality.md,
   /// session 6): median texel saving 3.19 (blur 4, 4 meshes) / 3.72 (blur 3) / 3.71 (blur 2, 6 meshes)
-  /// against the lattice's 3.61 at blur 4, with per-case swings of 0.5× to 1.7× the lattice's, and
+  /// against the lattice's 3.61 at blur 4 (at 2M evaluation samples 3.56 / 3.52 / 3.53 against 3.66),
+  /// with per-case swings of 0.5× to 1.7× the lattice's, and
   /// refinement 37× slower (venus dots 256²: 517 ms against 14 ms). Off by default.
   bool direct = false;
   /// direct: local error bound of the integration, in cells of the density raster the flow was
