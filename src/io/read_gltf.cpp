@@ -17,6 +17,8 @@
 #include <assimp/scene.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <initializer_list>
 #include <cstring>
 #include <set>
 #include <nlohmann/json.hpp>
@@ -203,6 +205,19 @@ void check_index(const json& j, std::size_t n, const std::string& what) {
     throw IoError(what + " refers to a missing item (" + j.dump() + ", there are " + std::to_string(n) + ")");
 }
 
+/// The accessor \p index (in range) must be of \p type with one of the \p components types (glTF 2.0
+/// spec: POSITION is a float VEC3, indices an unsigned integer SCALAR). Found by fuzz_gltf: indices
+/// read from a float VEC3 accessor by a line-loop primitive made assimp read address 0.
+void check_accessor_kind(const json& accessors, const json& index, const char* type,
+                         std::initializer_list<std::uint64_t> components, const std::string& what) {
+  const json& a = accessors[index.get<std::size_t>()];
+  const bool kind_ok = a.is_object() && a.contains("type") && a["type"] == type && a.contains("componentType") &&
+                       a["componentType"].is_number_unsigned() &&
+                       std::find(components.begin(), components.end(), a["componentType"].get<std::uint64_t>()) !=
+                           components.end();
+  if (!kind_ok) throw IoError(what + " must be a " + type + " accessor of the componentType the glTF 2.0 spec allows");
+}
+
 /// Every reference assimp follows without checking (a primitive without POSITION crashed it): meshes'
 /// attributes and indices, primitive modes, nodes' meshes and children (no cycles: a node has at
 /// most one parent and is not its own ancestor), scenes' nodes.
@@ -221,7 +236,11 @@ void check_references(const std::string& corrupt, const json& doc) {
           !p["attributes"].contains("POSITION"))
         throw IoError(what + ": a primitive has no POSITION attribute");
       for (const auto& [name, a] : p["attributes"].items()) check_index(a, na, what + " attribute " + name);
-      if (p.contains("indices")) check_index(p["indices"], na, what + " indices");
+      check_accessor_kind(*accessors, p["attributes"]["POSITION"], "VEC3", {5126}, what + ": POSITION");
+      if (p.contains("indices")) {
+        check_index(p["indices"], na, what + " indices");
+        check_accessor_kind(*accessors, p["indices"], "SCALAR", {5121, 5123, 5125}, what + ": indices");
+      }
       if (p.contains("mode") && (!p["mode"].is_number_unsigned() || p["mode"].get<std::uint64_t>() > 6))
         throw IoError(what + ": primitive mode must be 0..6");
       if (p.contains("targets")) throw IoError(what + ": morph targets are not supported");

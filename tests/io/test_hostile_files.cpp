@@ -128,6 +128,19 @@ TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
   // Found by fuzz_gltf: a primitive without POSITION made assimp dereference a null pointer.
   test::write_text(dir.path / "nopos.glb", glb(R"({"asset":{"version":"2.0"},"meshes":[{"primitives":[{"ittributes":{}}]}]})", bin));
   expect_info_rejects(dir.path / "nopos.glb", "mesh 0: a primitive has no POSITION attribute");
+  // Found by fuzz_gltf (session 6): a line-loop primitive whose indices are a float VEC3 accessor made
+  // assimp read address 0 (SEGV). The fuzzer's 576-byte file, JSON and BIN chunk as found.
+  std::string loop_bin;
+  for (std::uint32_t w : {0x3f800000u, 0x20000u, 0x1u, 0x30001u, 0x65030000u, 0x10072u, 0xfffe0000u, 0x3f80ffffu, 0u,
+                          0u, 0u, 0u, 0u, 0xf9u, 0x30001u, 0x65030000u, 0x10072u, 0x30002u})
+    put(loop_bin, w);
+  test::write_text(dir.path / "loop.glb", glb(R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],)"
+      R"("nodes":[{"mesh":0,"translation":[1,0,0]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},)"
+      R"("indices":0,"mode":2}]}],"buffers":[{"byteLength":72}],"bufferViews":[{"buffer":0,"byteLength":48},)"
+      R"({"buffer":0,"byteOffset":48,"byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,)"
+      R"("type":"VEC3","count":4,"min":[0,0,0],"max":[1,1,1]},{"bufferView":0,"componentType":5123,)"
+      R"("type":"SCALAR","count":12}]})", loop_bin));
+  expect_info_rejects(dir.path / "loop.glb", "mesh 0: indices must be a SCALAR accessor");
   test::write_text(dir.path / "cycle.gltf", R"({"asset":{"version":"2.0"},"nodes":[{"children":[1]},{"children":[0]}]})");
   expect_info_rejects(dir.path / "cycle.gltf", "the node hierarchy has a cycle");
   // An external buffer that is a device.
