@@ -129,6 +129,9 @@ std::vector<std::uint64_t> check_buffers(const std::string& corrupt, const json&
           throw IoError(what + ": '" + uri + "' is not a regular file");
         available = std::filesystem::file_size(file, ec);
         if (ec) throw IoError(what + ": cannot get the size of '" + uri + "'");
+        if (available > kMaxInputFileBytes)  // the cap of every input file (core/limits.h)
+          throw IoError(what + ": '" + uri + "' is larger than the input file limit of " +
+                        std::to_string(kMaxInputFileBytes) + " bytes");
       }
     }
     if (length > available)

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 
+#include "adaptex/core/limits.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/mesh_io.h"
 #include "io_test_files.h"
@@ -147,6 +148,12 @@ TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
   test::write_text(dir.path / "zero.gltf",
                    R"({"asset":{"version":"2.0"},"buffers":[{"uri":"../../../../../../../../dev/zero","byteLength":99999999}]})");
   expect_info_rejects(dir.path / "zero.gltf", "is not a regular file");
+  // An external buffer over the input file cap (a sparse file: no disk space used).
+  test::write_text(dir.path / "huge.bin", "");
+  std::filesystem::resize_file(dir.path / "huge.bin", adaptex::kMaxInputFileBytes + 1);
+  test::write_text(dir.path / "huge.gltf",
+                   R"({"asset":{"version":"2.0"},"buffers":[{"uri":"huge.bin","byteLength":12}]})");
+  expect_info_rejects(dir.path / "huge.gltf", "larger than the input file limit");
 }
 
 TEST(HostileFiles, OnlyRegularFilesAreRead) {
