@@ -533,15 +533,23 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
     }
     return charts;
   }
+  // An exception must not leave a body: TBB would cancel the loop's task group, and the nested
+  // parallel algorithms of the charts still running (the weights of embedding_weights(), ...) would
+  // return early with part of their work undone, which those charts then read. The first
+  // exception is kept, the other charts stop at their next progress report, and it is rethrown
+  // once every body has returned.
   std::mutex mutex;
   double reported = 0;
+  std::atomic<bool> failed{false};
+  std::exception_ptr first_error;
   UnwrapOptions shared = options;
-  if (options.progress)
-    shared.progress = [&](std::string_view phase, double f) {
-      const std::lock_guard<std::mutex> lock(mutex);
-      reported = std::max(reported, f);
-      return options.progress(phase, reported);
-    };
+  shared.progress = [&](std::string_view phase, double f) {
+    if (failed.load(std::memory_order_relaxed)) return false;  // another chart failed
+    if (!options.progress) return true;
+    const std::lock_guard<std::mutex> lock(mutex);
+    reported = std::max(reported, f);
+    return options.progress(phase, reported);
+  };
   std::vector<UnwrapReport> reps(nc);
   // Largest pieces first, each taken by the next free thread: the longest chart does not start
   // last (a chart's result does not depend on the order).
@@ -557,10 +565,17 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
         if (++started == nc && on_last_started) on_last_started();
         const int c = order[i];
         ChartContext ctx{shared, dopt, largest_use, deadline, reps[c], unfold, give_up_l2};  // cannot run out
-        charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
-                                static_cast<double>(c + 1) / nc);
+        try {
+          charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
+                                  static_cast<double>(c + 1) / nc);
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(mutex);
+          if (!first_error) first_error = std::current_exception();
+          failed = true;
+        }
       },
       tbb::simple_partitioner{});
+  if (first_error) std::rethrow_exception(first_error);
   for (const UnwrapReport& r : reps) {
     rep.time_cut += r.time_cut;
     rep.time_floater += r.time_floater;

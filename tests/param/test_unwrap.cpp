@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -228,6 +229,33 @@ TEST(Unwrap, SpeculativeAttemptsGiveTheSequentialLayout) {
   UnwrapOptions bad;
   bad.speculative_attempts = 0;
   EXPECT_THROW(unwrap(m, bad), InvalidInputError);
+}
+
+TEST(Unwrap, ACancelWhileChartsAreBuiltInParallelIsACancelledError) {
+  // A cancel in one chart while the others are built on other threads (and, with speculation, in
+  // counts built ahead) must reach the caller as a CancelledError from every point of the work.
+  // It once cancelled the TBB task group of the other charts, whose nested parallel loops then
+  // returned with their work undone: a read out of bounds or an InvalidInputError instead.
+  const TriMesh m = shapes::genus_surface(4);
+  for (const int window : {1, 4}) {
+    UnwrapOptions o;
+    o.speculative_attempts = window;
+    std::atomic<int> calls{0};
+    o.progress = [&](std::string_view, double) {
+      ++calls;
+      return true;
+    };
+    unwrap(m, o);
+    const int total = calls.load();
+    ASSERT_GT(total, 20);
+    for (int i = 1; i <= 16; ++i) {
+      const int at = total * i / 17;
+      SCOPED_TRACE("window " + std::to_string(window) + ", cancel at report " + std::to_string(at));
+      calls = 0;
+      o.progress = [&](std::string_view, double) { return ++calls < at; };
+      EXPECT_THROW(unwrap(m, o), CancelledError);
+    }
+  }
 }
 
 TEST(Pack, SquaresAreDisjointPaddedAndInside) {
