@@ -248,13 +248,28 @@ TEST(Unwrap, ACancelWhileChartsAreBuiltInParallelIsACancelledError) {
     unwrap(m, o);
     const int total = calls.load();
     ASSERT_GT(total, 20);
+    int reached = 0;
     for (int i = 1; i <= 16; ++i) {
       const int at = total * i / 17;
       SCOPED_TRACE("window " + std::to_string(window) + ", cancel at report " + std::to_string(at));
       calls = 0;
       o.progress = [&](std::string_view, double) { return ++calls < at; };
-      EXPECT_THROW(unwrap(m, o), CancelledError);
+      // With speculation the number of reports varies from run to run (counts built ahead are
+      // abandoned at different points), so a late cancel point may not be reached: then the
+      // unwrap must finish normally. Any other exception fails the test.
+      bool cancelled = false;
+      try {
+        unwrap(m, o);
+      } catch (const CancelledError&) {
+        cancelled = true;
+      }
+      EXPECT_EQ(cancelled, calls.load() >= at);
+      reached += cancelled ? 1 : 0;
     }
+    // Without speculation the work, hence the number of reports, is the same every run. With it,
+    // only the head count reports, and a count that becomes the head after being built ahead has
+    // lost the reports of that part: only the cut and augmentation before it are sure.
+    EXPECT_GE(reached, window == 1 ? 16 : 1);
   }
 }
 
