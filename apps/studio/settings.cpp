@@ -2,6 +2,7 @@
 /// Project file read / write (see settings.h).
 #include "settings.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -21,6 +22,16 @@ json v3(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 Vec3 get_v3(const json& j, const Vec3& def) {
   if (!j.is_array() || j.size() != 3) return def;
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
+}
+/// The integer \p key of \p j (or \p def when absent), clamped to [lo, hi]. The number is clamped as a
+/// double first: a float or a number beyond int's range (1e300, 5e123) converted straight to int is
+/// undefined behaviour (fuzz_project found `texture_size: 5166...62`). Not a number: the json
+/// type_error that read_project() reports as InvalidInputError.
+int clamped_int(const json& j, const char* key, int def, int lo, int hi) {
+  if (!j.contains(key)) return std::clamp(def, lo, hi);
+  const json& v = j[key];
+  if (!v.is_number()) return v.get<int>();  // throws type_error
+  return static_cast<int>(std::clamp(v.get<double>(), static_cast<double>(lo), static_cast<double>(hi)));
 }
 json session_to_json(const PaintSessionOptions& o) {
   const AdaptOptions& a = o.adapt;
@@ -44,11 +55,11 @@ PaintSessionOptions session_from_json(const json& j) {
   a.alpha = j.value("alpha", a.alpha);
   a.beta = j.value("beta", a.beta);
   a.geometry_scale = j.value("geometry_scale", a.geometry_scale);
-  a.coarse_grid = std::clamp(j.value("coarse_grid", a.coarse_grid), 2, kMaxGridCells);
-  a.fine_grid = std::clamp(j.value("fine_grid", a.fine_grid), 2, kMaxGridCells);
+  a.coarse_grid = clamped_int(j, "coarse_grid", a.coarse_grid, 2, kMaxGridCells);
+  a.fine_grid = clamped_int(j, "fine_grid", a.fine_grid, 2, kMaxGridCells);
   a.refine = j.value("refine", a.refine);
-  o.texture_size = std::clamp(j.value("texture_size", o.texture_size), 16, kMaxTextureSize);
-  o.padding = std::clamp(j.value("padding", o.padding), 0, 256);
+  o.texture_size = clamped_int(j, "texture_size", o.texture_size, 16, kMaxTextureSize);
+  o.padding = clamped_int(j, "padding", o.padding, 0, 256);
   if (j.contains("reparam")) {
     const std::string r = j["reparam"].get<std::string>();
     if (r != "each-stroke" && r != "end") throw InvalidInputError("adapt.reparam must be each-stroke or end, got " + r);
@@ -108,13 +119,13 @@ Project read_project(const std::filesystem::path& path) {
     p.strokes = strokes_from_json(j.at("strokes"), path.string(), path.parent_path());
     if (j.contains("brush")) {
       const json& b = j["brush"];
-      p.brush.tool = Tool(std::clamp(b.value("tool", 0), 0, 2));
+      p.brush.tool = Tool(clamped_int(b, "tool", 0, 0, 2));
       p.brush.color = get_v3(b.value("color", json()), p.brush.color);
       p.brush.radius = b.value("radius", p.brush.radius);
       p.brush.hardness = b.value("hardness", p.brush.hardness);
       p.brush.opacity = b.value("opacity", p.brush.opacity);
       p.brush.spacing = b.value("spacing", p.brush.spacing);
-      p.brush.symmetry_axis = std::clamp(b.value("symmetry_axis", -1), -1, 2);
+      p.brush.symmetry_axis = clamped_int(b, "symmetry_axis", -1, -1, 2);
       p.brush.screen_space = b.value("screen_space", p.brush.screen_space);
       p.brush.pixel_radius = b.value("pixel_radius", p.brush.pixel_radius);
       if (!(p.brush.pixel_radius >= 1 && p.brush.pixel_radius <= 1000))

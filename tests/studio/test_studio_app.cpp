@@ -13,6 +13,7 @@
 
 #include <sys/stat.h>
 
+#include "adaptex/core/limits.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/input_file.h"
@@ -428,6 +429,28 @@ TEST(StudioApp, SaveAsToAnUnwritablePlaceKeepsTheWorkAndLeavesNoFile) {
   EXPECT_EQ(left, (std::vector<std::string>{"file", "p.json"}));  // no temporary left behind
   ASSERT_TRUE(h.app->save());
   EXPECT_EQ(read_project(good).strokes.strokes.size(), 2u);
+}
+
+TEST(StudioProject, NumbersBeyondAnIntAreClampedAndNotConverted) {
+  // fuzz_project (session 8, after 9.1 M executions): "texture_size": 5166...62 (a float of 1e123)
+  // was converted straight to int, undefined behaviour (UBSan), in practice INT_MIN -> 16.
+  TempDir dir;
+  const auto p = dir.path / "p.json";
+  std::ofstream(p) << R"({"format": "adaptex.studio-project", "version": 1, "mesh": "builtin:torus",
+    "strokes": {"format": "adaptex.strokes", "version": 1, "strokes": []},
+    "brush": {"tool": 1e40, "symmetry_axis": -1e300},
+    "adapt": {"texture_size": 5166666666666666666666666666666666666666666666666666666666666666662,
+              "fine_grid": -1e300, "coarse_grid": 1e19, "padding": 3.9}})";
+  const Project pr = read_project(p);
+  EXPECT_EQ(pr.session.texture_size, kMaxTextureSize);
+  EXPECT_EQ(pr.session.adapt.fine_grid, 2);
+  EXPECT_EQ(pr.session.adapt.coarse_grid, kMaxGridCells);
+  EXPECT_EQ(pr.session.padding, 3);
+  EXPECT_EQ(pr.brush.tool, Tool::Eyedropper);
+  EXPECT_EQ(pr.brush.symmetry_axis, -1);
+  std::ofstream(p) << R"({"format": "adaptex.studio-project", "version": 1, "mesh": "builtin:torus",
+    "strokes": {"format": "adaptex.strokes", "version": 1, "strokes": []}, "adapt": {"texture_size": "big"}})";
+  EXPECT_THROW(read_project(p), InvalidInputError);
 }
 
 TEST(StudioApp, ProjectWithABadBrushIsAnErrorAndKeepsTheModel) {
