@@ -63,6 +63,19 @@ void check_png_header(const std::string& bytes, const std::string& name) {
       w * h > kMaxImagePixels)
     throw IoError(name + ": PNG of " + std::to_string(w) + "x" + std::to_string(h) + " pixels is larger than the " +
                   std::to_string(kMaxTextureSize) + "x" + std::to_string(kMaxTextureSize) + " limit");
+  // Every chunk up to IEND must fit in the bytes left: stb grows its IDAT buffer to a chunk's claimed
+  // length before reading it (the fuzz smoke found a 2x2 PNG whose chunk claimed ~1 GB: a 2 GB
+  // allocation).
+  for (std::size_t at = 8; at + 8 <= bytes.size();) {
+    const std::uint64_t length = be32(at);
+    const std::string type = bytes.substr(at + 4, 4);
+    if (length > bytes.size() - at - 8 || bytes.size() - at - 8 - length < 4)
+      throw IoError(name + ": corrupt PNG: chunk \"" + type + "\" at byte " + std::to_string(at) + " claims " +
+                    std::to_string(length) + " bytes, but only " + std::to_string(bytes.size() - at - 8) +
+                    " are left");
+    if (type == "IEND") break;
+    at += 12 + length;
+  }
 }
 
 }  // namespace

@@ -202,5 +202,26 @@ TEST(MemoryInput, ImagesMatchTheFileReader) {
   EXPECT_THROW(read_image_from_memory("", "empty.png"), IoError);
 }
 
+TEST(MemoryInput, PngChunkLongerThanTheFileIsRejectedBeforeDecoding) {
+  // Found by the CI's fuzz smoke (session 8): a 116-byte 2x2 PNG whose third chunk claims more
+  // bytes than the file has; stb grew its IDAT buffer to 2 GB before reading them.
+  const std::string bytes(
+      "\x89\x50\x4e\x47\x0d\x0a\x1a\x0a\x00\x00\x00\x0d\x49\x48\x44\x52"
+      "\x00\x00\x00\x02\x00\x00\x00\x02\x08\x06\x00\x00\x00\x72\xb6\x0d"
+      "\x24\x00\x00\x00\x11\x49\x44\x41\x54\x78\x9c\x63\xf8\xcf\xc0\xf0"
+      "\x1f\x84\x19\x60\x0c\x44\x06\x00\x00\x00\x72\xb6\x0d\x24\x74\x00"
+      "\x00\x11\x49\x44\x41\x54\x78\x9c\x63\xf8\xcf\xc0\xf0\x1f\xff\x1f"
+      "\x60\x0c\x44\x52\x00\x00\x00\x00\x00\x00\x00\x00\x9d\x00\x00\x49"
+      "\x45\x52\x00\x00\x00\x00\x00\x00\x00\x00\x9d\x00\x00\x40\x45\x4e"
+      "\x44\xae\x42\x60",
+      116);
+  try {
+    read_image_from_memory(bytes, "forged.png");
+    ADD_FAILURE() << "a forged chunk length was decoded";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("forged.png: corrupt PNG: chunk"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace adaptex
