@@ -68,7 +68,9 @@ void check_png_header(const std::string& bytes, const std::string& name) {
   // allocation).
   for (std::size_t at = 8; at + 8 <= bytes.size();) {
     const std::uint64_t length = be32(at);
-    const std::string type = bytes.substr(at + 4, 4);
+    std::string type = bytes.substr(at + 4, 4);
+    for (char& c : type)  // a forged type may hold any byte: keep the message one printable line
+      if (c < 0x20 || c > 0x7e) c = '?';
     if (length > bytes.size() - at - 8 || bytes.size() - at - 8 - length < 4)
       throw IoError(name + ": corrupt PNG: chunk \"" + type + "\" at byte " + std::to_string(at) + " claims " +
                     std::to_string(length) + " bytes, but only " + std::to_string(bytes.size() - at - 8) +

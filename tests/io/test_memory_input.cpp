@@ -221,6 +221,16 @@ TEST(MemoryInput, PngChunkLongerThanTheFileIsRejectedBeforeDecoding) {
   } catch (const IoError& e) {
     EXPECT_NE(std::string(e.what()).find("forged.png: corrupt PNG: chunk"), std::string::npos) << e.what();
   }
+  // A forged chunk type with a newline and a NUL is shown as printable characters (one line).
+  std::string nl = bytes.substr(0, 33) + std::string("\x7f\xff\xff\xff\n\0AT", 8);
+  try {
+    read_image_from_memory(nl, "nl.png");
+    ADD_FAILURE() << "a chunk longer than the file was decoded";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("nl.png: corrupt PNG: chunk \"??AT\" at byte 33 claims 2147483647 bytes"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
