@@ -13,7 +13,7 @@
 //                         [--update replay|resample] [--no-safeguard] [--no-refine] [--verbose]
 //                         [--charts single|auto] [--floor F] [--density-cells L] [--no-atlas]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
-//                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--direct-flow]
+//                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
 //
 // Mode names go to cli::make_session_options() (apps/cli/session_options.h, parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
@@ -89,6 +89,7 @@ struct Args {
   int flow_cells = -1;          ///< --flow-cells: DensityFlowOptions::cells (-1: the default).
   double flow_step = -1;        ///< --flow-step: DensityFlowOptions::max_step_cells (-1: the default).
   double flow_tol = -1;         ///< --flow-tol: DensityFlowOptions::tolerance (-1: the default).
+  double flow_interp = -1;      ///< --flow-interp: DensityFlowOptions::interpolation_tolerance (-1: the default).
   bool direct_flow = false;     ///< --direct-flow: DensityFlowOptions::direct = true (wedges through the flow itself).
 };
 
@@ -121,6 +122,7 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   if (a.flow_cells > 0) o.adapt.flow.cells = a.flow_cells;
   if (a.flow_step > 0) o.adapt.flow.max_step_cells = a.flow_step;
   if (a.flow_tol > 0) o.adapt.flow.tolerance = a.flow_tol;
+  if (a.flow_interp >= 0) o.adapt.flow.interpolation_tolerance = a.flow_interp;
   if (a.direct_flow) o.adapt.flow.direct = true;
   return o;
 }
@@ -189,6 +191,7 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--flow-cells") a.flow_cells = std::stoi(v);
     else if (k == "--flow-step") a.flow_step = std::stod(v);
     else if (k == "--flow-tol") a.flow_tol = std::stod(v);
+    else if (k == "--flow-interp") a.flow_interp = std::stod(v);
     else throw std::invalid_argument(k + ": unknown option");
   }
   for (const auto& m : modes) {

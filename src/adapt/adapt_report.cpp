@@ -22,6 +22,8 @@ void to_json(nlohmann::json& j, const AdaptReport& r) {
                      {"predicted_gain_db", r.predicted_gain_db},
                      {"flow_tangled_cells", r.flow_tangled_cells},
                      {"flow_inverted_cells", r.flow_inverted_cells},
+                     {"flow_steps", r.flow_steps},
+                     {"flow_advected_points", r.flow_advected_points},
                      {"faces_before", r.faces_before},
                      {"faces_after", r.faces_after},
                      {"time_ms",

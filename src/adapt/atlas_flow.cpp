@@ -203,6 +203,7 @@ std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, cons
     *stats = DensityFlowStats{};
     for (const DensityFlowStats& s : st) {
       stats->total_steps += s.total_steps;
+      stats->advected_points += s.advected_points;
       stats->max_steps = std::max(stats->max_steps, s.max_steps);
       stats->max_displacement = std::max(stats->max_displacement, s.max_displacement);
       stats->tangled_cells += s.tangled_cells;

@@ -9,6 +9,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <mutex>
 #include <string>
 
@@ -100,8 +102,8 @@ struct DensityFlow::Field {
     const double fx = w00 * a.jx + w10 * b.jx + w01 * d.jx + w11 * e.jx;
     const double fy = w00 * a.jy + w10 * b.jy + w01 * d.jy + w11 * e.jy;
     const double r0 = w00 * a.rho + w10 * b.rho + w01 * d.rho + w11 * e.rho;
-    const double r = (1 - t) * r0 + t * mean;
-    return Vec2(fx / r, fy / r);
+    const double inv = 1.0 / ((1 - t) * r0 + t * mean);
+    return Vec2(fx * inv, fy * inv);
   }
 };
 
@@ -116,6 +118,19 @@ void check_density(const ImageF& density) {
   for (float v : density.data)
     if (!(std::isfinite(v) && v > 0))
       throw InvalidInputError("density_equalizing_warp: densities must be finite and > 0");
+}
+
+/// ∛r to 1e-6 relative for r in [0.01, 100] (a step-size factor; libm's cbrt was 5 % of the
+/// end-mode re-parameterization): an exponent-bit first guess, then two Newton steps.
+inline double cbrt_approx(double r) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &r, sizeof bits);
+  bits = bits / 3 + 0x2A9F7893782DA1CEull;  // thirds the biased exponent
+  double y;
+  std::memcpy(&y, &bits, sizeof y);
+  y -= (y * y * y - r) / (3 * y * y);
+  y -= (y * y * y - r) / (3 * y * y);
+  return y;
 }
 
 /// Advects one point from t = 0 to 1 (Bogacki–Shampine 3(2), FSAL, per-point step control).
@@ -144,7 +159,7 @@ int advect_point(const Field& f, Vec2& x, double tol, double max_move, int max_s
     // 0.9·cbrt(tol/err) clamped to [0.2, 4]: cbrt only where the clamp does not decide (most steps
     // are limited by max_move and have err far below tol).
     const double ratio = err > 0 ? tol / err : 1e300;
-    const double factor = ratio >= 87.8 ? 4.0 : ratio <= 0.011 ? 0.2 : 0.9 * std::cbrt(ratio);
+    const double factor = ratio >= 87.8 ? 4.0 : ratio <= 0.011 ? 0.2 : 0.9 * cbrt_approx(ratio);
     h *= std::clamp(factor, 0.2, 4.0);
     h = std::max(h, 1e-9);
   }
@@ -206,6 +221,142 @@ double cell_signed_area(const GridWarp& g, int i, int j) {
   const Vec2 a = g.at(i, j), b = g.at(i + 1, j), c = g.at(i + 1, j + 1), d = g.at(i, j + 1);
   const auto cross = [](const Vec2& p, const Vec2& q) { return p.x() * q.y() - p.y() * q.x(); };
   return 0.5 * (cross(a, b) + cross(b, c) + cross(c, d) + cross(d, a));
+}
+
+
+/// What advect_lattice() did.
+struct LatticeAdvection {
+  long total_steps = 0;
+  int most_steps = 0;
+  long advected = 0;
+};
+
+/// Advects the lattice points g.points[idx[k]] (uniform positions on entry) through \p flow, in
+/// parallel when o.parallel; adds the step counts to \p out.
+void advect_points(const DensityFlow& flow, const DensityFlowOptions& o, GridWarp& g, const std::vector<size_t>& idx,
+                   LatticeAdvection& out) {
+  const double tol = o.tolerance / o.cells, max_move = o.max_step_cells / o.cells;
+  std::atomic<long> total{0};
+  std::atomic<int> most{0};
+  auto run = [&](size_t k0, size_t k1) {
+    long local = 0;
+    int local_most = 0;
+    for (size_t k = k0; k < k1; ++k) {
+      int s = 0;
+      Vec2& p = g.points[idx[k]];
+      p = flow.advect(p, tol, max_move, o.max_steps, &s);
+      local += s;
+      local_most = std::max(local_most, s);
+    }
+    total += local;
+    int cur = most.load();
+    while (local_most > cur && !most.compare_exchange_weak(cur, local_most)) {
+    }
+  };
+  if (o.parallel)
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, idx.size(), 256),
+                      [&](const tbb::blocked_range<size_t>& r) { run(r.begin(), r.end()); });
+  else
+    run(0, idx.size());
+  out.total_steps += total;
+  out.most_steps = std::max(out.most_steps, most.load());
+  out.advected += static_cast<long>(idx.size());
+}
+
+/// Cubic interpolation at the midpoint of coarse interval [I, I + 1] of a lattice with m cells (m >= 3):
+/// the first of the four coarse points used and their weights (centred inside, one-sided at the sides).
+struct MidpointStencil {
+  int first;
+  double w[4];
+};
+MidpointStencil midpoint_stencil(int I, int m) {
+  if (I == 0) return {0, {5.0 / 16, 15.0 / 16, -5.0 / 16, 1.0 / 16}};
+  if (I + 1 == m) return {m - 3, {1.0 / 16, -5.0 / 16, 15.0 / 16, 5.0 / 16}};
+  return {I - 1, {-1.0 / 16, 9.0 / 16, 9.0 / 16, -1.0 / 16}};
+}
+
+/// Per cell of the coarse lattice \p c (m cells per side, m >= 4): true where cubic interpolation of
+/// its points is within \p tol (uv units). The estimate is 5/64 of the largest fourth difference
+/// |Δ⁴X| along either axis at the coarse points around the cell (the stencil shifted inward at the
+/// sides): the midpoint error of a cubic through four equispaced points is 3/128 |Δ⁴X| inside and
+/// 5/128 one-sided, doubled as a margin for a map that is not a polynomial.
+std::vector<char> smooth_coarse_cells(const GridWarp& c, double tol) {
+  const int m = c.n;
+  std::vector<double> d4(static_cast<size_t>(m + 1) * (m + 1));
+  for (int J = 0; J <= m; ++J)
+    for (int I = 0; I <= m; ++I) {
+      const int ci = std::clamp(I, 2, m - 2), cj = std::clamp(J, 2, m - 2);
+      const double dx = (c.at(ci - 2, J) - 4.0 * c.at(ci - 1, J) + 6.0 * c.at(ci, J) - 4.0 * c.at(ci + 1, J) + c.at(ci + 2, J)).norm();
+      const double dy = (c.at(I, cj - 2) - 4.0 * c.at(I, cj - 1) + 6.0 * c.at(I, cj) - 4.0 * c.at(I, cj + 1) + c.at(I, cj + 2)).norm();
+      d4[static_cast<size_t>(J) * (m + 1) + I] = std::max(dx, dy);
+    }
+  std::vector<char> smooth(static_cast<size_t>(m) * m);
+  for (int J = 0; J < m; ++J)
+    for (int I = 0; I < m; ++I) {
+      double e = 0;
+      for (int b = std::max(J - 1, 0); b <= std::min(J + 2, m); ++b)
+        for (int a = std::max(I - 1, 0); a <= std::min(I + 2, m); ++a) e = std::max(e, d4[static_cast<size_t>(b) * (m + 1) + a]);
+      smooth[static_cast<size_t>(J) * m + I] = e * 5.0 / 64 <= tol;
+    }
+  return smooth;
+}
+
+/// The point (i, j) of the fine lattice (2m cells) interpolated from the coarse lattice \p c by
+/// cubics: along the coarse row or column for an edge midpoint, their tensor product for a centre.
+Vec2 cubic_from_coarse(const GridWarp& c, int i, int j) {
+  const int m = c.n;
+  if (j % 2 == 0) {  // on coarse row j/2
+    const MidpointStencil sx = midpoint_stencil(i / 2, m);
+    Vec2 p(0, 0);
+    for (int a = 0; a < 4; ++a) p += sx.w[a] * c.at(sx.first + a, j / 2);
+    return p;
+  }
+  const MidpointStencil sy = midpoint_stencil(j / 2, m);
+  if (i % 2 == 0) {  // on coarse column i/2
+    Vec2 p(0, 0);
+    for (int b = 0; b < 4; ++b) p += sy.w[b] * c.at(i / 2, sy.first + b);
+    return p;
+  }
+  const MidpointStencil sx = midpoint_stencil(i / 2, m);
+  Vec2 p(0, 0);
+  for (int b = 0; b < 4; ++b)
+    for (int a = 0; a < 4; ++a) p += sx.w[a] * sy.w[b] * c.at(sx.first + a, sy.first + b);
+  return p;
+}
+
+/// Advects the (uniform) lattice \p g through \p flow: every point, or coarse-to-fine
+/// (DensityFlowOptions::interpolation_tolerance, \p tol in uv units): the lattice of the even points
+/// first (recursively, down to 8 cells), then the other points of each coarse cell are interpolated
+/// (cubic_from_coarse) where smooth_coarse_cells() allows it and advected elsewhere.
+LatticeAdvection advect_lattice(const DensityFlow& flow, const DensityFlowOptions& o, GridWarp& g, double tol) {
+  LatticeAdvection out;
+  const int n = g.n, S = n + 1;
+  std::vector<size_t> idx;
+  if (!(tol > 0) || n % 2 != 0 || n < 16) {
+    idx.resize(g.points.size());
+    for (size_t k = 0; k < idx.size(); ++k) idx[k] = k;
+    advect_points(flow, o, g, idx, out);
+    return out;
+  }
+  const int m = n / 2;
+  GridWarp coarse = GridWarp::uniform(m);
+  out = advect_lattice(flow, o, coarse, tol);
+  const std::vector<char> smooth = smooth_coarse_cells(coarse, tol);
+  auto cell_smooth = [&](int I, int J) { return I < 0 || J < 0 || I >= m || J >= m || smooth[static_cast<size_t>(J) * m + I]; };
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      if (i % 2 == 0 && j % 2 == 0) {
+        g.at(i, j) = coarse.at(i / 2, j / 2);
+        continue;
+      }
+      // The coarse cells that contain (i, j): one for a cell centre, two for an edge midpoint.
+      const bool ok = cell_smooth(i / 2, j / 2) && (j % 2 == 1 || cell_smooth(i / 2, j / 2 - 1)) &&
+                      (i % 2 == 1 || cell_smooth(i / 2 - 1, j / 2));
+      if (ok) g.at(i, j) = clamp01(cubic_from_coarse(coarse, i, j));
+      else idx.push_back(static_cast<size_t>(j) * S + i);
+    }
+  advect_points(flow, o, g, idx, out);
+  return out;
 }
 
 }  // namespace
@@ -294,39 +445,17 @@ GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions
   check_density(density);
   if (o.cells < 1 || o.cells > 8192) throw InvalidInputError("density_equalizing_warp: cells must be in [1, 8192]");
   if (!(o.tolerance > 0) || o.max_steps < 1 || !(o.max_step_cells > 0) || !(o.direct_tolerance > 0) ||
-      !(o.direct_max_step_cells > 0))
+      !(o.direct_max_step_cells > 0) || !(o.interpolation_tolerance >= 0))
     throw InvalidInputError(
-        "density_equalizing_warp: tolerances and step limits must be > 0 and max_steps >= 1");
+        "density_equalizing_warp: tolerances and step limits must be > 0 (the interpolation tolerance >= 0) "
+        "and max_steps >= 1");
 
   const DensityFlow flow(density);
   double mean = 0;
   for (float v : density.data) mean += v;
   mean /= static_cast<double>(density.data.size());
   GridWarp g = GridWarp::uniform(o.cells);
-  const double tol = o.tolerance / o.cells;
-  const double max_move = o.max_step_cells / o.cells;
-  std::atomic<long> total{0};
-  std::atomic<int> most{0};
-  auto run = [&](int j0, int j1) {
-    long local = 0;
-    int local_most = 0;
-    for (int j = j0; j < j1; ++j)
-      for (int i = 0; i <= o.cells; ++i) {
-        int s = 0;
-        g.at(i, j) = flow.advect(g.at(i, j), tol, max_move, o.max_steps, &s);
-        local += s;
-        local_most = std::max(local_most, s);
-      }
-    total += local;
-    int cur = most.load();
-    while (local_most > cur && !most.compare_exchange_weak(cur, local_most)) {
-    }
-  };
-  if (o.parallel)
-    tbb::parallel_for(tbb::blocked_range<int>(0, o.cells + 1, 4),
-                      [&](const tbb::blocked_range<int>& r) { run(r.begin(), r.end()); });
-  else
-    run(0, o.cells + 1);
+  const LatticeAdvection adv = advect_lattice(flow, o, g, o.interpolation_tolerance / o.cells);
   // Round-off can move a side point off its side by ~1e-17: put it back exactly.
   for (int k = 0; k <= o.cells; ++k) {
     g.at(0, k).x() = 0;
@@ -337,8 +466,9 @@ GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions
   const int tangled = untangle(g);
   if (stats) {
     stats->tangled_cells = tangled;
-    stats->total_steps = total;
-    stats->max_steps = most;
+    stats->total_steps = adv.total_steps;
+    stats->max_steps = adv.most_steps;
+    stats->advected_points = adv.advected;
     stats->max_displacement = g.max_displacement();
     stats->inverted_cells = 0;
     double err = 0;

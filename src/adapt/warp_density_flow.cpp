@@ -62,6 +62,8 @@ class DensityFlowWarp final : public WarpMethod {
     }
     rep.flow_tangled_cells = st.tangled_cells;
     rep.flow_inverted_cells = st.inverted_cells;
+    rep.flow_steps = st.total_steps;
+    rep.flow_advected_points = st.advected_points;
     rep.time_flow = seconds_since(t0);
   }
 };

@@ -35,19 +35,22 @@ ImageF sharp_lines(int L) {
   return d;
 }
 
-DensityFlowOptions with_cells(int cells) {
+DensityFlowOptions with_cells(int cells, double interpolation = DensityFlowOptions{}.interpolation_tolerance) {
   DensityFlowOptions o;
   o.cells = cells;
+  o.interpolation_tolerance = interpolation;
   return o;
 }
 
-/// The lattice warp of a density (with its stats) and the flow it samples.
+/// The lattice warp of a density (with its stats; every point advected unless \p interpolation > 0)
+/// and the flow it samples.
 struct TwoMaps {
   DensityFlowOptions o;
   DensityFlowStats st;
   GridWarp g;
   DensityFlow flow;
-  TwoMaps(const ImageF& d, int cells) : o(with_cells(cells)), g(density_equalizing_warp(d, o, &st)), flow(d) {}
+  TwoMaps(const ImageF& d, int cells, double interpolation = 0)
+      : o(with_cells(cells, interpolation)), g(density_equalizing_warp(d, o, &st)), flow(d) {}
 };
 }  // namespace
 
@@ -124,6 +127,58 @@ TEST(DensityFlow, RejectsBadDensities) {
     DensityFlowOptions o;
     o.max_step_cells = step;
     EXPECT_THROW(density_equalizing_warp(ImageF(8, 8, 1.0f), o), InvalidInputError) << step;
+  }
+  for (double tol : {-0.1, std::nan("")}) {
+    DensityFlowOptions o;
+    o.interpolation_tolerance = tol;
+    EXPECT_THROW(density_equalizing_warp(ImageF(8, 8, 1.0f), o), InvalidInputError) << tol;
+  }
+}
+
+namespace {
+/// Largest and mean distance, in lattice cells, between the points of two lattices of the same size.
+std::pair<double, double> lattice_distance(const GridWarp& a, const GridWarp& b) {
+  double most = 0, sum = 0;
+  for (size_t k = 0; k < a.points.size(); ++k) {
+    const double d = (a.points[k] - b.points[k]).norm() * a.n;
+    most = std::max(most, d);
+    sum += d;
+  }
+  return {most, sum / a.points.size()};
+}
+}  // namespace
+
+// Coarse-to-fine advection interpolates only where the map is smooth: on a smooth bump and on sharp
+// lines it stays within a fraction of a cell of advecting every point, with far fewer points
+// advected; interpolating everywhere (an unbounded tolerance) does not, so the criterion matters.
+TEST(DensityFlow, CoarseToFineAdvectionStaysCloseToAdvectingEveryPoint) {
+  struct Case {
+    const char* name;
+    ImageF density;
+    double max_cells, mean_cells, advected_share;
+  };
+  const Case cases[] = {{"bump", bump(128, 16.0, 0.08, 0.4, 0.55), 0.05, 0.01, 0.5},
+                        {"sharp lines", sharp_lines(256), 0.5, 0.02, 0.8}};
+  for (const Case& c : cases) {
+    DensityFlowOptions full = with_cells(128), ctf = with_cells(128), loose = with_cells(128);
+    full.interpolation_tolerance = 0;
+    ctf.interpolation_tolerance = 0.05;
+    loose.interpolation_tolerance = 1e9;
+    DensityFlowStats sf, sc, sl;
+    const GridWarp gf = density_equalizing_warp(c.density, full, &sf);
+    const GridWarp gc = density_equalizing_warp(c.density, ctf, &sc);
+    const GridWarp gl = density_equalizing_warp(c.density, loose, &sl);
+    EXPECT_EQ(sf.advected_points, 129 * 129) << c.name;
+    EXPECT_LT(sc.advected_points, c.advected_share * sf.advected_points) << c.name;
+    EXPECT_LT(sc.total_steps, sf.total_steps) << c.name;
+    EXPECT_EQ(sc.inverted_cells, 0) << c.name;
+    const auto [most, mean] = lattice_distance(gc, gf);
+    EXPECT_LT(most, c.max_cells) << c.name;
+    EXPECT_LT(mean, c.mean_cells) << c.name;
+    EXPECT_NEAR(sc.density_error, sf.density_error, 0.01) << c.name;
+    // Everything interpolated from the 8-cell lattice: far off.
+    EXPECT_EQ(sl.advected_points, 9 * 9) << c.name;
+    EXPECT_GT(lattice_distance(gl, gf).first, 4 * c.max_cells) << c.name;
   }
 }
 

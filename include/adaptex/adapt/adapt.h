@@ -114,6 +114,8 @@ struct AdaptReport {
   double predicted_gain_db = 0;  ///< density-flow: the error model's predicted PSNR gain.
   int flow_tangled_cells = 0;    ///< density-flow: flow-grid cells untangled (density_flow.h).
   int flow_inverted_cells = 0;   ///< density-flow: cells still not convex after that (0 expected).
+  long flow_steps = 0;           ///< density-flow: accepted integration steps over every lattice point.
+  long flow_advected_points = 0; ///< density-flow: lattice points integrated (the others interpolated).
   int faces_before = 0, faces_after = 0;  ///< Mesh faces before / after refinement.
 };
 
