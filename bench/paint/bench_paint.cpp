@@ -24,6 +24,8 @@
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/generate.h"
 #include "adaptex/paint/painter.h"
+#include "adaptex/paint/signal.h"
+#include "adaptex/paint/eval.h"
 #include "adaptex/param/unwrap.h"
 
 using namespace adaptex;
@@ -157,6 +159,22 @@ void BM_PaintLines(benchmark::State& state, std::string name, int size) {
   state.counters["updates"] = benchmark::Counter(static_cast<double>(updates), benchmark::Counter::kAvgIterations);
 }
 
+/// The safeguard's exact signal at 60,000 fixed surface samples (PointSignalCache), updated stroke
+/// by stroke as a paint session does; the whole `lines` set, process CPU time.
+void BM_PointCacheLines(benchmark::State& state, std::string name) {
+  MeshCase& mc = mesh_case(name);
+  const std::vector<SurfacePoint> pts = sample_surface(mc.mesh, 60000, 1);
+  for (auto _ : state) {
+    state.PauseTiming();
+    PointSignalCache cache(mc.mesh, pts, mc.lines.background);
+    state.ResumeTiming();
+    for (const Stroke& s : mc.lines.strokes) cache.add_stroke(s);
+    benchmark::DoNotOptimize(cache.values().data());
+  }
+  state.counters["strokes"] = static_cast<double>(mc.lines.strokes.size());
+  state.counters["dabs"] = static_cast<double>(mc.lines.num_dabs());
+}
+
 const int registered = [] {
   std::string list = "venus.off,triceratops.off,spot.obj,dino.off,fandisk.off,kitten.obj,camelhead.off,bunny.ply";
   if (const char* env = std::getenv("ADAPTEX_BENCH_MESHES")) list = env;
@@ -169,6 +187,12 @@ const int registered = [] {
           ->Unit(benchmark::kMillisecond)
           ->UseRealTime()
           ->Iterations(3);
+  std::stringstream again(list);
+  while (std::getline(again, name, ','))
+    benchmark::RegisterBenchmark(("BM_PointCacheLines/" + name).c_str(), [name](benchmark::State& st) { BM_PointCacheLines(st, name); })
+        ->Unit(benchmark::kMillisecond)
+        ->MeasureProcessCPUTime()
+        ->Iterations(5);
   return 0;
 }();
 

@@ -12,6 +12,7 @@
 
 #include "adaptex/core/errors.h"
 #include "cell_hash.h"
+#include "texel_grid.h"
 #include "adaptex/paint/decal.h"
 
 namespace adaptex {
@@ -206,27 +207,39 @@ struct PointSignalCache::Impl {
   std::unique_ptr<DecalProjector> projector;  // built at the first decal stroke
   std::vector<int> face;                      // points[k].face, for the projector's batch form
 
+  std::unique_ptr<detail::TexelGrid> grid;  // the points' spatial index, built at the first brush stroke
+  std::vector<double> cover;                 // per point: the stroke's coverage (0 between strokes)
+  std::vector<int> touched;                  // the points a stroke's dabs reached
+
   /// A brush stroke: max coverage over its dabs (as StrokeSignal::Impl::eval), composited over C.
+  /// Each dab visits only the points in its ball (TexelGrid, queried a hair wider than the radius
+  /// because it compares in float; the test itself is the double one), so a stroke costs its dabs
+  /// times the points each one reaches, not every point in the stroke's box times every dab.
   void add_brush(const Stroke& s) {
     if (s.dabs.empty()) return;
-    Eigen::AlignedBox3d box;
-    for (const Vec3& c : s.dabs) box.extend(c);
-    const Vec3 r = Vec3::Constant(s.radius);
-    box = Eigen::AlignedBox3d(box.min() - r, box.max() + r);
+    if (!grid) {
+      std::vector<Vec3f> pf(position.size());
+      for (size_t k = 0; k < position.size(); ++k) pf[k] = position[k].cast<float>();
+      const double spacing = std::sqrt(surface_area(mesh) / std::max<size_t>(position.size(), 1));
+      grid = std::make_unique<detail::TexelGrid>(pf, spacing);
+      cover.assign(position.size(), 0.0);
+    }
     const double r2 = s.radius * s.radius, inv_r = 1.0 / s.radius;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 4096), [&](const tbb::blocked_range<size_t>& rg) {
-      for (size_t k = rg.begin(); k < rg.end(); ++k) {
-        const Vec3& p = position[k];
-        if (!box.contains(p)) continue;
-        double a = 0;
-        for (const Vec3& c : s.dabs) {
-          const double d2 = (p - c).squaredNorm();
-          if (d2 >= r2) continue;
-          a = std::max(a, s.opacity * brush_falloff(std::sqrt(d2) * inv_r, s.hardness));
-        }
-        if (a > 0) value[k] = value[k] * (1 - a) + s.color * a;
-      }
-    });
+    const std::vector<int>& order = grid->order();
+    touched.clear();
+    for (const Vec3& c : s.dabs)
+      grid->for_each_in_ball(c, s.radius * (1 + 1e-5) + 1e-30, [&](int slot, float) {
+        const int k = order[static_cast<size_t>(slot)];
+        const double d2 = (position[k] - c).squaredNorm();
+        if (d2 >= r2) return;
+        const double a = s.opacity * brush_falloff(std::sqrt(d2) * inv_r, s.hardness);
+        if (cover[k] == 0 && a > 0) touched.push_back(k);
+        cover[k] = std::max(cover[k], a);
+      });
+    for (int k : touched) {
+      value[k] = value[k] * (1 - cover[k]) + s.color * cover[k];
+      cover[k] = 0;
+    }
   }
 
   /// A decal: (colour, a) at every point from one projector (its BVH built at the first decal and

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/mesh.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/generate.h"
@@ -43,6 +44,40 @@ TEST(PointSignalCache, EqualsTheWholeHistoryAfterEveryStroke) {
   const long changed = std::count_if(cache.values().begin(), cache.values().end(),
                                      [&](const Vec3& v) { return (v - all.background).norm() > 0.05; });
   EXPECT_GT(changed, 2000);
+}
+
+// A hard brush paints a point at full opacity right up to its radius, so a point a hair inside the
+// radius must be painted and one a hair outside must not: the spatial index may not drop either.
+TEST(PointSignalCache, HardBrushEdgeIsExactAtEveryScale) {
+  const TriMesh mesh = shapes::icosphere(4);
+  const std::vector<SurfacePoint> pts = sample_surface(mesh, 4000, 11);
+  std::vector<Vec3> pos;
+  for (const SurfacePoint& sp : pts) pos.push_back(point_on_face(mesh, sp.face, sp.b0, sp.b1));
+  int painted = 0, checked = 0;
+  for (size_t target : {size_t(7), size_t(1234), size_t(3999)})
+    for (double scale : {0.02, 0.3, 5.0}) {  // the dab's distance to the target point
+      for (double edge : {1 + 1e-9, 1 - 1e-9}) {
+        const Vec3 dir = Vec3(0.3, -0.5, 0.8).normalized();
+        Stroke s;
+        s.color = Vec3(1, 0, 0);
+        s.hardness = 1;
+        s.opacity = 1;
+        s.dabs = {pos[target] + scale * dir};
+        s.radius = scale * edge;
+        StrokeFile one;
+        one.background = Vec3(0, 0, 1);
+        one.strokes = {s};
+        PointSignalCache cache(mesh, pts, one.background);
+        cache.add_stroke(s);
+        for (size_t k = 0; k < pts.size(); ++k) ASSERT_EQ(cache.values()[k], evaluate_strokes_reference(one, pos[k])) << k;
+        const bool inside = edge > 1;
+        EXPECT_EQ(cache.values()[target], inside ? s.color : one.background) << target << " " << scale;
+        painted += inside;
+        ++checked;
+      }
+    }
+  EXPECT_EQ(checked, 18);
+  EXPECT_EQ(painted, 9);
 }
 
 TEST(PointSignalCache, UpdateAddsOnlyTheNewStrokes) {
