@@ -22,6 +22,7 @@
 // GCC 12 reports a false -Wrestrict inside std::string copies at -O3 (GCC bug 105329).
 #pragma GCC diagnostic ignored "-Wrestrict"
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <chrono>
 #include <cstdio>
@@ -151,6 +152,14 @@ std::vector<std::string> resolve_meshes(const std::vector<std::string>& given) {
   return out;
 }
 
+/// \p v as a number > 0 (>= 0 when \p zero_ok). \throw std::invalid_argument naming the flag otherwise
+double positive(const std::string& flag, const std::string& v, bool zero_ok = false) {
+  const double x = std::stod(v);
+  if (!(zero_ok ? x >= 0 : x > 0) || !std::isfinite(x))
+    throw std::invalid_argument(flag + ": expected a number " + (zero_ok ? ">= 0" : "> 0") + ", got " + v);
+  return x;
+}
+
 Args parse_args(int argc, char** argv) {
   Args a;
   bool no_refine = false;
@@ -183,15 +192,15 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--charts") a.charts = v;
     else if (k == "--floor") a.floor = std::stod(v);
     else if (k == "--density-cells") a.density_cells = std::stoi(v);
-    else if (k == "--refine-factor") a.refine_factor = std::stod(v);
+    else if (k == "--refine-factor") a.refine_factor = positive(k, v);
     else if (k == "--blur") a.blur = std::stod(v);
     else if (k == "--max-density") a.max_density = std::stod(v);
     else if (k == "--refine-levels") a.refine_levels = std::stoi(v);
-    else if (k == "--refine-tol") a.refine_tol = std::stod(v);
-    else if (k == "--flow-cells") a.flow_cells = std::stoi(v);
-    else if (k == "--flow-step") a.flow_step = std::stod(v);
-    else if (k == "--flow-tol") a.flow_tol = std::stod(v);
-    else if (k == "--flow-interp") a.flow_interp = std::stod(v);
+    else if (k == "--refine-tol") a.refine_tol = positive(k, v);
+    else if (k == "--flow-cells") a.flow_cells = static_cast<int>(positive(k, v));
+    else if (k == "--flow-step") a.flow_step = positive(k, v);
+    else if (k == "--flow-tol") a.flow_tol = positive(k, v);
+    else if (k == "--flow-interp") a.flow_interp = positive(k, v, true);
     else throw std::invalid_argument(k + ": unknown option");
   }
   for (const auto& m : modes) {
