@@ -145,6 +145,46 @@ void BM_Cycle(benchmark::State& state) {
   state.counters["faces"] = sc.mesh.num_faces();
 }
 
+/// The same cycle with the default method (density-flow, issue 10): adapt_parameterization() on the
+/// texture alone (no stroke history, as `adaptex reparam`), then the texel map of the new layout (on
+/// the refined mesh when refinement ran) and the texture resampled onto it. Counters: the report's
+/// phases (wall ms of the calling process) and the thread CPU of the whole cycle.
+void BM_DensityFlowCycle(benchmark::State& state) {
+  const int faces = static_cast<int>(state.range(0)), W = static_cast<int>(state.range(1));
+  const Scene& sc = scene(faces);
+  const ImageRGBA8 tex = lines_texture(W);
+  const TexelMap map = build_texel_map(sc.mesh, sc.param, W, W);
+  AdaptOptions o;  // the defaults: density-flow
+  std::map<std::string, double> acc;
+  int iters = 0;
+  for (auto _ : state) {
+    const double t0 = thread_cpu_ms();
+    const AdaptResult res = adapt_parameterization(sc.mesh, sc.param, tex, map, o);
+    const TriMesh& mesh = res.refined_mesh ? *res.refined_mesh : sc.mesh;
+    const Parameterization& old_layout = res.refined_layout ? *res.refined_layout : sc.param;
+    auto t = std::chrono::steady_clock::now();
+    const TexelMap nmap = build_texel_map(mesh, res.param, W, W);
+    const double texel_map_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+    t = std::chrono::steady_clock::now();
+    ImageRGBA8 ntex = resample_texture(old_layout, tex, nmap, 4);
+    const double resample_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+    benchmark::DoNotOptimize(ntex.data.data());
+    const AdaptReport& r = res.report;
+    acc["density_ms"] += 1e3 * r.time_density;
+    acc["flow_ms"] += 1e3 * r.time_flow;
+    acc["refine_ms"] += 1e3 * r.time_refine;
+    acc["remap_ms"] += 1e3 * r.time_remap;
+    acc["texelmap_ms"] += texel_map_ms;
+    acc["resample_ms"] += resample_ms;
+    acc["cpu_total_ms"] += thread_cpu_ms() - t0;
+    acc["faces_after"] += mesh.num_faces();
+    acc["flow_points"] += static_cast<double>(r.flow_advected_points);
+    ++iters;
+  }
+  for (auto& [k, v] : acc) state.counters[k] = v / std::max(1, iters);
+}
+BENCHMARK(BM_DensityFlowCycle)->Args({10000, 512})->Args({100000, 1024})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1.0);
+
 void args(benchmark::internal::Benchmark* b) {
   for (int f : {10000, 100000, 1000000})
     for (int w : {512, 1024, 2048}) b->Args({f, w, 256});
