@@ -223,7 +223,6 @@ double cell_signed_area(const GridWarp& g, int i, int j) {
   return 0.5 * (cross(a, b) + cross(b, c) + cross(c, d) + cross(d, a));
 }
 
-
 /// What advect_lattice() did.
 struct LatticeAdvection {
   long total_steps = 0;
