@@ -47,7 +47,7 @@ struct DensityFlowOptions {
   /// cell bound the error of cubic interpolation (5/64 |Δ⁴X|) below this tolerance, the other points
   /// are interpolated instead of advected. The map is smooth where the density is (floor regions,
   /// the blurred paint), so most of the square takes the cheap path: venus lines 256², 5,591 of
-  /// 16,641 points and 151k of 403k steps; end-mode re-parameterization 109–122 -> 80–83 ms CPU. In
+  /// 16,641 points and 151k of 403k steps; end-mode re-parameterization 109–122 -> 80–107 ms CPU. In
   /// quality, 9 shared meshes x lines/dots/mixed x 128²/256² (2M samples): mean change -0.009 /
   /// +0.007 / +0.032 dB, worst case -0.24 dB (0.1 and 0.5 alike; docs/benchmarks.md, session 9).
   double interpolation_tolerance = 0.25;
