@@ -151,8 +151,14 @@ std::vector<int> chart_lattice_cells(const std::vector<ChartMove>& moves, int ce
   const double budget = double(cells + 1) * (cells + 1);
   const double scale = points > budget ? std::sqrt(budget / points) : 1.0;
   std::vector<int> n(moves.size());
-  for (size_t c = 0; c < moves.size(); ++c)
-    n[c] = std::clamp(static_cast<int>(std::ceil(side[c] * scale)), lo, cells);
+  for (size_t c = 0; c < moves.size(); ++c) {
+    const double want = side[c] * scale;
+    // From 16 cells on, the nearest multiple of 4: the flow then builds the lattice coarse to fine
+    // over at least two levels and interpolates where the map is smooth (density_flow.h,
+    // interpolation_tolerance); an odd lattice advects every point.
+    const int k = want >= 16 ? 4 * static_cast<int>(std::lround(want / 4)) : static_cast<int>(std::ceil(want));
+    n[c] = std::clamp(k, lo, cells);
+  }
   return n;
 }
 

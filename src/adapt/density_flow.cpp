@@ -183,36 +183,67 @@ bool cell_convex(const GridWarp& g, int i, int j) {
 /// side, corners stay. \return the number of bad cells before untangling
 int untangle(GridWarp& g) {
   const int n = g.n;
-  std::vector<char> bad(static_cast<size_t>(n) * n, 0);
-  int first = -1;
-  for (int round = 0; round < 200; ++round) {
-    int count = 0;
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const bool b = !cell_convex(g, i, j);
-        count += b;
-        if (b) bad[static_cast<size_t>(j) * n + i] = 1;  // a region only grows
+  const size_t cells = static_cast<size_t>(n) * n, points = static_cast<size_t>(n + 1) * (n + 1);
+  // Only the cells around a smoothed point change, so after the first full scan a round re-checks
+  // just those: the same rounds and the same points as re-checking every cell, far fewer tests.
+  std::vector<char> convex(cells), bad(cells, 0), mark(points, 0);
+  std::vector<int> bad_cells, marked, checked(cells, 0);  // checked: last round that re-checked a cell
+  int count = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const size_t c = static_cast<size_t>(j) * n + i;
+      convex[c] = cell_convex(g, i, j);
+      if (!convex[c]) {
+        ++count;
+        bad[c] = 1;
+        bad_cells.push_back(static_cast<int>(c));
       }
-    if (first < 0) first = count;
-    if (count == 0) break;
+    }
+  const int first = count;
+  for (int round = 0; round < 200 && count > 0; ++round) {
     const int grow = 1 + round / 10;  // widen the smoothed region when smoothing alone does not untangle
-    std::vector<char> mark(static_cast<size_t>(n + 1) * (n + 1), 0);
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i)
-        if (bad[static_cast<size_t>(j) * n + i])
-          for (int b = std::max(0, j - grow); b <= std::min(n, j + 1 + grow); ++b)
-            for (int a = std::max(0, i - grow); a <= std::min(n, i + 1 + grow); ++a) mark[static_cast<size_t>(b) * (n + 1) + a] = 1;
-    for (int sweep = 0; sweep < 4; ++sweep)
-      for (int j = 0; j <= n; ++j)
-        for (int i = 0; i <= n; ++i) {
-          if (!mark[static_cast<size_t>(j) * (n + 1) + i]) continue;
-          const bool side_x = i == 0 || i == n, side_y = j == 0 || j == n;
-          if (side_x && side_y) continue;  // corner
-          Vec2& p = g.at(i, j);
-          if (side_x) p.y() = 0.5 * (g.at(i, j - 1).y() + g.at(i, j + 1).y());
-          else if (side_y) p.x() = 0.5 * (g.at(i - 1, j).x() + g.at(i + 1, j).x());
-          else p = 0.25 * (g.at(i - 1, j) + g.at(i + 1, j) + g.at(i, j - 1) + g.at(i, j + 1));
+    for (int k : marked) mark[static_cast<size_t>(k)] = 0;
+    marked.clear();
+    for (int c : bad_cells) {  // a region only grows
+      const int i = c % n, j = c / n;
+      for (int b = std::max(0, j - grow); b <= std::min(n, j + 1 + grow); ++b)
+        for (int a = std::max(0, i - grow); a <= std::min(n, i + 1 + grow); ++a) {
+          const int k = b * (n + 1) + a;
+          if (!mark[static_cast<size_t>(k)]) {
+            mark[static_cast<size_t>(k)] = 1;
+            marked.push_back(k);
+          }
         }
+    }
+    std::sort(marked.begin(), marked.end());  // raster order, as a full sweep visits them
+    for (int sweep = 0; sweep < 4; ++sweep)
+      for (int k : marked) {
+        const int i = k % (n + 1), j = k / (n + 1);
+        const bool side_x = i == 0 || i == n, side_y = j == 0 || j == n;
+        if (side_x && side_y) continue;  // corner
+        Vec2& p = g.at(i, j);
+        if (side_x) p.y() = 0.5 * (g.at(i, j - 1).y() + g.at(i, j + 1).y());
+        else if (side_y) p.x() = 0.5 * (g.at(i - 1, j).x() + g.at(i + 1, j).x());
+        else p = 0.25 * (g.at(i - 1, j) + g.at(i + 1, j) + g.at(i, j - 1) + g.at(i, j + 1));
+      }
+    // Re-check the cells that have a smoothed corner.
+    for (int k : marked) {
+      const int i = k % (n + 1), j = k / (n + 1);
+      for (int b = std::max(0, j - 1); b <= std::min(n - 1, j); ++b)
+        for (int a = std::max(0, i - 1); a <= std::min(n - 1, i); ++a) {
+          const size_t c = static_cast<size_t>(b) * n + a;
+          if (checked[c] == round + 1) continue;
+          checked[c] = round + 1;
+          const bool now = cell_convex(g, a, b);
+          if (now == static_cast<bool>(convex[c])) continue;
+          convex[c] = now;
+          count += now ? -1 : 1;
+          if (!now && !bad[c]) {
+            bad[c] = 1;
+            bad_cells.push_back(static_cast<int>(c));
+          }
+        }
+    }
   }
   return first;
 }

@@ -182,6 +182,7 @@ TEST(AtlasFlow, ChartLatticesAddUpToAboutOneSquareLattice) {
   for (int k : n) {
     EXPECT_GE(k, 8);
     EXPECT_LE(k, 128);
+    EXPECT_EQ(k % 4, 0) << "from 16 cells on, a multiple of 4 (coarse-to-fine advection)";
     points += double(k + 1) * (k + 1);
   }
   EXPECT_LE(points, 1.1 * 129 * 129);

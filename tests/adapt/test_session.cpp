@@ -81,10 +81,15 @@ TEST(PaintSession, EachStrokeLayoutIsEndModesLayoutForTheHistorySoFar) {
   PaintSessionOptions so;
   so.texture_size = N;
   so.schedule = ReparamSchedule::EachStroke;
-  // The measured accept / reject sequence above is that of the flow with every lattice point
-  // advected; coarse-to-fine advection (the default) changes the candidates by a fraction of a texel
-  // and this knife-edge case then rejects all four. Path independence does not depend on it.
+  // The measured accept / reject sequence above is that of the session-8 flow: a 128-cell lattice
+  // with every point advected, blur 4. Coarse-to-fine advection or the finer default lattice change
+  // the candidates by a fraction of a texel and this knife-edge case then accepts or rejects all
+  // four. Path independence does not depend on it.
   so.adapt.flow.interpolation_tolerance = 0;
+  so.adapt.flow.cells = 128;
+  so.adapt.flow.tolerance = 1e-2;
+  so.adapt.flow.max_step_cells = 2;
+  so.adapt.density.blur_cells = 4;
   PaintSession each(mesh, param, so, strokes.background);
   int accepted = 0, rejected_after_accept = 0;
   for (int k = 0; k < n; ++k) {

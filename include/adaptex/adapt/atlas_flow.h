@@ -88,7 +88,8 @@ class ChartMoveLocator {
 /// its src and dst rectangles times \p cells, in [min(min_cells, cells), cells], all scaled down
 /// together when their (n+1)² points would add up to more than one (cells+1)² lattice (the flow's
 /// cost is per point; measured: the former per-chart max(dst·cells, src·256) made the 4-16-chart
-/// flows of the shared meshes 3.2-4.7 square lattices). Returns moves.size() values.
+/// flows of the shared meshes 3.2-4.7 square lattices). From 16 cells on, a chart's count is rounded to
+/// the nearest multiple of 4 (coarse-to-fine advection needs even counts). Returns moves.size() values.
 /// \throw InvalidInputError cells < 1 or min_cells < 1
 std::vector<int> chart_lattice_cells(const std::vector<ChartMove>& moves, int cells, int min_cells);
 

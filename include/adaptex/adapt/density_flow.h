@@ -27,11 +27,14 @@ namespace adaptex {
 
 /// Settings of density_equalizing_warp().
 struct DensityFlowOptions {
-  /// Cells per side n of the output GridWarp (lattice of (n+1)² points). 128 against 256 on the
-  /// default 256² density raster (4 shared meshes × lines/dots/mixed × 128²/256², 24 cases): median
-  /// texel saving 4.06 / 3.41 / 4.12 against 3.95 / 3.24 / 3.99, a third less flow time (docs/quality.md).
-  int cells = 128;
-  double tolerance = 1e-2;     ///< Local error bound of the adaptive integration, in output cells.
+  /// Cells per side n of the output GridWarp (lattice of (n+1)² points). 256 since session 10, with
+  /// the step and tolerance below doubled in cells (the same in uv as 128 cells' 2 / 0.01) and the
+  /// density blur at 3 cells (error_density.h): 9 shared meshes × lines/dots/mixed × 128²/256², 2M
+  /// samples, against 128 cells at blur 4, mean per case +0.24 / +0.04 / +0.07 dB, every lines case
+  /// better (+0.05 to +0.70 dB), median texel saving 4.77 / 3.81 / 4.18 against 4.12 / 3.67 / 4.52
+  /// (docs/quality.md, session 10). Session 5 had measured 128 ahead on 4 meshes at 400k samples.
+  int cells = 256;
+  double tolerance = 2e-2;     ///< Local error bound of the adaptive integration, in output cells.
   int max_steps = 4000;        ///< Cap on integration steps per point (never reached on sane input).
   /// Longest move of a point in one integration step, in cells of the output lattice (the step-size
   /// control adds its own limit). Session 4 measured it in cells of the finer of the density raster
@@ -39,7 +42,8 @@ struct DensityFlowOptions {
   /// lattice cells, which on the default 128-cell lattice over a 256² density doubles the step of a
   /// one-chart flow (venus lines 256²: 703k -> 403k steps, density error 0.175 -> 0.184; the texel
   /// saving within noise, docs/benchmarks.md). Per-chart flows were already counted this way.
-  double max_step_cells = 2.0;
+  /// Session 10: 4 on the 256-cell lattice (the same move in uv as 2 on 128 cells).
+  double max_step_cells = 4.0;
   bool parallel = true;        ///< Advect points with TBB (results are identical either way).
   /// Coarse-to-fine advection, in output cells (session 9; 0: advect every point). On an even
   /// lattice (cells >= 16) the lattice of the even points is built first (recursively, down to 8
@@ -50,7 +54,8 @@ struct DensityFlowOptions {
   /// 16,641 points and 151k of 403k steps; end-mode re-parameterization 109–122 -> 80–107 ms CPU. In
   /// quality, 9 shared meshes x lines/dots/mixed x 128²/256² (2M samples): mean change -0.009 /
   /// +0.007 / +0.032 dB, worst case -0.24 dB (0.1 and 0.5 alike; docs/benchmarks.md, session 9).
-  double interpolation_tolerance = 0.25;
+  /// Session 10: 1 on the 256-cell lattice (0.5 of a 128-cell lattice's cells, measured alike there).
+  double interpolation_tolerance = 1.0;
   /// density-flow: advect the mesh's wedges (and refinement's test points) through the flow itself
   /// (DensityFlow / FlowWarp below) instead of through the bilinear lattice, which then only draws
   /// the debug pictures and the studio's grid. The exact flow reaches the density (venus dots 256²:
