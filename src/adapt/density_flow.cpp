@@ -202,9 +202,9 @@ int untangle(GridWarp& g) {
   const int first = count;
   for (int round = 0; round < 200 && count > 0; ++round) {
     const int grow = 1 + round / 10;  // widen the smoothed region when smoothing alone does not untangle
-    for (int k : marked) mark[static_cast<size_t>(k)] = 0;
-    marked.clear();
-    for (int c : bad_cells) {  // a region only grows
+    // The smoothed region only grows (bad cells stay bad, the halo widens): add the new points.
+    const size_t before = marked.size();
+    for (int c : bad_cells) {
       const int i = c % n, j = c / n;
       for (int b = std::max(0, j - grow); b <= std::min(n, j + 1 + grow); ++b)
         for (int a = std::max(0, i - grow); a <= std::min(n, i + 1 + grow); ++a) {
@@ -215,7 +215,10 @@ int untangle(GridWarp& g) {
           }
         }
     }
-    std::sort(marked.begin(), marked.end());  // raster order, as a full sweep visits them
+    // Raster order, as a sweep over the whole lattice visits them.
+    const auto mid = marked.begin() + static_cast<std::ptrdiff_t>(before);
+    std::sort(mid, marked.end());
+    std::inplace_merge(marked.begin(), mid, marked.end());
     for (int sweep = 0; sweep < 4; ++sweep)
       for (int k : marked) {
         const int i = k % (n + 1), j = k / (n + 1);
