@@ -200,11 +200,17 @@ int untangle(GridWarp& g) {
       }
     }
   const int first = count;
+  int marked_grow = 0;    // the halo width the marked points were taken with
+  size_t halo_done = 0;   // bad_cells[0, halo_done) are marked with that halo
   for (int round = 0; round < 200 && count > 0; ++round) {
     const int grow = 1 + round / 10;  // widen the smoothed region when smoothing alone does not untangle
-    // The smoothed region only grows (bad cells stay bad, the halo widens): add the new points.
+    // The smoothed region only grows (bad cells stay bad, the halo widens): add the new points, of
+    // the new bad cells, or of all of them when the halo widens.
     const size_t before = marked.size();
-    for (int c : bad_cells) {
+    if (grow != marked_grow) halo_done = 0;
+    marked_grow = grow;
+    for (; halo_done < bad_cells.size(); ++halo_done) {
+      const int c = bad_cells[halo_done];
       const int i = c % n, j = c / n;
       for (int b = std::max(0, j - grow); b <= std::min(n, j + 1 + grow); ++b)
         for (int a = std::max(0, i - grow); a <= std::min(n, i + 1 + grow); ++a) {
@@ -504,15 +510,23 @@ GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions
     stats->advected_points = adv.advected;
     stats->max_displacement = g.max_displacement();
     stats->inverted_cells = 0;
-    double err = 0;
     const double n2 = double(o.cells) * o.cells;
-    for (int j = 0; j < o.cells; ++j)
+    // Per row, then summed in row order: the same figures with or without threads.
+    std::vector<double> row_err(static_cast<size_t>(o.cells), 0.0);
+    std::vector<int> row_inverted(static_cast<size_t>(o.cells), 0);
+    tbb::parallel_for(0, o.cells, [&](int j) {
       for (int i = 0; i < o.cells; ++i) {
         const double a = cell_signed_area(g, i, j);
-        if (!cell_convex(g, i, j)) ++stats->inverted_cells;
+        if (!cell_convex(g, i, j)) ++row_inverted[static_cast<size_t>(j)];
         const double target = sample_bilinear(density, (i + 0.5) / o.cells, (j + 0.5) / o.cells) / mean;
-        err += std::abs(a * n2 - target);
+        row_err[static_cast<size_t>(j)] += std::abs(a * n2 - target);
       }
+    });
+    double err = 0;
+    for (int j = 0; j < o.cells; ++j) {
+      err += row_err[static_cast<size_t>(j)];
+      stats->inverted_cells += row_inverted[static_cast<size_t>(j)];
+    }
     stats->density_error = err / n2;
   }
   return g;

@@ -30,9 +30,10 @@ struct DensityFlowOptions {
   /// Cells per side n of the output GridWarp (lattice of (n+1)² points). 256 since session 10, with
   /// the step and tolerance below doubled in cells (the same in uv as 128 cells' 2 / 0.01) and the
   /// density blur at 3 cells (error_density.h): 9 shared meshes × lines/dots/mixed × 128²/256², 2M
-  /// samples, against 128 cells at blur 4, mean per case +0.24 / +0.04 / +0.07 dB, every lines case
-  /// better (+0.05 to +0.70 dB), median texel saving 4.77 / 3.81 / 4.18 against 4.12 / 3.67 / 4.52
-  /// (docs/quality.md, session 10). Session 5 had measured 128 ahead on 4 meshes at 400k samples.
+  /// samples, against 128 cells at blur 4, mean per case +0.27 / +0.03 / +0.11 dB, no lines case
+  /// worse, median texel saving 4.79 / 3.90 / 4.15 against 4.12 / 3.67 / 4.52; out of sample (seed 7,
+  /// a code-built mesh) +0.07 / +0.01 / +0.07 dB (docs/quality.md, session 10). Session 5 had
+  /// measured 128 ahead on 4 meshes at 400k samples.
   int cells = 256;
   double tolerance = 2e-2;     ///< Local error bound of the adaptive integration, in output cells.
   int max_steps = 4000;        ///< Cap on integration steps per point (never reached on sane input).
