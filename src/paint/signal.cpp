@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "adaptex/core/errors.h"
@@ -210,16 +211,22 @@ struct PointSignalCache::Impl {
   std::unique_ptr<detail::TexelGrid> grid;  // the points' spatial index, built at the first brush stroke
   std::vector<double> cover;                 // per point: the stroke's coverage (0 between strokes)
   std::vector<int> touched;                  // the points a stroke's dabs reached
+  double max_abs = 0;                        // largest |coordinate| of the points (float rounding bound)
 
   /// A brush stroke: max coverage over its dabs (as StrokeSignal::Impl::eval), composited over C.
-  /// Each dab visits only the points in its ball (TexelGrid, queried a hair wider than the radius
-  /// because it compares in float; the test itself is the double one), so a stroke costs its dabs
-  /// times the points each one reaches, not every point in the stroke's box times every dab.
+  /// Each dab visits only the points in its ball (TexelGrid), so a stroke costs its dabs times the
+  /// points each one reaches, not every point in the stroke's box times every dab. The index compares
+  /// in float: it is queried wider than the radius by the float rounding of the coordinates (relative
+  /// to their magnitude, which far from the origin dwarfs a small brush) and of r², and the test
+  /// itself is the double one, so no point inside the radius is missed.
   void add_brush(const Stroke& s) {
     if (s.dabs.empty()) return;
     if (!grid) {
       std::vector<Vec3f> pf(position.size());
-      for (size_t k = 0; k < position.size(); ++k) pf[k] = position[k].cast<float>();
+      for (size_t k = 0; k < position.size(); ++k) {
+        pf[k] = position[k].cast<float>();
+        max_abs = std::max(max_abs, position[k].cwiseAbs().maxCoeff());
+      }
       const double spacing = std::sqrt(surface_area(mesh) / std::max<size_t>(position.size(), 1));
       grid = std::make_unique<detail::TexelGrid>(pf, spacing);
       cover.assign(position.size(), 0.0);
@@ -227,8 +234,11 @@ struct PointSignalCache::Impl {
     const double r2 = s.radius * s.radius, inv_r = 1.0 / s.radius;
     const std::vector<int>& order = grid->order();
     touched.clear();
-    for (const Vec3& c : s.dabs)
-      grid->for_each_in_ball(c, s.radius * (1 + 1e-5) + 1e-30, [&](int slot, float) {
+    for (const Vec3& c : s.dabs) {
+      // Each coordinate of p − c in float is off by at most 2^-23 (|p| + |c|) (two roundings to float
+      // and one subtraction), the distance by √3 times that: 8 · FLT_EPSILON is a safe margin.
+      const double slack = 8 * std::numeric_limits<float>::epsilon() * (max_abs + c.cwiseAbs().maxCoeff());
+      grid->for_each_in_ball(c, s.radius * (1 + 1e-5) + slack + 1e-30, [&](int slot, float) {
         const int k = order[static_cast<size_t>(slot)];
         const double d2 = (position[k] - c).squaredNorm();
         if (d2 >= r2) return;
@@ -236,6 +246,7 @@ struct PointSignalCache::Impl {
         if (cover[k] == 0 && a > 0) touched.push_back(k);
         cover[k] = std::max(cover[k], a);
       });
+    }
     for (int k : touched) {
       value[k] = value[k] * (1 - cover[k]) + s.color * cover[k];
       cover[k] = 0;
