@@ -514,14 +514,19 @@ GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions
     // Per row, then summed in row order: the same figures with or without threads.
     std::vector<double> row_err(static_cast<size_t>(o.cells), 0.0);
     std::vector<int> row_inverted(static_cast<size_t>(o.cells), 0);
-    tbb::parallel_for(0, o.cells, [&](int j) {
+    auto row = [&](int j) {
       for (int i = 0; i < o.cells; ++i) {
         const double a = cell_signed_area(g, i, j);
         if (!cell_convex(g, i, j)) ++row_inverted[static_cast<size_t>(j)];
         const double target = sample_bilinear(density, (i + 0.5) / o.cells, (j + 0.5) / o.cells) / mean;
         row_err[static_cast<size_t>(j)] += std::abs(a * n2 - target);
       }
-    });
+    };
+    if (o.parallel) {
+      tbb::parallel_for(0, o.cells, row);
+    } else {
+      for (int j = 0; j < o.cells; ++j) row(j);
+    }
     double err = 0;
     for (int j = 0; j < o.cells; ++j) {
       err += row_err[static_cast<size_t>(j)];

@@ -45,7 +45,7 @@ struct DensityFlowOptions {
   /// saving within noise, docs/benchmarks.md). Per-chart flows were already counted this way.
   /// Session 10: 4 on the 256-cell lattice (the same move in uv as 2 on 128 cells).
   double max_step_cells = 4.0;
-  bool parallel = true;        ///< Advect points with TBB (results are identical either way).
+  bool parallel = true;        ///< Advect points and measure the lattice with TBB (identical results either way).
   /// Coarse-to-fine advection, in output cells (session 9; 0: advect every point). On an even
   /// lattice (cells >= 16) the lattice of the even points is built first (recursively, down to 8
   /// cells); in each of its cells where the fourth differences of the advected points around the
