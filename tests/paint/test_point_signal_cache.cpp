@@ -50,32 +50,32 @@ TEST(PointSignalCache, EqualsTheWholeHistoryAfterEveryStroke) {
 // radius must be painted and one a hair outside must not: the spatial index (which compares in float)
 // may not drop either, also where the mesh lies far from the origin and the brush is small.
 TEST(PointSignalCache, HardBrushEdgeIsExactAtEveryScale) {
-  for (const Vec3 offset : {Vec3(0, 0, 0), Vec3(1000, -500, 300)}) {
-  TriMesh mesh = shapes::icosphere(4);
-  for (Vec3& v : mesh.positions) v += offset;
-  const std::vector<SurfacePoint> pts = sample_surface(mesh, 4000, 11);
-  std::vector<Vec3> pos;
-  for (const SurfacePoint& sp : pts) pos.push_back(point_on_face(mesh, sp.face, sp.b0, sp.b1));
-  for (size_t target : {size_t(7), size_t(1234), size_t(3999)})
-    for (double scale : {0.002, 0.02, 0.3, 5.0}) {  // the dab's distance to the target point
-      for (double edge : {1 + 1e-9, 1 - 1e-9}) {
-        const Vec3 dir = Vec3(0.3, -0.5, 0.8).normalized();
-        Stroke s;
-        s.color = Vec3(1, 0, 0);
-        s.hardness = 1;
-        s.opacity = 1;
-        s.dabs = {pos[target] + scale * dir};
-        s.radius = scale * edge;
-        StrokeFile one;
-        one.background = Vec3(0, 0, 1);
-        one.strokes = {s};
-        PointSignalCache cache(mesh, pts, one.background);
-        cache.add_stroke(s);
-        for (size_t k = 0; k < pts.size(); ++k) ASSERT_EQ(cache.values()[k], evaluate_strokes_reference(one, pos[k])) << k;
-        EXPECT_EQ(cache.values()[target], edge > 1 ? s.color : one.background)
-            << "offset " << offset.transpose() << ", point " << target << ", scale " << scale;
+  for (const Vec3& offset : {Vec3(0, 0, 0), Vec3(1000, -500, 300)}) {
+    TriMesh mesh = shapes::icosphere(4);
+    for (Vec3& v : mesh.positions) v += offset;
+    const std::vector<SurfacePoint> pts = sample_surface(mesh, 4000, 11);
+    std::vector<Vec3> pos;
+    for (const SurfacePoint& sp : pts) pos.push_back(point_on_face(mesh, sp.face, sp.b0, sp.b1));
+    for (size_t target : {size_t(7), size_t(1234), size_t(3999)})
+      for (double scale : {0.002, 0.02, 0.3, 5.0}) {  // the dab's distance to the target point
+        for (double edge : {1 + 1e-9, 1 - 1e-9}) {
+          const Vec3 dir = Vec3(0.3, -0.5, 0.8).normalized();
+          Stroke s;
+          s.color = Vec3(1, 0, 0);
+          s.hardness = 1;
+          s.opacity = 1;
+          s.dabs = {pos[target] + scale * dir};
+          s.radius = scale * edge;
+          StrokeFile one;
+          one.background = Vec3(0, 0, 1);
+          one.strokes = {s};
+          PointSignalCache cache(mesh, pts, one.background);
+          cache.add_stroke(s);
+          for (size_t k = 0; k < pts.size(); ++k) ASSERT_EQ(cache.values()[k], evaluate_strokes_reference(one, pos[k])) << k;
+          EXPECT_EQ(cache.values()[target], edge > 1 ? s.color : one.background)
+              << "offset " << offset.transpose() << ", point " << target << ", scale " << scale;
+        }
       }
-    }
   }
 }
 
