@@ -98,14 +98,15 @@ std::vector<SurfacePoint> texel_points(const TexelMap& map) {
   return pts;
 }
 
-/// The raster of \p map holding \p c (the signal at texel_points(map)) inside charts, padded outside.
-Raster signal_raster(const TexelMap& map, const std::vector<Vec3>& c, const Vec3& background) {
+/// The raster of \p map holding \p c (the signal at texel_points(map)) inside charts, padded outside
+/// if \p pad (see exact_raster()).
+Raster signal_raster(const TexelMap& map, const std::vector<Vec3>& c, const Vec3& background, bool pad) {
   Raster r;
   r.size = map.width;
   r.rgb.assign(static_cast<size_t>(map.width) * map.height, background.cast<float>());
   std::vector<char> filled(r.rgb.size(), 0);
   for (size_t k = 0; k < c.size(); ++k) r.rgb[map.inside[k]] = c[k].cast<float>(), filled[map.inside[k]] = 1;
-  pad_outside(r, std::move(filled), 4);
+  if (pad) pad_outside(r, std::move(filled), 4);
   return r;
 }
 
@@ -195,11 +196,12 @@ double position_slack(const TriMesh& mesh) {
   return 1e-6 * (box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).maxCoeff() + box.diagonal().norm());
 }
 
-/// The exact signal at the texel centres of \p map (inside charts), padded outside: evaluated where
+/// The exact signal at the texel centres of \p map (inside charts), padded outside if \p pad (only
+/// rasters read by bilinear lookup need it; the reference is read at chart texels only): evaluated where
 /// \p reach says a dab may reach the texel's point, the background elsewhere (what StrokeSignal gives
 /// there). Equal to signal_raster(map, signal.evaluate(texel_points(map)), background).
 Raster exact_raster(const TriMesh& mesh, const TexelMap& map, const StrokeSignal& signal, const DabReach& reach,
-                    const Vec3& background) {
+                    const Vec3& background, bool pad) {
   Raster r;
   r.size = map.width;
   r.rgb.assign(static_cast<size_t>(map.width) * map.height, background.cast<float>());
@@ -214,7 +216,7 @@ Raster exact_raster(const TriMesh& mesh, const TexelMap& map, const StrokeSignal
         r.rgb[t] = signal.evaluate(point_on_face(mesh, f, map.bary[t].x(), map.bary[t].y()), f).cast<float>();
     }
   });
-  pad_outside(r, std::move(filled), 4);
+  if (pad) pad_outside(r, std::move(filled), 4);
   return r;
 }
 
@@ -472,9 +474,9 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
   const TexelMap ref_map = build_texel_map(mesh, param, R, R);
   // Marking may fill up to two rows of cells per reference texel (far less than evaluating them).
   const DabReach reach(history, 2.0 * R * R, position_slack(mesh));
-  const Raster ref = exact_raster(mesh, ref_map, signal, reach, history.background);
+  const Raster ref = exact_raster(mesh, ref_map, signal, reach, history.background, false);
   const int half = std::max(1, N / 2);
-  const Raster level_b = exact_raster(mesh, build_texel_map(mesh, param, half, half), signal, reach, history.background);
+  const Raster level_b = exact_raster(mesh, build_texel_map(mesh, param, half, half), signal, reach, history.background, true);
   return from_levels(mesh, param, texture, ref, ref_map, level_b, o);
 }
 
@@ -525,8 +527,8 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
     throw InvalidInputError("error density: the reference was built for another layout or texture size");
   reference.update(history);
   const ErrorDensityReference::Impl& r = *reference.impl_;
-  const Raster ref = signal_raster(r.ref_map, r.ref_signal.values(), history.background);
-  const Raster level_b = signal_raster(r.half_map, r.half_signal.values(), history.background);
+  const Raster ref = signal_raster(r.ref_map, r.ref_signal.values(), history.background, false);
+  const Raster level_b = signal_raster(r.half_map, r.half_signal.values(), history.background, true);
   return from_levels(mesh, param, texture, ref, r.ref_map, level_b, o);
 }
 

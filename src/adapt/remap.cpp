@@ -331,17 +331,31 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
       }
     }
   };
+  // The untangled full-warp candidate (t = 1, per-chart factors as they were), kept for the attempt
+  // with extended local rounds, which starts from the same untangled state (untangle() depends only
+  // on its input): on the face mask with dots at 256² one such untangling is 500 rounds.
+  struct Untangled {
+    std::vector<double> chart_t;
+    std::vector<Vec2> uv, disp;
+  };
+  std::unique_ptr<Untangled> full_untangled;
   auto attempt = [&](double t, Parameterization& out) {
     ++res.checks;
     out = param;
-    disp.resize(param.uv.size());
-    tbb::parallel_for(size_t(0), out.uv.size(), [&](size_t w) {
-      disp[w] = t * chart_t[std::min<size_t>(wedge_chart[w], chart_t.size() - 1)] * (full.uv[w] - param.uv[w]);
-      out.uv[w] = param.uv[w] + disp[w];
-    });
     RemapCheck c;
     std::vector<int> bad, wedges;
-    untangle(out, disp);
+    if (t == 1.0 && full_untangled && full_untangled->chart_t == chart_t) {
+      out.uv = full_untangled->uv;
+      disp = full_untangled->disp;
+    } else {
+      disp.resize(param.uv.size());
+      tbb::parallel_for(size_t(0), out.uv.size(), [&](size_t w) {
+        disp[w] = t * chart_t[std::min<size_t>(wedge_chart[w], chart_t.size() - 1)] * (full.uv[w] - param.uv[w]);
+        out.uv[w] = param.uv[w] + disp[w];
+      });
+      untangle(out, disp);
+      if (t == 1.0) full_untangled = std::make_unique<Untangled>(Untangled{chart_t, out.uv, disp});
+    }
     std::vector<int> flipping;
     for (int round = 0; round <= rounds; ++round) {
       if (round == 0) failing_faces(out, nullptr, flipping);
