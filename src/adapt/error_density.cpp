@@ -220,8 +220,29 @@ Raster exact_raster(const TriMesh& mesh, const TexelMap& map, const StrokeSignal
   return r;
 }
 
-/// Side of the reference raster for a texture of side \p n.
-int reference_side(int n, const ErrorDensityOptions& o) { return std::max(n, std::min(o.reference_factor * n, o.max_reference)); }
+/// The reference points of a texture of side N: the texel centres of a side² raster moved by −shift
+/// in u and v, i.e. at ((i + 0.5)/side − shift, (j + 0.5)/side − shift).
+struct ReferenceGrid {
+  int side = 0;
+  double shift = 0;
+  bool operator==(const ReferenceGrid& g) const { return side == g.side && shift == g.shift; }
+};
+
+/// ErrorDensityOptions::quarter_texel_reference where N >= 4·cells, else the reference_factor·N
+/// raster (capped at max_reference, never coarser than the texture).
+ReferenceGrid reference_grid(int n, const ErrorDensityOptions& o) {
+  if (o.quarter_texel_reference && n >= 4 * o.cells) return {n, 0.25 / n};
+  return {std::max(n, std::min(o.reference_factor * n, o.max_reference)), 0.0};
+}
+
+/// The texel map of the reference points: the texel map of \p param shifted by +shift (its texel
+/// centre (i + 0.5)/side is the layout's point (i + 0.5)/side − shift).
+TexelMap reference_texel_map(const TriMesh& mesh, const Parameterization& param, const ReferenceGrid& g) {
+  if (g.shift == 0) return build_texel_map(mesh, param, g.side, g.side);
+  Parameterization shifted = param;
+  for (Vec2& t : shifted.uv) t += Vec2(g.shift, g.shift);
+  return build_texel_map(mesh, shifted, g.side, g.side);
+}
 
 /// Surface area per UV area of every face, relative to the whole layout's (1 = average).
 std::vector<double> surface_per_uv(const TriMesh& mesh, const Parameterization& param) {
@@ -283,15 +304,15 @@ struct CellErrors {
   std::vector<double> cover;    // fraction of the cell inside charts
 };
 
-/// Raster::sample's taps and weights along one axis, for the texel centres (k + 0.5) / R, k < R: a
-/// bilinear lookup at those centres is then two table reads per axis (the same arithmetic as sample()).
+/// Raster::sample's taps and weights along one axis, for the reference points (k + 0.5) / R − shift,
+/// k < R: a bilinear lookup there is then two table reads per axis (the same arithmetic as sample()).
 struct Taps {
   std::vector<int> lo, hi;
   std::vector<float> w;  // weight of hi
 
-  Taps(int size, int R) : lo(R), hi(R), w(R) {
+  Taps(int size, int R, double shift) : lo(R), hi(R), w(R) {
     for (int k = 0; k < R; ++k) {
-      const double x = std::clamp((k + 0.5) / R * size - 0.5, 0.0, size - 1.0);
+      const double x = std::clamp(((k + 0.5) / R - shift) * size - 0.5, 0.0, size - 1.0);
       lo[k] = std::min(static_cast<int>(x), size - 2 < 0 ? 0 : size - 2);
       hi[k] = std::min(lo[k] + 1, size - 1);
       w[k] = static_cast<float>(x - lo[k]);
@@ -299,7 +320,7 @@ struct Taps {
   }
 };
 
-/// \p r bilinearly at the texel centre (i, j) of an R² raster: Raster::sample((i+0.5)/R, (j+0.5)/R).
+/// \p r bilinearly at the reference point (i, j): Raster::sample((i+0.5)/R − shift, (j+0.5)/R − shift).
 inline Vec3f sample_at(const Raster& r, const Taps& x, const Taps& y, int i, int j) {
   const float s = x.w[i], t = y.w[j];
   const Vec3f* row0 = r.rgb.data() + static_cast<size_t>(y.lo[j]) * r.size;
@@ -307,7 +328,8 @@ inline Vec3f sample_at(const Raster& r, const Taps& x, const Taps& y, int i, int
   return (1 - t) * ((1 - s) * row0[x.lo[i]] + s * row0[x.hi[i]]) + t * ((1 - s) * row1[x.lo[i]] + s * row1[x.hi[i]]);
 }
 
-CellErrors accumulate(const Raster& ref, const TexelMap& ref_map, const Raster& a, const Raster& b,
+/// \p ref holds the exact signal at the reference points of \p g (ref_map: their texel map).
+CellErrors accumulate(const Raster& ref, const TexelMap& ref_map, const ReferenceGrid& g, const Raster& a, const Raster& b,
                       const std::vector<double>& ratio, int n) {
   CellErrors c;
   c.n = n;
@@ -315,17 +337,20 @@ CellErrors accumulate(const Raster& ref, const TexelMap& ref_map, const Raster& 
   c.ea.assign(cells, 0), c.eb.assign(cells, 0), c.surface.assign(cells, 0), c.cover.assign(cells, 0);
   const int R = ref.size;
   const double per_cell = double(R) * R / cells;  // reference texels per cell
-  const Taps ax(a.size, R), bx(b.size, R);  // the same tables serve rows and columns (square rasters)
-  // Row bands of cells are independent: parallel over cell rows.
+  const Taps ax(a.size, R, g.shift), bx(b.size, R, g.shift);  // the same tables serve rows and columns
+  // Row bands of cells are independent: parallel over cell rows. Row j's points lie at
+  // v = (j + 0.5)/R − shift, in cell row floor(v·n).
+  const double lift = g.shift * R - 0.5;
   tbb::parallel_for(0, n, [&](int cj) {
-    const int j0 = static_cast<int>(std::ceil(double(cj) * R / n - 0.5)), j1 = static_cast<int>(std::ceil(double(cj + 1) * R / n - 0.5));
+    const int j0 = cj == 0 ? 0 : static_cast<int>(std::ceil(double(cj) * R / n + lift));
+    const int j1 = cj == n - 1 ? R : static_cast<int>(std::ceil(double(cj + 1) * R / n + lift));
     for (int j = std::max(j0, 0); j < std::min(j1, R); ++j)
       for (int i = 0; i < R; ++i) {
         const size_t t = static_cast<size_t>(j) * R + i;
         const int f = ref_map.face[t];
         if (f < 0) continue;
-        const double u = (i + 0.5) / R;
-        const int ci = std::min(static_cast<int>(u * n), n - 1);
+        const double u = (i + 0.5) / R - g.shift;
+        const int ci = std::clamp(static_cast<int>(u * n), 0, n - 1);
         const size_t cell = static_cast<size_t>(cj) * n + ci;
         const double w = ratio[f];
         c.ea[cell] += w * (ref.rgb[t] - sample_at(a, ax, ax, i, j)).squaredNorm() / 3.0;
@@ -455,10 +480,11 @@ void check(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8&
 /// The density from the reference raster \p ref (texel map \p ref_map) and the N/2 level \p level_b of
 /// the exact signal; level a is the texture itself (what the painter stored at h_N).
 ErrorDensity from_levels(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
-                         const Raster& ref, const TexelMap& ref_map, const Raster& level_b, const ErrorDensityOptions& o) {
+                         const Raster& ref, const TexelMap& ref_map, const ReferenceGrid& g, const Raster& level_b,
+                         const ErrorDensityOptions& o) {
   const Raster level_a = from_texture(texture);
   // The density raster is never finer than the reference raster (every cell holds reference texels).
-  CellErrors c = accumulate(ref, ref_map, level_a, level_b, surface_per_uv(mesh, param), std::min(o.cells, ref.size));
+  CellErrors c = accumulate(ref, ref_map, g, level_a, level_b, surface_per_uv(mesh, param), std::min(o.cells, ref.size));
   ErrorDensity out = solve_density(c, 1.0, o);
   out.reference_size = ref.size;
   return out;
@@ -469,22 +495,24 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
                                    const TexelMap& map, const StrokeFile& history, const ErrorDensityOptions& o) {
   check(mesh, param, texture, map, o, true);
   const int N = texture.width;
-  const int R = reference_side(N, o);
+  const ReferenceGrid g = reference_grid(N, o);
+  const int R = g.side;
   const StrokeSignal signal(mesh, history);
-  const TexelMap ref_map = build_texel_map(mesh, param, R, R);
+  const TexelMap ref_map = reference_texel_map(mesh, param, g);
   // Marking may fill up to two rows of cells per reference texel (far less than evaluating them).
   const DabReach reach(history, 2.0 * R * R, position_slack(mesh));
   const Raster ref = exact_raster(mesh, ref_map, signal, reach, history.background, false);
   const int half = std::max(1, N / 2);
   const Raster level_b = exact_raster(mesh, build_texel_map(mesh, param, half, half), signal, reach, history.background, true);
-  return from_levels(mesh, param, texture, ref, ref_map, level_b, o);
+  return from_levels(mesh, param, texture, ref, ref_map, g, level_b, o);
 }
 
 struct ErrorDensityReference::Impl {
   const TriMesh* mesh = nullptr;
   std::vector<Vec2> uv;              // the layout it was built for
   std::vector<Face> uv_faces;
-  int texture_size = 0, reference = 0;
+  int texture_size = 0;
+  ReferenceGrid grid;
   TexelMap ref_map, half_map;
   PointSignalCache ref_signal, half_signal;
 };
@@ -494,12 +522,13 @@ ErrorDensityReference::ErrorDensityReference(const TriMesh& mesh, const Paramete
   if (param.uv_faces.size() != mesh.faces.size() || texture_size < 1)
     throw InvalidInputError("error density reference: layout and mesh differ, or texture size < 1");
   if (o.reference_factor < 1 || o.max_reference < 1) throw InvalidInputError("error density: bad reference size");
-  const int R = reference_side(texture_size, o), half = std::max(1, texture_size / 2);
-  TexelMap ref_map = build_texel_map(mesh, param, R, R);
+  const ReferenceGrid g = reference_grid(texture_size, o);
+  const int half = std::max(1, texture_size / 2);
+  TexelMap ref_map = reference_texel_map(mesh, param, g);
   TexelMap half_map = build_texel_map(mesh, param, half, half);
   PointSignalCache ref_signal(mesh, texel_points(ref_map), background);
   PointSignalCache half_signal(mesh, texel_points(half_map), background);
-  impl_ = std::make_unique<Impl>(Impl{&mesh, param.uv, param.uv_faces, texture_size, R,
+  impl_ = std::make_unique<Impl>(Impl{&mesh, param.uv, param.uv_faces, texture_size, g,
                                       std::move(ref_map), std::move(half_map), std::move(ref_signal),
                                       std::move(half_signal)});
 }
@@ -510,7 +539,7 @@ ErrorDensityReference& ErrorDensityReference::operator=(ErrorDensityReference&&)
 
 bool ErrorDensityReference::matches(const TriMesh& mesh, const Parameterization& param, int texture_size,
                                     const ErrorDensityOptions& o) const {
-  return &mesh == impl_->mesh && texture_size == impl_->texture_size && reference_side(texture_size, o) == impl_->reference &&
+  return &mesh == impl_->mesh && texture_size == impl_->texture_size && reference_grid(texture_size, o) == impl_->grid &&
          param.uv == impl_->uv && param.uv_faces == impl_->uv_faces;
 }
 
@@ -529,7 +558,7 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
   const ErrorDensityReference::Impl& r = *reference.impl_;
   const Raster ref = signal_raster(r.ref_map, r.ref_signal.values(), history.background, false);
   const Raster level_b = signal_raster(r.half_map, r.half_signal.values(), history.background, true);
-  return from_levels(mesh, param, texture, ref, r.ref_map, level_b, o);
+  return from_levels(mesh, param, texture, ref, r.ref_map, r.grid, level_b, o);
 }
 
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
@@ -540,7 +569,7 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
   const TexelMap square_map = texture.width == texture.height ? TexelMap{} : build_texel_map(mesh, param, N, N);
   const Raster level_a = resampled(ref, std::max(1, N / 2));
   const Raster level_b = resampled(ref, std::max(1, N / 4));
-  CellErrors c = accumulate(ref, texture.width == texture.height ? map : square_map, level_a, level_b,
+  CellErrors c = accumulate(ref, texture.width == texture.height ? map : square_map, ReferenceGrid{N, 0.0}, level_a, level_b,
                             surface_per_uv(mesh, param), std::min(o.cells, N));
   // Level a has spacing 2·h_N: the error at h_N extrapolates by 2^(−p).
   ErrorDensity out = solve_density(c, 0.5, o);

@@ -36,6 +36,19 @@ struct ErrorDensityOptions {
   /// the cost at 4× the texture's texels; the reference must be finer than the texture to see e(h_N).
   int reference_factor = 2;
   int max_reference = 2048;   ///< Cap on the reference raster's side in texels.
+  /// Where the texture has at least 4× the density raster's resolution (N >= 4·cells: 16 reference
+  /// points per cell, as many as the 2N raster gives at N = 2·cells), take the reference points on the
+  /// texture's own N x N grid shifted by a quarter texel, at ((i + 1/4)/N, (j + 1/4)/N), instead of
+  /// the texel centres of the reference_factor·N raster. Along each axis the 2N raster's points lie
+  /// 1/4 or 3/4 of a texel past a texture texel centre, and 1/8 or 3/8 of an N/2 texel from the
+  /// nearest N/2 centre; the shifted grid has the same distances in the same proportions, so both
+  /// levels' errors are sampled alike, with a quarter of the exact evaluations and of the reference
+  /// texel map. It also stays finer than the texture at N >= max_reference, where the capped raster
+  /// is the texture's own texel centres. Not with fewer points per cell: with 1 (N = cells = 256) the
+  /// per-cell errors of small dots got noisy, the density too peaked, and it lost 0.2–0.3 dB; with 4
+  /// the model predicted +18 % more gain on dots than the 2N raster (docs/quality.md, "Session 11").
+  /// false: always the reference_factor·N raster.
+  bool quarter_texel_reference = true;
   /// Gaussian σ, in cells, of the error fields before the density solve. 3 since session 10 (4 before):
   /// with the 256-cell flow lattice, +0.06 dB on lines / dots / mixed over 4 (alone it is neutral).
   double blur_cells = 3.0;
@@ -59,11 +72,12 @@ struct ErrorDensity {
   ImageF exponent;    ///< L x L: measured p (0 where nothing is painted).
   double signal_fraction = 0;     ///< Fraction of chart cells with a measurable error.
   double predicted_gain_db = 0;   ///< The model's PSNR gain of the density over the current layout.
-  int reference_size = 0;         ///< Side of the reference raster used.
+  int reference_size = 0;         ///< Side of the reference raster (or shifted grid) used.
 };
 
 /// The exact history signal that compute_error_density() reads, for one layout at one texture size:
-/// at the texel centres of the reference raster (R = reference_factor · N, capped at max_reference) and
+/// at the reference points (the texel centres of the reference raster, R = reference_factor · N capped at
+/// max_reference, or the quarter-texel-shifted N x N grid: quarter_texel_reference) and
 /// of the N/2 level, kept up to date stroke by stroke (paint/signal.h, PointSignalCache). A painting
 /// session re-parameterizes from its initial layout after every stroke (session.h): with this cache
 /// the error model evaluates only the new strokes' dabs, not the whole history (issue 10).
