@@ -12,6 +12,7 @@
 //                         [--grid C,F] [--alpha A] [--beta B] [--schedule end|each-stroke]
 //                         [--update replay|resample] [--no-safeguard] [--no-refine] [--verbose]
 //                         [--charts single|auto] [--floor F] [--density-cells L] [--no-atlas]
+//                         [--full-chart-share]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
 //
@@ -82,6 +83,8 @@ struct Args {
   double floor = -1;            ///< --floor: ErrorDensityOptions::floor (-1: the default).
   int density_cells = -1;       ///< --density-cells: ErrorDensityOptions::cells (-1: the default).
   bool atlas = true;            ///< --no-atlas: AdaptOptions::atlas_flow = false (one flow over the square).
+  /// --full-chart-share: AdaptOptions::chart_sizes_by_error_model = false (sizes ∝ sqrt(mean ρ)).
+  bool full_chart_share = false;
   double refine_factor = -1;    ///< --refine-factor: AdaptOptions::refine_max_face_factor (-1: default).
   double blur = -1;             ///< --blur: ErrorDensityOptions::blur_cells (-1: the default).
   double max_density = -1;      ///< --max-density: ErrorDensityOptions::max_density (-1: the default).
@@ -113,6 +116,7 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   o.safeguard = a.safeguard;
   set_refine(o, m.refine);
   o.adapt.atlas_flow = a.atlas;
+  o.adapt.chart_sizes_by_error_model = !a.full_chart_share;
   if (a.floor >= 0) o.adapt.density.floor = a.floor;
   if (a.density_cells > 0) o.adapt.density.cells = a.density_cells;
   if (a.refine_factor > 0) o.adapt.refine_max_face_factor = a.refine_factor;
@@ -171,6 +175,7 @@ Args parse_args(int argc, char** argv) {
     if (k == "--verbose") { a.verbose = true; continue; }
     if (k == "--direct-flow") { a.direct_flow = true; continue; }
     if (k == "--no-atlas") { a.atlas = false; continue; }
+    if (k == "--full-chart-share") { a.full_chart_share = true; continue; }
     if (i + 1 >= argc) throw std::invalid_argument(k + ": unknown option or missing value");
     const std::string v = argv[++i];
     if (k == "--meshes") a.meshes = split(v);

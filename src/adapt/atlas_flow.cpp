@@ -64,22 +64,31 @@ void check_density(const ImageF& density, const char* who) {
   if (density.width < 1 || density.height < 1 || density.data.empty())
     throw InvalidInputError(std::string(who) + ": empty density raster");
 }
-}  // namespace
 
-std::vector<ChartMove> repack_charts_by_density(const std::vector<UvRect>& boxes, const ImageF& density,
-                                                const ChartRepackOptions& o) {
+void check_repack(const std::vector<UvRect>& boxes, const ImageF& density, const ChartRepackOptions& o) {
   check_density(density, "repack_charts_by_density");
   if (!(o.padding >= 0 && o.padding < 0.25)) throw InvalidInputError("repack_charts_by_density: padding must be in [0, 0.25)");
   if (o.samples_per_cell < 1) throw InvalidInputError("repack_charts_by_density: samples_per_cell must be >= 1");
   if (boxes.empty()) throw InvalidInputError("repack_charts_by_density: no charts");
-  // The texel budget of a chart is ∫ρ over its rectangle; its new area is proportional to that, so
-  // its linear scale is proportional to sqrt(mean ρ) (pack_rectangles scales all together).
-  std::vector<Vec2> sizes(boxes.size());
-  std::vector<double> factor(boxes.size(), 0.0);
+}
+
+/// Mean density over every chart's box (0 for empty boxes).
+std::vector<double> chart_means(const std::vector<UvRect>& boxes, const ImageF& density, const ChartRepackOptions& o) {
+  std::vector<double> m(boxes.size(), 0.0);
+  for (size_t c = 0; c < boxes.size(); ++c)
+    if (boxes[c].area() > 0) m[c] = std::max(mean_density(density, boxes[c], o.samples_per_cell), 1e-12);
+  return m;
+}
+
+/// The charts packed with sizes ∝ mean^(γ/2) × their boxes.
+std::vector<ChartMove> repack_with(const std::vector<UvRect>& boxes, const std::vector<double>& mean, double gamma,
+                                   const ChartRepackOptions& o) {
+  // The texel budget of a chart is ∫ρ over its rectangle; at γ = 1 its new area is proportional to
+  // that, so its linear scale is proportional to sqrt(mean ρ) (pack_rectangles scales all together).
+  std::vector<Vec2> sizes(boxes.size(), Vec2::Zero());
   for (size_t c = 0; c < boxes.size(); ++c) {
     if (boxes[c].area() <= 0) continue;  // an unused chart id or a degenerate chart: smallest size
-    factor[c] = std::sqrt(std::max(mean_density(density, boxes[c], o.samples_per_cell), 1e-12));
-    sizes[c] = factor[c] * boxes[c].size();
+    sizes[c] = (gamma == 1.0 ? std::sqrt(mean[c]) : std::pow(mean[c], 0.5 * gamma)) * boxes[c].size();
   }
   const std::vector<RectPlacement> placed = pack_rectangles(sizes, o.padding);
   std::vector<ChartMove> moves(boxes.size());
@@ -94,6 +103,79 @@ std::vector<ChartMove> repack_charts_by_density(const std::vector<UvRect>& boxes
                                       : 1.0;
   }
   return moves;
+}
+
+/// The model's predicted error after moving the charts by \p moves and equalizing each chart's
+/// density (see allocate_charts_by_error()).
+double predicted_error(const std::vector<ChartMove>& moves, const std::vector<double>& mean, const ImageF& density,
+                       const ImageF& error, const ImageF& exponent) {
+  const int L = density.width;
+  std::vector<int> owner(static_cast<size_t>(L) * L, -1);
+  for (size_t c = 0; c < moves.size(); ++c) {
+    const UvRect& b = moves[c].src;
+    if (b.area() <= 0) continue;
+    const int i0 = std::max(0, static_cast<int>(std::ceil(b.lo.x() * L - 0.5)));
+    const int i1 = std::min(L - 1, static_cast<int>(std::floor(b.hi.x() * L - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil(b.lo.y() * L - 0.5)));
+    const int j1 = std::min(L - 1, static_cast<int>(std::floor(b.hi.y() * L - 0.5)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) owner[static_cast<size_t>(j) * L + i] = static_cast<int>(c);
+  }
+  double e = 0;
+  for (size_t k = 0; k < owner.size(); ++k) {
+    const int c = owner[k];
+    const double q = error.data[k];
+    if (c < 0 || !(q > 0)) continue;
+    const double s = moves[c].scale;
+    const double rho = std::max(s * s * density.data[k] / mean[c], 1e-12);
+    e += q * std::pow(rho, -0.5 * exponent.data[k]);
+  }
+  return e;
+}
+
+}  // namespace
+
+std::vector<ChartMove> repack_charts_by_density(const std::vector<UvRect>& boxes, const ImageF& density,
+                                                const ChartRepackOptions& o) {
+  check_repack(boxes, density, o);
+  return repack_with(boxes, chart_means(boxes, density, o), 1.0, o);
+}
+
+namespace {
+void check_error_rasters(const ImageF& density, const ImageF& error, const ImageF& exponent, const char* who) {
+  check_density(density, who);
+  if (density.width != density.height || error.width != density.width || error.height != density.height ||
+      exponent.width != density.width || exponent.height != density.height)
+    throw InvalidInputError(std::string(who) + ": the density, error and exponent rasters must be the same square size");
+}
+}  // namespace
+
+double predicted_chart_error(const std::vector<ChartMove>& moves, const ImageF& density, const ImageF& error,
+                             const ImageF& exponent, const ChartRepackOptions& o) {
+  check_error_rasters(density, error, exponent, "predicted_chart_error");
+  std::vector<UvRect> boxes(moves.size());
+  for (size_t c = 0; c < moves.size(); ++c) boxes[c] = moves[c].src;
+  return predicted_error(moves, chart_means(boxes, density, o), density, error, exponent);
+}
+
+std::vector<ChartMove> allocate_charts_by_error(const std::vector<UvRect>& boxes, const ImageF& density,
+                                                const ImageF& error, const ImageF& exponent,
+                                                const ChartRepackOptions& o, double* chosen_gamma) {
+  check_repack(boxes, density, o);
+  check_error_rasters(density, error, exponent, "allocate_charts_by_error");
+  const std::vector<double> mean = chart_means(boxes, density, o);
+  std::vector<ChartMove> best;
+  double best_e = std::numeric_limits<double>::infinity(), best_g = 1.0;
+  for (double gamma : {1.0, 0.75, 0.5, 0.25, 0.0}) {
+    std::vector<ChartMove> m = repack_with(boxes, mean, gamma, o);
+    const double e = predicted_error(m, mean, density, error, exponent);
+    if (e < best_e) best_e = e, best = std::move(m), best_g = gamma;
+  }
+  std::vector<ChartMove> stay(boxes.size());
+  for (size_t c = 0; c < boxes.size(); ++c) stay[c].src = boxes[c], stay[c].dst_lo = boxes[c].lo;
+  if (predicted_error(stay, mean, density, error, exponent) < best_e) best = std::move(stay), best_g = -1.0;
+  if (chosen_gamma) *chosen_gamma = best_g;
+  return best;
 }
 
 Parameterization move_charts(const Parameterization& param, const std::vector<ChartMove>& moves) {

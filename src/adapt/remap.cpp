@@ -302,12 +302,17 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
   auto untangle = [&](Parameterization& out, std::vector<Vec2>& d) {
     std::vector<int> bad_faces, ws;
     std::vector<Vec2> pos;
-    for (int r = 0; r < o.untangle_rounds; ++r) {
+    std::vector<size_t> counts;  // failing faces after each round (for untangle_patience)
+    const int cap = o.untangle_patience > 0 ? std::max(o.untangle_rounds, o.untangle_max_rounds) : o.untangle_rounds;
+    for (int r = 0; r < cap; ++r) {
       // Only faces around the wedges moved last round can change state: test those (and the faces
       // that still failed), not all F faces, after the first round.
       if (r == 0) failing_faces(out, nullptr, bad_faces);
       else failing_faces(out, &ws, bad_faces);
       if (bad_faces.empty()) return;
+      counts.push_back(bad_faces.size());
+      // Past untangle_rounds: go on only while the count is below its value untangle_patience rounds ago.
+      if (r >= o.untangle_rounds && (r < o.untangle_patience || !(counts[r] < counts[r - o.untangle_patience]))) return;
       ws.clear();
       for (int f : bad_faces)
         for (int w : param.uv_faces[f]) {

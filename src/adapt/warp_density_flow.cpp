@@ -48,7 +48,9 @@ class DensityFlowWarp final : public WarpMethod {
       ChartRepackOptions ro;
       const int texels = std::max(in.texture.width, in.texture.height);
       ro.padding = std::min(std::max(gap, o.chart_gutter_texels / texels), 0.2);
-      res.chart_moves = repack_charts_by_density(boxes, res.density, ro);
+      res.chart_moves = o.chart_sizes_by_error_model
+                            ? allocate_charts_by_error(boxes, res.density, ed.error, ed.exponent, ro)
+                            : repack_charts_by_density(boxes, res.density, ro);
       res.grids = chart_flow_warps(res.chart_moves, res.density, o.flow, 8, &st);
       if (o.flow.direct) res.flow = std::make_shared<const FlowWarp>(chart_flows(res.chart_moves, res.density, o.flow));
     } else {

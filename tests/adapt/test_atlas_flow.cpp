@@ -7,6 +7,7 @@
 #include "adaptex/adapt/adapt.h"
 #include "adaptex/adapt/atlas_flow.h"
 #include "adaptex/adapt/session.h"
+#include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/painter.h"
@@ -74,6 +75,47 @@ TEST(AtlasFlow, RepackSizesChartsByTheirShareOfTheDensity) {
     const double ratio = (m[0].dst().area() / f.boxes[0].area()) / (m[1].dst().area() / f.boxes[1].area());
     EXPECT_NEAR(ratio, hot, 0.1 * hot) << "hot " << hot;
   }
+}
+
+// allocate_charts_by_error(): the candidate with the least predicted error wins, and it is a valid
+// packing. Paint only in the hot box: its chart must grow relative to the others (its cells' error
+// falls as its scale rises). Paint evenly in all boxes: resizing buys nothing and loses packing
+// area, so no candidate beats keeping the charts where they are by a resize toward one chart.
+TEST(AtlasFlow, ErrorModelChoosesHowStronglyChartsAreResized) {
+  const FourBoxes f(9.0f);
+  const int L = f.density.width;
+  ChartRepackOptions o;
+  o.padding = 0.01;
+  ImageF error(L, L, 0.0f), exponent(L, L, 0.0f), even(L, L, 1e-3f), ones(L, L, 1.0f);
+  for (int j = 0; j < L; ++j)
+    for (int i = 0; i < L; ++i)
+      if (f.density.at(i, j) > 1) error.at(i, j) = 1e-3f, exponent.at(i, j) = 1.0f;
+  double gamma = -2;
+  const std::vector<ChartMove> m = allocate_charts_by_error(f.boxes, f.density, error, exponent, o, &gamma);
+  ASSERT_EQ(m.size(), 4u);
+  EXPECT_GE(gamma, -1.0);
+  for (size_t c = 0; c < m.size(); ++c) {
+    const UvRect d = m[c].dst();
+    EXPECT_GE(d.lo.minCoeff(), -1e-12);
+    EXPECT_LE(d.hi.maxCoeff(), 1 + 1e-12);
+    for (size_t e = c + 1; e < m.size(); ++e) EXPECT_GE(smallest_box_gap({d, m[e].dst()}), o.padding - 1e-12);
+  }
+  const double chosen = predicted_chart_error(m, f.density, error, exponent, o);
+  const double full = predicted_chart_error(repack_charts_by_density(f.boxes, f.density, o), f.density, error, exponent, o);
+  std::vector<ChartMove> stay(4);
+  for (size_t c = 0; c < 4; ++c) stay[c].src = f.boxes[c], stay[c].dst_lo = f.boxes[c].lo;
+  const double kept = predicted_chart_error(stay, f.density, error, exponent, o);
+  EXPECT_LE(chosen, full);
+  EXPECT_LE(chosen, kept);
+  EXPECT_LT(chosen, kept * 0.9);  // the hot chart's error falls by growing it
+  EXPECT_GT(m[0].scale, 1.2 * m[1].scale);
+  // The same error everywhere (density 1): the full share is the identity of sizes, and the
+  // winner's predicted error is no worse than the charts left in place.
+  double g2 = -2;
+  const std::vector<ChartMove> m2 = allocate_charts_by_error(f.boxes, ones, even, ones, o, &g2);
+  std::vector<ChartMove> stay2 = stay;
+  EXPECT_LE(predicted_chart_error(m2, ones, even, ones, o), predicted_chart_error(stay2, ones, even, ones, o));
+  EXPECT_THROW(allocate_charts_by_error(f.boxes, f.density, ImageF(L / 2, L / 2, 0.0f), exponent, o), InvalidInputError);
 }
 
 TEST(AtlasFlow, ChartMovesAndRectangleWarpsKeepEveryChartInItsRectangle) {

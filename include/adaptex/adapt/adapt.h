@@ -76,6 +76,10 @@ struct AdaptOptions {
   /// of the density, then one flow per chart rectangle (atlas_flow.h). false: one flow over the whole
   /// square, damped where charts would meet (kept for comparison; docs/error_model.md §6).
   bool atlas_flow = true;
+  /// atlas_flow: the error model chooses how strongly the charts are resized by their density share
+  /// (allocate_charts_by_error(): the re-packing's lost texels count against it); false: always by
+  /// the full share, sizes ∝ sqrt(mean ρ) (repack_charts_by_density(), sessions 3–10).
+  bool chart_sizes_by_error_model = true;
   /// atlas_flow: least gap between re-packed charts, in texels of the texture (the layout's own gap
   /// is kept when it is larger). Bilinear lookup near a chart border reads the texels next to it, so
   /// a gap below ~2 texels lets neighbouring charts bleed into each other at small texture sizes.

@@ -61,6 +61,15 @@ struct SafeRemapOptions {
   /// fails; 30 rounds left camelhead lines 256² with 1918 failing faces (texel saving 1.56×), 300
   /// rounds with none (5.65×), in 1 s.
   int untangle_rounds = 500;
+  /// Past untangle_rounds, untangling goes on while it still makes progress: as long as fewer faces
+  /// fail than untangle_patience rounds before, up to untangle_max_rounds in all (untangle_patience 0:
+  /// stop at untangle_rounds). On the face mask with
+  /// dots at 256² and 1024² the full warp needed 1,000–1,100 rounds (the count rises first, then falls,
+  /// not monotonically): stopping at 500 failed it and bisected the global blend (12 candidates,
+  /// 3,900 rounds, 0.2 dB less).
+  int untangle_patience = 200;
+  int untangle_max_rounds = 2000;  ///< Hard cap of the rounds (see untangle_patience).
+
   /// Untangling also moves the 1-rings of the failing faces' wedges (as before session 5). Off: only
   /// the failing faces' own wedges move, which disturbs fewer good faces; measured on the shared
   /// meshes' lines at 256², the rounds needed went 13-493 -> 10-249 (docs/error_model.md §6).
