@@ -321,6 +321,19 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
           for (int q = ring_start[w]; q < ring_start[w + 1]; ++q)
             if (!mark[ring[q]]) ws.push_back(ring[q]), mark[ring[q]] = 1;
         }
+      if (o.untangle_in_place) {
+        // Gauss–Seidel: each wedge reads its ring's positions as already updated this round.
+        for (const int w : ws) {
+          mark[w] = 0;
+          const int deg = ring_start[w + 1] - ring_start[w];
+          if (on_border[w] || deg == 0) continue;
+          Vec2 sum = Vec2::Zero();
+          for (int q = ring_start[w]; q < ring_start[w + 1]; ++q) sum += out.uv[ring[q]];
+          out.uv[w] = sum / deg;
+          d[w] = out.uv[w] - param.uv[w];
+        }
+        continue;
+      }
       pos.resize(ws.size());
       for (size_t i = 0; i < ws.size(); ++i) {
         const int w = ws[i];

@@ -20,6 +20,8 @@
 #include <algorithm>
 #include <initializer_list>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <nlohmann/json.hpp>
 
@@ -73,8 +75,10 @@ std::uint32_t u32_at(const std::string& bytes, std::size_t at) {
   return v;
 }
 
-/// Splits a GLB container into its JSON text and the length of its BIN chunk (0 without one).
-std::string split_glb(const std::string& name, const std::string& bytes, std::uint64_t& bin_length) {
+/// Splits a GLB container into its JSON text and the length (and, if asked, the offset) of its BIN
+/// chunk (0 without one).
+std::string split_glb(const std::string& name, const std::string& bytes, std::uint64_t& bin_length,
+                      std::uint64_t* bin_offset = nullptr) {
   const std::string corrupt = name + ": corrupt glTF: ";
   if (bytes.size() < 20) throw IoError(corrupt + "a GLB file needs at least 20 bytes (has " + std::to_string(bytes.size()) + ")");
   if (u32_at(bytes, 4) != 2) throw IoError(corrupt + "GLB version " + std::to_string(u32_at(bytes, 4)) + " (only 2 is supported)");
@@ -91,7 +95,10 @@ std::string split_glb(const std::string& name, const std::string& bytes, std::ui
                     " bytes, more than the " + std::to_string(bytes.size() - at - 8) + " left in the file");
     if (chunk == 0 && type != 0x4E4F534Au) throw IoError(corrupt + "the first GLB chunk is not JSON");
     if (chunk == 0) json_text = bytes.substr(at + 8, length);
-    if (chunk == 1 && type == 0x004E4942u) bin_length = length;
+    if (chunk == 1 && type == 0x004E4942u) {
+      bin_length = length;
+      if (bin_offset) *bin_offset = at + 8;
+    }
     at += 8 + length;
   }
   return json_text;
@@ -279,6 +286,75 @@ void check_references(const std::string& corrupt, const json& doc) {
   if (doc.contains("scene")) check_index(doc["scene"], doc.contains("scenes") ? doc["scenes"].size() : 0, corrupt + "scene");
 }
 
+/// Standard base64 (RFC 4648) of a data: URI's payload; stops at the first character outside the
+/// alphabet ('=' padding included).
+std::string decode_base64(const std::string& text, std::size_t from) {
+  std::string out;
+  std::uint32_t acc = 0;
+  int bits = 0;
+  for (std::size_t k = from; k < text.size(); ++k) {
+    const char c = text[k];
+    int v = c >= 'A' && c <= 'Z' ? c - 'A' : c >= 'a' && c <= 'z' ? c - 'a' + 26 : c >= '0' && c <= '9' ? c - '0' + 52
+            : c == '+' ? 62 : c == '/' ? 63 : -1;
+    if (v < 0) break;
+    acc = (acc << 6) | static_cast<std::uint32_t>(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<char>((acc >> bits) & 0xFF));
+    }
+  }
+  return out;
+}
+
+/// The bytes of buffer \p b (check_buffers() accepted it): the GLB's BIN chunk, a data: URI, or a
+/// file next to the glTF.
+std::string buffer_bytes(const json& b, const std::string& bytes, std::uint64_t bin_offset, std::uint64_t bin_length,
+                         const std::filesystem::path& dir) {
+  if (!b.contains("uri")) return bytes.substr(static_cast<std::size_t>(bin_offset), static_cast<std::size_t>(bin_length));
+  const std::string uri = b["uri"].get<std::string>();
+  if (uri.rfind("data:", 0) == 0) return decode_base64(uri, uri.find(',') + 1);
+  std::ifstream in(dir / uri, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// Every index of every primitive names a vertex of its POSITION accessor. assimp follows index values
+/// without checking them for some primitive modes: found by fuzz_gltf (session 11), a line loop whose
+/// indices (a valid unsigned-short SCALAR accessor) were read from the positions' bytes made assimp
+/// read address 0. Runs after check_views_and_accessors() and check_references(), so every accessor
+/// and view read here lies inside its buffer.
+void check_index_values(const std::string& corrupt, const json& doc, const std::string& bytes, std::uint64_t bin_offset,
+                        std::uint64_t bin_length, const std::filesystem::path& dir) {
+  const json* meshes = array_of(corrupt, doc, "meshes");
+  if (!meshes) return;
+  std::vector<std::string> loaded;
+  std::vector<char> have;
+  for (std::size_t m = 0; m < meshes->size(); ++m)
+    for (const json& p : (*meshes)[m]["primitives"]) {
+      if (!p.contains("indices")) continue;
+      const std::string what = corrupt + "mesh " + std::to_string(m) + " indices";
+      const json& acc = doc["accessors"][p["indices"].get<std::size_t>()];
+      const std::uint64_t vertices = doc["accessors"][p["attributes"]["POSITION"].get<std::size_t>()]["count"].get<std::uint64_t>();
+      if (!acc.contains("bufferView")) continue;  // all zero: valid when there is a vertex
+      const json& view = doc["bufferViews"][acc["bufferView"].get<std::size_t>()];
+      if (view.contains("byteStride")) throw IoError(what + ": an index buffer view must not have a byteStride");
+      const std::size_t buffer = view["buffer"].get<std::size_t>();
+      if (have.empty()) have.assign(doc["buffers"].size(), 0), loaded.resize(doc["buffers"].size());
+      if (!have[buffer]) loaded[buffer] = buffer_bytes(doc["buffers"][buffer], bytes, bin_offset, bin_length, dir), have[buffer] = 1;
+      const std::string& data = loaded[buffer];
+      const std::uint64_t size = accessor_item_bytes(acc), count = acc.value("count", std::uint64_t{0});
+      const std::uint64_t start = view.value("byteOffset", std::uint64_t{0}) + acc.value("byteOffset", std::uint64_t{0});
+      if (start + count * size > data.size()) throw IoError(what + " lie outside the buffer's data");
+      for (std::uint64_t k = 0; k < count; ++k) {
+        std::uint32_t v = 0;
+        std::memcpy(&v, data.data() + start + k * size, static_cast<std::size_t>(size));  // little endian
+        if (v >= vertices)
+          throw IoError(what + ": index " + std::to_string(v) + " but the primitive has " + std::to_string(vertices) +
+                        " vertices");
+      }
+    }
+}
+
 /// Rejects anything that is not glTF 2.0 whose sizes all agree with the bytes that exist.
 void check_gltf(const std::string& name, const std::filesystem::path& base_dir, const std::string& bytes) {
   const std::string corrupt = name + ": corrupt glTF: ";
@@ -288,8 +364,9 @@ void check_gltf(const std::string& name, const std::filesystem::path& base_dir, 
   if (!glb && (first == std::string::npos || bytes[first] != '{'))
     throw IoError(corrupt + "neither a binary glTF (it does not start with 'glTF') nor a glTF JSON object");
   json doc;
+  std::uint64_t bin_offset = 0;
   try {
-    doc = json::parse(glb ? split_glb(name, bytes, bin_length) : bytes);
+    doc = json::parse(glb ? split_glb(name, bytes, bin_length, &bin_offset) : bytes);
   } catch (const json::exception& e) {
     throw IoError(corrupt + "the JSON does not parse (" + first_line_of(e.what()) + ")");
   }
@@ -298,6 +375,7 @@ void check_gltf(const std::string& name, const std::filesystem::path& base_dir, 
     throw IoError(corrupt + "not glTF 2.0 (no \"asset\": {\"version\": \"2.x\"})");
   check_views_and_accessors(corrupt, doc, check_buffers(corrupt, doc, base_dir, bin_length));
   check_references(corrupt, doc);
+  check_index_values(corrupt, doc, bytes, bin_offset, bin_length, base_dir);
 }
 
 /// assimp's file system seen from the glTF's folder: relative names (external buffers) resolve there,

@@ -281,6 +281,14 @@ TEST(Remap, UntanglingKeepsMoreOfAWarpThanDamping) {
   std::printf("mean blend kept: damping %.3f, untangling %.3f\n", damped.mean_damping, untangled.mean_damping);
   EXPECT_GT(untangled.mean_damping, damped.mean_damping);
   EXPECT_GT(untangled.mean_damping, 0.9);
+  // The rounds as before session 11 (Jacobi: every wedge from the previous round's positions) reach
+  // the same: both orders converge to the ring means.
+  SafeRemapOptions jacobi;
+  jacobi.untangle_in_place = false;
+  const SafeRemapResult j = safe_remap(param, {&w}, jacobi);
+  EXPECT_TRUE(check_remap(param, j.param).ok());
+  EXPECT_GT(j.mean_damping, 0.9);
+  EXPECT_NEAR(j.mean_damping, untangled.mean_damping, 0.05);
 }
 
 }  // namespace

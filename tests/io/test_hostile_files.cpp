@@ -135,13 +135,33 @@ TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
   for (std::uint32_t w : {0x3f800000u, 0x20000u, 0x1u, 0x30001u, 0x65030000u, 0x10072u, 0xfffe0000u, 0x3f80ffffu, 0u,
                           0u, 0u, 0u, 0u, 0xf9u, 0x30001u, 0x65030000u, 0x10072u, 0x30002u})
     put(loop_bin, w);
-  test::write_text(dir.path / "loop.glb", glb(R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],)"
-      R"("nodes":[{"mesh":0,"translation":[1,0,0]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},)"
-      R"("indices":0,"mode":2}]}],"buffers":[{"byteLength":72}],"bufferViews":[{"buffer":0,"byteLength":48},)"
-      R"({"buffer":0,"byteOffset":48,"byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,)"
-      R"("type":"VEC3","count":4,"min":[0,0,0],"max":[1,1,1]},{"bufferView":0,"componentType":5123,)"
-      R"("type":"SCALAR","count":12}]})", loop_bin));
+  // One point-of-four-vertices scene: POSITION is accessor 0 (bufferView 0), the indices accessor
+  // \p indices (0: POSITION itself, 1: 12 unsigned shorts on bufferView \p index_view), primitive \p mode.
+  auto four_vertex_glb = [&](int indices, int index_view, int mode, const std::string& chunk) {
+    return glb(R"({"asset":{"version":"2.!"},"scene":0,"scenes":[{"nodes":[0]}],)"
+               R"("nodes":[{"mesh":0,"translation":[1,0,0]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},)"
+               R"("indices":)" + std::to_string(indices) + R"(,"mode":)" + std::to_string(mode) +
+               R"(}]}],"buffers":[{"byteLength":72}],"bufferViews":[{"buffer":0,"byteLength":48},)"
+               R"({"buffer":0,"byteOffset":48,"byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,)"
+               R"("type":"VEC3","count":4,"min":[0,0,0],"max":[1,1,1]},{"bufferView":)" + std::to_string(index_view) +
+               R"(,"componentType":5123,"type":"SCALAR","count":12}]})", chunk);
+  };
+  test::write_text(dir.path / "loop.glb", four_vertex_glb(0, 0, 2, loop_bin));
   expect_info_rejects(dir.path / "loop.glb", "mesh 0: indices must be a SCALAR accessor");
+  // Found by fuzz_gltf (session 11): the same line loop with a valid unsigned-short index accessor
+  // that reads the positions' bytes, so its index values (16256, ...) name missing vertices: SEGV
+  // in assimp. Index values are now checked against the POSITION count.
+  test::write_text(dir.path / "loop2.glb", four_vertex_glb(1, 0, 2, loop_bin));
+  expect_info_rejects(dir.path / "loop2.glb", "mesh 0 indices: index 16256 but the primitive has 4 vertices");
+  // Valid indices still read: a tetrahedron, 4 vertices, 12 unsigned-short indices after them.
+  std::string tet_bin;
+  for (std::uint32_t w : {0u, 0u, 0u, 0x3f800000u, 0u, 0u, 0u, 0x3f800000u, 0u, 0u, 0u, 0x3f800000u,  // positions
+                          0x20000u, 0x1u, 0x30001u, 0x30000u, 0x10002u, 0x30002u})  // 0 2 1 / 0 1 3 / 0 3 2 / 1 2 3
+    put(tet_bin, w);
+  test::write_text(dir.path / "tet.glb", four_vertex_glb(1, 1, 4, tet_bin));
+  const auto ok = run_bounded("info " + q(dir.path / "tet.glb"));
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("faces:       4"), std::string::npos) << ok.out;
   test::write_text(dir.path / "cycle.gltf", R"({"asset":{"version":"2.0"},"nodes":[{"children":[1]},{"children":[0]}]})");
   expect_info_rejects(dir.path / "cycle.gltf", "the node hierarchy has a cycle");
   // An external buffer that is a device.

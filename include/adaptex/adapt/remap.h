@@ -69,6 +69,11 @@ struct SafeRemapOptions {
   /// 3,900 rounds, 0.2 dB less).
   int untangle_patience = 200;
   int untangle_max_rounds = 2000;  ///< Hard cap of the rounds (see untangle_patience).
+  /// Untangling rounds update the wedges in place (Gauss–Seidel: a wedge reads its ring as already
+  /// moved this round) instead of all from the previous round's positions (Jacobi, sessions 3–10).
+  /// Same fixed point, fewer rounds: the face mask's 256² dots remap 557 → 365 ms, face mixed 256²
+  /// 105 → 45 ms; over 54 cases of the quality study the PSNR moved by −0.07 to +0.10 dB (mean 0.00).
+  bool untangle_in_place = true;
 
   /// Untangling also moves the 1-rings of the failing faces' wedges (as before session 5). Off: only
   /// the failing faces' own wedges move, which disturbs fewer good faces; measured on the shared
