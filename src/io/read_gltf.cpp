@@ -327,20 +327,28 @@ void check_index_values(const std::string& corrupt, const json& doc, const std::
                         std::uint64_t bin_length, const std::filesystem::path& dir) {
   const json* meshes = array_of(corrupt, doc, "meshes");
   if (!meshes) return;
-  std::vector<std::string> loaded;
+  std::vector<std::string> loaded;  // buffers' bytes, read on first use
   std::vector<char> have;
   for (std::size_t m = 0; m < meshes->size(); ++m)
-    for (const json& p : (*meshes)[m]["primitives"]) {
+    for (const json& p : (*meshes)[m].at("primitives")) {
       if (!p.contains("indices")) continue;
       const std::string what = corrupt + "mesh " + std::to_string(m) + " indices";
-      const json& acc = doc["accessors"][p["indices"].get<std::size_t>()];
-      const std::uint64_t vertices = doc["accessors"][p["attributes"]["POSITION"].get<std::size_t>()]["count"].get<std::uint64_t>();
-      if (!acc.contains("bufferView")) continue;  // all zero: valid when there is a vertex
-      const json& view = doc["bufferViews"][acc["bufferView"].get<std::size_t>()];
+      // Types and ranges were checked before (get_size(), check_index()); missing counts and offsets
+      // are 0, as there.
+      const json& accessors = doc.at("accessors");
+      const json& acc = accessors.at(p.at("indices").get<std::size_t>());
+      const std::uint64_t vertices =
+          accessors.at(p.at("attributes").at("POSITION").get<std::size_t>()).value("count", std::uint64_t{0});
+      if (!acc.contains("bufferView")) {  // all zero: valid when there is a vertex
+        if (acc.value("count", std::uint64_t{0}) > 0 && vertices == 0) throw IoError(what + ": index 0 but the primitive has no vertices");
+        continue;
+      }
+      const json& view = doc.at("bufferViews").at(acc.at("bufferView").get<std::size_t>());
       if (view.contains("byteStride")) throw IoError(what + ": an index buffer view must not have a byteStride");
-      const std::size_t buffer = view["buffer"].get<std::size_t>();
-      if (have.empty()) have.assign(doc["buffers"].size(), 0), loaded.resize(doc["buffers"].size());
-      if (!have[buffer]) loaded[buffer] = buffer_bytes(doc["buffers"][buffer], bytes, bin_offset, bin_length, dir), have[buffer] = 1;
+      const std::size_t buffer = view.at("buffer").get<std::size_t>();
+      const json& buffers = doc.at("buffers");
+      if (have.empty()) have.assign(buffers.size(), 0), loaded.resize(buffers.size());
+      if (!have[buffer]) loaded[buffer] = buffer_bytes(buffers.at(buffer), bytes, bin_offset, bin_length, dir), have[buffer] = 1;
       const std::string& data = loaded[buffer];
       const std::uint64_t size = accessor_item_bytes(acc), count = acc.value("count", std::uint64_t{0});
       const std::uint64_t start = view.value("byteOffset", std::uint64_t{0}) + acc.value("byteOffset", std::uint64_t{0});
@@ -375,7 +383,11 @@ void check_gltf(const std::string& name, const std::filesystem::path& base_dir, 
     throw IoError(corrupt + "not glTF 2.0 (no \"asset\": {\"version\": \"2.x\"})");
   check_views_and_accessors(corrupt, doc, check_buffers(corrupt, doc, base_dir, bin_length));
   check_references(corrupt, doc);
-  check_index_values(corrupt, doc, bytes, bin_offset, bin_length, base_dir);
+  try {
+    check_index_values(corrupt, doc, bytes, bin_offset, bin_length, base_dir);
+  } catch (const json::exception& e) {  // a member the checks above let pass but this one cannot read
+    throw IoError(corrupt + "cannot read the index data (" + first_line_of(e.what()) + ")");
+  }
 }
 
 /// assimp's file system seen from the glTF's folder: relative names (external buffers) resolve there,

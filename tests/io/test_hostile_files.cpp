@@ -137,13 +137,14 @@ TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
     put(loop_bin, w);
   // One point-of-four-vertices scene: POSITION is accessor 0 (bufferView 0), the indices accessor
   // \p indices (0: POSITION itself, 1: 12 unsigned shorts on bufferView \p index_view), primitive \p mode.
-  auto four_vertex_glb = [&](int indices, int index_view, int mode, const std::string& chunk) {
+  auto four_vertex_glb = [&](int indices, int index_view, int mode, const std::string& chunk,
+                             const char* count_key = "count") {
     return glb(R"({"asset":{"version":"2.!"},"scene":0,"scenes":[{"nodes":[0]}],)"
                R"("nodes":[{"mesh":0,"translation":[1,0,0]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},)"
                R"("indices":)" + std::to_string(indices) + R"(,"mode":)" + std::to_string(mode) +
                R"(}]}],"buffers":[{"byteLength":72}],"bufferViews":[{"buffer":0,"byteLength":48},)"
                R"({"buffer":0,"byteOffset":48,"byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,)"
-               R"("type":"VEC3","count":4,"min":[0,0,0],"max":[1,1,1]},{"bufferView":)" + std::to_string(index_view) +
+               R"("type":"VEC3",")" + count_key + R"(":4,"min":[0,0,0],"max":[1,1,1]},{"bufferView":)" + std::to_string(index_view) +
                R"(,"componentType":5123,"type":"SCALAR","count":12}]})", chunk);
   };
   test::write_text(dir.path / "loop.glb", four_vertex_glb(0, 0, 2, loop_bin));
@@ -162,6 +163,10 @@ TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
   const auto ok = run_bounded("info " + q(dir.path / "tet.glb"));
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("faces:       4"), std::string::npos) << ok.out;
+  // Found by fuzz_gltf right after that fix: POSITION without a count ("cuont"), so no vertex at all;
+  // the first index check read the missing member and threw an uncaught JSON error.
+  test::write_text(dir.path / "nocount.glb", four_vertex_glb(1, 1, 4, tet_bin, "cuont"));
+  expect_info_rejects(dir.path / "nocount.glb", "mesh 0 indices: index 0 but the primitive has 0 vertices");
   test::write_text(dir.path / "cycle.gltf", R"({"asset":{"version":"2.0"},"nodes":[{"children":[1]},{"children":[0]}]})");
   expect_info_rejects(dir.path / "cycle.gltf", "the node hierarchy has a cycle");
   // An external buffer that is a device.
