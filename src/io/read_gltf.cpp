@@ -228,6 +228,22 @@ void check_accessor_kind(const json& accessors, const json& index, const char* t
   if (!kind_ok) throw IoError(what + " must be a " + type + " accessor of the componentType the glTF 2.0 spec allows");
 }
 
+/// A primitive's vertex count (its indices' count, else its POSITION count) must make whole
+/// primitives of its mode: a multiple of 3 for triangles, of 2 for lines, at least 3 for strips and
+/// fans, at least 2 for line strips and loops (glTF 2.0 spec, 3.7.2.1). Found by fuzz_gltf (session
+/// 11): a triangle strip with 1 index made assimp allocate count − 2 = 2^64 − 1 faces.
+/// \pre the accessors referenced by \p p exist (check_index())
+void check_vertex_count(const json& accessors, const json& p, const std::string& what) {
+  const json& counted = accessors[(p.contains("indices") ? p["indices"] : p["attributes"]["POSITION"]).get<std::size_t>()];
+  const json* count = counted.is_object() && counted.contains("count") ? &counted["count"] : nullptr;
+  const std::uint64_t n = count && count->is_number_unsigned() ? count->get<std::uint64_t>() : 0;
+  const std::uint64_t mode = p.contains("mode") ? p["mode"].get<std::uint64_t>() : 4;
+  const bool ok = mode == 0 || (mode == 4 && n % 3 == 0) || (mode == 1 && n % 2 == 0) || ((mode == 2 || mode == 3) && n >= 2) ||
+                  ((mode == 5 || mode == 6) && n >= 3);
+  if (!ok)
+    throw IoError(what + ": " + std::to_string(n) + " vertices do not make whole primitives of mode " + std::to_string(mode));
+}
+
 /// Every reference assimp follows without checking (a primitive without POSITION crashed it): meshes'
 /// attributes and indices, primitive modes, nodes' meshes and children (no cycles: a node has at
 /// most one parent and is not its own ancestor), scenes' nodes.
@@ -253,6 +269,7 @@ void check_references(const std::string& corrupt, const json& doc) {
       }
       if (p.contains("mode") && (!p["mode"].is_number_unsigned() || p["mode"].get<std::uint64_t>() > 6))
         throw IoError(what + ": primitive mode must be 0..6");
+      check_vertex_count(*accessors, p, what);
       if (p.contains("targets")) throw IoError(what + ": morph targets are not supported");
     }
   }

@@ -135,17 +135,17 @@ TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
   for (std::uint32_t w : {0x3f800000u, 0x20000u, 0x1u, 0x30001u, 0x65030000u, 0x10072u, 0xfffe0000u, 0x3f80ffffu, 0u,
                           0u, 0u, 0u, 0u, 0xf9u, 0x30001u, 0x65030000u, 0x10072u, 0x30002u})
     put(loop_bin, w);
-  // One point-of-four-vertices scene: POSITION is accessor 0 (bufferView 0), the indices accessor
-  // \p indices (0: POSITION itself, 1: 12 unsigned shorts on bufferView \p index_view), primitive \p mode.
+  // One four-vertex scene: POSITION is accessor 0 (bufferView 0), the indices accessor \p indices
+  // (0: POSITION itself, 1: \p index_count unsigned shorts on bufferView \p index_view), primitive \p mode.
   auto four_vertex_glb = [&](int indices, int index_view, int mode, const std::string& chunk,
-                             const char* count_key = "count") {
+                             const char* count_key = "count", int index_count = 12) {
     return glb(R"({"asset":{"version":"2.!"},"scene":0,"scenes":[{"nodes":[0]}],)"
                R"("nodes":[{"mesh":0,"translation":[1,0,0]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},)"
                R"("indices":)" + std::to_string(indices) + R"(,"mode":)" + std::to_string(mode) +
                R"(}]}],"buffers":[{"byteLength":72}],"bufferViews":[{"buffer":0,"byteLength":48},)"
                R"({"buffer":0,"byteOffset":48,"byteLength":24}],"accessors":[{"bufferView":0,"componentType":5126,)"
                R"("type":"VEC3",")" + count_key + R"(":4,"min":[0,0,0],"max":[1,1,1]},{"bufferView":)" + std::to_string(index_view) +
-               R"(,"componentType":5123,"type":"SCALAR","count":12}]})", chunk);
+               R"(,"componentType":5123,"type":"SCALAR","count":)" + std::to_string(index_count) + "}]}", chunk);
   };
   test::write_text(dir.path / "loop.glb", four_vertex_glb(0, 0, 2, loop_bin));
   expect_info_rejects(dir.path / "loop.glb", "mesh 0: indices must be a SCALAR accessor");
@@ -165,6 +165,13 @@ TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
   EXPECT_NE(ok.out.find("faces:       4"), std::string::npos) << ok.out;
   // Found by fuzz_gltf right after that fix: POSITION without a count ("cuont"), so no vertex at all;
   // the first index check read the missing member and threw an uncaught JSON error.
+  // Found by fuzz_gltf (session 11): a triangle strip (mode 5) with a single index: assimp asked
+  // for count − 2 = 2^64 − 1 faces. Strips and fans need 3 vertices, triangles a multiple of 3.
+  std::string one_bin = tet_bin;
+  test::write_text(dir.path / "strip1.glb", four_vertex_glb(1, 1, 5, one_bin, "count", 1));
+  expect_info_rejects(dir.path / "strip1.glb", "mesh 0: 1 vertices do not make whole primitives of mode 5");
+  test::write_text(dir.path / "tri11.glb", four_vertex_glb(1, 1, 4, one_bin, "count", 11));
+  expect_info_rejects(dir.path / "tri11.glb", "mesh 0: 11 vertices do not make whole primitives of mode 4");
   test::write_text(dir.path / "nocount.glb", four_vertex_glb(1, 1, 4, tet_bin, "cuont"));
   expect_info_rejects(dir.path / "nocount.glb", "mesh 0 indices: index 0 but the primitive has 0 vertices");
   test::write_text(dir.path / "cycle.gltf", R"({"asset":{"version":"2.0"},"nodes":[{"children":[1]},{"children":[0]}]})");
