@@ -171,9 +171,16 @@ std::vector<ChartMove> allocate_charts_by_error(const std::vector<UvRect>& boxes
     const double e = predicted_error(m, mean, density, error, exponent);
     if (e < best_e) best_e = e, best = std::move(m), best_g = gamma;
   }
-  std::vector<ChartMove> stay(boxes.size());
-  for (size_t c = 0; c < boxes.size(); ++c) stay[c].src = boxes[c], stay[c].dst_lo = boxes[c].lo;
-  if (predicted_error(stay, mean, density, error, exponent) < best_e) best = std::move(stay), best_g = -1.0;
+  // Leaving the charts in place is a candidate only where it keeps the promise of every re-packing:
+  // rectangles at least the padding apart and from the square's sides.
+  bool stay_ok = smallest_box_gap(boxes) >= o.padding;
+  for (const UvRect& b : boxes)
+    if (b.area() > 0 && (b.lo.minCoeff() < o.padding || b.hi.maxCoeff() > 1 - o.padding)) stay_ok = false;
+  if (stay_ok) {
+    std::vector<ChartMove> stay(boxes.size());
+    for (size_t c = 0; c < boxes.size(); ++c) stay[c].src = boxes[c], stay[c].dst_lo = boxes[c].lo;
+    if (predicted_error(stay, mean, density, error, exponent) < best_e) best = std::move(stay), best_g = -1.0;
+  }
   if (chosen_gamma) *chosen_gamma = best_g;
   return best;
 }

@@ -372,7 +372,8 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
         out.uv[w] = param.uv[w] + disp[w];
       });
       untangle(out, disp);
-      if (t == 1.0) full_untangled = std::make_unique<Untangled>(Untangled{chart_t, out.uv, disp});
+      if (t == 1.0 && o.extended_local_rounds > o.max_local_rounds)  // its only reader
+        full_untangled = std::make_unique<Untangled>(Untangled{chart_t, out.uv, disp});
     }
     std::vector<int> flipping;
     for (int round = 0; round <= rounds; ++round) {

@@ -96,8 +96,8 @@ TEST(AtlasFlow, ErrorModelChoosesHowStronglyChartsAreResized) {
   EXPECT_GE(gamma, -1.0);
   for (size_t c = 0; c < m.size(); ++c) {
     const UvRect d = m[c].dst();
-    EXPECT_GE(d.lo.minCoeff(), -1e-12);
-    EXPECT_LE(d.hi.maxCoeff(), 1 + 1e-12);
+    EXPECT_GE(d.lo.minCoeff(), o.padding - 1e-12);
+    EXPECT_LE(d.hi.maxCoeff(), 1 - o.padding + 1e-12);
     for (size_t e = c + 1; e < m.size(); ++e) EXPECT_GE(smallest_box_gap({d, m[e].dst()}), o.padding - 1e-12);
   }
   const double chosen = predicted_chart_error(m, f.density, error, exponent, o);
@@ -116,6 +116,18 @@ TEST(AtlasFlow, ErrorModelChoosesHowStronglyChartsAreResized) {
   std::vector<ChartMove> stay2 = stay;
   EXPECT_LE(predicted_chart_error(m2, ones, even, ones, o), predicted_chart_error(stay2, ones, even, ones, o));
   EXPECT_THROW(allocate_charts_by_error(f.boxes, f.density, ImageF(L / 2, L / 2, 0.0f), exponent, o), InvalidInputError);
+  // A padding wider than the boxes' own gaps (0.1) and side margins (0.05): leaving the charts in
+  // place would break it, so whatever wins is a re-packing with that padding.
+  ChartRepackOptions wide = o;
+  wide.padding = 0.12;
+  double g3 = -2;
+  const std::vector<ChartMove> m3 = allocate_charts_by_error(f.boxes, ones, even, ones, wide, &g3);
+  EXPECT_GE(g3, 0.0);
+  for (size_t c = 0; c < m3.size(); ++c) {
+    EXPECT_GE(m3[c].dst().lo.minCoeff(), wide.padding - 1e-12);
+    EXPECT_LE(m3[c].dst().hi.maxCoeff(), 1 - wide.padding + 1e-12);
+    for (size_t e = c + 1; e < m3.size(); ++e) EXPECT_GE(smallest_box_gap({m3[c].dst(), m3[e].dst()}), wide.padding - 1e-12);
+  }
 }
 
 TEST(AtlasFlow, ChartMovesAndRectangleWarpsKeepEveryChartInItsRectangle) {

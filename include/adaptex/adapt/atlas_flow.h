@@ -67,7 +67,8 @@ std::vector<ChartMove> repack_charts_by_density(const std::vector<UvRect>& boxes
 
 /// Step 1 with the error model choosing how strongly the charts are resized. Candidates: the charts
 /// re-packed with sizes ∝ (mean ρ)^(γ/2) for γ = 1 (repack_charts_by_density()), 3/4, 1/2, 1/4 and 0,
-/// and the charts left where they are. Each is scored by the error the model predicts after the
+/// and the charts left where they are (only if \p boxes are already options.padding apart and from the
+/// square's sides). Each is scored by the error the model predicts after the
 /// flows, Σ q·ρ_real^(−p/2) over the painted cells (error_density.h), where a chart scaled by s gets
 /// ρ_real = s²·ρ / mean_c(ρ) in its cells (its flow spreads its texels as the density asks); the
 /// smallest wins (ties: the earlier). Texels that a packing loses to gaps thus count against a strong

@@ -62,8 +62,8 @@ struct SafeRemapOptions {
   /// rounds with none (5.65×), in 1 s.
   int untangle_rounds = 500;
   /// Past untangle_rounds, untangling goes on while it still makes progress: as long as fewer faces
-  /// fail than untangle_patience rounds before, up to untangle_max_rounds in all (untangle_patience 0:
-  /// stop at untangle_rounds). On the face mask with
+  /// fail than untangle_patience rounds before, up to untangle_max_rounds in all (untangle_patience 0,
+  /// or untangle_rounds < untangle_patience: stop at untangle_rounds). On the face mask with
   /// dots at 256² and 1024² the full warp needed 1,000–1,100 rounds (the count rises first, then falls,
   /// not monotonically): stopping at 500 failed it and bisected the global blend (12 candidates,
   /// 3,900 rounds, 0.2 dB less).
