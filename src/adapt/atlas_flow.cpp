@@ -47,16 +47,40 @@ double smallest_box_gap(const std::vector<UvRect>& boxes) {
 }
 
 namespace {
+/// sample_bilinear()'s clamp-to-edge footprint along one axis of \p n texels, at the k sample
+/// positions lo + (i + 0.5) / k · size: the same taps and weights, computed once per row or column.
+struct AxisTaps {
+  std::vector<int> i0, i1;
+  std::vector<double> f;
+  AxisTaps(int n, int k, double lo, double size) : i0(k), i1(k), f(k) {
+    for (int i = 0; i < k; ++i) {
+      const double x = (lo + (i + 0.5) / k * size) * n - 0.5, xf = std::floor(x);
+      f[i] = x - xf;
+      const int xi = static_cast<int>(std::clamp(xf, -1.0, static_cast<double>(n)));
+      i0[i] = std::clamp(xi, 0, n - 1);
+      i1[i] = std::clamp(xi + 1, 0, n - 1);
+    }
+  }
+};
+
 /// Mean of \p density over \p r, sampled on a regular grid of about samples_per_cell points per
-/// density cell and axis.
+/// density cell and axis (the values sample_bilinear() gives there, summed in raster order).
 double mean_density(const ImageF& density, const UvRect& r, int samples_per_cell) {
   const int L = density.width;
   const int kx = std::clamp(static_cast<int>(std::ceil(r.size().x() * L * samples_per_cell)), 2, 4 * L);
   const int ky = std::clamp(static_cast<int>(std::ceil(r.size().y() * L * samples_per_cell)), 2, 4 * L);
+  const AxisTaps tx(density.width, kx, r.lo.x(), r.size().x()), ty(density.height, ky, r.lo.y(), r.size().y());
   double sum = 0;
-  for (int j = 0; j < ky; ++j)
-    for (int i = 0; i < kx; ++i)
-      sum += sample_bilinear(density, r.lo.x() + (i + 0.5) / kx * r.size().x(), r.lo.y() + (j + 0.5) / ky * r.size().y());
+  for (int j = 0; j < ky; ++j) {
+    const float* row0 = density.data.data() + static_cast<size_t>(ty.i0[j]) * density.width;
+    const float* row1 = density.data.data() + static_cast<size_t>(ty.i1[j]) * density.width;
+    const double fy = ty.f[j];
+    for (int i = 0; i < kx; ++i) {
+      const double a = row0[tx.i0[i]], b = row0[tx.i1[i]], d = row1[tx.i0[i]], e = row1[tx.i1[i]];
+      const double bottom = a + (b - a) * tx.f[i], top = d + (e - d) * tx.f[i];
+      sum += bottom + (top - bottom) * fy;
+    }
+  }
   return sum / (double(kx) * ky);
 }
 
@@ -105,33 +129,48 @@ std::vector<ChartMove> repack_with(const std::vector<UvRect>& boxes, const std::
   return moves;
 }
 
-/// The model's predicted error after moving the charts by \p moves and equalizing each chart's
-/// density (see allocate_charts_by_error()).
-double predicted_error(const std::vector<ChartMove>& moves, const std::vector<double>& mean, const ImageF& density,
-                       const ImageF& error, const ImageF& exponent) {
-  const int L = density.width;
-  std::vector<int> owner(static_cast<size_t>(L) * L, -1);
-  for (size_t c = 0; c < moves.size(); ++c) {
-    const UvRect& b = moves[c].src;
-    if (b.area() <= 0) continue;
-    const int i0 = std::max(0, static_cast<int>(std::ceil(b.lo.x() * L - 0.5)));
-    const int i1 = std::min(L - 1, static_cast<int>(std::floor(b.hi.x() * L - 0.5)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil(b.lo.y() * L - 0.5)));
-    const int j1 = std::min(L - 1, static_cast<int>(std::floor(b.hi.y() * L - 0.5)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) owner[static_cast<size_t>(j) * L + i] = static_cast<int>(c);
+/// The error model's terms of the cells that some chart's box covers, in raster order (a later box
+/// wins where boxes share a cell): a candidate re-packing only changes each chart's scale, so
+/// predicted_error() needs one exp per term, not a raster pass with a pow per cell.
+struct ErrorTerms {
+  struct Term {
+    int chart;
+    double q, half_p, log_rho;  // error, p/2, log of the density
+  };
+  std::vector<Term> terms;
+
+  ErrorTerms(const std::vector<UvRect>& boxes, const ImageF& density, const ImageF& error, const ImageF& exponent) {
+    const int L = density.width;
+    std::vector<int> owner(static_cast<size_t>(L) * L, -1);
+    for (size_t c = 0; c < boxes.size(); ++c) {
+      const UvRect& b = boxes[c];
+      if (b.area() <= 0) continue;
+      const int i0 = std::max(0, static_cast<int>(std::ceil(b.lo.x() * L - 0.5)));
+      const int i1 = std::min(L - 1, static_cast<int>(std::floor(b.hi.x() * L - 0.5)));
+      const int j0 = std::max(0, static_cast<int>(std::ceil(b.lo.y() * L - 0.5)));
+      const int j1 = std::min(L - 1, static_cast<int>(std::floor(b.hi.y() * L - 0.5)));
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) owner[static_cast<size_t>(j) * L + i] = static_cast<int>(c);
+    }
+    for (size_t k = 0; k < owner.size(); ++k) {
+      const double q = error.data[k];
+      if (owner[k] < 0 || !(q > 0)) continue;
+      terms.push_back(Term{owner[k], q, 0.5 * exponent.data[k], std::log(static_cast<double>(density.data[k]))});
+    }
   }
-  double e = 0;
-  for (size_t k = 0; k < owner.size(); ++k) {
-    const int c = owner[k];
-    const double q = error.data[k];
-    if (c < 0 || !(q > 0)) continue;
-    const double s = moves[c].scale;
-    const double rho = std::max(s * s * density.data[k] / mean[c], 1e-12);
-    e += q * std::pow(rho, -0.5 * exponent.data[k]);
+
+  /// Σ q (s² ρ / mean)^(−p/2) over the terms, s = moves[chart].scale, ρ·s²/mean clamped at 1e-12.
+  double predicted_error(const std::vector<ChartMove>& moves, const std::vector<double>& mean) const {
+    std::vector<double> log_gain(moves.size());
+    for (size_t c = 0; c < moves.size(); ++c)
+      log_gain[c] = mean[c] > 0 ? std::log(moves[c].scale * moves[c].scale / mean[c]) : 0.0;
+    const double log_min = std::log(1e-12);
+    double e = 0;
+    for (const Term& t : terms)
+      e += t.q * std::exp(-t.half_p * std::max(log_gain[static_cast<size_t>(t.chart)] + t.log_rho, log_min));
+    return e;
   }
-  return e;
-}
+};
 
 }  // namespace
 
@@ -155,7 +194,7 @@ double predicted_chart_error(const std::vector<ChartMove>& moves, const ImageF& 
   check_error_rasters(density, error, exponent, "predicted_chart_error");
   std::vector<UvRect> boxes(moves.size());
   for (size_t c = 0; c < moves.size(); ++c) boxes[c] = moves[c].src;
-  return predicted_error(moves, chart_means(boxes, density, o), density, error, exponent);
+  return ErrorTerms(boxes, density, error, exponent).predicted_error(moves, chart_means(boxes, density, o));
 }
 
 std::vector<ChartMove> allocate_charts_by_error(const std::vector<UvRect>& boxes, const ImageF& density,
@@ -164,11 +203,12 @@ std::vector<ChartMove> allocate_charts_by_error(const std::vector<UvRect>& boxes
   check_repack(boxes, density, o);
   check_error_rasters(density, error, exponent, "allocate_charts_by_error");
   const std::vector<double> mean = chart_means(boxes, density, o);
+  const ErrorTerms terms(boxes, density, error, exponent);
   std::vector<ChartMove> best;
   double best_e = std::numeric_limits<double>::infinity(), best_g = 1.0;
   for (double gamma : {1.0, 0.75, 0.5, 0.25, 0.0}) {
     std::vector<ChartMove> m = repack_with(boxes, mean, gamma, o);
-    const double e = predicted_error(m, mean, density, error, exponent);
+    const double e = terms.predicted_error(m, mean);
     if (e < best_e) best_e = e, best = std::move(m), best_g = gamma;
   }
   // Leaving the charts in place is a candidate only where it keeps the promise of every re-packing:
@@ -179,7 +219,7 @@ std::vector<ChartMove> allocate_charts_by_error(const std::vector<UvRect>& boxes
   if (stay_ok) {
     std::vector<ChartMove> stay(boxes.size());
     for (size_t c = 0; c < boxes.size(); ++c) stay[c].src = boxes[c], stay[c].dst_lo = boxes[c].lo;
-    if (predicted_error(stay, mean, density, error, exponent) < best_e) best = std::move(stay), best_g = -1.0;
+    if (terms.predicted_error(stay, mean) < best_e) best = std::move(stay), best_g = -1.0;
   }
   if (chosen_gamma) *chosen_gamma = best_g;
   return best;

@@ -387,7 +387,7 @@ ErrorDensity solve_density(CellErrors& c, double spacing_ratio, const ErrorDensi
     if (c.ea[k] <= noise) continue;
     ++with_signal;
     p[k] = std::clamp(std::log2(std::max(c.eb[k], c.ea[k]) / c.ea[k]), o.min_exponent, o.max_exponent);
-    q[k] = c.ea[k] * std::pow(spacing_ratio, p[k]);  // error at the current spacing h_N
+    q[k] = spacing_ratio == 1.0 ? c.ea[k] : c.ea[k] * std::pow(spacing_ratio, p[k]);  // error at the spacing h_N
   }
   out.signal_fraction = chart_cells ? double(with_signal) / chart_cells : 0.0;
   // ρ = clamp(exp(e·(log(p q / 2) − log μ)), lo, max) with e = 1 / (1 + p/2): the exponent and the

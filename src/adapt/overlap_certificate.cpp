@@ -8,6 +8,7 @@
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/predicates.h"
+#include "adaptex/core/topology.h"
 
 namespace adaptex {
 
@@ -61,28 +62,26 @@ OverlapCertificate::OverlapCertificate(const Parameterization& before, double mi
     if (sign[c] != 0 && sign[c] != s) return;
     sign[c] = s;
   }
-  const size_t F = faces_;
-  // Directed edges keyed by (min, max): an edge in one face is a boundary edge, in two faces it must be
-  // ordered oppositely by them, in more the layout is not a surface.
-  std::vector<std::pair<long long, int>> keys;  // key, +1 for min->max in its face, -1 for max->min
-  keys.reserve(3 * F);
-  for (const Face& t : before.uv_faces)
-    for (int k = 0; k < 3; ++k) {
-      const long long a = t[k], b = t[(k + 1) % 3];
-      keys.push_back({std::min(a, b) * (1LL << 31) + std::max(a, b), a < b ? 1 : -1});
-    }
-  std::sort(keys.begin(), keys.end());
+  // Edges by their wedges (bucket_edges()): an edge in one face is a boundary edge, in two faces it
+  // must be ordered oppositely by them, in more the layout is not a surface.
+  const EdgeBuckets eb = bucket_edges(before.uv_faces, static_cast<int>(wedges_));
   std::vector<int> boundary_degree(wedges_, 0);
-  for (size_t i = 0; i < keys.size();) {
-    size_t j = i;
-    while (j < keys.size() && keys[j].first == keys[i].first) ++j;
-    const int a = static_cast<int>(keys[i].first >> 31), b = static_cast<int>(keys[i].first & ((1LL << 31) - 1));
-    if (j - i > 2 || (j - i == 2 && keys[i].second == keys[i + 1].second)) return;
-    if (j - i == 1) {
-      boundary_.push_back({a, b, wedge_chart_[a]});
-      ++boundary_degree[a], ++boundary_degree[b];
+  auto min_to_max = [&](const EdgeBuckets::Record& r) {
+    const Face& t = before.uv_faces[static_cast<size_t>(r.face)];
+    return t[r.corner] < t[(r.corner + 1) % 3];
+  };
+  for (size_t a = 0; a < wedges_; ++a) {
+    const auto first = eb.records.begin() + eb.start[a], last = eb.records.begin() + eb.start[a + 1];
+    for (auto i = first; i != last;) {
+      auto j = i + 1;
+      while (j != last && j->b == i->b) ++j;
+      if (j - i > 2 || (j - i == 2 && min_to_max(*i) == min_to_max(*(i + 1)))) return;
+      if (j - i == 1) {
+        boundary_.push_back({static_cast<int>(a), i->b, wedge_chart_[a]});
+        ++boundary_degree[a], ++boundary_degree[static_cast<size_t>(i->b)];
+      }
+      i = j;
     }
-    i = j;
   }
   for (int d : boundary_degree)
     if (d != 0 && d != 2) return;  // a pinched wedge: its loops may nest without crossing

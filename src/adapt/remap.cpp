@@ -12,6 +12,7 @@
 
 #include "adaptex/adapt/overlap_certificate.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/core/topology.h"
 #include "adaptex/param/stretch.h"
 
 namespace adaptex {
@@ -31,25 +32,35 @@ namespace {
 struct BoundaryEdge {
   int a, b, face;
 };
-std::vector<BoundaryEdge> uv_boundary_edges(const Parameterization& param) {
-  std::vector<std::pair<long long, int>> keys;
-  keys.reserve(param.uv_faces.size() * 3);
-  for (size_t f = 0; f < param.uv_faces.size(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const long long a = std::min(param.uv_faces[f][k], param.uv_faces[f][(k + 1) % 3]);
-      const long long b = std::max(param.uv_faces[f][k], param.uv_faces[f][(k + 1) % 3]);
-      keys.push_back({a * (1LL << 31) + b, static_cast<int>(f)});
+/// bucket_edges() of the layout's UV faces (over every wedge a face names).
+EdgeBuckets uv_edge_buckets(const Parameterization& param) {
+  int nw = static_cast<int>(param.uv.size());
+  for (const Face& f : param.uv_faces)
+    for (int w : f) nw = std::max(nw, w + 1);
+  return bucket_edges(param.uv_faces, nw);
+}
+
+/// Calls fn(a, b, face) for every UV edge a < b used by exactly one UV face, in (a, b) order.
+template <class Fn>
+void for_boundary_edges(const Parameterization& param, Fn&& fn) {
+  const EdgeBuckets eb = uv_edge_buckets(param);
+  for (size_t a = 0; a + 1 < eb.start.size(); ++a) {
+    const auto first = eb.records.begin() + eb.start[a], last = eb.records.begin() + eb.start[a + 1];
+    for (auto i = first; i != last;) {
+      auto j = i + 1;
+      while (j != last && j->b == i->b) ++j;
+      if (j - i == 1 && !fn(static_cast<int>(a), i->b, i->face)) return;
+      i = j;
     }
-  std::sort(keys.begin(), keys.end());
-  std::vector<BoundaryEdge> out;
-  for (size_t i = 0; i < keys.size();) {
-    size_t j = i;
-    while (j < keys.size() && keys[j].first == keys[i].first) ++j;
-    if (j - i == 1)
-      out.push_back({static_cast<int>(keys[i].first >> 31), static_cast<int>(keys[i].first & ((1LL << 31) - 1)),
-                     keys[i].second});
-    i = j;
   }
+}
+
+std::vector<BoundaryEdge> uv_boundary_edges(const Parameterization& param) {
+  std::vector<BoundaryEdge> out;
+  for_boundary_edges(param, [&out](int a, int b, int face) {
+    out.push_back({a, b, face});
+    return true;
+  });
   return out;
 }
 
@@ -144,30 +155,14 @@ RemapCheck check_remap(const Parameterization& before, const Parameterization& a
 
 bool single_chart_on_square(const Parameterization& param) {
   if (param.num_charts != 1) return false;
-  // Boundary edges of the UV mesh: edges used by exactly one UV face.
-  std::vector<std::pair<long long, int>> edges;
-  edges.reserve(param.uv_faces.size() * 3);
-  for (const Face& f : param.uv_faces)
-    for (int k = 0; k < 3; ++k) {
-      const long long a = std::min(f[k], f[(k + 1) % 3]), b = std::max(f[k], f[(k + 1) % 3]);
-      edges.push_back({a * (1LL << 31) + b, 0});
-    }
-  std::sort(edges.begin(), edges.end());
   auto on_square = [&](int w) {
     const Vec2& p = param.uv[w];
     const double e = 1e-9;
     return p.x() <= e || p.x() >= 1 - e || p.y() <= e || p.y() >= 1 - e;
   };
-  for (size_t i = 0; i < edges.size();) {
-    size_t j = i;
-    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
-    if (j - i == 1) {
-      const int a = static_cast<int>(edges[i].first >> 31), b = static_cast<int>(edges[i].first & ((1LL << 31) - 1));
-      if (!on_square(a) || !on_square(b)) return false;
-    }
-    i = j;
-  }
-  return true;
+  bool all = true;
+  for_boundary_edges(param, [&](int a, int b, int) { return all = on_square(a) && on_square(b); });
+  return all;
 }
 
 Parameterization blend_layouts(const Parameterization& from, const Parameterization& to, double t) {

@@ -18,42 +18,50 @@ int corner_index(const TriMesh& mesh, int f, int v) {
 
 }  // namespace
 
-EdgeConnectivity build_edges(const TriMesh& mesh) {
-  const int nf = mesh.num_faces();
-  // Group the (b, face, corner) records of each undirected edge a-b (a < b): a counting sort by a
-  // (stable, so faces stay in increasing order), then a small sort by b within each bucket. O(F)
-  // plus the sorts of the vertex buckets (a few records each).
-  struct Rec {
-    int b, face, corner;
-  };
-  int nv = mesh.num_vertices();
-  for (const Face& t : mesh.faces)
-    for (int v : t) nv = std::max(nv, v + 1);
-  std::vector<int> start(static_cast<size_t>(nv) + 1, 0);
-  for (const Face& t : mesh.faces)
-    for (int k = 0; k < 3; ++k) ++start[std::min(t[k], t[(k + 1) % 3]) + 1];
-  for (int v = 0; v < nv; ++v) start[v + 1] += start[v];
-  std::vector<Rec> recs(static_cast<size_t>(nf) * 3);
+EdgeBuckets bucket_edges(const std::vector<Face>& faces, int num_vertices) {
+  // A counting sort by a (stable, so faces stay in increasing order), then a small sort by b within
+  // each bucket.
+  const int nf = static_cast<int>(faces.size());
+  const int nv = num_vertices;
+  EdgeBuckets eb;
+  eb.start.assign(static_cast<size_t>(nv) + 1, 0);
+  for (const Face& t : faces)
+    for (int k = 0; k < 3; ++k) ++eb.start[std::min(t[k], t[(k + 1) % 3]) + 1];
+  for (int v = 0; v < nv; ++v) eb.start[v + 1] += eb.start[v];
+  eb.records.resize(static_cast<size_t>(nf) * 3);
   {
-    std::vector<int> fill(start.begin(), start.end() - 1);
+    std::vector<int> fill(eb.start.begin(), eb.start.end() - 1);
     for (int f = 0; f < nf; ++f)
       for (int k = 0; k < 3; ++k) {
-        const int a = mesh.faces[f][k], b = mesh.faces[f][(k + 1) % 3];
-        recs[fill[std::min(a, b)]++] = {std::max(a, b), f, k};
+        const int a = faces[f][k], b = faces[f][(k + 1) % 3];
+        eb.records[fill[std::min(a, b)]++] = {std::max(a, b), f, k};
       }
   }
-  EdgeConnectivity ec;
-  ec.face_edges.assign(nf, {-1, -1, -1});
-  ec.edges.reserve(static_cast<size_t>(nf) * 3 / 2 + 16);
-  ec.edge_faces.reserve(ec.edges.capacity());
+  using Rec = EdgeBuckets::Record;
   for (int a = 0; a < nv; ++a) {
-    const auto first = recs.begin() + start[a], last = recs.begin() + start[a + 1];
+    const auto first = eb.records.begin() + eb.start[a], last = eb.records.begin() + eb.start[a + 1];
     if (last - first <= 16) {  // insertion sort (stable, no allocation) for the usual small bucket
       for (auto i = first + (first != last); i < last; ++i)
         for (auto j = i; j != first && (j - 1)->b > j->b; --j) std::iter_swap(j - 1, j);
     } else {
       std::stable_sort(first, last, [](const Rec& x, const Rec& y) { return x.b < y.b; });
     }
+  }
+  return eb;
+}
+
+EdgeConnectivity build_edges(const TriMesh& mesh) {
+  const int nf = mesh.num_faces();
+  int nv = mesh.num_vertices();
+  for (const Face& t : mesh.faces)
+    for (int v : t) nv = std::max(nv, v + 1);
+  const EdgeBuckets eb = bucket_edges(mesh.faces, nv);
+  EdgeConnectivity ec;
+  ec.face_edges.assign(nf, {-1, -1, -1});
+  ec.edges.reserve(static_cast<size_t>(nf) * 3 / 2 + 16);
+  ec.edge_faces.reserve(ec.edges.capacity());
+  for (int a = 0; a < nv; ++a) {
+    const auto first = eb.records.begin() + eb.start[a], last = eb.records.begin() + eb.start[a + 1];
     for (auto i = first; i != last;) {
       const int e = static_cast<int>(ec.edges.size());
       ec.edges.push_back({a, i->b});

@@ -2,6 +2,8 @@
 // relies on), and analyze_topology() reports it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "adaptex/core/shapes.h"
 #include "adaptex/core/topology.h"
 
@@ -59,4 +61,31 @@ TEST(Topology, DetectsNonManifoldEdgeAndVertex) {
   EXPECT_TRUE(bow.nonmanifold_edges.empty());
   ASSERT_EQ(bow.nonmanifold_vertices.size(), 1u);
   EXPECT_EQ(bow.nonmanifold_vertices[0], 0);
+}
+
+// bucket_edges(): every face side exactly once, in (a, b, face, corner) order, which is the order
+// build_edges() and the remap's boundary walks rely on (they replaced a sort of (a, b, face) keys).
+TEST(Topology, BucketEdgesVisitsEveryFaceSideInSortedOrder) {
+  for (const TriMesh& mesh : {adaptex::shapes::torus(12, 7), adaptex::shapes::genus_surface(2, 4)}) {
+    std::vector<Face> faces = mesh.faces;
+    // Shuffle the faces (a fixed permutation) so the input order is not already sorted.
+    for (size_t f = 0; f + 1 < faces.size(); f += 2) std::swap(faces[f], faces[faces.size() - 1 - f / 2]);
+    const int extra = 5;  // a larger vertex count than needed leaves empty buckets
+    const EdgeBuckets eb = bucket_edges(faces, mesh.num_vertices() + extra);
+    ASSERT_EQ(eb.start.size(), static_cast<size_t>(mesh.num_vertices() + extra + 1));
+    ASSERT_EQ(eb.records.size(), 3 * faces.size());
+    std::vector<std::array<int, 4>> seen;
+    for (size_t a = 0; a + 1 < eb.start.size(); ++a)
+      for (int i = eb.start[a]; i < eb.start[a + 1]; ++i) {
+        const EdgeBuckets::Record& r = eb.records[static_cast<size_t>(i)];
+        const Face& t = faces[static_cast<size_t>(r.face)];
+        const int u = t[r.corner], v = t[(r.corner + 1) % 3];
+        EXPECT_EQ(static_cast<int>(a), std::min(u, v));
+        EXPECT_EQ(r.b, std::max(u, v));
+        seen.push_back({static_cast<int>(a), r.b, r.face, r.corner});
+      }
+    EXPECT_TRUE(std::is_sorted(seen.begin(), seen.end()));
+    EXPECT_EQ(std::adjacent_find(seen.begin(), seen.end()), seen.end());
+    EXPECT_EQ(seen.size(), 3 * faces.size());
+  }
 }

@@ -18,8 +18,23 @@ struct EdgeConnectivity {
   bool is_boundary(int e) const { return edge_faces[e].size() == 1; }
 };
 
-/// Builds the edge list. O(F log F). \pre face indices are in range.
+/// Builds the edge list. O(F) plus small per-vertex sorts (bucket_edges()). \pre face indices are in range.
 EdgeConnectivity build_edges(const TriMesh& mesh);
+
+/// The face sides of a triangle list grouped by undirected edge, in compressed form: the side of face
+/// f from corner k to corner k + 1, joining a = min and b = max of its two indices, is a record in
+/// a's bucket. Buckets are in increasing a, records in a bucket in increasing b, and the records of
+/// one edge in increasing face (then corner) order: walking the buckets visits the edges sorted by
+/// (a, b), as sorting (a, b, face) keys would, in O(F) plus the sorts of the (small) buckets.
+struct EdgeBuckets {
+  struct Record {
+    int b, face, corner;
+  };
+  std::vector<int> start;       ///< V+1 offsets into records (V = 1 + the largest index).
+  std::vector<Record> records;  ///< 3F records, bucket by bucket.
+};
+/// \pre every index of \p faces is >= 0 and < num_vertices (num_vertices may be larger than needed).
+EdgeBuckets bucket_edges(const std::vector<Face>& faces, int num_vertices);
 
 /// Vertex -> incident faces, in compressed (CSR) form.
 struct VertexFaces {
