@@ -17,7 +17,10 @@ repeats=${5:-3}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
-: > "$out"
+# Lines go to a file in the work directory and reach OUT only when every run has finished (a failed
+# run leaves no partial OUT behind).
+lines="$work/lines.txt"
+: > "$lines"
 for m in venus.off spot.obj triceratops.off dino.off kitten.obj fandisk.off camelhead.off face.obj bunny.ply; do
   s=${m%.*}
   for k in mixed dots; do
@@ -30,9 +33,10 @@ for m in venus.off spot.obj triceratops.off dino.off kitten.obj fandisk.off came
           rm -rf run
           "$bin" paint "$meshes/$m" --strokes "${s}_$k.json" --size "$n" -o run > /dev/null 2>&1
           t=$(python3 -c "import json; r = json.load(open('run/report.json')); print(r['adapt']['reparameterizations']['total_ms'], r['times_s']['total'])")
-          echo "$s $k $n $r $b $t" >> "$out"
+          echo "$s $k $n $r $b $t" >> "$lines"
         done
       done
     done
   done
 done
+mv "$lines" "$out"

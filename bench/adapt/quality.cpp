@@ -18,8 +18,9 @@
 //
 // Mode names go to cli::make_session_options() (apps/cli/session_options.h, parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
-// turns it off for every mode. Meshes: paths, or names/stems of ADAPTEX_SHARED_DIR/meshes (default:
-// all of them), run in order of increasing face count.
+// turns it off for every mode. Meshes: paths, names of meshes built in code (bench/common/named_mesh.h:
+// genus4, holes11, torus96x40, ...), or names/stems of ADAPTEX_SHARED_DIR/meshes (default: all of
+// them), run in order of increasing face count.
 // GCC 12 reports a false -Wrestrict inside std::string copies at -O3 (GCC bug 105329).
 #pragma GCC diagnostic ignored "-Wrestrict"
 #include <algorithm>
@@ -44,6 +45,7 @@
 #include "adaptex/paint/texel_saving.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
+#include "../common/named_mesh.h"
 #include "session_options.h"  // apps/cli: the option strings of adaptex paint
 
 using namespace adaptex;
@@ -132,7 +134,8 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   return o;
 }
 
-/// Mesh arguments -> files: an existing path, else a file name or stem in the shared meshes directory.
+/// Mesh arguments -> files: an existing path, else a name of a mesh built in code (named_mesh.h, kept
+/// as it is), else a file name or stem in the shared meshes directory.
 std::vector<std::string> resolve_meshes(const std::vector<std::string>& given) {
   const fs::path shared = fs::path(ADAPTEX_SHARED_DIR) / "meshes";
   std::vector<std::string> all;
@@ -143,7 +146,7 @@ std::vector<std::string> resolve_meshes(const std::vector<std::string>& given) {
   if (given.empty()) return all;
   std::vector<std::string> out;
   for (const auto& g : given) {
-    if (fs::exists(g)) {
+    if (fs::exists(g) || bench::code_built_mesh(g)) {
       out.push_back(g);
       continue;
     }
@@ -154,6 +157,13 @@ std::vector<std::string> resolve_meshes(const std::vector<std::string>& given) {
     out.push_back(hit);
   }
   return out;
+}
+
+/// The mesh of a resolved argument: the file, or the mesh built in code of that name.
+TriMesh load_mesh(const std::string& path) {
+  if (!fs::exists(path))
+    if (std::optional<TriMesh> m = bench::code_built_mesh(path)) return std::move(*m);
+  return read_mesh(path);
 }
 
 /// \p v as a number > 0 (>= 0 when \p zero_ok). \throw std::invalid_argument naming the flag otherwise
@@ -340,7 +350,7 @@ int main(int argc, char** argv) {
   std::vector<std::pair<int, std::string>> order;
   for (const auto& path : a.meshes) {
     try {
-      order.push_back({read_mesh(path).num_faces(), path});
+      order.push_back({load_mesh(path).num_faces(), path});
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", path.c_str(), e.what());
     }
@@ -351,7 +361,7 @@ int main(int argc, char** argv) {
   print_header(a);
   std::vector<CaseRecord> cases;
   for (const auto& [faces, path] : order) {
-    const TriMesh mesh = read_mesh(path);
+    const TriMesh mesh = load_mesh(path);
     UnwrapOptions uo;
     uo.charts = a.charts == "single" ? ChartMode::Single : ChartMode::Auto;
     const Parameterization param = unwrap(mesh, uo).param;

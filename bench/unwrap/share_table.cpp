@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "adaptex/core/shapes.h"
+#include "../common/named_mesh.h"
 #include "adaptex/core/topology.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/param/stretch.h"
@@ -39,14 +40,7 @@ namespace {
 using namespace adaptex;
 
 TriMesh make_mesh(const std::string& name) {
-  if (name.rfind("genus", 0) == 0) return shapes::genus_surface(std::stoi(name.substr(5)));
-  if (name.rfind("holes", 0) == 0) return shapes::sphere_with_holes(std::stoi(name.substr(5)));
-  if (name.rfind("sphere", 0) == 0)  // sphereS,T: sphere(S, T)
-    return shapes::sphere(std::stoi(name.substr(6)), std::stoi(name.substr(name.find(',') + 1)));
-  if (name == "pinched") return shapes::with_pinched_hole(shapes::genus_surface(3));
-  if (name == "pinched_annulus") return shapes::pinched_annulus(8);
-  if (name == "tiny200") return shapes::tiny_components(200);
-  if (name == "1M") return shapes::torus(2000, 250);
+  if (std::optional<TriMesh> m = bench::code_built_mesh(name)) return std::move(*m);
   ReadOptions ro;
   return read_mesh(name, ro);
 }
