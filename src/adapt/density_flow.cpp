@@ -11,8 +11,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <mutex>
+#include <new>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "adaptex/core/errors.h"
 
@@ -22,24 +26,65 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// FFTW's planner is not thread-safe; execution of distinct plans is.
+// FFTW's planner is not thread-safe; execution of plans (also of one plan from several threads on
+// different arrays, fftw_execute_r2r) is.
 std::mutex& fftw_planner_mutex() {
   static std::mutex m;
   return m;
 }
 
+/// The in-place 2-D DCT-II (forward) and DCT-III (inverse) plans of an L x L raster, made once per L
+/// and kept (a studio session re-parameterizes after every stroke with the same chart sizes: planning
+/// each time cost 0.3-1.2 ms per plan under the planner lock). Planned on an fftw_alloc_real array,
+/// executed on arrays from fftw_alloc_real (the same SIMD alignment).
+struct DctPlans {
+  fftw_plan fwd = nullptr, inv = nullptr;
+  ~DctPlans() {
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    if (fwd) fftw_destroy_plan(fwd);
+    if (inv) fftw_destroy_plan(inv);
+  }
+};
+
+/// The plans for side \p L. At most kCachedSizes sizes are kept (the oldest goes first); a plan in
+/// use stays alive through its shared_ptr.
+std::shared_ptr<const DctPlans> dct_plans(int L) {
+  constexpr size_t kCachedSizes = 64;
+  // The planner mutex is constructed before the cache, so it is destroyed after it (~DctPlans locks it).
+  std::mutex& planner = fftw_planner_mutex();
+  static std::mutex cache_mutex;
+  static std::vector<std::pair<int, std::shared_ptr<const DctPlans>>> cache;
+  {
+    std::lock_guard<std::mutex> lock(cache_mutex);
+    for (const auto& [size, plans] : cache)
+      if (size == L) return plans;
+  }
+  auto plans = std::make_shared<DctPlans>();
+  {
+    std::lock_guard<std::mutex> lock(planner);
+    double* tmp = fftw_alloc_real(static_cast<size_t>(L) * L);
+    if (!tmp) throw std::bad_alloc();
+    plans->fwd = fftw_plan_r2r_2d(L, L, tmp, tmp, FFTW_REDFT10, FFTW_REDFT10, FFTW_ESTIMATE);
+    plans->inv = fftw_plan_r2r_2d(L, L, tmp, tmp, FFTW_REDFT01, FFTW_REDFT01, FFTW_ESTIMATE);
+    fftw_free(tmp);
+  }
+  if (!plans->fwd || !plans->inv) throw Error("density flow: FFTW could not plan a " + std::to_string(L) + "² DCT");
+  std::lock_guard<std::mutex> lock(cache_mutex);
+  if (cache.size() >= kCachedSizes) cache.erase(cache.begin());
+  cache.emplace_back(L, plans);
+  return plans;
+}
+
 /// φ on the L x L cell centres with ∇²_h φ = ρ̄ − ρ (5-point Laplacian, reflective sides), by DCT.
 std::vector<double> solve_poisson_neumann(const ImageF& rho) {
   const int L = rho.width;
-  std::vector<double> a(static_cast<size_t>(L) * L);
-  for (size_t k = 0; k < a.size(); ++k) a[k] = rho.data[k];
-  fftw_plan fwd, inv;
-  {
-    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-    fwd = fftw_plan_r2r_2d(L, L, a.data(), a.data(), FFTW_REDFT10, FFTW_REDFT10, FFTW_ESTIMATE);
-    inv = fftw_plan_r2r_2d(L, L, a.data(), a.data(), FFTW_REDFT01, FFTW_REDFT01, FFTW_ESTIMATE);
-  }
-  fftw_execute(fwd);
+  const size_t n = static_cast<size_t>(L) * L;
+  const std::shared_ptr<const DctPlans> plans = dct_plans(L);
+  std::unique_ptr<double, void (*)(void*)> buf(fftw_alloc_real(n), fftw_free);
+  if (!buf) throw std::bad_alloc();
+  double* a = buf.get();
+  for (size_t k = 0; k < n; ++k) a[k] = rho.data[k];
+  fftw_execute_r2r(plans->fwd, a, a);
   std::vector<double> lambda(L);
   for (int k = 0; k < L; ++k) {
     const double s = std::sin(kPi * k / (2.0 * L));
@@ -51,13 +96,8 @@ std::vector<double> solve_poisson_neumann(const ImageF& rho) {
       double& c = a[static_cast<size_t>(l) * L + k];
       c = (k == 0 && l == 0) ? 0.0 : -c / ((lambda[k] + lambda[l]) * norm);
     }
-  fftw_execute(inv);
-  {
-    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-    fftw_destroy_plan(fwd);
-    fftw_destroy_plan(inv);
-  }
-  return a;
+  fftw_execute_r2r(plans->inv, a, a);
+  return std::vector<double>(a, a + n);
 }
 
 }  // namespace
@@ -188,6 +228,8 @@ int untangle(GridWarp& g) {
   // just those: the same rounds and the same points as re-checking every cell, far fewer tests.
   std::vector<char> convex(cells), bad(cells, 0), mark(points, 0);
   std::vector<int> bad_cells, marked, checked(cells, 0);  // checked: last round that re-checked a cell
+  std::vector<int> recheck;
+  std::vector<char> now_convex;
   int count = 0;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
@@ -235,7 +277,9 @@ int untangle(GridWarp& g) {
         else if (side_y) p.x() = 0.5 * (g.at(i - 1, j).x() + g.at(i + 1, j).x());
         else p = 0.25 * (g.at(i - 1, j) + g.at(i + 1, j) + g.at(i, j - 1) + g.at(i, j + 1));
       }
-    // Re-check the cells that have a smoothed corner.
+    // Re-check the cells that have a smoothed corner: listed in the order of a serial scan, tested
+    // in parallel, then recorded in that order (the same bad_cells as testing them one by one).
+    recheck.clear();
     for (int k : marked) {
       const int i = k % (n + 1), j = k / (n + 1);
       for (int b = std::max(0, j - 1); b <= std::min(n - 1, j); ++b)
@@ -243,15 +287,24 @@ int untangle(GridWarp& g) {
           const size_t c = static_cast<size_t>(b) * n + a;
           if (checked[c] == round + 1) continue;
           checked[c] = round + 1;
-          const bool now = cell_convex(g, a, b);
-          if (now == static_cast<bool>(convex[c])) continue;
-          convex[c] = now;
-          count += now ? -1 : 1;
-          if (!now && !bad[c]) {
-            bad[c] = 1;
-            bad_cells.push_back(static_cast<int>(c));
-          }
+          recheck.push_back(static_cast<int>(c));
         }
+    }
+    now_convex.resize(recheck.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, recheck.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t q = r.begin(); q < r.end(); ++q)
+        now_convex[q] = cell_convex(g, recheck[q] % n, recheck[q] / n);
+    });
+    for (size_t q = 0; q < recheck.size(); ++q) {
+      const size_t c = static_cast<size_t>(recheck[q]);
+      const bool now = now_convex[q];
+      if (now == static_cast<bool>(convex[c])) continue;
+      convex[c] = now;
+      count += now ? -1 : 1;
+      if (!now && !bad[c]) {
+        bad[c] = 1;
+        bad_cells.push_back(static_cast<int>(c));
+      }
     }
   }
   return first;

@@ -1,5 +1,6 @@
 // Flow-based density-equalizing map (density_flow.h): reaches the density, cannot fold, keeps the square.
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <cstdio>
@@ -310,4 +311,35 @@ TEST(FlowWarp, ActsInItsRectanglesOnly) {
   }
   EXPECT_GT(most, 1e-3);
   EXPECT_EQ(fw.apply(Vec2(0.1, 0.1)), Vec2(0.1, 0.1));  // a corner of the rectangle stays
+}
+
+// The DCT plans are made once per raster size and shared (density_flow.cpp, dct_plans()): the warp of
+// a density must not depend on which sizes were solved before, nor on other threads solving at the
+// same time with the same or other sizes.
+TEST(DensityFlow, SharedPlansGiveTheSameWarpInAnyOrderAndInParallel) {
+  const std::vector<int> sizes{24, 37, 24, 64, 37, 50, 24, 64};
+  std::vector<ImageF> densities;
+  for (size_t k = 0; k < sizes.size(); ++k)
+    densities.push_back(bump(sizes[k], 4.0 + static_cast<double>(k), 0.15, 0.3 + 0.05 * static_cast<double>(k), 0.6));
+  auto warp_of = [&](size_t k) {
+    DensityFlowOptions o;
+    o.cells = 32;
+    o.parallel = false;
+    return density_equalizing_warp(densities[k], o).points;
+  };
+  std::vector<std::vector<Vec2>> serial(sizes.size());
+  for (size_t k = sizes.size(); k-- > 0;) serial[k] = warp_of(k);  // reverse order: other sizes first
+  std::vector<std::vector<Vec2>> parallel(sizes.size());
+  tbb::parallel_for(size_t(0), 4 * sizes.size(), [&](size_t j) {
+    const size_t k = j % sizes.size();
+    std::vector<Vec2> p = warp_of(k);
+    if (j < sizes.size()) parallel[k] = std::move(p);
+  });
+  for (size_t k = 0; k < sizes.size(); ++k) {
+    ASSERT_EQ(parallel[k].size(), serial[k].size()) << k;
+    for (size_t i = 0; i < serial[k].size(); ++i)
+      ASSERT_TRUE(parallel[k][i] == serial[k][i]) << "size " << sizes[k] << " point " << i;
+  }
+  // Not the identity: the bump moved the lattice.
+  EXPECT_GT((serial[0][serial[0].size() / 2] - Vec2(0.5, 0.5)).norm(), 1e-3);
 }
