@@ -15,6 +15,7 @@
 //                         [--full-chart-share]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
+//                         [--untangle-sor W]
 //
 // Mode names go to cli::make_session_options() (apps/cli/session_options.h, parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
@@ -96,6 +97,7 @@ struct Args {
   double flow_step = -1;        ///< --flow-step: DensityFlowOptions::max_step_cells (-1: the default).
   double flow_tol = -1;         ///< --flow-tol: DensityFlowOptions::tolerance (-1: the default).
   double flow_interp = -1;      ///< --flow-interp: DensityFlowOptions::interpolation_tolerance (-1: the default).
+  double untangle_sor = -1;     ///< --untangle-sor: SafeRemapOptions::untangle_over_relaxation (-1: the default).
   bool direct_flow = false;     ///< --direct-flow: DensityFlowOptions::direct = true (wedges through the flow itself).
 };
 
@@ -130,6 +132,7 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   if (a.flow_step > 0) o.adapt.flow.max_step_cells = a.flow_step;
   if (a.flow_tol > 0) o.adapt.flow.tolerance = a.flow_tol;
   if (a.flow_interp >= 0) o.adapt.flow.interpolation_tolerance = a.flow_interp;
+  if (a.untangle_sor > 0) o.adapt.remap.untangle_over_relaxation = a.untangle_sor;
   if (a.direct_flow) o.adapt.flow.direct = true;
   return o;
 }
@@ -216,6 +219,7 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--flow-step") a.flow_step = positive(k, v);
     else if (k == "--flow-tol") a.flow_tol = positive(k, v);
     else if (k == "--flow-interp") a.flow_interp = positive(k, v, true);
+    else if (k == "--untangle-sor") a.untangle_sor = positive(k, v);
     else throw std::invalid_argument(k + ": unknown option");
   }
   for (const auto& m : modes) {

@@ -186,6 +186,8 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
     throw InvalidInputError("safe_remap_layout: the warped layout has " + std::to_string(full.uv.size()) +
                             " wedges and " + std::to_string(full.uv_faces.size()) + " faces, the input " +
                             std::to_string(param.uv.size()) + " and " + std::to_string(param.uv_faces.size()));
+  if (!(o_in.untangle_over_relaxation > 0 && o_in.untangle_over_relaxation < 2))
+    throw InvalidInputError("safe_remap_layout: untangle_over_relaxation must be in (0, 2)");
   SafeRemapOptions o = o_in;
   // One chart whose boundary lies on the square's sides: grid points on the sides only slide along
   // them (here: stay fixed), so the boundary maps injectively onto itself; with no flipped triangle
@@ -294,6 +296,7 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
   // smoothing in the new domain, as in Tutte's embedding). A few flips of a strong warp are usually
   // slivers that the warp turns over; smoothing them keeps the warp around them, where damping them
   // toward their old position tears their neighbours (measured: halving turned 152 flips into 396).
+  const double omega = o.untangle_over_relaxation;
   auto untangle = [&](Parameterization& out, std::vector<Vec2>& d) {
     std::vector<int> bad_faces, ws;
     std::vector<Vec2> pos;
@@ -324,7 +327,8 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
           if (on_border[w] || deg == 0) continue;
           Vec2 sum = Vec2::Zero();
           for (int q = ring_start[w]; q < ring_start[w + 1]; ++q) sum += out.uv[ring[q]];
-          out.uv[w] = sum / deg;
+          if (omega == 1.0) out.uv[w] = sum / deg;
+          else out.uv[w] += omega * (Vec2(sum / deg) - out.uv[w]);
           d[w] = out.uv[w] - param.uv[w];
         }
         continue;

@@ -289,6 +289,17 @@ TEST(Remap, UntanglingKeepsMoreOfAWarpThanDamping) {
   EXPECT_TRUE(check_remap(param, j.param).ok());
   EXPECT_GT(j.mean_damping, 0.9);
   EXPECT_NEAR(j.mean_damping, untangled.mean_damping, 0.05);
+  // Over-relaxed rounds (SafeRemapOptions::untangle_over_relaxation) untangle the fold as well.
+  SafeRemapOptions sor;
+  sor.untangle_over_relaxation = 1.5;
+  const SafeRemapResult s = safe_remap(param, {&w}, sor);
+  EXPECT_TRUE(check_remap(param, s.param).ok());
+  EXPECT_GT(s.mean_damping, 0.9);
+  for (double bad : {0.0, 2.0, -1.0, std::nan("")}) {
+    SafeRemapOptions o;
+    o.untangle_over_relaxation = bad;
+    EXPECT_THROW(safe_remap(param, {&w}, o), InvalidInputError) << bad;
+  }
 }
 
 }  // namespace
