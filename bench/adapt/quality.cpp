@@ -12,7 +12,7 @@
 //                         [--grid C,F] [--alpha A] [--beta B] [--schedule end|each-stroke]
 //                         [--update replay|resample] [--no-safeguard] [--no-refine] [--verbose]
 //                         [--charts single|auto] [--floor F] [--density-cells L] [--no-atlas]
-//                         [--full-chart-share]
+//                         [--full-chart-share] [--no-quarter-texel]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
 //                         [--untangle-sor W]
@@ -88,6 +88,8 @@ struct Args {
   bool atlas = true;            ///< --no-atlas: AdaptOptions::atlas_flow = false (one flow over the square).
   /// --full-chart-share: AdaptOptions::chart_sizes_by_error_model = false (sizes ∝ sqrt(mean ρ)).
   bool full_chart_share = false;
+  /// --no-quarter-texel: ErrorDensityOptions::quarter_texel_reference = false (the 2N reference raster at every N).
+  bool no_quarter_texel = false;
   double refine_factor = -1;    ///< --refine-factor: AdaptOptions::refine_max_face_factor (-1: default).
   double blur = -1;             ///< --blur: ErrorDensityOptions::blur_cells (-1: the default).
   double max_density = -1;      ///< --max-density: ErrorDensityOptions::max_density (-1: the default).
@@ -121,6 +123,7 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   set_refine(o, m.refine);
   o.adapt.atlas_flow = a.atlas;
   o.adapt.chart_sizes_by_error_model = !a.full_chart_share;
+  if (a.no_quarter_texel) o.adapt.density.quarter_texel_reference = false;
   if (a.floor >= 0) o.adapt.density.floor = a.floor;
   if (a.density_cells > 0) o.adapt.density.cells = a.density_cells;
   if (a.refine_factor > 0) o.adapt.refine_max_face_factor = a.refine_factor;
@@ -189,6 +192,7 @@ Args parse_args(int argc, char** argv) {
     if (k == "--direct-flow") { a.direct_flow = true; continue; }
     if (k == "--no-atlas") { a.atlas = false; continue; }
     if (k == "--full-chart-share") { a.full_chart_share = true; continue; }
+    if (k == "--no-quarter-texel") { a.no_quarter_texel = true; continue; }
     if (i + 1 >= argc) throw std::invalid_argument(k + ": unknown option or missing value");
     const std::string v = argv[++i];
     if (k == "--meshes") a.meshes = split(v);

@@ -23,6 +23,7 @@
 #include <fstream>
 #include <iterator>
 #include <set>
+#include <string_view>
 #include <nlohmann/json.hpp>
 
 #include "adaptex/core/errors.h"
@@ -304,7 +305,9 @@ void check_references(const std::string& corrupt, const json& doc) {
 }
 
 /// Standard base64 (RFC 4648) of a data: URI's payload; stops at the first character outside the
-/// alphabet ('=' padding included).
+/// alphabet ('=' padding included). Written here because no dependency offers it to this layer:
+/// Debian's libassimp 5.2.4 installs assimp/Base64.hpp but does not export its symbols, and
+/// tinygltf's decoder is compiled only into the paint layer's exporter.
 std::string decode_base64(const std::string& text, std::size_t from) {
   std::string out;
   std::uint32_t acc = 0;
@@ -324,11 +327,9 @@ std::string decode_base64(const std::string& text, std::size_t from) {
   return out;
 }
 
-/// The bytes of buffer \p b (check_buffers() accepted it): the GLB's BIN chunk, a data: URI, or a
-/// file next to the glTF.
-std::string buffer_bytes(const json& b, const std::string& bytes, std::uint64_t bin_offset, std::uint64_t bin_length,
-                         const std::filesystem::path& dir) {
-  if (!b.contains("uri")) return bytes.substr(static_cast<std::size_t>(bin_offset), static_cast<std::size_t>(bin_length));
+/// The bytes of buffer \p b (check_buffers() accepted it) other than the GLB's BIN chunk: a data: URI,
+/// or a file next to the glTF.
+std::string uri_buffer_bytes(const json& b, const std::filesystem::path& dir) {
   const std::string uri = b["uri"].get<std::string>();
   if (uri.rfind("data:", 0) == 0) return decode_base64(uri, uri.find(',') + 1);
   std::ifstream in(dir / uri, std::ios::binary);
@@ -344,7 +345,8 @@ void check_index_values(const std::string& corrupt, const json& doc, const std::
                         std::uint64_t bin_length, const std::filesystem::path& dir) {
   const json* meshes = array_of(corrupt, doc, "meshes");
   if (!meshes) return;
-  std::vector<std::string> loaded;  // buffers' bytes, read on first use
+  // Buffers' bytes, read on first use; the BIN chunk is read where it lies in the file's bytes.
+  std::vector<std::string> loaded;
   std::vector<char> have;
   for (std::size_t m = 0; m < meshes->size(); ++m)
     for (const json& p : (*meshes)[m].at("primitives")) {
@@ -365,8 +367,11 @@ void check_index_values(const std::string& corrupt, const json& doc, const std::
       const std::size_t buffer = view.at("buffer").get<std::size_t>();
       const json& buffers = doc.at("buffers");
       if (have.empty()) have.assign(buffers.size(), 0), loaded.resize(buffers.size());
-      if (!have[buffer]) loaded[buffer] = buffer_bytes(buffers.at(buffer), bytes, bin_offset, bin_length, dir), have[buffer] = 1;
-      const std::string& data = loaded[buffer];
+      const json& b = buffers.at(buffer);
+      if (b.contains("uri") && !have[buffer]) loaded[buffer] = uri_buffer_bytes(b, dir), have[buffer] = 1;
+      const std::string_view data = b.contains("uri") ? std::string_view(loaded[buffer])
+                                                      : std::string_view(bytes).substr(static_cast<std::size_t>(bin_offset),
+                                                                                       static_cast<std::size_t>(bin_length));
       const std::uint64_t size = accessor_item_bytes(acc), count = acc.value("count", std::uint64_t{0});
       const std::uint64_t start = view.value("byteOffset", std::uint64_t{0}) + acc.value("byteOffset", std::uint64_t{0});
       if (start + count * size > data.size()) throw IoError(what + " lie outside the buffer's data");

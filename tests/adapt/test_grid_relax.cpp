@@ -295,6 +295,22 @@ TEST(Remap, UntanglingKeepsMoreOfAWarpThanDamping) {
   const SafeRemapResult s = safe_remap(param, {&w}, sor);
   EXPECT_TRUE(check_remap(param, s.param).ok());
   EXPECT_GT(s.mean_damping, 0.9);
+  // untangle_patience: past untangle_rounds the rounds go on while they make progress (here: while
+  // fewer faces fail than 2 rounds before). Stopped after 2 rounds the fold is not untangled and
+  // local damping has to take more of the warp.
+  SafeRemapOptions one_round;
+  one_round.untangle_rounds = 2;
+  one_round.untangle_patience = 0;
+  SafeRemapOptions patient = one_round;
+  patient.untangle_patience = 2;
+  const SafeRemapResult stopped = safe_remap(param, {&w}, one_round);
+  const SafeRemapResult went_on = safe_remap(param, {&w}, patient);
+  EXPECT_TRUE(check_remap(param, stopped.param).ok());
+  EXPECT_TRUE(check_remap(param, went_on.param).ok());
+  std::printf("mean blend kept: 2 rounds %.4f, with patience %.4f, default %.4f\n", stopped.mean_damping,
+              went_on.mean_damping, untangled.mean_damping);
+  EXPECT_GT(went_on.mean_damping, stopped.mean_damping);
+  EXPECT_NEAR(went_on.mean_damping, untangled.mean_damping, 1e-9);
   for (double bad : {0.0, 2.0, -1.0, std::nan("")}) {
     SafeRemapOptions o;
     o.untangle_over_relaxation = bad;

@@ -174,6 +174,36 @@ TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
   expect_info_rejects(dir.path / "tri11.glb", "mesh 0: 11 vertices do not make whole primitives of mode 4");
   test::write_text(dir.path / "nocount.glb", four_vertex_glb(1, 1, 4, tet_bin, "cuont"));
   expect_info_rejects(dir.path / "nocount.glb", "mesh 0 indices: index 0 but the primitive has 0 vertices");
+  // The index check reads index data from every kind of buffer: the BIN chunk (above), a base64
+  // data: URI and a file beside the glTF. One triangle, 3 positions then 3 unsigned-short indices
+  // (0 1 2, or 0 1 3 naming a vertex that does not exist) and 2 bytes of padding: 44 bytes.
+  auto indexed_gltf = [](const std::string& uri) {
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+           R"("buffers":[{"uri":")" + uri + R"(","byteLength":44}],"bufferViews":[{"buffer":0,"byteLength":36},)"
+           R"({"buffer":0,"byteOffset":36,"byteLength":6}],"accessors":[{"bufferView":0,"componentType":5126,)"
+           R"("type":"VEC3","count":3,"min":[0,0,0],"max":[1,1,0]},{"bufferView":1,"componentType":5123,)"
+           R"("type":"SCALAR","count":3}]})";
+  };
+  const std::string b64 = "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAB";
+  test::write_text(dir.path / "uri_ok.gltf", indexed_gltf(b64 + "AAIAAAA="));
+  test::write_text(dir.path / "uri_bad.gltf", indexed_gltf(b64 + "AAMAAAA="));
+  std::string tri_bin;
+  for (std::uint32_t w : {0u, 0u, 0u, 0x3f800000u, 0u, 0u, 0u, 0x3f800000u, 0u}) put(tri_bin, w);
+  std::string bad_bin = tri_bin;
+  for (std::uint32_t w : {0x10000u, 0x2u}) put(tri_bin, w);  // indices 0 1 | 2, padding
+  for (std::uint32_t w : {0x10000u, 0x3u}) put(bad_bin, w);  // indices 0 1 | 3, padding
+  test::write_text(dir.path / "tri_ok.bin", tri_bin);
+  test::write_text(dir.path / "tri_bad.bin", bad_bin);
+  test::write_text(dir.path / "file_ok.gltf", indexed_gltf("tri_ok.bin"));
+  test::write_text(dir.path / "file_bad.gltf", indexed_gltf("tri_bad.bin"));
+  for (const char* f : {"uri_ok.gltf", "file_ok.gltf"}) {
+    const auto r = run_bounded("info " + q(dir.path / f));
+    EXPECT_EQ(r.exit_code, 0) << f << ": " << r.err;
+    EXPECT_NE(r.out.find("faces:       1"), std::string::npos) << f << ": " << r.out;
+  }
+  for (const char* f : {"uri_bad.gltf", "file_bad.gltf"})
+    expect_info_rejects(dir.path / f, "mesh 0 indices: index 3 but the primitive has 3 vertices");
   test::write_text(dir.path / "cycle.gltf", R"({"asset":{"version":"2.0"},"nodes":[{"children":[1]},{"children":[0]}]})");
   expect_info_rejects(dir.path / "cycle.gltf", "the node hierarchy has a cycle");
   // An external buffer that is a device.
