@@ -152,7 +152,7 @@ std::vector<std::string> resolve_meshes(const std::vector<std::string>& given) {
   if (given.empty()) return all;
   std::vector<std::string> out;
   for (const auto& g : given) {
-    if (fs::exists(g) || bench::code_built_mesh(g)) {
+    if (fs::exists(g) || bench::parse_code_built_name(g)) {
       out.push_back(g);
       continue;
     }
@@ -354,22 +354,32 @@ int main(int argc, char** argv) {
   EvalOptions eo;
   eo.samples = a.samples;
   eo.seed = a.eval_seed;
-  // Smallest meshes first: early rows come quickly.
-  std::vector<std::pair<int, std::string>> order;
+  // Smallest meshes first: early rows come quickly. Each mesh is read (or built) once.
+  struct Loaded {
+    int faces;
+    std::string path;
+    TriMesh mesh;
+  };
+  std::vector<Loaded> order;
   for (const auto& path : a.meshes) {
     try {
-      order.push_back({load_mesh(path).num_faces(), path});
+      TriMesh m = load_mesh(path);
+      order.push_back({m.num_faces(), path, std::move(m)});
     } catch (const std::exception& e) {
       std::fprintf(stderr, "%s: %s\n", path.c_str(), e.what());
     }
   }
-  std::sort(order.begin(), order.end());
+  std::stable_sort(order.begin(), order.end(), [](const Loaded& x, const Loaded& y) {
+    return x.faces != y.faces ? x.faces < y.faces : x.path < y.path;
+  });
   std::vector<int> sizes = a.sizes;
   std::sort(sizes.begin(), sizes.end());
   print_header(a);
   std::vector<CaseRecord> cases;
-  for (const auto& [faces, path] : order) {
-    const TriMesh mesh = load_mesh(path);
+  for (const Loaded& loaded : order) {
+    const int faces = loaded.faces;
+    const std::string& path = loaded.path;
+    const TriMesh& mesh = loaded.mesh;
     UnwrapOptions uo;
     uo.charts = a.charts == "single" ? ChartMode::Single : ChartMode::Auto;
     const Parameterization param = unwrap(mesh, uo).param;

@@ -40,7 +40,8 @@ namespace {
 using namespace adaptex;
 
 TriMesh make_mesh(const std::string& name) {
-  if (std::optional<TriMesh> m = bench::code_built_mesh(name)) return std::move(*m);
+  if (!std::filesystem::exists(name))  // a file of that name wins over a code-built mesh's name
+    if (std::optional<TriMesh> m = bench::code_built_mesh(name)) return std::move(*m);
   ReadOptions ro;
   return read_mesh(name, ro);
 }

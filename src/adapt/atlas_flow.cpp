@@ -47,21 +47,12 @@ double smallest_box_gap(const std::vector<UvRect>& boxes) {
 }
 
 namespace {
-/// sample_bilinear()'s clamp-to-edge footprint along one axis of \p n texels, at the k sample
-/// positions lo + (i + 0.5) / k · size: the same taps and weights, computed once per row or column.
-struct AxisTaps {
-  std::vector<int> i0, i1;
-  std::vector<double> f;
-  AxisTaps(int n, int k, double lo, double size) : i0(k), i1(k), f(k) {
-    for (int i = 0; i < k; ++i) {
-      const double x = (lo + (i + 0.5) / k * size) * n - 0.5, xf = std::floor(x);
-      f[i] = x - xf;
-      const int xi = static_cast<int>(std::clamp(xf, -1.0, static_cast<double>(n)));
-      i0[i] = std::clamp(xi, 0, n - 1);
-      i1[i] = std::clamp(xi + 1, 0, n - 1);
-    }
-  }
-};
+/// bilinear_tap() at the k sample positions lo + (i + 0.5) / k · size along one axis of \p n texels.
+std::vector<BilinearTap> axis_taps(int n, int k, double lo, double size) {
+  std::vector<BilinearTap> t(static_cast<size_t>(k));
+  for (int i = 0; i < k; ++i) t[static_cast<size_t>(i)] = bilinear_tap(n, lo + (i + 0.5) / k * size);
+  return t;
+}
 
 /// Mean of \p density over \p r, sampled on a regular grid of about samples_per_cell points per
 /// density cell and axis (the values sample_bilinear() gives there, summed in raster order).
@@ -69,16 +60,16 @@ double mean_density(const ImageF& density, const UvRect& r, int samples_per_cell
   const int L = density.width;
   const int kx = std::clamp(static_cast<int>(std::ceil(r.size().x() * L * samples_per_cell)), 2, 4 * L);
   const int ky = std::clamp(static_cast<int>(std::ceil(r.size().y() * L * samples_per_cell)), 2, 4 * L);
-  const AxisTaps tx(density.width, kx, r.lo.x(), r.size().x()), ty(density.height, ky, r.lo.y(), r.size().y());
+  const std::vector<BilinearTap> tx = axis_taps(density.width, kx, r.lo.x(), r.size().x()),
+                                 ty = axis_taps(density.height, ky, r.lo.y(), r.size().y());
   double sum = 0;
-  for (int j = 0; j < ky; ++j) {
-    const float* row0 = density.data.data() + static_cast<size_t>(ty.i0[j]) * density.width;
-    const float* row1 = density.data.data() + static_cast<size_t>(ty.i1[j]) * density.width;
-    const double fy = ty.f[j];
-    for (int i = 0; i < kx; ++i) {
-      const double a = row0[tx.i0[i]], b = row0[tx.i1[i]], d = row1[tx.i0[i]], e = row1[tx.i1[i]];
-      const double bottom = a + (b - a) * tx.f[i], top = d + (e - d) * tx.f[i];
-      sum += bottom + (top - bottom) * fy;
+  for (const BilinearTap& y : ty) {
+    const float* row0 = density.data.data() + static_cast<size_t>(y.i0) * density.width;
+    const float* row1 = density.data.data() + static_cast<size_t>(y.i1) * density.width;
+    for (const BilinearTap& x : tx) {  // sample_bilinear()'s arithmetic
+      const double a = row0[x.i0], b = row0[x.i1], d = row1[x.i0], e = row1[x.i1];
+      const double bottom = a + (b - a) * x.f, top = d + (e - d) * x.f;
+      sum += bottom + (top - bottom) * y.f;
     }
   }
   return sum / (double(kx) * ky);

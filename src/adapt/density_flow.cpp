@@ -70,6 +70,8 @@ std::shared_ptr<const DctPlans> dct_plans(int L) {
   }
   if (!plans->fwd || !plans->inv) throw Error("density flow: FFTW could not plan a " + std::to_string(L) + "² DCT");
   std::lock_guard<std::mutex> lock(cache_mutex);
+  for (const auto& [size, cached] : cache)  // another thread planned the same size meanwhile: keep one
+    if (size == L) return cached;
   if (cache.size() >= kCachedSizes) cache.erase(cache.begin());
   cache.emplace_back(L, plans);
   return plans;

@@ -12,6 +12,13 @@ ImageRGBA8::ImageRGBA8(int w, int h, std::array<std::uint8_t, 4> fill)
 
 ImageF::ImageF(int w, int h, float fill) : width(w), height(h), data(static_cast<size_t>(w) * h, fill) {}
 
+BilinearTap bilinear_tap(int size, double u) {
+  const double x = u * size - 0.5;
+  const double xf = std::floor(x);
+  const int xi = static_cast<int>(std::clamp(xf, -1.0, static_cast<double>(size)));
+  return BilinearTap{std::clamp(xi, 0, size - 1), std::clamp(xi + 1, 0, size - 1), x - xf};
+}
+
 namespace {
 // Clamp-to-edge bilinear footprint: texel centres at (i+0.5)/W.
 struct Footprint {
@@ -19,18 +26,8 @@ struct Footprint {
   double fx, fy;
 };
 Footprint footprint(int w, int h, double u, double v) {
-  const double x = u * w - 0.5, y = v * h - 0.5;
-  const double xf = std::floor(x), yf = std::floor(y);
-  Footprint fp;
-  fp.fx = x - xf;
-  fp.fy = y - yf;
-  const int xi = static_cast<int>(std::clamp(xf, -1.0, static_cast<double>(w)));
-  const int yi = static_cast<int>(std::clamp(yf, -1.0, static_cast<double>(h)));
-  fp.i0 = std::clamp(xi, 0, w - 1);
-  fp.i1 = std::clamp(xi + 1, 0, w - 1);
-  fp.j0 = std::clamp(yi, 0, h - 1);
-  fp.j1 = std::clamp(yi + 1, 0, h - 1);
-  return fp;
+  const BilinearTap x = bilinear_tap(w, u), y = bilinear_tap(h, v);
+  return Footprint{x.i0, x.i1, y.i0, y.i1, x.f, y.f};
 }
 }  // namespace
 

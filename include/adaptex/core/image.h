@@ -33,6 +33,17 @@ struct ImageF {
   float at(int i, int j) const { return data[static_cast<size_t>(j) * width + i]; }
 };
 
+/// One axis of sample_bilinear()'s clamp-to-edge footprint (texel centres at (i + 0.5) / size): the
+/// coordinate u lies between texels i0 and i1 (equal at the edges) with weight f on i1. A lookup at
+/// many points of a regular grid can compute the taps once per row and column and get the same values
+/// as sample_bilinear() there.
+struct BilinearTap {
+  int i0 = 0, i1 = 0;
+  double f = 0;
+};
+/// \pre size >= 1
+BilinearTap bilinear_tap(int size, double u);
+
 /// Bilinear sample of the RGB channels at (u, v) with clamp-to-edge, in [0,1] per channel,
 /// exactly as the stroke-file contract defines reconstruction.
 Vec3 sample_bilinear(const ImageRGBA8& img, double u, double v);
