@@ -47,7 +47,10 @@ struct ErrorDensityOptions {
   /// is the texture's own texel centres. Not with fewer points per cell: with 1 (N = cells = 256) the
   /// per-cell errors of small dots got noisy, the density too peaked, and it lost 0.2–0.3 dB; with 4
   /// the model predicted +18 % more gain on dots than the 2N raster (docs/quality.md, "Session 11").
-  /// false: always the reference_factor·N raster.
+  /// Its cost, measured out of sample in session 12 at 1024² (stroke seed 3, docs/quality.md): on
+  /// `mixed` −0.17 dB mean on 4 shared meshes (dino −0.57) and −0.44 dB on 4 code-built meshes (torus
+  /// −0.66), lines −0.07, dots +0.01; kept for the model's 3× speed at N >= 1024 (the studio's cycle),
+  /// a trade-off, not a free gain. false: always the reference_factor·N raster.
   bool quarter_texel_reference = true;
   /// Gaussian σ, in cells, of the error fields before the density solve. 3 since session 10 (4 before):
   /// with the 256-cell flow lattice, +0.06 dB on lines / dots / mixed over 4 (alone it is neutral).
