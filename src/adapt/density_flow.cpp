@@ -230,8 +230,6 @@ int untangle(GridWarp& g) {
   // just those: the same rounds and the same points as re-checking every cell, far fewer tests.
   std::vector<char> convex(cells), bad(cells, 0), mark(points, 0);
   std::vector<int> bad_cells, marked, checked(cells, 0);  // checked: last round that re-checked a cell
-  std::vector<int> recheck;
-  std::vector<char> now_convex;
   int count = 0;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
@@ -279,9 +277,7 @@ int untangle(GridWarp& g) {
         else if (side_y) p.x() = 0.5 * (g.at(i - 1, j).x() + g.at(i + 1, j).x());
         else p = 0.25 * (g.at(i - 1, j) + g.at(i + 1, j) + g.at(i, j - 1) + g.at(i, j + 1));
       }
-    // Re-check the cells that have a smoothed corner: listed in the order of a serial scan, tested
-    // in parallel, then recorded in that order (the same bad_cells as testing them one by one).
-    recheck.clear();
+    // Re-check the cells that have a smoothed corner.
     for (int k : marked) {
       const int i = k % (n + 1), j = k / (n + 1);
       for (int b = std::max(0, j - 1); b <= std::min(n - 1, j); ++b)
@@ -289,24 +285,15 @@ int untangle(GridWarp& g) {
           const size_t c = static_cast<size_t>(b) * n + a;
           if (checked[c] == round + 1) continue;
           checked[c] = round + 1;
-          recheck.push_back(static_cast<int>(c));
+          const bool now = cell_convex(g, a, b);
+          if (now == static_cast<bool>(convex[c])) continue;
+          convex[c] = now;
+          count += now ? -1 : 1;
+          if (!now && !bad[c]) {
+            bad[c] = 1;
+            bad_cells.push_back(static_cast<int>(c));
+          }
         }
-    }
-    now_convex.resize(recheck.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, recheck.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t q = r.begin(); q < r.end(); ++q)
-        now_convex[q] = cell_convex(g, recheck[q] % n, recheck[q] / n);
-    });
-    for (size_t q = 0; q < recheck.size(); ++q) {
-      const size_t c = static_cast<size_t>(recheck[q]);
-      const bool now = now_convex[q];
-      if (now == static_cast<bool>(convex[c])) continue;
-      convex[c] = now;
-      count += now ? -1 : 1;
-      if (!now && !bad[c]) {
-        bad[c] = 1;
-        bad_cells.push_back(static_cast<int>(c));
-      }
     }
   }
   return first;
