@@ -11,12 +11,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <memory>
 #include <mutex>
-#include <new>
 #include <string>
-#include <utility>
-#include <vector>
 
 #include "adaptex/core/errors.h"
 
@@ -26,67 +22,24 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// FFTW's planner is not thread-safe; execution of plans (also of one plan from several threads on
-// different arrays, fftw_execute_r2r) is.
+// FFTW's planner is not thread-safe; execution of distinct plans is.
 std::mutex& fftw_planner_mutex() {
   static std::mutex m;
   return m;
 }
 
-/// The in-place 2-D DCT-II (forward) and DCT-III (inverse) plans of an L x L raster, made once per L
-/// and kept (a studio session re-parameterizes after every stroke with the same chart sizes: planning
-/// each time cost 0.3-1.2 ms per plan under the planner lock). Planned on an fftw_alloc_real array,
-/// executed on arrays from fftw_alloc_real (the same SIMD alignment).
-struct DctPlans {
-  fftw_plan fwd = nullptr, inv = nullptr;
-  ~DctPlans() {
-    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
-    if (fwd) fftw_destroy_plan(fwd);
-    if (inv) fftw_destroy_plan(inv);
-  }
-};
-
-/// The plans for side \p L. At most kCachedSizes sizes are kept (the oldest goes first); a plan in
-/// use stays alive through its shared_ptr.
-std::shared_ptr<const DctPlans> dct_plans(int L) {
-  constexpr size_t kCachedSizes = 64;
-  // The planner mutex is constructed before the cache, so it is destroyed after it (~DctPlans locks it).
-  std::mutex& planner = fftw_planner_mutex();
-  static std::mutex cache_mutex;
-  static std::vector<std::pair<int, std::shared_ptr<const DctPlans>>> cache;
-  {
-    std::lock_guard<std::mutex> lock(cache_mutex);
-    for (const auto& [size, plans] : cache)
-      if (size == L) return plans;
-  }
-  auto plans = std::make_shared<DctPlans>();
-  {
-    std::lock_guard<std::mutex> lock(planner);
-    double* tmp = fftw_alloc_real(static_cast<size_t>(L) * L);
-    if (!tmp) throw std::bad_alloc();
-    plans->fwd = fftw_plan_r2r_2d(L, L, tmp, tmp, FFTW_REDFT10, FFTW_REDFT10, FFTW_ESTIMATE);
-    plans->inv = fftw_plan_r2r_2d(L, L, tmp, tmp, FFTW_REDFT01, FFTW_REDFT01, FFTW_ESTIMATE);
-    fftw_free(tmp);
-  }
-  if (!plans->fwd || !plans->inv) throw Error("density flow: FFTW could not plan a " + std::to_string(L) + "² DCT");
-  std::lock_guard<std::mutex> lock(cache_mutex);
-  for (const auto& [size, cached] : cache)  // another thread planned the same size meanwhile: keep one
-    if (size == L) return cached;
-  if (cache.size() >= kCachedSizes) cache.erase(cache.begin());
-  cache.emplace_back(L, plans);
-  return plans;
-}
-
 /// φ on the L x L cell centres with ∇²_h φ = ρ̄ − ρ (5-point Laplacian, reflective sides), by DCT.
 std::vector<double> solve_poisson_neumann(const ImageF& rho) {
   const int L = rho.width;
-  const size_t n = static_cast<size_t>(L) * L;
-  const std::shared_ptr<const DctPlans> plans = dct_plans(L);
-  std::unique_ptr<double, void (*)(void*)> buf(fftw_alloc_real(n), fftw_free);
-  if (!buf) throw std::bad_alloc();
-  double* a = buf.get();
-  for (size_t k = 0; k < n; ++k) a[k] = rho.data[k];
-  fftw_execute_r2r(plans->fwd, a, a);
+  std::vector<double> a(static_cast<size_t>(L) * L);
+  for (size_t k = 0; k < a.size(); ++k) a[k] = rho.data[k];
+  fftw_plan fwd, inv;
+  {
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    fwd = fftw_plan_r2r_2d(L, L, a.data(), a.data(), FFTW_REDFT10, FFTW_REDFT10, FFTW_ESTIMATE);
+    inv = fftw_plan_r2r_2d(L, L, a.data(), a.data(), FFTW_REDFT01, FFTW_REDFT01, FFTW_ESTIMATE);
+  }
+  fftw_execute(fwd);
   std::vector<double> lambda(L);
   for (int k = 0; k < L; ++k) {
     const double s = std::sin(kPi * k / (2.0 * L));
@@ -98,8 +51,13 @@ std::vector<double> solve_poisson_neumann(const ImageF& rho) {
       double& c = a[static_cast<size_t>(l) * L + k];
       c = (k == 0 && l == 0) ? 0.0 : -c / ((lambda[k] + lambda[l]) * norm);
     }
-  fftw_execute_r2r(plans->inv, a, a);
-  return std::vector<double>(a, a + n);
+  fftw_execute(inv);
+  {
+    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    fftw_destroy_plan(fwd);
+    fftw_destroy_plan(inv);
+  }
+  return a;
 }
 
 }  // namespace

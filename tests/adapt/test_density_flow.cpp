@@ -313,10 +313,10 @@ TEST(FlowWarp, ActsInItsRectanglesOnly) {
   EXPECT_EQ(fw.apply(Vec2(0.1, 0.1)), Vec2(0.1, 0.1));  // a corner of the rectangle stays
 }
 
-// The DCT plans are made once per raster size and shared (density_flow.cpp, dct_plans()): the warp of
-// a density must not depend on which sizes were solved before, nor on other threads solving at the
-// same time with the same or other sizes.
-TEST(DensityFlow, SharedPlansGiveTheSameWarpInAnyOrderAndInParallel) {
+// FFTW plans are made under a lock (its planner is not thread-safe) and FFTW keeps its own tables per
+// size: the warp of a density must not depend on which sizes were solved before, nor on other threads
+// solving at the same time with the same or other sizes.
+TEST(DensityFlow, WarpIsTheSameInAnyOrderAndInParallel) {
   const std::vector<int> sizes{24, 37, 24, 64, 37, 50, 24, 64};
   std::vector<ImageF> densities;
   for (size_t k = 0; k < sizes.size(); ++k)
