@@ -223,7 +223,10 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--flow-step") a.flow_step = positive(k, v);
     else if (k == "--flow-tol") a.flow_tol = positive(k, v);
     else if (k == "--flow-interp") a.flow_interp = positive(k, v, true);
-    else if (k == "--untangle-sor") a.untangle_sor = positive(k, v);
+    else if (k == "--untangle-sor") {
+      a.untangle_sor = positive(k, v);
+      if (!(a.untangle_sor < 2)) throw std::invalid_argument("--untangle-sor must be in (0, 2), got " + v);
+    }
     else throw std::invalid_argument(k + ": unknown option");
   }
   for (const auto& m : modes) {
