@@ -15,7 +15,7 @@
 //                         [--full-chart-share] [--no-quarter-texel]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
-//                         [--untangle-sor W]
+//                         [--untangle-sor W] [--polish-sweeps N] [--polish-omega W] [--polish-floor K] [--polish-charts]
 //
 // Mode names go to cli::make_session_options() (apps/cli/session_options.h, parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
@@ -99,6 +99,10 @@ struct Args {
   double flow_step = -1;        ///< --flow-step: DensityFlowOptions::max_step_cells (-1: the default).
   double flow_tol = -1;         ///< --flow-tol: DensityFlowOptions::tolerance (-1: the default).
   double flow_interp = -1;      ///< --flow-interp: DensityFlowOptions::interpolation_tolerance (-1: the default).
+  int polish_sweeps = -1;       ///< --polish-sweeps: ErrorPolishOptions::sweeps (-1: the default; 0: off).
+  double polish_floor = -1;     ///< --polish-floor: ErrorPolishOptions::floor_weight (-1: the default).
+  double polish_omega = -1;     ///< --polish-omega: ErrorPolishOptions::over_relaxation (-1: the default).
+  bool polish_charts = false;   ///< --polish-charts: ErrorPolishOptions::charts = true.
   double untangle_sor = -1;     ///< --untangle-sor: SafeRemapOptions::untangle_over_relaxation (-1: the default).
   bool direct_flow = false;     ///< --direct-flow: DensityFlowOptions::direct = true (wedges through the flow itself).
 };
@@ -135,6 +139,10 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   if (a.flow_step > 0) o.adapt.flow.max_step_cells = a.flow_step;
   if (a.flow_tol > 0) o.adapt.flow.tolerance = a.flow_tol;
   if (a.flow_interp >= 0) o.adapt.flow.interpolation_tolerance = a.flow_interp;
+  if (a.polish_sweeps >= 0) o.adapt.polish.sweeps = a.polish_sweeps;
+  if (a.polish_omega > 0) o.adapt.polish.over_relaxation = a.polish_omega;
+  if (a.polish_charts) o.adapt.polish.charts = true;
+  if (a.polish_floor >= 0) o.adapt.polish.floor_weight = a.polish_floor;
   if (a.untangle_sor > 0) o.adapt.remap.untangle_over_relaxation = a.untangle_sor;
   if (a.direct_flow) o.adapt.flow.direct = true;
   return o;
@@ -193,6 +201,7 @@ Args parse_args(int argc, char** argv) {
     if (k == "--no-atlas") { a.atlas = false; continue; }
     if (k == "--full-chart-share") { a.full_chart_share = true; continue; }
     if (k == "--no-quarter-texel") { a.no_quarter_texel = true; continue; }
+    if (k == "--polish-charts") { a.polish_charts = true; continue; }
     if (i + 1 >= argc) throw std::invalid_argument(k + ": unknown option or missing value");
     const std::string v = argv[++i];
     if (k == "--meshes") a.meshes = split(v);
@@ -223,6 +232,12 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--flow-step") a.flow_step = positive(k, v);
     else if (k == "--flow-tol") a.flow_tol = positive(k, v);
     else if (k == "--flow-interp") a.flow_interp = positive(k, v, true);
+    else if (k == "--polish-sweeps") a.polish_sweeps = static_cast<int>(positive(k, v, true));
+    else if (k == "--polish-floor") a.polish_floor = positive(k, v, true);
+    else if (k == "--polish-omega") {
+      a.polish_omega = positive(k, v);
+      if (!(a.polish_omega < 2)) throw std::invalid_argument("--polish-omega must be in (0, 2), got " + v);
+    }
     else if (k == "--untangle-sor") {
       a.untangle_sor = positive(k, v);
       if (!(a.untangle_sor < 2)) throw std::invalid_argument("--untangle-sor must be in (0, 2), got " + v);

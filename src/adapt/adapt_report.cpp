@@ -1,6 +1,7 @@
 // JSON of re-parameterization reports.
 #include "adaptex/adapt/adapt_report.h"
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 namespace adaptex {
@@ -24,6 +25,10 @@ void to_json(nlohmann::json& j, const AdaptReport& r) {
                      {"flow_inverted_cells", r.flow_inverted_cells},
                      {"flow_steps", r.flow_steps},
                      {"flow_advected_points", r.flow_advected_points},
+                     {"polish_sweeps", r.polish_sweeps},
+                     {"polish_gain_db", r.polish_error_before > 0 && r.polish_error_after > 0
+                                            ? 10 * std::log10(r.polish_error_before / r.polish_error_after)
+                                            : 0.0},
                      {"faces_before", r.faces_before},
                      {"faces_after", r.faces_after},
                      {"time_ms",
@@ -34,6 +39,7 @@ void to_json(nlohmann::json& j, const AdaptReport& r) {
                        {"fine", 1e3 * r.time_fine},
                        {"density", 1e3 * r.time_density},
                        {"flow", 1e3 * r.time_flow},
+                       {"polish", 1e3 * r.time_polish},
                        {"refine", 1e3 * r.time_refine},
                        {"remap", 1e3 * r.time_remap},
                        {"texel_map", 1e3 * r.time_texel_map},

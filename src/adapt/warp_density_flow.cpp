@@ -5,6 +5,7 @@
 #include <chrono>
 #include <memory>
 
+#include "adaptex/adapt/error_polish.h"
 #include "adaptex/adapt/warp_method.h"
 #include "adaptex/core/timer.h"
 
@@ -67,6 +68,31 @@ class DensityFlowWarp final : public WarpMethod {
     rep.flow_steps = st.total_steps;
     rep.flow_advected_points = st.advected_points;
     rep.time_flow = seconds_since(t0);
+    if (!o.flow.direct) polish(o, ed, res);
+  }
+
+ private:
+  /// Every flow lattice polished by the anisotropic error model (error_polish.h), charts in turn (each
+  /// polish is parallel inside).
+  static void polish(const AdaptOptions& o, const ErrorDensity& ed, AdaptResult& res) {
+    if (o.polish.sweeps <= 0 || (!res.chart_moves.empty() && !o.polish.charts)) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    report_progress(o.progress, "polish", 0);
+    for (size_t c = 0; c < res.grids.size(); ++c) {
+      GridWarp& g = res.grids[c];
+      UvRect src{Vec2(0, 0), Vec2(1, 1)};
+      double scale = 1;
+      if (!res.chart_moves.empty()) src = res.chart_moves[c].src, scale = res.chart_moves[c].scale;
+      if (src.size().minCoeff() <= 0 || g.n < 2) continue;
+      const PolishFields f = polish_fields(ed.error, ed.exponent, res.density, src.lo, src.hi, g.n, scale);
+      const ErrorPolishStats st = polish_warp_by_error(g, f, o.polish);
+      res.report.polish_sweeps = std::max(res.report.polish_sweeps, st.sweeps);
+      // In cells of the density raster: a lattice cell covers area(src) / n² of the square.
+      const double cell = src.area() / (double(g.n) * g.n) * ed.error.width * ed.error.width;
+      res.report.polish_error_before += cell * st.error_before;
+      res.report.polish_error_after += cell * st.error_after;
+    }
+    res.report.time_polish = seconds_since(t0);
   }
 };
 }  // namespace

@@ -19,6 +19,7 @@
 #include "adaptex/adapt/atlas_flow.h"
 #include "adaptex/adapt/density_flow.h"
 #include "adaptex/adapt/error_density.h"
+#include "adaptex/adapt/error_polish.h"
 
 #include "adaptex/adapt/grid.h"
 #include "adaptex/adapt/importance.h"
@@ -72,6 +73,9 @@ struct AdaptOptions {
   bool geometry_safeguard = true;
   ErrorDensityOptions density;  ///< density-flow: the error model and its target density.
   DensityFlowOptions flow;      ///< density-flow: the flow map (its output grid size, accuracy).
+  /// density-flow: the flow lattices polished by the error model with the texel grid's anisotropy
+  /// counted (error_polish.h; sweeps = 0: off). Not with flow.direct (the exact flow is the warp then).
+  ErrorPolishOptions polish;
   /// density-flow on a layout of several charts in disjoint boxes: re-pack the charts by their share
   /// of the density, then one flow per chart rectangle (atlas_flow.h). false: one flow over the whole
   /// square, damped where charts would meet (kept for comparison; docs/error_model.md §6).
@@ -93,7 +97,7 @@ struct AdaptOptions {
   int refine_max_levels = 4;    ///< Refinement rounds (each can halve an edge).
   /// Face budget of the refined mesh, as a multiple of the input's face count.
   double refine_max_face_factor = 4.0;
-  ProgressCallback progress;  ///< Phases "importance", "stretch", "ls2", "coarse", "fine", "density", "flow", "refine", "remap".
+  ProgressCallback progress;  ///< Phases "importance", "stretch", "ls2", "coarse", "fine", "density", "flow", "polish", "refine", "remap".
 };
 
 /// Timings (seconds) and figures of one re-parameterization. The texel-map / texture-update times are
@@ -102,7 +106,7 @@ struct AdaptReport {
   AdaptMode mode = AdaptMode::TwoStage;
   double time_importance = 0, time_stretch_map = 0, time_ls2 = 0;
   double time_coarse = 0, time_fine = 0, time_remap = 0;
-  double time_density = 0, time_flow = 0, time_refine = 0;  ///< density-flow phases.
+  double time_density = 0, time_flow = 0, time_polish = 0, time_refine = 0;  ///< density-flow phases.
   double time_texel_map = 0, time_texture_update = 0, time_safeguard = 0;
   double time_total = 0;       ///< Everything above.
   double l2_before = 0, l2_after = 0;  ///< Mesh L2 stretch (measure_stretch().l2, 1 = ideal).
@@ -120,6 +124,10 @@ struct AdaptReport {
   int flow_inverted_cells = 0;   ///< density-flow: cells still not convex after that (0 expected).
   long flow_steps = 0;           ///< density-flow: accepted integration steps over every lattice point.
   long flow_advected_points = 0; ///< density-flow: lattice points integrated (the others interpolated).
+  int polish_sweeps = 0;         ///< density-flow: most polish sweeps of a lattice (error_polish.h).
+  /// density-flow: the anisotropic model's error (error_polish.h) before and after the polish, summed
+  /// over the lattices in cells of the density raster; 10·log10(before / after) is the polish's gain.
+  double polish_error_before = 0, polish_error_after = 0;
   int faces_before = 0, faces_after = 0;  ///< Mesh faces before / after refinement.
 };
 

@@ -1,0 +1,100 @@
+#pragma once
+/// \file error_polish.h
+/// Polishing a warp lattice by the error model itself, with the texel grid's anisotropy counted
+/// (`--adapt density-flow`, after the flow; derivation in docs/error_model.md §7).
+///
+/// The density-equalizing flow (density_flow.h) reaches a target *area* density: it controls only
+/// det J of the warp's Jacobian J. Around a painted dot the flow magnifies radially less than
+/// tangentially wherever the target density varies, and the dot's edge lies exactly there: measured on
+/// the lattice of venus `dots` at 256², the worse direction's texel density gains 0.4–1.3 dB less than
+/// the area density (docs/quality.md, session 12). Error model with direction: an edge of unit normal
+/// n, in a layout whose Jacobian (old uv → new uv, in texels) is J, leaves an error per unit length
+/// ∝ |J⁻ᵀn|^p (p as measured by error_density.h: 1 for hard edges); averaged over edge directions
+/// (dots, curved strokes), |J⁻ᵀn|² → |J⁻¹|²_F / 2, so the polish minimizes
+///
+///     E(X) = Σ_cells q_c · mean over the cell's 4 corner triangles of (|J|²_F / (2 det² J))^(p_c/2)
+///          + κ Σ_unpainted cells max(0, ρ_floor / det J − 1)²,
+///
+/// over the lattice points X (boundary points slide along their side, corners stay). For a conformal J
+/// (J = s·R) the first term is q·s^(−p) = q·ρ^(−p/2), the isotropic model the density came from;
+/// otherwise it is larger. It is a barrier at det J → 0, so a polished cell never folds. The square
+/// maps onto itself, so the texel budget is fixed without a multiplier; the floor term keeps the
+/// unpainted cells at the density the model gave them. Minimized by nonlinear Gauss–Seidel: each point
+/// takes a damped Newton step on its own energy (exact 2 × 2 gradient and Hessian), with a line
+/// search that only accepts a lower energy and convex cells; the four point colours (i mod 2, j mod 2)
+/// are swept one after the other, points of one colour in parallel (they share no cell), so the
+/// result does not depend on the thread count.
+#include "adaptex/adapt/grid.h"
+#include "adaptex/core/image.h"
+
+namespace adaptex {
+
+/// Settings of polish_warp_by_error().
+struct ErrorPolishOptions {
+  /// Gauss–Seidel sweeps over the lattice (0: no polish). 20 with ω = 1.8: on the 4 one-chart shared
+  /// meshes × lines / dots / mixed × 128² / 256² (2M samples) against no polish, mean +0.47 / +0.90 /
+  /// +0.85 dB; 10 sweeps gave +0.42 / +0.73 / +0.72, 40 gave +0.47 / +0.97 / +0.81, ω = 1 with 30
+  /// sweeps +0.38 / +0.77 / +0.74 (docs/quality.md, session 13).
+  int sweeps = 20;
+  /// Stop early when a sweep lowers E by less than this fraction of E.
+  double tolerance = 1e-4;
+  /// κ of the floor term, relative to the mean q of the painted cells.
+  double floor_weight = 10.0;
+  /// Only points within this many lattice cells of a painted cell move (elsewhere E has no gradient
+  /// except through the floor, which the flow already meets).
+  int reach_cells = 12;
+  /// Also polish the per-chart lattices of a re-packed atlas (atlas_flow.h). Off: on the multi-chart
+  /// shared meshes the polished chart lattices scored better in the model but lost 0.1–0.4 dB on
+  /// `lines` and `mixed` (dino, bunny, spot, triceratops at 128² / 256²) while one polished lattice over
+  /// the whole square gained on the same meshes (`--no-atlas`); the cause is not found
+  /// (docs/error_model.md §7).
+  bool charts = false;
+  /// A point is relaxed again only if it or a neighbour moved by more than this many lattice cells in
+  /// the sweep before (0: every point in every sweep).
+  double settle_cells = 1e-3;
+  /// ω of the Newton step (over-relaxation; the line search still only accepts a lower energy), in
+  /// (0, 2). 1.8: the model's gain after 10 sweeps as after 30 at ω = 1 (venus, spot, kitten,
+  /// camelhead dots 256²).
+  double over_relaxation = 1.8;
+  bool parallel = true;  ///< Sweep a colour's points with TBB (the same result either way).
+};
+
+/// What polish_warp_by_error() did.
+struct ErrorPolishStats {
+  int sweeps = 0;             ///< Sweeps run.
+  double energy_before = 0;   ///< E before (error part and floor part).
+  double energy_after = 0;    ///< E after.
+  /// The model's error part (Σ q·Ψ) before and after: 10·log10 of their ratio is the polish's gain
+  /// as the anisotropic model sees it.
+  double error_before = 0, error_after = 0;
+};
+
+/// The error fields of one lattice: per lattice cell, in the lattice's local coordinates.
+struct PolishFields {
+  ImageF error;     ///< n x n, >= 0: the model's q (0 where unpainted), any common scale.
+  ImageF exponent;  ///< n x n: p where error > 0.
+  ImageF floor;     ///< n x n: least area density (cell area × n²) of unpainted cells; 0: none.
+  /// Width / height of the rectangle the lattice covers in uv: texels are round in uv, not in the
+  /// lattice's local coordinates.
+  double aspect = 1;
+};
+
+/// \p error, \p exponent and \p density of error_density.h (L x L over the square) sampled on an
+/// n x n lattice over the rectangle [lo, hi] of the square: error bilinearly, exponent as the
+/// error-weighted mean of the same taps, floor = the density normalized to mean 1 over the rectangle
+/// where the sampled error is 0; aspect = the rectangle's. \p scale: the chart's scale when it was
+/// re-packed (atlas_flow.h, ChartMove::scale): its texel spacing is h_N / scale, so the error there
+/// is q·scale^(−p), which changes the weight of smooth cells (p = 4) against edges (p = 1).
+/// \pre error, exponent, density L x L, L >= 1; n >= 1; lo < hi inside [0,1]²; scale > 0
+/// \throw InvalidInputError a precondition fails
+PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const ImageF& density, const Vec2& lo,
+                           const Vec2& hi, int n, double scale = 1);
+
+/// Moves the points of \p warp (in its local coordinates) to lower E above. Every cell that was convex
+/// stays convex; side points stay on their side and corners stay.
+/// \pre fields' rasters are warp.n x warp.n; every cell of warp convex (density_equalizing_warp()
+///      guarantees it); exponent in [0, 8]
+/// \throw InvalidInputError a precondition fails
+ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options = {});
+
+}  // namespace adaptex
