@@ -1,12 +1,15 @@
 // Warp methods at the same grid size (issue 12): the flow-based density-equalizing map
 // (density_flow.h) next to the thesis relaxation (relax.h), on the same field: thin dense lines on a
 // low floor (density-flow's density; the relaxation gets the matching L_s² = 1 / density, clamped).
+// BM_ErrorPolish: the polish of the flow's lattice (error_polish.h, default options) on the same field,
+// the lines' cells painted (hard edges, p = 1), the rest at the floor.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "adaptex/adapt/density_flow.h"
+#include "adaptex/adapt/error_polish.h"
 #include "adaptex/adapt/relax.h"
 
 namespace {
@@ -31,6 +34,33 @@ void BM_DensityFlow(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(density_equalizing_warp(d, o));
 }
 
+void BM_ErrorPolish(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const ImageF d = lines_density(n);
+  DensityFlowOptions o;
+  o.cells = n;
+  const GridWarp flow = density_equalizing_warp(d, o);
+  PolishFields f;
+  f.error = ImageF(n, n, 0.0f);
+  f.exponent = ImageF(n, n, 0.0f);
+  f.floor = ImageF(n, n, 0.0f);
+  double mean = 0;
+  for (float v : d.data) mean += v / (double(n) * n);
+  for (size_t k = 0; k < d.data.size(); ++k) {
+    const bool painted = d.data[k] > 0.3f;
+    f.error.data[k] = painted ? d.data[k] - 0.15f : 0.0f;
+    f.exponent.data[k] = painted ? 1.0f : 0.0f;
+    f.floor.data[k] = painted ? 0.0f : static_cast<float>(d.data[k] / mean);
+  }
+  int sweeps = 0;
+  for (auto _ : state) {
+    GridWarp g = flow;
+    sweeps = polish_warp_by_error(g, f).sweeps;
+    benchmark::DoNotOptimize(g.points.data());
+  }
+  state.counters["sweeps"] = sweeps;
+}
+
 void BM_ThesisRelaxation(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
   ImageF w = lines_density(n);
@@ -46,5 +76,6 @@ void BM_ThesisRelaxation(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_DensityFlow)->Arg(64)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ErrorPolish)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ThesisRelaxation)->Arg(64)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();

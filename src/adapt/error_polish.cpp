@@ -94,11 +94,26 @@ class Polisher {
     for (float q : f.error.data)
       if (q > 0) qs += q, ++qn;
     kappa_ = qn ? o.floor_weight * qs / qn : 0.0;
+    mu_ = qn ? o.shape_weight * qs / qn : 0.0;
   }
 
   /// |S·J·S⁻¹|²_F of the corner triangle with edges ex, ey (see cx_, cy_).
   double frobenius(const Vec2& ex, const Vec2& ey) const {
     return nn_ * (ex.x() * ex.x() + cx_ * ex.y() * ex.y() + cy_ * ey.x() * ey.x() + ey.y() * ey.y());
+  }
+
+  /// w·(F / (2·D^a))^h with its gradient and Hessian from those of F (gF, hF) and D (gD; D is affine).
+  template <bool Derivs>
+  static void add_power_term(double w, double F, double D, double a, double h, const Vec2& gF, const Vec2& gD,
+                             const Eigen::Matrix2d& hF, Local& out) {
+    const double psi = power(F / (2 * (a == 2 ? D * D : D)), h);
+    out.e += w * psi;
+    if constexpr (Derivs) {
+      const Vec2 u = gF / F - a * gD / D;  // ∇ log ψ / h
+      out.g += w * psi * h * u;
+      out.h += w * psi *
+               (h * h * u * u.transpose() + h * (hF / F - gF * gF.transpose() / (F * F) + a * gD * gD.transpose() / (D * D)));
+    }
   }
 
   /// Terms of cell (ci, cj) that depend on its corner k at \p x (the other corners from the lattice).
@@ -123,21 +138,17 @@ class Polisher {
         gD = nn_ * (sx * Vec2(ey[t].y(), -ey[t].x()) + sy * Vec2(-ex[t].y(), ex[t].x()));
         gd_sum += gD;
       }
-      if (!(q > 0)) continue;
+      if (!(q > 0) && !(mu_ > 0)) continue;
       const double F = frobenius(ex[t], ey[t]);
-      const double hp = 0.5 * p, wq = 0.25 * q;
-      const double psi = power(F / (2 * D * D), hp);
-      out.e += wq * psi;
+      Vec2 gF = Vec2::Zero();
+      Eigen::Matrix2d hF = Eigen::Matrix2d::Zero();
       if constexpr (Derivs) {
-        const Vec2 gF = 2 * nn_ * (sx * Vec2(ex[t].x(), cx_ * ex[t].y()) + sy * Vec2(cy_ * ey[t].x(), ey[t].y()));
-        const Vec2 u = gF / F - 2 * gD / D;
-        out.g += wq * psi * hp * u;
-        out.h += wq * psi *
-                 (hp * hp * u * u.transpose() +
-                  hp * (2 * nn_ / F * Vec2(sx * sx + sy * sy * cy_, sx * sx * cx_ + sy * sy).asDiagonal().toDenseMatrix() -
-                        gF * gF.transpose() / (F * F) +
-                        2 * gD * gD.transpose() / (D * D)));
+        gF = 2 * nn_ * (sx * Vec2(ex[t].x(), cx_ * ex[t].y()) + sy * Vec2(cy_ * ey[t].x(), ey[t].y()));
+        hF.diagonal() = 2 * nn_ * Vec2(sx * sx + sy * sy * cy_, sx * sx * cx_ + sy * sy);
       }
+      // The error term (F / 2D²)^(p/2) and the shape term F / 2D: both (F / 2D^a)^h.
+      if (q > 0) add_power_term<Derivs>(0.25 * q, F, D, 2, 0.5 * p, gF, gD, hF, out);
+      if (mu_ > 0) add_power_term<Derivs>(0.25 * mu_, F, D, 1, 1.0, gF, gD, hF, out);
     }
     if (lo > 0 && kappa_ > 0) {
       const double d = 0.25 * dsum;
@@ -219,20 +230,18 @@ class Polisher {
         const Vec2 ex[4] = {c[1] - c[0], c[1] - c[0], c[2] - c[3], c[2] - c[3]};
         const Vec2 ey[4] = {c[3] - c[0], c[2] - c[1], c[2] - c[1], c[3] - c[0]};
         const double q = f_.error.at(ci, cj), p = f_.exponent.at(ci, cj), lo = f_.floor.at(ci, cj);
-        double dsum = 0, e = 0;
+        double dsum = 0, e = 0, shape = 0;
         bool ok = true;
         for (int t = 0; t < 4; ++t) {
           const double D = nn_ * cross(ex[t], ey[t]);
           if (!(D > 0)) ok = false;
           dsum += D;
-          if (ok && q > 0) {
-            const double F = frobenius(ex[t], ey[t]);
-            e += 0.25 * q * power(F / (2 * D * D), 0.5 * p);
-          }
+          if (ok && q > 0) e += 0.25 * q * power(frobenius(ex[t], ey[t]) / (2 * D * D), 0.5 * p);
+          if (ok && mu_ > 0) shape += 0.25 * mu_ * frobenius(ex[t], ey[t]) / (2 * D);
         }
         if (!ok) continue;
         error_part += e;
-        total += e;
+        total += e + shape;
         const double d = 0.25 * dsum;
         if (lo > 0 && kappa_ > 0 && d < lo) total += kappa_ * (lo / d - 1) * (lo / d - 1);
       }
@@ -339,7 +348,7 @@ class Polisher {
   // Frobenius norm is n²(ex.x² + cx·ex.y² + cy·ey.x² + ey.y²) with cx = (h/w)², cy = (w/h)² (the
   // determinant is J's own).
   double cx_, cy_;
-  double kappa_ = 0;
+  double kappa_ = 0, mu_ = 0;
 };
 
 }  // namespace
@@ -360,8 +369,9 @@ ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields
     throw InvalidInputError("polish_warp_by_error: the aspect must be finite and > 0");
   if (!(options.over_relaxation > 0 && options.over_relaxation < 2))
     throw InvalidInputError("polish_warp_by_error: over_relaxation must be in (0, 2)");
-  if (options.sweeps < 0 || !(options.tolerance >= 0) || !(options.floor_weight >= 0) || options.reach_cells < 0)
-    throw InvalidInputError("polish_warp_by_error: sweeps, tolerance, floor_weight and reach_cells must be >= 0");
+  if (options.sweeps < 0 || !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
+      !(options.shape_weight >= 0) || options.reach_cells < 0)
+    throw InvalidInputError("polish_warp_by_error: sweeps, tolerance, floor_weight, shape_weight and reach_cells must be >= 0");
   return Polisher(warp, fields, options).run();
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 /// \file error_polish.h
 /// Polishing a warp lattice by the error model itself, with the texel grid's anisotropy counted
-/// (`--adapt density-flow`, after the flow; derivation in docs/error_model.md §7).
+/// (`--adapt density-flow`, after the flow; derivation and measurements in docs/error_model.md §11).
 ///
 /// The density-equalizing flow (density_flow.h) reaches a target *area* density: it controls only
 /// det J of the warp's Jacobian J. Around a painted dot the flow magnifies radially less than
@@ -40,6 +40,12 @@ struct ErrorPolishOptions {
   double tolerance = 1e-4;
   /// κ of the floor term, relative to the mean q of the painted cells.
   double floor_weight = 10.0;
+  /// Weight μ, relative to the mean q of the painted cells, of a shape term μ·|J|²_F / (2 det J) in every
+  /// cell (≥ 1, 1 for a round texel at any size). Without it the unpainted cells, which only have the
+  /// floor on their area, took the compression in one-cell-wide cracks of extreme shear. 0.01: on the
+  /// 4 one-chart shared meshes × lines / dots / mixed × 128² / 256² −0.06 / +0.02 / +0.01 dB against 0,
+  /// out of sample (seed 3, 6 meshes) +0.01 / +0.06 / +0.05 dB, and a third fewer refined faces.
+  double shape_weight = 0.01;
   /// Only points within this many lattice cells of a painted cell move (elsewhere E has no gradient
   /// except through the floor, which the flow already meets).
   int reach_cells = 12;
@@ -47,7 +53,7 @@ struct ErrorPolishOptions {
   /// shared meshes the polished chart lattices scored better in the model but lost 0.1–0.4 dB on
   /// `lines` and `mixed` (dino, bunny, spot, triceratops at 128² / 256²) while one polished lattice over
   /// the whole square gained on the same meshes (`--no-atlas`); the cause is not found
-  /// (docs/error_model.md §7).
+  /// (docs/error_model.md §11).
   bool charts = false;
   /// A point is relaxed again only if it or a neighbour moved by more than this many lattice cells in
   /// the sweep before (0: every point in every sweep).
@@ -95,6 +101,7 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
 /// \pre fields' rasters are warp.n x warp.n; every cell of warp convex (density_equalizing_warp()
 ///      guarantees it); exponent in [0, 8]
 /// \throw InvalidInputError a precondition fails
-ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options = {});
+ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields,
+                                      const ErrorPolishOptions& options = {});
 
 }  // namespace adaptex
