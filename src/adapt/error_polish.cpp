@@ -59,11 +59,16 @@ namespace {
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-/// x^e for x > 0, without exp / log at the exponents the error model clamps to (1 and 4: e = 0.5, 2).
+/// x^e for x > 0: exact at the exponents the error model clamps to (p = 1 and 4: e = 0.5, 2), else in
+/// single precision (relative error ~1e-6, plenty for an energy that is minimized; double exp / log took
+/// 40 % of an end-mode re-parameterization of `mixed` on venus at 256²: polish 460 -> 315 ms).
 inline double power(double x, double e) {
   if (e == 0.5) return std::sqrt(x);
   if (e == 2.0) return x * x;
-  return std::exp(e * std::log(x));
+  if (e == 1.0) return x;
+  const float l = static_cast<float>(e) * std::log2(static_cast<float>(x));
+  if (!(std::abs(l) < 120.0f)) return std::exp2(e * std::log2(x));  // beyond float's range
+  return std::exp2(l);
 }
 
 /// Coefficients of a point in the edge vectors of a cell's corner triangles: the point is corner k
