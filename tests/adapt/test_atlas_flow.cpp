@@ -238,6 +238,10 @@ TEST(AtlasFlow, ManyChartLayoutGainsMoreThanOneFlowOverTheSquare) {
       ao.mode = AdaptMode::DensityFlow;
       ao.atlas_flow = atlas;
       ao.flow.cells = cells;
+      // The two flow designs, unpolished: the polish (error_polish.h) runs on the one lattice over the
+      // square but not on per-chart lattices (ErrorPolishOptions::charts), and with it the one flow
+      // wins here (29.82 against 29.44 dB at 128 cells; docs/error_model.md §11).
+      ao.polish.sweeps = 0;
       const auto s = c.run(ao);
       ASSERT_EQ(s->reports().size(), 1u);
       psnr[atlas] = evaluate_texture(s->mesh(), s->param(), s->texture(), c.strokes, c.eo).psnr;
