@@ -98,7 +98,8 @@ std::vector<std::pair<std::string, double>> phase_times(const AdaptReport& rep) 
   std::vector<std::pair<std::string, double>> all = {
       {"importance", rep.time_importance}, {"stretch", rep.time_stretch_map}, {"ls2", rep.time_ls2},
       {"coarse", rep.time_coarse},         {"fine", rep.time_fine},           {"density", rep.time_density},
-      {"flow", rep.time_flow},             {"refine", rep.time_refine},       {"remap", rep.time_remap},
+      {"flow", rep.time_flow},             {"polish", rep.time_polish},       {"refine", rep.time_refine},
+      {"remap", rep.time_remap},
       {"texel map", rep.time_texel_map},   {"texture", rep.time_texture_update},
       {"safeguard", rep.time_safeguard}};
   std::vector<std::pair<std::string, double>> out;

@@ -102,6 +102,7 @@ void BM_EndModeReparam(benchmark::State& state) {
     const double relax = r.time_importance + r.time_stretch_map + r.time_ls2 + r.time_coarse + r.time_fine;
     phase["model"] += 1e3 * (r.time_density + relax);  // error model, or importance + relaxation
     phase["flow"] += 1e3 * r.time_flow;
+    phase["polish"] += 1e3 * r.time_polish;
     phase["refine"] += 1e3 * r.time_refine;
     phase["remap"] += 1e3 * r.time_remap;
     phase["texture"] += 1e3 * (r.time_texel_map + r.time_texture_update);

@@ -140,20 +140,20 @@ double process_cpu() {
 }
 
 void print_header() {
-  std::printf("| mesh | faces | stroke | dabs so far | accepted | paint stroke | density | flow | refine | remap | texel map |"
-              " replay | safeguard | other | **stroke + cycle** | CPU |\n");
+  std::printf("| mesh | faces | stroke | dabs so far | accepted | paint stroke | density | flow + polish | refine | remap |"
+              " texel map | replay | safeguard | other | **stroke + cycle** | CPU |\n");
   std::printf("|---|---:|---:|---:|:-:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
 }
 
 // \p paint: painting stroke k and recording it (the session's signal cache included); \p wall: that and
 // the cycle; \p cpu: the process CPU time of both (all threads).
 void print_row(const Scene& s, int k, long long dabs, const AdaptReport& r, double paint, double wall, double cpu) {
-  const double known = paint + r.time_density + r.time_flow + r.time_refine + r.time_remap + r.time_texel_map +
-                       r.time_texture_update + r.time_safeguard;
+  const double known = paint + r.time_density + r.time_flow + r.time_polish + r.time_refine + r.time_remap +
+                       r.time_texel_map + r.time_texture_update + r.time_safeguard;
   std::printf("| %s | %d | %d | %lld | %s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | **%.0f** | %.0f |\n",
               s.name.c_str(), s.mesh.num_faces(), k, dabs, r.accepted ? "yes" : "no", ms(paint), ms(r.time_density),
-              ms(r.time_flow), ms(r.time_refine), ms(r.time_remap), ms(r.time_texel_map), ms(r.time_texture_update),
-              ms(r.time_safeguard), ms(std::max(0.0, wall - known)), ms(wall), ms(cpu));
+              ms(r.time_flow + r.time_polish), ms(r.time_refine), ms(r.time_remap), ms(r.time_texel_map),
+              ms(r.time_texture_update), ms(r.time_safeguard), ms(std::max(0.0, wall - known)), ms(wall), ms(cpu));
   std::fflush(stdout);
 }
 

@@ -172,6 +172,7 @@ void BM_DensityFlowCycle(benchmark::State& state) {
     const AdaptReport& r = res.report;
     acc["density_ms"] += 1e3 * r.time_density;
     acc["flow_ms"] += 1e3 * r.time_flow;
+    acc["polish_ms"] += 1e3 * r.time_polish;
     acc["refine_ms"] += 1e3 * r.time_refine;
     acc["remap_ms"] += 1e3 * r.time_remap;
     acc["texelmap_ms"] += texel_map_ms;
