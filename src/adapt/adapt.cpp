@@ -16,6 +16,7 @@ namespace adaptex {
 
 namespace {
 void validate(const AdaptOptions& o) {
+  check_polish_options(o.polish);
   if (o.coarse_grid < 1 || o.fine_grid < 1)
     throw InvalidInputError("grid sizes must be >= 1 cell, got " + std::to_string(o.coarse_grid) + "," +
                             std::to_string(o.fine_grid));

@@ -336,6 +336,7 @@ class Polisher {
       for (const std::vector<int>& pts : colours)
         for (int k : pts) drop += gain[k];
       ++s.sweeps;
+      report_progress(o_.progress, "polish", double(s.sweeps) / o_.sweeps);
       e -= drop;
       if (drop <= o_.tolerance * e) break;
     }
@@ -358,6 +359,15 @@ class Polisher {
 
 }  // namespace
 
+void check_polish_options(const ErrorPolishOptions& options) {
+  if (!(options.over_relaxation > 0 && options.over_relaxation < 2))
+    throw InvalidInputError("polish options: over_relaxation must be in (0, 2)");
+  if (options.sweeps < 0 || !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
+      !(options.shape_weight >= 0) || options.reach_cells < 0)
+    throw InvalidInputError(
+        "polish options: sweeps, tolerance, floor_weight, shape_weight and reach_cells must be >= 0");
+}
+
 ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options) {
   const int n = warp.n;
   if (n < 1 || warp.points.size() != static_cast<size_t>(n + 1) * (n + 1))
@@ -372,11 +382,7 @@ ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields
   }
   if (!(fields.aspect > 0) || !std::isfinite(fields.aspect))
     throw InvalidInputError("polish_warp_by_error: the aspect must be finite and > 0");
-  if (!(options.over_relaxation > 0 && options.over_relaxation < 2))
-    throw InvalidInputError("polish_warp_by_error: over_relaxation must be in (0, 2)");
-  if (options.sweeps < 0 || !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
-      !(options.shape_weight >= 0) || options.reach_cells < 0)
-    throw InvalidInputError("polish_warp_by_error: sweeps, tolerance, floor_weight, shape_weight and reach_cells must be >= 0");
+  check_polish_options(options);
   return Polisher(warp, fields, options).run();
 }
 

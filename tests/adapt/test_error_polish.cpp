@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string_view>
 #include <vector>
 
 #include "adaptex/adapt/density_flow.h"
@@ -256,6 +257,28 @@ TEST(ErrorPolish, FieldsOnTheWholeSquareAreTheModelsOwn) {
     }
 }
 
+TEST(ErrorPolish, ReportsProgressAndCanBeCancelled) {
+  const ImageF density = dot_density(kCells, 0.45, 0.55, 0.15);
+  DensityFlowOptions fo;
+  fo.cells = kCells;
+  const GridWarp flow = density_equalizing_warp(density, fo);
+  const PolishFields f = dot_edge(kCells, 0.45, 0.55, 0.15, 0.03, density);
+  ErrorPolishOptions o;
+  o.sweeps = 5;
+  o.tolerance = 0;
+  std::vector<double> seen;
+  o.progress = [&](std::string_view phase, double x) {
+    EXPECT_EQ(phase, "polish");
+    seen.push_back(x);
+    return seen.size() < 3;  // cancel after the third sweep
+  };
+  GridWarp w = flow;
+  EXPECT_THROW(polish_warp_by_error(w, f, o), CancelledError);
+  ASSERT_EQ(seen.size(), 3u);
+  EXPECT_DOUBLE_EQ(seen[0], 0.2);
+  EXPECT_DOUBLE_EQ(seen[2], 0.6);
+}
+
 TEST(ErrorPolish, RejectsBadInput) {
   GridWarp w = GridWarp::uniform(8);
   PolishFields f = uniform_fields(8, 1.0f, 1.0f, 0.0f);
@@ -276,6 +299,12 @@ TEST(ErrorPolish, RejectsBadInput) {
   ErrorPolishOptions o;
   o.sweeps = -1;
   EXPECT_THROW(polish_warp_by_error(w, f, o), InvalidInputError);
+  EXPECT_THROW(check_polish_options(o), InvalidInputError);
+  o.sweeps = 20;
+  o.over_relaxation = 2;
+  EXPECT_THROW(check_polish_options(o), InvalidInputError);
+  o.over_relaxation = 1.8;
+  EXPECT_NO_THROW(check_polish_options(o));
   EXPECT_THROW(polish_fields(f.error, f.exponent, ImageF(4, 4, 1.0f), Vec2(0, 0), Vec2(1, 1), 8), InvalidInputError);
   EXPECT_THROW(polish_fields(f.error, f.exponent, f.error, Vec2(0.5, 0), Vec2(0.5, 1), 8), InvalidInputError);
 }

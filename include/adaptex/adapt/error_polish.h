@@ -26,6 +26,7 @@
 /// result does not depend on the thread count.
 #include "adaptex/adapt/grid.h"
 #include "adaptex/core/image.h"
+#include "adaptex/core/progress.h"
 
 namespace adaptex {
 
@@ -66,7 +67,12 @@ struct ErrorPolishOptions {
   /// camelhead dots 256²).
   double over_relaxation = 1.8;
   bool parallel = true;  ///< Sweep a colour's points with TBB (the same result either way).
+  ProgressCallback progress;  ///< Called with ("polish", sweeps done / sweeps) after every sweep.
 };
+
+/// \throw InvalidInputError an option outside its range (sweeps, tolerance, weights or reach < 0,
+///        over_relaxation outside (0, 2))
+void check_polish_options(const ErrorPolishOptions& options);
 
 /// What polish_warp_by_error() did.
 struct ErrorPolishStats {
@@ -103,7 +109,8 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
 /// stays convex; side points stay on their side and corners stay.
 /// \pre fields' rasters are warp.n x warp.n; every cell of warp convex (density_equalizing_warp()
 ///      guarantees it); exponent in [0, 8]
-/// \throw InvalidInputError a precondition fails
+/// \throw InvalidInputError a precondition fails or check_polish_options() does
+/// \throw CancelledError options.progress returned false
 ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields,
                                       const ErrorPolishOptions& options = {});
 
