@@ -400,14 +400,26 @@ int main(int argc, char** argv) {
   std::sort(sizes.begin(), sizes.end());
   print_header(a);
   std::vector<CaseRecord> cases;
+  int failed = 0;
+  // A case (or a mesh's unwrap) that throws is reported on stderr and skipped; the others still run.
+  auto report_failure = [&failed](const std::string& what, const std::exception& e) {
+    std::fprintf(stderr, "adaptex_adapt_quality: %s: %s\n", what.c_str(), e.what());
+    ++failed;
+  };
   for (const Loaded& loaded : order) {
     const int faces = loaded.faces;
     const std::string& path = loaded.path;
     const TriMesh& mesh = loaded.mesh;
+    const std::string name = fs::path(path).stem().string();
     UnwrapOptions uo;
     uo.charts = a.charts == "single" ? ChartMode::Single : ChartMode::Auto;
-    const Parameterization param = unwrap(mesh, uo).param;
-    const std::string name = fs::path(path).stem().string();
+    Parameterization param;
+    try {
+      param = unwrap(mesh, uo).param;
+    } catch (const std::exception& e) {
+      report_failure(name + " (unwrap)", e);
+      continue;
+    }
     for (const auto& kind : a.kinds) {
       GenerateOptions go;
       go.kind = parse_stroke_kind(kind);
@@ -416,19 +428,23 @@ int main(int argc, char** argv) {
       const StrokeFile strokes = generate_strokes(mesh, go);
       std::map<int, double> none_cache;
       for (int n : sizes) {
-        const std::array<double, 3> none{psnr_none(none_cache, n, mesh, param, strokes, eo),
-                                         psnr_none(none_cache, 2 * n, mesh, param, strokes, eo),
-                                         psnr_none(none_cache, 4 * n, mesh, param, strokes, eo)};
-        CaseRecord c{kind, none[0], {}};
+        CaseRecord c{kind, 0, {}};
+        std::array<double, 3> none{};
+        try {
+          none = {psnr_none(none_cache, n, mesh, param, strokes, eo),
+                  psnr_none(none_cache, 2 * n, mesh, param, strokes, eo),
+                  psnr_none(none_cache, 4 * n, mesh, param, strokes, eo)};
+          c.none_n = none[0];
+          for (const auto& m : a.modes) c.modes.push_back(run_mode(a, m, mesh, param, strokes, n, none, eo));
+        } catch (const std::exception& e) {
+          report_failure(name + " " + kind + " " + std::to_string(n), e);
+          continue;
+        }
         std::printf("| %s | %d | %s | %d | %.2f | %.2f | %.2f |", name.c_str(), faces, kind.c_str(), n, none[0],
                     none[1], none[2]);
-        for (const auto& m : a.modes) {
-          const ModeResult r = run_mode(a, m, mesh, param, strokes, n, none, eo);
+        for (const ModeResult& r : c.modes)
           std::printf(" %.2f | %s | %d/%d/%ld | %d/%d | %d | %.1f |", r.psnr, factor_cell(r.saving).c_str(), r.flipped,
                       r.degenerate, r.overlaps, r.accepted, r.reparams, r.faces, r.seconds);
-          std::fflush(stdout);
-          c.modes.push_back(r);
-        }
         std::printf("\n");
         std::fflush(stdout);
         cases.push_back(std::move(c));
@@ -436,5 +452,6 @@ int main(int argc, char** argv) {
     }
   }
   print_summary(a, cases);
-  return 0;
+  if (failed > 0) std::fprintf(stderr, "adaptex_adapt_quality: %d case(s) failed (above)\n", failed);
+  return failed > 0 ? 1 : 0;
 }
