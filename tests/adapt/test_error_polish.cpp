@@ -101,6 +101,19 @@ double painted_anisotropy(const GridWarp& w, const PolishFields& f, double aspec
   return s / ws;
 }
 
+/// The flow lattice of a painted dot (radius 0.15 at (0.45, 0.55)) and the error fields of its edge.
+struct DotCase {
+  GridWarp flow;
+  PolishFields fields;
+};
+
+DotCase dot_case() {
+  const ImageF density = dot_density(kCells, 0.45, 0.55, 0.15);
+  DensityFlowOptions fo;
+  fo.cells = kCells;
+  return {density_equalizing_warp(density, fo), dot_edge(kCells, 0.45, 0.55, 0.15, 0.03, density)};
+}
+
 struct Polished {
   GridWarp flow, polished;
   PolishFields fields;
@@ -108,12 +121,10 @@ struct Polished {
 };
 
 Polished polish_dot(bool parallel) {
-  const ImageF density = dot_density(kCells, 0.45, 0.55, 0.15);
   Polished p;
-  DensityFlowOptions fo;
-  fo.cells = kCells;
-  p.flow = density_equalizing_warp(density, fo);
-  p.fields = dot_edge(kCells, 0.45, 0.55, 0.15, 0.03, density);
+  DotCase d = dot_case();
+  p.flow = std::move(d.flow);
+  p.fields = std::move(d.fields);
   p.polished = p.flow;
   ErrorPolishOptions po;
   po.sweeps = 30;
@@ -142,11 +153,9 @@ TEST(ErrorPolish, TexelsAreRoundInUvOnANonSquareChart) {
   // chart's aspect, the dot's texels get rounder in uv; polished as if the chart were square, they
   // would be round in the lattice's coordinates, which in uv is round only where the map does not
   // rotate (measured: 1.23 against 1.30, the flow 2.03).
-  const ImageF density = dot_density(kCells, 0.45, 0.55, 0.15);
-  DensityFlowOptions fo;
-  fo.cells = kCells;
-  const GridWarp flow = density_equalizing_warp(density, fo);
-  PolishFields f = dot_edge(kCells, 0.45, 0.55, 0.15, 0.03, density);
+  const DotCase d = dot_case();
+  const GridWarp& flow = d.flow;
+  PolishFields f = d.fields;
   ErrorPolishOptions po;
   po.sweeps = 30;
   GridWarp square = flow, wide = flow;
@@ -166,11 +175,9 @@ TEST(ErrorPolish, TexelsAreRoundInUvOnANonSquareChart) {
 TEST(ErrorPolish, ShapeTermKeepsTheUnpaintedCellsFromCracking) {
   // Without the shape term the unpainted cells only keep their floor area, and the polish pushes
   // the compression into thin sheared cells; the default shape term keeps them rounder.
-  const ImageF density = dot_density(kCells, 0.45, 0.55, 0.15);
-  DensityFlowOptions fo;
-  fo.cells = kCells;
-  const GridWarp flow = density_equalizing_warp(density, fo);
-  const PolishFields f = dot_edge(kCells, 0.45, 0.55, 0.15, 0.03, density);
+  const DotCase d = dot_case();
+  const GridWarp& flow = d.flow;
+  const PolishFields& f = d.fields;
   GridWarp with = flow, without = flow;
   polish_warp_by_error(with, f);
   ErrorPolishOptions none;
@@ -258,11 +265,9 @@ TEST(ErrorPolish, FieldsOnTheWholeSquareAreTheModelsOwn) {
 }
 
 TEST(ErrorPolish, ReportsProgressAndCanBeCancelled) {
-  const ImageF density = dot_density(kCells, 0.45, 0.55, 0.15);
-  DensityFlowOptions fo;
-  fo.cells = kCells;
-  const GridWarp flow = density_equalizing_warp(density, fo);
-  const PolishFields f = dot_edge(kCells, 0.45, 0.55, 0.15, 0.03, density);
+  const DotCase d = dot_case();
+  const GridWarp& flow = d.flow;
+  const PolishFields& f = d.fields;
   ErrorPolishOptions o;
   o.sweeps = 5;
   o.tolerance = 0;
