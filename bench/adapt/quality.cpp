@@ -192,6 +192,16 @@ double positive(const std::string& flag, const std::string& v, bool zero_ok = fa
   return x;
 }
 
+/// A whole number in [lo, hi] (a double that is not a whole number or out of range is an error, not a
+/// silent truncation or an out-of-range cast).
+int whole(const std::string& flag, const std::string& v, int lo, int hi) {
+  const double x = std::stod(v);
+  if (!(x >= lo && x <= hi) || x != std::floor(x))
+    throw std::invalid_argument(flag + ": expected a whole number in [" + std::to_string(lo) + ", " +
+                                std::to_string(hi) + "], got " + v);
+  return static_cast<int>(x);
+}
+
 Args parse_args(int argc, char** argv) {
   Args a;
   bool no_refine = false;
@@ -232,13 +242,13 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--max-density") a.max_density = std::stod(v);
     else if (k == "--refine-levels") a.refine_levels = std::stoi(v);
     else if (k == "--refine-tol") a.refine_tol = positive(k, v);
-    else if (k == "--flow-cells") a.flow_cells = static_cast<int>(positive(k, v));
+    else if (k == "--flow-cells") a.flow_cells = whole(k, v, 1, kMaxGridCells);
     else if (k == "--flow-step") a.flow_step = positive(k, v);
     else if (k == "--flow-tol") a.flow_tol = positive(k, v);
     else if (k == "--flow-interp") a.flow_interp = positive(k, v, true);
-    else if (k == "--polish-sweeps") a.polish_sweeps = static_cast<int>(positive(k, v, true));
+    else if (k == "--polish-sweeps") a.polish_sweeps = whole(k, v, 0, 100000);
     else if (k == "--polish-floor") a.polish_floor = positive(k, v, true);
-    else if (k == "--polish-reach") a.polish_reach = static_cast<int>(positive(k, v, true));
+    else if (k == "--polish-reach") a.polish_reach = whole(k, v, 0, kMaxGridCells);
     else if (k == "--polish-shape") a.polish_shape = positive(k, v, true);
     else if (k == "--polish-omega") {
       a.polish_omega = positive(k, v);
