@@ -61,7 +61,8 @@ double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(
 
 /// x^e for x > 0: exact at the exponents the error model clamps to (p = 1 and 4: e = 0.5, 2), else in
 /// single precision (relative error ~1e-6, plenty for an energy that is minimized; double exp / log took
-/// 40 % of an end-mode re-parameterization of `mixed` on venus at 256²: polish 460 -> 315 ms).
+/// 40 % of an end-mode re-parameterization of `mixed` on venus at 256²: polish 460 -> 315 ms). Short
+/// double-precision series (range reduction, degree 9 / 11) were slower still: 315 -> 440 ms.
 inline double power(double x, double e) {
   if (e == 0.5) return std::sqrt(x);
   if (e == 2.0) return x * x;
@@ -107,17 +108,38 @@ class Polisher {
     return nn_ * (ex.x() * ex.x() + cx_ * ex.y() * ex.y() + cy_ * ey.x() * ey.x() + ey.y() * ey.y());
   }
 
-  /// w·(F / (2·D^a))^h with its gradient and Hessian from those of F (gF, hF) and D (gD; D is affine).
+  /// The two power terms of one corner triangle, w·(F / (2·D^a))^h: the error term (a = 2, h = p / 2,
+  /// weight \p we) and the shape term (a = 1, h = 1, weight \p ws), with their gradient and Hessian
+  /// from those of F (gF; its Hessian is diag(hF)) and of D (gD; D is affine in the point). With
+  /// f = gF / F and d = gD / D, ∇ log ψ = h·(f − a·d) and ∇² log ψ = h·(diag(hF) / F − f fᵀ + a·d dᵀ).
   template <bool Derivs>
-  static void add_power_term(double w, double F, double D, double a, double h, const Vec2& gF, const Vec2& gD,
-                             const Eigen::Matrix2d& hF, Local& out) {
-    const double psi = power(F / (2 * (a == 2 ? D * D : D)), h);
-    out.e += w * psi;
+  static void add_triangle_terms(double we, double he, double ws, double F, double D, const Vec2& gF,
+                                 const Vec2& gD, const Vec2& hF, Local& out) {
+    const double iF = 1 / F, iD = 1 / D;
+    const double pe = we > 0 ? we * power(0.5 * F * iD * iD, he) : 0.0, ps = ws * 0.5 * F * iD;
+    out.e += pe + ps;
     if constexpr (Derivs) {
-      const Vec2 u = gF / F - a * gD / D;  // ∇ log ψ / h
-      out.g += w * psi * h * u;
-      out.h += w * psi *
-               (h * h * u * u.transpose() + h * (hF / F - gF * gF.transpose() / (F * F) + a * gD * gD.transpose() / (D * D)));
+      const double fx = gF.x() * iF, fy = gF.y() * iF, dx = gD.x() * iD, dy = gD.y() * iD;
+      // Common part of ∇² log ψ / h without the a·d dᵀ term (symmetric: xx, xy, yy).
+      const double cxx = hF.x() * iF - fx * fx, cxy = -fx * fy, cyy = hF.y() * iF - fy * fy;
+      const double dxx = dx * dx, dxy = dx * dy, dyy = dy * dy;
+      double gx = 0, gy = 0, hxx = 0, hxy = 0, hyy = 0;
+      if (pe > 0) {
+        const double ux = fx - 2 * dx, uy = fy - 2 * dy, k = pe * he, kk = k * he;
+        gx += k * ux, gy += k * uy;
+        hxx += kk * ux * ux + k * (cxx + 2 * dxx);
+        hxy += kk * ux * uy + k * (cxy + 2 * dxy);
+        hyy += kk * uy * uy + k * (cyy + 2 * dyy);
+      }
+      if (ps > 0) {
+        const double ux = fx - dx, uy = fy - dy;
+        gx += ps * ux, gy += ps * uy;
+        hxx += ps * (ux * ux + cxx + dxx);
+        hxy += ps * (ux * uy + cxy + dxy);
+        hyy += ps * (uy * uy + cyy + dyy);
+      }
+      out.g += Vec2(gx, gy);
+      out.h(0, 0) += hxx, out.h(0, 1) += hxy, out.h(1, 0) += hxy, out.h(1, 1) += hyy;
     }
   }
 
@@ -145,15 +167,13 @@ class Polisher {
       }
       if (!(q > 0) && !(mu_ > 0)) continue;
       const double F = frobenius(ex[t], ey[t]);
-      Vec2 gF = Vec2::Zero();
-      Eigen::Matrix2d hF = Eigen::Matrix2d::Zero();
+      Vec2 gF = Vec2::Zero(), hF = Vec2::Zero();
       if constexpr (Derivs) {
         gF = 2 * nn_ * (sx * Vec2(ex[t].x(), cx_ * ex[t].y()) + sy * Vec2(cy_ * ey[t].x(), ey[t].y()));
-        hF.diagonal() = 2 * nn_ * Vec2(sx * sx + sy * sy * cy_, sx * sx * cx_ + sy * sy);
+        hF = 2 * nn_ * Vec2(sx * sx + sy * sy * cy_, sx * sx * cx_ + sy * sy);
       }
-      // The error term (F / 2D²)^(p/2) and the shape term F / 2D: both (F / 2D^a)^h.
-      if (q > 0) add_power_term<Derivs>(0.25 * q, F, D, 2, 0.5 * p, gF, gD, hF, out);
-      if (mu_ > 0) add_power_term<Derivs>(0.25 * mu_, F, D, 1, 1.0, gF, gD, hF, out);
+      // The error term (F / 2D²)^(p/2) and the shape term F / 2D.
+      add_triangle_terms<Derivs>(q > 0 ? 0.25 * q : 0.0, 0.5 * p, mu_ > 0 ? 0.25 * mu_ : 0.0, F, D, gF, gD, hF, out);
     }
     if (lo > 0 && kappa_ > 0) {
       const double d = 0.25 * dsum;
@@ -363,9 +383,9 @@ void check_polish_options(const ErrorPolishOptions& options) {
   if (!(options.over_relaxation > 0 && options.over_relaxation < 2))
     throw InvalidInputError("polish options: over_relaxation must be in (0, 2)");
   if (options.sweeps < 0 || !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
-      !(options.shape_weight >= 0) || options.reach_cells < 0)
+      !(options.shape_weight >= 0) || options.reach_cells < 0 || options.cells < 0)
     throw InvalidInputError(
-        "polish options: sweeps, tolerance, floor_weight, shape_weight and reach_cells must be >= 0");
+        "polish options: sweeps, tolerance, floor_weight, shape_weight, reach_cells and cells must be >= 0");
 }
 
 ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options) {
@@ -384,6 +404,172 @@ ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields
     throw InvalidInputError("polish_warp_by_error: the aspect must be finite and > 0");
   check_polish_options(options);
   return Polisher(warp, fields, options).run();
+}
+
+int polish_cells(int warp_cells, const ErrorPolishOptions& options) {
+  if (warp_cells < 1) throw InvalidInputError("polish_cells: the warp needs >= 1 cells");
+  if (options.cells < 0) throw InvalidInputError("polish_cells: options.cells must be >= 0");
+  return options.cells == 0 ? warp_cells : std::min(warp_cells, options.cells);
+}
+
+namespace {
+
+/// True if the four corner triangles of cell (ci, cj) of \p g have positive area.
+bool cell_convex(const GridWarp& g, int ci, int cj) {
+  const Vec2 c[4] = {g.at(ci, cj), g.at(ci + 1, cj), g.at(ci + 1, cj + 1), g.at(ci, cj + 1)};
+  for (int k = 0; k < 4; ++k)
+    if (!(cross(c[(k + 1) % 4] - c[k], c[(k + 3) % 4] - c[k]) > 0)) return false;
+  return true;
+}
+
+/// cell_convex() of every cell, row-major.
+std::vector<char> convex_cells(const GridWarp& g) {
+  const int n = g.n;
+  std::vector<char> ok(static_cast<size_t>(n) * n, 0);
+  tbb::parallel_for(0, n, [&](int cj) {
+    for (int ci = 0; ci < n; ++ci) ok[static_cast<size_t>(cj) * n + ci] = cell_convex(g, ci, cj);
+  });
+  return ok;
+}
+
+/// The m-cell lattice at \p warp's positions (GridWarp::apply_lattice); sides and corners exactly on
+/// the square's.
+GridWarp sample_lattice(const GridWarp& warp, int m) {
+  GridWarp coarse = GridWarp::uniform(m);
+  for (int J = 0; J <= m; ++J)
+    for (int I = 0; I <= m; ++I) {
+      Vec2 x = warp.apply_lattice(Vec2(double(I) / m, double(J) / m));
+      if (I == 0 || I == m) x.x() = double(I) / m;
+      if (J == 0 || J == m) x.y() = double(J) / m;
+      coarse.at(I, J) = x;
+    }
+  return coarse;
+}
+
+/// The motion of every point of \p warp under B_after ∘ B_before⁻¹: the bilinear map of the coarse
+/// lattice \p after composed with the inverse of \p before's (Newton, in the coarse cell the point's
+/// index lies in, from the index's own fractions; those fractions when it does not converge). Moving
+/// points by their position rather than by their index keeps the warp's own fine structure: where its
+/// cells are compressed, so is their motion (a displacement interpolated by index folded many cells).
+std::vector<Vec2> composed_motion(const GridWarp& warp, const GridWarp& before, const GridWarp& after) {
+  const int n = warp.n, m = before.n;
+  std::vector<Vec2> motion(warp.points.size());
+  tbb::parallel_for(0, n + 1, [&](int j) {
+    const double y = double(j) * m / n;
+    const int J = std::min(static_cast<int>(y), m - 1);
+    for (int i = 0; i <= n; ++i) {
+      const double x = double(i) * m / n;
+      const int I = std::min(static_cast<int>(x), m - 1);
+      const Vec2 p00 = before.at(I, J), p10 = before.at(I + 1, J), p11 = before.at(I + 1, J + 1), p01 = before.at(I, J + 1);
+      const Vec2 q = warp.at(i, j);
+      double a = x - I, b = y - J;
+      for (int it = 0; it < 8; ++it) {
+        const Vec2 r = (1 - a) * (1 - b) * p00 + a * (1 - b) * p10 + a * b * p11 + (1 - a) * b * p01 - q;
+        const Vec2 da = (1 - b) * (p10 - p00) + b * (p11 - p01), db = (1 - a) * (p01 - p00) + a * (p11 - p10);
+        const double det = cross(da, db);
+        if (!(std::abs(det) > 1e-300)) break;
+        const double sa = cross(r, db) / det, sb = cross(da, r) / det;
+        a -= sa, b -= sb;
+        if (std::abs(sa) + std::abs(sb) < 1e-12) break;
+      }
+      if (!(std::isfinite(a) && std::isfinite(b) && a > -0.5 && a < 1.5 && b > -0.5 && b < 1.5)) a = x - I, b = y - J;
+      motion[static_cast<size_t>(j) * (n + 1) + i] =
+          (1 - a) * (1 - b) * after.at(I, J) + a * (1 - b) * after.at(I + 1, J) + a * b * after.at(I + 1, J + 1) +
+          (1 - a) * b * after.at(I, J + 1) - q;
+    }
+  });
+  return motion;
+}
+
+/// Laplacian untangling of \p g: the interior corners of every cell that was convex (\p convex) and is
+/// not now, and the points within `ring` of them, move to the mean of their four lattice neighbours,
+/// in index order, round after round (the remap untangles its faces alike). The ring starts at 0 and
+/// widens by one whenever 20 rounds did not lower the number of such cells, up to 4; at most 1000
+/// rounds. Returns the number of such cells left; \p turned (if set) gets their number before.
+size_t untangle_cells(GridWarp& g, const std::vector<char>& convex, int* turned = nullptr) {
+  const int n = g.n;
+  const std::vector<char> now = convex_cells(g);
+  std::vector<int> bad, points, cells;
+  for (size_t c = 0; c < now.size(); ++c)
+    if (convex[c] && !now[c]) bad.push_back(static_cast<int>(c));
+  if (turned) *turned = static_cast<int>(bad.size());
+  int ring = 0;
+  size_t best = bad.size();
+  for (int round = 0, since_best = 0; round < 1000 && !bad.empty(); ++round) {
+    if (bad.size() < best) best = bad.size(), since_best = 0;
+    else if (++since_best >= 20) {
+      if (ring == 4) break;
+      ++ring, since_best = 0;
+    }
+    points.clear();
+    for (int c : bad)
+      for (int j = std::max(1, c / n - ring); j <= std::min(n - 1, c / n + 1 + ring); ++j)
+        for (int i = std::max(1, c % n - ring); i <= std::min(n - 1, c % n + 1 + ring); ++i)
+          points.push_back(j * (n + 1) + i);
+    std::sort(points.begin(), points.end());
+    points.erase(std::unique(points.begin(), points.end()), points.end());
+    cells = bad;  // only the cells around moved points can change
+    for (int k : points) {
+      const int i = k % (n + 1), j = k / (n + 1);
+      g.at(i, j) = 0.25 * (g.at(i - 1, j) + g.at(i + 1, j) + g.at(i, j - 1) + g.at(i, j + 1));
+      for (int cj = j - 1; cj <= j; ++cj)
+        for (int ci = i - 1; ci <= i; ++ci) cells.push_back(cj * n + ci);
+    }
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    bad.clear();
+    for (int c : cells)
+      if (convex[c] && !cell_convex(g, c % n, c / n)) bad.push_back(c);
+  }
+  return bad.size();
+}
+
+}  // namespace
+
+ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options) {
+  const int n = warp.n;
+  if (n < 1 || warp.points.size() != static_cast<size_t>(n + 1) * (n + 1))
+    throw InvalidInputError("polish_warp: the warp needs n >= 1 and (n+1)^2 points");
+  check_polish_options(options);
+  const int m = polish_cells(n, options);
+  if (fields.error.width != m || fields.error.height != m)
+    throw InvalidInputError("polish_warp: the error fields must be m x m, m = polish_cells(n) = " + std::to_string(m));
+  if (m == n) return polish_warp_by_error(warp, fields, options);
+  GridWarp coarse = sample_lattice(warp, m);
+  const GridWarp before = coarse;
+  ErrorPolishOptions co = options;  // the reach stays the same distance in uv
+  if (co.reach_cells > 0) co.reach_cells = std::max(1, static_cast<int>(std::lround(options.reach_cells * double(m) / n)));
+  ErrorPolishStats st = polish_warp_by_error(coarse, fields, co);
+  if (st.sweeps == 0) return st;
+  const std::vector<Vec2> start = warp.points, motion = composed_motion(warp, before, coarse);
+  const std::vector<char> convex = convex_cells(warp);
+  auto place = [&](double t) {
+    tbb::parallel_for(0, n + 1, [&](int j) {
+      for (int i = 0; i <= n; ++i) {
+        const size_t k = static_cast<size_t>(j) * (n + 1) + i;
+        Vec2 p = (start[k] + t * motion[k]).cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
+        if (i == 0 || i == n) p.x() = start[k].x();
+        if (j == 0 || j == n) p.y() = start[k].y();
+        warp.points[k] = p;
+      }
+    });
+  };
+  // Where the motion still turns a cell of the warp (in strongly compressed spots, where the warp's
+  // cells are much smaller than the coarse lattice's: 0–70 cells of 65k on the shared meshes), the
+  // cell is untangled; if cells stay turned, the whole motion is halved.
+  double t = 1;
+  place(t);
+  for (int halving = 0; untangle_cells(warp, convex, halving == 0 ? &st.turned_cells : nullptr) > 0; ++halving) {
+    if (halving == 6) {
+      warp.points = start;
+      t = 0;
+      break;
+    }
+    t *= 0.5;
+    place(t);
+  }
+  st.transfer_scale = t;
+  return st;
 }
 
 }  // namespace adaptex

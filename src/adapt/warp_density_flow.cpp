@@ -84,13 +84,14 @@ class DensityFlowWarp final : public WarpMethod {
       double scale = 1;
       if (!res.chart_moves.empty()) src = res.chart_moves[c].src, scale = res.chart_moves[c].scale;
       if (src.size().minCoeff() <= 0 || g.n < 2) continue;
-      const PolishFields f = polish_fields(ed.error, ed.exponent, res.density, src.lo, src.hi, g.n, scale);
       ErrorPolishOptions po = o.polish;
       if (!po.progress) po.progress = o.progress;
-      const ErrorPolishStats st = polish_warp_by_error(g, f, po);
+      const int m = polish_cells(g.n, po);
+      const PolishFields f = polish_fields(ed.error, ed.exponent, res.density, src.lo, src.hi, m, scale);
+      const ErrorPolishStats st = polish_warp(g, f, po);
       res.report.polish_sweeps = std::max(res.report.polish_sweeps, st.sweeps);
-      // In cells of the density raster: a lattice cell covers area(src) / n² of the square.
-      const double cell = src.area() / (double(g.n) * g.n) * ed.error.width * ed.error.width;
+      // In cells of the density raster: a polished cell covers area(src) / m² of the square.
+      const double cell = src.area() / (double(m) * m) * ed.error.width * ed.error.width;
       res.report.polish_error_before += cell * st.error_before;
       res.report.polish_error_after += cell * st.error_after;
     }

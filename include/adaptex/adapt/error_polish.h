@@ -47,8 +47,9 @@ struct ErrorPolishOptions {
   /// 4 one-chart shared meshes × lines / dots / mixed × 128² / 256² −0.06 / +0.02 / +0.01 dB against 0,
   /// out of sample (seed 3, 6 meshes) +0.01 / +0.06 / +0.05 dB, and a third fewer refined faces.
   double shape_weight = 0.01;
-  /// Only points within this many lattice cells of a painted cell move (elsewhere E has no gradient
-  /// except through the floor, which the flow already meets).
+  /// Only points within this many cells of the warp's lattice of a painted cell move (elsewhere E has
+  /// no gradient except through the floor, which the flow already meets); polish_warp() scales it to
+  /// its coarser lattice.
   int reach_cells = 12;
   /// Also polish the per-chart lattices of a re-packed atlas (atlas_flow.h). Off: on the multi-chart
   /// shared meshes the polished chart lattices scored better in the model but lost 0.1–0.4 dB on
@@ -66,12 +67,20 @@ struct ErrorPolishOptions {
   /// (0, 2). 1.8: the model's gain after 10 sweeps as after 30 at ω = 1 (venus, spot, kitten,
   /// camelhead dots 256²).
   double over_relaxation = 1.8;
+  /// Cells per side of the lattice the polish runs on (polish_warp()): a finer warp lattice is
+  /// sampled at this lattice's points, which are polished, and the warp's points move by the
+  /// bilinear interpolation of their displacement. 0: the warp's own lattice. 128 on the flow's
+  /// 256-cell lattice: a quarter of the points and of the time (venus `mixed` 256²: 320 → 80 ms), and
+  /// against polishing the 256 cells themselves, on the 4 one-chart shared meshes × lines / dots /
+  /// mixed, mean +0.02 / +0.03 / +0.07 dB at 128² / 256² and +0.08 / +0.05 / +0.26 dB at 512² / 1024²
+  /// (2M samples); 64 cells lost 0.09–0.11 dB (docs/error_model.md §12).
+  int cells = 128;
   bool parallel = true;  ///< Sweep a colour's points with TBB (the same result either way).
   ProgressCallback progress;  ///< Called with ("polish", sweeps done / sweeps) after every sweep.
 };
 
-/// \throw InvalidInputError an option outside its range (sweeps, tolerance, weights or reach < 0,
-///        over_relaxation outside (0, 2))
+/// \throw InvalidInputError an option outside its range (sweeps, tolerance, weights, reach or cells
+///        < 0, over_relaxation outside (0, 2))
 void check_polish_options(const ErrorPolishOptions& options);
 
 /// What polish_warp_by_error() did.
@@ -82,6 +91,12 @@ struct ErrorPolishStats {
   /// The model's error part (Σ q·Ψ) before and after: 10·log10 of their ratio is the polish's gain
   /// as the anisotropic model sees it.
   double error_before = 0, error_after = 0;
+  /// polish_warp() through a coarser lattice: the fraction of the interpolated displacement the warp
+  /// took (1; halved until no cell of the warp that was convex stops being convex, 0: none).
+  double transfer_scale = 1;
+  /// polish_warp() through a coarser lattice: cells of the warp that the full motion made non-convex
+  /// (then untangled, or the motion halved).
+  int turned_cells = 0;
 };
 
 /// The error fields of one lattice: per lattice cell, in the lattice's local coordinates.
@@ -113,5 +128,27 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
 /// \throw CancelledError options.progress returned false
 ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields,
                                       const ErrorPolishOptions& options = {});
+
+/// The cells per side of the lattice polish_warp() runs on for a warp of \p warp_cells cells:
+/// min(warp_cells, options.cells), or warp_cells when options.cells is 0.
+/// \pre warp_cells >= 1 \throw InvalidInputError it is not, or options.cells < 0
+int polish_cells(int warp_cells, const ErrorPolishOptions& options);
+
+/// The polish of \p warp through a lattice of m = polish_cells(warp.n, options) cells
+/// (ErrorPolishOptions::cells): m = warp.n is polish_warp_by_error() itself. Otherwise the m-cell
+/// lattice takes the warp's positions at its points (GridWarp::apply_lattice), is polished by
+/// polish_warp_by_error() with \p fields (reach_cells scaled by m / n), and every point of \p warp
+/// moves by the map of the polished points composed with the inverse of their map before the polish (bilinear per
+/// coarse cell): points move by where they are, not by their index, so the warp's own fine structure
+/// moves with them. Side points stay on their side and corners stay. Cells of \p warp that this
+/// makes non-convex (ErrorPolishStats::turned_cells; a few, where the warp's cells are far smaller
+/// than the coarse lattice's) are untangled by Laplacian smoothing of their corners; if some stay
+/// turned, the motion is halved until none does (ErrorPolishStats::transfer_scale; at most 6
+/// halvings, then none). Every cell of \p warp that was convex stays convex.
+/// The returned energies and errors are those of the m-cell lattice.
+/// \pre fields' rasters are m x m; warp.n >= 1 and (n+1)² points; the rest as polish_warp_by_error()
+/// \throw InvalidInputError a precondition fails or check_polish_options() does
+/// \throw CancelledError options.progress returned false
+ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options = {});
 
 }  // namespace adaptex
