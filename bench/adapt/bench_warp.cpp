@@ -2,7 +2,8 @@
 // (density_flow.h) next to the thesis relaxation (relax.h), on the same field: thin dense lines on a
 // low floor (density-flow's density; the relaxation gets the matching L_s² = 1 / density, clamped).
 // BM_ErrorPolish: the polish of the flow's lattice (error_polish.h, default options) on the same field,
-// the lines' cells painted (hard edges, p = 1), the rest at the floor.
+// the lines' cells painted (hard edges, p = 1), the rest at the floor; BM_ErrorPolishThrough: the same
+// through the default 128-cell lattice (polish_warp()).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -34,28 +35,52 @@ void BM_DensityFlow(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(density_equalizing_warp(d, o));
 }
 
-void BM_ErrorPolish(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  const ImageF d = lines_density(n);
-  DensityFlowOptions o;
-  o.cells = n;
-  const GridWarp flow = density_equalizing_warp(d, o);
+/// The polish fields of lines_density(m): the lines' cells painted (p = 1), the rest at the floor.
+PolishFields lines_fields(int m) {
+  const ImageF d = lines_density(m);
   PolishFields f;
-  f.error = ImageF(n, n, 0.0f);
-  f.exponent = ImageF(n, n, 0.0f);
-  f.floor = ImageF(n, n, 0.0f);
+  f.error = ImageF(m, m, 0.0f);
+  f.exponent = ImageF(m, m, 0.0f);
+  f.floor = ImageF(m, m, 0.0f);
   double mean = 0;
-  for (float v : d.data) mean += v / (double(n) * n);
+  for (float v : d.data) mean += v / (double(m) * m);
   for (size_t k = 0; k < d.data.size(); ++k) {
     const bool painted = d.data[k] > 0.3f;
     f.error.data[k] = painted ? d.data[k] - 0.15f : 0.0f;
     f.exponent.data[k] = painted ? 1.0f : 0.0f;
     f.floor.data[k] = painted ? 0.0f : static_cast<float>(d.data[k] / mean);
   }
+  return f;
+}
+
+/// Arg: the flow's cells n. The polish of its own n-cell lattice (ErrorPolishOptions::cells = 0).
+void BM_ErrorPolish(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  DensityFlowOptions o;
+  o.cells = n;
+  const GridWarp flow = density_equalizing_warp(lines_density(n), o);
+  const PolishFields f = lines_fields(n);
   int sweeps = 0;
   for (auto _ : state) {
     GridWarp g = flow;
     sweeps = polish_warp_by_error(g, f).sweeps;
+    benchmark::DoNotOptimize(g.points.data());
+  }
+  state.counters["sweeps"] = sweeps;
+}
+
+/// Args: the flow's cells n, the polish lattice's m (polish_warp() through m cells, the default
+/// 128 on the default 256-cell flow).
+void BM_ErrorPolishThrough(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0)), m = static_cast<int>(state.range(1));
+  DensityFlowOptions o;
+  o.cells = n;
+  const GridWarp flow = density_equalizing_warp(lines_density(n), o);
+  const PolishFields f = lines_fields(m);
+  int sweeps = 0;
+  for (auto _ : state) {
+    GridWarp g = flow;
+    sweeps = polish_warp(g, f).sweeps;
     benchmark::DoNotOptimize(g.points.data());
   }
   state.counters["sweeps"] = sweeps;
@@ -77,5 +102,6 @@ void BM_ThesisRelaxation(benchmark::State& state) {
 
 BENCHMARK(BM_DensityFlow)->Arg(64)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ErrorPolish)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ErrorPolishThrough)->Args({256, 128})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ThesisRelaxation)->Arg(64)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();

@@ -15,7 +15,7 @@
 //                         [--full-chart-share] [--no-quarter-texel]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
-//                         [--untangle-sor W] [--polish-sweeps N] [--polish-omega W] [--polish-floor K] [--polish-reach C] [--polish-shape MU] [--polish-cells M] [--polish-charts]
+//                         [--untangle-sor W] [--polish-sweeps N] [--polish-omega W] [--polish-floor K] [--polish-reach C] [--polish-shape MU] [--polish-cells M] [--polish-isotropy B] [--polish-charts]
 //
 // Mode names go to cli::make_session_options() (apps/cli/session_options.h, parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
@@ -105,6 +105,7 @@ struct Args {
   bool polish_charts = false;   ///< --polish-charts: ErrorPolishOptions::charts = true.
   int polish_reach = -1;        ///< --polish-reach: ErrorPolishOptions::reach_cells (-1: the default).
   int polish_cells = -1;        ///< --polish-cells: ErrorPolishOptions::cells (-1: the default; 0: the warp's).
+  double polish_isotropy = -1;  ///< --polish-isotropy: ErrorPolishOptions::isotropy (-1: the default).
   double polish_shape = -1;     ///< --polish-shape: ErrorPolishOptions::shape_weight (-1: the default).
   double untangle_sor = -1;     ///< --untangle-sor: SafeRemapOptions::untangle_over_relaxation (-1: the default).
   bool direct_flow = false;     ///< --direct-flow: DensityFlowOptions::direct = true (wedges through the flow itself).
@@ -147,6 +148,7 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   if (a.polish_charts) o.adapt.polish.charts = true;
   if (a.polish_reach >= 0) o.adapt.polish.reach_cells = a.polish_reach;
   if (a.polish_cells >= 0) o.adapt.polish.cells = a.polish_cells;
+  if (a.polish_isotropy > 0) o.adapt.polish.isotropy = a.polish_isotropy;
   if (a.polish_shape >= 0) o.adapt.polish.shape_weight = a.polish_shape;
   if (a.polish_floor >= 0) o.adapt.polish.floor_weight = a.polish_floor;
   if (a.untangle_sor > 0) o.adapt.remap.untangle_over_relaxation = a.untangle_sor;
@@ -252,6 +254,10 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--polish-floor") a.polish_floor = positive(k, v, true);
     else if (k == "--polish-reach") a.polish_reach = whole(k, v, 0, kMaxGridCells);
     else if (k == "--polish-cells") a.polish_cells = whole(k, v, 0, kMaxGridCells);
+    else if (k == "--polish-isotropy") {
+      a.polish_isotropy = positive(k, v);
+      if (!(a.polish_isotropy <= 1)) throw std::invalid_argument("--polish-isotropy must be in (0, 1], got " + v);
+    }
     else if (k == "--polish-shape") a.polish_shape = positive(k, v, true);
     else if (k == "--polish-omega") {
       a.polish_omega = positive(k, v);

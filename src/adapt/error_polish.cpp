@@ -55,6 +55,71 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
   return f;
 }
 
+EdgeTensor edge_tensor(const ImageRGBA8& texture) {
+  const int W = texture.width, H = texture.height;
+  if (texture.empty()) throw InvalidInputError("edge_tensor: the texture is empty");
+  EdgeTensor t{ImageF(W, H), ImageF(W, H), ImageF(W, H)};
+  tbb::parallel_for(0, H, [&](int j) {
+    const int j0 = std::max(0, j - 1), j1 = std::min(H - 1, j + 1);
+    for (int i = 0; i < W; ++i) {
+      const int i0 = std::max(0, i - 1), i1 = std::min(W - 1, i + 1);
+      double xx = 0, xy = 0, yy = 0;
+      for (int ch = 0; ch < 3; ++ch) {
+        const double gx = (double(texture.texel(i1, j)[ch]) - texture.texel(i0, j)[ch]) / std::max(1, i1 - i0);
+        const double gy = (double(texture.texel(i, j1)[ch]) - texture.texel(i, j0)[ch]) / std::max(1, j1 - j0);
+        xx += gx * gx, xy += gx * gy, yy += gy * gy;
+      }
+      t.xx.at(i, j) = static_cast<float>(xx), t.xy.at(i, j) = static_cast<float>(xy), t.yy.at(i, j) = static_cast<float>(yy);
+    }
+  });
+  return t;
+}
+
+void add_edge_directions(PolishFields& fields, const EdgeTensor& edges, const Vec2& lo, const Vec2& hi,
+                         double isotropy) {
+  const int n = fields.error.width, W = edges.xx.width, H = edges.xx.height;
+  if (n < 1 || fields.error.height != n) throw InvalidInputError("add_edge_directions: the fields must be n x n, n >= 1");
+  if (W < 1 || H < 1 || edges.xy.width != W || edges.yy.width != W || edges.xy.height != H || edges.yy.height != H)
+    throw InvalidInputError("add_edge_directions: the edge tensor's rasters must have one non-empty size");
+  if (!(isotropy > 0 && isotropy <= 1)) throw InvalidInputError("add_edge_directions: isotropy must be in (0, 1]");
+  if (!(lo.x() < hi.x() && lo.y() < hi.y() && lo.minCoeff() >= 0 && hi.maxCoeff() <= 1))
+    throw InvalidInputError("add_edge_directions: the rectangle must be non-empty and inside the unit square");
+  // Summed-area tables of the three components (double: sums of up to W·H squared gradients).
+  auto table = [&](const ImageF& img) {
+    std::vector<double> s(static_cast<size_t>(W + 1) * (H + 1), 0.0);
+    for (int j = 0; j < H; ++j)
+      for (int i = 0; i < W; ++i)
+        s[static_cast<size_t>(j + 1) * (W + 1) + i + 1] = img.at(i, j) + s[static_cast<size_t>(j) * (W + 1) + i + 1] +
+                                                          s[static_cast<size_t>(j + 1) * (W + 1) + i] -
+                                                          s[static_cast<size_t>(j) * (W + 1) + i];
+    return s;
+  };
+  const std::vector<double> sxx = table(edges.xx), sxy = table(edges.xy), syy = table(edges.yy);
+  // Texel index range [a, b) of the cells c - 1 .. c + 1 along one axis (at least one texel).
+  auto range = [&](int c, double l, double h, int size) {
+    const double u0 = l + (c - 1.0) / n * (h - l), u1 = l + (c + 2.0) / n * (h - l);
+    int a = std::clamp(static_cast<int>(std::floor(u0 * size)), 0, size - 1);
+    int b = std::clamp(static_cast<int>(std::ceil(u1 * size)), a + 1, size);
+    return std::pair<int, int>(a, b);
+  };
+  fields.txx = ImageF(n, n), fields.txy = ImageF(n, n), fields.tyy = ImageF(n, n);
+  for (int j = 0; j < n; ++j) {
+    const auto [y0, y1] = range(j, lo.y(), hi.y(), H);
+    for (int i = 0; i < n; ++i) {
+      const auto [x0, x1] = range(i, lo.x(), hi.x(), W);
+      auto box = [&](const std::vector<double>& s) {
+        auto at = [&](int x, int y) { return s[static_cast<size_t>(y) * (W + 1) + x]; };
+        return at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0);
+      };
+      const double xx = box(sxx), xy = box(sxy), yy = box(syy), tr = xx + yy;
+      const double w = tr > 0 ? (1 - isotropy) / tr : 0.0, iso = tr > 0 ? 0.5 * isotropy : 0.5;
+      fields.txx.at(i, j) = static_cast<float>(w * xx + iso);
+      fields.txy.at(i, j) = static_cast<float>(w * xy);
+      fields.tyy.at(i, j) = static_cast<float>(w * yy + iso);
+    }
+  }
+}
+
 namespace {
 
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
@@ -94,7 +159,7 @@ class Polisher {
  public:
   Polisher(GridWarp& w, const PolishFields& f, const ErrorPolishOptions& o)
       : w_(w), f_(f), o_(o), n_(w.n), nn_(double(w.n) * w.n),
-        cx_(1 / (f.aspect * f.aspect)), cy_(f.aspect * f.aspect) {
+        cx_(1 / (f.aspect * f.aspect)), cy_(f.aspect * f.aspect), aspect_(f.aspect) {
     double qs = 0;
     int qn = 0;
     for (float q : f.error.data)
@@ -106,6 +171,33 @@ class Polisher {
   /// |S·J·S⁻¹|²_F of the corner triangle with edges ex, ey (see cx_, cy_).
   double frobenius(const Vec2& ex, const Vec2& ey) const {
     return nn_ * (ex.x() * ex.x() + cx_ * ex.y() * ex.y() + cy_ * ey.x() * ey.x() + ey.y() * ey.y());
+  }
+
+  /// The edges' direction tensor of cell (ci, cj) (PolishFields::txx, ...; I/2 without them).
+  struct Tensor {
+    double xx = 0.5, xy = 0, yy = 0.5;
+  };
+  Tensor tensor(int ci, int cj) const {
+    if (f_.txx.data.empty()) return {};
+    return {f_.txx.at(ci, cj), f_.txy.at(ci, cj), f_.tyy.at(ci, cj)};
+  }
+
+  /// F_T = 2·tr(T·adj(J) adj(J)ᵀ) of the corner triangle with edges ex, ey, J = S·J·S⁻¹ in uv
+  /// (= (a b; c d), a = n·ex.x, b = n·r·ey.x, c = n·ex.y / r, d = n·ey.y, r = aspect): 2·|J⁻ᵀ|²_T·det²J,
+  /// frobenius() for T = I/2. With \p Derivs its gradient \p gF and diagonal Hessian \p hF in the
+  /// point that enters ex and ey with coefficients sx, sy (kS).
+  template <bool Derivs>
+  double frobenius_t(const Vec2& ex, const Vec2& ey, const Tensor& T, int sx, int sy, Vec2& gF, Vec2& hF) const {
+    const double n = std::sqrt(nn_), r = aspect_;
+    const double a = n * ex.x(), b = n * r * ey.x(), c = n * ex.y() / r, d = n * ey.y();
+    if constexpr (Derivs) {
+      const double fa = 4 * (T.yy * a - T.xy * b), fb = 4 * (T.xx * b - T.xy * a);
+      const double fc = 4 * (T.yy * c - T.xy * d), fd = 4 * (T.xx * d - T.xy * c);
+      gF = Vec2(fa * n * sx + fb * n * r * sy, fc * n * sx / r + fd * n * sy);
+      const double ua = n * sx, ub = n * r * sy, uc = n * sx / r, ud = n * sy;
+      hF = 4 * Vec2(T.yy * ua * ua + T.xx * ub * ub - 2 * T.xy * ua * ub, T.yy * uc * uc + T.xx * ud * ud - 2 * T.xy * uc * ud);
+    }
+    return 2 * (T.xx * (d * d + b * b) - 2 * T.xy * (c * d + a * b) + T.yy * (a * a + c * c));
   }
 
   /// The two power terms of one corner triangle, w·(F / (2·D^a))^h: the error term (a = 2, h = p / 2,
@@ -152,6 +244,8 @@ class Polisher {
     const Vec2 ex[4] = {c[1] - c[0], c[1] - c[0], c[2] - c[3], c[2] - c[3]};
     const Vec2 ey[4] = {c[3] - c[0], c[2] - c[1], c[2] - c[1], c[3] - c[0]};
     const double q = f_.error.at(ci, cj), p = f_.exponent.at(ci, cj), lo = f_.floor.at(ci, cj);
+    const Tensor T = tensor(ci, cj);
+    const bool directed = !f_.txx.data.empty();
     double dsum = 0;
     Vec2 gd_sum = Vec2::Zero();
     for (int t = 0; t < 4; ++t) {
@@ -172,8 +266,16 @@ class Polisher {
         gF = 2 * nn_ * (sx * Vec2(ex[t].x(), cx_ * ex[t].y()) + sy * Vec2(cy_ * ey[t].x(), ey[t].y()));
         hF = 2 * nn_ * Vec2(sx * sx + sy * sy * cy_, sx * sx * cx_ + sy * sy);
       }
-      // The error term (F / 2D²)^(p/2) and the shape term F / 2D.
-      add_triangle_terms<Derivs>(q > 0 ? 0.25 * q : 0.0, 0.5 * p, mu_ > 0 ? 0.25 * mu_ : 0.0, F, D, gF, gD, hF, out);
+      if (!directed || !(q > 0)) {
+        // The error term (F / 2D²)^(p/2) and the shape term F / 2D.
+        add_triangle_terms<Derivs>(q > 0 ? 0.25 * q : 0.0, 0.5 * p, mu_ > 0 ? 0.25 * mu_ : 0.0, F, D, gF, gD, hF, out);
+        continue;
+      }
+      // The error term with the edges' directions (F_T / 2D²)^(p/2); the shape term stays round.
+      Vec2 gT = Vec2::Zero(), hT = Vec2::Zero();
+      const double FT = frobenius_t<Derivs>(ex[t], ey[t], T, sx, sy, gT, hT);
+      add_triangle_terms<Derivs>(0.25 * q, 0.5 * p, 0.0, FT, D, gT, gD, hT, out);
+      if (mu_ > 0) add_triangle_terms<Derivs>(0.0, 0.0, 0.25 * mu_, F, D, gF, gD, hF, out);
     }
     if (lo > 0 && kappa_ > 0) {
       const double d = 0.25 * dsum;
@@ -261,7 +363,12 @@ class Polisher {
           const double D = nn_ * cross(ex[t], ey[t]);
           if (!(D > 0)) ok = false;
           dsum += D;
-          if (ok && q > 0) e += 0.25 * q * power(frobenius(ex[t], ey[t]) / (2 * D * D), 0.5 * p);
+          if (ok && q > 0) {
+            Vec2 unused_g, unused_h;
+            const double F = f_.txx.data.empty() ? frobenius(ex[t], ey[t])
+                                                 : frobenius_t<false>(ex[t], ey[t], tensor(ci, cj), 0, 0, unused_g, unused_h);
+            e += 0.25 * q * power(F / (2 * D * D), 0.5 * p);
+          }
           if (ok && mu_ > 0) shape += 0.25 * mu_ * frobenius(ex[t], ey[t]) / (2 * D);
         }
         if (!ok) continue;
@@ -373,7 +480,7 @@ class Polisher {
   // A lattice over a w x h rectangle: its Jacobian in uv is S·J·S⁻¹, S = diag(w, h), whose squared
   // Frobenius norm is n²(ex.x² + cx·ex.y² + cy·ey.x² + ey.y²) with cx = (h/w)², cy = (w/h)² (the
   // determinant is J's own).
-  double cx_, cy_;
+  double cx_, cy_, aspect_;
   double kappa_ = 0, mu_ = 0;
 };
 
@@ -383,9 +490,11 @@ void check_polish_options(const ErrorPolishOptions& options) {
   if (!(options.over_relaxation > 0 && options.over_relaxation < 2))
     throw InvalidInputError("polish options: over_relaxation must be in (0, 2)");
   if (options.sweeps < 0 || !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
-      !(options.shape_weight >= 0) || options.reach_cells < 0 || options.cells < 0)
+      !(options.shape_weight >= 0) || options.reach_cells < 0 || options.cells < 0 ||
+      !(options.isotropy > 0 && options.isotropy <= 1))
     throw InvalidInputError(
-        "polish options: sweeps, tolerance, floor_weight, shape_weight, reach_cells and cells must be >= 0");
+        "polish options: sweeps, tolerance, floor_weight, shape_weight, reach_cells and cells must be >= 0, "
+        "isotropy in (0, 1]");
 }
 
 ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options) {
@@ -400,16 +509,27 @@ ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields
     if (!(q >= 0 && std::isfinite(q)) || !(lo >= 0 && std::isfinite(lo)) || !(p >= 0 && p <= 8))
       throw InvalidInputError("polish_warp_by_error: error and floor must be finite and >= 0, exponent in [0, 8]");
   }
+  const bool directed = !fields.txx.data.empty() || !fields.txy.data.empty() || !fields.tyy.data.empty();
+  for (const ImageF* img : {&fields.txx, &fields.txy, &fields.tyy})
+    if (directed && (img->width != n || img->height != n))
+      throw InvalidInputError("polish_warp_by_error: the direction tensor must be n x n or empty, n = " + std::to_string(n));
+  for (size_t k = 0; directed && k < fields.txx.data.size(); ++k) {
+    const float a = fields.txx.data[k], b = fields.txy.data[k], c = fields.tyy.data[k];
+    if (!(std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && a > 0 && c > 0 && a * c > b * b))
+      throw InvalidInputError("polish_warp_by_error: the direction tensor must be finite and positive definite");
+  }
   if (!(fields.aspect > 0) || !std::isfinite(fields.aspect))
     throw InvalidInputError("polish_warp_by_error: the aspect must be finite and > 0");
   check_polish_options(options);
   return Polisher(warp, fields, options).run();
 }
 
-int polish_cells(int warp_cells, const ErrorPolishOptions& options) {
+int polish_cells(int warp_cells, const ErrorPolishOptions& options, double extent) {
   if (warp_cells < 1) throw InvalidInputError("polish_cells: the warp needs >= 1 cells");
   if (options.cells < 0) throw InvalidInputError("polish_cells: options.cells must be >= 0");
-  return options.cells == 0 ? warp_cells : std::min(warp_cells, options.cells);
+  if (!(extent > 0 && extent <= 1)) throw InvalidInputError("polish_cells: extent must be in (0, 1]");
+  if (options.cells == 0) return warp_cells;
+  return std::min(warp_cells, std::max(4, static_cast<int>(std::lround(options.cells * extent))));
 }
 
 namespace {
@@ -531,9 +651,9 @@ ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const E
   if (n < 1 || warp.points.size() != static_cast<size_t>(n + 1) * (n + 1))
     throw InvalidInputError("polish_warp: the warp needs n >= 1 and (n+1)^2 points");
   check_polish_options(options);
-  const int m = polish_cells(n, options);
-  if (fields.error.width != m || fields.error.height != m)
-    throw InvalidInputError("polish_warp: the error fields must be m x m, m = polish_cells(n) = " + std::to_string(m));
+  const int m = fields.error.width;
+  if (m < 1 || m > n || fields.error.height != m)
+    throw InvalidInputError("polish_warp: the error fields must be m x m, 1 <= m <= n = " + std::to_string(n));
   if (m == n) return polish_warp_by_error(warp, fields, options);
   GridWarp coarse = sample_lattice(warp, m);
   const GridWarp before = coarse;

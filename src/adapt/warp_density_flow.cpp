@@ -68,26 +68,31 @@ class DensityFlowWarp final : public WarpMethod {
     rep.flow_steps = st.total_steps;
     rep.flow_advected_points = st.advected_points;
     rep.time_flow = seconds_since(t0);
-    if (!o.flow.direct) polish(o, ed, res);
+    if (!o.flow.direct) polish(o, ed, in.texture, res);
   }
 
  private:
   /// Every flow lattice polished by the anisotropic error model (error_polish.h), charts in turn (each
   /// polish is parallel inside).
-  static void polish(const AdaptOptions& o, const ErrorDensity& ed, AdaptResult& res) {
+  static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture, AdaptResult& res) {
     if (o.polish.sweeps <= 0 || (!res.chart_moves.empty() && !o.polish.charts)) return;
     const auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "polish", 0);
+    const EdgeTensor edges = o.polish.isotropy < 1 ? edge_tensor(texture) : EdgeTensor{};
     for (size_t c = 0; c < res.grids.size(); ++c) {
       GridWarp& g = res.grids[c];
       UvRect src{Vec2(0, 0), Vec2(1, 1)};
-      double scale = 1;
-      if (!res.chart_moves.empty()) src = res.chart_moves[c].src, scale = res.chart_moves[c].scale;
+      double scale = 1, extent = 1;
+      if (!res.chart_moves.empty()) {
+        src = res.chart_moves[c].src, scale = res.chart_moves[c].scale;
+        extent = std::clamp(res.chart_moves[c].dst().size().maxCoeff(), 1e-9, 1.0);
+      }
       if (src.size().minCoeff() <= 0 || g.n < 2) continue;
       ErrorPolishOptions po = o.polish;
       if (!po.progress) po.progress = o.progress;
-      const int m = polish_cells(g.n, po);
-      const PolishFields f = polish_fields(ed.error, ed.exponent, res.density, src.lo, src.hi, m, scale);
+      const int m = polish_cells(g.n, po, extent);
+      PolishFields f = polish_fields(ed.error, ed.exponent, res.density, src.lo, src.hi, m, scale);
+      if (o.polish.isotropy < 1) add_edge_directions(f, edges, src.lo, src.hi, o.polish.isotropy);
       const ErrorPolishStats st = polish_warp(g, f, po);
       res.report.polish_sweeps = std::max(res.report.polish_sweeps, st.sweeps);
       // In cells of the density raster: a polished cell covers area(src) / m² of the square.

@@ -74,7 +74,7 @@ struct AdaptOptions {
   ErrorDensityOptions density;  ///< density-flow: the error model and its target density.
   DensityFlowOptions flow;      ///< density-flow: the flow map (its output grid size, accuracy).
   /// density-flow: the flow lattices polished by the error model with the texel grid's anisotropy
-  /// counted (error_polish.h; sweeps = 0: off). Not with flow.direct (the exact flow is the warp then).
+  /// and the paint's edge directions counted (error_polish.h; sweeps = 0: off). Not with flow.direct (the exact flow is the warp then).
   ErrorPolishOptions polish;
   /// density-flow on a layout of several charts in disjoint boxes: re-pack the charts by their share
   /// of the density, then one flow per chart rectangle (atlas_flow.h). false: one flow over the whole

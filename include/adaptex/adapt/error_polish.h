@@ -51,12 +51,11 @@ struct ErrorPolishOptions {
   /// no gradient except through the floor, which the flow already meets); polish_warp() scales it to
   /// its coarser lattice.
   int reach_cells = 12;
-  /// Also polish the per-chart lattices of a re-packed atlas (atlas_flow.h). Off: on the multi-chart
-  /// shared meshes the polished chart lattices scored better in the model but lost 0.1–0.4 dB on
-  /// `lines` and `mixed` (dino, bunny, spot, triceratops at 128² / 256²) while one polished lattice over
-  /// the whole square gained on the same meshes (`--no-atlas`); the cause is not found
-  /// (docs/error_model.md §11).
-  bool charts = false;
+  /// Also polish the per-chart lattices of a re-packed atlas (atlas_flow.h). Session 13 left it off:
+  /// with round texels (isotropy 1) the polished chart lattices lost 0.1–0.4 dB on `lines` and `mixed`
+  /// (dino, bunny, spot, triceratops at 128² / 256²). With the edges' directions (isotropy below) they
+  /// gain: docs/error_model.md §12.
+  bool charts = true;
   /// A point is relaxed again only if it or a neighbour moved by more than this many lattice cells in
   /// the sweep before (0: every point in every sweep). At 1e-3 nearly every point is relaxed in every
   /// sweep. 0.05 took 40 % off the polish of `mixed` (venus, camelhead 256²) and was neutral on the 4
@@ -67,20 +66,25 @@ struct ErrorPolishOptions {
   /// (0, 2). 1.8: the model's gain after 10 sweeps as after 30 at ω = 1 (venus, spot, kitten,
   /// camelhead dots 256²).
   double over_relaxation = 1.8;
-  /// Cells per side of the lattice the polish runs on (polish_warp()): a finer warp lattice is
-  /// sampled at this lattice's points, which are polished, and the warp's points move by the
-  /// bilinear interpolation of their displacement. 0: the warp's own lattice. 128 on the flow's
+  /// Cells per side of the unit square of the lattice the polish runs on (polish_cells(),
+  /// polish_warp(); a chart's lattice gets as many per side of the square): a finer warp lattice is
+  /// sampled at this lattice's points, which are polished, and the warp's points follow them.
+  /// 0: the warp's own lattice. 128 on the flow's
   /// 256-cell lattice: a quarter of the points and of the time (venus `mixed` 256²: 320 → 80 ms), and
   /// against polishing the 256 cells themselves, on the 4 one-chart shared meshes × lines / dots /
   /// mixed, mean +0.02 / +0.03 / +0.07 dB at 128² / 256² and +0.08 / +0.05 / +0.26 dB at 512² / 1024²
   /// (2M samples); 64 cells lost 0.09–0.11 dB (docs/error_model.md §12).
   int cells = 128;
+  /// Weight of the isotropic model against the paint's own edge directions (PolishFields::txx;
+  /// add_edge_directions()), in (0, 1]: 1 measures the texel spacing in every direction alike (texels
+  /// become round), lower values let texels stretch along the paint's edges.
+  double isotropy = 0.25;
   bool parallel = true;  ///< Sweep a colour's points with TBB (the same result either way).
   ProgressCallback progress;  ///< Called with ("polish", sweeps done / sweeps) after every sweep.
 };
 
 /// \throw InvalidInputError an option outside its range (sweeps, tolerance, weights, reach or cells
-///        < 0, over_relaxation outside (0, 2))
+///        < 0, over_relaxation outside (0, 2), isotropy outside (0, 1])
 void check_polish_options(const ErrorPolishOptions& options);
 
 /// What polish_warp_by_error() did.
@@ -107,7 +111,31 @@ struct PolishFields {
   /// Width / height of the rectangle the lattice covers in uv: texels are round in uv, not in the
   /// lattice's local coordinates.
   double aspect = 1;
+  /// n x n each, or all empty: the paint's edge-direction tensor T per cell (symmetric, positive
+  /// definite, trace 1, in uv; add_edge_directions()). The error term then measures the texel spacing
+  /// across the edges, |J⁻ᵀ|²_T = tr(T·J⁻¹J⁻ᵀ), instead of its mean over all directions (T = I/2), so
+  /// texels may stretch along an edge. Empty: T = I/2.
+  ImageF txx, txy, tyy;
 };
+
+/// The paint's edge directions per texel of a texture: the structure tensor Σ g gᵀ of its colour
+/// gradient g (central differences per texel, summed over R, G and B; one-sided at the borders).
+struct EdgeTensor {
+  ImageF xx, xy, yy;  ///< W x H each.
+};
+
+/// \pre texture not empty \throw InvalidInputError it is empty
+EdgeTensor edge_tensor(const ImageRGBA8& texture);
+
+/// Sets \p fields' txx, txy, tyy (n x n, n = fields.error's size) for a lattice over [lo, hi]: per
+/// cell, \p edges summed over the texels of the cell and of the ring of cells around it (a box three
+/// cells wide), normalized to trace 1 and blended with the isotropic tensor:
+/// T = (1 − isotropy)·T_edges + isotropy·I/2 (I/2 where the sum is 0).
+/// \pre isotropy in (0, 1]; lo < hi inside [0,1]²; fields.error n x n, n >= 1; edges' three rasters
+///      the same size, not empty
+/// \throw InvalidInputError a precondition fails
+void add_edge_directions(PolishFields& fields, const EdgeTensor& edges, const Vec2& lo, const Vec2& hi,
+                         double isotropy);
 
 /// \p error, \p exponent and \p density of error_density.h (L x L over the square) sampled on an
 /// n x n lattice over the rectangle [lo, hi] of the square: error bilinearly, exponent as the
@@ -129,13 +157,16 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
 ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields,
                                       const ErrorPolishOptions& options = {});
 
-/// The cells per side of the lattice polish_warp() runs on for a warp of \p warp_cells cells:
-/// min(warp_cells, options.cells), or warp_cells when options.cells is 0.
-/// \pre warp_cells >= 1 \throw InvalidInputError it is not, or options.cells < 0
-int polish_cells(int warp_cells, const ErrorPolishOptions& options);
+/// The cells per side of the lattice polish_warp() runs on for a warp of \p warp_cells cells whose
+/// longer side is \p extent of the unit square's (1: the whole square; a chart's rectangle after
+/// the re-pack, atlas_flow.h): ErrorPolishOptions::cells per side of the square, so
+/// min(warp_cells, max(4, round(options.cells · extent))); warp_cells when options.cells is 0.
+/// \pre warp_cells >= 1, extent in (0, 1] \throw InvalidInputError a precondition fails, or options.cells < 0
+int polish_cells(int warp_cells, const ErrorPolishOptions& options, double extent = 1);
 
-/// The polish of \p warp through a lattice of m = polish_cells(warp.n, options) cells
-/// (ErrorPolishOptions::cells): m = warp.n is polish_warp_by_error() itself. Otherwise the m-cell
+/// The polish of \p warp through a lattice of m cells, 1 <= m <= warp.n: the size of \p fields
+/// (polish_cells() gives the one ErrorPolishOptions::cells asks for). m = warp.n is
+/// polish_warp_by_error() itself. Otherwise the m-cell
 /// lattice takes the warp's positions at its points (GridWarp::apply_lattice), is polished by
 /// polish_warp_by_error() with \p fields (reach_cells scaled by m / n), and every point of \p warp
 /// moves by the map of the polished points composed with the inverse of their map before the polish (bilinear per
@@ -146,7 +177,8 @@ int polish_cells(int warp_cells, const ErrorPolishOptions& options);
 /// turned, the motion is halved until none does (ErrorPolishStats::transfer_scale; at most 6
 /// halvings, then none). Every cell of \p warp that was convex stays convex.
 /// The returned energies and errors are those of the m-cell lattice.
-/// \pre fields' rasters are m x m; warp.n >= 1 and (n+1)² points; the rest as polish_warp_by_error()
+/// \pre fields' rasters are m x m, 1 <= m <= warp.n; warp.n >= 1 and (n+1)² points; the rest as
+///      polish_warp_by_error()
 /// \throw InvalidInputError a precondition fails or check_polish_options() does
 /// \throw CancelledError options.progress returned false
 ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options = {});
