@@ -2,8 +2,8 @@
 // (density_flow.h) next to the thesis relaxation (relax.h), on the same field: thin dense lines on a
 // low floor (density-flow's density; the relaxation gets the matching L_s² = 1 / density, clamped).
 // BM_ErrorPolish: the polish of the flow's lattice (error_polish.h, default options) on the same field,
-// the lines' cells painted (hard edges, p = 1), the rest at the floor; BM_ErrorPolishThrough: the same
-// through the default 128-cell lattice (polish_warp()).
+// the lines' cells painted (hard edges, p = 1), the rest at the floor, on the flow's own lattice and
+// through the default 128-cell one (polish_warp()).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -53,25 +53,9 @@ PolishFields lines_fields(int m) {
   return f;
 }
 
-/// Arg: the flow's cells n. The polish of its own n-cell lattice (ErrorPolishOptions::cells = 0).
+/// Args: the flow's cells n and the polish lattice's m (polish_warp(); m = n: the flow's own lattice,
+/// polish_warp_by_error(); the default is 128 on the default 256-cell flow).
 void BM_ErrorPolish(benchmark::State& state) {
-  const int n = static_cast<int>(state.range(0));
-  DensityFlowOptions o;
-  o.cells = n;
-  const GridWarp flow = density_equalizing_warp(lines_density(n), o);
-  const PolishFields f = lines_fields(n);
-  int sweeps = 0;
-  for (auto _ : state) {
-    GridWarp g = flow;
-    sweeps = polish_warp_by_error(g, f).sweeps;
-    benchmark::DoNotOptimize(g.points.data());
-  }
-  state.counters["sweeps"] = sweeps;
-}
-
-/// Args: the flow's cells n, the polish lattice's m (polish_warp() through m cells, the default
-/// 128 on the default 256-cell flow).
-void BM_ErrorPolishThrough(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0)), m = static_cast<int>(state.range(1));
   DensityFlowOptions o;
   o.cells = n;
@@ -101,7 +85,6 @@ void BM_ThesisRelaxation(benchmark::State& state) {
 }  // namespace
 
 BENCHMARK(BM_DensityFlow)->Arg(64)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_ErrorPolish)->Arg(64)->Arg(256)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_ErrorPolishThrough)->Args({256, 128})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ErrorPolish)->Args({64, 64})->Args({256, 256})->Args({256, 128})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ThesisRelaxation)->Arg(64)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_MAIN();
