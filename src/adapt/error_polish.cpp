@@ -200,35 +200,35 @@ class Polisher {
     return 2 * (T.xx * (d * d + b * b) - 2 * T.xy * (c * d + a * b) + T.yy * (a * a + c * c));
   }
 
-  /// The two power terms of one corner triangle, w·(F / (2·D^a))^h: the error term (a = 2, h = p / 2,
-  /// weight \p we) and the shape term (a = 1, h = 1, weight \p ws), with their gradient and Hessian
-  /// from those of F (gF; its Hessian is diag(hF)) and of D (gD; D is affine in the point). With
-  /// f = gF / F and d = gD / D, ∇ log ψ = h·(f − a·d) and ∇² log ψ = h·(diag(hF) / F − f fᵀ + a·d dᵀ).
+  /// The two power terms of one corner triangle: the error term we·(F_e / (2·D²))^he and the shape
+  /// term ws·F_s / (2·D), with their gradient and Hessian from those of F_e, F_s (gradients ge, gs; their
+  /// Hessians are diagonal: he2, hs2) and of D (gD; D is affine in the point). With f = gF / F and
+  /// d = gD / D, ∇ log ψ = h·(f − a·d) and ∇² log ψ = h·(diag(hF) / F − f fᵀ + a·d dᵀ) (a = 2, h = he
+  /// for the error term; a = 1, h = 1 for the shape term).
   template <bool Derivs>
-  static void add_triangle_terms(double we, double he, double ws, double F, double D, const Vec2& gF,
-                                 const Vec2& gD, const Vec2& hF, Local& out) {
-    const double iF = 1 / F, iD = 1 / D;
-    const double pe = we > 0 ? we * power(0.5 * F * iD * iD, he) : 0.0, ps = ws * 0.5 * F * iD;
+  static void add_triangle_terms(double we, double he, double Fe, const Vec2& ge, const Vec2& he2, double ws,
+                                 double Fs, const Vec2& gs, const Vec2& hs2, double D, const Vec2& gD, Local& out) {
+    const double iD = 1 / D;
+    const double pe = we > 0 ? we * power(0.5 * Fe * iD * iD, he) : 0.0, ps = ws * 0.5 * Fs * iD;
     out.e += pe + ps;
     if constexpr (Derivs) {
-      const double fx = gF.x() * iF, fy = gF.y() * iF, dx = gD.x() * iD, dy = gD.y() * iD;
-      // Common part of ∇² log ψ / h without the a·d dᵀ term (symmetric: xx, xy, yy).
-      const double cxx = hF.x() * iF - fx * fx, cxy = -fx * fy, cyy = hF.y() * iF - fy * fy;
-      const double dxx = dx * dx, dxy = dx * dy, dyy = dy * dy;
+      const double dx = gD.x() * iD, dy = gD.y() * iD, dxx = dx * dx, dxy = dx * dy, dyy = dy * dy;
       double gx = 0, gy = 0, hxx = 0, hxy = 0, hyy = 0;
       if (pe > 0) {
+        const double iF = 1 / Fe, fx = ge.x() * iF, fy = ge.y() * iF;
         const double ux = fx - 2 * dx, uy = fy - 2 * dy, k = pe * he, kk = k * he;
         gx += k * ux, gy += k * uy;
-        hxx += kk * ux * ux + k * (cxx + 2 * dxx);
-        hxy += kk * ux * uy + k * (cxy + 2 * dxy);
-        hyy += kk * uy * uy + k * (cyy + 2 * dyy);
+        hxx += kk * ux * ux + k * (he2.x() * iF - fx * fx + 2 * dxx);
+        hxy += kk * ux * uy + k * (-fx * fy + 2 * dxy);
+        hyy += kk * uy * uy + k * (he2.y() * iF - fy * fy + 2 * dyy);
       }
       if (ps > 0) {
+        const double iF = 1 / Fs, fx = gs.x() * iF, fy = gs.y() * iF;
         const double ux = fx - dx, uy = fy - dy;
         gx += ps * ux, gy += ps * uy;
-        hxx += ps * (ux * ux + cxx + dxx);
-        hxy += ps * (ux * uy + cxy + dxy);
-        hyy += ps * (uy * uy + cyy + dyy);
+        hxx += ps * (ux * ux + hs2.x() * iF - fx * fx + dxx);
+        hxy += ps * (ux * uy - fx * fy + dxy);
+        hyy += ps * (uy * uy + hs2.y() * iF - fy * fy + dyy);
       }
       out.g += Vec2(gx, gy);
       out.h(0, 0) += hxx, out.h(0, 1) += hxy, out.h(1, 0) += hxy, out.h(1, 1) += hyy;
@@ -266,16 +266,16 @@ class Polisher {
         gF = 2 * nn_ * (sx * Vec2(ex[t].x(), cx_ * ex[t].y()) + sy * Vec2(cy_ * ey[t].x(), ey[t].y()));
         hF = 2 * nn_ * Vec2(sx * sx + sy * sy * cy_, sx * sx * cx_ + sy * sy);
       }
+      // The error term (F_T / 2D²)^(p/2), with the edges' directions when there are any (F_T = F for
+      // T = I/2), and the shape term F / 2D (round).
+      const double we = q > 0 ? 0.25 * q : 0.0, ws = mu_ > 0 ? 0.25 * mu_ : 0.0;
       if (!directed || !(q > 0)) {
-        // The error term (F / 2D²)^(p/2) and the shape term F / 2D.
-        add_triangle_terms<Derivs>(q > 0 ? 0.25 * q : 0.0, 0.5 * p, mu_ > 0 ? 0.25 * mu_ : 0.0, F, D, gF, gD, hF, out);
+        add_triangle_terms<Derivs>(we, 0.5 * p, F, gF, hF, ws, F, gF, hF, D, gD, out);
         continue;
       }
-      // The error term with the edges' directions (F_T / 2D²)^(p/2); the shape term stays round.
       Vec2 gT = Vec2::Zero(), hT = Vec2::Zero();
       const double FT = frobenius_t<Derivs>(ex[t], ey[t], T, sx, sy, gT, hT);
-      add_triangle_terms<Derivs>(0.25 * q, 0.5 * p, 0.0, FT, D, gT, gD, hT, out);
-      if (mu_ > 0) add_triangle_terms<Derivs>(0.0, 0.0, 0.25 * mu_, F, D, gF, gD, hF, out);
+      add_triangle_terms<Derivs>(we, 0.5 * p, FT, gT, hT, ws, F, gF, hF, D, gD, out);
     }
     if (lo > 0 && kappa_ > 0) {
       const double d = 0.25 * dsum;
