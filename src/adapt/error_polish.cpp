@@ -524,6 +524,14 @@ ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields
   return Polisher(warp, fields, options).run();
 }
 
+double polish_model_error(const GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options) {
+  GridWarp copy = warp;
+  ErrorPolishOptions o = options;
+  o.sweeps = 0;
+  o.progress = nullptr;
+  return polish_warp_by_error(copy, fields, o).error_before;
+}
+
 int polish_cells(int warp_cells, const ErrorPolishOptions& options, double extent) {
   if (warp_cells < 1) throw InvalidInputError("polish_cells: the warp needs >= 1 cells");
   if (options.cells < 0) throw InvalidInputError("polish_cells: options.cells must be >= 0");

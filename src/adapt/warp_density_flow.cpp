@@ -91,12 +91,22 @@ class DensityFlowWarp final : public WarpMethod {
       ErrorPolishOptions po = o.polish;
       if (!po.progress) po.progress = o.progress;
       const int m = polish_cells(g.n, po, extent);
-      PolishFields f = polish_fields(ed.error, ed.exponent, res.density, src.lo, src.hi, m, scale);
-      if (o.polish.isotropy < 1) add_edge_directions(f, edges, src.lo, src.hi, o.polish.isotropy);
-      const ErrorPolishStats st = polish_warp(g, f, po);
+      auto fields = [&](int cells) {
+        PolishFields f = polish_fields(ed.error, ed.exponent, res.density, src.lo, src.hi, cells, scale);
+        if (o.polish.isotropy < 1) add_edge_directions(f, edges, src.lo, src.hi, o.polish.isotropy);
+        return f;
+      };
+      const PolishFields f = fields(m);
+      // The report's figures are the model's on the warp's own lattice: a coarser lattice sampled
+      // from a strongly compressed flow starts from far worse cells than the flow's own (genus0
+      // `mixed` 128²: 12.4 dB "gained" on the coarse lattice).
+      const PolishFields own = m == g.n ? PolishFields{} : fields(g.n);
+      const double before = m == g.n ? 0.0 : polish_model_error(g, own, po);
+      ErrorPolishStats st = polish_warp(g, f, po);
+      if (m != g.n) st.error_before = before, st.error_after = polish_model_error(g, own, po);
       res.report.polish_sweeps = std::max(res.report.polish_sweeps, st.sweeps);
-      // In cells of the density raster: a polished cell covers area(src) / m² of the square.
-      const double cell = src.area() / (double(m) * m) * ed.error.width * ed.error.width;
+      // In cells of the density raster: a lattice cell covers area(src) / n² of the square.
+      const double cell = src.area() / (double(g.n) * g.n) * ed.error.width * ed.error.width;
       res.report.polish_error_before += cell * st.error_before;
       res.report.polish_error_after += cell * st.error_after;
     }

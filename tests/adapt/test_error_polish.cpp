@@ -321,13 +321,8 @@ TEST(ErrorPolish, RejectsBadInput) {
 
 namespace {
 
-/// The model's error part of lattice \p w under \p f (polish_warp_by_error() without sweeps).
-double model_error(const GridWarp& w, const PolishFields& f) {
-  GridWarp copy = w;
-  ErrorPolishOptions o;
-  o.sweeps = 0;
-  return polish_warp_by_error(copy, f, o).error_before;
-}
+/// The model's error part of lattice \p w under \p f.
+double model_error(const GridWarp& w, const PolishFields& f) { return polish_model_error(w, f); }
 
 /// The dot case polished through a lattice of \p coarse cells (ErrorPolishOptions::cells).
 struct Through {
@@ -352,6 +347,14 @@ Through polish_dot_through(int coarse, bool parallel) {
 }
 
 }  // namespace
+
+TEST(ErrorPolish, ModelErrorIsThatOfAPolishWithoutSweeps) {
+  const DotCase d = dot_case();
+  GridWarp w = d.flow;
+  const ErrorPolishStats s = polish_warp_by_error(w, d.fields);
+  EXPECT_DOUBLE_EQ(polish_model_error(d.flow, d.fields), s.error_before);
+  EXPECT_DOUBLE_EQ(polish_model_error(w, d.fields), s.error_after);
+}
 
 TEST(ErrorPolish, ThroughACoarserLatticeLowersTheFineLatticesError) {
   const Through t = polish_dot_through(kCells / 2, true);

@@ -157,6 +157,12 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
 ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields,
                                       const ErrorPolishOptions& options = {});
 
+/// The model's error part Σ q·Ψ of \p warp under \p fields and options' shape and floor weights
+/// (ErrorPolishStats::error_before of a polish without sweeps): what polish_warp() lowers, measured on
+/// the warp's own lattice.
+/// \pre as polish_warp_by_error() \throw InvalidInputError a precondition fails
+double polish_model_error(const GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options = {});
+
 /// The cells per side of the lattice polish_warp() runs on for a warp of \p warp_cells cells whose
 /// longer side is \p extent of the unit square's (1: the whole square; a chart's rectangle after
 /// the re-pack, atlas_flow.h): ErrorPolishOptions::cells per side of the square, so
@@ -176,7 +182,8 @@ int polish_cells(int warp_cells, const ErrorPolishOptions& options, double exten
 /// than the coarse lattice's) are untangled by Laplacian smoothing of their corners; if some stay
 /// turned, the motion is halved until none does (ErrorPolishStats::transfer_scale; at most 6
 /// halvings, then none). Every cell of \p warp that was convex stays convex.
-/// The returned energies and errors are those of the m-cell lattice.
+/// The returned energies and errors are those of the m-cell lattice (polish_model_error() measures the
+/// warp's own).
 /// \pre fields' rasters are m x m, 1 <= m <= warp.n; warp.n >= 1 and (n+1)² points; the rest as
 ///      polish_warp_by_error()
 /// \throw InvalidInputError a precondition fails or check_polish_options() does
