@@ -1,7 +1,7 @@
 #pragma once
 /// \file error_polish.h
 /// Polishing a warp lattice by the error model itself, with the texel grid's anisotropy counted
-/// (`--adapt density-flow`, after the flow; derivation and measurements in docs/error_model.md §11).
+/// (`--adapt density-flow`, after the flow; derivation and measurements in docs/error_model.md §11, §12).
 ///
 /// The density-equalizing flow (density_flow.h) reaches a target *area* density: it controls only
 /// det J of the warp's Jacobian J. Around a painted dot the flow magnifies radially less than
@@ -24,6 +24,12 @@
 /// search that only accepts a lower energy and convex cells; the four point colours (i mod 2, j mod 2)
 /// are swept one after the other, points of one colour in parallel (they share no cell), so the
 /// result does not depend on the thread count.
+///
+/// Session 14 (docs/error_model.md §12): the mean over directions is replaced by the paint's own
+/// edge directions where it has edges, |J⁻ᵀ|²_T = tr(T·J⁻¹J⁻ᵀ) with T the cell's direction tensor
+/// blended with I/2 (PolishFields::txx, add_edge_directions(), ErrorPolishOptions::isotropy), so
+/// texels get fine across edges and may stretch along them; the flow's lattice is polished through a
+/// coarser one (polish_warp(), ErrorPolishOptions::cells); and every chart's lattice is polished.
 #include "adaptex/adapt/grid.h"
 #include "adaptex/core/image.h"
 #include "adaptex/core/progress.h"
