@@ -41,7 +41,9 @@ struct ErrorPolishOptions {
   /// Gauss–Seidel sweeps over the lattice (0: no polish). 20 with ω = 1.8: on the 4 one-chart shared
   /// meshes × lines / dots / mixed × 128² / 256² (2M samples) against no polish, mean +0.47 / +0.90 /
   /// +0.85 dB; 10 sweeps gave +0.42 / +0.73 / +0.72, 40 gave +0.47 / +0.97 / +0.81, ω = 1 with 30
-  /// sweeps +0.38 / +0.77 / +0.74 (docs/quality.md, session 13).
+  /// sweeps +0.38 / +0.77 / +0.74 (docs/quality.md, session 13, on the 256-cell lattice). Through the
+  /// 128-cell lattice with the edge directions (session 14), 10 sweeps against 20: −0.07 / −0.10 /
+  /// −0.26 dB on those meshes, −0.02 / +0.02 / −0.01 dB on the 5 multi-chart shared meshes.
   int sweeps = 20;
   /// Stop early when a sweep lowers E by less than this fraction of E.
   double tolerance = 1e-4;
