@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 #include "adaptex/core/errors.h"
@@ -104,9 +105,11 @@ void add_edge_directions(PolishFields& fields, const EdgeTensor& edges, const Ve
   };
   fields.txx = ImageF(n, n), fields.txy = ImageF(n, n), fields.tyy = ImageF(n, n);
   for (int j = 0; j < n; ++j) {
-    const auto [y0, y1] = range(j, lo.y(), hi.y(), H);
+    const std::pair<int, int> ys = range(j, lo.y(), hi.y(), H);
+    const int y0 = ys.first, y1 = ys.second;  // (clang 14 cannot capture structured bindings)
     for (int i = 0; i < n; ++i) {
-      const auto [x0, x1] = range(i, lo.x(), hi.x(), W);
+      const std::pair<int, int> xs = range(i, lo.x(), hi.x(), W);
+      const int x0 = xs.first, x1 = xs.second;
       auto box = [&](const std::vector<double>& s) {
         auto at = [&](int x, int y) { return s[static_cast<size_t>(y) * (W + 1) + x]; };
         return at(x1, y1) - at(x0, y1) - at(x1, y0) + at(x0, y0);
