@@ -686,7 +686,7 @@ ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const E
     });
   };
   // Where the motion still turns a cell of the warp (in strongly compressed spots, where the warp's
-  // cells are much smaller than the coarse lattice's: 0–70 cells of 65k on the shared meshes), the
+  // cells are much smaller than the coarse lattice's: 12–80 cells of 65k in the cases looked at), the
   // cell is untangled; if cells stay turned, the whole motion is halved.
   double t = 1;
   place(t);
