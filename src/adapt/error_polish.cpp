@@ -32,8 +32,8 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
     tu[i] = bilinear_tap(L, lo.x() + (i + 0.5) / n * (hi.x() - lo.x()));
     tv[i] = bilinear_tap(L, lo.y() + (i + 0.5) / n * (hi.y() - lo.y()));
   }
-  double density_sum = 0;
-  for (int j = 0; j < n; ++j)
+  std::vector<double> row_density(n, 0.0);  // summed in row order below: thread-independent
+  tbb::parallel_for(0, n, [&](int j) {
     for (int i = 0; i < n; ++i) {
       const int xs[2] = {tu[i].i0, tu[i].i1}, ys[2] = {tv[j].i0, tv[j].i1};
       const double wx[2] = {1 - tu[i].f, tu[i].f}, wy[2] = {1 - tv[j].f, tv[j].f};
@@ -47,8 +47,11 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
       f.error.at(i, j) = static_cast<float>(scale == 1 ? q : q * std::pow(scale, -p));
       f.exponent.at(i, j) = static_cast<float>(p);
       f.floor.at(i, j) = static_cast<float>(rho);
-      density_sum += rho;
+      row_density[j] += rho;
     }
+  });
+  double density_sum = 0;
+  for (double r : row_density) density_sum += r;
   f.aspect = (hi.x() - lo.x()) / (hi.y() - lo.y());
   const double mean = density_sum / (double(n) * n);
   for (size_t k = 0; k < f.floor.data.size(); ++k)
@@ -351,10 +354,10 @@ class Polisher {
 
   /// E over every cell (error part and floor part; cells with a non-positive triangle are skipped).
   void energy(double& error_part, double& total) const {
-    error_part = total = 0;
-    for (int cj = 0; cj < n_; ++cj)
+    // Rows in parallel, their sums added in row order: the same result on any number of threads.
+    std::vector<double> row_error(n_, 0.0), row_total(n_, 0.0);
+    tbb::parallel_for(0, n_, [&](int cj) {
       for (int ci = 0; ci < n_; ++ci) {
-        Local l;
         // Corner 0 at its own position: every triangle's terms (not only those that contain corner 0).
         const Vec2 c[4] = {w_.at(ci, cj), w_.at(ci + 1, cj), w_.at(ci + 1, cj + 1), w_.at(ci, cj + 1)};
         const Vec2 ex[4] = {c[1] - c[0], c[1] - c[0], c[2] - c[3], c[2] - c[3]};
@@ -375,11 +378,14 @@ class Polisher {
           if (ok && mu_ > 0) shape += 0.25 * mu_ * frobenius(ex[t], ey[t]) / (2 * D);
         }
         if (!ok) continue;
-        error_part += e;
-        total += e + shape;
+        row_error[cj] += e;
+        row_total[cj] += e + shape;
         const double d = 0.25 * dsum;
-        if (lo > 0 && kappa_ > 0 && d < lo) total += kappa_ * (lo / d - 1) * (lo / d - 1);
+        if (lo > 0 && kappa_ > 0 && d < lo) row_total[cj] += kappa_ * (lo / d - 1) * (lo / d - 1);
       }
+    });
+    error_part = total = 0;
+    for (int cj = 0; cj < n_; ++cj) error_part += row_error[cj], total += row_total[cj];
   }
 
   /// The points that may move, by colour (i mod 2, j mod 2).
