@@ -15,7 +15,7 @@
 //                         [--full-chart-share] [--no-quarter-texel]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
-//                         [--untangle-sor W] [--polish-sweeps N] [--polish-omega W] [--polish-floor K] [--polish-reach C] [--polish-shape MU] [--polish-cells M] [--polish-isotropy B] [--polish-charts]
+//                         [--untangle-sor W] [--polish-sweeps N] [--polish-omega W] [--polish-floor K] [--polish-reach C] [--polish-shape MU] [--polish-cells M] [--polish-isotropy B] [--polish-charts | --no-polish-charts]
 //
 // Mode names go to cli::make_session_options() (apps/cli/session_options.h, parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
@@ -102,7 +102,9 @@ struct Args {
   int polish_sweeps = -1;       ///< --polish-sweeps: ErrorPolishOptions::sweeps (-1: the default; 0: off).
   double polish_floor = -1;     ///< --polish-floor: ErrorPolishOptions::floor_weight (-1: the default).
   double polish_omega = -1;     ///< --polish-omega: ErrorPolishOptions::over_relaxation (-1: the default).
-  bool polish_charts = false;   ///< --polish-charts: ErrorPolishOptions::charts = true.
+  /// --polish-charts / --no-polish-charts: ErrorPolishOptions::charts = true / false (-1: the default,
+  /// true since session 14; --no-polish-charts gives session 13's multi-chart layouts).
+  int polish_charts = -1;
   int polish_reach = -1;        ///< --polish-reach: ErrorPolishOptions::reach_cells (-1: the default).
   int polish_cells = -1;        ///< --polish-cells: ErrorPolishOptions::cells (-1: the default; 0: the warp's).
   double polish_isotropy = -1;  ///< --polish-isotropy: ErrorPolishOptions::isotropy (-1: the default).
@@ -145,7 +147,7 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   if (a.flow_interp >= 0) o.adapt.flow.interpolation_tolerance = a.flow_interp;
   if (a.polish_sweeps >= 0) o.adapt.polish.sweeps = a.polish_sweeps;
   if (a.polish_omega > 0) o.adapt.polish.over_relaxation = a.polish_omega;
-  if (a.polish_charts) o.adapt.polish.charts = true;
+  if (a.polish_charts >= 0) o.adapt.polish.charts = a.polish_charts == 1;
   if (a.polish_reach >= 0) o.adapt.polish.reach_cells = a.polish_reach;
   if (a.polish_cells >= 0) o.adapt.polish.cells = a.polish_cells;
   if (a.polish_isotropy > 0) o.adapt.polish.isotropy = a.polish_isotropy;
@@ -219,7 +221,10 @@ Args parse_args(int argc, char** argv) {
     if (k == "--no-atlas") { a.atlas = false; continue; }
     if (k == "--full-chart-share") { a.full_chart_share = true; continue; }
     if (k == "--no-quarter-texel") { a.no_quarter_texel = true; continue; }
-    if (k == "--polish-charts") { a.polish_charts = true; continue; }
+    if (k == "--polish-charts" || k == "--no-polish-charts") {
+      a.polish_charts = k == "--polish-charts";
+      continue;
+    }
     if (i + 1 >= argc) throw std::invalid_argument(k + ": unknown option or missing value");
     const std::string v = argv[++i];
     if (k == "--meshes") a.meshes = split(v);
