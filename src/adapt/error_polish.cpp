@@ -2,6 +2,7 @@
 #include "adaptex/adapt/error_polish.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <cmath>
@@ -76,6 +77,16 @@ EdgeTensor edge_tensor(const ImageRGBA8& texture) {
       t.xx.at(i, j) = static_cast<float>(xx), t.xy.at(i, j) = static_cast<float>(xy), t.yy.at(i, j) = static_cast<float>(yy);
     }
   });
+  // Summed-area tables (double: sums of up to W·H squared gradients), the three in parallel.
+  auto table = [&](const ImageF& img, std::vector<double>& s) {
+    s.assign(static_cast<size_t>(W + 1) * (H + 1), 0.0);
+    for (int j = 0; j < H; ++j)
+      for (int i = 0; i < W; ++i)
+        s[static_cast<size_t>(j + 1) * (W + 1) + i + 1] = img.at(i, j) + s[static_cast<size_t>(j) * (W + 1) + i + 1] +
+                                                          s[static_cast<size_t>(j + 1) * (W + 1) + i] -
+                                                          s[static_cast<size_t>(j) * (W + 1) + i];
+  };
+  tbb::parallel_invoke([&] { table(t.xx, t.sum_xx); }, [&] { table(t.xy, t.sum_xy); }, [&] { table(t.yy, t.sum_yy); });
   return t;
 }
 
@@ -88,17 +99,10 @@ void add_edge_directions(PolishFields& fields, const EdgeTensor& edges, const Ve
   if (!(isotropy > 0 && isotropy <= 1)) throw InvalidInputError("add_edge_directions: isotropy must be in (0, 1]");
   if (!(lo.x() < hi.x() && lo.y() < hi.y() && lo.minCoeff() >= 0 && hi.maxCoeff() <= 1))
     throw InvalidInputError("add_edge_directions: the rectangle must be non-empty and inside the unit square");
-  // Summed-area tables of the three components (double: sums of up to W·H squared gradients).
-  auto table = [&](const ImageF& img) {
-    std::vector<double> s(static_cast<size_t>(W + 1) * (H + 1), 0.0);
-    for (int j = 0; j < H; ++j)
-      for (int i = 0; i < W; ++i)
-        s[static_cast<size_t>(j + 1) * (W + 1) + i + 1] = img.at(i, j) + s[static_cast<size_t>(j) * (W + 1) + i + 1] +
-                                                          s[static_cast<size_t>(j + 1) * (W + 1) + i] -
-                                                          s[static_cast<size_t>(j) * (W + 1) + i];
-    return s;
-  };
-  const std::vector<double> sxx = table(edges.xx), sxy = table(edges.xy), syy = table(edges.yy);
+  const size_t table = static_cast<size_t>(W + 1) * (H + 1);
+  if (edges.sum_xx.size() != table || edges.sum_xy.size() != table || edges.sum_yy.size() != table)
+    throw InvalidInputError("add_edge_directions: the edge tensor has no summed-area tables of its size (edge_tensor())");
+  const std::vector<double>&sxx = edges.sum_xx, &sxy = edges.sum_xy, &syy = edges.sum_yy;
   // Texel index range [a, b) of the cells c - 1 .. c + 1 along one axis (at least one texel).
   auto range = [&](int c, double l, double h, int size) {
     const double u0 = l + (c - 1.0) / n * (h - l), u1 = l + (c + 2.0) / n * (h - l);

@@ -526,8 +526,15 @@ TEST(ErrorPolish, EdgeTensorOfAStripeFollowsItsEdges) {
   EXPECT_NEAR(f.txx.at(3, 4), 1 - 0.125, 1e-6);
   EXPECT_NEAR(f.tyy.at(3, 4), 0.125, 1e-6);
   EXPECT_NEAR(f.txx.at(0, 4), 0.5, 1e-6);
+  // The summed-area tables hold the rasters' sums.
+  double total = 0;
+  for (float v : e.xx.data) total += v;
+  EXPECT_DOUBLE_EQ(e.sum_xx.back(), total);
   // Bad input.
   EXPECT_THROW(edge_tensor(ImageRGBA8()), InvalidInputError);
+  EdgeTensor bare;  // rasters without their tables
+  bare.xx = e.xx, bare.xy = e.xy, bare.yy = e.yy;
+  EXPECT_THROW(add_edge_directions(f, bare, Vec2(0, 0), Vec2(1, 1), 0.25), InvalidInputError);
   EXPECT_THROW(add_edge_directions(f, e, Vec2(0, 0), Vec2(1, 1), 0), InvalidInputError);
   EXPECT_THROW(add_edge_directions(f, e, Vec2(0.5, 0), Vec2(0.5, 1), 0.25), InvalidInputError);
   GridWarp w = GridWarp::uniform(8);

@@ -30,6 +30,8 @@
 /// blended with I/2 (PolishFields::txx, add_edge_directions(), ErrorPolishOptions::isotropy), so
 /// texels get fine across edges and may stretch along them; the flow's lattice is polished through a
 /// coarser one (polish_warp(), ErrorPolishOptions::cells); and every chart's lattice is polished.
+#include <vector>
+
 #include "adaptex/adapt/grid.h"
 #include "adaptex/core/image.h"
 #include "adaptex/core/progress.h"
@@ -130,6 +132,9 @@ struct PolishFields {
 /// gradient g (central differences per texel, summed over R, G and B; one-sided at the borders).
 struct EdgeTensor {
   ImageF xx, xy, yy;  ///< W x H each.
+  /// Summed-area tables of xx, xy, yy ((W+1) x (H+1), row-major, entry (x, y) = the sum over texels
+  /// [0, x) x [0, y)), built once by edge_tensor(): add_edge_directions() runs once per chart lattice.
+  std::vector<double> sum_xx, sum_xy, sum_yy;
 };
 
 /// \pre texture not empty \throw InvalidInputError it is empty
@@ -139,8 +144,8 @@ EdgeTensor edge_tensor(const ImageRGBA8& texture);
 /// cell, \p edges summed over the texels of the cell and of the ring of cells around it (a box three
 /// cells wide), normalized to trace 1 and blended with the isotropic tensor:
 /// T = (1 − isotropy)·T_edges + isotropy·I/2 (I/2 where the sum is 0).
-/// \pre isotropy in (0, 1]; lo < hi inside [0,1]²; fields.error n x n, n >= 1; edges' three rasters
-///      the same size, not empty
+/// \pre isotropy in (0, 1]; lo < hi inside [0,1]²; fields.error n x n, n >= 1; \p edges from
+///      edge_tensor() (three rasters of one non-empty size and their tables)
 /// \throw InvalidInputError a precondition fails
 void add_edge_directions(PolishFields& fields, const EdgeTensor& edges, const Vec2& lo, const Vec2& hi,
                          double isotropy);
