@@ -11,7 +11,7 @@
 //                         [--count N] [--seed S]
 //                         [--grid C,F] [--alpha A] [--beta B] [--schedule end|each-stroke]
 //                         [--update replay|resample] [--no-safeguard] [--no-refine] [--verbose]
-//                         [--charts single|auto] [--floor F] [--density-cells L] [--no-atlas]
+//                         [--charts single|auto] [--probe-first-charts N] [--floor F] [--density-cells L] [--no-atlas]
 //                         [--full-chart-share] [--no-quarter-texel]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
@@ -83,6 +83,7 @@ struct Args {
   std::string schedule = "end", update = "replay";
   bool safeguard = true, verbose = false;
   std::string charts = "auto";  ///< --charts single|auto: the initial layout (unwrap's ChartMode).
+  int probe_first_charts = -1;  ///< --probe-first-charts: UnwrapOptions::probe_first_charts (-1: the default).
   double floor = -1;            ///< --floor: ErrorDensityOptions::floor (-1: the default).
   int density_cells = -1;       ///< --density-cells: ErrorDensityOptions::cells (-1: the default).
   bool atlas = true;            ///< --no-atlas: AdaptOptions::atlas_flow = false (one flow over the square).
@@ -244,6 +245,7 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--schedule") a.schedule = v;
     else if (k == "--update") a.update = v;
     else if (k == "--charts") a.charts = v;
+    else if (k == "--probe-first-charts") a.probe_first_charts = std::stoi(v);
     else if (k == "--floor") a.floor = std::stod(v);
     else if (k == "--density-cells") a.density_cells = std::stoi(v);
     else if (k == "--refine-factor") a.refine_factor = positive(k, v);
@@ -437,6 +439,7 @@ int main(int argc, char** argv) {
     const std::string name = fs::path(path).stem().string();
     UnwrapOptions uo;
     uo.charts = a.charts == "single" ? ChartMode::Single : ChartMode::Auto;
+    if (a.probe_first_charts >= 0) uo.probe_first_charts = a.probe_first_charts;
     Parameterization param;
     try {
       param = unwrap(mesh, uo).param;

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include "adaptex/core/predicates.h"
 
@@ -213,9 +214,13 @@ bool interiors_overlap(const std::array<Vec2, 3>& a, int sa, const std::array<Ve
 
 }  // namespace
 
-long count_overlapping_triangles(const Parameterization& param, long max_pairs) {
+namespace {
+/// Calls \p found(f, g) (f < g, from several threads) for every pair of UV triangles whose interiors
+/// overlap, until it returns false; see count_overlapping_triangles().
+template <class Found>
+void for_overlapping_pairs(const Parameterization& param, Found&& found) {
   const int nf = static_cast<int>(param.uv_faces.size());
-  if (nf < 2) return 0;
+  if (nf < 2) return;
   struct Tri {
     std::array<Vec2, 3> p;
     Vec2 lo, hi;
@@ -254,11 +259,11 @@ long count_overlapping_triangles(const Parameterization& param, long max_pairs) 
     for (int f = 0; f < nf; ++f)
       if (tris[f].sign != 0) for_cells(tris[f], [&](size_t c) { items[fill[c]++] = f; });
   }
-  std::atomic<long> found{0};
+  std::atomic<bool> stop{false};
   tbb::parallel_for(tbb::blocked_range<size_t>(0, static_cast<size_t>(n) * n, 64),
                     [&](const tbb::blocked_range<size_t>& r) {
     for (size_t c = r.begin(); c != r.end(); ++c) {
-      if (found.load(std::memory_order_relaxed) >= max_pairs) return;
+      if (stop.load(std::memory_order_relaxed)) return;
       const int cx = static_cast<int>(c % n), cy = static_cast<int>(c / n);
       for (int i = count[c]; i < count[c + 1]; ++i)
         for (int j = i + 1; j < count[c + 1]; ++j) {
@@ -270,11 +275,31 @@ long count_overlapping_triangles(const Parameterization& param, long max_pairs) 
           if (cell_of(std::max(a.lo.x(), b.lo.x()), lo.x(), ext.x()) != cx ||
               cell_of(std::max(a.lo.y(), b.lo.y()), lo.y(), ext.y()) != cy)
             continue;
-          if (interiors_overlap(a.p, a.sign, b.p, b.sign)) found.fetch_add(1, std::memory_order_relaxed);
+          if (interiors_overlap(a.p, a.sign, b.p, b.sign) &&
+              !found(std::min(items[i], items[j]), std::max(items[i], items[j])))
+            stop.store(true, std::memory_order_relaxed);
         }
     }
   });
+}
+}  // namespace
+
+long count_overlapping_triangles(const Parameterization& param, long max_pairs) {
+  std::atomic<long> found{0};
+  for_overlapping_pairs(param, [&](int, int) { return found.fetch_add(1, std::memory_order_relaxed) + 1 < max_pairs; });
   return std::min(found.load(), max_pairs);
+}
+
+std::vector<std::array<int, 2>> overlapping_triangle_pairs(const Parameterization& param, long max_pairs) {
+  std::mutex m;
+  std::vector<std::array<int, 2>> pairs;
+  for_overlapping_pairs(param, [&](int f, int g) {
+    const std::lock_guard<std::mutex> lock(m);
+    if (static_cast<long>(pairs.size()) < max_pairs) pairs.push_back({f, g});
+    return static_cast<long>(pairs.size()) < max_pairs;
+  });
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
 }
 
 double texel_utilization(const Parameterization& param, int res) {

@@ -318,5 +318,59 @@ TEST(Remap, UntanglingKeepsMoreOfAWarpThanDamping) {
   }
 }
 
+TEST(Remap, AFaceBarelyAboveMinAreaDoesNotCostTheWholeWarp) {
+  // A UV triangle whose input area is barely above min_area (a 3-D sliver, or a refined child of
+  // one: triceratops' 12-chart layout at 128²) flips under a warp that is not affine across it, and
+  // halving its wedges' displacement moves its area by only |edge|·|disp|: after the 24 local rounds
+  // it was still flipped, and the remap went on to the global bisection (10 more checks) and to the
+  // 100-round attempt (1.3 s of remap there). Snapping the wedges of a face that still fails back to
+  // their input UV (SafeRemapOptions::snap_round) settles it in the first attempt.
+  const int n = 40;
+  const TriMesh mesh = shapes::plane(n);
+  Parameterization param = plane_param(mesh);
+  SafeRemapOptions o;
+  // No untangling (it would move the squashed corner back to its ring's mean; on triceratops the
+  // corners sat on a chart border, which untangling never moves): damping alone must settle it.
+  o.untangle_rounds = 0;
+  // The face nearest the centre, its corner v opposite its longest edge (a, b: a lattice cell's
+  // diagonal) squashed onto that edge, 1.5 × min_area of area left.
+  int f = 0;
+  for (int g = 1; g < mesh.num_faces(); ++g) {
+    auto centre = [&](int h) -> Vec2 {
+      const Face& t = param.uv_faces[h];
+      return (param.uv[t[0]] + param.uv[t[1]] + param.uv[t[2]]) / 3.0 - Vec2(0.5, 0.5);
+    };
+    if (centre(g).norm() < centre(f).norm()) f = g;
+  }
+  Face t = param.uv_faces[f];
+  while ((param.uv[t[1]] - param.uv[t[2]]).norm() < (param.uv[t[0]] - param.uv[t[1]]).norm() - 1e-12 ||
+         (param.uv[t[1]] - param.uv[t[2]]).norm() < (param.uv[t[2]] - param.uv[t[0]]).norm() - 1e-12)
+    t = Face{t[1], t[2], t[0]};  // t[0] = v, opposite the longest edge
+  const Vec2 a = param.uv[t[1]], b = param.uv[t[2]], v0 = param.uv[t[0]];
+  const Vec2 e = b - a, normal = Vec2(-e.y(), e.x()) / e.norm();  // toward v (positive orientation)
+  param.uv[t[0]] = 0.5 * (a + b) + (2 * 1.5 * o.min_area / e.norm()) * normal;
+  ASSERT_GT(uv_signed_area(param, f), o.min_area);
+  ASSERT_LT(uv_signed_area(param, f), 2 * o.min_area);
+  for (int g = 0; g < mesh.num_faces(); ++g) ASSERT_GT(uv_signed_area(param, g), 0.0) << "face " << g;
+  // The warp: the lattice (one cell per mesh cell) with the cell's two corners that are not a or b
+  // pushed 0.15 cell across the diagonal; v, at the cell's centre, follows by half of that.
+  GridWarp w = GridWarp::uniform(n);
+  const Vec2 d = a + b - v0;  // the cell's fourth corner
+  for (const Vec2& c : {v0, d}) w.at(static_cast<int>(std::lround(c.x() * n)), static_cast<int>(std::lround(c.y() * n))) -= 0.15 / n * normal;
+  ASSERT_GT(check_remap(param, remap_parameterization(param, {&w}), o).flipped, 0);
+  const SafeRemapResult r = safe_remap(param, {&w}, o);
+  EXPECT_TRUE(check_remap(param, r.param, o).ok());
+  EXPECT_EQ(r.checks, 1);           // settled in the first attempt...
+  EXPECT_EQ(r.damping, 1.0);        // ...with no global damping...
+  EXPECT_GT(r.mean_damping, 0.99);  // ...and only a few wedges damped locally
+  SafeRemapOptions halving = o;
+  halving.snap_round = -1;
+  const SafeRemapResult h = safe_remap(param, {&w}, halving);
+  EXPECT_TRUE(check_remap(param, h.param, o).ok());
+  std::printf("checks %d with snapping, %d halving only (mean blend kept %.4f, %.4f)\n", r.checks, h.checks,
+              r.mean_damping, h.mean_damping);
+  EXPECT_GT(h.checks, 1);  // halving alone: the first attempt failed
+}
+
 }  // namespace
 }  // namespace adaptex

@@ -2,6 +2,7 @@
 /// \file stretch.h
 /// Sander et al. 2001 ("Texture mapping progressive meshes") L2 and L-infinity stretch (thesis
 /// §2.1.3), normalized so that 1.0 is ideal, plus other distortion measures.
+#include <array>
 #include <vector>
 
 #include "adaptex/core/mesh.h"
@@ -65,6 +66,10 @@ std::vector<double> l2_stretch_of_aspects(const TriMesh& mesh, const std::vector
 /// uniform grid of buckets; independent of how the layout was made). Shared edges/vertices do not
 /// count. \param max_pairs stop counting after this many.
 long count_overlapping_triangles(const Parameterization& param, long max_pairs = 1000);
+
+/// The pairs {f, g} (f < g, sorted) of UV triangles whose interiors overlap, as counted by
+/// count_overlapping_triangles(); at most \p max_pairs of them (which ones is then unspecified).
+std::vector<std::array<int, 2>> overlapping_triangle_pairs(const Parameterization& param, long max_pairs = 100000);
 
 /// Fraction of the texels of a \p res x \p res texture whose centre lies inside some UV triangle.
 double texel_utilization(const Parameterization& param, int res);
