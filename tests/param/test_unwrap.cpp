@@ -123,18 +123,19 @@ TEST(Unwrap, AutoStopsAtTheLargestChartCount) {
 
 TEST(Unwrap, ProbeSkipsAHopelessSingleChartAndOnlyReordersTheCounts) {
   // Genus 3: the single chart's first cheap parameterization has an L2 of about 11 (> 3), so auto
-  // gives it up; with probe_first_charts = 12 the segmentation starts at 12 (docs/charts.md).
+  // gives it up; with probe_first_charts = 12 (the default) the segmentation starts at 12
+  // (docs/charts.md).
   const TriMesh m = shapes::genus_surface(3);
-  UnwrapOptions from12;
-  from12.probe_first_charts = 12;
+  const UnwrapOptions from12;
+  ASSERT_EQ(from12.probe_first_charts, 12);
   UnwrapResult probed;
   test::check_unwrap("probe", m, from12, &probed);
   EXPECT_GE(probed.report.num_charts, 12);
   EXPECT_GE(probed.report.effective_texel_share, 0.5);
-  // Starting at 4 charts (the default), the probe only skips the single chart: the layout is the one
-  // auto made without the probe (single chart in full, then 4, 6, ...), bit for bit.
-  const UnwrapOptions from4;
-  ASSERT_EQ(from4.probe_first_charts, 4);
+  // Starting at 4 charts, the probe only skips the single chart: the layout is the one auto made
+  // without the probe (single chart in full, then 4, 6, ...), bit for bit.
+  UnwrapOptions from4;
+  from4.probe_first_charts = 4;
   UnwrapOptions no_probe;
   no_probe.single_probe_l2 = 0;
   const UnwrapResult a = unwrap(m, from4);

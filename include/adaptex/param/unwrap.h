@@ -78,12 +78,15 @@ struct UnwrapOptions {
   /// 0.5 starts at an L2 of at most 2.47 (venus); docs/charts.md. 0 disables the probe.
   double single_probe_l2 = 3.0;
   /// Auto, after the probe above gave up the single chart: the chart counts >= this are tried
-  /// first (e.g. 12: 12, 16, 24, ..., then 4, 6, 8). The default 4 keeps the order 4, 6, 8, ...:
-  /// the probe then only skips the single chart, and the fewest charts that reach the share are
-  /// kept. 12 first is 3-4x faster on multi-chart meshes; its effect on the adaptive warp depends on
-  /// the mesh (triceratops' texel saving fell from ~4x to ~1.5x, armadillo and code-built genus 2/3
-  /// gained), and 4 first has the better worst case over the shared study (docs/charts.md).
-  int probe_first_charts = 4;
+  /// first (12: 12, 16, 24, ..., then 4, 6, 8). 4 keeps the order 4, 6, 8, ...: the probe then only
+  /// skips the single chart, and the fewest charts that reach the share are kept. 12 (default since
+  /// session 15) builds one layout where 4 first builds three or four: triceratops 52 -> 24 ms, dino
+  /// 103 -> 34 ms (issue 8's speed targets). Session 5 had reverted to 4 because triceratops' 12
+  /// charts adapted badly (texel saving ~1.7x); the cause was the safe remap (a 3-D sliver whose
+  /// neighbours overlapped, SafeRemapOptions::damp_overlaps), not the layout, and with it fixed 12
+  /// first gains on lines, dots and mixed and costs up to 3 dB on smooth paint above 50 dB
+  /// (docs/charts.md, "What auto does").
+  int probe_first_charts = 12;
   /// Auto: how many chart counts may be built at the same time (TBB tasks). With S > 1, each of the
   /// next S - 1 counts starts on the threads the count before it no longer needs (once that one has
   /// started its last chart) and is cancelled and discarded if an earlier count is kept. The counts
