@@ -261,11 +261,15 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
   }
   // Faces of overlapping pairs that do not overlap in the input (SafeRemapOptions::damp_overlaps).
   std::unique_ptr<std::vector<std::array<int, 2>>> pairs_before;  // computed on first need
+  // Only when the input has no overlapping pair at all (as for damp_crossings): a layout that
+  // overlaps itself already (stacked or mirrored UVs given to `adaptex reparam`) keeps the global
+  // blend, and the pair lists stay short (they stop at max_pairs, so the difference of two capped
+  // lists would not be the new pairs).
   auto faces_of_new_overlaps = [&](const Parameterization& out) {
-    if (!pairs_before) pairs_before = std::make_unique<std::vector<std::array<int, 2>>>(overlapping_triangle_pairs(param));
+    if (!pairs_before) pairs_before = std::make_unique<std::vector<std::array<int, 2>>>(overlapping_triangle_pairs(param, 1));
     std::vector<int> faces;
-    for (const std::array<int, 2>& pr : overlapping_triangle_pairs(out))
-      if (!std::binary_search(pairs_before->begin(), pairs_before->end(), pr)) faces.push_back(pr[0]), faces.push_back(pr[1]);
+    if (!pairs_before->empty()) return faces;
+    for (const std::array<int, 2>& pr : overlapping_triangle_pairs(out)) faces.push_back(pr[0]), faces.push_back(pr[1]);
     // With the faces around them (two rings): the overlaps come from a displacement that varies too
     // fast around a tiny face, and damping only the pair moved the overlap to the next faces, one
     // ring per round (triceratops 12 charts, lines 256²: 24 rounds were not enough).

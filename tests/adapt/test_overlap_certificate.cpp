@@ -167,6 +167,32 @@ TEST(OverlapCertificate, SafeRemapStillRefusesChartsRunningIntoEachOther) {
   EXPECT_GT(count_overlapping_triangles(remap_parameterization(p, {&g})), 0);
 }
 
+TEST(OverlapCertificate, OverlapDampingLeavesALayoutThatOverlapsItselfToTheGlobalBlend) {
+  // SafeRemapOptions::damp_overlaps damps the faces of overlapping pairs locally only when the input
+  // has none (as damp_crossings): with stacked charts (an artist's mirrored or stacked UVs given to
+  // `adaptex reparam`) the result is the one without it, and still adds no overlapping pair.
+  Parameterization p;
+  add_grid_chart(p, 6, 6, 0.1, 0.3, 0.35, 0.35, 0);
+  add_grid_chart(p, 6, 6, 0.2, 0.35, 0.35, 0.35, 1);  // lies on chart 0
+  add_grid_chart(p, 6, 6, 0.6, 0.3, 0.3, 0.35, 2);
+  const long before = count_overlapping_triangles(p);
+  ASSERT_GT(before, 0);
+  GridWarp g = GridWarp::uniform(16);
+  for (int j = 1; j < 16; ++j)
+    for (int i = 1; i < 16; ++i) {
+      const double x = double(i) / 16;
+      g.at(i, j).x() = x + 0.6 * x * (1 - x) * (x < 0.5 ? 0.3 : 1.0);  // chart 2 into chart 1
+    }
+  SafeRemapOptions on, off;
+  off.damp_overlaps = false;
+  ASSERT_TRUE(on.damp_overlaps);
+  const SafeRemapResult a = safe_remap(p, {&g}, on), b = safe_remap(p, {&g}, off);
+  EXPECT_TRUE(a.param.uv == b.param.uv);
+  EXPECT_EQ(a.mean_damping, b.mean_damping);
+  EXPECT_EQ(check_remap(p, a.param).overlaps, 0);
+  EXPECT_EQ(flipped(p, a.param), 0);
+}
+
 TEST(AtlasFlow, ChartLatticesAddUpToAboutOneSquareLattice) {
   // Elongated charts: their square lattices would add up to far more than one 128-cell lattice.
   std::vector<ChartMove> moves;
