@@ -259,12 +259,11 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
     for (int f = 0; f < F; ++f)
       for (int w : param.uv_faces[f]) wedge_faces[fill[w]++] = f;
   }
-  // Faces of overlapping pairs that do not overlap in the input (SafeRemapOptions::damp_overlaps).
-  std::unique_ptr<std::vector<std::array<int, 2>>> pairs_before;  // computed on first need
-  // Only when the input has no overlapping pair at all (as for damp_crossings): a layout that
-  // overlaps itself already (stacked or mirrored UVs given to `adaptex reparam`) keeps the global
-  // blend, and the pair lists stay short (they stop at max_pairs, so the difference of two capped
-  // lists would not be the new pairs).
+  // The faces of the overlapping pairs of a candidate, to be damped locally
+  // (SafeRemapOptions::damp_overlaps). Only when the input has no overlapping pair at all (as for
+  // damp_crossings): a layout that overlaps itself already (stacked or mirrored UVs given to
+  // `adaptex reparam`) keeps the global blend (and two capped pair lists are never differenced).
+  std::unique_ptr<std::vector<std::array<int, 2>>> pairs_before;  // the input's first pair, if any
   auto faces_of_new_overlaps = [&](const Parameterization& out) {
     if (!pairs_before) pairs_before = std::make_unique<std::vector<std::array<int, 2>>>(overlapping_triangle_pairs(param, 1));
     std::vector<int> faces;

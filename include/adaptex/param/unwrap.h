@@ -83,9 +83,10 @@ struct UnwrapOptions {
   /// session 15) builds one layout where 4 first builds three or four: triceratops 52 -> 24 ms, dino
   /// 103 -> 34 ms (issue 8's speed targets). Session 5 had reverted to 4 because triceratops' 12
   /// charts adapted badly (texel saving ~1.7x); the cause was the safe remap (a 3-D sliver whose
-  /// neighbours overlapped, SafeRemapOptions::damp_overlaps), not the layout, and with it fixed 12
-  /// first gains on lines, dots and mixed and costs up to 3 dB on smooth paint above 50 dB
-  /// (docs/charts.md, "What auto does").
+  /// neighbours overlapped, SafeRemapOptions::damp_overlaps), not the layout. With it fixed, 12
+  /// first gains 0.5 dB on lines, dots and mixed on the meshes whose layout changes, and its seams
+  /// cost smooth paint up to 5 dB at 128² (about 1 dB at 256², above 60 dB; docs/charts.md, "What
+  /// auto does").
   int probe_first_charts = 12;
   /// Auto: how many chart counts may be built at the same time (TBB tasks). With S > 1, each of the
   /// next S - 1 counts starts on the threads the count before it no longer needs (once that one has
