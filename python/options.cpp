@@ -96,6 +96,8 @@ const std::vector<Field<UnwrapOptions>>& unwrap_fields() {
       enum_member("charts", &O::charts, {{"auto", ChartMode::Auto}, {"single", ChartMode::Single}}),
       member("min_texel_share", &O::min_texel_share),
       member("max_charts", &O::max_charts),
+      member("single_probe_l2", &O::single_probe_l2),
+      member("probe_first_charts", &O::probe_first_charts),
       member("chart_normal_weight", &O::chart_normal_weight),
       member("gutter_texels", &O::gutter_texels),
       member("gutter_texture_size", &O::gutter_texture_size),

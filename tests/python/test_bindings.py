@@ -77,6 +77,10 @@ def test_unwrap_keywords_are_the_library_options(sphere):
         adaptex.unwrap(V, F, charts="many")
     with pytest.raises(adaptex.InvalidInputError, match="must be an int"):
         adaptex.unwrap(V, F, max_charts=2.5)
+    # The chart-count order of auto (12 first by default, 4 for the fewest charts) reaches the library.
+    assert defaults["probe_first_charts"] == 12
+    with pytest.raises(adaptex.InvalidInputError, match="chart counts"):
+        adaptex.unwrap(V, F, probe_first_charts=-1)
 
 
 def test_paint_from_dict_and_from_file_agree(tmp_path, sphere, strokes):
