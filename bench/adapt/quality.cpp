@@ -16,7 +16,7 @@
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
 //                         [--untangle-sor W] [--polish-sweeps N] [--polish-omega W] [--polish-floor K] [--polish-reach C] [--polish-shape MU] [--polish-cells M] [--polish-isotropy B] [--polish-charts | --no-polish-charts]
-//                         [--no-damp-overlaps] [--snap-round R]
+//                         [--no-damp-overlaps] [--snap-round R] [--polish-prepass N] [--polish-after N]
 //
 // Mode names go to cli::make_session_options() (apps/cli/session_options.h, parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
@@ -109,6 +109,8 @@ struct Args {
   int polish_charts = -1;
   bool damp_overlaps = true;  ///< --no-damp-overlaps: SafeRemapOptions::damp_overlaps = false.
   int snap_round = -2;        ///< --snap-round R: SafeRemapOptions::snap_round (-2: the default).
+  int polish_prepass = -1;    ///< --polish-prepass N: ErrorPolishOptions::prepass_sweeps (-1: the default).
+  int polish_after = -1;      ///< --polish-after N: ErrorPolishOptions::sweeps_after_prepass (-1: the default).
   int polish_reach = -1;        ///< --polish-reach: ErrorPolishOptions::reach_cells (-1: the default).
   int polish_cells = -1;        ///< --polish-cells: ErrorPolishOptions::cells (-1: the default; 0: the warp's).
   double polish_isotropy = -1;  ///< --polish-isotropy: ErrorPolishOptions::isotropy (-1: the default).
@@ -154,6 +156,8 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   if (a.polish_charts >= 0) o.adapt.polish.charts = a.polish_charts == 1;
   o.adapt.remap.damp_overlaps = a.damp_overlaps;
   if (a.snap_round != -2) o.adapt.remap.snap_round = a.snap_round;
+  if (a.polish_prepass >= 0) o.adapt.polish.prepass_sweeps = a.polish_prepass;
+  if (a.polish_after >= 0) o.adapt.polish.sweeps_after_prepass = a.polish_after;
   if (a.polish_reach >= 0) o.adapt.polish.reach_cells = a.polish_reach;
   if (a.polish_cells >= 0) o.adapt.polish.cells = a.polish_cells;
   if (a.polish_isotropy > 0) o.adapt.polish.isotropy = a.polish_isotropy;
@@ -256,6 +260,8 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--charts") a.charts = v;
     else if (k == "--probe-first-charts") a.probe_first_charts = std::stoi(v);
     else if (k == "--snap-round") a.snap_round = std::stoi(v);
+    else if (k == "--polish-prepass") a.polish_prepass = std::stoi(v);
+    else if (k == "--polish-after") a.polish_after = std::stoi(v);
     else if (k == "--floor") a.floor = std::stod(v);
     else if (k == "--density-cells") a.density_cells = std::stoi(v);
     else if (k == "--refine-factor") a.refine_factor = positive(k, v);

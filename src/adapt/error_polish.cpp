@@ -502,11 +502,11 @@ class Polisher {
 void check_polish_options(const ErrorPolishOptions& options) {
   if (!(options.over_relaxation > 0 && options.over_relaxation < 2))
     throw InvalidInputError("polish options: over_relaxation must be in (0, 2)");
-  if (options.sweeps < 0 || !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
+  if (options.sweeps < 0 || options.prepass_sweeps < 0 || options.sweeps_after_prepass < 0 || !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
       !(options.shape_weight >= 0) || options.reach_cells < 0 || options.cells < 0 ||
       !(options.isotropy > 0 && options.isotropy <= 1))
     throw InvalidInputError(
-        "polish options: sweeps, tolerance, floor_weight, shape_weight, reach_cells and cells must be >= 0, "
+        "polish options: sweeps (all three), tolerance, floor_weight, shape_weight, reach_cells and cells must be >= 0, "
         "isotropy in (0, 1]");
 }
 

@@ -102,6 +102,13 @@ class DensityFlowWarp final : public WarpMethod {
       // `mixed` 128²: 12.4 dB "gained" on the coarse lattice).
       const PolishFields own = m == g.n ? PolishFields{} : fields(g.n);
       const double before = m == g.n ? 0.0 : polish_model_error(g, own, po);
+      if (po.prepass_sweeps > 0 && m >= 32) {
+        // Coarse to fine (ErrorPolishOptions::prepass_sweeps): the half lattice first.
+        ErrorPolishOptions pre = po;
+        pre.sweeps = po.prepass_sweeps;
+        polish_warp(g, fields(m / 2), pre);
+        po.sweeps = po.sweeps_after_prepass;
+      }
       ErrorPolishStats st = polish_warp(g, f, po);
       if (m != g.n) st.error_before = before, st.error_after = polish_model_error(g, own, po);
       res.report.polish_sweeps = std::max(res.report.polish_sweeps, st.sweeps);

@@ -47,6 +47,17 @@ struct ErrorPolishOptions {
   /// 128-cell lattice with the edge directions (session 14), 10 sweeps against 20: −0.07 / −0.10 /
   /// −0.26 dB on those meshes, −0.02 / +0.02 / −0.01 dB on the 5 multi-chart shared meshes.
   int sweeps = 20;
+  /// Coarse-to-fine (the warp method's polish, warp_density_flow.cpp): where the polish lattice has
+  /// at least 32 cells, first prepass_sweeps sweeps on a lattice of half as many cells, then
+  /// sweeps_after_prepass (instead of sweeps) on the full one. Plain Gauss–Seidel leaves the slow,
+  /// global modes of the warp unconverged (on venus `mixed` 256² the energy still fell 0.4 % per
+  /// sweep at sweep 20); the half lattice moves them at a quarter of the cost per sweep. Session 15,
+  /// against 20 sweeps on the full lattice (mean dB per case, lines / dots / mixed / blobs): the
+  /// 9-mesh study (128²–512², seed 1) −0.03 / +0.00 / +0.14; out of sample (13 meshes, seed 3)
+  /// +0.04 / +0.01 / +0.19 / +0.38; the polish 0.67× the time (docs/quality.md, "Session 15").
+  /// 20 + 10 gave −0.02 / −0.05 / +0.20 on 6 meshes at 256². 0: no prepass.
+  int prepass_sweeps = 20;
+  int sweeps_after_prepass = 5;  ///< Sweeps on the full lattice after a prepass (see prepass_sweeps).
   /// Stop early when a sweep lowers E by less than this fraction of E.
   double tolerance = 1e-4;
   /// κ of the floor term, relative to the mean q of the painted cells.
