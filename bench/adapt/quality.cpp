@@ -258,10 +258,10 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--schedule") a.schedule = v;
     else if (k == "--update") a.update = v;
     else if (k == "--charts") a.charts = v;
-    else if (k == "--probe-first-charts") a.probe_first_charts = std::stoi(v);
-    else if (k == "--snap-round") a.snap_round = std::stoi(v);
-    else if (k == "--polish-prepass") a.polish_prepass = std::stoi(v);
-    else if (k == "--polish-after") a.polish_after = std::stoi(v);
+    else if (k == "--probe-first-charts") a.probe_first_charts = whole(k, v, 0, 1000);
+    else if (k == "--snap-round") a.snap_round = whole(k, v, -1, 1000);
+    else if (k == "--polish-prepass") a.polish_prepass = whole(k, v, 0, 100000);
+    else if (k == "--polish-after") a.polish_after = whole(k, v, 0, 100000);
     else if (k == "--floor") a.floor = std::stod(v);
     else if (k == "--density-cells") a.density_cells = std::stoi(v);
     else if (k == "--refine-factor") a.refine_factor = positive(k, v);

@@ -259,19 +259,19 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
     for (int f = 0; f < F; ++f)
       for (int w : param.uv_faces[f]) wedge_faces[fill[w]++] = f;
   }
-  // The faces of the overlapping pairs of a candidate, to be damped locally
-  // (SafeRemapOptions::damp_overlaps). Only when the input has no overlapping pair at all (as for
-  // damp_crossings): a layout that overlaps itself already (stacked or mirrored UVs given to
-  // `adaptex reparam`) keeps the global blend (and two capped pair lists are never differenced).
-  std::unique_ptr<std::vector<std::array<int, 2>>> pairs_before;  // the input's first pair, if any
-  auto faces_of_new_overlaps = [&](const Parameterization& out) {
-    if (!pairs_before) pairs_before = std::make_unique<std::vector<std::array<int, 2>>>(overlapping_triangle_pairs(param, 1));
+  // The faces of the overlapping pairs of a candidate, with two rings of faces around them, to be
+  // damped locally (SafeRemapOptions::damp_overlaps). Only when the input has no overlapping pair at
+  // all (as for damp_crossings): a layout that overlaps itself already (stacked or mirrored UVs given
+  // to `adaptex reparam`) keeps the global blend.
+  int input_overlaps = -1;  // counted on first need: 0 or 1
+  auto faces_of_overlaps = [&](const Parameterization& out) {
+    if (input_overlaps < 0) input_overlaps = static_cast<int>(count_overlapping_triangles(param, 1));
     std::vector<int> faces;
-    if (!pairs_before->empty()) return faces;
+    if (input_overlaps > 0) return faces;
     for (const std::array<int, 2>& pr : overlapping_triangle_pairs(out)) faces.push_back(pr[0]), faces.push_back(pr[1]);
-    // With the faces around them (two rings): the overlaps come from a displacement that varies too
-    // fast around a tiny face, and damping only the pair moved the overlap to the next faces, one
-    // ring per round (triceratops 12 charts, lines 256²: 24 rounds were not enough).
+    // The overlaps come from a displacement that varies too fast around a tiny face; damping only
+    // the pair moved the overlap to the next faces, one ring per round (triceratops 12 charts, lines
+    // 256²: 24 rounds were not enough).
     for (int ring_step = 0; ring_step < 2 && !faces.empty(); ++ring_step) {
       const size_t n = faces.size();
       for (size_t i = 0; i < n; ++i)
@@ -398,12 +398,18 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
         full_untangled = std::make_unique<Untangled>(Untangled{chart_t, out.uv, disp});
     }
     std::vector<int> flipping;
+    bool certified = false;  // the overlap certificate proved the current `out` (last round)
     for (int round = 0; round <= rounds; ++round) {
       if (round == 0) failing_faces(out, nullptr, flipping);
       else failing_faces(out, &wedges, flipping);
       bad = flipping;
       if (bad.empty() && damp_crossings) bad = faces_of_crossing_boundaries(out, boundary);
-      if (bad.empty() && o.check_overlaps && o.damp_overlaps && !certificate->certifies(out)) bad = faces_of_new_overlaps(out);
+      // The final check below would prove this layout overlap-free again: remember the proof.
+      certified = false;
+      if (bad.empty() && o.check_overlaps && o.damp_overlaps) {
+        certified = certificate->certifies(out);
+        if (!certified) bad = faces_of_overlaps(out);
+      }
       still_bad = bad;
       if (bad.empty() || round == rounds) break;
       wedges.clear();
@@ -439,7 +445,7 @@ SafeRemapResult safe_remap_layout(const Parameterization& param, const Parameter
     const FlipCount fc = count_flips(param, out, o.min_area);
     c.flipped = fc.flipped;
     c.degenerate = fc.degenerate;
-    if (o.check_overlaps && c.flipped == 0 && c.degenerate == 0) c.overlaps = new_overlaps(out);
+    if (o.check_overlaps && c.flipped == 0 && c.degenerate == 0) c.overlaps = certified ? 0 : new_overlaps(out);
     return c;
   };
   auto finish = [&](double t) {
