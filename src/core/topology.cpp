@@ -59,18 +59,18 @@ EdgeConnectivity build_edges(const TriMesh& mesh) {
   EdgeConnectivity ec;
   ec.face_edges.assign(nf, {-1, -1, -1});
   ec.edges.reserve(static_cast<size_t>(nf) * 3 / 2 + 16);
-  ec.edge_faces.reserve(ec.edges.capacity());
+  ec.edge_faces.reserve(ec.edges.capacity(), 3 * static_cast<size_t>(nf));
   for (int a = 0; a < nv; ++a) {
     const auto first = eb.records.begin() + eb.start[a], last = eb.records.begin() + eb.start[a + 1];
     for (auto i = first; i != last;) {
       const int e = static_cast<int>(ec.edges.size());
       ec.edges.push_back({a, i->b});
-      auto& faces = ec.edge_faces.emplace_back();
       auto j = i;
       for (; j != last && j->b == i->b; ++j) {
         ec.face_edges[j->face][j->corner] = e;
-        faces.push_back(j->face);
+        ec.edge_faces.add_face(j->face);
       }
+      ec.edge_faces.end_edge();
       i = j;
     }
   }

@@ -149,8 +149,31 @@ StretchStats measure_stretch(const TriMesh& mesh, const std::vector<Vec2>& verte
                              std::vector<double>& face_l2) {
   const std::vector<FaceData3> d =
       evaluate_faces(mesh, [&](int f, int k) { return vertex_uv[mesh.faces[f][k]]; });
-  face_l2 = l2_per_face(d);
-  return summarize(d);
+  // summarize() and l2_per_face() in one loop, without the distortion figures.
+  const Sums s = area_sums(d);
+  const double mean_abs = d.empty() ? 0.0 : s.abs_a2 / static_cast<double>(d.size());
+  const double scale = s.a3 > 0 ? std::sqrt(s.a2 / s.a3) : 0.0;
+  face_l2.resize(d.size());
+  StretchStats st;
+  double sum_l2sq = 0, max_gamma = 0;
+  for (size_t f = 0; f < d.size(); ++f) {
+    const FaceData3& x = d[f];
+    const double l2 = x.s.l2();
+    face_l2[f] = std::isfinite(l2) ? l2 * scale : kInf;
+    if (is_degenerate(x.a2, mean_abs)) {
+      ++st.degenerate;
+    } else if (x.a2 < 0) {
+      ++st.flipped;
+    } else {
+      sum_l2sq += x.a3 * l2 * l2;
+      max_gamma = std::max(max_gamma, x.s.gamma_max);
+    }
+  }
+  if (s.a3 <= 0) return st;
+  const bool bad = st.flipped > 0 || st.degenerate > 0;
+  st.l2 = bad ? kInf : std::sqrt(sum_l2sq / s.a3) * scale;
+  st.linf = bad ? kInf : max_gamma * scale;
+  return st;
 }
 
 std::vector<double> l2_stretch_of_aspects(const TriMesh& mesh, const std::vector<Vec2>& vertex_uv,

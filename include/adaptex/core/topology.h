@@ -2,17 +2,52 @@
 /// \file topology.h
 /// Edge connectivity and topological invariants of a triangle mesh: components, boundary loops,
 /// Euler characteristic, genus, non-manifold edges and vertices.
+#include <span>
 #include <vector>
 
 #include "adaptex/core/mesh.h"
 
 namespace adaptex {
 
+/// The faces around every edge in compressed (CSR) form: `lists[e]` is a span of the faces of
+/// edge e, in increasing order. One allocation for all edges (a vector per edge made build_edges()
+/// cost 86 ns per face on venus, most of it in the allocator).
+class EdgeFaceLists {
+ public:
+  /// Faces of edge \p e. \pre 0 <= e < size()
+  std::span<const int> operator[](int e) const {
+    return {faces_.data() + offsets_[e], static_cast<size_t>(offsets_[e + 1] - offsets_[e])};
+  }
+  /// Number of edges E.
+  int size() const { return static_cast<int>(offsets_.size()) - 1; }
+  /// Iterates the edges' spans in edge order (range-for over all edges).
+  class Iterator {
+   public:
+    Iterator(const EdgeFaceLists* l, int e) : l_(l), e_(e) {}
+    std::span<const int> operator*() const { return (*l_)[e_]; }
+    Iterator& operator++() { ++e_; return *this; }
+    bool operator!=(const Iterator& o) const { return e_ != o.e_; }
+   private:
+    const EdgeFaceLists* l_;
+    int e_;
+  };
+  Iterator begin() const { return {this, 0}; }
+  Iterator end() const { return {this, size()}; }
+  /// Building (build_edges()): reserve(), then for every edge in order its faces, then end_edge().
+  void reserve(size_t edges, size_t faces) { offsets_.reserve(edges + 1); faces_.reserve(faces); }
+  void add_face(int f) { faces_.push_back(f); }
+  void end_edge() { offsets_.push_back(static_cast<int>(faces_.size())); }
+
+ private:
+  std::vector<int> offsets_{0};  ///< E+1 offsets into faces_.
+  std::vector<int> faces_;       ///< The lists, edge by edge.
+};
+
 /// Undirected edges of a mesh, with the faces on each side.
 struct EdgeConnectivity {
   std::vector<std::array<int, 2>> edges;  ///< E edges as (a, b) with a < b.
   std::vector<std::array<int, 3>> face_edges;  ///< F: edge id of (v0,v1), (v1,v2), (v2,v0).
-  std::vector<std::vector<int>> edge_faces;    ///< E: incident faces (1 = boundary, >2 = non-manifold).
+  EdgeFaceLists edge_faces;  ///< E: incident faces (1 = boundary, >2 = non-manifold).
 
   int num_edges() const { return static_cast<int>(edges.size()); }
   bool is_boundary(int e) const { return edge_faces[e].size() == 1; }

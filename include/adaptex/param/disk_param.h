@@ -27,9 +27,10 @@ struct DiskParamOptions {
   /// (restarting from the best weights so far).
   double min_improvement = 1e-3;
   /// Stop after this many halvings of η (0: stop at the first iterate that does not improve enough).
-  /// 2: the iterations after a third halving changed the final L2 of the shared meshes by < 0.2%
-  /// (docs/bench_unwrap.md), so they are skipped.
-  int max_halvings = 2;
+  /// 1 (session 16; 2 before): the iterations after a second halving changed the final L2 of the
+  /// shared meshes by < 0.2 % (docs/bench_unwrap.md, "One halving of η") and cost one or two solves
+  /// (venus' unwrap 6.1 -> 5.9 ms), so they are skipped.
+  int max_halvings = 1;
   /// Sparse solver backend.
   TutteSolver::Backend backend = TutteSolver::Backend::Auto;
   /// Cap on the BiCGSTAB iterations of one solve (Multigrid backend); a solve that reaches it is
