@@ -11,7 +11,7 @@
 //                         [--count N] [--seed S]
 //                         [--grid C,F] [--alpha A] [--beta B] [--schedule end|each-stroke]
 //                         [--update replay|resample] [--no-safeguard] [--no-refine] [--verbose]
-//                         [--charts single|auto] [--probe-first-charts N] [--floor F] [--density-cells L] [--no-atlas]
+//                         [--charts single|auto] [--unwrap-gutter paint|fixed] [--probe-first-charts N] [--floor F] [--density-cells L] [--no-atlas]
 //                         [--full-chart-share] [--no-quarter-texel]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
@@ -84,6 +84,12 @@ struct Args {
   std::string schedule = "end", update = "replay";
   bool safeguard = true, verbose = false;
   std::string charts = "auto";  ///< --charts single|auto: the initial layout (unwrap's ChartMode).
+  /// --unwrap-gutter paint|fixed. paint (default since session 16): the layout of every texture size M
+  /// (N, 2N and 4N for none, N for the modes) is unwrapped with its gutter in texels of M, as
+  /// `adaptex paint --size M` does (unwrap_options_for_texture(M, padding)). fixed: one layout per
+  /// mesh with UnwrapOptions' own gutter (8 texels of 1024², 1 texel at 128²), as the tables before
+  /// session 16 were made.
+  std::string unwrap_gutter = "paint";
   int probe_first_charts = -1;  ///< --probe-first-charts: UnwrapOptions::probe_first_charts (-1: the default).
   double floor = -1;            ///< --floor: ErrorDensityOptions::floor (-1: the default).
   int density_cells = -1;       ///< --density-cells: ErrorDensityOptions::cells (-1: the default).
@@ -258,6 +264,10 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--schedule") a.schedule = v;
     else if (k == "--update") a.update = v;
     else if (k == "--charts") a.charts = v;
+    else if (k == "--unwrap-gutter") {
+      if (v != "paint" && v != "fixed") throw std::invalid_argument("--unwrap-gutter: expected paint or fixed, got " + v);
+      a.unwrap_gutter = v;
+    }
     else if (k == "--probe-first-charts") a.probe_first_charts = whole(k, v, 0, 1000);
     else if (k == "--snap-round") a.snap_round = whole(k, v, -1, 1000);
     else if (k == "--polish-prepass") a.polish_prepass = whole(k, v, 0, 100000);
@@ -354,6 +364,7 @@ double psnr_none(std::map<int, double>& cache, int size, const TriMesh& mesh, co
   if (auto it = cache.find(size); it != cache.end()) return it->second;
   PainterOptions po;
   po.width = po.height = size;
+  po.padding = PaintSessionOptions{}.padding;
   Painter p(mesh, param, po, strokes.background);
   p.paint_all(strokes);
   return cache[size] = evaluate_texture(mesh, param, p.texture(), strokes, eo).psnr;
@@ -456,9 +467,18 @@ int main(int argc, char** argv) {
     UnwrapOptions uo;
     uo.charts = a.charts == "single" ? ChartMode::Single : ChartMode::Auto;
     if (a.probe_first_charts >= 0) uo.probe_first_charts = a.probe_first_charts;
-    Parameterization param;
+    // The initial layout of each texture size (Args::unwrap_gutter), unwrapped once per size.
+    std::map<int, Parameterization> layouts;
+    auto layout = [&](int size) -> const Parameterization& {
+      const int key = a.unwrap_gutter == "paint" ? size : 0;
+      auto it = layouts.find(key);
+      if (it == layouts.end())
+        it = layouts.emplace(key, unwrap(mesh, key > 0 ? unwrap_options_for_texture(key, PaintSessionOptions{}.padding, uo)
+                                                       : uo).param).first;
+      return it->second;
+    };
     try {
-      param = unwrap(mesh, uo).param;
+      layout(sizes.front());
     } catch (const std::exception& e) {
       report_failure(name + " (unwrap)", e);
       continue;
@@ -474,11 +494,11 @@ int main(int argc, char** argv) {
         CaseRecord c{kind, 0, {}};
         std::array<double, 3> none{};
         try {
-          none = {psnr_none(none_cache, n, mesh, param, strokes, eo),
-                  psnr_none(none_cache, 2 * n, mesh, param, strokes, eo),
-                  psnr_none(none_cache, 4 * n, mesh, param, strokes, eo)};
+          none = {psnr_none(none_cache, n, mesh, layout(n), strokes, eo),
+                  psnr_none(none_cache, 2 * n, mesh, layout(2 * n), strokes, eo),
+                  psnr_none(none_cache, 4 * n, mesh, layout(4 * n), strokes, eo)};
           c.none_n = none[0];
-          for (const auto& m : a.modes) c.modes.push_back(run_mode(a, m, mesh, param, strokes, n, none, eo));
+          for (const auto& m : a.modes) c.modes.push_back(run_mode(a, m, mesh, layout(n), strokes, n, none, eo));
         } catch (const std::exception& e) {
           report_failure(name + " " + kind + " " + std::to_string(n), e);
           continue;
