@@ -4,10 +4,12 @@
 #include <new>
 #include <iostream>
 
+#include "adaptex/core/allocator.h"
 #include "adaptex/core/errors.h"
 #include "cli_common.h"
 
 int main(int argc, char** argv) {
+  adaptex::keep_freed_memory_in_process_unless_disabled();
   CLI::App app{"adaptex: signal-adaptive parameterization for painting on 3-D meshes"};
   app.require_subcommand(1);
   adaptex::cli::Context ctx;

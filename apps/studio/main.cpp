@@ -18,6 +18,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "adaptex/core/allocator.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
@@ -479,6 +480,7 @@ int run(GLFWwindow* w, const CommandLine& c, SignalWatcher& signals) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  adaptex::keep_freed_memory_in_process_unless_disabled();
   CommandLine c;
   if (const auto rc = parse_command_line(argc, argv, c)) return *rc;
   SignalWatcher signals;

@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptex/core/allocator.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/mesh_io.h"
@@ -220,6 +221,8 @@ void full_session(const Scene& s, const StrokeFile& history, int n, int size, do
 }  // namespace
 
 int main(int argc, char** argv) {
+  // As the adaptex programs run (core/allocator.h); ADAPTEX_DEFAULT_MALLOC=1 measures glibc's defaults.
+  adaptex::keep_freed_memory_in_process_unless_disabled();
   try {
     const Args a = parse(argc, argv);
     const int max_k = std::max(a.full, *std::max_element(a.strokes.begin(), a.strokes.end()));

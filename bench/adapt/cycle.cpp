@@ -19,6 +19,7 @@
 #include <memory>
 #include <random>
 
+#include "adaptex/core/allocator.h"
 #include "adaptex/adapt/adapt.h"
 #include "adaptex/adapt/stretch_map.h"
 #include "adaptex/adapt/texture_update.h"
@@ -197,6 +198,8 @@ void args(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_Cycle)->Apply(args)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1.0);
 
 int main(int argc, char** argv) {
+  // As the adaptex programs run (core/allocator.h); ADAPTEX_DEFAULT_MALLOC=1 measures glibc's defaults.
+  adaptex::keep_freed_memory_in_process_unless_disabled();
   std::unique_ptr<tbb::global_control> serial;
   if (const char* e = std::getenv("ADAPTEX_BENCH_SERIAL"); e && std::string(e) == "1")
     serial = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, 1);

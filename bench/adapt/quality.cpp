@@ -40,6 +40,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "adaptex/core/allocator.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/eval.h"
@@ -421,6 +422,8 @@ void print_summary(const Args& a, const std::vector<CaseRecord>& cases) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // As the adaptex programs run (core/allocator.h); ADAPTEX_DEFAULT_MALLOC=1 measures glibc's defaults.
+  keep_freed_memory_in_process_unless_disabled();
   Args a;
   try {
     a = parse_args(argc, argv);

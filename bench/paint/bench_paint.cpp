@@ -20,6 +20,7 @@
 #include <optional>
 #include <sstream>
 
+#include "adaptex/core/allocator.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/generate.h"
@@ -198,4 +199,12 @@ const int registered = [] {
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  // As the adaptex programs run (core/allocator.h); ADAPTEX_DEFAULT_MALLOC=1 measures glibc's defaults.
+  adaptex::keep_freed_memory_in_process_unless_disabled();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

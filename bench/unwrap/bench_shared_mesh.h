@@ -10,6 +10,7 @@
 #include <string>
 #include <utility>
 
+#include "adaptex/core/allocator.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/io/mesh_io.h"
 
@@ -38,6 +39,8 @@ void register_ms(const std::string& name, Fn fn) {
 
 /// Google Benchmark's main after the benchmarks are registered.
 inline int run_benchmarks(int argc, char** argv) {
+  // As the adaptex programs run (core/allocator.h); ADAPTEX_DEFAULT_MALLOC=1 measures glibc's defaults.
+  keep_freed_memory_in_process_unless_disabled();
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

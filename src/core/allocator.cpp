@@ -1,0 +1,29 @@
+/// \file allocator.cpp
+/// See allocator.h.
+#include "adaptex/core/allocator.h"
+
+#include <cstdlib>
+
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
+namespace adaptex {
+
+bool keep_freed_memory_in_process() {
+#if defined(__GLIBC__)
+  // 32 MiB is glibc's largest accepted mmap threshold on 64-bit (DEFAULT_MMAP_THRESHOLD_MAX);
+  // setting either value also turns off glibc's dynamic adjustment of both.
+  const bool mmap_ok = mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024) == 1;
+  const bool trim_ok = mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024) == 1;
+  return mmap_ok && trim_ok;
+#else
+  return false;
+#endif
+}
+
+bool keep_freed_memory_in_process_unless_disabled() {
+  return std::getenv("ADAPTEX_DEFAULT_MALLOC") == nullptr && keep_freed_memory_in_process();
+}
+
+}  // namespace adaptex
