@@ -79,7 +79,9 @@ std::vector<double> l2_per_face(const std::vector<FaceData3>& d) {
   return out;
 }
 
-StretchStats summarize(const std::vector<FaceData3>& d) {
+/// The figures of StretchStats from the per-face data; without \p distortions, area_distortion and
+/// angle_distortion stay 0 (a division per face saved where only L2 and the counts are read).
+StretchStats summarize(const std::vector<FaceData3>& d, bool distortions = true) {
   StretchStats st;
   const Sums s = area_sums(d);
   const double mean_abs = d.empty() ? 0.0 : s.abs_a2 / static_cast<double>(d.size());
@@ -96,6 +98,7 @@ StretchStats summarize(const std::vector<FaceData3>& d) {
     const double l2 = x.s.l2();
     sum_l2sq += x.a3 * l2 * l2;
     max_gamma = std::max(max_gamma, x.s.gamma_max);
+    if (!distortions) continue;
     const double rel = (x.a2 / s.a2) / (x.a3 / s.a3);
     area_dist += x.a3 * std::max(rel, 1.0 / rel);
     angle_dist += x.a3 * (x.s.gamma_min > 0 ? x.s.gamma_max / x.s.gamma_min : kInf);
@@ -105,8 +108,10 @@ StretchStats summarize(const std::vector<FaceData3>& d) {
   const bool bad = st.flipped > 0 || st.degenerate > 0;
   st.l2 = bad ? kInf : std::sqrt(sum_l2sq / s.a3) * norm;
   st.linf = bad ? kInf : max_gamma * norm;
-  st.area_distortion = bad ? kInf : area_dist / s.a3;
-  st.angle_distortion = bad ? kInf : angle_dist / s.a3;
+  if (distortions) {
+    st.area_distortion = bad ? kInf : area_dist / s.a3;
+    st.angle_distortion = bad ? kInf : angle_dist / s.a3;
+  }
   return st;
 }
 
@@ -149,31 +154,8 @@ StretchStats measure_stretch(const TriMesh& mesh, const std::vector<Vec2>& verte
                              std::vector<double>& face_l2) {
   const std::vector<FaceData3> d =
       evaluate_faces(mesh, [&](int f, int k) { return vertex_uv[mesh.faces[f][k]]; });
-  // summarize() and l2_per_face() in one loop, without the distortion figures.
-  const Sums s = area_sums(d);
-  const double mean_abs = d.empty() ? 0.0 : s.abs_a2 / static_cast<double>(d.size());
-  const double scale = s.a3 > 0 ? std::sqrt(s.a2 / s.a3) : 0.0;
-  face_l2.resize(d.size());
-  StretchStats st;
-  double sum_l2sq = 0, max_gamma = 0;
-  for (size_t f = 0; f < d.size(); ++f) {
-    const FaceData3& x = d[f];
-    const double l2 = x.s.l2();
-    face_l2[f] = std::isfinite(l2) ? l2 * scale : kInf;
-    if (is_degenerate(x.a2, mean_abs)) {
-      ++st.degenerate;
-    } else if (x.a2 < 0) {
-      ++st.flipped;
-    } else {
-      sum_l2sq += x.a3 * l2 * l2;
-      max_gamma = std::max(max_gamma, x.s.gamma_max);
-    }
-  }
-  if (s.a3 <= 0) return st;
-  const bool bad = st.flipped > 0 || st.degenerate > 0;
-  st.l2 = bad ? kInf : std::sqrt(sum_l2sq / s.a3) * scale;
-  st.linf = bad ? kInf : max_gamma * scale;
-  return st;
+  face_l2 = l2_per_face(d);
+  return summarize(d, false);
 }
 
 std::vector<double> l2_stretch_of_aspects(const TriMesh& mesh, const std::vector<Vec2>& vertex_uv,

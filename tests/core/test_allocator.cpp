@@ -39,10 +39,11 @@ TEST(Allocator, LargeBlocksComeFromTheHeapAndStayInTheProcess) {
   EXPECT_EQ(during.hblks, before.hblks);
   EXPECT_EQ(during.hblkhd, before.hblkhd);
   std::free(p);
-  // Freed, the block is kept as free heap (trim threshold 1 GiB), not returned to the system.
+  // Freed, the block is kept as free heap (trim threshold 1 GiB), not returned to the system. (Not
+  // asserted: that the heap grew by the block; an earlier test in the same process may have left
+  // free heap that the block reused.)
   const struct mallinfo2 after = mallinfo2();
   EXPECT_GE(after.fordblks, bytes);
-  EXPECT_GE(after.arena, before.arena + bytes);
 }
 #else
 TEST(Allocator, DoesNothingWithoutGlibc) { EXPECT_FALSE(keep_freed_memory_in_process()); }

@@ -50,7 +50,8 @@ struct SafeRemapOptions {
   /// to their input UV, this many times at most, before the whole warp is damped.
   int max_local_rounds = 24;
   /// From this local round on, the wedges of a face that still fails go back to their input UV
-  /// instead of halving their displacement (< 0: never). See safe_remap_layout().
+  /// instead of halving their displacement (< 0: never). Not with smooth_local_damping, whose
+  /// averaging does not halve. See safe_remap_layout().
   int snap_round = 12;
   /// When local damping alone fails and the global blend is used, local damping is also tried with
   /// this many rounds; the result that keeps more of the warp (mean blend factor) wins.
