@@ -1,9 +1,14 @@
 // `--adapt density-flow`: the texel density that minimizes the reconstruction error for the texel
 // budget (error_density.h, from the exact stroke history when there is one), reached by the flow-based
 // density-equalizing map (density_flow.h). docs/error_model.md explains the model and the choices.
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <memory>
+#include <mutex>
+#include <vector>
 
 #include "adaptex/adapt/error_polish.h"
 #include "adaptex/adapt/warp_method.h"
@@ -72,51 +77,85 @@ class DensityFlowWarp final : public WarpMethod {
   }
 
  private:
-  /// Every flow lattice polished by the anisotropic error model (error_polish.h), charts in turn (each
-  /// polish is parallel inside).
+  /// Polishes lattice \p c of res.grids (coarse to fine, ErrorPolishOptions::prepass_sweeps) with
+  /// \p progress; \p cell gets the area of one of its cells in cells of the density raster.
+  static ErrorPolishStats polish_lattice(const AdaptOptions& o, const ErrorDensity& ed, const EdgeTensor& edges,
+                                         AdaptResult& res, size_t c, const ProgressCallback& progress, double& cell) {
+    GridWarp& g = res.grids[c];
+    UvRect src{Vec2(0, 0), Vec2(1, 1)};
+    double scale = 1, extent = 1;
+    if (!res.chart_moves.empty()) {
+      src = res.chart_moves[c].src, scale = res.chart_moves[c].scale;
+      extent = std::clamp(res.chart_moves[c].dst().size().maxCoeff(), 1e-9, 1.0);
+    }
+    if (src.size().minCoeff() <= 0 || g.n < 2) return {};
+    ErrorPolishOptions po = o.polish;
+    po.progress = progress;
+    const int m = polish_cells(g.n, po, extent);
+    auto fields = [&](int cells) {
+      PolishFields f = polish_fields(ed.error, ed.exponent, res.density, src.lo, src.hi, cells, scale);
+      if (o.polish.isotropy < 1) add_edge_directions(f, edges, src.lo, src.hi, o.polish.isotropy);
+      return f;
+    };
+    const PolishFields f = fields(m);
+    // The report's figures are the model's on the warp's own lattice: a coarser lattice sampled
+    // from a strongly compressed flow starts from far worse cells than the flow's own (genus0
+    // `mixed` 128²: 12.4 dB "gained" on the coarse lattice).
+    const PolishFields own = m == g.n ? PolishFields{} : fields(g.n);
+    const double before = m == g.n ? 0.0 : polish_model_error(g, own, po);
+    if (po.prepass_sweeps > 0 && m >= 32) {
+      // Coarse to fine (ErrorPolishOptions::prepass_sweeps): the half lattice first.
+      ErrorPolishOptions pre = po;
+      pre.sweeps = po.prepass_sweeps;
+      polish_warp(g, fields(m / 2), pre);
+      po.sweeps = po.sweeps_after_prepass;
+    }
+    ErrorPolishStats st = polish_warp(g, f, po);
+    if (m != g.n) st.error_before = before, st.error_after = polish_model_error(g, own, po);
+    // In cells of the density raster: a lattice cell covers area(src) / n² of the square.
+    cell = src.area() / (double(g.n) * g.n) * ed.error.width * ed.error.width;
+    return st;
+  }
+
+  /// Every flow lattice polished by the anisotropic error model (error_polish.h). The charts' lattices
+  /// are polished in parallel (each polish is also parallel inside): an atlas has many small lattices
+  /// whose own sweeps cannot keep two cores busy (armadillo, 1024²: 15 charts of 16–55 polish cells).
+  /// Each lattice's result does not depend on the others or on the threads.
   static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture, AdaptResult& res) {
     if (o.polish.sweeps <= 0 || (!res.chart_moves.empty() && !o.polish.charts)) return;
     const auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "polish", 0);
     const EdgeTensor edges = o.polish.isotropy < 1 ? edge_tensor(texture) : EdgeTensor{};
-    for (size_t c = 0; c < res.grids.size(); ++c) {
-      GridWarp& g = res.grids[c];
-      UvRect src{Vec2(0, 0), Vec2(1, 1)};
-      double scale = 1, extent = 1;
-      if (!res.chart_moves.empty()) {
-        src = res.chart_moves[c].src, scale = res.chart_moves[c].scale;
-        extent = std::clamp(res.chart_moves[c].dst().size().maxCoeff(), 1e-9, 1.0);
-      }
-      if (src.size().minCoeff() <= 0 || g.n < 2) continue;
-      ErrorPolishOptions po = o.polish;
-      if (!po.progress) po.progress = o.progress;
-      const int m = polish_cells(g.n, po, extent);
-      auto fields = [&](int cells) {
-        PolishFields f = polish_fields(ed.error, ed.exponent, res.density, src.lo, src.hi, cells, scale);
-        if (o.polish.isotropy < 1) add_edge_directions(f, edges, src.lo, src.hi, o.polish.isotropy);
-        return f;
+    // The caller's callback is called by one thread at a time: with one lattice, with its sweeps'
+    // fraction; with several, with the fraction of lattices done.
+    const ProgressCallback& user = o.polish.progress ? o.polish.progress : o.progress;
+    std::mutex progress_mutex;
+    std::atomic<size_t> done{0};
+    const size_t count = res.grids.size();
+    ProgressCallback shared;
+    if (user && count == 1)
+      shared = user;
+    else if (user)
+      shared = [&](std::string_view phase, double) {
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        return user(phase, double(done.load()) / double(count));
       };
-      const PolishFields f = fields(m);
-      // The report's figures are the model's on the warp's own lattice: a coarser lattice sampled
-      // from a strongly compressed flow starts from far worse cells than the flow's own (genus0
-      // `mixed` 128²: 12.4 dB "gained" on the coarse lattice).
-      const PolishFields own = m == g.n ? PolishFields{} : fields(g.n);
-      const double before = m == g.n ? 0.0 : polish_model_error(g, own, po);
-      if (po.prepass_sweeps > 0 && m >= 32) {
-        // Coarse to fine (ErrorPolishOptions::prepass_sweeps): the half lattice first.
-        ErrorPolishOptions pre = po;
-        pre.sweeps = po.prepass_sweeps;
-        polish_warp(g, fields(m / 2), pre);
-        po.sweeps = po.sweeps_after_prepass;
-      }
-      ErrorPolishStats st = polish_warp(g, f, po);
-      if (m != g.n) st.error_before = before, st.error_after = polish_model_error(g, own, po);
-      res.report.polish_sweeps = std::max(res.report.polish_sweeps, st.sweeps);
-      // In cells of the density raster: a lattice cell covers area(src) / n² of the square.
-      const double cell = src.area() / (double(g.n) * g.n) * ed.error.width * ed.error.width;
-      res.report.polish_error_before += cell * st.error_before;
-      res.report.polish_error_after += cell * st.error_after;
+    std::vector<ErrorPolishStats> stats(count);
+    std::vector<double> cells(count, 0.0);
+    auto one = [&](size_t c) {
+      stats[c] = polish_lattice(o, ed, edges, res, c, shared, cells[c]);
+      ++done;
+    };
+    if (o.polish.parallel)
+      tbb::parallel_for(size_t(0), count, one);
+    else
+      for (size_t c = 0; c < count; ++c) one(c);
+    for (size_t c = 0; c < count; ++c) {  // in chart order: the sums do not depend on the threads
+      res.report.polish_sweeps = std::max(res.report.polish_sweeps, stats[c].sweeps);
+      res.report.polish_error_before += cells[c] * stats[c].error_before;
+      res.report.polish_error_after += cells[c] * stats[c].error_after;
     }
+    report_progress(user, "polish", 1);
     res.report.time_polish = seconds_since(t0);
   }
 };

@@ -2,7 +2,11 @@
 // rectangle, and the end-to-end gain on a many-chart layout.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdio>
+#include <string_view>
+#include <vector>
 
 #include "adaptex/adapt/adapt.h"
 #include "adaptex/adapt/atlas_flow.h"
@@ -288,6 +292,48 @@ TEST(AtlasFlow, EveryChartEndsInsideItsNewRectangle) {
   double grow_max = 0;
   for (int ch = 0; ch < q.num_charts; ++ch) grow_max = std::max(grow_max, after[ch].area() / std::max(before[ch].area(), 1e-30));
   EXPECT_GT(grow_max, 2.0);
+}
+
+TEST(AtlasFlow, ChartLatticesArePolishedInParallelWithTheSameResultAndProgress) {
+  // The warp method polishes the charts' lattices in parallel (warp_density_flow.cpp): the layout must
+  // be the one polishing them in turn gives, and the progress callback is called by one thread at a
+  // time, with fractions that never go back, and can still cancel.
+  const ManyChartLines c;
+  PainterOptions po;
+  po.width = po.height = c.N;
+  Painter p(c.mesh, c.param, po, c.strokes.background);
+  p.paint_all(c.strokes);
+  std::vector<double> fractions;
+  std::atomic<int> inside{0};
+  bool overlapped = false;
+  AdaptOptions ao;
+  ao.mode = AdaptMode::DensityFlow;
+  ao.progress = [&](std::string_view phase, double f) {
+    if (phase != "polish") return true;
+    if (inside.fetch_add(1) != 0) overlapped = true;
+    fractions.push_back(f);
+    inside.fetch_sub(1);
+    return true;
+  };
+  const AdaptResult a = adapt_parameterization(c.mesh, c.param, p.texture(), p.texel_map(), ao, &c.strokes);
+  ASSERT_EQ(static_cast<int>(a.grids.size()), c.param.num_charts);
+  EXPECT_FALSE(overlapped);
+  ASSERT_GE(fractions.size(), 2u);
+  EXPECT_EQ(fractions.front(), 0.0);
+  EXPECT_EQ(fractions.back(), 1.0);
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_GT(a.report.polish_sweeps, 0);
+  ao.progress = nullptr;
+  ao.polish.parallel = false;
+  const AdaptResult b = adapt_parameterization(c.mesh, c.param, p.texture(), p.texel_map(), ao, &c.strokes);
+  ASSERT_EQ(a.grids.size(), b.grids.size());
+  for (size_t g = 0; g < a.grids.size(); ++g) EXPECT_EQ(a.grids[g].points, b.grids[g].points) << "chart " << g;
+  ASSERT_EQ(a.param.uv.size(), b.param.uv.size());
+  for (size_t k = 0; k < a.param.uv.size(); ++k) ASSERT_EQ(a.param.uv[k], b.param.uv[k]) << k;
+  EXPECT_EQ(a.report.polish_error_after, b.report.polish_error_after);
+  int calls = 0;
+  ao.progress = [&](std::string_view phase, double) { return phase != "polish" || ++calls < 3; };
+  EXPECT_THROW(adapt_parameterization(c.mesh, c.param, p.texture(), p.texel_map(), ao, &c.strokes), CancelledError);
 }
 
 TEST(AtlasFlow, DirectAdvectionAtASharpDensityLeavesNoFlipDegenerateOrOverlap) {

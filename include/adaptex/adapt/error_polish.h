@@ -100,7 +100,9 @@ struct ErrorPolishOptions {
   /// add_edge_directions()), in (0, 1]: 1 measures the texel spacing in every direction alike (texels
   /// become round), lower values let texels stretch along the paint's edges.
   double isotropy = 0.25;
-  bool parallel = true;  ///< Sweep a colour's points with TBB (the same result either way).
+  /// Sweep a colour's points with TBB, and (the warp method's polish) polish the charts' lattices in
+  /// parallel; the same result either way.
+  bool parallel = true;
   ProgressCallback progress;  ///< Called with ("polish", sweeps done / sweeps) after every sweep.
 };
 
