@@ -37,15 +37,14 @@ void validate(const AdaptOptions& o) {
 /// refined_mesh, refined_layout (old UV domain) and parent_face are set.
 void refine_under_warp(const TriMesh& mesh, const Parameterization& current, int texture_size,
                        const AdaptOptions& o, AdaptResult& res) {
-  const auto warps = res.warps();
+  const WarpChain warps(res.warps());
   const ChartMoveLocator moves(res.chart_moves);
   const bool moved = !res.chart_moves.empty();
   const FlowWarp* flow = res.flow.get();
   auto warp = [&warps, &moves, moved, flow](const Vec2& p) {
-    Vec2 q = moved ? moves.apply(p) : p;
+    const Vec2 q = moved ? moves.apply(p) : p;
     if (flow) return flow->apply(q);  // the exact flow (DensityFlowOptions::direct)
-    for (const GridWarp* w : warps) q = w->apply(q);
-    return q;
+    return warps.apply(q);
   };
   RefineOptions ro;
   ro.tolerance = o.refine_tolerance_texels / texture_size;

@@ -72,6 +72,65 @@ double GridWarp::max_displacement() const {
   return m;
 }
 
+namespace {
+/// GridWarp::apply()'s test: \p uv in the warp's rectangle (within its round-off tolerance).
+bool in_rectangle(const GridWarp& w, const Vec2& uv) {
+  constexpr double eps = 1e-12;  // as GridWarp::apply
+  return !(uv.x() < w.lo.x() - eps || uv.y() < w.lo.y() - eps || uv.x() > w.hi.x() + eps || uv.y() > w.hi.y() + eps);
+}
+
+/// True if the rectangles of \p a and \p b are more than \p gap apart along x or y.
+bool apart(const GridWarp& a, const GridWarp& b, double gap) {
+  return a.hi.x() + gap < b.lo.x() || b.hi.x() + gap < a.lo.x() || a.hi.y() + gap < b.lo.y() || b.hi.y() + gap < a.lo.y();
+}
+}  // namespace
+
+WarpChain::WarpChain(std::vector<const GridWarp*> warps) {
+  for (const GridWarp* w : warps)
+    if (w) warps_.push_back(w);
+  if (warps_.size() < 2) return;
+  for (const GridWarp* w : warps_)
+    if (w->whole_square() || !(w->lo.x() <= w->hi.x() && w->lo.y() <= w->hi.y())) return;
+  // Pairwise apart, by a sweep over the rectangles sorted by lo.x.
+  std::vector<int> order(warps_.size());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return warps_[a]->lo.x() < warps_[b]->lo.x(); });
+  for (size_t a = 0; a < order.size(); ++a)
+    for (size_t b = a + 1; b < order.size() && warps_[order[b]]->lo.x() <= warps_[order[a]]->hi.x() + kMinGap; ++b)
+      if (!apart(*warps_[order[a]], *warps_[order[b]], kMinGap)) return;
+  n_ = std::clamp(static_cast<int>(std::sqrt(double(warps_.size()))) * 2, 1, 256);
+  auto cell = [this](double x) { return std::clamp(static_cast<int>(std::floor(x * n_)), 0, n_ - 1); };
+  std::vector<std::vector<int>> buckets(static_cast<size_t>(n_) * n_);
+  for (size_t k = 0; k < warps_.size(); ++k) {
+    const double pad = 1e-12;  // the rectangle test's tolerance
+    for (int y = cell(warps_[k]->lo.y() - pad); y <= cell(warps_[k]->hi.y() + pad); ++y)
+      for (int x = cell(warps_[k]->lo.x() - pad); x <= cell(warps_[k]->hi.x() + pad); ++x)
+        buckets[static_cast<size_t>(y) * n_ + x].push_back(static_cast<int>(k));
+  }
+  start_.assign(buckets.size() + 1, 0);
+  for (size_t b = 0; b < buckets.size(); ++b) start_[b + 1] = start_[b] + static_cast<int>(buckets[b].size());
+  for (const auto& b : buckets) entries_.insert(entries_.end(), b.begin(), b.end());
+}
+
+Vec2 WarpChain::apply(const Vec2& uv) const {
+  if (n_ == 0) {
+    Vec2 q = uv;
+    for (const GridWarp* w : warps_) q = w->apply(q);
+    return q;
+  }
+  // A point in one rectangle stays in it (within round-off) and so outside every other.
+  auto cell = [this](double x) { return std::clamp(static_cast<int>(std::floor(x * n_)), 0, n_ - 1); };
+  if (!std::isfinite(uv.x()) || !std::isfinite(uv.y())) {
+    Vec2 q = uv;
+    for (const GridWarp* w : warps_) q = w->apply(q);
+    return q;
+  }
+  const size_t b = static_cast<size_t>(cell(uv.y())) * n_ + cell(uv.x());
+  for (int k = start_[b]; k < start_[b + 1]; ++k)
+    if (in_rectangle(*warps_[entries_[k]], uv)) return warps_[entries_[k]]->apply(uv);
+  return uv;
+}
+
 ImageF pull_back_field(const ImageF& field, const GridWarp& warp, int res) {
   ImageF out(res, res, -1.0f);
   const int n = warp.n;

@@ -19,11 +19,8 @@ namespace adaptex {
 
 Parameterization remap_parameterization(const Parameterization& param, const std::vector<const GridWarp*>& warps) {
   Parameterization out = param;
-  tbb::parallel_for(size_t(0), out.uv.size(), [&](size_t k) {
-    Vec2 p = param.uv[k];
-    for (const GridWarp* w : warps) p = w->apply(p);
-    out.uv[k] = p.cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
-  });
+  const WarpChain chain(warps);
+  tbb::parallel_for(size_t(0), out.uv.size(), [&](size_t k) { out.uv[k] = chain.apply(param.uv[k]).cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1)); });
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <cmath>
+#include <vector>
 
 #include "adaptex/adapt/grid.h"
 #include "adaptex/adapt/importance.h"
@@ -178,6 +179,59 @@ TEST(Grid, ApplyIsIdentityForUniformAndPullBackInvertsAWarp) {
       const int i = std::clamp(static_cast<int>(q.x() * 64), 0, 63), j = std::clamp(static_cast<int>(q.y() * 64), 0, 63);
       EXPECT_NEAR(pb.at(i, j), x, 0.03);
     }
+}
+
+/// A warp of \p n cells on [lo, hi] whose points are moved by a smooth swirl (no fold).
+GridWarp swirl_warp(int n, const Vec2& lo, const Vec2& hi, double amount) {
+  GridWarp g = GridWarp::uniform(n);
+  g.lo = lo, g.hi = hi;
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i) {
+      const double x = double(i) / n, y = double(j) / n;
+      g.at(i, j) += amount / n * Vec2(std::sin(6.3 * y), std::cos(6.3 * x));
+    }
+  return g;
+}
+
+TEST(Grid, AChainOfWarpsOnApartRectanglesIsTheWarpsInTurn) {
+  // 3 x 3 chart rectangles with gaps, as a re-packed atlas: looked up in buckets, and the same values,
+  // bit for bit, as applying every warp in turn, inside, on and just outside the rectangles.
+  std::vector<GridWarp> grids;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      grids.push_back(swirl_warp(6 + a + b, Vec2(0.02 + 0.33 * a, 0.01 + 0.33 * b), Vec2(0.3 + 0.33 * a, 0.31 + 0.33 * b), 0.4));
+  std::vector<const GridWarp*> ptrs;
+  for (const GridWarp& g : grids) ptrs.push_back(&g);
+  const WarpChain chain(ptrs);
+  EXPECT_TRUE(chain.bucketed());
+  auto in_turn = [&](const Vec2& p) {
+    Vec2 q = p;
+    for (const GridWarp* w : ptrs) q = w->apply(q);
+    return q;
+  };
+  std::vector<Vec2> probes;
+  for (int j = -2; j <= 402; ++j)
+    for (int i = -2; i <= 402; ++i) probes.push_back(Vec2(i / 400.0, j / 400.0));
+  for (const GridWarp& g : grids)
+    for (double d : {-1e-12, -5e-13, 0.0, 5e-13, 1e-12, 2e-12}) {
+      probes.push_back(Vec2(g.lo.x() + d, 0.5 * (g.lo.y() + g.hi.y())));
+      probes.push_back(Vec2(g.hi.x() + d, g.hi.y() + d));
+    }
+  int moved = 0;
+  for (const Vec2& p : probes) {
+    const Vec2 a = chain.apply(p), b = in_turn(p);
+    ASSERT_EQ(a, b) << p.transpose();
+    moved += a != p;
+  }
+  EXPECT_GT(moved, 10000);
+  // Touching or overlapping rectangles, and a warp of the whole square (the two-stage method's
+  // composition), are applied in turn.
+  grids[1].lo.y() = grids[0].hi.y();
+  EXPECT_FALSE(WarpChain(ptrs).bucketed());
+  const GridWarp whole = swirl_warp(8, Vec2(0, 0), Vec2(1, 1), 0.4), whole2 = swirl_warp(5, Vec2(0, 0), Vec2(1, 1), -0.3);
+  const WarpChain two({&whole, &whole2});
+  EXPECT_FALSE(two.bucketed());
+  EXPECT_EQ(two.apply(Vec2(0.4, 0.6)), whole2.apply(whole.apply(Vec2(0.4, 0.6))));
 }
 
 Parameterization plane_param(const TriMesh& mesh) {
