@@ -1,6 +1,7 @@
 // Polishing a warp lattice by the anisotropic error model (error_polish.h, docs/error_model.md §7).
 #include "adaptex/adapt/error_polish.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
@@ -77,14 +78,24 @@ EdgeTensor edge_tensor(const ImageRGBA8& texture) {
       t.xx.at(i, j) = static_cast<float>(xx), t.xy.at(i, j) = static_cast<float>(xy), t.yy.at(i, j) = static_cast<float>(yy);
     }
   });
-  // Summed-area tables (double: sums of up to W·H squared gradients), the three in parallel.
+  // Summed-area tables (double: sums of up to W·H squared gradients): prefix sums along the rows,
+  // rows in parallel, then down the columns, column blocks in parallel. The terms are multiples of
+  // 1/4 below 2^20 (8-bit channels, central differences), so every partial sum is exact and the
+  // table does not depend on the order of the additions.
   auto table = [&](const ImageF& img, std::vector<double>& s) {
-    s.assign(static_cast<size_t>(W + 1) * (H + 1), 0.0);
-    for (int j = 0; j < H; ++j)
-      for (int i = 0; i < W; ++i)
-        s[static_cast<size_t>(j + 1) * (W + 1) + i + 1] = img.at(i, j) + s[static_cast<size_t>(j) * (W + 1) + i + 1] +
-                                                          s[static_cast<size_t>(j + 1) * (W + 1) + i] -
-                                                          s[static_cast<size_t>(j) * (W + 1) + i];
+    const size_t stride = static_cast<size_t>(W) + 1;
+    s.assign(stride * (H + 1), 0.0);
+    tbb::parallel_for(0, H, [&](int j) {
+      double* row = &s[(static_cast<size_t>(j) + 1) * stride];
+      for (int i = 0; i < W; ++i) row[i + 1] = row[i] + img.at(i, j);
+    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(1, stride, 256), [&](const tbb::blocked_range<size_t>& cols) {
+      for (int j = 1; j < H; ++j) {
+        const double* above = &s[static_cast<size_t>(j) * stride];
+        double* row = &s[(static_cast<size_t>(j) + 1) * stride];
+        for (size_t i = cols.begin(); i < cols.end(); ++i) row[i] += above[i];
+      }
+    });
   };
   tbb::parallel_invoke([&] { table(t.xx, t.sum_xx); }, [&] { table(t.xy, t.sum_xy); }, [&] { table(t.yy, t.sum_yy); });
   return t;
