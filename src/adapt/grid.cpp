@@ -113,18 +113,14 @@ WarpChain::WarpChain(std::vector<const GridWarp*> warps) {
 }
 
 Vec2 WarpChain::apply(const Vec2& uv) const {
-  if (n_ == 0) {
+  if (n_ == 0 || !std::isfinite(uv.x()) || !std::isfinite(uv.y())) {
     Vec2 q = uv;
     for (const GridWarp* w : warps_) q = w->apply(q);
     return q;
   }
-  // A point in one rectangle stays in it (within round-off) and so outside every other.
+  // A point in one rectangle stays in it (within round-off: the lattice points lie in [0,1]²) and so
+  // outside every other.
   auto cell = [this](double x) { return std::clamp(static_cast<int>(std::floor(x * n_)), 0, n_ - 1); };
-  if (!std::isfinite(uv.x()) || !std::isfinite(uv.y())) {
-    Vec2 q = uv;
-    for (const GridWarp* w : warps_) q = w->apply(q);
-    return q;
-  }
   const size_t b = static_cast<size_t>(cell(uv.y())) * n_ + cell(uv.x());
   for (int k = start_[b]; k < start_[b + 1]; ++k)
     if (in_rectangle(*warps_[entries_[k]], uv)) return warps_[entries_[k]]->apply(uv);
