@@ -33,11 +33,15 @@ inline void locate(int n, const Vec2& uv, int& ci, int& cj, double& s, double& t
 }
 }  // namespace
 
+bool GridWarp::contains(const Vec2& uv) const {
+  // A wedge on the rectangle's side (round-off of the move that placed it) still belongs to it.
+  constexpr double eps = 1e-12;
+  return !(uv.x() < lo.x() - eps || uv.y() < lo.y() - eps || uv.x() > hi.x() + eps || uv.y() > hi.y() + eps);
+}
+
 Vec2 GridWarp::apply(const Vec2& uv) const {
   if (!whole_square()) {
-    // A wedge on the rectangle's side (round-off of the move that placed it) still belongs to it.
-    constexpr double eps = 1e-12;
-    if (uv.x() < lo.x() - eps || uv.y() < lo.y() - eps || uv.x() > hi.x() + eps || uv.y() > hi.y() + eps) return uv;
+    if (!contains(uv)) return uv;
     const Vec2 size = hi - lo;
     const Vec2 q = ((uv - lo).array() / size.array()).matrix();
     return lo + apply_lattice(q).cwiseProduct(size);
@@ -73,15 +77,10 @@ double GridWarp::max_displacement() const {
 }
 
 namespace {
-/// GridWarp::apply()'s test: \p uv in the warp's rectangle (within its round-off tolerance).
-bool in_rectangle(const GridWarp& w, const Vec2& uv) {
-  constexpr double eps = 1e-12;  // as GridWarp::apply
-  return !(uv.x() < w.lo.x() - eps || uv.y() < w.lo.y() - eps || uv.x() > w.hi.x() + eps || uv.y() > w.hi.y() + eps);
-}
-
 /// True if the rectangles of \p a and \p b are more than \p gap apart along x or y.
 bool apart(const GridWarp& a, const GridWarp& b, double gap) {
-  return a.hi.x() + gap < b.lo.x() || b.hi.x() + gap < a.lo.x() || a.hi.y() + gap < b.lo.y() || b.hi.y() + gap < a.lo.y();
+  return a.hi.x() + gap < b.lo.x() || b.hi.x() + gap < a.lo.x() || a.hi.y() + gap < b.lo.y() ||
+         b.hi.y() + gap < a.lo.y();
 }
 }  // namespace
 
@@ -90,7 +89,9 @@ WarpChain::WarpChain(std::vector<const GridWarp*> warps) {
     if (w) warps_.push_back(w);
   if (warps_.size() < 2) return;
   for (const GridWarp* w : warps_)
-    if (w->whole_square() || !(w->lo.x() <= w->hi.x() && w->lo.y() <= w->hi.y())) return;
+    if (w->whole_square() || !w->lo.allFinite() || !w->hi.allFinite() ||
+        !(w->lo.x() <= w->hi.x() && w->lo.y() <= w->hi.y()))
+      return;
   // Pairwise apart, by a sweep over the rectangles sorted by lo.x.
   std::vector<int> order(warps_.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
@@ -99,10 +100,10 @@ WarpChain::WarpChain(std::vector<const GridWarp*> warps) {
     for (size_t b = a + 1; b < order.size() && warps_[order[b]]->lo.x() <= warps_[order[a]]->hi.x() + kMinGap; ++b)
       if (!apart(*warps_[order[a]], *warps_[order[b]], kMinGap)) return;
   n_ = std::clamp(static_cast<int>(std::sqrt(double(warps_.size()))) * 2, 1, 256);
-  auto cell = [this](double x) { return std::clamp(static_cast<int>(std::floor(x * n_)), 0, n_ - 1); };
+  auto cell = [this](double x) { return static_cast<int>(std::clamp(std::floor(x * n_), 0.0, n_ - 1.0)); };
   std::vector<std::vector<int>> buckets(static_cast<size_t>(n_) * n_);
   for (size_t k = 0; k < warps_.size(); ++k) {
-    const double pad = 1e-12;  // the rectangle test's tolerance
+    const double pad = 1e-12;  // GridWarp::contains()' tolerance
     for (int y = cell(warps_[k]->lo.y() - pad); y <= cell(warps_[k]->hi.y() + pad); ++y)
       for (int x = cell(warps_[k]->lo.x() - pad); x <= cell(warps_[k]->hi.x() + pad); ++x)
         buckets[static_cast<size_t>(y) * n_ + x].push_back(static_cast<int>(k));
@@ -120,10 +121,10 @@ Vec2 WarpChain::apply(const Vec2& uv) const {
   }
   // A point in one rectangle stays in it (within round-off: the lattice points lie in [0,1]²) and so
   // outside every other.
-  auto cell = [this](double x) { return std::clamp(static_cast<int>(std::floor(x * n_)), 0, n_ - 1); };
+  auto cell = [this](double x) { return static_cast<int>(std::clamp(std::floor(x * n_), 0.0, n_ - 1.0)); };
   const size_t b = static_cast<size_t>(cell(uv.y())) * n_ + cell(uv.x());
   for (int k = start_[b]; k < start_[b + 1]; ++k)
-    if (in_rectangle(*warps_[entries_[k]], uv)) return warps_[entries_[k]]->apply(uv);
+    if (warps_[entries_[k]]->contains(uv)) return warps_[entries_[k]]->apply(uv);
   return uv;
 }
 

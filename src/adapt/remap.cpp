@@ -21,7 +21,8 @@ namespace adaptex {
 Parameterization remap_parameterization(const Parameterization& param, const std::vector<const GridWarp*>& warps) {
   Parameterization out = param;
   const WarpChain chain(warps);
-  tbb::parallel_for(size_t(0), out.uv.size(), [&](size_t k) { out.uv[k] = chain.apply(param.uv[k]).cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1)); });
+  tbb::parallel_for(size_t(0), out.uv.size(),
+                    [&](size_t k) { out.uv[k] = chain.apply(param.uv[k]).cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1)); });
   return out;
 }
 

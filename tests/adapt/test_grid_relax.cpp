@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "adaptex/adapt/grid.h"
@@ -224,6 +225,15 @@ TEST(Grid, AChainOfWarpsOnApartRectanglesIsTheWarpsInTurn) {
     moved += a != p;
   }
   EXPECT_GT(moved, 10000);
+  // Far outside the square (a bucket index must not overflow): unchanged, as in turn.
+  for (const Vec2& far : {Vec2(1e300, -1e300), Vec2(-3e9, 0.5), Vec2(0.5, 4e18)})
+    EXPECT_EQ(chain.apply(far), in_turn(far));
+  // A rectangle that is not finite: in turn.
+  std::vector<const GridWarp*> with_bad = ptrs;
+  GridWarp bad = grids[0];
+  bad.lo = Vec2(5, 5), bad.hi = Vec2(std::numeric_limits<double>::infinity(), 6);
+  with_bad.push_back(&bad);
+  EXPECT_FALSE(WarpChain(with_bad).bucketed());
   // Touching or overlapping rectangles, and a warp of the whole square (the two-stage method's
   // composition), are applied in turn.
   grids[1].lo.y() = grids[0].hi.y();

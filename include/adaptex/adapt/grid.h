@@ -32,6 +32,9 @@ struct GridWarp {
   Vec2 apply(const Vec2& uv) const;
   /// The lattice map alone, in local coordinates (\p uv clamped to [0,1]^2).
   Vec2 apply_lattice(const Vec2& uv) const;
+  /// True if \p uv lies in [lo, hi] within 1e-12 (round-off of the move that placed a wedge on a
+  /// side): the points apply() moves.
+  bool contains(const Vec2& uv) const;
   /// True if the warp acts on the whole square (lo = (0,0), hi = (1,1)).
   bool whole_square() const { return lo == Vec2(0, 0) && hi == Vec2(1, 1); }
   /// (1 - t) * identity + t * this: the damped warp (t = 1 full warp, t = 0 identity), same rectangle.
@@ -58,8 +61,8 @@ class WarpChain {
 
  private:
   std::vector<const GridWarp*> warps_;
-  int n_ = 0;                              ///< Buckets per side (0: apply in turn).
-  std::vector<int> start_, entries_;       ///< CSR: bucket b holds warps entries_[start_[b] .. start_[b+1]).
+  int n_ = 0;                         ///< Buckets per side (0: apply in turn).
+  std::vector<int> start_, entries_;  ///< CSR: bucket b holds warps entries_[start_[b] .. start_[b+1]).
 };
 
 /// Inverse of a grid warp sampled on a res x res raster: for each texel centre q
