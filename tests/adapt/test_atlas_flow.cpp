@@ -214,13 +214,15 @@ struct ManyChartLines {
     o.samples = 200000;
     return o;
   }();
-  double psnr_none = [this] {
+  /// The strokes painted on the fixed layout at N².
+  Painter painted() const {
     PainterOptions po;
     po.width = po.height = N;
     Painter p(mesh, param, po, strokes.background);
     p.paint_all(strokes);
-    return evaluate_texture(mesh, param, p.texture(), strokes, eo).psnr;
-  }();
+    return p;
+  }
+  double psnr_none = [this] { return evaluate_texture(mesh, param, painted().texture(), strokes, eo).psnr; }();
   std::unique_ptr<PaintSession> run(const AdaptOptions& adapt) const {
     PaintSessionOptions so;
     so.texture_size = N;
@@ -267,10 +269,7 @@ TEST(AtlasFlow, ManyChartLayoutGainsMoreThanOneFlowOverTheSquare) {
 
 TEST(AtlasFlow, EveryChartEndsInsideItsNewRectangle) {
   const ManyChartLines c;
-  PainterOptions po;
-  po.width = po.height = c.N;
-  Painter p(c.mesh, c.param, po, c.strokes.background);
-  p.paint_all(c.strokes);
+  Painter p = c.painted();
   AdaptOptions ao;
   ao.mode = AdaptMode::DensityFlow;
   const AdaptResult r = adapt_parameterization(c.mesh, c.param, p.texture(), p.texel_map(), ao, &c.strokes);
@@ -299,10 +298,7 @@ TEST(AtlasFlow, ChartLatticesArePolishedInParallelWithTheSameResultAndProgress) 
   // be the one polishing them in turn gives, and the progress callback is called by one thread at a
   // time, with fractions that never go back, and can still cancel.
   const ManyChartLines c;
-  PainterOptions po;
-  po.width = po.height = c.N;
-  Painter p(c.mesh, c.param, po, c.strokes.background);
-  p.paint_all(c.strokes);
+  Painter p = c.painted();
   std::vector<double> fractions;
   std::atomic<int> inside{0};
   bool overlapped = false;

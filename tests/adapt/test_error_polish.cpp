@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "adaptex/adapt/density_flow.h"
@@ -504,6 +506,32 @@ TEST(ErrorPolish, TexelsGetFinerAcrossAnEdgeWithItsDirection) {
   // Under the directed model, the directed polish beats the round one.
   EXPECT_LT(model_error(directed.flow, directed.fields), 0.99 * model_error(round.flow, directed.fields));  // 0.964
   EXPECT_GT(min_corner_det(directed.flow), 0);
+}
+
+TEST(ErrorPolish, EdgeTensorTablesHoldExactBoxSums) {
+  // The summed-area tables are built row by row, then column block by column block, in parallel
+  // (error_polish.cpp): the sums must still be exact. A noisy non-square texture, large enough for
+  // several column blocks; every table entry against the direct sum of its rectangle, bit for bit.
+  const int W = 700, H = 37;
+  ImageRGBA8 tex(W, H);
+  unsigned state = 12345;
+  for (auto& c : tex.data) c = static_cast<std::uint8_t>((state = state * 1103515245u + 12345u) >> 24);
+  const EdgeTensor e = edge_tensor(tex);
+  const std::pair<const ImageF*, const std::vector<double>*> tables[3] = {
+      {&e.xx, &e.sum_xx}, {&e.xy, &e.sum_xy}, {&e.yy, &e.sum_yy}};
+  for (const auto& [img, sum] : tables) {
+    ASSERT_EQ(sum->size(), static_cast<size_t>(W + 1) * (H + 1));
+    std::vector<double> column(W, 0.0);  // column[i]: sum of img(i, 0..j-1)
+    for (int j = 0; j <= H; ++j) {
+      double row = 0;
+      for (int i = 0; i <= W; ++i) {
+        ASSERT_EQ((*sum)[static_cast<size_t>(j) * (W + 1) + i], row) << i << ", " << j;
+        if (i < W) row += column[i];
+      }
+      if (j < H)
+        for (int i = 0; i < W; ++i) column[i] += img->at(i, j);
+    }
+  }
 }
 
 TEST(ErrorPolish, EdgeTensorOfAStripeFollowsItsEdges) {
