@@ -25,7 +25,9 @@ struct PaintCommand {
   PaintRunOptions run;
   std::string grid;  // raw --grid text
   double alpha = std::nan(""), beta = std::nan("");
+  double min_gain = std::nan("");
   bool grid_given = false, alpha_given = false, beta_given = false;  // the option was on the command line
+  bool min_gain_given = false;
 };
 
 /// Checks every option before any work is done (so a bad option never costs an unwrap).
@@ -41,6 +43,11 @@ void validate(PaintCommand& c, const Context& ctx) {
     if (!std::isfinite(c.beta) || c.beta < 0) throw InvalidInputError("--beta must be a finite number >= 0");
     a.beta = c.beta;
   }
+  if (c.min_gain_given) {  // --min-gain nan is an error, not the default
+    if (!std::isfinite(c.min_gain) || c.min_gain < 0)
+      throw InvalidInputError("--min-gain must be a finite number of dB >= 0");
+    a.min_gain = c.min_gain;
+  }
   if (a.mode == "two-stage" && a.grid.size() == 1)
     throw InvalidInputError("--grid: two-stage needs two sizes (coarse,fine), e.g. 16,256");
   if (a.mode == "single" && a.grid.size() == 2)
@@ -48,6 +55,8 @@ void validate(PaintCommand& c, const Context& ctx) {
   if (a.mode == "none" && (!a.grid.empty() || a.alpha || a.beta || !a.debug_maps.empty()))
     ctx.warn("--grid/--alpha/--beta/--debug-maps have no effect with --adapt none");
   if (a.mode == "density-flow" && !a.grid.empty()) ctx.warn("--grid has no effect with --adapt density-flow");
+  if (c.min_gain_given && (a.reparam != "each-stroke" || a.mode != "density-flow" || a.update != "replay"))
+    ctx.warn("--min-gain has an effect only with --reparam each-stroke, --adapt density-flow and --update replay");
   // Let the session validate the combination now, before any work is done.
   (void)make_session_options(c.run.size, c.run.padding, a.mode, a.grid, a.alpha.value_or(-1.0),
                              a.beta.value_or(-1.0), a.reparam, a.update, a.debug_maps);
@@ -129,6 +138,11 @@ void add_paint_command(CLI::App& app, Context& ctx) {
   sub->add_option("--reparam", cmd->run.adapt.reparam, "When to re-parameterize: each-stroke | end")
       ->check(CLI::IsMember({"each-stroke", "end"}))
       ->capture_default_str();
+  sub->add_option("--min-gain", cmd->min_gain,
+                  "each-stroke: re-parameterize only when the error model predicts at least this PSNR gain "
+                  "(dB) over the held layout; 0 = after every stroke (default " +
+                      std::to_string(PaintSessionOptions{}.min_gain_db).substr(0, 4) + ")")
+      ->each([cmd](const std::string&) { cmd->min_gain_given = true; });
   sub->add_option("--update", cmd->run.adapt.update, "Texture update after re-parameterizing: replay | resample")
       ->check(CLI::IsMember({"replay", "resample"}))
       ->capture_default_str();

@@ -62,6 +62,9 @@ struct AdaptSettings {
   std::optional<double> alpha, beta; ///< --alpha / --beta L_s^2 weights; unset = the adaptive defaults
   std::string reparam = "end";       ///< each-stroke | end
   std::string update = "replay";     ///< replay | resample
+  /// --min-gain DB: each-stroke mode re-parameterizes only for at least this predicted gain
+  /// (PaintSessionOptions::min_gain_db); unset = the library's default.
+  std::optional<double> min_gain;
   std::filesystem::path debug_maps;  ///< --debug-maps DIR (empty = none)
 };
 
@@ -136,6 +139,7 @@ inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
         a.reparam, a.update, a.debug_maps);
     PaintSessionOptions sor = so;
     sor.adapt.refine = a.refine;
+    if (a.min_gain) sor.min_gain_db = *a.min_gain;
     PaintSession session(mesh, run.param, sor, strokes.background);
     const size_t n = strokes.strokes.size();
     for (size_t k = 0; k < n; ++k) {
@@ -193,6 +197,7 @@ inline nlohmann::json paint_report(const TriMesh& mesh, const StrokeFile& stroke
       {"adapt", {{"mode", options.adapt.mode},
                  {"reparam", options.adapt.reparam},
                  {"update", options.adapt.update},
+                 {"min_gain_db", options.adapt.min_gain.value_or(PaintSessionOptions{}.min_gain_db)},
                  {"reparameterizations", run.adapt_reports}}},
       {"unwrap", {{"floater_l2", u.floater_l2},
                   {"final_l2", u.final_l2},

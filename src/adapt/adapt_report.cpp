@@ -9,6 +9,7 @@ namespace adaptex {
 void to_json(nlohmann::json& j, const AdaptReport& r) {
   j = nlohmann::json{{"mode", to_string(r.mode)},
                      {"accepted", r.accepted},
+                     {"skipped", r.skipped},
                      {"damping", r.damping},
                      {"global_damping", r.global_damping},
                      {"locally_damped_wedges", r.locally_damped},
@@ -21,6 +22,7 @@ void to_json(nlohmann::json& j, const AdaptReport& r) {
                      {"degenerate_after", r.degenerate_after},
                      {"signal_fraction", r.signal_fraction},
                      {"predicted_gain_db", r.predicted_gain_db},
+                     {"gain_over_held_db", r.gain_over_held_db},
                      {"flow_tangled_cells", r.flow_tangled_cells},
                      {"flow_inverted_cells", r.flow_inverted_cells},
                      {"flow_steps", r.flow_steps},
@@ -55,13 +57,18 @@ void to_json(nlohmann::json& j, const AdaptReport& r) {
 nlohmann::json adapt_reports_json(const std::vector<AdaptReport>& reports) {
   nlohmann::json arr = nlohmann::json::array();
   double total = 0;
-  int accepted = 0;
+  int accepted = 0, skipped = 0;
   for (const auto& r : reports) {
     arr.push_back(r);
     total += r.time_total;
     accepted += r.accepted ? 1 : 0;
+    skipped += r.skipped ? 1 : 0;
   }
-  return {{"count", reports.size()}, {"accepted", accepted}, {"total_ms", 1e3 * total}, {"reports", arr}};
+  return {{"count", reports.size()},
+          {"accepted", accepted},
+          {"skipped", skipped},
+          {"total_ms", 1e3 * total},
+          {"reports", arr}};
 }
 
 }  // namespace adaptex

@@ -561,6 +561,26 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
   return from_levels(mesh, param, texture, ref, r.ref_map, r.grid, level_b, o);
 }
 
+double predicted_error(const ErrorDensity& model, const ImageF& density) {
+  const ImageF& q = model.error;
+  const ImageF& p = model.exponent;
+  if (p.width != q.width || p.height != q.height)
+    throw InvalidInputError("predicted_error: the model's error and exponent rasters differ in size");
+  const bool uniform = density.data.empty();
+  if (!uniform && (density.width != q.width || density.height != q.height))
+    throw InvalidInputError("predicted_error: density is " + std::to_string(density.width) + " x " +
+                            std::to_string(density.height) + ", the model " + std::to_string(q.width) + " x " +
+                            std::to_string(q.height));
+  double e = 0;
+  for (size_t k = 0; k < q.data.size(); ++k) {
+    if (!(q.data[k] > 0)) continue;
+    const double rho = uniform ? 1.0 : density.data[k];
+    if (!(rho > 0) || !std::isfinite(rho)) throw InvalidInputError("predicted_error: density is not finite and > 0");
+    e += q.data[k] * std::pow(rho, -0.5 * p.data[k]);
+  }
+  return e;
+}
+
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
                                    const TexelMap& map, const ErrorDensityOptions& o) {
   check(mesh, param, texture, map, o, false);

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "adaptex/adapt/point_transfer.h"
@@ -15,10 +16,23 @@
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/signal.h"
 #include "adaptex/paint/surface_cache.h"
+#include "adaptex/param/stretch.h"
 
 namespace adaptex {
 
 namespace {
+
+/// \p density (mean 1) of a warp applied with blend factor \p t: ρ^t, scaled to mean 1 again (the
+/// warp's Jacobian determinant interpolated geometrically; t = 0: the unwarped layout, empty).
+ImageF damped_density(const ImageF& density, double t) {
+  if (t <= 0 || density.data.empty()) return ImageF{};
+  if (t == 1.0) return density;
+  ImageF d = density;
+  double sum = 0;
+  for (float& v : d.data) sum += (v = static_cast<float>(std::pow(v, t)));
+  for (float& v : d.data) v = static_cast<float>(v * d.data.size() / sum);
+  return d;
+}
 
 // Strokes painted since the last re-parameterization, in resample mode: composited over the
 // resampled base (composite_over_base) from the segment painted over black and over white.
@@ -85,6 +99,12 @@ struct PaintSession::Impl {
   double texel_spacing = 0;  // sqrt(surface area / chart texels) of the initial layout
   int reparam_count = 0;
   bool adapted = false;  ///< A re-parameterization has been accepted: the current layout is adapted.
+  // Each-stroke gating (opt.min_gain_db): the UV area density of the held layout relative to the initial
+  // layout, on the error model's raster (empty: the initial layout itself), and whether a cycle was
+  // skipped since the last one that ran.
+  ImageF held_density;
+  bool pending = false;
+  double held_l2 = -1;  // the held layout's L2 stretch (reports' l2_after), -1: not measured yet
 
   PainterOptions painter_options() const {
     PainterOptions p;
@@ -215,11 +235,11 @@ struct PaintSession::Impl {
     return density_reference.get();
   }
 
-  std::unique_ptr<AdaptResult> compute(const AdaptOptions& ao) {
+  std::unique_ptr<AdaptResult> compute(const AdaptOptions& ao, const ErrorDensity* model) {
     ErrorDensityReference* ref = density_reference_now(ao);
     if (base_painter)
       return std::make_unique<AdaptResult>(adapt_parameterization(mesh, *base_param, base_painter->texture(),
-                                                                  base_painter->texel_map(), ao, &history, ref));
+                                                                  base_painter->texel_map(), ao, &history, ref, model));
     return std::make_unique<AdaptResult>(
         adapt_parameterization(current_mesh(), *param, texture(), painter->texel_map(), ao, &history, ref));
   }
@@ -302,6 +322,7 @@ struct PaintSession::Impl {
   /// The candidate becomes the current layout.
   void adopt(Candidate&& c, AdaptResult& res, SafeguardPoints&& sg) {
     adapted = true;
+    if (path_independent()) held_density = damped_density(res.density, res.report.damping);
     res.param = *c.param;
     painter = std::move(c.painter);  // references *c.param and the candidate's mesh: keep both alive
     param = std::move(c.param);
@@ -324,6 +345,7 @@ struct PaintSession::Impl {
 
   /// Path-independent mode without an accepted candidate: the initial layout, the history replayed.
   void return_to_initial() {
+    held_density = ImageF{};
     if (!adapted) return;
     param = std::make_unique<Parameterization>(*base_param);
     if (uses_surface_cache()) {
@@ -355,17 +377,66 @@ struct PaintSession::Impl {
 
   const AdaptReport& record(std::unique_ptr<AdaptResult> res, std::chrono::steady_clock::time_point t_all) {
     res->report.time_total = seconds_since(t_all);
+    held_l2 = res->report.l2_after;
     reports.push_back(res->report);
     last = std::move(res);
     return reports.back();
   }
 
-  const AdaptReport& reparameterize() {
+  /// Each-stroke density-flow with replay (where density_reference_now() applies) and a history: the
+  /// error model for the history so far, and its predicted gain in dB over the held layout.
+  struct Model {
+    ErrorDensity density;
+    double gain_over_held_db = 0;
+    double seconds = 0;
+  };
+  std::optional<Model> model_now(const AdaptOptions& ao) {
+    ErrorDensityReference* ref = density_reference_now(ao);
+    if (!ref || history.strokes.empty()) return std::nullopt;
+    const auto t0 = std::chrono::steady_clock::now();
+    Model m{compute_error_density(mesh, *base_param, base_painter->texture(), base_painter->texel_map(), history, *ref,
+                                  ao.density)};
+    const double held = predicted_error(m.density, held_density), best = predicted_error(m.density, m.density.density);
+    m.gain_over_held_db = held > 0 && best > 0 ? 10 * std::log10(held / best) : 0.0;
+    m.seconds = seconds_since(t0);
+    return m;
+  }
+
+  /// The report of a cycle that stopped after the error model (gain below opt.min_gain_db).
+  const AdaptReport& skip(const AdaptOptions& ao, const Model& m, std::chrono::steady_clock::time_point t_all) {
+    AdaptReport rep;
+    rep.mode = ao.mode;
+    rep.skipped = true;
+    rep.accepted = false;
+    rep.damping = 0;
+    rep.signal_fraction = m.density.signal_fraction;
+    rep.predicted_gain_db = m.density.predicted_gain_db;
+    rep.gain_over_held_db = m.gain_over_held_db;
+    rep.faces_before = rep.faces_after = current_mesh().num_faces();
+    if (held_l2 < 0) held_l2 = measure_stretch(current_mesh(), *param).l2;
+    rep.l2_before = rep.l2_after = held_l2;
+    rep.time_density = m.seconds;
+    rep.time_total = seconds_since(t_all);
+    pending = true;
+    reports.push_back(rep);
+    return reports.back();
+  }
+
+  /// \p gated: each-stroke mode's cycle after a stroke, which may stop after the error model
+  /// (opt.min_gain_db); false: re-parameterize whatever the model predicts.
+  const AdaptReport& reparameterize(bool gated) {
     const auto t_all = std::chrono::steady_clock::now();
     const AdaptOptions ao = adapt_options();
-    std::unique_ptr<AdaptResult> res = compute(ao);
+    const std::optional<Model> model = model_now(ao);
+    if (gated && model && model->gain_over_held_db < opt.min_gain_db) return skip(ao, *model, t_all);
+    pending = false;
+    std::unique_ptr<AdaptResult> res = compute(ao, model ? &model->density : nullptr);
     const TriMesh& cand_mesh = res->refined_mesh ? *res->refined_mesh : source_mesh();
     AdaptReport& rep = res->report;
+    if (model) {
+      rep.time_density += model->seconds;
+      rep.gain_over_held_db = model->gain_over_held_db;
+    }
     if (!opt.debug_dir.empty()) write_debug_maps(opt.debug_dir, "reparam" + std::to_string(reparam_count), *res);
     ++reparam_count;
     if (!rep.accepted || (rep.damping == 0 && res->chart_moves.empty())) {
@@ -405,6 +476,8 @@ PaintSession::PaintSession(TriMesh mesh, Parameterization initial, const PaintSe
                             "], got " + std::to_string(options.safeguard_samples));
   if (!(options.surface_cache >= 0) || !std::isfinite(options.surface_cache))
     throw InvalidInputError("paint session: surface_cache must be >= 0");
+  if (!(options.min_gain_db >= 0) || !std::isfinite(options.min_gain_db))
+    throw InvalidInputError("paint session: min_gain_db must be a finite number >= 0");
   m.mesh = std::move(mesh);
   m.opt = options;
   m.history.background = background;
@@ -433,7 +506,7 @@ void PaintSession::add_stroke(const Stroke& stroke) {
   if (m.open) throw Error("paint session: add_stroke() while an interactive stroke is open");
   m.paint(stroke);
   m.record_stroke(stroke);
-  if (m.opt.schedule == ReparamSchedule::EachStroke && m.opt.adapt.mode != AdaptMode::None) m.reparameterize();
+  if (m.opt.schedule == ReparamSchedule::EachStroke && m.opt.adapt.mode != AdaptMode::None) m.reparameterize(true);
 }
 
 void PaintSession::begin_stroke(const Stroke& style) {
@@ -464,15 +537,16 @@ void PaintSession::end_stroke() {
   m.open_dabs.clear();
   if (s.dabs.empty()) return;
   m.record_stroke(std::move(s));
-  if (m.opt.schedule == ReparamSchedule::EachStroke && m.opt.adapt.mode != AdaptMode::None) m.reparameterize();
+  if (m.opt.schedule == ReparamSchedule::EachStroke && m.opt.adapt.mode != AdaptMode::None) m.reparameterize(true);
 }
 
 void PaintSession::finish() {
   Impl& m = *impl_;
-  if (m.opt.schedule == ReparamSchedule::End && m.opt.adapt.mode != AdaptMode::None) m.reparameterize();
+  if (m.opt.adapt.mode == AdaptMode::None) return;
+  if (m.opt.schedule == ReparamSchedule::End || m.pending) m.reparameterize(false);
 }
 
-const AdaptReport& PaintSession::reparameterize() { return impl_->reparameterize(); }
+const AdaptReport& PaintSession::reparameterize() { return impl_->reparameterize(false); }
 const TriMesh& PaintSession::mesh() const { return impl_->current_mesh(); }
 const Parameterization& PaintSession::param() const { return *impl_->param; }
 const ImageRGBA8& PaintSession::texture() { return impl_->texture(); }

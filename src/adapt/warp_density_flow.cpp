@@ -29,7 +29,8 @@ class DensityFlowWarp final : public WarpMethod {
     const ErrorDensityOptions& eo = o.density;
     ErrorDensityReference* cache = in.density_reference;
     const bool cached = in.history && cache && cache->matches(in.mesh, in.param, in.texture.width, eo);
-    ErrorDensity ed = cached      ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, *cache, eo)
+    ErrorDensity ed = in.density   ? *in.density
+                      : cached     ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, *cache, eo)
                       : in.history ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, eo)
                                    : compute_error_density(in.mesh, in.param, in.texture, in.map, eo);
     rep.signal_fraction = ed.signal_fraction;

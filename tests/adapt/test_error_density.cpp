@@ -156,5 +156,39 @@ TEST(ErrorDensity, ReferenceOfAnotherLayoutOrSizeIsRefused) {
   EXPECT_THROW(ErrorDensityReference(mesh, param, 0, Vec3(1, 1, 1)), InvalidInputError);
 }
 
+TEST(ErrorDensity, PredictedErrorIsTheModelsSumAtAGivenDensity) {
+  // A 2 x 2 model: an edge cell (p = 1), a smooth cell (p = 4), an unpainted cell and a gutter.
+  ErrorDensity m;
+  m.error = ImageF(2, 2, 0.0f);
+  m.exponent = ImageF(2, 2, 0.0f);
+  m.error.data = {0.5f, 0.25f, 0.0f, 0.0f};
+  m.exponent.data = {1.0f, 4.0f, 0.0f, 0.0f};
+  EXPECT_DOUBLE_EQ(predicted_error(m, ImageF{}), 0.75);  // the layout the model was computed on
+  ImageF d(2, 2, 1.0f);
+  d.data = {4.0f, 2.0f, 0.5f, 0.5f};
+  // 0.5 · 4^(−1/2) + 0.25 · 2^(−2); the unpainted cells add nothing at any density.
+  EXPECT_DOUBLE_EQ(predicted_error(m, d), 0.5 * 0.5 + 0.25 * 0.25);
+  d.data[1] = 0.0f;
+  EXPECT_THROW(predicted_error(m, d), InvalidInputError);  // a painted cell with no area
+  d.data[1] = std::nanf("");
+  EXPECT_THROW(predicted_error(m, d), InvalidInputError);
+  EXPECT_THROW(predicted_error(m, ImageF(3, 3, 1.0f)), InvalidInputError);
+}
+
+TEST(ErrorDensity, TheModelsDensityPredictsLessErrorThanTheLayoutItCameFrom) {
+  const test::Scene sc = test::torus_scene(48, 24, StrokeKind::Mixed, 6);
+  const int N = 64;
+  Painter painter(sc.mesh, sc.param, PainterOptions{N, N, 4}, sc.strokes.background);
+  painter.paint_all(sc.strokes);
+  const ErrorDensity m = compute_error_density(sc.mesh, sc.param, painter.texture(), painter.texel_map(), sc.strokes);
+  const double held = predicted_error(m, ImageF{}), best = predicted_error(m, m.density);
+  ASSERT_GT(best, 0);
+  const double gain = 10 * std::log10(held / best);
+  // The same gain the model reports (which it sums before the gutters get their share and the
+  // density is scaled to mean 1: close, not equal).
+  EXPECT_GT(gain, 0.5);
+  EXPECT_NEAR(gain, m.predicted_gain_db, 0.25 * m.predicted_gain_db);
+}
+
 }  // namespace
 }  // namespace adaptex

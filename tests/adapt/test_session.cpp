@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "adaptex/adapt/session.h"
+#include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/generate.h"
@@ -49,7 +50,9 @@ TEST(PaintSession, EachStrokeEndsWithinATenthOfADecibelOfEndAfter50Strokes) {
   const StrokeFile strokes = generated(mesh, StrokeKind::Lines, 50, 3);
   const int N = 128;
   const auto end = painted(mesh, param, strokes, ReparamSchedule::End, N);
-  const auto each = painted(mesh, param, strokes, ReparamSchedule::EachStroke, N);
+  PaintSessionOptions every;
+  every.min_gain_db = 0;  // 50 re-parameterizations, none skipped for a small predicted gain
+  const auto each = painted(mesh, param, strokes, ReparamSchedule::EachStroke, N, -1, every);
   ASSERT_EQ(end->reports().size(), 1u);
   ASSERT_EQ(each->reports().size(), strokes.strokes.size());
   int accepted = 0;
@@ -112,6 +115,7 @@ TEST(PaintSession, EachStrokeLayoutIsEndModesLayoutForTheHistorySoFar) {
   PaintSessionOptions so;
   so.texture_size = N;
   so.schedule = ReparamSchedule::EachStroke;
+  so.min_gain_db = 0;  // a cycle after every stroke (no cycle skipped for a small predicted gain)
   // The measured accept / reject sequence above is that of the session-8 flow: a 128-cell lattice
   // with every point advected, blur 4, no polish. Coarse-to-fine advection, the finer default lattice
   // or the polish (error_polish.h) change the candidates by a fraction of a texel and this knife-edge
@@ -139,6 +143,71 @@ TEST(PaintSession, EachStrokeLayoutIsEndModesLayoutForTheHistorySoFar) {
               rejected_after_accept);
   EXPECT_GT(accepted, 0);
   EXPECT_GT(rejected_after_accept, 0);
+}
+
+TEST(PaintSession, EachStrokeSkipsTheCyclesThatGainLessThanMinGainAndEndsOnEndModesLayout) {
+  // min_gain_db: after a stroke the cycle computes the error model and stops there if the predicted
+  // gain over the held layout is below min_gain_db. Three thresholds over the same history: 0 (a cycle
+  // after every stroke), one that skips some cycles, and one no cycle reaches (every cycle skipped).
+  const TriMesh mesh = shapes::torus(40, 20);
+  const Parameterization param = unwrap(mesh).param;
+  const StrokeFile strokes = generated(mesh, StrokeKind::Mixed, 12, 11);
+  const int N = 128;
+  PaintSessionOptions so;
+  so.safeguard_samples = 8000;
+  const auto end = painted(mesh, param, strokes, ReparamSchedule::End, N, -1, so);
+  const int n = static_cast<int>(strokes.strokes.size());
+  struct Case {
+    double min_gain;
+    int least_skipped, most_skipped;
+  };
+  for (const Case c : {Case{0.0, 0, 0}, Case{0.3, 1, n - 1}, Case{1e9, n, n}}) {
+    const double min_gain = c.min_gain;
+    so.min_gain_db = min_gain;
+    so.texture_size = N;
+    so.schedule = ReparamSchedule::EachStroke;
+    PaintSession each(mesh, param, so, strokes.background);
+    int skipped = 0;
+    for (int k = 0; k < n; ++k) {
+      const Parameterization held = each.param();
+      const ImageRGBA8 held_texture = each.texture();
+      each.add_stroke(strokes.strokes[k]);
+      ASSERT_EQ(each.reports().size(), static_cast<size_t>(k + 1));
+      const AdaptReport& r = each.reports().back();
+      if (r.skipped) {
+        ++skipped;
+        EXPECT_LT(r.gain_over_held_db, min_gain) << "stroke " << k;
+        EXPECT_FALSE(r.accepted);
+        EXPECT_EQ(each.param().uv, held.uv) << "a skipped cycle keeps the layout, stroke " << k;
+        EXPECT_NE(each.texture().data, held_texture.data) << "the stroke is painted on it, stroke " << k;
+        EXPECT_GT(r.time_density, 0);
+        EXPECT_EQ(r.time_polish + r.time_refine + r.time_remap + r.time_texel_map, 0);
+      } else {
+        EXPECT_GE(r.gain_over_held_db, min_gain) << "stroke " << k;
+      }
+    }
+    const size_t before_finish = each.reports().size();
+    each.finish();
+    // finish() catches up once when the last cycle was skipped: the session ends on end mode's layout.
+    const bool last_skipped = each.reports()[before_finish - 1].skipped;
+    EXPECT_EQ(each.reports().size(), before_finish + (last_skipped ? 1 : 0));
+    EXPECT_FALSE(each.reports().back().skipped);
+    EXPECT_TRUE(same_layout(each, *end)) << "min_gain " << min_gain;
+    std::printf("torus mixed %d strokes, min_gain %g dB: %d cycles skipped\n", n, min_gain, skipped);
+    EXPECT_GE(skipped, c.least_skipped) << "min_gain " << min_gain;
+    EXPECT_LE(skipped, c.most_skipped) << "min_gain " << min_gain;
+  }
+}
+
+TEST(PaintSession, BadMinGainIsRejected) {
+  const TriMesh mesh = shapes::torus(12, 6);
+  const Parameterization param = unwrap(mesh).param;
+  for (const double bad : {-0.1, std::nan(""), HUGE_VAL}) {
+    PaintSessionOptions so;
+    so.texture_size = 32;
+    so.min_gain_db = bad;
+    EXPECT_THROW(PaintSession(mesh, param, so), InvalidInputError) << bad;
+  }
 }
 
 }  // namespace

@@ -60,7 +60,8 @@ TEST(PaintSessionCache, EachStrokeReferenceErrorEqualsTheWholeHistory) {
   const TriMesh& mesh = sc.mesh;
   const Parameterization& param = sc.param;
   const StrokeFile& strokes = sc.strokes;
-  const PaintSessionOptions o = small_options(ReparamSchedule::EachStroke, AdaptOptions{}.mode);
+  PaintSessionOptions o = small_options(ReparamSchedule::EachStroke, AdaptOptions{}.mode);
+  o.min_gain_db = 0;  // a safeguard run after every stroke
   PaintSession s(mesh, param, o, strokes.background);
   PainterOptions po;
   po.width = po.height = o.texture_size;
@@ -90,6 +91,7 @@ TEST(PaintSessionCache, SurfaceCacheEachStrokeIsEndModeForTheHistorySoFar) {
   const Scene sc = torus_scene(40, 20, 6);
   PaintSessionOptions each = small_options(ReparamSchedule::EachStroke, AdaptOptions{}.mode);
   each.surface_cache = 3;
+  each.min_gain_db = 0;  // a cycle after every stroke
   PaintSessionOptions end = each;
   end.schedule = ReparamSchedule::End;
   PaintSession s(sc.mesh, sc.param, each, sc.strokes.background);

@@ -164,5 +164,26 @@ TEST_F(CliExitCodes, ReparamBadGridAndWeightsAreBadInput) {
   EXPECT_EQ(files_in(dir.path), std::vector<std::string>{"ball.obj"});
 }
 
+TEST_F(CliExitCodes, PaintBadMinGainIsBadInputAndWritesNothing) {
+  const auto strokes = dir.path / "s.json";
+  ASSERT_EQ(run_cli("-q strokes generate " + q(mesh) + " --count 2 -o " + q(strokes)).exit_code, 0);
+  const std::string base = "-q paint " + q(mesh) + " --strokes " + q(strokes) + " --size 32 --reparam each-stroke -o " +
+                           q(dir.path / "p");
+  for (const std::string bad : {"--min-gain -1", "--min-gain nan", "--min-gain inf", "--min-gain x"}) {
+    const auto r = run_cli(base + " " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find("--min-gain"), std::string::npos) << r.err;  // names the option
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_EQ(files_in(dir.path), (std::vector<std::string>{"ball.obj", "s.json"}));
+  // A good value is taken and written to report.json.
+  const auto r = run_cli(base + " --min-gain 0.25");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(dir.path / "p" / "report.json");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_NE(ss.str().find("\"min_gain_db\": 0.25"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace adaptex

@@ -120,6 +120,13 @@ struct AdaptReport {
   bool accepted = true;        ///< false: a safeguard kept the previous parameterization.
   double error_before = -1, error_after = -1;  ///< Safeguard error estimates (MSE), -1 if not run.
   double predicted_gain_db = 0;  ///< density-flow: the error model's predicted PSNR gain.
+  /// Each-stroke sessions (PaintSessionOptions::min_gain_db): the model's predicted PSNR gain of this
+  /// re-parameterization over the layout the session held before it (0 where not computed).
+  double gain_over_held_db = 0;
+  /// Each-stroke sessions: true if the cycle stopped after the error model because the predicted gain
+  /// over the held layout was below min_gain_db; the session kept its layout and texture (accepted is
+  /// false, only time_density and time_total are set).
+  bool skipped = false;
   int flow_tangled_cells = 0;    ///< density-flow: flow-grid cells untangled (density_flow.h).
   int flow_inverted_cells = 0;   ///< density-flow: cells still not convex after that (0 expected).
   long flow_steps = 0;           ///< density-flow: accepted integration steps over every lattice point.
@@ -173,14 +180,17 @@ struct AdaptResult {
 /// is its texel map, same size as the texture) and, if given, the exact stroke \p history (used by
 /// density-flow's error model; without it the texture is the only signal). \p density_reference, if
 /// given, caches that signal for \p current at the texture's size (error_density.h); it is used when it
-/// matches and makes the error model's cost independent of the history's length.
+/// matches and makes the error model's cost independent of the history's length. \p density, if given,
+/// is density-flow's error model for exactly these inputs and options (compute_error_density()), used
+/// instead of computing it again.
 /// \pre mesh, current and current_map are consistent; texture non-empty
 /// \throw InvalidInputError inconsistent sizes, bad options (grid < 1, α/β < 0, ...)
 /// \throw CancelledError the progress callback returned false
 AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current,
                                    const ImageRGBA8& texture, const TexelMap& current_map,
                                    const AdaptOptions& options = {}, const StrokeFile* history = nullptr,
-                                   ErrorDensityReference* density_reference = nullptr);
+                                   ErrorDensityReference* density_reference = nullptr,
+                                   const ErrorDensity* density = nullptr);
 
 /// Name of a mode as used on the command line: "none", "single", "two-stage", "density-flow".
 const char* to_string(AdaptMode mode);

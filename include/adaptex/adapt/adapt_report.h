@@ -11,7 +11,7 @@ namespace adaptex {
 
 /// JSON of one report (phase times in ms, stretch before/after, damping, iterations, accepted).
 void to_json(nlohmann::json& j, const AdaptReport& report);
-/// JSON array of reports plus totals: {"count", "accepted", "total_ms", "reports": [...]}.
+/// JSON array of reports plus totals: {"count", "accepted", "skipped", "total_ms", "reports": [...]}.
 nlohmann::json adapt_reports_json(const std::vector<AdaptReport>& reports);
 
 }  // namespace adaptex

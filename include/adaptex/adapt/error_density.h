@@ -113,6 +113,15 @@ class ErrorDensityReference {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The model's total error Σ_c q_c · ρ_c^(−p_c/2) (q = model.error, p = model.exponent; cells without
+/// paint count 0) of a layout whose UV area density, relative to the layout the model was computed on,
+/// is \p density: L x L and mean 1 like ErrorDensity::density, or empty for that layout itself (ρ = 1).
+/// 10·log10(predicted_error(m, held) / predicted_error(m, m.density)) is what re-parameterizing for
+/// the model would gain over a layout with density `held` (PaintSessionOptions::min_gain_db).
+/// \pre model.error and model.exponent are L x L
+/// \throw InvalidInputError density is neither empty nor L x L, or holds a value that is not finite and > 0
+double predicted_error(const ErrorDensity& model, const ImageF& density);
+
 /// Target density from the exact stroke history: reference raster, error levels and equidistribution as
 /// described above. \p texture / \p map are the current texture and its texel map (the h_N level).
 /// \pre mesh/param consistent; map is the texel map of param at the texture's size

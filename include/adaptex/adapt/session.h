@@ -24,6 +24,9 @@
 /// as end mode would keep it (an earlier candidate, computed for part of the history, is not kept on
 /// the strength of the estimate). In resample mode, and when reparameterize() is called again in end
 /// mode, the reference is the current layout.
+/// With PaintSessionOptions::min_gain_db > 0, each-stroke mode skips the cycles whose predicted gain
+/// is below it (the layout is then end mode's for an earlier part of the history) and finish() catches
+/// up, so the last layout is still end mode's.
 /// The exact signal at the samples is kept up to date stroke by stroke (paint/signal.h
 /// PointSignalCache), so the safeguard does not evaluate the whole history again after every stroke
 /// (issue 10).
@@ -84,6 +87,15 @@ struct PaintSessionOptions {
   /// input mesh (each-stroke mode, and end mode's first re-parameterization). Its lattice is built
   /// when the session is constructed and holds at most kMaxSurfaceCacheSamples samples (~50 bytes each with its spatial index).
   double surface_cache = 0;
+  /// Each-stroke mode with density-flow and replay: after a stroke, the cycle first computes the error
+  /// model (error_density.h, ~25 ms at 1024²) and re-parameterizes only if the model predicts at least
+  /// this PSNR gain, in dB, over the layout the session holds (predicted_error()); otherwise the stroke
+  /// stays painted on the held layout and the report says `skipped`. A skipped stroke's signal is not
+  /// lost: the next cycle's model sees the whole history, so small strokes add up until the gain is
+  /// worth a new layout. finish() re-parameterizes once more if the last cycle was skipped, so the
+  /// session ends on end mode's layout. 0: re-parameterize after every stroke (each layout is then
+  /// end mode's for the history so far). See docs/adaptive.md, "When to re-parameterize".
+  double min_gain_db = 0.1;
   std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
 };
 
@@ -108,9 +120,11 @@ class PaintSession {
   void begin_stroke(const Stroke& style);
   std::array<int, 4> add_dab(const Vec3& centre);
   void end_stroke();
-  /// End mode: re-parameterizes once (no-op in each-stroke mode or with mode None).
+  /// End mode: re-parameterizes once. Each-stroke mode: re-parameterizes if the last cycle was skipped
+  /// (min_gain_db). No-op with mode None.
   void finish();
-  /// Re-parameterizes now, whatever the schedule. \return the report (also appended to reports()).
+  /// Re-parameterizes now, whatever the schedule and min_gain_db. \return the report (also appended
+  /// to reports()).
   const AdaptReport& reparameterize();
 
   const TriMesh& mesh() const;
@@ -119,7 +133,8 @@ class PaintSession {
   const TexelMap& texel_map() const;       ///< Texel map of the current parameterization.
   const StrokeFile& history() const;       ///< Every stroke painted so far.
   const std::vector<AdaptReport>& reports() const;  ///< One per re-parameterization.
-  const AdaptResult* last_result() const;  ///< Maps / grids of the last re-parameterization (or null).
+  /// Maps / grids of the last re-parameterization that was not skipped (or null).
+  const AdaptResult* last_result() const;
   const PaintSessionOptions& options() const;
   Painter& painter();                      ///< The painter of the current parameterization.
   /// Estimated reconstruction MSE of the current texture against the exact history signal on the

@@ -25,6 +25,10 @@ struct WarpInput {
   /// Optional cache of the history's signal for this layout (error_density.h); used by density-flow
   /// when it matches the layout, so the error model's cost does not grow with the history.
   ErrorDensityReference* density_reference = nullptr;
+  /// Optional: the error model's density for exactly this input, already computed (a painting session
+  /// computes it first to decide whether re-parameterizing is worth it, session.h); density-flow then
+  /// uses it instead of computing it again. Other methods ignore it.
+  const ErrorDensity* density = nullptr;
 };
 
 /// A re-parameterization method: computes the warp of [0,1]² (homeomorphism keeping the square).
