@@ -16,13 +16,17 @@
 // the return to the initial layout after a rejection (see --full), which replays the history too.
 //
 //   adaptex_bench_session [--meshes spot,plane] [--strokes 10,100,1000] [--size 512] [--reps 1]
-//                         [--full N] [--cache Q]
+//                         [--full N] [--cache Q] [--min-gain G] [--psnr-every K]
 //
 // --meshes: names/stems of ADAPTEX_SHARED_DIR/meshes or paths, and "plane" (a generated 100k-face height
 // field, one chart, uv = xy, as in cycle.cpp); a shared mesh that is absent is skipped with a message.
 // --cache Q: PaintSessionOptions::surface_cache = Q (the replay reads a surface signal cache of Q
 // samples per texel spacing; 0, the default: exact replay of every dab).
-// --full N: also paint the first N strokes with a true each-stroke session and print every cycle.
+// --full N: also paint the first N strokes with a true each-stroke session and print every cycle
+// ("skip" in the accepted column: the cycle stopped after the error model, PaintSessionOptions::min_gain_db;
+// the number after it: the model's predicted gain over the held layout in dB, AdaptReport::gain_over_held_db).
+// --min-gain G: that session's min_gain_db (default: the library's). --psnr-every K: after every K-th
+// stroke of that session, the PSNR of its texture against the exact history (400,000 samples).
 // Prints one markdown row per (mesh, stroke index, repetition), times in ms (wall clock; the last
 // column: CPU time of the process, all threads, for stroke + cycle).
 #include <algorithm>
@@ -38,6 +42,7 @@
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/mesh_io.h"
+#include "adaptex/paint/eval.h"
 #include "adaptex/paint/generate.h"
 #include "adaptex/param/unwrap.h"
 
@@ -53,6 +58,8 @@ struct Args {
   int reps = 1;
   int full = 0;
   double cache = 0;  ///< PaintSessionOptions::surface_cache (0: exact replay)
+  double min_gain = PaintSessionOptions{}.min_gain_db;  ///< --full's PaintSessionOptions::min_gain_db
+  int psnr_every = 0;  ///< --full: PSNR after every this many strokes (0: none)
 };
 
 // Comma-separated items of \p s, each passed to \p add.
@@ -84,6 +91,10 @@ Args parse(int argc, char** argv) {
       a.reps = std::stoi(v);
     } else if (k == "--cache") {
       a.cache = std::stod(v);
+    } else if (k == "--min-gain") {
+      a.min_gain = std::stod(v);
+    } else if (k == "--psnr-every") {
+      a.psnr_every = std::stoi(v);
     } else if (k == "--full") {
       a.full = std::stoi(v);
     } else {
@@ -151,8 +162,10 @@ void print_header() {
 void print_row(const Scene& s, int k, long long dabs, const AdaptReport& r, double paint, double wall, double cpu) {
   const double known = paint + r.time_density + r.time_flow + r.time_polish + r.time_refine + r.time_remap +
                        r.time_texel_map + r.time_texture_update + r.time_safeguard;
+  char acc[64];
+  std::snprintf(acc, sizeof acc, "%s %+.2f", r.skipped ? "skip" : r.accepted ? "yes" : "no", r.gain_over_held_db);
   std::printf("| %s | %d | %d | %lld | %s | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | **%.0f** | %.0f |\n",
-              s.name.c_str(), s.mesh.num_faces(), k, dabs, r.accepted ? "yes" : "no", ms(paint), ms(r.time_density),
+              s.name.c_str(), s.mesh.num_faces(), k, dabs, acc, ms(paint), ms(r.time_density),
               ms(r.time_flow + r.time_polish), ms(r.time_refine), ms(r.time_remap), ms(r.time_texel_map),
               ms(r.time_texture_update), ms(r.time_safeguard), ms(std::max(0.0, wall - known)), ms(wall), ms(cpu));
   std::fflush(stdout);
@@ -202,9 +215,11 @@ void cycle_at(const Scene& s, const StrokeFile& history, int k, int size, double
 }
 
 // A true each-stroke session over the first n strokes: every cycle.
-void full_session(const Scene& s, const StrokeFile& history, int n, int size, double cache) {
+void full_session(const Scene& s, const StrokeFile& history, int n, int size, double cache, double min_gain,
+                  int psnr_every) {
   PaintSessionOptions o;
   o.surface_cache = cache;
+  o.min_gain_db = min_gain;
   o.texture_size = size;
   o.schedule = ReparamSchedule::EachStroke;  // adapt.mode: the library default
   PaintSession session(s.mesh, s.param, o, history.background);
@@ -215,6 +230,12 @@ void full_session(const Scene& s, const StrokeFile& history, int n, int size, do
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const AdaptReport& r = session.reports().back();
     print_row(s, i + 1, dab_count(history, i + 1), r, std::max(0.0, wall - r.time_total), wall, process_cpu() - c0);
+    if (psnr_every > 0 && (i + 1) % psnr_every == 0) {
+      EvalOptions eo;
+      eo.samples = 400000;
+      const double psnr = evaluate_texture(session.mesh(), session.param(), session.texture(), session.history(), eo).psnr;
+      std::printf("\n%s after stroke %d, min_gain %g dB: PSNR %.3f dB\n\n", s.name.c_str(), i + 1, min_gain, psnr);
+    }
   }
 }
 
@@ -240,7 +261,7 @@ int main(int argc, char** argv) {
       const StrokeFile history = session_history(s.mesh, max_k);
       for (int k : a.strokes)
         for (int r = 0; r < a.reps; ++r) cycle_at(s, history, k, a.size, a.cache);
-      if (a.full > 0) full_session(s, history, a.full, a.size, a.cache);
+      if (a.full > 0) full_session(s, history, a.full, a.size, a.cache, a.min_gain, a.psnr_every);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "adaptex_bench_session: %s\n", e.what());
