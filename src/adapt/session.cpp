@@ -103,6 +103,9 @@ struct PaintSession::Impl {
   // layout, on the error model's raster (empty: the initial layout itself), and whether a cycle was
   // skipped since the last one that ran.
   ImageF held_density;
+  // The held layout's measured error (the safeguard's MSE on the samples) and the model's least error
+  // (predicted_error at its own density) when it was made; -1: unknown (then only the model predicts).
+  double held_error = -1, held_best = -1;
   bool pending = false;
   double held_l2 = -1;  // the held layout's L2 stretch (reports' l2_after), -1: not measured yet
 
@@ -346,6 +349,7 @@ struct PaintSession::Impl {
   /// Path-independent mode without an accepted candidate: the initial layout, the history replayed.
   void return_to_initial() {
     held_density = ImageF{};
+    held_error = held_best = -1;
     if (!adapted) return;
     param = std::make_unique<Parameterization>(*base_param);
     if (uses_surface_cache()) {
@@ -385,8 +389,16 @@ struct PaintSession::Impl {
 
   /// Each-stroke density-flow with replay (where density_reference_now() applies) and a history: the
   /// error model for the history so far, and its predicted gain in dB over the held layout.
+  ///
+  /// The gain over the held layout: where the held layout's error was measured when it was made
+  /// (held_error, with the model's least error then, held_best), the error a new layout would reach
+  /// now is predicted as held_error × best / held_best (the model's least error scaled from then to
+  /// now), and compared with the held layout's error measured now on the same samples. This sees what
+  /// the isotropic model cannot: a new stroke across the direction the held layout's texels were
+  /// stretched along (error_polish.h). Otherwise: the model alone, E(ρ_held) / E(ρ_new).
   struct Model {
     ErrorDensity density;
+    double best = 0;  // predicted_error(density, density.density)
     double gain_over_held_db = 0;
     double seconds = 0;
   };
@@ -396,10 +408,24 @@ struct PaintSession::Impl {
     const auto t0 = std::chrono::steady_clock::now();
     Model m{compute_error_density(mesh, *base_param, base_painter->texture(), base_painter->texel_map(), history, *ref,
                                   ao.density)};
-    const double held = predicted_error(m.density, held_density), best = predicted_error(m.density, m.density.density);
-    m.gain_over_held_db = held > 0 && best > 0 ? 10 * std::log10(held / best) : 0.0;
+    m.best = predicted_error(m.density, m.density.density);
+    const double now = held_error > 0 && held_best > 0 && m.best > 0 ? current_error() : -1;
+    const double held = now > 0 ? now : predicted_error(m.density, held_density);
+    const double reachable = now > 0 ? held_error * m.best / held_best : m.best;
+    m.gain_over_held_db = held > 0 && reachable > 0 ? 10 * std::log10(held / reachable) : 0.0;
     m.seconds = seconds_since(t0);
     return m;
+  }
+
+  /// The current texture's MSE against the exact history on the safeguard's samples (0 without
+  /// strokes, -1 without samples).
+  double current_error() {
+    if (history.strokes.empty()) return 0;
+    if (opt.safeguard_samples == 0) return -1;
+    ensure_samples();
+    const std::vector<SurfacePoint>& pts = current_samples();
+    if (const std::vector<Vec3>* c = cached_signal(pts)) return reconstruction_mse(*param, texture(), pts, *c);
+    return reconstruction_mse(*param, texture(), pts, StrokeSignal(current_mesh(), history).evaluate(pts));
   }
 
   /// The report of a cycle that stopped after the error model (gain below opt.min_gain_db).
@@ -428,7 +454,8 @@ struct PaintSession::Impl {
     const auto t_all = std::chrono::steady_clock::now();
     const AdaptOptions ao = adapt_options();
     const std::optional<Model> model = model_now(ao);
-    if (gated && model && model->gain_over_held_db < opt.min_gain_db) return skip(ao, *model, t_all);
+    if (gated && model && opt.min_gain_db > 0 && model->gain_over_held_db < opt.min_gain_db)
+      return skip(ao, *model, t_all);
     pending = false;
     std::unique_ptr<AdaptResult> res = compute(ao, model ? &model->density : nullptr);
     const TriMesh& cand_mesh = res->refined_mesh ? *res->refined_mesh : source_mesh();
@@ -443,7 +470,9 @@ struct PaintSession::Impl {
       if (path_independent()) return_to_initial();
       return record(std::move(res), t_all);
     }
-    const bool use_safeguard = opt.safeguard && !history.strokes.empty();
+    // safeguard_samples 0: no estimate, so no safeguard (with no points every error is 0, and no
+    // candidate could be below the limit).
+    const bool use_safeguard = opt.safeguard && opt.safeguard_samples > 0 && !history.strokes.empty();
     SafeguardPoints sg;
     if (use_safeguard) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -452,10 +481,14 @@ struct PaintSession::Impl {
       rep.time_safeguard += seconds_since(t0);
     }
     Candidate c = make_candidate(*res, 1.0, ao, cand_mesh);
-    if (!use_safeguard || judge(c, *res, sg, ao, cand_mesh))
+    const bool accept = !use_safeguard || judge(c, *res, sg, ao, cand_mesh);
+    if (accept)
       adopt(std::move(c), *res, std::move(sg));
     else
       keep(*res);
+    // What the gate of the next cycles compares with (model_now()).
+    held_error = !use_safeguard ? -1.0 : accept ? rep.error_after : rep.error_before;
+    held_best = model && held_error > 0 ? model->best : -1.0;
     return record(std::move(res), t_all);
   }
 };
@@ -557,12 +590,6 @@ const AdaptResult* PaintSession::last_result() const { return impl_->last.get();
 const PaintSessionOptions& PaintSession::options() const { return impl_->opt; }
 Painter& PaintSession::painter() { return *impl_->painter; }
 
-double PaintSession::estimate_error() {
-  Impl& m = *impl_;
-  if (m.history.strokes.empty()) return 0;
-  m.ensure_samples();
-  const std::vector<SurfacePoint>& pts = m.current_samples();
-  return reconstruction_mse(*m.param, m.texture(), pts, m.exact_signal(pts, m.current_mesh(), pts));
-}
+double PaintSession::estimate_error() { return std::max(0.0, impl_->current_error()); }
 
 }  // namespace adaptex

@@ -69,7 +69,8 @@ struct PaintSessionOptions {
   ReparamSchedule schedule = ReparamSchedule::End;  ///< each-stroke | end.
   TextureUpdate update = TextureUpdate::Replay;     ///< replay | resample.
   bool safeguard = true;       ///< The "never worse" check described above (needs the history).
-  /// Surface samples of the safeguard's error estimate, in [0, kMaxSafeguardSamples] (0: no estimate).
+  /// Surface samples of the safeguard's error estimate, in [0, kMaxSafeguardSamples] (0: no estimate,
+  /// so no safeguard: every candidate is taken).
   int safeguard_samples = 60000;
   std::uint64_t safeguard_seed = 0x5eedada;  ///< Seed of those samples (paint/eval.h sample_surface).
   /// Accept a candidate only if its estimated MSE is below (1 - margin) x the reference's. 0.02
