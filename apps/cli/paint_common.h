@@ -144,8 +144,14 @@ inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
     const size_t n = strokes.strokes.size();
     for (size_t k = 0; k < n; ++k) {
       session.add_stroke(strokes.strokes[k]);
-      if (so.schedule == ReparamSchedule::EachStroke && (k + 1) % 10 == 0)
-        ctx.info("adapt: " + std::to_string(k + 1) + "/" + std::to_string(n) + " strokes");
+      if (so.schedule == ReparamSchedule::EachStroke && (k + 1) % 10 == 0) {
+        long skipped = 0;
+        for (const AdaptReport& r : session.reports()) skipped += r.skipped;
+        ctx.info("adapt: " + std::to_string(k + 1) + "/" + std::to_string(n) + " strokes, " +
+                 std::to_string(static_cast<long>(session.reports().size()) - skipped) + " re-parameterizations, " +
+                 std::to_string(skipped) + " skipped (gain below " + std::to_string(sor.min_gain_db).substr(0, 4) +
+                 " dB)");
+      }
     }
     session.finish();
     run.mesh = session.mesh();
