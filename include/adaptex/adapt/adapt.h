@@ -120,8 +120,9 @@ struct AdaptReport {
   bool accepted = true;        ///< false: a safeguard kept the previous parameterization.
   double error_before = -1, error_after = -1;  ///< Safeguard error estimates (MSE), -1 if not run.
   double predicted_gain_db = 0;  ///< density-flow: the error model's predicted PSNR gain.
-  /// Each-stroke sessions (PaintSessionOptions::min_gain_db): the model's predicted PSNR gain of this
-  /// re-parameterization over the layout the session held before it (0 where not computed).
+  /// Each-stroke sessions (PaintSessionOptions::min_gain_db): the predicted PSNR gain of a new layout
+  /// over the layout the session held before this cycle (0 where not computed; session.h says how it
+  /// is predicted).
   double gain_over_held_db = 0;
   /// Each-stroke sessions: true if the cycle stopped after the error model because the predicted gain
   /// over the held layout was below min_gain_db; the session kept its layout and texture (accepted is
