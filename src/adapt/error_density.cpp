@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/paint/signal.h"
@@ -328,9 +330,21 @@ inline Vec3f sample_at(const Raster& r, const Taps& x, const Taps& y, int i, int
   return (1 - t) * ((1 - s) * row0[x.lo[i]] + s * row0[x.hi[i]]) + t * ((1 - s) * row1[x.lo[i]] + s * row1[x.hi[i]]);
 }
 
+/// The reference rows [first, second) whose points lie in cell row \p cj of \p n (R reference rows,
+/// shifted by g.shift): row j's points lie at v = (j + 0.5)/R − shift, in cell row floor(v·n).
+std::pair<int, int> band_rows(int cj, int n, int R, const ReferenceGrid& g) {
+  const double lift = g.shift * R - 0.5;
+  const int j0 = cj == 0 ? 0 : static_cast<int>(std::ceil(double(cj) * R / n + lift));
+  const int j1 = cj == n - 1 ? R : static_cast<int>(std::ceil(double(cj + 1) * R / n + lift));
+  return {std::max(j0, 0), std::min(j1, R)};
+}
+
 /// \p ref holds the exact signal at the reference points of \p g (ref_map: their texel map).
+/// With \p previous and \p dirty (one flag per cell row): the rows not flagged are copied from
+/// \p previous, which must be this function's result for inputs that differ only in flagged rows.
 CellErrors accumulate(const Raster& ref, const TexelMap& ref_map, const ReferenceGrid& g, const Raster& a, const Raster& b,
-                      const std::vector<double>& ratio, int n) {
+                      const std::vector<double>& ratio, int n, const CellErrors* previous = nullptr,
+                      const std::vector<char>* dirty = nullptr) {
   CellErrors c;
   c.n = n;
   const size_t cells = static_cast<size_t>(n) * n;
@@ -338,13 +352,17 @@ CellErrors accumulate(const Raster& ref, const TexelMap& ref_map, const Referenc
   const int R = ref.size;
   const double per_cell = double(R) * R / cells;  // reference texels per cell
   const Taps ax(a.size, R, g.shift), bx(b.size, R, g.shift);  // the same tables serve rows and columns
-  // Row bands of cells are independent: parallel over cell rows. Row j's points lie at
-  // v = (j + 0.5)/R − shift, in cell row floor(v·n).
-  const double lift = g.shift * R - 0.5;
+  // Row bands of cells are independent: parallel over cell rows.
   tbb::parallel_for(0, n, [&](int cj) {
-    const int j0 = cj == 0 ? 0 : static_cast<int>(std::ceil(double(cj) * R / n + lift));
-    const int j1 = cj == n - 1 ? R : static_cast<int>(std::ceil(double(cj + 1) * R / n + lift));
-    for (int j = std::max(j0, 0); j < std::min(j1, R); ++j)
+    if (previous && !(*dirty)[static_cast<size_t>(cj)]) {
+      const size_t from = static_cast<size_t>(cj) * n, to = from + static_cast<size_t>(n);
+      for (auto [dst, src] : {std::pair{&c.ea, &previous->ea}, std::pair{&c.eb, &previous->eb},
+                              std::pair{&c.surface, &previous->surface}, std::pair{&c.cover, &previous->cover}})
+        std::copy(src->begin() + from, src->begin() + to, dst->begin() + from);
+      return;
+    }
+    const auto [j0, j1] = band_rows(cj, n, R, g);
+    for (int j = j0; j < j1; ++j)
       for (int i = 0; i < R; ++i) {
         const size_t t = static_cast<size_t>(j) * R + i;
         const int f = ref_map.face[t];
@@ -360,6 +378,38 @@ CellErrors accumulate(const Raster& ref, const TexelMap& ref_map, const Referenc
       }
   });
   return c;
+}
+
+/// One flag per row of \p now: whether it differs from the same row of \p before (bit for bit).
+/// \pre equal sizes
+std::vector<char> changed_rows(const Raster& now, const Raster& before) {
+  const int n = now.size;
+  std::vector<char> out(static_cast<size_t>(n), 0);
+  tbb::parallel_for(0, n, [&](int j) {
+    const size_t k = static_cast<size_t>(j) * n;
+    out[static_cast<size_t>(j)] = std::memcmp(now.rgb.data() + k, before.rgb.data() + k, sizeof(Vec3f) * n) != 0;
+  });
+  return out;
+}
+
+/// The cell rows of accumulate() whose inputs differ between (ref, a, b) and (ref0, a0, b0): a row
+/// reads its own reference rows and the rows of a and b that their bilinear taps reach.
+/// \pre each raster has the size of its counterpart
+std::vector<char> dirty_cell_rows(const ReferenceGrid& g, int n, const Raster& ref, const Raster& a, const Raster& b,
+                                  const Raster& ref0, const Raster& a0, const Raster& b0) {
+  const std::vector<char> dr = changed_rows(ref, ref0), da = changed_rows(a, a0), db = changed_rows(b, b0);
+  const int R = ref.size;
+  const Taps ax(a.size, R, g.shift), bx(b.size, R, g.shift);
+  std::vector<char> out(static_cast<size_t>(n), 0);
+  for (int cj = 0; cj < n; ++cj) {
+    const auto [j0, j1] = band_rows(cj, n, R, g);
+    bool d = false;
+    for (int j = j0; j < j1 && !d; ++j)
+      d = dr[static_cast<size_t>(j)] || da[static_cast<size_t>(ax.lo[j])] || da[static_cast<size_t>(ax.hi[j])] ||
+          db[static_cast<size_t>(bx.lo[j])] || db[static_cast<size_t>(bx.hi[j])];
+    out[static_cast<size_t>(cj)] = d;
+  }
+  return out;
 }
 
 /// Equidistribution (see the header): densities per cell with Σ ρ = n², by bisection on log μ.
@@ -515,6 +565,15 @@ struct ErrorDensityReference::Impl {
   ReferenceGrid grid;
   TexelMap ref_map, half_map;
   PointSignalCache ref_signal, half_signal;
+  // The last compute_error_density() with this reference: its three rasters and cell sums. The next
+  // call (after a stroke) sums again only the cell rows whose rasters changed (issue 10: after a
+  // stroke, only the dirty region's density inputs change). Empty before the first call.
+  struct Last {
+    Raster ref, a, b;
+    CellErrors cells;
+  };
+  std::unique_ptr<Last> last;
+  std::vector<double> ratio;  // surface_per_uv of the layout, computed at the first call
 };
 
 ErrorDensityReference::ErrorDensityReference(const TriMesh& mesh, const Parameterization& param, int texture_size,
@@ -530,7 +589,7 @@ ErrorDensityReference::ErrorDensityReference(const TriMesh& mesh, const Paramete
   PointSignalCache half_signal(mesh, texel_points(half_map), background);
   impl_ = std::make_unique<Impl>(Impl{&mesh, param.uv, param.uv_faces, texture_size, g,
                                       std::move(ref_map), std::move(half_map), std::move(ref_signal),
-                                      std::move(half_signal)});
+                                      std::move(half_signal), nullptr, {}});
 }
 
 ErrorDensityReference::~ErrorDensityReference() = default;
@@ -555,10 +614,27 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
   if (!reference.matches(mesh, param, texture.width, o))
     throw InvalidInputError("error density: the reference was built for another layout or texture size");
   reference.update(history);
-  const ErrorDensityReference::Impl& r = *reference.impl_;
-  const Raster ref = signal_raster(r.ref_map, r.ref_signal.values(), history.background, false);
-  const Raster level_b = signal_raster(r.half_map, r.half_signal.values(), history.background, true);
-  return from_levels(mesh, param, texture, ref, r.ref_map, r.grid, level_b, o);
+  ErrorDensityReference::Impl& r = *reference.impl_;
+  auto last = std::make_unique<ErrorDensityReference::Impl::Last>();
+  last->ref = signal_raster(r.ref_map, r.ref_signal.values(), history.background, false);
+  last->b = signal_raster(r.half_map, r.half_signal.values(), history.background, true);
+  last->a = from_texture(texture);
+  if (r.ratio.empty()) r.ratio = surface_per_uv(mesh, param);
+  // As from_levels(), summing again only the cell rows whose inputs changed since the last call.
+  const int n = std::min(o.cells, last->ref.size);
+  const ErrorDensityReference::Impl::Last* prev = r.last.get();
+  if (prev && !(prev->cells.n == n && prev->ref.size == last->ref.size && prev->a.size == last->a.size &&
+                prev->b.size == last->b.size))
+    prev = nullptr;
+  const std::vector<char> dirty =
+      prev ? dirty_cell_rows(r.grid, n, last->ref, last->a, last->b, prev->ref, prev->a, prev->b) : std::vector<char>{};
+  last->cells = accumulate(last->ref, r.ref_map, r.grid, last->a, last->b, r.ratio, n, prev ? &prev->cells : nullptr,
+                           prev ? &dirty : nullptr);
+  CellErrors c = last->cells;  // solve_density blurs its input
+  ErrorDensity out = solve_density(c, 1.0, o);
+  out.reference_size = last->ref.size;
+  r.last = std::move(last);
+  return out;
 }
 
 double predicted_error(const ErrorDensity& model, const ImageF& density) {
