@@ -40,8 +40,10 @@ Raster from_texture(const ImageRGBA8& tex) {
   r.size = std::max(tex.width, tex.height);
   r.rgb.resize(static_cast<size_t>(r.size) * r.size);
   if (tex.width == tex.height) {
-    for (size_t k = 0; k < r.rgb.size(); ++k)
-      r.rgb[k] = Vec3f(tex.data[4 * k], tex.data[4 * k + 1], tex.data[4 * k + 2]) / 255.0f;
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, r.rgb.size(), 1 << 15), [&](const tbb::blocked_range<size_t>& b) {
+      for (size_t k = b.begin(); k < b.end(); ++k)
+        r.rgb[k] = Vec3f(tex.data[4 * k], tex.data[4 * k + 1], tex.data[4 * k + 2]) / 255.0f;
+    });
     return r;
   }
   for (int j = 0; j < r.size; ++j)
@@ -107,7 +109,9 @@ Raster signal_raster(const TexelMap& map, const std::vector<Vec3>& c, const Vec3
   r.size = map.width;
   r.rgb.assign(static_cast<size_t>(map.width) * map.height, background.cast<float>());
   std::vector<char> filled(r.rgb.size(), 0);
-  for (size_t k = 0; k < c.size(); ++k) r.rgb[map.inside[k]] = c[k].cast<float>(), filled[map.inside[k]] = 1;
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, c.size(), 1 << 15), [&](const tbb::blocked_range<size_t>& b) {
+    for (size_t k = b.begin(); k < b.end(); ++k) r.rgb[map.inside[k]] = c[k].cast<float>(), filled[map.inside[k]] = 1;
+  });
   if (pad) pad_outside(r, std::move(filled), 4);
   return r;
 }
