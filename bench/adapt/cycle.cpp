@@ -21,9 +21,11 @@
 
 #include "adaptex/core/allocator.h"
 #include "adaptex/adapt/adapt.h"
+#include "adaptex/adapt/session.h"
 #include "adaptex/adapt/stretch_map.h"
 #include "adaptex/adapt/texture_update.h"
 #include "adaptex/core/shapes.h"
+#include "adaptex/paint/generate.h"
 #include "adaptex/paint/texel_map.h"
 
 using namespace adaptex;
@@ -186,6 +188,41 @@ void BM_DensityFlowCycle(benchmark::State& state) {
   for (auto& [k, v] : acc) state.counters[k] = v / std::max(1, iters);
 }
 BENCHMARK(BM_DensityFlowCycle)->Args({10000, 512})->Args({100000, 1024})->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1.0);
+
+/// The each-stroke cycle that stops after the error model (PaintSessionOptions::min_gain_db, session.h):
+/// a session on the 100k-face height field at W x W with min_gain_db so high that every cycle is
+/// skipped, and generated `mixed` strokes added one per iteration (after a warm-up history of 40 and
+/// one full cycle, so that the gate uses the measured estimate, as in a real session).
+/// Time = add_stroke(): painting the stroke, the per-stroke caches, the error model and the error
+/// estimate of the held layout. Counter density_ms: the report's time_density (the gate itself).
+void BM_SkippedEachStrokeCycle(benchmark::State& state) {
+  const int W = static_cast<int>(state.range(0));
+  const Scene& sc = scene(100000);
+  GenerateOptions go;
+  go.kind = StrokeKind::Mixed;
+  go.count = 400;
+  go.seed = 2;
+  const StrokeFile strokes = generate_strokes(sc.mesh, go);
+  PaintSessionOptions so;
+  so.texture_size = W;
+  so.schedule = ReparamSchedule::EachStroke;
+  so.min_gain_db = 1e9;
+  PaintSession session(sc.mesh, sc.param, so, strokes.background);
+  size_t next = 0;
+  for (; next < 40; ++next) session.add_stroke(strokes.strokes[next]);
+  session.reparameterize();  // one full cycle: the held layout's error is known, the gate measures
+  double density = 0;
+  int iters = 0;
+  for (auto _ : state) {
+    session.add_stroke(strokes.strokes[next]);
+    next = (next + 1) % strokes.strokes.size();
+    density += 1e3 * session.reports().back().time_density;
+    ++iters;
+  }
+  state.counters["density_ms"] = density / std::max(1, iters);
+  state.counters["skipped"] = session.reports().back().skipped;
+}
+BENCHMARK(BM_SkippedEachStrokeCycle)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
 
 void args(benchmark::internal::Benchmark* b) {
   for (int f : {10000, 100000, 1000000})
