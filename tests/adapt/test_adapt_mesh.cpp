@@ -257,6 +257,7 @@ TEST(AdaptMesh, ReplayEqualsFreshPaintAndResampleLosesSomething) {
   so.texture_size = N;
   so.schedule = ReparamSchedule::EachStroke;
   so.safeguard = false;  // every stroke re-parameterizes
+  so.min_gain_db = 0;    // and no cycle is skipped for a small predicted gain
   so.adapt.fine_grid = 64;
   PaintSession replay(mesh, param, so, strokes.background);
   so.update = TextureUpdate::Resample;
@@ -287,6 +288,7 @@ TEST(AdaptMesh, SafeguardNeverAcceptsAWorseLayout) {
   PaintSessionOptions so;
   so.texture_size = 64;
   so.schedule = ReparamSchedule::EachStroke;
+  so.min_gain_db = 0;  // a cycle, and so a safeguard run, after every stroke
   PaintSession s(mesh, param, so, strokes.background);
   for (const auto& st : strokes.strokes) {
     s.add_stroke(st);
