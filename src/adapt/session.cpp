@@ -402,14 +402,15 @@ struct PaintSession::Impl {
     double gain_over_held_db = 0;
     double seconds = 0;
   };
-  std::optional<Model> model_now(const AdaptOptions& ao) {
+  /// \p measure: measure the held layout's error now (only a gated cycle needs it: it decides).
+  std::optional<Model> model_now(const AdaptOptions& ao, bool measure) {
     ErrorDensityReference* ref = density_reference_now(ao);
     if (!ref || history.strokes.empty()) return std::nullopt;
     const auto t0 = std::chrono::steady_clock::now();
     Model m{compute_error_density(mesh, *base_param, base_painter->texture(), base_painter->texel_map(), history, *ref,
                                   ao.density)};
     m.best = predicted_error(m.density, m.density.density);
-    const double now = held_error > 0 && held_best > 0 && m.best > 0 ? current_error() : -1;
+    const double now = measure && held_error > 0 && held_best > 0 && m.best > 0 ? current_error() : -1;
     const double held = now > 0 ? now : predicted_error(m.density, held_density);
     const double reachable = now > 0 ? held_error * m.best / held_best : m.best;
     m.gain_over_held_db = held > 0 && reachable > 0 ? 10 * std::log10(held / reachable) : 0.0;
@@ -424,8 +425,7 @@ struct PaintSession::Impl {
     if (opt.safeguard_samples == 0) return -1;
     ensure_samples();
     const std::vector<SurfacePoint>& pts = current_samples();
-    if (const std::vector<Vec3>* c = cached_signal(pts)) return reconstruction_mse(*param, texture(), pts, *c);
-    return reconstruction_mse(*param, texture(), pts, StrokeSignal(current_mesh(), history).evaluate(pts));
+    return reconstruction_mse(*param, texture(), pts, exact_signal(pts, current_mesh(), pts));
   }
 
   /// The report of a cycle that stopped after the error model (gain below opt.min_gain_db).
@@ -453,8 +453,9 @@ struct PaintSession::Impl {
   const AdaptReport& reparameterize(bool gated) {
     const auto t_all = std::chrono::steady_clock::now();
     const AdaptOptions ao = adapt_options();
-    const std::optional<Model> model = model_now(ao);
-    if (gated && model && opt.min_gain_db > 0 && model->gain_over_held_db < opt.min_gain_db)
+    const bool decide = gated && opt.min_gain_db > 0;
+    const std::optional<Model> model = model_now(ao, decide);
+    if (decide && model && model->gain_over_held_db < opt.min_gain_db)
       return skip(ao, *model, t_all);
     pending = false;
     std::unique_ptr<AdaptResult> res = compute(ao, model ? &model->density : nullptr);

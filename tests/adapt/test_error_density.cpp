@@ -19,6 +19,13 @@
 namespace adaptex {
 namespace {
 
+/// A mesh and how many generated strokes of which kind to paint on it.
+struct Case {
+  TriMesh mesh;
+  StrokeKind kind;
+  int count;
+};
+
 TEST(ErrorDensity, CachedHistoryGivesTheSameDensityAfterEveryStroke) {
   const test::Scene sc = test::torus_scene(48, 24, StrokeKind::Mixed, 6);
   const TriMesh& mesh = sc.mesh;
@@ -52,11 +59,6 @@ TEST(ErrorDensity, AReferenceReusedStrokeAfterStrokeSumsOnlyTheChangedRowsAndGiv
   // cell rows whose inputs changed. A fresh reference (every row summed) must give the same bits, on
   // a one-chart torus and on a multi-chart genus-3 surface, with local strokes (lines, dots) and broad
   // ones (blobs), including strokes that repeat (nothing changes) and a texture with padding.
-  struct Case {
-    TriMesh mesh;
-    StrokeKind kind;
-    int count;
-  };
   const std::vector<Case> cases{{shapes::torus(48, 24), StrokeKind::Mixed, 10},
                                 {shapes::genus_surface(3, 6), StrokeKind::Dots, 12}};
   for (const Case& cs : cases) {
@@ -93,11 +95,6 @@ TEST(ErrorDensity, AReferenceReusedStrokeAfterStrokeSumsOnlyTheChangedRowsAndGiv
 // evaluates every texel. Both must give the same rasters, bit for bit, on local strokes (lines, dots),
 // broad ones (blobs) and both (mixed), on a one-chart torus and a multi-chart genus-3 surface.
 TEST(ErrorDensity, SkippingUnreachedTexelsChangesNothing) {
-  struct Case {
-    TriMesh mesh;
-    StrokeKind kind;
-    int count;
-  };
   const std::vector<Case> cases{{shapes::torus(48, 24), StrokeKind::Lines, 12},
                                 {shapes::torus(48, 24), StrokeKind::Dots, 60},
                                 {shapes::torus(48, 24), StrokeKind::Blobs, 3},

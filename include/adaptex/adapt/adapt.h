@@ -122,7 +122,8 @@ struct AdaptReport {
   double predicted_gain_db = 0;  ///< density-flow: the error model's predicted PSNR gain.
   /// Each-stroke sessions (PaintSessionOptions::min_gain_db): the predicted PSNR gain of a new layout
   /// over the layout the session held before this cycle (0 where not computed; session.h says how it
-  /// is predicted).
+  /// is predicted). Only a cycle the gate decides (min_gain_db > 0, after a stroke) measures the held
+  /// layout's error for it; other cycles report the model's prediction alone.
   double gain_over_held_db = 0;
   /// Each-stroke sessions: true if the cycle stopped after the error model because the predicted gain
   /// over the held layout was below min_gain_db; the session kept its layout and texture (accepted is
