@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -46,6 +47,7 @@ struct Candidate {
   std::unique_ptr<Parameterization> param;
   std::unique_ptr<Painter> painter;
   ImageRGBA8 texture;
+  bool from_cache = false;  // the texture was resampled from the surface cache
 };
 
 // The safeguard's view of one re-parameterization: the candidate's surface points (the session's
@@ -91,8 +93,15 @@ struct PaintSession::Impl {
   std::vector<SurfacePoint> samples;
   // The exact history signal at `samples`, updated stroke by stroke (O(stroke), not O(history)).
   std::unique_ptr<PointSignalCache> signal_cache;
-  // opt.surface_cache > 0: the signal on per-face samples of the input mesh, updated stroke by stroke.
+  // Each-stroke mode, opt.surface_cache > 0, once the history covers the surface
+  // opt.surface_cache_coverage times: the signal on per-face samples of the input mesh, updated
+  // stroke by stroke.
   std::unique_ptr<SurfaceSignalCache> surface;
+  bool surface_fits = false;  // the lattice has at most kMaxSurfaceCacheSamples samples
+  double coverage = 0;        // Σ over the history's dabs of π r² / surface area (a decal: 1)
+  double area = 0;            // surface area of the input mesh
+  bool held_from_cache = false;  // the held texture was resampled from the surface cache
+  bool exact_only = false;       // finish(): this cycle replays exactly
   // Each-stroke mode, density-flow: the history's signal on the initial layout's error-model rasters,
   // updated stroke by stroke (error_density.h), so the error model does not re-evaluate the history.
   std::unique_ptr<ErrorDensityReference> density_reference;
@@ -168,12 +177,18 @@ struct PaintSession::Impl {
     return signal_cache->has_decals() ? nullptr : &signal_cache->values();
   }
 
-  bool uses_surface_cache() const { return opt.surface_cache > 0 && opt.update == TextureUpdate::Replay; }
+  /// Whether textures of layouts of the input mesh come from the surface cache now
+  /// (PaintSessionOptions::surface_cache, surface_cache_coverage).
+  bool uses_surface_cache() const {
+    return surface_fits && base_param && opt.update == TextureUpdate::Replay && !exact_only &&
+           coverage >= opt.surface_cache_coverage && !history.strokes.empty();
+  }
 
-  /// The surface cache, built on first use and brought up to date with the history.
+  /// The surface cache, built on first use (from the whole history) and brought up to date with it.
   SurfaceSignalCache& surface_cache_now() {
     if (!surface)
-      surface = std::make_unique<SurfaceSignalCache>(mesh, texel_spacing / opt.surface_cache, history.background);
+      surface = std::make_unique<SurfaceSignalCache>(mesh, texel_spacing / opt.surface_cache, history.background,
+                                                     kMaxSurfaceCacheSamples);
     surface->update(history);
     return *surface;
   }
@@ -188,6 +203,7 @@ struct PaintSession::Impl {
   /// Records \p s in the history; with the safeguard on, composites it into the signal cache now
   /// (O(stroke)), so a re-parameterization finds the cache up to date.
   void record_stroke(Stroke s) {
+    coverage += s.type == Stroke::Type::Decal ? 1.0 : s.dabs.size() * std::numbers::pi * s.radius * s.radius / area;
     history.strokes.push_back(std::move(s));
     if (uses_surface_cache()) surface_cache_now();
     density_reference_now(adapt_options());  // each-stroke density-flow: O(stroke) now, not O(history) later
@@ -289,7 +305,8 @@ struct PaintSession::Impl {
     tm = std::chrono::steady_clock::now();
     // Resample: the visible texture is the resampled one; the new painter only provides the texel map
     // (and the segment painters paint the strokes that follow).
-    if (uses_surface_cache() && &source_mesh() == &mesh)
+    c.from_cache = uses_surface_cache() && &source_mesh() == &mesh;
+    if (c.from_cache)
       c.texture = texture_from_cache(*c.painter, cand_mesh, res.refined_mesh ? &res.parent_face : nullptr);
     else
       c.texture = update_texture(opt.update, *c.painter, history, *param, texture(), opt.padding);
@@ -325,6 +342,7 @@ struct PaintSession::Impl {
   /// The candidate becomes the current layout.
   void adopt(Candidate&& c, AdaptResult& res, SafeguardPoints&& sg) {
     adapted = true;
+    held_from_cache = c.from_cache;
     if (path_independent()) held_density = damped_density(res.density, res.report.damping);
     res.param = *c.param;
     painter = std::move(c.painter);  // references *c.param and the candidate's mesh: keep both alive
@@ -352,7 +370,8 @@ struct PaintSession::Impl {
     held_error = held_best = -1;
     if (!adapted) return;
     param = std::make_unique<Parameterization>(*base_param);
-    if (uses_surface_cache()) {
+    held_from_cache = uses_surface_cache();
+    if (held_from_cache) {
       painter = std::make_unique<Painter>(mesh, *param, painter_options(), history.background);
       texture_from_cache(*painter, mesh, nullptr);
     } else {
@@ -509,7 +528,9 @@ PaintSession::PaintSession(TriMesh mesh, Parameterization initial, const PaintSe
     throw InvalidInputError("paint session: safeguard_samples must be in [0, " + std::to_string(kMaxSafeguardSamples) +
                             "], got " + std::to_string(options.safeguard_samples));
   if (!(options.surface_cache >= 0) || !std::isfinite(options.surface_cache))
-    throw InvalidInputError("paint session: surface_cache must be >= 0");
+    throw InvalidInputError("paint session: surface_cache must be a finite number >= 0");
+  if (!(options.surface_cache_coverage >= 0) || !std::isfinite(options.surface_cache_coverage))
+    throw InvalidInputError("paint session: surface_cache_coverage must be a finite number >= 0");
   if (!(options.min_gain_db >= 0) || !std::isfinite(options.min_gain_db))
     throw InvalidInputError("paint session: min_gain_db must be a finite number >= 0");
   m.mesh = std::move(mesh);
@@ -522,15 +543,11 @@ PaintSession::PaintSession(TriMesh mesh, Parameterization initial, const PaintSe
     m.base_param = std::make_unique<Parameterization>(*m.param);
     m.base_painter = std::make_unique<Painter>(m.mesh, *m.base_param, m.painter_options(), background);
   }
-  // The surface cache now, so that a lattice too large fails here and not at some later stroke.
-  if (m.uses_surface_cache()) {
-    try {
-      m.surface = std::make_unique<SurfaceSignalCache>(m.mesh, m.texel_spacing / options.surface_cache, background,
-                                                       kMaxSurfaceCacheSamples);
-    } catch (const InvalidInputError& e) {
-      throw InvalidInputError("paint session: surface_cache " + std::to_string(options.surface_cache) + ": " + e.what());
-    }
-  }
+  m.area = std::max(surface_area(m.mesh), 1e-300);
+  // The surface cache's size now (it is built when the history is long enough): too large, exact replay.
+  m.surface_fits = m.base_param && options.update == TextureUpdate::Replay && options.surface_cache > 0 &&
+                   SurfaceSignalCache::count_samples(m.mesh, m.texel_spacing / options.surface_cache) <=
+                       kMaxSurfaceCacheSamples;
 }
 
 PaintSession::~PaintSession() = default;
@@ -577,7 +594,16 @@ void PaintSession::end_stroke() {
 void PaintSession::finish() {
   Impl& m = *impl_;
   if (m.opt.adapt.mode == AdaptMode::None) return;
-  if (m.opt.schedule == ReparamSchedule::End || m.pending) m.reparameterize(false);
+  if (m.opt.schedule == ReparamSchedule::End || m.pending) {
+    m.exact_only = m.opt.schedule == ReparamSchedule::EachStroke;
+    m.reparameterize(false);
+  } else if (m.held_from_cache) {
+    // The held texture was resampled from the surface cache: the same cycle again with exact replay
+    // (what end mode computes), so the session ends on end mode's layout and texture.
+    m.exact_only = true;
+    m.reparameterize(false);
+  }
+  m.exact_only = false;
 }
 
 const AdaptReport& PaintSession::reparameterize() { return impl_->reparameterize(false); }
@@ -589,6 +615,7 @@ const StrokeFile& PaintSession::history() const { return impl_->history; }
 const std::vector<AdaptReport>& PaintSession::reports() const { return impl_->reports; }
 const AdaptResult* PaintSession::last_result() const { return impl_->last.get(); }
 const PaintSessionOptions& PaintSession::options() const { return impl_->opt; }
+long long PaintSession::surface_cache_samples() const { return impl_->surface ? impl_->surface->num_samples() : 0; }
 Painter& PaintSession::painter() { return *impl_->painter; }
 
 double PaintSession::estimate_error() { return std::max(0.0, impl_->current_error()); }

@@ -1,6 +1,6 @@
 /// \file surface_cache.cpp
 /// Mesh-Colors-style surface cache of the painted signal (surface_cache.h): per-face barycentric
-/// lattices, brush dabs through the Painter's spatial index (texel_grid.h), linear interpolation.
+/// lattices found by a spatial index of the faces (texel_grid.h over their centroids), linear interpolation.
 #include "adaptex/paint/surface_cache.h"
 
 #include <tbb/blocked_range.h>
@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <string>
 
 #include "adaptex/core/errors.h"
@@ -27,6 +29,16 @@ inline long long lattice_index(int n, int i, int j) {
 
 inline long long lattice_size(int n) { return static_cast<long long>(n + 1) * (n + 2) / 2; }
 
+/// Subdivisions of face \p f: by its longest edge. (By sqrt(2 area), half the samples on right
+/// triangles, the end-mode test on the torus lost 0.4 dB: adapted layouts put texels closer than the
+/// initial layout's.)
+int subdivisions(const TriMesh& mesh, int f, double spacing) {
+  const Face& t = mesh.faces[f];
+  const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
+  const double e = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  return static_cast<int>(std::clamp(std::ceil(e / spacing), 1.0, 4096.0));
+}
+
 /// Barycentrics (b0, b1) of \p p in triangle (a, b, c) (p is on or next to its plane).
 Eigen::Vector2d barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 e1 = b - a, e2 = c - a, d = p - a;
@@ -39,13 +51,44 @@ Eigen::Vector2d barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const V
 
 }  // namespace
 
+namespace {
+
+/// Colours and coverage are stored as 16-bit fixed point in [0, 1] (1/65535 steps, far below the
+/// 8-bit texture's): 8 bytes per sample.
+constexpr float kUnit = 65535.0f;
+inline std::uint16_t to_fixed(float v) {
+  return static_cast<std::uint16_t>(std::clamp(v, 0.0f, 1.0f) * kUnit + 0.5f);  // round to nearest
+}
+
+/// brush_falloff() (strokes.h) in single precision: the cache stores 16 bits.
+inline float falloff(float t, float hardness) {
+  if (t <= hardness) return 1.0f;
+  if (t >= 1.0f) return 0.0f;
+  const float s = (t - hardness) / (1.0f - hardness);
+  return 1.0f - s * s * (3.0f - 2.0f * s);
+}
+
+/// The faces whose bounding radius (largest distance from the centroid to a corner) is at most
+/// `radius`, indexed by their centroids: a ball query of radius r + `radius` finds every face of
+/// the class that may reach into a ball of radius r. Faces are binned by powers of two of their
+/// radius so that a few large faces do not widen the queries of all the others.
+struct FaceClass {
+  double radius = 0;
+  std::vector<int> faces;                     // slot order of the grid's input points
+  std::unique_ptr<detail::TexelGrid> grid;
+};
+
+}  // namespace
+
 struct SurfaceSignalCache::Impl {
   const TriMesh& mesh;
   std::vector<int> n;                 // F: subdivisions per face
   std::vector<long long> offset;      // F+1: first sample of each face
-  std::vector<std::array<float, 3>> colour;  // S (samples face by face, lattice_index order)
-  std::vector<float> alpha;           // S: coverage of the stroke being added (0 elsewhere)
-  std::unique_ptr<detail::TexelGrid> grid;
+  std::vector<std::array<std::uint16_t, 3>> colour;  // S (samples face by face, lattice_index order)
+  std::vector<std::uint16_t> alpha;   // S: coverage of the stroke being added (0 elsewhere)
+  std::vector<Vec3f> centroid;        // F
+  std::vector<float> face_radius;     // F: bounding radius around the centroid
+  std::vector<FaceClass> classes;
   std::unique_ptr<DecalProjector> projector;
   int count = 0;
 
@@ -55,22 +98,44 @@ struct SurfaceSignalCache::Impl {
     const int F = mesh.num_faces();
     n.resize(F);
     offset.assign(F + 1, 0);
+    centroid.resize(F);
+    face_radius.resize(F);
+    double smallest = std::numeric_limits<double>::infinity();
     for (int f = 0; f < F; ++f) {
       const Face& t = mesh.faces[f];
       const Vec3 &a = mesh.positions[t[0]], &b = mesh.positions[t[1]], &c = mesh.positions[t[2]];
-      // Subdivisions by the longest edge. (By sqrt(2 area), half the samples on right triangles, the
-      // end-mode test on the torus lost 0.4 dB: adapted layouts put texels closer than the initial's.)
-      const double e = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-      n[f] = static_cast<int>(std::clamp(std::ceil(e / spacing), 1.0, 4096.0));
+      n[f] = subdivisions(mesh, f, spacing);
       offset[f + 1] = offset[f] + lattice_size(n[f]);
       if (offset[f + 1] > max_samples)
         throw InvalidInputError("surface cache: more than " + std::to_string(max_samples) +
                                 " samples at spacing " + std::to_string(spacing));
+      const Vec3 m = (a + b + c) / 3.0;
+      centroid[f] = m.cast<float>();
+      face_radius[f] = static_cast<float>(std::max({(a - m).norm(), (b - m).norm(), (c - m).norm()}));
+      if (face_radius[f] > 0) smallest = std::min(smallest, double(face_radius[f]));
     }
-    std::vector<Vec3f> position(static_cast<size_t>(offset[F]));
-    for_each_sample([&](int, long long s, const Vec3& p) { position[static_cast<size_t>(s)] = p.cast<float>(); });
-    // The grid keeps its own sorted copy of the points; order()[slot] maps a slot back to the sample.
-    grid = std::make_unique<detail::TexelGrid>(position, spacing);
+    if (!std::isfinite(smallest)) smallest = 1;
+    // Classes: radius in (smallest·2^(k-1), smallest·2^k].
+    std::vector<int> cls(F);
+    int top = 0;
+    for (int f = 0; f < F; ++f) {
+      cls[f] = face_radius[f] > smallest ? static_cast<int>(std::ceil(std::log2(face_radius[f] / smallest))) : 0;
+      cls[f] = std::clamp(cls[f], 0, 60);
+      top = std::max(top, cls[f]);
+    }
+    classes.resize(top + 1);
+    for (int f = 0; f < F; ++f) classes[cls[f]].faces.push_back(f);
+    for (int k = 0; k <= top; ++k) {
+      FaceClass& fc = classes[k];
+      fc.radius = smallest * std::ldexp(1.0, k) * (1 + 1e-6);
+      if (fc.faces.empty()) continue;
+      std::vector<Vec3f> points(fc.faces.size());
+      for (size_t q = 0; q < fc.faces.size(); ++q) points[q] = centroid[fc.faces[q]];
+      fc.grid = std::make_unique<detail::TexelGrid>(points, fc.radius);
+      std::vector<int> sorted(fc.faces.size());
+      for (size_t s = 0; s < sorted.size(); ++s) sorted[s] = fc.faces[fc.grid->order()[s]];
+      fc.faces = std::move(sorted);
+    }
   }
 
   /// Calls fn(face, sample index, 3-D point) for every sample, faces in parallel.
@@ -86,33 +151,84 @@ struct SurfaceSignalCache::Impl {
     });
   }
 
+  /// Calls fn(sample index, squared distance) for the samples of face \p f within \p r of \p p:
+  /// only the lattice rows and columns the ball's shadow on the face's plane can reach.
+  template <class Fn>
+  void for_each_sample_in_ball(int f, const Vec3& p, double r, Fn&& fn) const {
+    const Face& t = mesh.faces[f];
+    const Vec3& a = mesh.positions[t[0]];
+    const int m = n[f];
+    const Vec3 e1 = (mesh.positions[t[1]] - a) / m, e2 = (mesh.positions[t[2]] - a) / m;  // lattice steps
+    const double g11 = e1.dot(e1), g12 = e1.dot(e2), g22 = e2.dot(e2), det = g11 * g22 - g12 * g12;
+    int i_lo = 0, i_hi = m;
+    double v = 0, rv = std::numeric_limits<double>::infinity();
+    if (det > 1e-12 * g11 * g22) {
+      // Lattice coordinates (u, v) of p's projection; a ball of radius r covers |Δu| <= r·sqrt((G⁻¹)₁₁).
+      const Vec3 d = p - a;
+      const double d1 = d.dot(e1), d2 = d.dot(e2);
+      const double u = (g22 * d1 - g12 * d2) / det;
+      v = (g11 * d2 - g12 * d1) / det;
+      const double ru = r * std::sqrt(g22 / det);
+      rv = r * std::sqrt(g11 / det);
+      if (u + ru < 0 || u - ru > m || v + rv < 0 || v - rv > m) return;
+      i_lo = static_cast<int>(std::max(0.0, std::ceil(u - ru)));
+      i_hi = static_cast<int>(std::min<double>(m, std::floor(u + ru)));
+    }
+    const double r2 = r * r;
+    for (int i = i_lo; i <= i_hi; ++i) {
+      int j_lo = 0, j_hi = m - i;
+      if (std::isfinite(rv)) {
+        j_lo = static_cast<int>(std::max(0.0, std::ceil(v - rv)));
+        j_hi = static_cast<int>(std::min<double>(m - i, std::floor(v + rv)));
+      }
+      const Vec3 row = a + e1 * double(i) - p;
+      for (int j = j_lo; j <= j_hi; ++j) {
+        const double d2 = (row + e2 * double(j)).squaredNorm();
+        if (d2 < r2) fn(offset[f] + lattice_index(m, i, j), d2);
+      }
+    }
+  }
+
+  /// Calls fn(face) for every face that may have samples within \p r of \p p.
+  template <class Fn>
+  void for_each_face_near(const Vec3& p, double r, Fn&& fn) const {
+    const Vec3f pf = p.cast<float>();
+    for (const FaceClass& fc : classes) {
+      if (!fc.grid) continue;
+      fc.grid->for_each_in_ball(p, r + fc.radius, [&](int slot, float) {
+        const int f = fc.faces[slot];
+        if ((centroid[f] - pf).norm() < r + face_radius[f] * 1.0001f + 1e-6f * static_cast<float>(r)) fn(f);
+      });
+    }
+  }
+
   void brush(const Stroke& s) {
-    const float r = static_cast<float>(s.radius), inv_r = 1.0f / r;
-    const float h = static_cast<float>(s.hardness), op = static_cast<float>(s.opacity);
-    tbb::enumerable_thread_specific<std::vector<int>> first_touch;
-    const std::vector<int>& order = grid->order();
+    const double r = s.radius;
+    const float inv_r = static_cast<float>(1.0 / r), h = static_cast<float>(s.hardness), op = static_cast<float>(s.opacity);
+    tbb::enumerable_thread_specific<std::vector<long long>> first_touch;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, s.dabs.size(), 4), [&](const tbb::blocked_range<size_t>& rg) {
       auto& mine = first_touch.local();
       for (size_t d = rg.begin(); d < rg.end(); ++d)
-        grid->for_each_in_ball(s.dabs[d], s.radius, [&](int slot, float d2) {
-          const float w = op * static_cast<float>(brush_falloff(std::sqrt(d2) * inv_r, h));
-          const int k = order[slot];
-          std::atomic_ref<float> a(alpha[k]);
-          float cur = a.load(std::memory_order_relaxed);
-          while (w > cur)
-            if (a.compare_exchange_weak(cur, w, std::memory_order_relaxed)) {
-              if (cur == 0.0f) mine.push_back(k);
-              break;
-            }
+        for_each_face_near(s.dabs[d], r, [&](int f) {
+          for_each_sample_in_ball(f, s.dabs[d], r, [&](long long k, double d2) {
+            const std::uint16_t w = to_fixed(op * falloff(std::sqrt(static_cast<float>(d2)) * inv_r, h));
+            std::atomic_ref<std::uint16_t> a(alpha[static_cast<size_t>(k)]);
+            std::uint16_t cur = a.load(std::memory_order_relaxed);
+            while (w > cur)
+              if (a.compare_exchange_weak(cur, w, std::memory_order_relaxed)) {
+                if (cur == 0) mine.push_back(k);
+                break;
+              }
+          });
         });
     });
     const float col[3] = {float(s.color[0]), float(s.color[1]), float(s.color[2])};
     for (auto& list : first_touch)
       tbb::parallel_for(size_t(0), list.size(), [&](size_t q) {
-        const int k = list[q];
-        const float w = alpha[k];
-        for (int c = 0; c < 3; ++c) colour[k][c] = colour[k][c] * (1.0f - w) + col[c] * w;
-        alpha[k] = 0.0f;
+        const size_t k = static_cast<size_t>(list[q]);
+        const float w = alpha[k] / kUnit;
+        for (int c = 0; c < 3; ++c) colour[k][c] = to_fixed(colour[k][c] / kUnit * (1.0f - w) + col[c] * w);
+        alpha[k] = 0;
       });
   }
 
@@ -123,7 +239,7 @@ struct SurfaceSignalCache::Impl {
       const float a = static_cast<float>(v[3]);
       if (!(a > 0)) return;
       auto& col = colour[static_cast<size_t>(k)];
-      for (int c = 0; c < 3; ++c) col[c] = col[c] * (1.0f - a) + static_cast<float>(v[c]) * a;
+      for (int c = 0; c < 3; ++c) col[c] = to_fixed(col[c] / kUnit * (1.0f - a) + static_cast<float>(v[c]) * a);
     });
   }
 
@@ -143,9 +259,11 @@ struct SurfaceSignalCache::Impl {
       const auto& c = colour[static_cast<size_t>(base + lattice_index(m, i, j))];
       return Vec3f(c[0], c[1], c[2]);
     };
-    if (fu + fv <= 1.0f || i0 + j0 + 2 > m)
-      return (1.0f - fu - fv) * at(i0, j0) + fu * at(i0 + 1, j0) + fv * at(i0, j0 + 1);
-    return (fu + fv - 1.0f) * at(i0 + 1, j0 + 1) + (1.0f - fv) * at(i0 + 1, j0) + (1.0f - fu) * at(i0, j0 + 1);
+    const Vec3f mixed = fu + fv <= 1.0f || i0 + j0 + 2 > m
+                            ? Vec3f((1.0f - fu - fv) * at(i0, j0) + fu * at(i0 + 1, j0) + fv * at(i0, j0 + 1))
+                            : Vec3f((fu + fv - 1.0f) * at(i0 + 1, j0 + 1) + (1.0f - fv) * at(i0 + 1, j0) +
+                                    (1.0f - fu) * at(i0, j0 + 1));
+    return mixed / kUnit;
   }
 };
 
@@ -157,10 +275,11 @@ SurfaceSignalCache::SurfaceSignalCache(const TriMesh& mesh, double spacing, cons
   if (!background.allFinite() || background.minCoeff() < 0 || background.maxCoeff() > 1)
     throw InvalidInputError("surface cache: background colour must be in [0, 1]");
   impl_->build(spacing, max_samples);
-  const std::array<float, 3> bg{float(background[0]), float(background[1]), float(background[2])};
+  const std::array<std::uint16_t, 3> bg{to_fixed(float(background[0])), to_fixed(float(background[1])),
+                                        to_fixed(float(background[2]))};
   const size_t S = static_cast<size_t>(impl_->offset.back());
   impl_->colour.assign(S, bg);
-  impl_->alpha.assign(S, 0.0f);
+  impl_->alpha.assign(S, 0);
 }
 SurfaceSignalCache::~SurfaceSignalCache() = default;
 SurfaceSignalCache::SurfaceSignalCache(SurfaceSignalCache&&) noexcept = default;
@@ -209,6 +328,14 @@ std::vector<Vec3f> SurfaceSignalCache::texel_colours(const TexelMap& map, const 
     out[k] = m.interpolate(p, b.x(), b.y());
   });
   return out;
+}
+
+long long SurfaceSignalCache::count_samples(const TriMesh& mesh, double spacing) {
+  if (!(spacing > 0) || !std::isfinite(spacing))
+    throw InvalidInputError("surface cache: spacing must be positive and finite");
+  long long total = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) total += lattice_size(subdivisions(mesh, f, spacing));
+  return total;
 }
 
 int SurfaceSignalCache::strokes() const { return impl_->count; }

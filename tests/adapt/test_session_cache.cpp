@@ -1,10 +1,13 @@
 // PaintSession's safeguard reads the exact signal from a stroke-by-stroke cache (PointSignalCache,
-// issue 10): its error estimates equal the ones computed from the whole history.
+// issue 10): its error estimates equal the ones computed from the whole history. Each-stroke replay
+// through the surface signal cache (PaintSessionOptions::surface_cache): when it starts, what it
+// costs in quality, and that finish() ends on end mode's result.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/errors.h"
@@ -87,50 +90,87 @@ double session_psnr(PaintSession& s) {
   return 10 * std::log10(1.0 / mse);
 }
 
-TEST(PaintSessionCache, SurfaceCacheEachStrokeIsEndModeForTheHistorySoFar) {
+/// Each-stroke options that use the surface cache from the first stroke, a cycle after every stroke.
+PaintSessionOptions cached_each_stroke() {
+  PaintSessionOptions o = small_options(ReparamSchedule::EachStroke, AdaptOptions{}.mode);
+  o.surface_cache = 3;
+  o.surface_cache_coverage = 0;
+  o.min_gain_db = 0;
+  return o;
+}
+
+TEST(PaintSessionCache, SurfaceCacheEachStrokeEndsOnEndModesLayoutAndTexture) {
   const Scene sc = torus_scene(40, 20, 6);
-  PaintSessionOptions each = small_options(ReparamSchedule::EachStroke, AdaptOptions{}.mode);
-  each.surface_cache = 3;
-  each.min_gain_db = 0;  // a cycle after every stroke
-  PaintSessionOptions end = each;
-  end.schedule = ReparamSchedule::End;
-  PaintSession s(sc.mesh, sc.param, each, sc.strokes.background);
+  PaintSession s(sc.mesh, sc.param, cached_each_stroke(), sc.strokes.background);
+  EXPECT_EQ(s.surface_cache_samples(), 0);  // built at the first stroke, not before
   int accepted = 0;
-  for (size_t k = 0; k < sc.strokes.strokes.size(); ++k) {
-    s.add_stroke(sc.strokes.strokes[k]);
-    PaintSession e(sc.mesh, sc.param, end, sc.strokes.background);
-    for (size_t i = 0; i <= k; ++i) e.add_stroke(sc.strokes.strokes[i]);
-    e.finish();
-    EXPECT_EQ(s.mesh().num_faces(), e.mesh().num_faces()) << "stroke " << k + 1;
-    EXPECT_EQ(s.param().uv, e.param().uv) << "stroke " << k + 1;
-    EXPECT_EQ(s.texture().data, e.texture().data) << "stroke " << k + 1;
+  for (const Stroke& st : sc.strokes.strokes) {
+    s.add_stroke(st);
+    EXPECT_GT(s.surface_cache_samples(), 0);
     accepted += s.reports().back().accepted;
   }
-  // Not vacuous: some candidates were taken (else both sessions just hold the initial layout).
+  // End mode replays exactly (it never uses the cache).
+  PaintSessionOptions end = cached_each_stroke();
+  end.schedule = ReparamSchedule::End;
+  PaintSession e(sc.mesh, sc.param, end, sc.strokes.background);
+  for (const Stroke& st : sc.strokes.strokes) e.add_stroke(st);
+  e.finish();
+  EXPECT_EQ(e.surface_cache_samples(), 0);
+  // Not vacuous: candidates were taken, and the live texture is the cache's, not end mode's.
   EXPECT_GT(accepted, 0);
+  EXPECT_NE(s.texture().data, e.texture().data);
+  const size_t cycles = s.reports().size();
+  s.finish();  // the held texture came from the cache: the last cycle again, with exact replay
+  EXPECT_EQ(s.reports().size(), cycles + 1);
+  EXPECT_EQ(s.mesh().num_faces(), e.mesh().num_faces());
+  EXPECT_EQ(s.param().uv, e.param().uv);
+  EXPECT_EQ(s.texture().data, e.texture().data);
 }
 
 TEST(PaintSessionCache, SurfaceCacheQualityIsWithinAFewTenthsOfADecibelOfExactReplay) {
   const Scene sc = torus_scene(48, 24, 30);
-  PaintSessionOptions o = small_options(ReparamSchedule::End, AdaptOptions{}.mode);
+  PaintSessionOptions o = cached_each_stroke();
   o.texture_size = 256;
   o.safeguard_samples = 20000;
-  PaintSession exact(sc.mesh, sc.param, o, sc.strokes.background);
-  o.surface_cache = 3;
   PaintSession cached(sc.mesh, sc.param, o, sc.strokes.background);
+  o.surface_cache = 0;
+  PaintSession exact(sc.mesh, sc.param, o, sc.strokes.background);
   for (const Stroke& st : sc.strokes.strokes) {
     exact.add_stroke(st);
     cached.add_stroke(st);
   }
-  exact.finish();
-  cached.finish();
+  // The live textures, before finish() replays exactly.
   const double pe = session_psnr(exact), pc = session_psnr(cached);
-  std::printf("end mode PSNR: exact replay %.2f dB, surface cache %.2f dB\n", pe, pc);
+  std::printf("each-stroke PSNR after 30 strokes: exact replay %.2f dB, surface cache %.2f dB\n", pe, pc);
   // Not vacuous: the cached session adapted and its texture is the cache's, not a replay.
   ASSERT_TRUE(cached.reports().back().accepted);
+  EXPECT_EQ(exact.surface_cache_samples(), 0);
+  EXPECT_GT(cached.surface_cache_samples(), 0);
   EXPECT_NE(cached.texture().data, exact.texture().data);
   EXPECT_GT(pc, pe - 0.3);
   EXPECT_LT(pc, pe + 1.0);
+}
+
+TEST(PaintSessionCache, SurfaceCacheStartsOnceTheStrokesCoverTheSurfaceOftenEnough) {
+  const Scene sc = torus_scene(40, 20, 12);
+  const double area = surface_area(sc.mesh);
+  double coverage = 0;
+  std::vector<double> after;  // the history's coverage after each stroke
+  for (const Stroke& st : sc.strokes.strokes) {
+    coverage += st.dabs.size() * std::numbers::pi * st.radius * st.radius / area;
+    after.push_back(coverage);
+  }
+  PaintSessionOptions o = cached_each_stroke();
+  o.surface_cache_coverage = after[5] * 0.999;  // crossed by stroke 6
+  PaintSession s(sc.mesh, sc.param, o, sc.strokes.background);
+  for (size_t k = 0; k < sc.strokes.strokes.size(); ++k) {
+    s.add_stroke(sc.strokes.strokes[k]);
+    if (k < 5)
+      EXPECT_EQ(s.surface_cache_samples(), 0) << "stroke " << k + 1;
+    else
+      EXPECT_GT(s.surface_cache_samples(), 0) << "stroke " << k + 1;
+  }
+  ASSERT_LT(after[4], o.surface_cache_coverage);  // the threshold lies between strokes 5 and 6
 }
 
 TEST(PaintSessionCache, RejectsBadCacheOptionsAtConstruction) {
@@ -140,11 +180,10 @@ TEST(PaintSessionCache, RejectsBadCacheOptionsAtConstruction) {
     PaintSessionOptions o;
     o.surface_cache = q;
     EXPECT_THROW(PaintSession(mesh, param, o), InvalidInputError) << q;
+    PaintSessionOptions c;
+    c.surface_cache_coverage = q;
+    EXPECT_THROW(PaintSession(mesh, param, c), InvalidInputError) << q;
   }
-  // A lattice past kMaxSurfaceCacheSamples (~1e4 samples per texel spacing) fails before any stroke.
-  PaintSessionOptions big;
-  big.surface_cache = 1e4;
-  EXPECT_THROW(PaintSession(mesh, param, big), InvalidInputError);
   for (int n : {-1, kMaxSafeguardSamples + 1}) {
     PaintSessionOptions o;
     o.safeguard_samples = n;
@@ -156,6 +195,23 @@ TEST(PaintSessionCache, RejectsBadCacheOptionsAtConstruction) {
   ok.surface_cache = 3;
   ok.texture_size = 64;
   EXPECT_NO_THROW(PaintSession(mesh, param, ok));
+}
+
+TEST(PaintSessionCache, ALatticeTooLargeFallsBackToExactReplay) {
+  const Scene sc = torus_scene(40, 20, 3);
+  PaintSessionOptions big = cached_each_stroke();
+  big.surface_cache = 1e4;  // ~1e8 samples per texel: past kMaxSurfaceCacheSamples
+  PaintSession s(sc.mesh, sc.param, big, sc.strokes.background);
+  PaintSessionOptions exact_o = cached_each_stroke();
+  exact_o.surface_cache = 0;
+  PaintSession exact(sc.mesh, sc.param, exact_o, sc.strokes.background);
+  for (const Stroke& st : sc.strokes.strokes) {
+    s.add_stroke(st);
+    exact.add_stroke(st);
+  }
+  EXPECT_EQ(s.surface_cache_samples(), 0);
+  EXPECT_EQ(s.texture().data, exact.texture().data);
+  EXPECT_EQ(s.param().uv, exact.param().uv);
 }
 
 }  // namespace

@@ -57,7 +57,7 @@ enum class ReparamSchedule {
 /// each (1 GB here).
 inline constexpr int kMaxSafeguardSamples = 10'000'000;
 /// Largest surface signal cache of a session (PaintSessionOptions::surface_cache): 50 million samples
-/// (~2.5 GB).
+/// (400 MB).
 inline constexpr long long kMaxSurfaceCacheSamples = 50'000'000;
 
 /// Settings of a PaintSession. (The command line's option strings are parsed in apps/cli,
@@ -79,15 +79,26 @@ struct PaintSessionOptions {
   /// Applies whenever the reference is the fixed (initial) layout; against an adapted current layout
   /// (resample mode, or end mode re-parameterizing again) a candidate only has to be better.
   double safeguard_margin = 0.02;
-  /// Replay through a surface signal cache (paint/surface_cache.h, Mesh Colors): with update = replay,
-  /// the texture of a candidate layout is resampled from per-face samples of the exact signal, updated
-  /// stroke by stroke, in O(texels), instead of replaying every dab of the history on it (issue 10).
-  /// The value is the number of samples per texel spacing of the initial layout (3: the sample
-  /// spacing is a third of a texel's; the texture is then within a fraction of a dB of exact replay,
-  /// tests/paint/test_surface_cache.cpp). 0: exact replay. Applies to layouts computed from the
-  /// input mesh (each-stroke mode, and end mode's first re-parameterization). Its lattice is built
-  /// when the session is constructed and holds at most kMaxSurfaceCacheSamples samples (~50 bytes each with its spatial index).
-  double surface_cache = 0;
+  /// Each-stroke mode with replay: replay through a surface signal cache (paint/surface_cache.h, Mesh
+  /// Colors) once the history is long (surface_cache_coverage). The texture of a candidate layout is
+  /// then resampled from per-face samples of the exact signal, updated stroke by stroke, in O(texels),
+  /// instead of replaying every dab of the history on it, so a cycle's cost stops growing with the
+  /// history (issue 10). The value is the number of samples per texel spacing of the initial layout
+  /// (3: the sample spacing is a third of a texel's; the texture is then within a fraction of a dB of
+  /// exact replay, tests/paint/test_surface_cache.cpp). 0: always exact replay. The lattice takes 8
+  /// bytes per sample (at 3, ~25 samples per chart texel: ~150 MB for the 86k-face armadillo at 1024²);
+  /// one of more than kMaxSurfaceCacheSamples samples is not built, and the session replays exactly
+  /// (surface_cache_samples() is then 0). finish() ends on exact replay: if the held texture came from
+  /// the cache it runs the last cycle again with exact replay, so the session ends on end mode's
+  /// layout and texture. End mode replays the history once per re-parameterization and never uses it.
+  double surface_cache = 3;
+  /// The surface cache is built, from the whole history, and used from the stroke after which the
+  /// history's brush dabs cover the surface this many times over (Σ over dabs of π r² / surface area;
+  /// a decal counts 1). Exact replay costs about in proportion to that coverage, resampling from the
+  /// cache about as much as 4 covers (armadillo 1024², bench_session: replay 17 ms at 1.9 covers,
+  /// 360 ms at 25; from the cache 55–60 ms), and keeping the cache costs ~5 ms per stroke. 0: from the
+  /// first stroke.
+  double surface_cache_coverage = 4;
   /// Each-stroke mode with density-flow and replay: after a stroke, the cycle first computes the error
   /// model (error_density.h) and re-parameterizes only if a new layout is predicted to gain at least
   /// this PSNR, in dB, over the layout the session holds; otherwise the stroke stays painted on the
@@ -109,8 +120,8 @@ class PaintSession {
   /// \param initial its initial parameterization (e.g. unwrap(mesh).param)
   /// \param background colour of unpainted surface (the history's background)
   /// \throw InvalidInputError bad options (texture size outside [1, kMaxTextureSize], negative padding,
-  ///        safeguard_samples outside [0, kMaxSafeguardSamples], surface_cache negative or not finite, or
-  ///        a surface cache of more than kMaxSurfaceCacheSamples samples) or param/mesh mismatch
+  ///        safeguard_samples outside [0, kMaxSafeguardSamples], surface_cache or surface_cache_coverage
+  ///        negative or not finite) or param/mesh mismatch
   PaintSession(TriMesh mesh, Parameterization initial, const PaintSessionOptions& options,
                const Vec3& background = Vec3(1, 1, 1));
   ~PaintSession();
@@ -141,6 +152,9 @@ class PaintSession {
   /// Maps / grids of the last re-parameterization that was not skipped (or null).
   const AdaptResult* last_result() const;
   const PaintSessionOptions& options() const;
+  /// Samples of the surface signal cache (PaintSessionOptions::surface_cache); 0 while it is not built
+  /// (short history, end mode, surface_cache 0, or a lattice too large).
+  long long surface_cache_samples() const;
   Painter& painter();                      ///< The painter of the current parameterization.
   /// Estimated reconstruction MSE of the current texture against the exact history signal on the
   /// safeguard's surface samples (0 without strokes).

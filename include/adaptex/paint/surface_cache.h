@@ -7,7 +7,10 @@
 /// longest edge e carries n_f = ceil(e / spacing) subdivisions, i.e. (n_f+1)(n_f+2)/2 samples at
 /// barycentrics (1 - i/n - j/n, i/n, j/n), 0 <= i + j <= n (edge and corner samples are stored once
 /// per face). Each sample holds the exact signal at its point (stroke-file contract, as the Painter
-/// does at texel centres); a query interpolates linearly in the lattice triangle around the point.
+/// does at texel centres, to 16-bit fixed point: 8 bytes per sample with the stroke's coverage); a
+/// query interpolates linearly in the lattice triangle around the point. A dab finds the faces it may
+/// reach through an index of the face centroids (faces binned by size), and in each face only the
+/// lattice rows and columns under the ball: the index costs O(faces), not O(samples).
 ///
 /// Error: exact at the samples; between them the linear interpolation of the signal, so an error of
 /// at most spacing² |∇²C| / 8 where C is smooth (soft brushes) and up to the full contrast within one
@@ -36,8 +39,8 @@ class SurfaceSignalCache {
   SurfaceSignalCache(SurfaceSignalCache&&) noexcept;
   SurfaceSignalCache& operator=(SurfaceSignalCache&&) noexcept;
 
-  /// Composites one stroke over the samples: brush dabs through a spatial index of the samples
-  /// (cost ~ the samples the dabs reach, independent of the strokes before), decals at every sample.
+  /// Composites one stroke over the samples: brush dabs through the index of the faces (cost ~ the
+  /// samples the dabs reach, independent of the strokes before), decals at every sample.
   /// \throw InvalidInputError the stroke breaks the contract's rules (validate_stroke)
   void add_stroke(const Stroke& stroke);
   /// Adds strokes [strokes(), history.strokes.size()) of \p history.
@@ -53,6 +56,10 @@ class SurfaceSignalCache {
   /// \throw InvalidInputError a map face out of range of map_mesh or parent_face
   std::vector<Vec3f> texel_colours(const TexelMap& map, const TriMesh& map_mesh,
                                    const std::vector<int>* parent_face = nullptr) const;
+
+  /// The samples a cache of \p mesh at \p spacing would have (O(faces), nothing allocated).
+  /// \pre spacing > 0 \throw InvalidInputError spacing <= 0 or not finite
+  static long long count_samples(const TriMesh& mesh, double spacing);
 
   int strokes() const;             ///< Strokes composited so far.
   long long num_samples() const;   ///< Samples of the lattice.
