@@ -148,6 +148,7 @@ const std::vector<Field<PaintSessionOptions>>& session_fields() {
         member("safeguard_seed", &O::safeguard_seed),
         member("safeguard_margin", &O::safeguard_margin),
         member("surface_cache", &O::surface_cache),
+        member("surface_cache_coverage", &O::surface_cache_coverage),
         member("min_gain_db", &O::min_gain_db),
     };
     for (auto& a : nested(adapt_fields(), &O::adapt)) f.push_back(std::move(a));

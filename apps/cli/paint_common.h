@@ -94,6 +94,8 @@ struct PaintRun {
   long long chart_texels = 0;  ///< Texels inside a chart at the final parameterization.
   double time_unwrap = 0, time_paint = 0;  ///< Seconds (paint includes re-parameterization).
   nlohmann::json adapt_reports = nlohmann::json::object();  ///< Per re-parameterization (adapt modes).
+  /// Samples of the session's surface signal cache (PaintSession::surface_cache_samples(); 0: none).
+  long long surface_cache_samples = 0;
   double initial_l2 = 0, final_l2 = 0;  ///< L2 stretch of the unwrap and of the final layout.
 };
 
@@ -160,6 +162,7 @@ inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
     run.texel_updates = session.painter().texel_updates();
     run.chart_texels = static_cast<long long>(session.texel_map().inside.size());
     run.adapt_reports = adapt_reports_json(session.reports());
+    run.surface_cache_samples = session.surface_cache_samples();
   }
   run.time_paint = sw.lap();
   return run;
@@ -204,6 +207,7 @@ inline nlohmann::json paint_report(const TriMesh& mesh, const StrokeFile& stroke
                  {"reparam", options.adapt.reparam},
                  {"update", options.adapt.update},
                  {"min_gain_db", options.adapt.min_gain.value_or(PaintSessionOptions{}.min_gain_db)},
+                 {"surface_cache_samples", run.surface_cache_samples},
                  {"reparameterizations", run.adapt_reports}}},
       {"unwrap", {{"floater_l2", u.floater_l2},
                   {"final_l2", u.final_l2},

@@ -183,6 +183,7 @@ TEST_F(CliExitCodes, PaintBadMinGainIsBadInputAndWritesNothing) {
   std::stringstream ss;
   ss << in.rdbuf();
   EXPECT_NE(ss.str().find("\"min_gain_db\": 0.25"), std::string::npos);
+  EXPECT_NE(ss.str().find("\"surface_cache_samples\": "), std::string::npos);  // what the session used
 }
 
 }  // namespace
