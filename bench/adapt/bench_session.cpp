@@ -16,12 +16,14 @@
 // the return to the initial layout after a rejection (see --full), which replays the history too.
 //
 //   adaptex_bench_session [--meshes spot,plane] [--strokes 10,100,1000] [--size 512] [--reps 1]
-//                         [--full N] [--cache Q] [--min-gain G] [--psnr-every K]
+//                         [--full N] [--cache Q] [--cache-coverage C] [--min-gain G] [--psnr-every K]
 //
 // --meshes: names/stems of ADAPTEX_SHARED_DIR/meshes or paths, and "plane" (a generated 100k-face height
 // field, one chart, uv = xy, as in cycle.cpp); a shared mesh that is absent is skipped with a message.
 // --cache Q: PaintSessionOptions::surface_cache = Q (the replay reads a surface signal cache of Q
-// samples per texel spacing; 0, the default: exact replay of every dab).
+// samples per texel spacing once the strokes cover the surface --cache-coverage C times; 0: exact
+// replay of every dab; default: the library's, 3 from 4 covers). Only the --full sessions use it: the
+// stroke-k rows paint without adaptation (no initial layout kept), so they replay exactly.
 // --full N: also paint the first N strokes with a true each-stroke session and print every cycle
 // ("skip" in the accepted column: the cycle stopped after the error model, PaintSessionOptions::min_gain_db;
 // the number after it: the model's predicted gain over the held layout in dB, AdaptReport::gain_over_held_db).
@@ -57,7 +59,8 @@ struct Args {
   int size = 512;
   int reps = 1;
   int full = 0;
-  double cache = 0;  ///< PaintSessionOptions::surface_cache (0: exact replay)
+  double cache = PaintSessionOptions{}.surface_cache;  ///< PaintSessionOptions::surface_cache (0: exact replay)
+  double cache_coverage = PaintSessionOptions{}.surface_cache_coverage;  ///< ...::surface_cache_coverage
   double min_gain = PaintSessionOptions{}.min_gain_db;  ///< --full's PaintSessionOptions::min_gain_db
   int psnr_every = 0;  ///< --full: PSNR after every this many strokes (0: none)
 };
@@ -91,6 +94,8 @@ Args parse(int argc, char** argv) {
       a.reps = std::stoi(v);
     } else if (k == "--cache") {
       a.cache = std::stod(v);
+    } else if (k == "--cache-coverage") {
+      a.cache_coverage = std::stod(v);
     } else if (k == "--min-gain") {
       a.min_gain = std::stod(v);
     } else if (k == "--psnr-every") {
@@ -215,10 +220,11 @@ void cycle_at(const Scene& s, const StrokeFile& history, int k, int size, double
 }
 
 // A true each-stroke session over the first n strokes: every cycle.
-void full_session(const Scene& s, const StrokeFile& history, int n, int size, double cache, double min_gain,
-                  int psnr_every) {
+void full_session(const Scene& s, const StrokeFile& history, int n, int size, double cache, double cache_coverage,
+                  double min_gain, int psnr_every) {
   PaintSessionOptions o;
   o.surface_cache = cache;
+  o.surface_cache_coverage = cache_coverage;
   o.min_gain_db = min_gain;
   o.texture_size = size;
   o.schedule = ReparamSchedule::EachStroke;  // adapt.mode: the library default
@@ -237,6 +243,7 @@ void full_session(const Scene& s, const StrokeFile& history, int n, int size, do
       std::printf("\n%s after stroke %d, min_gain %g dB: PSNR %.3f dB\n\n", s.name.c_str(), i + 1, min_gain, psnr);
     }
   }
+  std::printf("\n%s: surface cache %lld samples\n\n", s.name.c_str(), session.surface_cache_samples());
 }
 
 }  // namespace
@@ -247,8 +254,9 @@ int main(int argc, char** argv) {
   try {
     const Args a = parse(argc, argv);
     const int max_k = std::max(a.full, *std::max_element(a.strokes.begin(), a.strokes.end()));
-    std::printf("texture %d², default adapt mode %s, each-stroke, replay, safeguard on, surface cache %g\n\n",
-                a.size, to_string(AdaptOptions{}.mode), a.cache);
+    std::printf(
+        "texture %d², default adapt mode %s, each-stroke, replay, safeguard on, surface cache %g from %g covers\n\n",
+        a.size, to_string(AdaptOptions{}.mode), a.cache, a.cache_coverage);
     print_header();
     for (const auto& name : a.meshes) {
       Scene s;
@@ -261,7 +269,7 @@ int main(int argc, char** argv) {
       const StrokeFile history = session_history(s.mesh, max_k);
       for (int k : a.strokes)
         for (int r = 0; r < a.reps; ++r) cycle_at(s, history, k, a.size, a.cache);
-      if (a.full > 0) full_session(s, history, a.full, a.size, a.cache, a.min_gain, a.psnr_every);
+      if (a.full > 0) full_session(s, history, a.full, a.size, a.cache, a.cache_coverage, a.min_gain, a.psnr_every);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "adaptex_bench_session: %s\n", e.what());

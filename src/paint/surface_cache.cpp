@@ -311,21 +311,44 @@ std::vector<Vec3f> SurfaceSignalCache::texel_colours(const TexelMap& map, const 
   if (!parent_face && MF != F)
     throw InvalidInputError("surface cache: the map's mesh has " + std::to_string(MF) + " faces, the cache's " +
                             std::to_string(F));
-  std::vector<Vec3f> out(map.inside.size());
-  tbb::parallel_for(size_t(0), map.inside.size(), [&](size_t k) {
-    const int t = map.inside[k];
-    const int f = map.face[t];
-    if (f < 0 || f >= MF) throw InvalidInputError("surface cache: texel map face out of range");
-    if (!parent_face) {
-      out[k] = m.interpolate(f, map.bary[t].x(), map.bary[t].y());
-      return;
+  // The cache face of every chart texel; then the texels grouped by that face (a counting sort), so
+  // that each face's lattice is read once, in one place, instead of once per raster row that crosses
+  // it (the lattice is ~25x the texture: in raster order the reads missed the caches).
+  const size_t T = map.inside.size();
+  std::vector<int> cache_face(T);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, T, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k < r.end(); ++k) {
+      const int f = map.face[map.inside[k]];
+      if (f < 0 || f >= MF) throw InvalidInputError("surface cache: texel map face out of range");
+      const int p = parent_face ? (*parent_face)[f] : f;
+      if (p < 0 || p >= F) throw InvalidInputError("surface cache: parent face out of range");
+      cache_face[k] = p;
     }
-    const int p = (*parent_face)[f];
-    if (p < 0 || p >= F) throw InvalidInputError("surface cache: parent face out of range");
-    const Face& tri = m.mesh.faces[p];
-    const Eigen::Vector2d b = barycentric(map.position[t].cast<double>(), m.mesh.positions[tri[0]],
-                                          m.mesh.positions[tri[1]], m.mesh.positions[tri[2]]);
-    out[k] = m.interpolate(p, b.x(), b.y());
+  });
+  std::vector<int> first(static_cast<size_t>(F) + 1, 0);
+  for (size_t k = 0; k < T; ++k) ++first[static_cast<size_t>(cache_face[k]) + 1];
+  for (int f = 0; f < F; ++f) first[f + 1] += first[f];
+  std::vector<int> by_face(T);
+  {
+    std::vector<int> next(first.begin(), first.end() - 1);
+    for (size_t k = 0; k < T; ++k) by_face[static_cast<size_t>(next[cache_face[k]]++)] = static_cast<int>(k);
+  }
+  std::vector<Vec3f> out(T);
+  tbb::parallel_for(tbb::blocked_range<int>(0, F, 256), [&](const tbb::blocked_range<int>& r) {
+    for (int p = r.begin(); p < r.end(); ++p) {
+      const Face& tri = m.mesh.faces[p];
+      for (int q = first[p]; q < first[p + 1]; ++q) {
+        const int k = by_face[q];
+        const int t = map.inside[k];
+        if (!parent_face) {
+          out[k] = m.interpolate(p, map.bary[t].x(), map.bary[t].y());
+          continue;
+        }
+        const Eigen::Vector2d b = barycentric(map.position[t].cast<double>(), m.mesh.positions[tri[0]],
+                                              m.mesh.positions[tri[1]], m.mesh.positions[tri[2]]);
+        out[k] = m.interpolate(p, b.x(), b.y());
+      }
+    }
   });
   return out;
 }
