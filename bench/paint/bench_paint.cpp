@@ -8,6 +8,11 @@
 //    mesh unwrapped with unwrap() (not timed), at 1024^2 and 2048^2, all cores, wall time including
 //    texture() (8-bit conversion + padding); "setup_s" is the painter construction (texel map,
 //    texel grid, padding) for the same mesh and size, "updates" the texel evaluations per paint.
+//  - BM_SurfaceCacheBuild / BM_SurfaceCacheStroke / BM_SurfaceCacheTexelColours/<size>: the surface
+//    signal cache (paint/surface_cache.h) on a plane of 100,352 faces with uv = xy, sample spacing a
+//    third of the texel spacing at 1024² (PaintSessionOptions::surface_cache = 3): building the lattice
+//    and face index (counter "samples"), compositing one generated `mixed` stroke (40 in turn), and
+//    the colours of every chart texel at size² (what replaces replaying the history), all cores.
 // Env ADAPTEX_BENCH_MESHES="a.obj,b.off" picks the shared meshes (default: a set of 8).
 #include <benchmark/benchmark.h>
 #include <tbb/task_arena.h>
@@ -27,6 +32,7 @@
 #include "adaptex/paint/painter.h"
 #include "adaptex/paint/signal.h"
 #include "adaptex/paint/eval.h"
+#include "adaptex/paint/surface_cache.h"
 #include "adaptex/param/unwrap.h"
 
 using namespace adaptex;
@@ -196,6 +202,68 @@ const int registered = [] {
         ->Iterations(5);
   return 0;
 }();
+
+
+struct CacheFixture {
+  TriMesh mesh = shapes::plane(224);
+  Parameterization param;
+  StrokeFile strokes;
+  double spacing = 0;  // a third of the texel spacing at 1024²
+  CacheFixture() {
+    for (const Vec3& v : mesh.positions) param.uv.push_back(Vec2(v.x(), v.y()));
+    param.uv_faces = mesh.faces;
+    for (int v = 0; v < mesh.num_vertices(); ++v) param.wedge_vertex.push_back(v);
+    param.face_chart.assign(mesh.faces.size(), 0);
+    param.num_charts = 1;
+    GenerateOptions go;
+    go.kind = StrokeKind::Mixed;
+    go.count = 40;
+    strokes = generate_strokes(mesh, go);
+    spacing = 1.0 / 1024 / 3;
+  }
+};
+CacheFixture& cache_fixture() {
+  static CacheFixture f;
+  return f;
+}
+
+void BM_SurfaceCacheBuild(benchmark::State& state) {
+  CacheFixture& f = cache_fixture();
+  long long samples = 0;
+  for (auto _ : state) {
+    SurfaceSignalCache cache(f.mesh, f.spacing, Vec3(1, 1, 1));
+    samples = cache.num_samples();
+    benchmark::DoNotOptimize(samples);
+  }
+  state.counters["samples"] = static_cast<double>(samples);
+}
+BENCHMARK(BM_SurfaceCacheBuild)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_SurfaceCacheStroke(benchmark::State& state) {
+  CacheFixture& f = cache_fixture();
+  SurfaceSignalCache cache(f.mesh, f.spacing, Vec3(1, 1, 1));
+  size_t k = 0;
+  for (auto _ : state) {
+    cache.add_stroke(f.strokes.strokes[k]);
+    k = (k + 1) % f.strokes.strokes.size();
+  }
+}
+BENCHMARK(BM_SurfaceCacheStroke)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_SurfaceCacheTexelColours(benchmark::State& state) {
+  CacheFixture& f = cache_fixture();
+  SurfaceSignalCache cache(f.mesh, f.spacing, Vec3(1, 1, 1));
+  cache.update(f.strokes);
+  PainterOptions po;
+  po.width = po.height = static_cast<int>(state.range(0));
+  const Painter painter(f.mesh, f.param, po, Vec3(1, 1, 1));
+  for (auto _ : state) {
+    std::vector<Vec3f> c = cache.texel_colours(painter.texel_map(), f.mesh);
+    benchmark::DoNotOptimize(c.data());
+  }
+  state.counters["texels"] = static_cast<double>(painter.texel_map().inside.size());
+}
+BENCHMARK(BM_SurfaceCacheTexelColours)->Arg(512)->Arg(1024)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
