@@ -210,11 +210,7 @@ struct CacheFixture {
   StrokeFile strokes;
   double spacing = 0;  // a third of the texel spacing at 1024²
   CacheFixture() {
-    for (const Vec3& v : mesh.positions) param.uv.push_back(Vec2(v.x(), v.y()));
-    param.uv_faces = mesh.faces;
-    for (int v = 0; v < mesh.num_vertices(); ++v) param.wedge_vertex.push_back(v);
-    param.face_chart.assign(mesh.faces.size(), 0);
-    param.num_charts = 1;
+    param = planar_param(mesh);
     GenerateOptions go;
     go.kind = StrokeKind::Mixed;
     go.count = 40;
