@@ -594,16 +594,16 @@ void PaintSession::end_stroke() {
 void PaintSession::finish() {
   Impl& m = *impl_;
   if (m.opt.adapt.mode == AdaptMode::None) return;
-  if (m.opt.schedule == ReparamSchedule::End || m.pending) {
-    m.exact_only = m.opt.schedule == ReparamSchedule::EachStroke;
-    m.reparameterize(false);
-  } else if (m.held_from_cache) {
-    // The held texture was resampled from the surface cache: the same cycle again with exact replay
-    // (what end mode computes), so the session ends on end mode's layout and texture.
-    m.exact_only = true;
-    m.reparameterize(false);
-  }
-  m.exact_only = false;
+  // Each-stroke mode runs the last cycle again if it was skipped, or if the held texture was resampled
+  // from the surface cache: with exact replay, what end mode computes, so the session ends on end
+  // mode's layout and texture.
+  if (m.opt.schedule == ReparamSchedule::EachStroke && !m.pending && !m.held_from_cache) return;
+  m.exact_only = m.opt.schedule == ReparamSchedule::EachStroke;
+  struct Reset {
+    bool& flag;
+    ~Reset() { flag = false; }
+  } reset{m.exact_only};  // also when the cycle throws (cancelled)
+  m.reparameterize(false);
 }
 
 const AdaptReport& PaintSession::reparameterize() { return impl_->reparameterize(false); }

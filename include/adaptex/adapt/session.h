@@ -138,8 +138,9 @@ class PaintSession {
   void begin_stroke(const Stroke& style);
   std::array<int, 4> add_dab(const Vec3& centre);
   void end_stroke();
-  /// End mode: re-parameterizes once. Each-stroke mode: re-parameterizes if the last cycle was skipped
-  /// (min_gain_db). No-op with mode None.
+  /// End mode: re-parameterizes once. Each-stroke mode: re-parameterizes, with exact replay, if the
+  /// last cycle was skipped (min_gain_db) or the held texture came from the surface cache
+  /// (surface_cache), so that the session ends on end mode's layout and texture. No-op with mode None.
   void finish();
   /// Re-parameterizes now, whatever the schedule and min_gain_db. \return the report (also appended
   /// to reports()).
