@@ -86,8 +86,9 @@ struct SurfaceSignalCache::Impl {
   std::vector<long long> offset;      // F+1: first sample of each face
   std::vector<std::array<std::uint16_t, 3>> colour;  // S (samples face by face, lattice_index order)
   std::vector<std::uint16_t> alpha;   // S: coverage of the stroke being added (0 elsewhere)
-  std::vector<Vec3f> centroid;        // F
-  std::vector<float> face_radius;     // F: bounding radius around the centroid
+  std::vector<Vec3> centroid;         // F
+  std::vector<double> face_radius;    // F: bounding radius around the centroid
+  double slack = 0;  // widens the index's queries by its single-precision rounding (TexelGrid stores floats)
   std::vector<FaceClass> classes;
   std::unique_ptr<DecalProjector> projector;
   int count = 0;
@@ -110,9 +111,10 @@ struct SurfaceSignalCache::Impl {
         throw InvalidInputError("surface cache: more than " + std::to_string(max_samples) +
                                 " samples at spacing " + std::to_string(spacing));
       const Vec3 m = (a + b + c) / 3.0;
-      centroid[f] = m.cast<float>();
-      face_radius[f] = static_cast<float>(std::max({(a - m).norm(), (b - m).norm(), (c - m).norm()}));
-      if (face_radius[f] > 0) smallest = std::min(smallest, double(face_radius[f]));
+      centroid[f] = m;
+      face_radius[f] = std::max({(a - m).norm(), (b - m).norm(), (c - m).norm()});
+      if (face_radius[f] > 0) smallest = std::min(smallest, face_radius[f]);
+      slack = std::max(slack, 1e-6 * m.cwiseAbs().maxCoeff());
     }
     if (!std::isfinite(smallest)) smallest = 1;
     // Classes: radius in (smallest·2^(k-1), smallest·2^k].
@@ -130,7 +132,7 @@ struct SurfaceSignalCache::Impl {
       fc.radius = smallest * std::ldexp(1.0, k) * (1 + 1e-6);
       if (fc.faces.empty()) continue;
       std::vector<Vec3f> points(fc.faces.size());
-      for (size_t q = 0; q < fc.faces.size(); ++q) points[q] = centroid[fc.faces[q]];
+      for (size_t q = 0; q < fc.faces.size(); ++q) points[q] = centroid[fc.faces[q]].cast<float>();
       fc.grid = std::make_unique<detail::TexelGrid>(points, fc.radius);
       std::vector<int> sorted(fc.faces.size());
       for (size_t s = 0; s < sorted.size(); ++s) sorted[s] = fc.faces[fc.grid->order()[s]];
@@ -192,12 +194,12 @@ struct SurfaceSignalCache::Impl {
   /// Calls fn(face) for every face that may have samples within \p r of \p p.
   template <class Fn>
   void for_each_face_near(const Vec3& p, double r, Fn&& fn) const {
-    const Vec3f pf = p.cast<float>();
     for (const FaceClass& fc : classes) {
       if (!fc.grid) continue;
-      fc.grid->for_each_in_ball(p, r + fc.radius, [&](int slot, float) {
+      // The index compares in single precision: a wider ball, then the exact test in double.
+      fc.grid->for_each_in_ball(p, r + fc.radius + slack, [&](int slot, float) {
         const int f = fc.faces[slot];
-        if ((centroid[f] - pf).norm() < r + face_radius[f] * 1.0001f + 1e-6f * static_cast<float>(r)) fn(f);
+        if ((centroid[f] - p).norm() < r + face_radius[f]) fn(f);
       });
     }
   }

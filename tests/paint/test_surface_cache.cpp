@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
@@ -85,6 +86,47 @@ TEST(SurfaceSignalCache, ExactWithoutStrokesAndAtLatticePoints) {
   }
   EXPECT_LT(worst, 3.0 / 65535);  // 16-bit fixed point, one rounding per stroke (3 blobs)
   EXPECT_GT(painted, 20);  // not vacuous: the blobs cover corners (a cache left at the background fails)
+}
+
+TEST(SurfaceSignalCache, HardBrushesFarFromTheOriginReachEverySampleInTheirBall) {
+  // Far from the origin single precision cannot tell 1e-5 apart (its step there is ~2e-3): the face
+  // index (floats) must not drop a face whose corner lies just inside a hard dab. 40 separate
+  // triangles; each gets a dab whose ball reaches 1e-5 past the triangle's corner that lies farthest
+  // from its centroid, on the line through both (where the bound |p - centroid| < r + R is tight).
+  const Vec3 far(1e4, -2e4, 3e3);
+  const double r = 0.13;
+  TriMesh mesh;
+  StrokeFile strokes;
+  strokes.background = Vec3(1, 1, 1);
+  for (int k = 0; k < 40; ++k) {
+    const double ang = 0.157 * k;
+    const Vec3 dir(std::cos(ang), std::sin(ang), 0), side(-std::sin(ang), std::cos(ang), 0);
+    const Vec3 a = far + Vec3(2.0 * (k % 8), 2.0 * (k / 8), 0.001 * k);
+    const int v = mesh.num_vertices();
+    mesh.positions.push_back(a);
+    mesh.positions.push_back(a + 0.3 * dir + 0.15 * side);
+    mesh.positions.push_back(a + 0.3 * dir - 0.15 * side);
+    mesh.faces.push_back({v, v + 1, v + 2});
+    Stroke st;
+    st.radius = r;
+    st.hardness = 1;
+    st.opacity = 1;
+    st.color = Vec3(0, 0, 0);
+    st.dabs.push_back(a - (r - 1e-5) * dir);  // the corner at r - 1e-5: painted
+    strokes.strokes.push_back(st);
+  }
+  SurfaceSignalCache cache(mesh, 0.01, strokes.background);
+  cache.update(strokes);
+  const StrokeSignal signal(mesh, strokes);
+  int painted = 0;
+  double worst = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Vec3 want = signal.evaluate(SurfacePoint{f, 1.0, 0.0});  // corner a
+    worst = std::max(worst, (cache.colour(f, 1.0, 0.0).cast<double>() - want).cwiseAbs().maxCoeff());
+    painted += want.x() < 0.5;
+  }
+  EXPECT_EQ(painted, 40);  // the exact signal paints every corner a
+  EXPECT_LT(worst, 3.0 / 65535);
 }
 
 /// A 2x2 decal projected straight down onto the unit square around (0.4, 0.5), between two brush
