@@ -6,7 +6,7 @@
 // safeguard = exact-signal evaluation + reconstruction errors) and the session's own clock.
 //
 // The history is `mixed`, generated in batches of 40 strokes (5 blobs, then 35 lines in one region)
-// with seeds 1, 2, ... (session_history below).
+// with seeds 1, 2, ... (session_history below; --seed S starts at S).
 //
 // Running 1,000 each-stroke cycles takes hours on 2 cores, so the cycle at stroke k is measured as
 // follows: a PaintSession in each-stroke mode with adaptation *off* (AdaptMode::None: it only paints)
@@ -16,7 +16,7 @@
 // the return to the initial layout after a rejection (see --full), which replays the history too.
 //
 //   adaptex_bench_session [--meshes spot,plane] [--strokes 10,100,1000] [--size 512] [--reps 1]
-//                         [--full N] [--cache Q] [--cache-coverage C] [--min-gain G] [--psnr-every K]
+//                         [--full N] [--cache Q] [--cache-coverage C] [--min-gain G] [--psnr-every K] [--seed S]
 //
 // --meshes: names/stems of ADAPTEX_SHARED_DIR/meshes or paths, and "plane" (a generated 100k-face height
 // field, one chart, uv = xy, as in cycle.cpp); a shared mesh that is absent is skipped with a message.
@@ -59,6 +59,7 @@ struct Args {
   int size = 512;
   int reps = 1;
   int full = 0;
+  int seed = 1;  ///< Seed of the history's first batch (the next batches: seed + 1, ...)
   double cache = PaintSessionOptions{}.surface_cache;  ///< PaintSessionOptions::surface_cache (0: exact replay)
   double cache_coverage = PaintSessionOptions{}.surface_cache_coverage;  ///< ...::surface_cache_coverage
   double min_gain = PaintSessionOptions{}.min_gain_db;  ///< --full's PaintSessionOptions::min_gain_db
@@ -98,6 +99,8 @@ Args parse(int argc, char** argv) {
       a.cache_coverage = std::stod(v);
     } else if (k == "--min-gain") {
       a.min_gain = std::stod(v);
+    } else if (k == "--seed") {
+      a.seed = std::stoi(v);
     } else if (k == "--psnr-every") {
       a.psnr_every = std::stoi(v);
     } else if (k == "--full") {
@@ -180,13 +183,13 @@ void print_row(const Scene& s, int k, long long dabs, const AdaptReport& r, doub
 // concatenated to \p count strokes. One mixed set of 1,000 would be 125 blobs then 875 lines, so
 // strokes 10 and 100 would both be blobs; batches keep the mix the same along the history.
 constexpr int kBatch = 40;
-StrokeFile session_history(const TriMesh& mesh, int count) {
+StrokeFile session_history(const TriMesh& mesh, int count, int first_seed) {
   StrokeFile out;
   for (int b = 0; static_cast<int>(out.strokes.size()) < count; ++b) {
     GenerateOptions go;
     go.kind = StrokeKind::Mixed;
     go.count = kBatch;
-    go.seed = 1 + static_cast<std::uint64_t>(b);
+    go.seed = static_cast<std::uint64_t>(first_seed + b);
     const StrokeFile f = generate_strokes(mesh, go);
     if (b == 0) out.background = f.background;
     for (const Stroke& st : f.strokes)
@@ -266,7 +269,7 @@ int main(int argc, char** argv) {
         std::printf("(skipped %s: not found in %s/meshes)\n", name.c_str(), ADAPTEX_SHARED_DIR);
         continue;
       }
-      const StrokeFile history = session_history(s.mesh, max_k);
+      const StrokeFile history = session_history(s.mesh, max_k, a.seed);
       for (int k : a.strokes)
         for (int r = 0; r < a.reps; ++r) cycle_at(s, history, k, a.size, a.cache);
       if (a.full > 0) full_session(s, history, a.full, a.size, a.cache, a.cache_coverage, a.min_gain, a.psnr_every);

@@ -49,10 +49,6 @@ Eigen::Vector2d barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const V
   return {1.0 - u - v, u};
 }
 
-}  // namespace
-
-namespace {
-
 /// Colours and coverage are stored as 16-bit fixed point in [0, 1] (1/65535 steps, far below the
 /// 8-bit texture's): 8 bytes per sample.
 constexpr float kUnit = 65535.0f;
