@@ -110,9 +110,10 @@ struct PaintSessionOptions {
   /// worth a new layout. finish() re-parameterizes once more if the last cycle was skipped, so the
   /// session ends on end mode's layout. 0: re-parameterize after every stroke (each layout is then
   /// end mode's for the history so far). 0.3 (session 19; 0.1 before): over 100 `mixed` strokes on 5
-  /// meshes, 49–56 % of the cycles skipped instead of 33–39 %, at a mean live PSNR cost against a cycle
-  /// after every stroke of 0.03–0.11 dB instead of 0.01–0.06 dB, and the same worst checkpoint within
-  /// 0.1 dB. See docs/adaptive.md, "When to re-parameterize".
+  /// meshes, 47–56 % of the cycles skipped instead of 33–43 %, at a mean live PSNR cost against a cycle
+  /// after every stroke of 0.03–0.11 dB instead of 0.01–0.06 dB; the worst checkpoint moved by less
+  /// than 0.1 dB on the histories it was chosen on, but by 0.5–0.8 dB on another seed (armadillo,
+  /// plane100k). See docs/adaptive.md, "Choosing the threshold".
   double min_gain_db = 0.3;
   std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
 };
