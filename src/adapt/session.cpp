@@ -116,6 +116,8 @@ struct PaintSession::Impl {
   // (predicted_error at its own density) when it was made; -1: unknown (then only the model predicts).
   double held_error = -1, held_best = -1;
   bool pending = false;
+  /// History strokes the last completed (not skipped) re-parameterization saw.
+  size_t cycle_strokes = 0;
   double held_l2 = -1;  // the held layout's L2 stretch (reports' l2_after), -1: not measured yet
 
   PainterOptions painter_options() const {
@@ -400,6 +402,7 @@ struct PaintSession::Impl {
 
   const AdaptReport& record(std::unique_ptr<AdaptResult> res, std::chrono::steady_clock::time_point t_all) {
     res->report.time_total = seconds_since(t_all);
+    cycle_strokes = history.strokes.size();
     held_l2 = res->report.l2_after;
     reports.push_back(res->report);
     last = std::move(res);
@@ -476,8 +479,11 @@ struct PaintSession::Impl {
     const std::optional<Model> model = model_now(ao, decide);
     if (decide && model && model->gain_over_held_db < opt.min_gain_db)
       return skip(ao, *model, t_all);
-    pending = false;
+    // A cycle that throws (cancelled through the progress callback, inside compute()) leaves the
+    // layout as it was, and a cycle still owed: finish() runs it.
+    pending = true;
     std::unique_ptr<AdaptResult> res = compute(ao, model ? &model->density : nullptr);
+    pending = false;
     const TriMesh& cand_mesh = res->refined_mesh ? *res->refined_mesh : source_mesh();
     AdaptReport& rep = res->report;
     if (model) {
@@ -560,6 +566,17 @@ void PaintSession::add_stroke(const Stroke& stroke) {
   if (m.opt.schedule == ReparamSchedule::EachStroke && m.opt.adapt.mode != AdaptMode::None) m.reparameterize(true);
 }
 
+void PaintSession::add_strokes(const std::vector<Stroke>& strokes) {
+  Impl& m = *impl_;
+  if (m.open) throw Error("paint session: add_strokes() while an interactive stroke is open");
+  if (strokes.empty()) return;
+  for (const Stroke& s : strokes) {
+    m.paint(s);
+    m.record_stroke(s);
+  }
+  if (m.opt.schedule == ReparamSchedule::EachStroke && m.opt.adapt.mode != AdaptMode::None) m.reparameterize(true);
+}
+
 void PaintSession::begin_stroke(const Stroke& style) {
   Impl& m = *impl_;
   if (m.resampled) throw Error("paint session: interactive strokes are not supported in resample mode");
@@ -607,6 +624,11 @@ void PaintSession::finish() {
 }
 
 const AdaptReport& PaintSession::reparameterize() { return impl_->reparameterize(false); }
+bool PaintSession::settled() const {
+  const Impl& m = *impl_;
+  if (m.opt.adapt.mode == AdaptMode::None || m.history.strokes.empty()) return true;
+  return m.cycle_strokes == m.history.strokes.size() && !m.held_from_cache;
+}
 const TriMesh& PaintSession::mesh() const { return impl_->current_mesh(); }
 const Parameterization& PaintSession::param() const { return *impl_->param; }
 const ImageRGBA8& PaintSession::texture() { return impl_->texture(); }

@@ -399,6 +399,18 @@ void Painter::fill_colours(const std::vector<Vec3f> &colours) {
   m.painted = true;
 }
 
+std::vector<Vec3f> Painter::colours() const {
+  const Impl &m = *impl_;
+  if (m.open)
+    throw Error("painter: colours() called while a stroke is open");
+  std::vector<Vec3f> out(m.map.inside.size());
+  tbb::parallel_for(size_t(0), out.size(), [&](size_t k) {
+    const auto &c = m.colour[m.texel_slot[m.map.inside[k]]];
+    out[k] = Vec3f(c[0], c[1], c[2]);
+  });
+  return out;
+}
+
 const ImageRGBA8 &Painter::texture() {
   impl_->refresh();
   return impl_->tex;

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <string_view>
 
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/errors.h"
@@ -123,6 +124,64 @@ TEST(PaintSessionCache, SurfaceCacheEachStrokeEndsOnEndModesLayoutAndTexture) {
   s.finish();  // the held texture came from the cache: the last cycle again, with exact replay
   EXPECT_EQ(s.reports().size(), cycles + 1);
   EXPECT_EQ(s.mesh().num_faces(), e.mesh().num_faces());
+  EXPECT_EQ(s.param().uv, e.param().uv);
+  EXPECT_EQ(s.texture().data, e.texture().data);
+}
+
+TEST(PaintSessionCache, ABatchOfStrokesIsOneCycleAndSettledSaysWhenFinishHasNothingToDo) {
+  const Scene sc = torus_scene(40, 20, 6);
+  const std::vector<Stroke>& all = sc.strokes.strokes;
+  PaintSessionOptions end = cached_each_stroke();
+  end.schedule = ReparamSchedule::End;
+  PaintSession e(sc.mesh, sc.param, end, sc.strokes.background);
+  EXPECT_TRUE(e.settled());  // no strokes
+  e.add_strokes(all);
+  EXPECT_FALSE(e.settled());
+  e.finish();
+  EXPECT_TRUE(e.settled());
+
+  PaintSession s(sc.mesh, sc.param, cached_each_stroke(), sc.strokes.background);
+  s.add_strokes({all.begin(), all.begin() + 4});
+  ASSERT_EQ(s.reports().size(), 1u);  // four strokes, one cycle
+  ASSERT_TRUE(s.reports().back().accepted);
+  EXPECT_FALSE(s.settled());  // the candidate's texture came from the surface cache
+  s.add_strokes({all.begin() + 4, all.end()});
+  EXPECT_EQ(s.reports().size(), 2u);
+  EXPECT_EQ(s.history().strokes.size(), all.size());
+  s.finish();
+  EXPECT_TRUE(s.settled());
+  EXPECT_EQ(s.param().uv, e.param().uv);
+  EXPECT_EQ(s.texture().data, e.texture().data);
+  const size_t cycles = s.reports().size();
+  s.finish();  // settled: nothing to do
+  EXPECT_EQ(s.reports().size(), cycles);
+}
+
+TEST(PaintSessionCache, ACancelledCycleKeepsTheLayoutAndFinishRunsItLater) {
+  const Scene sc = torus_scene(40, 20, 6);
+  const std::vector<Stroke>& all = sc.strokes.strokes;
+  bool cancel = false;
+  PaintSessionOptions o = cached_each_stroke();
+  o.adapt.progress = [&cancel](std::string_view, double) { return !cancel; };
+  PaintSession s(sc.mesh, sc.param, o, sc.strokes.background);
+  s.add_strokes({all.begin(), all.begin() + 3});
+  ASSERT_TRUE(s.reports().back().accepted);
+  const Parameterization before = s.param();
+  const size_t cycles = s.reports().size();
+  cancel = true;
+  EXPECT_THROW(s.add_strokes({all.begin() + 3, all.end()}), CancelledError);
+  EXPECT_EQ(s.history().strokes.size(), all.size());  // painted and recorded
+  EXPECT_EQ(s.reports().size(), cycles);
+  EXPECT_EQ(s.param().uv, before.uv);
+  EXPECT_FALSE(s.settled());
+  cancel = false;
+  s.finish();
+  EXPECT_TRUE(s.settled());
+  PaintSessionOptions end = cached_each_stroke();
+  end.schedule = ReparamSchedule::End;
+  PaintSession e(sc.mesh, sc.param, end, sc.strokes.background);
+  e.add_strokes(all);
+  e.finish();
   EXPECT_EQ(s.param().uv, e.param().uv);
   EXPECT_EQ(s.texture().data, e.texture().data);
 }

@@ -210,5 +210,32 @@ TEST(SurfaceSignalCache, FillColoursRejectsBadColoursAndKeepsTheTexture) {
   EXPECT_THROW(painter.fill_colours(std::vector<Vec3f>(n, Vec3f(0, 0, 0))), Error);
 }
 
+TEST(SurfaceSignalCache, ColoursHandOverAPaintersStateExactly) {
+  const TriMesh mesh = shapes::torus(24, 12);
+  const Parameterization param = unwrap(mesh).param;
+  GenerateOptions go;
+  go.kind = StrokeKind::Mixed;
+  go.count = 6;
+  go.seed = 5;
+  const StrokeFile f = generate_strokes(mesh, go);
+  PainterOptions po;
+  po.width = po.height = 64;
+  po.padding = 2;
+  Painter a(mesh, param, po, f.background);
+  for (size_t k = 0; k + 1 < f.strokes.size(); ++k) a.paint_stroke(f.strokes[k]);
+  Painter b(mesh, param, po, f.background);
+  const std::vector<Vec3f> c = a.colours();
+  ASSERT_EQ(c.size(), a.texel_map().inside.size());
+  b.fill_colours(c);
+  EXPECT_EQ(b.texture().data, a.texture().data);
+  // Painting on goes on exactly alike (colours are floats, not the texture's bytes).
+  a.paint_stroke(f.strokes.back());
+  b.paint_stroke(f.strokes.back());
+  EXPECT_EQ(b.texture().data, a.texture().data);
+  EXPECT_EQ(b.colours(), a.colours());
+  a.begin_stroke(f.strokes.back());
+  EXPECT_THROW(a.colours(), Error);
+}
+
 }  // namespace
 }  // namespace adaptex

@@ -134,6 +134,13 @@ class PaintSession {
 
   /// Paints a whole stroke, records it in the history, and in each-stroke mode re-parameterizes.
   void add_stroke(const Stroke& stroke);
+  /// Paints several whole strokes and records them; in each-stroke mode then runs one cycle (gated by
+  /// min_gain_db) as if they were one stroke. A background session that receives strokes faster than
+  /// it adapts (the studio) catches up with one cycle instead of one per stroke. Nothing for an empty
+  /// list. \throw InvalidInputError a stroke breaks the contract (strokes before it stay painted);
+  /// CancelledError the cycle was cancelled through AdaptOptions::progress (the strokes stay painted
+  /// and recorded, the layout is unchanged, and settled() is false)
+  void add_strokes(const std::vector<Stroke>& strokes);
   /// Interactive painting (studio): begin / dabs / end; end_stroke() records the stroke (with all its
   /// dabs) and in each-stroke mode re-parameterizes. add_dab returns the touched texel rectangle.
   void begin_stroke(const Stroke& style);
@@ -146,6 +153,10 @@ class PaintSession {
   /// Re-parameterizes now, whatever the schedule and min_gain_db. \return the report (also appended
   /// to reports()).
   const AdaptReport& reparameterize();
+  /// finish() would change nothing: no strokes, mode None, or the last completed re-parameterization
+  /// saw the whole history and its texture was replayed exactly (not resampled from the surface cache).
+  /// Each-stroke mode is then on end mode's layout and texture for the history so far.
+  bool settled() const;
 
   const TriMesh& mesh() const;
   const Parameterization& param() const;   ///< Current parameterization.

@@ -61,6 +61,12 @@ class Painter {
   /// \throw InvalidInputError wrong size, or a colour not finite (nothing is changed then)
   /// \throw Error an interactive stroke is open
   void fill_colours(const std::vector<Vec3f>& colours);
+  /// The colour of every chart texel, the inverse of fill_colours(): another painter on the same
+  /// parameterization given these colours paints on exactly as this one does (the studio's canvas
+  /// taking over a background session's texture).
+  /// \return shape [texel_map().inside.size()]: the colour of texel texel_map().inside[k], RGB in [0,1]
+  /// \throw Error an interactive stroke is open (its colours are not final)
+  std::vector<Vec3f> colours() const;
   /// The texture: chart texels round(255 * colour) with alpha 255; padded texels copy their source
   /// chart texel (alpha 255); other texels the background with alpha 0. Only the region changed
   /// since the last call is converted.
