@@ -270,6 +270,7 @@ bool App::idle() const {
 bool App::wait_idle(double timeout_seconds) {
   const auto t0 = Clock::now();
   while (true) {
+    jobs_.settle_live_now();  // a script wants the settled layout now, not after the settle delay
     begin_frame();
     if (idle()) return true;
     if (std::chrono::duration<double>(Clock::now() - t0).count() > timeout_seconds) return false;
@@ -607,9 +608,26 @@ void App::maybe_start_rebuild() {
     if (jobs_.rebuild_generation() != history().generation()) start_rebuild(false);
     return;
   }
-  if (painting_.stale(session_.texture_size)) return start_rebuild(false);  // quick replay first
-  if (adapt_wanted() && !painting_.stroke_open()) return start_rebuild(true);
+  if (painting_.stale(session_.texture_size)) {
+    jobs_.stop_live();                // its history was rewritten
+    return start_rebuild(false);      // quick replay first
+  }
   painting_.catch_up();  // pure appends (redo, decals): painted onto the current canvas
+  if (!adapt_wanted()) return;
+  if (adapts_live()) {
+    // The live session paints the new strokes and adapts to them in the background (issue 10): the
+    // cost per stroke does not grow with the history, unlike a rebuild from the initial layout.
+    jobs_.feed_live(painting_.model(), history().generation(), history().to_file(), session_);
+    adapt_pending_ = false;
+    return;
+  }
+  jobs_.stop_live();
+  if (!painting_.stroke_open()) start_rebuild(true);
+}
+
+bool App::adapts_live() const {
+  return session_.schedule == ReparamSchedule::EachStroke && session_.adapt.mode != AdaptMode::None &&
+         !history().strokes().empty();
 }
 
 void App::maybe_unwrap_again() {
@@ -682,6 +700,21 @@ void App::finish_rebuild(Job<RebuildResult>& job) {
   }
 }
 
+void App::finish_live() {
+  try {
+    std::optional<RebuildResult> r = jobs_.finished_live();
+    if (!r) return;
+    auto maps = std::move(r->maps);
+    auto phases = std::move(r->phase_ms);
+    if (painting_.accept_rebuilt(std::move(r->surface), session_.texture_size)) {
+      last_cycle_ = std::move(phases);
+      if (maps) maps_ = std::move(maps);
+    }
+  } catch (const std::exception& e) {
+    add_message(e.what(), true);
+  }
+}
+
 void App::poll_jobs() {
   jobs_.reap();
   if (auto job = jobs_.finished_compare()) {
@@ -693,6 +726,7 @@ void App::poll_jobs() {
   }
   if (auto job = jobs_.finished_load()) finish_load(*job);
   if (auto job = jobs_.finished_rebuild()) finish_rebuild(*job);
+  finish_live();
   maybe_unwrap_again();
   maybe_start_rebuild();
 }

@@ -245,6 +245,9 @@ class App {
   void apply_project(Project p, bool from_project, const std::filesystem::path& project_path);
   void history_changed();
   bool adapt_wanted() const;
+  /// Adaptation runs in the live each-stroke session (schedule each-stroke, a method, strokes).
+  bool adapts_live() const;
+  void finish_live();
   // painting
   Stroke brush_style() const;
   void begin_paint();

@@ -2,6 +2,7 @@
 /// The studio's bridge to the adaptex library (see backend.h).
 #include "backend.h"
 
+#include <algorithm>
 #include <fstream>
 
 #include "adaptex/adapt/session.h"
@@ -51,6 +52,11 @@ Canvas::Canvas(const TriMesh& mesh, const Parameterization& param, int width, in
 Canvas::Canvas(std::unique_ptr<PaintSession> session) : impl_(std::make_unique<Impl>()) {
   impl_->session = std::move(session);
   impl_->painter = &impl_->session->painter();
+}
+Canvas::Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
+               int padding, const std::vector<Vec3f>& colours)
+    : Canvas(mesh, param, width, height, background, padding) {
+  impl_->painter->fill_colours(colours);
 }
 Canvas::~Canvas() = default;
 void Canvas::paint_stroke(const Stroke& s) { impl_->painter->paint_stroke(s); }
@@ -109,6 +115,34 @@ std::vector<std::pair<std::string, double>> phase_times(const AdaptReport& rep) 
 }
 }  // namespace
 
+namespace {
+/// Everything of \p o but the canvas, from \p session (on \p mesh or its refinement).
+void describe_session(const std::shared_ptr<const TriMesh>& mesh, PaintSession& session, SessionOutcome& o) {
+  o.mesh = session.mesh().num_faces() == mesh->num_faces() ? mesh : std::make_shared<const TriMesh>(session.mesh());
+  o.param = std::make_shared<const Parameterization>(session.param());
+  if (!session.reports().empty()) {
+    // The last cycle that was not skipped (a skipped one changed nothing and timed only the gate).
+    const auto& reps = session.reports();
+    auto it = std::find_if(reps.rbegin(), reps.rend(), [](const AdaptReport& r) { return !r.skipped; });
+    const AdaptReport& rep = it != reps.rend() ? *it : reps.back();
+    o.adapted = true;
+    o.accepted = rep.accepted;
+    o.damping = rep.damping;
+    o.phase_ms = phase_times(reps.back());
+  }
+  if (const AdaptResult* r = session.last_result()) {
+    o.importance = r->importance;
+    o.stretch = r->stretch;
+    o.ls2 = r->ls2;
+    o.density = r->density;
+    if (o.mesh != mesh && r->parent_face.size() == o.mesh->faces.size())
+      o.normals = refined_normals(*mesh, *o.mesh, r->parent_face);
+    if (r->grids.size() == 2) o.coarse = r->grids[0];
+    if (!r->grids.empty()) o.fine = r->grids.back();
+  }
+}
+}  // namespace
+
 SessionOutcome paint_history(const std::shared_ptr<const TriMesh>& mesh, const Parameterization& initial,
                              const StrokeFile& history, const PaintSessionOptions& options,
                              const ProgressCallback& progress) {
@@ -123,26 +157,55 @@ SessionOutcome paint_history(const std::shared_ptr<const TriMesh>& mesh, const P
   }
   session->finish();
   SessionOutcome o;
-  o.mesh = session->mesh().num_faces() == mesh->num_faces() ? mesh : std::make_shared<const TriMesh>(session->mesh());
-  o.param = std::make_shared<const Parameterization>(session->param());
-  if (!session->reports().empty()) {
-    const AdaptReport& rep = session->reports().back();
-    o.adapted = true;
-    o.accepted = rep.accepted;
-    o.damping = rep.damping;
-    o.phase_ms = phase_times(rep);
-  }
-  if (const AdaptResult* r = session->last_result()) {
-    o.importance = r->importance;
-    o.stretch = r->stretch;
-    o.ls2 = r->ls2;
-    o.density = r->density;
-    if (o.mesh != mesh && r->parent_face.size() == o.mesh->faces.size())
-      o.normals = refined_normals(*mesh, *o.mesh, r->parent_face);
-    if (r->grids.size() == 2) o.coarse = r->grids[0];
-    if (!r->grids.empty()) o.fine = r->grids.back();
-  }
+  describe_session(mesh, *session, o);
   o.canvas = std::make_unique<Canvas>(std::move(session));
+  return o;
+}
+
+struct LiveSession::Impl {
+  std::shared_ptr<const TriMesh> mesh;
+  PaintSession session;
+  Vec3 background;
+  // What the last snapshot() showed: its layout, and whether its texture was end mode's.
+  std::vector<Vec2> shown_uv;
+  size_t shown_faces = 0;
+  bool shown_settled = true;
+  Impl(std::shared_ptr<const TriMesh> m, const Parameterization& initial, const PaintSessionOptions& o, const Vec3& bg)
+      : mesh(std::move(m)), session(*mesh, initial, o, bg), background(bg), shown_uv(initial.uv),
+        shown_faces(mesh->num_faces()) {}
+};
+
+LiveSession::LiveSession(std::shared_ptr<const TriMesh> mesh, const Parameterization& initial,
+                         const PaintSessionOptions& options, const Vec3& background, const ProgressCallback& progress) {
+  PaintSessionOptions opt = options;
+  opt.schedule = ReparamSchedule::EachStroke;
+  opt.update = TextureUpdate::Replay;
+  opt.adapt.progress = progress;
+  impl_ = std::make_unique<Impl>(std::move(mesh), initial, opt, background);
+}
+LiveSession::~LiveSession() = default;
+void LiveSession::add(const std::vector<Stroke>& strokes) { impl_->session.add_strokes(strokes); }
+void LiveSession::settle() { impl_->session.finish(); }
+bool LiveSession::settled() const { return impl_->session.settled(); }
+size_t LiveSession::strokes() const { return impl_->session.history().strokes.size(); }
+
+bool LiveSession::changed() const {
+  const Impl& m = *impl_;
+  const bool settled = m.session.settled();
+  return m.session.mesh().num_faces() != m.shown_faces || m.session.param().uv != m.shown_uv ||
+         (settled && !m.shown_settled);
+}
+
+SessionOutcome LiveSession::snapshot() {
+  Impl& m = *impl_;
+  SessionOutcome o;
+  describe_session(m.mesh, m.session, o);
+  const PaintSessionOptions& opt = m.session.options();
+  o.canvas = std::make_unique<Canvas>(*o.mesh, *o.param, opt.texture_size, opt.texture_size, m.background, opt.padding,
+                                      m.session.painter().colours());
+  m.shown_uv = o.param->uv;
+  m.shown_faces = o.mesh->num_faces();
+  m.shown_settled = m.session.settled();
   return o;
 }
 

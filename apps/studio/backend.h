@@ -46,6 +46,11 @@ class Canvas {
   /// \pre mesh and param outlive the canvas and do not change
   Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
          int padding);
+  /// A canvas whose chart texels start with \p colours (Painter::colours() of a painter on the same
+  /// parameterization and texture size): it paints on exactly as that painter would.
+  /// \throw InvalidInputError colours of the wrong size or not finite
+  Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
+         int padding, const std::vector<Vec3f>& colours);
   /// Takes over an adaptive painting session (its painter becomes this canvas).
   explicit Canvas(std::unique_ptr<PaintSession> session);
   ~Canvas();
@@ -89,6 +94,39 @@ struct SessionOutcome {
 SessionOutcome paint_history(const std::shared_ptr<const TriMesh>& mesh, const Parameterization& initial,
                              const StrokeFile& history, const PaintSessionOptions& options,
                              const ProgressCallback& progress);
+
+/// An adaptex::PaintSession on the schedule `adaptex paint --reparam each-stroke` uses (replay, the
+/// surface cache, the min-gain gate), kept across strokes by the studio's live adaptation
+/// (live_adaptation.h): a cycle costs the same after 10 strokes as after 1,000 (issue 10), where
+/// paint_history() replays the whole history. Not thread-safe: one thread drives it.
+class LiveSession {
+ public:
+  /// \p progress: AdaptOptions::progress of the session's cycles (false cancels one: CancelledError).
+  /// \pre initial is a parameterization of *mesh
+  /// \throw InvalidInputError bad options
+  LiveSession(std::shared_ptr<const TriMesh> mesh, const Parameterization& initial, const PaintSessionOptions& options,
+              const Vec3& background, const ProgressCallback& progress);
+  ~LiveSession();
+  LiveSession(const LiveSession&) = delete;
+  LiveSession& operator=(const LiveSession&) = delete;
+
+  /// Paints \p strokes and runs one each-stroke cycle for them (PaintSession::add_strokes).
+  /// \throw CancelledError (strokes recorded, layout unchanged, not settled); InvalidInputError a bad stroke
+  void add(const std::vector<Stroke>& strokes);
+  /// Ends on end mode's layout and texture for the strokes so far (PaintSession::finish; a no-op when
+  /// settled()). \throw CancelledError (the session stays usable and unsettled)
+  void settle();
+  bool settled() const;
+  size_t strokes() const;  ///< Strokes painted so far.
+  /// The layout differs from the last snapshot()'s (or the session settled since): worth showing.
+  bool changed() const;
+  /// The session's layout, maps and texture, with a canvas of its own (the session keeps painting).
+  SessionOutcome snapshot();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 /// PSNR (dB) of \p texture on \p param against the exact signal of \p history (adaptex eval).
 double texture_psnr(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,

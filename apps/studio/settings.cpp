@@ -69,6 +69,8 @@ PaintSessionOptions session_from_json(const json& j) {
 }
 }  // namespace
 
+std::string session_options_key(const PaintSessionOptions& options) { return session_to_json(options).dump(); }
+
 PaintSessionOptions studio_session_options() {
   PaintSessionOptions o;
   o.schedule = ReparamSchedule::EachStroke;

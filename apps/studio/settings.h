@@ -52,6 +52,8 @@ struct ViewSettings {
 /// asked, "Re-parameterize now"). Each re-parameterization is `adaptex paint --reparam end` on the
 /// whole history from the initial layout (app.h), so warps never compose.
 PaintSessionOptions studio_session_options();
+/// The options as the project file writes them, as one string: equal keys, equal sessions.
+std::string session_options_key(const PaintSessionOptions& options);
 
 /// Everything a project file holds.
 struct Project {

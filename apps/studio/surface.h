@@ -61,4 +61,16 @@ struct Comparison {
   size_t strokes = 0;
 };
 
+/// A canvas rebuilt for one history generation (a background job's result).
+struct RebuildResult {
+  std::unique_ptr<Surface> surface;
+  std::vector<std::pair<std::string, double>> phase_ms;
+  std::shared_ptr<const AdaptMaps> maps;  ///< Set when the job re-parameterized.
+};
+
+/// The surface of a painting session's outcome on \p model (its mesh or a refinement; the model's own
+/// initial layout when not re-parameterized), with its maps and phase times. The caller sets the
+/// surface's generation, size and painted.
+RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, SessionOutcome o);
+
 }  // namespace adaptex::studio

@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "adaptex/core/errors.h"
+#include "settings.h"
 
 namespace adaptex::studio {
 
@@ -52,21 +53,32 @@ LoadResult load_model(const std::string& path, const PaintSessionOptions& option
 
 /// paint_history() from the model's initial layout, as a surface with its maps.
 RebuildResult adapt_surface(const std::shared_ptr<const Model>& model, const StrokeFile& history,
-                            const PaintSessionOptions& options, Surface& s, Job<RebuildResult>& job) {
+                            const PaintSessionOptions& options, Job<RebuildResult>& job) {
   const auto t0 = Clock::now();
-  RebuildResult r;
   PaintSessionOptions opt = options;
   if (history.strokes.empty()) opt.adapt.mode = AdaptMode::None;  // nothing to adapt to
-  SessionOutcome o = paint_history(model->mesh, *model->initial, history, opt,
-                                   [&job](std::string_view ph, double f) { return job.progress(ph, f); });
+  RebuildResult r = surface_from_session(
+      model, paint_history(model->mesh, *model->initial, history, opt,
+                           [&job](std::string_view ph, double f) { return job.progress(ph, f); }));
+  r.phase_ms.emplace_back("total", ms_since(t0));
+  return r;
+}
+}  // namespace
+
+RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, SessionOutcome o) {
+  RebuildResult r;
+  r.surface = std::make_unique<Surface>();
+  Surface& s = *r.surface;
+  s.model = model;
   s.mesh = o.mesh;
   if (!o.normals.empty()) s.normals = std::make_shared<const std::vector<Vec3>>(std::move(o.normals));
   s.caster = o.mesh == model->mesh ? model->caster : std::make_shared<const RayCaster>(*o.mesh);
-  // Not re-parameterized: the model's own initial layout (the canvas painted an equal copy).
-  s.param = o.adapted ? o.param : model->initial;
+  // Not re-parameterized, or back on it: the model's own initial layout (the canvas painted an equal copy).
+  const bool initial = !o.adapted || (o.mesh == model->mesh && o.param->uv == model->initial->uv &&
+                                      o.param->uv_faces == model->initial->uv_faces);
+  s.param = initial ? model->initial : o.param;
   s.canvas = std::move(o.canvas);
   r.phase_ms = std::move(o.phase_ms);
-  r.phase_ms.emplace_back("total", ms_since(t0));
   if (o.adapted) {
     auto maps = std::make_shared<AdaptMaps>();
     maps->importance = std::move(o.importance);
@@ -81,12 +93,12 @@ RebuildResult adapt_surface(const std::shared_ptr<const Model>& model, const Str
   }
   return r;
 }
-}  // namespace
 
 SurfaceJobs::~SurfaceJobs() {
   compare_.reset();
   if (load_) load_->cancel();
   if (rebuild_) rebuild_->cancel();
+  if (live_) live_->cancel();
 }
 
 void SurfaceJobs::retire(std::unique_ptr<JobBase> job) {
@@ -124,14 +136,13 @@ void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation
   auto param = current.param;
   rebuild_ = std::make_unique<Job<RebuildResult>>(
       [model, mesh, caster, normals, param, generation, history = std::move(history), options, adapt](Job<RebuildResult>& job) {
-        auto s = std::make_unique<Surface>();
-        s->model = model;
-        s->generation = generation;
-        s->size = options.texture_size;
         RebuildResult r;
         if (adapt) {
-          r = adapt_surface(model, history, options, *s, job);
+          r = adapt_surface(model, history, options, job);
         } else {
+          r.surface = std::make_unique<Surface>();
+          Surface* s = r.surface.get();
+          s->model = model;
           const auto t0 = Clock::now();
           s->mesh = mesh;
           s->normals = normals;
@@ -145,13 +156,43 @@ void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation
           }
           r.phase_ms.emplace_back("replay", ms_since(t0));
         }
-        s->painted = history.strokes.size();
-        r.surface = std::move(s);
+        r.surface->generation = generation;
+        r.surface->size = options.texture_size;
+        r.surface->painted = history.strokes.size();
         return r;
       });
 }
 
 std::unique_ptr<Job<RebuildResult>> SurfaceJobs::finished_rebuild() { return take_if_ready(rebuild_); }
+
+void SurfaceJobs::feed_live(const std::shared_ptr<const Model>& model, std::uint64_t generation,
+                            const StrokeFile& history, const PaintSessionOptions& options) {
+  if (live_ && live_->serves(model.get(), generation, session_options_key(options)) &&
+      live_->fed() <= history.strokes.size()) {
+    live_->feed({history.strokes.begin() + std::ptrdiff_t(live_->fed()), history.strokes.end()});
+    return;
+  }
+  stop_live();
+  live_ = std::make_unique<LiveAdaptation>(model, generation, options, history);
+}
+
+void SurfaceJobs::stop_live() {
+  if (live_) retire(std::move(live_));
+}
+
+std::optional<RebuildResult> SurfaceJobs::finished_live() {
+  if (!live_) return std::nullopt;
+  try {
+    return live_->take_update();
+  } catch (...) {
+    stop_live();
+    throw;
+  }
+}
+
+void SurfaceJobs::settle_live_now() {
+  if (live_) live_->settle_now();
+}
 
 void SurfaceJobs::start_compare(const Surface& current, StrokeFile history) {
   if (compare_) return;
@@ -183,6 +224,8 @@ std::unique_ptr<Job<Comparison>> SurfaceJobs::finished_compare() { return take_i
 std::optional<std::pair<std::string, double>> SurfaceJobs::progress() const {
   if (load_) return std::make_pair("Loading " + loading_path_ + ": " + load_->phase(), load_->fraction());
   if (rebuild_) return std::make_pair("Updating texture: " + rebuild_->phase(), rebuild_->fraction());
+  if (live_)
+    if (auto p = live_->progress()) return std::make_pair("Adapting: " + p->first, p->second);
   return std::nullopt;
 }
 

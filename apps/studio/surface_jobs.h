@@ -14,6 +14,7 @@
 #include "adaptex/adapt/session.h"
 #include "adaptex/paint/strokes.h"
 #include "jobs.h"
+#include "live_adaptation.h"
 #include "surface.h"
 
 namespace adaptex::studio {
@@ -23,13 +24,6 @@ struct LoadResult {
   std::shared_ptr<const Model> model;
   std::unique_ptr<Surface> surface;
   double seconds = 0;
-};
-
-/// A canvas rebuilt for one history generation.
-struct RebuildResult {
-  std::unique_ptr<Surface> surface;
-  std::vector<std::pair<std::string, double>> phase_ms;
-  std::shared_ptr<const AdaptMaps> maps;  ///< Set when the job re-parameterized.
 };
 
 class SurfaceJobs {
@@ -54,6 +48,21 @@ class SurfaceJobs {
   std::uint64_t rebuild_generation() const { return rebuild_generation_; }
   std::unique_ptr<Job<RebuildResult>> finished_rebuild();
 
+  /// Live adaptation (schedule each-stroke): feeds the strokes of \p history not yet fed to the live
+  /// session for \p model, generation \p generation and \p options; starts a new one with the whole
+  /// history when there is none for them (a replaced one is retired).
+  void feed_live(const std::shared_ptr<const Model>& model, std::uint64_t generation, const StrokeFile& history,
+                 const PaintSessionOptions& options);
+  /// Drops the live session (the history was rewritten, or adaptation is off).
+  void stop_live();
+  /// The live session's newest surface, if any. \throw its error (the session is then dropped)
+  std::optional<RebuildResult> finished_live();
+  /// No live session, or it has adapted every fed stroke, settled and handed over its last surface.
+  bool live_caught_up() const { return !live_ || live_->caught_up(); }
+  /// Settle the live session as soon as it has adapted the fed strokes (scripts, wait_idle()).
+  void settle_live_now();
+  const LiveAdaptation* live() const { return live_.get(); }
+
   /// Starts the fixed-vs-adaptive comparison of \p current (no-op while one runs).
   void start_compare(const Surface& current, StrokeFile history);
   bool comparing() const { return compare_ != nullptr; }
@@ -61,7 +70,7 @@ class SurfaceJobs {
 
   /// Forgets cancelled jobs that have ended.
   void reap();
-  bool busy() const { return load_ || rebuild_ || compare_; }
+  bool busy() const { return load_ || rebuild_ || compare_ || !live_caught_up(); }
   /// Work in progress: (label, fraction) or nullopt.
   std::optional<std::pair<std::string, double>> progress() const;
 
@@ -74,6 +83,7 @@ class SurfaceJobs {
   std::uint64_t rebuild_generation_ = 0;
   bool rebuild_adapting_ = false;
   std::unique_ptr<Job<Comparison>> compare_;
+  std::unique_ptr<LiveAdaptation> live_;
   std::vector<std::unique_ptr<JobBase>> retired_;
 };
 
