@@ -152,6 +152,14 @@ void App::replay(const StrokeFile& file) {
   history_changed();
 }
 
+void App::add_stroke(Stroke stroke) {
+  if (!painting_.surface() || painting_.stroke_open()) throw Error("add_stroke: no model, or a stroke is open");
+  validate_stroke(stroke, "added stroke");
+  painting_.push(std::move(stroke));
+  store_.autosave_soon();
+  history_changed();
+}
+
 void App::apply_project(Project p, bool from_project, const std::filesystem::path& project_path) {
   brush_ = p.brush;
   view_ = p.view;

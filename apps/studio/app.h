@@ -131,6 +131,11 @@ class App {
   std::string suggested_project_path() const;
   /// Appends the strokes of a stroke file to the history (painted when the model is ready).
   void replay(const StrokeFile& file);
+  /// Appends one finished stroke (brush or decal, the stroke-file contract) as if it had been painted:
+  /// undoable, painted onto the canvas at the next frame and adapted to like a painted one (scripts,
+  /// benchmarks). \throw InvalidInputError the stroke breaks the contract (the history is unchanged);
+  /// Error no model, or a stroke is open
+  void add_stroke(Stroke stroke);
   void undo();
   void redo();
   void frame_model();
@@ -223,6 +228,8 @@ class App {
   bool compare_running() const { return jobs_.comparing(); }
   /// Maps of the last re-parameterization (null before the first one).
   const AdaptMaps* adapt_maps() const { return maps_.get(); }
+  /// The live each-stroke session adapting while painting (schedule each-stroke), or null.
+  const LiveAdaptation* live_adaptation() const { return jobs_.live(); }
   /// Canvas (texture) generation counter: changes whenever a new texture is swapped in.
   std::uint64_t surface_serial() const { return painting_.serial(); }
   std::filesystem::path recovery_path() const { return store_.recovery_path(); }

@@ -69,9 +69,14 @@ std::optional<RebuildResult> LiveAdaptation::take_update() {
   return std::exchange(update_, std::nullopt);
 }
 
+bool LiveAdaptation::settled() const {
+  std::lock_guard lock(mutex_);
+  return settled_ && adapted_ == fed_;
+}
+
 bool LiveAdaptation::caught_up() const {
   std::lock_guard lock(mutex_);
-  return (!busy_ && queue_.empty() && settled_ && !update_ && !error_) || (done_ && !update_ && !error_);
+  return ((settled_ && adapted_ == fed_) || done_) && !update_ && !error_;
 }
 
 std::optional<std::pair<std::string, double>> LiveAdaptation::progress() const {
@@ -92,7 +97,6 @@ std::optional<std::vector<Stroke>> LiveAdaptation::next_batch(bool settled) {
   std::unique_lock lock(mutex_);
   busy_ = false;
   settling_ = false;
-  settled_ = settled;
   phase_.clear();
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kSettleDelay);
   while (true) {
@@ -114,12 +118,19 @@ std::optional<std::vector<Stroke>> LiveAdaptation::next_batch(bool settled) {
 }
 
 void LiveAdaptation::publish(const std::shared_ptr<const Model>& model, LiveSession& session) {
-  RebuildResult u = surface_from_session(model, session.snapshot());
-  u.surface->generation = generation_;
-  u.surface->size = size_;
-  u.surface->painted = session.strokes();
+  std::optional<RebuildResult> u;
+  if (session.changed()) {
+    u = surface_from_session(model, session.snapshot());
+    u->surface->generation = generation_;
+    u->surface->size = size_;
+    u->surface->painted = session.strokes();
+  }
+  // One step for the UI: the surface, the strokes it adapted and whether it is settled.
   std::lock_guard lock(mutex_);
-  update_ = std::move(u);  // an older one not yet taken is dropped
+  if (u) update_ = std::move(u);  // an older one not yet taken is dropped
+  ++cycles_;
+  adapted_ = session.strokes();
+  settled_ = session.settled();
 }
 
 void LiveAdaptation::run(std::shared_ptr<const Model> model, PaintSessionOptions options, Vec3 background) {
@@ -136,8 +147,7 @@ void LiveAdaptation::run(std::shared_ptr<const Model> model, PaintSessionOptions
         if (stop_) break;
         continue;  // a settle gave way to new strokes
       }
-      ++cycles_;
-      if (session.changed()) publish(model, session);
+      publish(model, session);
     }
   } catch (const CancelledError&) {
   } catch (...) {

@@ -59,6 +59,11 @@ class LiveAdaptation : public JobBase {
   std::optional<std::pair<std::string, double>> progress() const;
   /// Cycles run so far (batches and settles), for tests.
   int cycles() const { return cycles_; }
+  /// Strokes the last finished cycle adapted to (benchmarks: the adaptation's lag behind the feed).
+  size_t adapted() const { return adapted_; }
+  /// The session is settled on end mode's layout for every fed stroke (its surface may still be
+  /// waiting in take_update()).
+  bool settled() const;
 
   bool ready() const override { return done_; }
   void cancel() override;
@@ -67,6 +72,7 @@ class LiveAdaptation : public JobBase {
   void run(std::shared_ptr<const Model> model, PaintSessionOptions options, Vec3 background);
   /// Waits for strokes or the settle time. \return the batch (empty: settle now); nullopt: stop.
   std::optional<std::vector<Stroke>> next_batch(bool settled);
+  /// After a cycle: the new surface if the layout changed, and the counters, in one step.
   void publish(const std::shared_ptr<const Model>& model, LiveSession& session);
   bool keep_going(std::string_view phase, double fraction);
 
@@ -86,6 +92,7 @@ class LiveAdaptation : public JobBase {
   std::atomic<double> fraction_{0};
   std::atomic<bool> stop_{false}, done_{false};
   std::atomic<int> cycles_{0};
+  std::atomic<size_t> adapted_{0};  ///< Written under mutex_ (read alone by adapted()).
   std::thread thread_;  ///< Last: started once everything above exists.
 };
 

@@ -21,6 +21,7 @@
 #include "adaptex/paint/painter.h"
 #include "app.h"
 #include "file_browser.h"
+#include "live_adaptation.h"
 #include "test_support.h"
 
 namespace adaptex::studio {
@@ -864,6 +865,58 @@ TEST(StudioApp, EveryReparameterizationStartsFromTheInitialLayout) {
   EXPECT_EQ(h.app->mesh()->faces, first_mesh->faces);
   EXPECT_EQ(h.app->param()->uv, first.uv);
   EXPECT_EQ(max_abs_diff(*h.app->texture(), replay_texture(*h.app)), 0);
+}
+
+TEST(StudioApp, AdaptationWhilePaintingKeepsOneSessionAndSettlesOnEndModesLayout) {
+  Harness h({}, 128, "builtin:sphere", AdaptMode::DensityFlow);
+  // Every cycle after a stroke stops at the gate (no layout is predicted to gain 100 dB): the layout
+  // changes only when the session settles.
+  h.app->session_options().min_gain_db = 100;
+  const Parameterization initial = *h.app->param();
+  h.app->brush().radius = 0.03;
+  h.app->brush().hardness = 0.9;
+  h.drag(150, 150, 250, 150);
+  const LiveAdaptation* live = h.app->live_adaptation();  // started by the stroke's frame
+  ASSERT_NE(live, nullptr);
+  const Vec3 colours[] = {Vec3(0.1, 0.1, 0.9), Vec3(0.9, 0.2, 0.1), Vec3(0.1, 0.7, 0.2)};
+  for (int k = 0; k < 3; ++k) {  // painted while the session may still adapt to the last one
+    h.app->brush().color = colours[k];
+    h.drag(160 + 20 * k, 100, 200 - 10 * k, 210);
+  }
+  // Every stroke went to the same session: fed to it, not replayed from the initial layout again.
+  EXPECT_EQ(h.app->live_adaptation(), live);
+  EXPECT_EQ(live->fed(), 4u);
+  // Without a script asking (wait_idle), it settles by itself once no stroke has come for
+  // LiveAdaptation::kSettleDelay; until then the layout is the initial one.
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!live->settled() && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(120)) {
+    h.app->begin_frame();
+    if (!live->settled()) EXPECT_EQ(h.app->param()->uv, initial.uv);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_TRUE(live->settled());
+  EXPECT_GE(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+            0.9 * LiveAdaptation::kSettleDelay);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  EXPECT_EQ(h.app->live_adaptation(), live);
+  EXPECT_EQ(live->adapted(), 4u);
+  EXPECT_GE(live->cycles(), 2);  // a gated cycle and the settle at least
+  EXPECT_LE(live->cycles(), 5);  // at most one per stroke, and the settle
+  // Settled: end mode's layout and texture for the history, as a rebuild from the initial layout gives.
+  const auto sphere = std::make_shared<const TriMesh>(shapes::sphere(64, 32, 1.0));  // builtin:sphere
+  const SessionOutcome fresh = paint_history(sphere, initial, h.app->history().to_file(), h.app->session_options(), {});
+  EXPECT_EQ(h.app->mesh()->faces, fresh.mesh->faces);
+  EXPECT_EQ(h.app->param()->uv, fresh.param->uv);
+  EXPECT_NE(h.app->param()->uv, initial.uv);  // it adapted
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), fresh.canvas->texture()), 0);
+  // Undo rewrites the history: a session for the new one, which settles on its end mode layout.
+  h.app->undo();
+  ASSERT_TRUE(h.app->wait_idle(300));
+  ASSERT_NE(h.app->live_adaptation(), nullptr);
+  EXPECT_EQ(h.app->live_adaptation()->fed(), 3u);
+  const SessionOutcome three = paint_history(sphere, initial, h.app->history().to_file(), h.app->session_options(), {});
+  EXPECT_EQ(h.app->param()->uv, three.param->uv);
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), three.canvas->texture()), 0);
 }
 
 TEST(StudioApp, SameLayoutAndTextureAsAdaptexPaint) {
