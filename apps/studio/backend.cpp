@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <fstream>
+#include <functional>
+#include <future>
 
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/atomic_output.h"
@@ -196,13 +198,21 @@ bool LiveSession::changed() const {
          (settled && !m.shown_settled);
 }
 
-SessionOutcome LiveSession::snapshot() {
+SessionOutcome LiveSession::snapshot(const std::function<void(const TriMesh&)>& alongside) {
   Impl& m = *impl_;
   SessionOutcome o;
   describe_session(m.mesh, m.session, o);
   const PaintSessionOptions& opt = m.session.options();
-  o.canvas = std::make_unique<Canvas>(*o.mesh, *o.param, opt.texture_size, opt.texture_size, m.background, opt.padding,
-                                      m.session.painter().colours());
+  std::future<void> side;
+  if (alongside) side = std::async(std::launch::async, alongside, std::cref(*o.mesh));
+  try {
+    o.canvas = std::make_unique<Canvas>(*o.mesh, *o.param, opt.texture_size, opt.texture_size, m.background,
+                                        opt.padding, m.session.painter().colours());
+  } catch (...) {
+    if (side.valid()) side.wait();
+    throw;
+  }
+  if (side.valid()) side.get();
   m.shown_uv = o.param->uv;
   m.shown_faces = o.mesh->num_faces();
   m.shown_settled = m.session.settled();

@@ -5,6 +5,7 @@
 /// these functions, so a library change plugs in here without touching the app logic.
 #include <array>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -121,7 +122,9 @@ class LiveSession {
   /// The layout differs from the last snapshot()'s (or the session settled since): worth showing.
   bool changed() const;
   /// The session's layout, maps and texture, with a canvas of its own (the session keeps painting).
-  SessionOutcome snapshot();
+  /// \p alongside (optional) runs on another thread with the outcome's mesh while the canvas is built
+  /// (the caller's picking structure); its exception is rethrown.
+  SessionOutcome snapshot(const std::function<void(const TriMesh&)>& alongside = {});
 
  private:
   struct Impl;

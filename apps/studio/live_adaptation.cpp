@@ -120,7 +120,15 @@ std::optional<std::vector<Stroke>> LiveAdaptation::next_batch(bool settled) {
 void LiveAdaptation::publish(const std::shared_ptr<const Model>& model, LiveSession& session) {
   std::optional<RebuildResult> u;
   if (session.changed()) {
-    u = surface_from_session(model, session.snapshot());
+    const auto t0 = std::chrono::steady_clock::now();
+    std::shared_ptr<const RayCaster> caster;  // built while the canvas is
+    SessionOutcome o = session.snapshot([&](const TriMesh& m) {
+      if (&m != model->mesh.get()) caster = std::make_shared<const RayCaster>(m);
+    });
+    u = surface_from_session(model, std::move(o), std::move(caster));
+    // The copy for the UI: its canvas (texel map), picking on a refined mesh, shading normals.
+    u->phase_ms.emplace_back(
+        "snapshot", std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     u->surface->generation = generation_;
     u->surface->size = size_;
     u->surface->painted = session.strokes();

@@ -71,6 +71,8 @@ struct RebuildResult {
 /// The surface of a painting session's outcome on \p model (its mesh or a refinement; the model's own
 /// initial layout when not re-parameterized), with its maps and phase times. The caller sets the
 /// surface's generation, size and painted.
-RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, SessionOutcome o);
+/// \p caster: picking on o.mesh if already built (else built here when o.mesh is a refinement).
+RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, SessionOutcome o,
+                                   std::shared_ptr<const RayCaster> caster = nullptr);
 
 }  // namespace adaptex::studio

@@ -65,14 +65,15 @@ RebuildResult adapt_surface(const std::shared_ptr<const Model>& model, const Str
 }
 }  // namespace
 
-RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, SessionOutcome o) {
+RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, SessionOutcome o,
+                                   std::shared_ptr<const RayCaster> caster) {
   RebuildResult r;
   r.surface = std::make_unique<Surface>();
   Surface& s = *r.surface;
   s.model = model;
   s.mesh = o.mesh;
   if (!o.normals.empty()) s.normals = std::make_shared<const std::vector<Vec3>>(std::move(o.normals));
-  s.caster = o.mesh == model->mesh ? model->caster : std::make_shared<const RayCaster>(*o.mesh);
+  s.caster = o.mesh == model->mesh ? model->caster : caster ? std::move(caster) : std::make_shared<const RayCaster>(*o.mesh);
   // Not re-parameterized, or back on it: the model's own initial layout (the canvas painted an equal copy).
   const bool initial = !o.adapted || (o.mesh == model->mesh && o.param->uv == model->initial->uv &&
                                       o.param->uv_faces == model->initial->uv_faces);

@@ -127,6 +127,7 @@ int run(const Args& a) {
   auto next_frame = start;
   int next_stroke = 0;
   size_t checked = 0;  // strokes whose lag is known
+  std::vector<double> snapshot_ms;
   while (true) {
     const auto now = Clock::now();
     if (next_stroke < n && now >= start + std::chrono::duration<double, std::milli>(next_stroke * a.interval_ms)) {
@@ -134,7 +135,11 @@ int run(const Args& a) {
       app.add_stroke(history.strokes[size_t(next_stroke)]);
       ++next_stroke;
     }
+    const auto serial = app.surface_serial();
     const double f = frame(app);
+    if (app.surface_serial() != serial)
+      for (const auto& [phase, ms] : app.last_cycle())
+        if (phase == "snapshot") snapshot_ms.push_back(ms);
     if (next_stroke > 0) windows[size_t(next_stroke - 1) / size_t(a.window)].frame_ms.push_back(f);
     const LiveAdaptation* live = app.live_adaptation();
     const size_t adapted = live ? live->adapted() : 0;
@@ -162,6 +167,8 @@ int run(const Args& a) {
               "last stroke was adapted\n",
               cycles, n, cycles > 0 ? double(n) / cycles : 0.0, settle_ms);
 
+  std::printf("surfaces swapped in: %zu; their snapshot (canvas, picking, normals) median / max %.0f / %.0f ms\n",
+              snapshot_ms.size(), quantile(snapshot_ms, 0.5), quantile(snapshot_ms, 1.0));
   std::printf("\nbefore (one paint_history() of the whole history per stroke, end mode from the initial layout):\n");
   for (int k : {std::min(10, n), n / 2, n}) {
     if (k <= 0) continue;
