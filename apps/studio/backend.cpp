@@ -170,7 +170,7 @@ struct LiveSession::Impl {
   Vec3 background;
   // What the last snapshot() showed: its layout, and whether its texture was end mode's.
   std::vector<Vec2> shown_uv;
-  size_t shown_faces = 0;
+  int shown_faces = 0;
   bool shown_settled = true;
   Impl(std::shared_ptr<const TriMesh> m, const Parameterization& initial, const PaintSessionOptions& o, const Vec3& bg)
       : mesh(std::move(m)), session(*mesh, initial, o, bg), background(bg), shown_uv(initial.uv),
