@@ -804,12 +804,19 @@ void App::save_texture(const std::filesystem::path& path) {
   }
 }
 
+void App::note_export_while_adapting() {
+  if (jobs_.live_caught_up() && !jobs_.rebuilding()) return;
+  jobs_.settle_live_now();  // the settled layout sooner, for the next export
+  add_message("adaptation is still running: exported the layout shown", false);
+}
+
 void App::export_obj(const std::filesystem::path& dir) {
   if (!texture()) return add_message("nothing to export", true);
   try {
     const std::string name = std::filesystem::path(mesh_path()).stem().string();
     studio::export_obj(dir, name.empty() ? "model" : name, *mesh(), *param(), *texture());
     add_message("exported OBJ+MTL+PNG to " + dir.string(), false);
+    note_export_while_adapting();
   } catch (const std::exception& e) {
     add_message(e.what(), true);
   }
@@ -820,6 +827,7 @@ void App::export_glb(const std::filesystem::path& path) {
   try {
     studio::export_glb(path, *mesh(), *param(), *texture());
     add_message("exported " + path.string(), false);
+    note_export_while_adapting();
   } catch (const std::exception& e) {
     add_message(e.what(), true);
   }

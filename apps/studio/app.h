@@ -255,6 +255,8 @@ class App {
   /// Adaptation runs in the live each-stroke session (schedule each-stroke, a method, strokes).
   bool adapts_live() const;
   void finish_live();
+  /// After an export: says so if adaptation had not finished (what was shown was exported).
+  void note_export_while_adapting();
   // painting
   Stroke brush_style() const;
   void begin_paint();

@@ -32,7 +32,8 @@ namespace adaptex::studio {
 class LiveAdaptation : public JobBase {
  public:
   /// Seconds without a new stroke before the session settles on end mode's layout.
-  static constexpr double kSettleDelay = 1.0;
+  /// Settling replays the history exactly (O(history)), so it waits for a pause in the painting.
+  static constexpr double kSettleDelay = 2.0;
 
   /// Starts the worker on \p model's initial layout with \p history (its strokes are the first
   /// batch) for history generation \p generation.

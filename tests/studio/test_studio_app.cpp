@@ -889,12 +889,17 @@ TEST(StudioApp, AdaptationWhilePaintingKeepsOneSessionAndSettlesOnEndModesLayout
   // Without a script asking (wait_idle), it settles by itself once no stroke has come for
   // LiveAdaptation::kSettleDelay; until then the layout is the initial one.
   const auto t0 = std::chrono::steady_clock::now();
+  int frames_before = 0, adapted_before = 0;  // frames before it settled; of those, not on the initial layout
   while (!live->settled() && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(120)) {
     h.app->begin_frame();
-    if (!live->settled()) EXPECT_EQ(h.app->param()->uv, initial.uv);
+    const bool settled = live->settled();  // a settled surface may already be shown
+    frames_before += !settled;
+    adapted_before += !settled && h.app->param()->uv != initial.uv;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   ASSERT_TRUE(live->settled());
+  EXPECT_GT(frames_before, 10);
+  EXPECT_EQ(adapted_before, 0);
   EXPECT_GE(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
             0.9 * LiveAdaptation::kSettleDelay);
   ASSERT_TRUE(h.app->wait_idle(300));
@@ -917,6 +922,26 @@ TEST(StudioApp, AdaptationWhilePaintingKeepsOneSessionAndSettlesOnEndModesLayout
   const SessionOutcome three = paint_history(sphere, initial, h.app->history().to_file(), h.app->session_options(), {});
   EXPECT_EQ(h.app->param()->uv, three.param->uv);
   EXPECT_EQ(max_abs_diff(*h.app->texture(), three.canvas->texture()), 0);
+}
+
+TEST(StudioApp, ExportingWhileAdaptationRunsSaysSo) {
+  TempDir dir;
+  Harness h({}, 128, "builtin:sphere", AdaptMode::DensityFlow);
+  h.app->session_options().min_gain_db = 100;  // unsettled until the session settles (gated cycles)
+  h.app->brush().radius = 0.03;
+  h.drag(150, 150, 250, 150);
+  const LiveAdaptation* live = h.app->live_adaptation();
+  ASSERT_NE(live, nullptr);
+  ASSERT_FALSE(live->settled());
+  h.app->clear_messages();
+  h.app->export_glb(dir.path / "m.glb");
+  EXPECT_TRUE(std::filesystem::exists(dir.path / "m.glb"));  // what was shown
+  ASSERT_EQ(h.app->messages().size(), 2u);
+  EXPECT_NE(h.app->messages().back().text.find("still running"), std::string::npos);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  h.app->clear_messages();
+  h.app->export_glb(dir.path / "m2.glb");
+  ASSERT_EQ(h.app->messages().size(), 1u);  // only "exported ..."
 }
 
 TEST(StudioApp, SameLayoutAndTextureAsAdaptexPaint) {
