@@ -48,9 +48,10 @@ struct ViewSettings {
 
 /// The options the studio paints and re-parameterizes with: the library's PaintSessionOptions with
 /// every library default (adapt.mode = the library's default method, density-flow), except
-/// schedule = EachStroke: an interactive session re-parameterizes after every stroke (End: only when
-/// asked, "Re-parameterize now"). Each re-parameterization is `adaptex paint --reparam end` on the
-/// whole history from the initial layout (app.h), so warps never compose.
+/// schedule = EachStroke: an interactive session adapts after every stroke, in one each-stroke session
+/// kept while painting (live_adaptation.h), which settles on `adaptex paint --reparam end`'s layout for
+/// the history once painting pauses (End: only when asked, "Re-parameterize now", paint_history()).
+/// Every layout is computed from the initial layout, so warps never compose.
 PaintSessionOptions studio_session_options();
 /// The options as the project file writes them, as one string: equal keys, equal sessions.
 std::string session_options_key(const PaintSessionOptions& options);

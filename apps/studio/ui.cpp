@@ -405,8 +405,9 @@ void StudioUi::adapt_panel(App& app) {
     o.schedule = each ? ReparamSchedule::EachStroke : ReparamSchedule::End;
     changed = true;
   }
-  tooltip("Re-fit the layout in the background after every stroke. Off: only when you press "
-          "Re-parameterize now.");
+  tooltip("Re-fit the layout in the background after every stroke, at a cost that does not grow with "
+          "the number of strokes; after a 2 s pause it settles on the layout the whole history gives. "
+          "Off: only when you press Re-parameterize now.");
   if (a.mode == AdaptMode::DensityFlow) {
     changed |= ImGui::Checkbox("Refine the mesh", &a.refine);
     tooltip("Split triangles that are too large to follow the layout's change inside painted areas. The "
