@@ -709,9 +709,13 @@ void App::finish_rebuild(Job<RebuildResult>& job) {
 }
 
 void App::finish_live() {
+  if (!adapts_live()) return jobs_.stop_live();  // adaptation turned off, or nothing to adapt to
   try {
     std::optional<RebuildResult> r = jobs_.finished_live();
     if (!r) return;
+    // Options changed since (the next feed starts a session for them): not shown.
+    if (!jobs_.live()->serves(painting_.model().get(), history().generation(), session_options_key(session_)))
+      return;
     auto maps = std::move(r->maps);
     auto phases = std::move(r->phase_ms);
     if (painting_.accept_rebuilt(std::move(r->surface), session_.texture_size)) {
