@@ -944,6 +944,21 @@ TEST(StudioApp, ExportingWhileAdaptationRunsSaysSo) {
   ASSERT_EQ(h.app->messages().size(), 1u);  // only "exported ..."
 }
 
+TEST(StudioApp, TurningAfterEveryStrokeOffDropsTheLiveSession) {
+  Harness h({}, 128, "builtin:sphere", AdaptMode::DensityFlow);
+  h.app->brush().radius = 0.03;
+  h.drag(150, 150, 250, 150);
+  ASSERT_NE(h.app->live_adaptation(), nullptr);
+  const auto serial = h.app->surface_serial();
+  h.app->session_options().schedule = ReparamSchedule::End;
+  h.app->session_options_changed();
+  h.app->begin_frame();
+  EXPECT_EQ(h.app->live_adaptation(), nullptr);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  EXPECT_EQ(h.app->surface_serial(), serial);  // nothing it computed is swapped in
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), replay_texture(*h.app)), 0);
+}
+
 TEST(StudioApp, SameLayoutAndTextureAsAdaptexPaint) {
   TempDir dir;
   const auto mesh_path = dir.path / "ball.obj";
