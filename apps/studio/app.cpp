@@ -278,7 +278,7 @@ bool App::idle() const {
 bool App::wait_idle(double timeout_seconds) {
   const auto t0 = Clock::now();
   while (true) {
-    jobs_.settle_live_now();  // a script wants the settled layout now, not after the settle delay
+    settle_adaptation_now();  // a script wants the settled layout now, not after the pause
     begin_frame();
     if (idle()) return true;
     if (std::chrono::duration<double>(Clock::now() - t0).count() > timeout_seconds) return false;

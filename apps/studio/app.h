@@ -228,6 +228,9 @@ class App {
   bool compare_running() const { return jobs_.comparing(); }
   /// Maps of the last re-parameterization (null before the first one).
   const AdaptMaps* adapt_maps() const { return maps_.get(); }
+  /// The live session settles as soon as it has adapted the strokes so far, without waiting for a
+  /// pause (scripts; wait_idle() does it too).
+  void settle_adaptation_now() { jobs_.settle_live_now(); }
   /// The live each-stroke session adapting while painting (schedule each-stroke), or null.
   const LiveAdaptation* live_adaptation() const { return jobs_.live(); }
   /// Canvas (texture) generation counter: changes whenever a new texture is swapped in.

@@ -324,6 +324,8 @@ class Script {
   }
   /// Before the UI: initial view, comparison, decal, "ready" line, orbit benchmark.
   void before_ui(App& app) {
+    // A scripted run starts from the settled layout of its strokes, without waiting for a pause.
+    if (!ready_printed_) app.settle_adaptation_now();
     idle_ = app.idle() && app.has_model() && !app.load_running();
     if (idle_ && (c_.yaw != 0 || c_.pitch != 0) && !view_applied_) {
       app.camera().yaw = c_.yaw * 3.14159265358979 / 180;

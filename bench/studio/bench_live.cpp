@@ -25,6 +25,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <sys/resource.h>
 #include <thread>
 #include <vector>
 
@@ -167,6 +168,9 @@ int run(const Args& a) {
               "last stroke was adapted\n",
               cycles, n, cycles > 0 ? double(n) / cycles : 0.0, settle_ms);
 
+  rusage ru{};
+  getrusage(RUSAGE_SELF, &ru);
+  std::printf("peak RSS of the process: %.0f MB\n", double(ru.ru_maxrss) / 1024.0);
   std::printf("surfaces swapped in: %zu; their snapshot (canvas, picking, normals) median / max %.0f / %.0f ms\n",
               snapshot_ms.size(), quantile(snapshot_ms, 0.5), quantile(snapshot_ms, 1.0));
   std::printf("\nbefore (one paint_history() of the whole history per stroke, end mode from the initial layout):\n");
