@@ -55,10 +55,10 @@ Canvas::Canvas(std::unique_ptr<PaintSession> session) : impl_(std::make_unique<I
   impl_->session = std::move(session);
   impl_->painter = &impl_->session->painter();
 }
-Canvas::Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
-               int padding, const std::vector<Vec3f>& colours)
-    : Canvas(mesh, param, width, height, background, padding) {
-  impl_->painter->fill_colours(colours);
+Canvas::Canvas(const TriMesh& mesh, const Parameterization& param, const Painter& source)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->own = std::make_unique<Painter>(source, mesh, param);
+  impl_->painter = impl_->own.get();
 }
 Canvas::~Canvas() = default;
 void Canvas::paint_stroke(const Stroke& s) { impl_->painter->paint_stroke(s); }
@@ -167,13 +167,12 @@ SessionOutcome paint_history(const std::shared_ptr<const TriMesh>& mesh, const P
 struct LiveSession::Impl {
   std::shared_ptr<const TriMesh> mesh;
   PaintSession session;
-  Vec3 background;
   // What the last snapshot() showed: its layout, and whether its texture was end mode's.
   std::vector<Vec2> shown_uv;
   int shown_faces = 0;
   bool shown_settled = true;
   Impl(std::shared_ptr<const TriMesh> m, const Parameterization& initial, const PaintSessionOptions& o, const Vec3& bg)
-      : mesh(std::move(m)), session(*mesh, initial, o, bg), background(bg), shown_uv(initial.uv),
+      : mesh(std::move(m)), session(*mesh, initial, o, bg), shown_uv(initial.uv),
         shown_faces(mesh->num_faces()) {}
 };
 
@@ -202,12 +201,10 @@ SessionOutcome LiveSession::snapshot(const std::function<void(const TriMesh&)>& 
   Impl& m = *impl_;
   SessionOutcome o;
   describe_session(m.mesh, m.session, o);
-  const PaintSessionOptions& opt = m.session.options();
   std::future<void> side;
   if (alongside) side = std::async(std::launch::async, alongside, std::cref(*o.mesh));
   try {
-    o.canvas = std::make_unique<Canvas>(*o.mesh, *o.param, opt.texture_size, opt.texture_size, m.background,
-                                        opt.padding, m.session.painter().colours());
+    o.canvas = std::make_unique<Canvas>(*o.mesh, *o.param, m.session.painter());
   } catch (...) {
     if (side.valid()) side.wait();
     throw;

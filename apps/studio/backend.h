@@ -19,6 +19,7 @@
 #include "adaptex/paint/strokes.h"
 
 namespace adaptex {
+class Painter;
 class PaintSession;
 struct PaintSessionOptions;
 }  // namespace adaptex
@@ -47,11 +48,9 @@ class Canvas {
   /// \pre mesh and param outlive the canvas and do not change
   Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
          int padding);
-  /// A canvas whose chart texels start with \p colours (Painter::colours() of a painter on the same
-  /// parameterization and texture size): it paints on exactly as that painter would.
-  /// \throw InvalidInputError colours of the wrong size or not finite
-  Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
-         int padding, const std::vector<Vec3f>& colours);
+  /// A copy of \p source (the painter of a session) on equal copies \p mesh, \p param of its mesh and
+  /// parameterization: it paints on exactly as \p source would. \throw InvalidInputError they differ
+  Canvas(const TriMesh& mesh, const Parameterization& param, const Painter& source);
   /// Takes over an adaptive painting session (its painter becomes this canvas).
   explicit Canvas(std::unique_ptr<PaintSession> session);
   ~Canvas();

@@ -106,6 +106,13 @@ struct Painter::Impl {
     reset_colours();
   }
 
+  /// A copy of \p o on equal copies \p m, \p p of its mesh and parameterization (no open stroke).
+  Impl(const Impl &o, const TriMesh &m, const Parameterization &p)
+      : mesh(m), param(p), options(o.options), background(o.background), map(o.map),
+        grid(std::make_unique<detail::TexelGrid>(*o.grid)), padding(o.padding), slot_ij(o.slot_ij),
+        slot_texel(o.slot_texel), texel_slot(o.texel_slot), colour(o.colour), base(o.base), alpha(o.alpha),
+        tex(o.tex), dirty(o.dirty), painted(o.painted), updates(o.updates) {}
+
   /// The texel points' spatial index and the slot <-> texel tables.
   void build_index() {
     std::vector<Vec3f> pts(map.inside.size());
@@ -310,6 +317,16 @@ struct Painter::Impl {
 Painter::Painter(const TriMesh &mesh, const Parameterization &param,
                  const PainterOptions &options, const Vec3 &background)
     : impl_(std::make_unique<Impl>(mesh, param, options, background)) {}
+Painter::Painter(const Painter &other, const TriMesh &mesh, const Parameterization &param) {
+  const Impl &o = *other.impl_;
+  if (o.open)
+    throw Error("painter: copied while a stroke is open");
+  const bool same_mesh = &mesh == &o.mesh || (mesh.faces == o.mesh.faces && mesh.positions == o.mesh.positions);
+  const bool same_param = &param == &o.param || (param.uv == o.param.uv && param.uv_faces == o.param.uv_faces);
+  if (!same_mesh || !same_param)
+    throw InvalidInputError("painter: a copy needs the same mesh and parameterization as the original");
+  impl_ = std::make_unique<Impl>(o, mesh, param);
+}
 Painter::~Painter() = default;
 Painter::Painter(Painter &&) noexcept = default;
 Painter &Painter::operator=(Painter &&) noexcept = default;

@@ -233,8 +233,21 @@ TEST(SurfaceSignalCache, ColoursHandOverAPaintersStateExactly) {
   b.paint_stroke(f.strokes.back());
   EXPECT_EQ(b.texture().data, a.texture().data);
   EXPECT_EQ(b.colours(), a.colours());
+  // A copy on copies of the mesh and layout paints on alike, and outlives them.
+  auto mesh2 = std::make_unique<TriMesh>(mesh);
+  auto param2 = std::make_unique<Parameterization>(param);
+  auto copy = std::make_unique<Painter>(a, *mesh2, *param2);
+  EXPECT_EQ(copy->texture().data, a.texture().data);
+  EXPECT_EQ(copy->texel_map().inside, a.texel_map().inside);
+  a.paint_stroke(f.strokes.front());
+  copy->paint_stroke(f.strokes.front());
+  EXPECT_EQ(copy->texture().data, a.texture().data);
+  Parameterization moved = param;
+  moved.uv[0].x() += 1e-3;
+  EXPECT_THROW(Painter(a, mesh, moved), InvalidInputError);
   a.begin_stroke(f.strokes.back());
   EXPECT_THROW(a.colours(), Error);
+  EXPECT_THROW(Painter(a, mesh, param), Error);
 }
 
 }  // namespace

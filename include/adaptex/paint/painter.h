@@ -31,6 +31,11 @@ class Painter {
   ///        param not parallel to mesh
   Painter(const TriMesh& mesh, const Parameterization& param, const PainterOptions& options,
           const Vec3& background = Vec3(1, 1, 1));
+  /// A copy of \p other painting on \p mesh and \p param, which equal other's (copies of them, so the
+  /// copy may outlive other's mesh and parameterization): the same texel map, index, colours and
+  /// texture, copied rather than built again (the studio's canvas taking over a background session's).
+  /// \throw InvalidInputError mesh or param differ from other's; Error other has an open stroke
+  Painter(const Painter& other, const TriMesh& mesh, const Parameterization& param);
   ~Painter();
   Painter(Painter&&) noexcept;
   Painter& operator=(Painter&&) noexcept;
