@@ -18,6 +18,7 @@ LiveAdaptation::LiveAdaptation(std::shared_ptr<const Model> model, std::uint64_t
       size_(options.texture_size) {
   queue_ = std::move(history.strokes);
   fed_ = queue_.size();
+  settled_ = queue_.empty();  // nothing to adapt to
   thread_ = std::thread([this, model = std::move(model), options, bg = history.background]() mutable {
     run(std::move(model), options, bg);
   });
