@@ -625,7 +625,7 @@ void App::maybe_start_rebuild() {
   if (adapts_live()) {
     // The live session paints the new strokes and adapts to them in the background (issue 10): the
     // cost per stroke does not grow with the history, unlike a rebuild from the initial layout.
-    jobs_.feed_live(painting_.model(), history().generation(), history().to_file(), session_);
+    jobs_.feed_live(painting_.model(), history().generation(), history().strokes(), history().background(), session_);
     adapt_pending_ = false;
     return;
   }

@@ -167,14 +167,17 @@ void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation
 std::unique_ptr<Job<RebuildResult>> SurfaceJobs::finished_rebuild() { return take_if_ready(rebuild_); }
 
 void SurfaceJobs::feed_live(const std::shared_ptr<const Model>& model, std::uint64_t generation,
-                            const StrokeFile& history, const PaintSessionOptions& options) {
-  if (live_ && live_->serves(model.get(), generation, session_options_key(options)) &&
-      live_->fed() <= history.strokes.size()) {
-    live_->feed({history.strokes.begin() + std::ptrdiff_t(live_->fed()), history.strokes.end()});
+                            const std::vector<Stroke>& strokes, const Vec3& background,
+                            const PaintSessionOptions& options) {
+  if (live_ && live_->serves(model.get(), generation, session_options_key(options)) && live_->fed() <= strokes.size()) {
+    live_->feed({strokes.begin() + std::ptrdiff_t(live_->fed()), strokes.end()});
     return;
   }
   stop_live();
-  live_ = std::make_unique<LiveAdaptation>(model, generation, options, history);
+  StrokeFile history;
+  history.background = background;
+  history.strokes = strokes;
+  live_ = std::make_unique<LiveAdaptation>(model, generation, options, std::move(history));
 }
 
 void SurfaceJobs::stop_live() {

@@ -48,11 +48,12 @@ class SurfaceJobs {
   std::uint64_t rebuild_generation() const { return rebuild_generation_; }
   std::unique_ptr<Job<RebuildResult>> finished_rebuild();
 
-  /// Live adaptation (schedule each-stroke): feeds the strokes of \p history not yet fed to the live
+  /// Live adaptation (schedule each-stroke): feeds the strokes of the history (\p strokes) not yet fed to the live
   /// session for \p model, generation \p generation and \p options; starts a new one with the whole
   /// history when there is none for them (a replaced one is retired).
-  void feed_live(const std::shared_ptr<const Model>& model, std::uint64_t generation, const StrokeFile& history,
-                 const PaintSessionOptions& options);
+  /// The UI thread copies only the new strokes (the whole history when a session starts).
+  void feed_live(const std::shared_ptr<const Model>& model, std::uint64_t generation, const std::vector<Stroke>& strokes,
+                 const Vec3& background, const PaintSessionOptions& options);
   /// Drops the live session (the history was rewritten, or adaptation is off).
   void stop_live();
   /// The live session's newest surface, if any. \throw its error (the session is then dropped)
