@@ -311,7 +311,7 @@ struct PaintSession::Impl {
     if (c.from_cache)
       c.texture = texture_from_cache(*c.painter, cand_mesh, res.refined_mesh ? &res.parent_face : nullptr);
     else
-      c.texture = update_texture(opt.update, *c.painter, history, *param, texture(), opt.padding);
+      c.texture = update_texture(opt.update, *c.painter, history, *param, texture(), opt.padding, ao.progress);
     rep.time_texture_update += seconds_since(tm);
     return c;
   }
@@ -402,6 +402,7 @@ struct PaintSession::Impl {
 
   const AdaptReport& record(std::unique_ptr<AdaptResult> res, std::chrono::steady_clock::time_point t_all) {
     res->report.time_total = seconds_since(t_all);
+    pending = false;
     cycle_strokes = history.strokes.size();
     held_l2 = res->report.l2_after;
     reports.push_back(res->report);
@@ -479,11 +480,11 @@ struct PaintSession::Impl {
     const std::optional<Model> model = model_now(ao, decide);
     if (decide && model && model->gain_over_held_db < opt.min_gain_db)
       return skip(ao, *model, t_all);
-    // A cycle that throws (cancelled through the progress callback, inside compute()) leaves the
-    // layout as it was, and a cycle still owed: finish() runs it.
+    // A cycle that throws (cancelled through the progress callback: in compute(), or replaying the
+    // candidate's texture) leaves the layout as it was, and a cycle still owed: finish() runs it.
+    // record() clears it.
     pending = true;
     std::unique_ptr<AdaptResult> res = compute(ao, model ? &model->density : nullptr);
-    pending = false;
     const TriMesh& cand_mesh = res->refined_mesh ? *res->refined_mesh : source_mesh();
     AdaptReport& rep = res->report;
     if (model) {

@@ -42,9 +42,21 @@ ImageRGBA8 resample_texture(const Parameterization& old_param, const ImageRGBA8&
 }
 
 ImageRGBA8 update_texture(TextureUpdate mode, Painter& new_painter, const StrokeFile& history,
-                          const Parameterization& old_param, const ImageRGBA8& old_texture, int padding) {
+                          const Parameterization& old_param, const ImageRGBA8& old_texture, int padding,
+                          const ProgressCallback& progress) {
   if (mode == TextureUpdate::Replay) {
-    new_painter.paint_all(history);
+    if (!progress) {
+      new_painter.paint_all(history);
+      return new_painter.texture();
+    }
+    StrokeFile none;  // paint_all's background, without strokes
+    none.background = history.background;
+    new_painter.paint_all(none);
+    const size_t n = history.strokes.size();
+    for (size_t k = 0; k < n; ++k) {
+      report_progress(progress, "texture", double(k) / double(n));
+      new_painter.paint_stroke(history.strokes[k]);
+    }
     return new_painter.texture();
   }
   auto to8 = [](double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255)); };

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <string_view>
 
 #include "adaptex/adapt/session.h"
@@ -161,9 +162,12 @@ TEST(PaintSessionCache, ACancelledCycleKeepsTheLayoutAndFinishRunsItLater) {
   const Scene sc = torus_scene(40, 20, 6);
   const std::vector<Stroke>& all = sc.strokes.strokes;
   bool cancel = false;
+  std::string cancel_phase;  // empty: any phase
   PaintSessionOptions o = cached_each_stroke();
   o.surface_cache = 0;  // exact replay: only the owed cycle makes finish() work
-  o.adapt.progress = [&cancel](std::string_view, double) { return !cancel; };
+  o.adapt.progress = [&](std::string_view phase, double) {
+    return !(cancel && (cancel_phase.empty() || phase == cancel_phase));
+  };
   PaintSession s(sc.mesh, sc.param, o, sc.strokes.background);
   s.add_strokes({all.begin(), all.begin() + 3});
   ASSERT_TRUE(s.reports().back().accepted);
@@ -173,6 +177,12 @@ TEST(PaintSessionCache, ACancelledCycleKeepsTheLayoutAndFinishRunsItLater) {
   EXPECT_THROW(s.add_strokes({all.begin() + 3, all.end()}), CancelledError);
   EXPECT_EQ(s.history().strokes.size(), all.size());  // painted and recorded
   EXPECT_EQ(s.reports().size(), cycles);
+  EXPECT_EQ(s.param().uv, before.uv);
+  EXPECT_FALSE(s.settled());
+  // Cancelled later in the cycle, while the candidate's texture is replayed: the same.
+  cancel_phase = "texture";
+  cancel = true;
+  EXPECT_THROW(s.finish(), CancelledError);
   EXPECT_EQ(s.param().uv, before.uv);
   EXPECT_FALSE(s.settled());
   cancel = false;

@@ -8,6 +8,7 @@
 /// - replay: a new Painter re-paints the stroke history exactly on the new parameterization
 ///   (no accumulated blur). The default whenever a history exists.
 #include "adaptex/core/image.h"
+#include "adaptex/core/progress.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
 #include "adaptex/paint/painter.h"
@@ -35,10 +36,13 @@ ImageRGBA8 resample_texture(const Parameterization& old_param, const ImageRGBA8&
 /// \p history into \p new_painter and returns its texture; Resample returns \p old_texture (drawn
 /// with \p old_param) resampled onto the painter's texel map, texels outside the charts in
 /// \p history's background (alpha 0), then \p padding texels of seam padding; the painter stays blank.
+/// Replay reports ("texture", k / strokes) to \p progress before each stroke k, so a long replay can
+/// be cancelled.
 /// \pre old_param and the painter's layout have the same faces (Resample)
-/// \throw InvalidInputError as resample_texture
+/// \throw InvalidInputError as resample_texture; CancelledError \p progress returned false
 ImageRGBA8 update_texture(TextureUpdate mode, Painter& new_painter, const StrokeFile& history,
-                          const Parameterization& old_param, const ImageRGBA8& old_texture, int padding);
+                          const Parameterization& old_param, const ImageRGBA8& old_texture, int padding,
+                          const ProgressCallback& progress = {});
 
 /// Resample mode's view of strokes painted after a resample (thesis §3.7.3 keeps painting on the
 /// resampled texture): \p base is the resampled texture, \p over_black / \p over_white the same
