@@ -6,7 +6,7 @@
 // safeguard = exact-signal evaluation + reconstruction errors) and the session's own clock.
 //
 // The history is `mixed`, generated in batches of 40 strokes (5 blobs, then 35 lines in one region)
-// with seeds 1, 2, ... (session_history below; --seed S starts at S).
+// with seeds 1, 2, ... (bench/common/session_history.h; --seed S starts at S).
 //
 // Running 1,000 each-stroke cycles takes hours on 2 cores, so the cycle at stroke k is measured as
 // follows: a PaintSession in each-stroke mode with adaptation *off* (AdaptMode::None: it only paints)
@@ -47,6 +47,7 @@
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/generate.h"
 #include "adaptex/param/unwrap.h"
+#include "../common/session_history.h"
 
 using namespace adaptex;
 namespace fs = std::filesystem;
@@ -179,24 +180,7 @@ void print_row(const Scene& s, int k, long long dabs, const AdaptReport& r, doub
   std::fflush(stdout);
 }
 
-// The history: `mixed` sets of kBatch strokes (each: 1/8 blobs, then lines in one region), seeds 1, 2, ...,
-// concatenated to \p count strokes. One mixed set of 1,000 would be 125 blobs then 875 lines, so
-// strokes 10 and 100 would both be blobs; batches keep the mix the same along the history.
-constexpr int kBatch = 40;
-StrokeFile session_history(const TriMesh& mesh, int count, int first_seed) {
-  StrokeFile out;
-  for (int b = 0; static_cast<int>(out.strokes.size()) < count; ++b) {
-    GenerateOptions go;
-    go.kind = StrokeKind::Mixed;
-    go.count = kBatch;
-    go.seed = static_cast<std::uint64_t>(first_seed + b);
-    const StrokeFile f = generate_strokes(mesh, go);
-    if (b == 0) out.background = f.background;
-    for (const Stroke& st : f.strokes)
-      if (static_cast<int>(out.strokes.size()) < count) out.strokes.push_back(st);
-  }
-  return out;
-}
+using bench::session_history;  // the history (bench/common/session_history.h)
 
 long long dab_count(const StrokeFile& f, int k) {
   long long n = 0;

@@ -24,6 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <sys/resource.h>
 #include <thread>
@@ -31,6 +32,7 @@
 
 #include "adaptex/adapt/session.h"
 #include "adaptex/paint/generate.h"
+#include "../common/session_history.h"
 #include "app.h"
 #include "backend.h"
 #include "live_adaptation.h"
@@ -70,21 +72,6 @@ std::string resolve(const std::string& m) {
   return {};
 }
 
-StrokeFile history_for(const TriMesh& mesh, int count, int first_seed) {
-  StrokeFile out;
-  for (int b = 0; static_cast<int>(out.strokes.size()) < count; ++b) {
-    GenerateOptions go;
-    go.kind = StrokeKind::Mixed;
-    go.count = 40;
-    go.seed = static_cast<std::uint64_t>(first_seed + b);
-    const StrokeFile f = generate_strokes(mesh, go);
-    if (b == 0) out.background = f.background;
-    for (const Stroke& st : f.strokes)
-      if (static_cast<int>(out.strokes.size()) < count) out.strokes.push_back(st);
-  }
-  return out;
-}
-
 struct Window {
   std::vector<double> frame_ms, lag_ms;
 };
@@ -109,12 +96,12 @@ int run(const Args& a) {
   app.session_options().texture_size = a.size;
   app.open_mesh(path);
   if (!app.wait_idle(600) || !app.has_model()) {
-    std::printf("could not load %s\n", path.c_str());
-    return 1;
+    std::fprintf(stderr, "could not load %s\n", path.c_str());
+    return 2;
   }
   const auto mesh = std::make_shared<const TriMesh>(*app.mesh());
   const Parameterization initial = *app.param();
-  const StrokeFile history = history_for(*mesh, a.strokes, a.seed);
+  const StrokeFile history = bench::session_history(*mesh, a.strokes, a.seed);
   std::printf("mesh %s: %d faces, texture %d², %d strokes one every %.0f ms, method %s, schedule each-stroke\n",
               a.mesh.c_str(), mesh->num_faces(), a.size, a.strokes, a.interval_ms,
               to_string(app.session_options().adapt.mode));
@@ -199,19 +186,25 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (k == "--mesh") a.mesh = next();
-    else if (k == "--strokes") a.strokes = std::stoi(next());
-    else if (k == "--size") a.size = std::stoi(next());
-    else if (k == "--interval-ms") a.interval_ms = std::stod(next());
-    else if (k == "--seed") a.seed = std::stoi(next());
-    else if (k == "--window") a.window = std::stoi(next());
-    else {
-      std::fprintf(stderr, "unknown option %s\n", k.c_str());
+    try {
+      if (k == "--mesh") a.mesh = next();
+      else if (k == "--strokes") a.strokes = std::stoi(next());
+      else if (k == "--size") a.size = std::stoi(next());
+      else if (k == "--interval-ms") a.interval_ms = std::stod(next());
+      else if (k == "--seed") a.seed = std::stoi(next());
+      else if (k == "--window") a.window = std::stoi(next());
+      else {
+        std::fprintf(stderr, "unknown option %s\n", k.c_str());
+        return 2;
+      }
+    } catch (const std::logic_error&) {  // std::stoi / stod: not a number, or out of range
+      std::fprintf(stderr, "%s: not a number: %s\n", k.c_str(), argv[i]);
       return 2;
     }
   }
-  if (a.strokes < 1 || a.window < 1 || a.size < 16 || !(a.interval_ms >= 0)) {
-    std::fprintf(stderr, "--strokes, --window >= 1, --size >= 16, --interval-ms >= 0\n");
+  if (a.strokes < 1 || a.strokes > 100000 || a.window < 1 || a.size < 16 || a.size > 8192 ||
+      !(a.interval_ms >= 0 && a.interval_ms <= 60000)) {
+    std::fprintf(stderr, "--strokes in [1, 100000], --window >= 1, --size in [16, 8192], --interval-ms in [0, 60000]\n");
     return 2;
   }
   return run(a);
