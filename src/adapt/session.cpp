@@ -16,6 +16,7 @@
 #include "adaptex/core/timer.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/signal.h"
+#include "adaptex/paint/strokes.h"
 #include "adaptex/paint/surface_cache.h"
 #include "adaptex/param/stretch.h"
 
@@ -571,6 +572,9 @@ void PaintSession::add_strokes(const std::vector<Stroke>& strokes) {
   Impl& m = *impl_;
   if (m.open) throw Error("paint session: add_strokes() while an interactive stroke is open");
   if (strokes.empty()) return;
+  // All checked first: a bad stroke changes nothing.
+  for (size_t k = 0; k < strokes.size(); ++k)
+    validate_stroke(strokes[k], "paint session: add_strokes(): stroke " + std::to_string(k));
   for (const Stroke& s : strokes) {
     m.paint(s);
     m.record_stroke(s);

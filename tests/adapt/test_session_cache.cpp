@@ -142,6 +142,12 @@ TEST(PaintSessionCache, ABatchOfStrokesIsOneCycleAndSettledSaysWhenFinishHasNoth
   EXPECT_TRUE(e.settled());
 
   PaintSession s(sc.mesh, sc.param, cached_each_stroke(), sc.strokes.background);
+  std::vector<Stroke> bad(all.begin(), all.begin() + 3);
+  bad[2].radius = -1;  // breaks the contract: nothing of the batch is painted
+  const ImageRGBA8 blank = s.texture();
+  EXPECT_THROW(s.add_strokes(bad), InvalidInputError);
+  EXPECT_TRUE(s.history().strokes.empty());
+  EXPECT_EQ(s.texture().data, blank.data);
   s.add_strokes({all.begin(), all.begin() + 4});
   ASSERT_EQ(s.reports().size(), 1u);  // four strokes, one cycle
   ASSERT_TRUE(s.reports().back().accepted);

@@ -137,7 +137,7 @@ class PaintSession {
   /// Paints several whole strokes and records them; in each-stroke mode then runs one cycle (gated by
   /// min_gain_db) as if they were one stroke. A background session that receives strokes faster than
   /// it adapts (the studio) catches up with one cycle instead of one per stroke. Nothing for an empty
-  /// list. \throw InvalidInputError a stroke breaks the contract (strokes before it stay painted);
+  /// list. \throw InvalidInputError a stroke breaks the contract (checked first: nothing is painted);
   /// CancelledError the cycle was cancelled through AdaptOptions::progress (the strokes stay painted
   /// and recorded, the layout is unchanged, and settled() is false)
   void add_strokes(const std::vector<Stroke>& strokes);
