@@ -67,8 +67,8 @@ class Painter {
   /// \throw Error an interactive stroke is open
   void fill_colours(const std::vector<Vec3f>& colours);
   /// The colour of every chart texel, the inverse of fill_colours(): another painter on the same
-  /// parameterization given these colours paints on exactly as this one does (the studio's canvas
-  /// taking over a background session's texture).
+  /// parameterization given these colours paints on exactly as this one does. (To hand the whole
+  /// painter over, the copy constructor below is cheaper: it also keeps the texel map.)
   /// \return shape [texel_map().inside.size()]: the colour of texel texel_map().inside[k], RGB in [0,1]
   /// \throw Error an interactive stroke is open (its colours are not final)
   std::vector<Vec3f> colours() const;
