@@ -17,6 +17,7 @@
 //
 //   adaptex_bench_session [--meshes spot,plane] [--strokes 10,100,1000] [--size 512] [--reps 1]
 //                         [--full N] [--cache Q] [--cache-coverage C] [--min-gain G] [--psnr-every K] [--seed S]
+//                         [--warm 0|1] [--warm-sweeps K]
 //
 // --meshes: names/stems of ADAPTEX_SHARED_DIR/meshes or paths, and "plane" (a generated 100k-face height
 // field, one chart, uv = xy, as in cycle.cpp); a shared mesh that is absent is skipped with a message.
@@ -29,6 +30,8 @@
 // the number after it: the model's predicted gain over the held layout in dB, AdaptReport::gain_over_held_db).
 // --min-gain G: that session's min_gain_db (default: the library's). --psnr-every K: after every K-th
 // stroke of that session, the PSNR of its texture against the exact history (400,000 samples).
+// --warm 0|1: that session's PaintSessionOptions::warm_start (default: the library's); --warm-sweeps K:
+// its adapt.polish.warm_sweeps.
 // Prints one markdown row per (mesh, stroke index, repetition), times in ms (wall clock; the last
 // column: CPU time of the process, all threads, for stroke + cycle).
 #include <algorithm>
@@ -65,6 +68,8 @@ struct Args {
   double cache_coverage = PaintSessionOptions{}.surface_cache_coverage;  ///< ...::surface_cache_coverage
   double min_gain = PaintSessionOptions{}.min_gain_db;  ///< --full's PaintSessionOptions::min_gain_db
   int psnr_every = 0;  ///< --full: PSNR after every this many strokes (0: none)
+  bool warm_start = PaintSessionOptions{}.warm_start;  ///< --full's PaintSessionOptions::warm_start
+  int warm_sweeps = ErrorPolishOptions{}.warm_sweeps;  ///< --full's adapt.polish.warm_sweeps
 };
 
 // Comma-separated items of \p s, each passed to \p add.
@@ -104,6 +109,11 @@ Args parse(int argc, char** argv) {
       a.seed = std::stoi(v);
     } else if (k == "--psnr-every") {
       a.psnr_every = std::stoi(v);
+    } else if (k == "--warm") {
+      if (v != "0" && v != "1") throw std::invalid_argument("--warm takes 0 or 1");
+      a.warm_start = v == "1";
+    } else if (k == "--warm-sweeps") {
+      a.warm_sweeps = std::stoi(v);
     } else if (k == "--full") {
       a.full = std::stoi(v);
     } else {
@@ -207,13 +217,16 @@ void cycle_at(const Scene& s, const StrokeFile& history, int k, int size, double
 }
 
 // A true each-stroke session over the first n strokes: every cycle.
-void full_session(const Scene& s, const StrokeFile& history, int n, int size, double cache, double cache_coverage,
-                  double min_gain, int psnr_every) {
+void full_session(const Scene& s, const StrokeFile& history, const Args& a) {
+  const int n = a.full, psnr_every = a.psnr_every;
+  const double min_gain = a.min_gain;
   PaintSessionOptions o;
-  o.surface_cache = cache;
-  o.surface_cache_coverage = cache_coverage;
+  o.surface_cache = a.cache;
+  o.surface_cache_coverage = a.cache_coverage;
   o.min_gain_db = min_gain;
-  o.texture_size = size;
+  o.warm_start = a.warm_start;
+  o.adapt.polish.warm_sweeps = a.warm_sweeps;
+  o.texture_size = a.size;
   o.schedule = ReparamSchedule::EachStroke;  // adapt.mode: the library default
   PaintSession session(s.mesh, s.param, o, history.background);
   for (int i = 0; i < n; ++i) {
@@ -256,7 +269,7 @@ int main(int argc, char** argv) {
       const StrokeFile history = session_history(s.mesh, max_k, a.seed);
       for (int k : a.strokes)
         for (int r = 0; r < a.reps; ++r) cycle_at(s, history, k, a.size, a.cache);
-      if (a.full > 0) full_session(s, history, a.full, a.size, a.cache, a.cache_coverage, a.min_gain, a.psnr_every);
+      if (a.full > 0) full_session(s, history, a);
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "adaptex_bench_session: %s\n", e.what());

@@ -102,7 +102,8 @@ AdaptMode parse_adapt_mode(const std::string& name) {
 AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current,
                                    const ImageRGBA8& texture, const TexelMap& current_map,
                                    const AdaptOptions& o, const StrokeFile* history,
-                                   ErrorDensityReference* density_reference, const ErrorDensity* density) {
+                                   ErrorDensityReference* density_reference, const ErrorDensity* density,
+                                   const AdaptResult* warm_start) {
   validate(o);
   if (current.uv_faces.size() != mesh.faces.size())
     throw InvalidInputError("parameterization has " + std::to_string(current.uv_faces.size()) +
@@ -124,7 +125,7 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
     return res;
   }
   const std::unique_ptr<WarpMethod> method = make_warp_method(o.mode);
-  method->compute(WarpInput{mesh, current, texture, current_map, history, o, density_reference, density}, res);
+  method->compute(WarpInput{mesh, current, texture, current_map, history, o, density_reference, density, warm_start}, res);
 
   // Refinement: where the warp varies faster than the triangles, split them (same surface).
   if (o.refine && method->wants_refinement()) {

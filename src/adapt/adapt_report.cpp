@@ -31,6 +31,7 @@ void to_json(nlohmann::json& j, const AdaptReport& r) {
                      {"polish_gain_db", r.polish_error_before > 0 && r.polish_error_after > 0
                                             ? 10 * std::log10(r.polish_error_before / r.polish_error_after)
                                             : 0.0},
+                     {"polish_warm_lattices", r.polish_warm_lattices},
                      {"faces_before", r.faces_before},
                      {"faces_after", r.faces_after},
                      {"time_ms",

@@ -513,11 +513,12 @@ class Polisher {
 void check_polish_options(const ErrorPolishOptions& options) {
   if (!(options.over_relaxation > 0 && options.over_relaxation < 2))
     throw InvalidInputError("polish options: over_relaxation must be in (0, 2)");
-  if (options.sweeps < 0 || options.prepass_sweeps < 0 || options.sweeps_after_prepass < 0 || !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
+  if (options.sweeps < 0 || options.prepass_sweeps < 0 || options.sweeps_after_prepass < 0 || options.warm_sweeps < 0 ||
+      !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
       !(options.shape_weight >= 0) || options.reach_cells < 0 || options.cells < 0 ||
       !(options.isotropy > 0 && options.isotropy <= 1))
     throw InvalidInputError(
-        "polish options: sweeps (all three), tolerance, floor_weight, shape_weight, reach_cells and cells must be >= 0, "
+        "polish options: sweeps (all four), tolerance, floor_weight, shape_weight, reach_cells and cells must be >= 0, "
         "isotropy in (0, 1]");
 }
 
@@ -633,6 +634,20 @@ std::vector<Vec2> composed_motion(const GridWarp& warp, const GridWarp& before, 
   return motion;
 }
 
+/// \p warp's points at start + t·motion, inside the square, side points on their side (corners stay).
+void place_moved(GridWarp& warp, const std::vector<Vec2>& start, const std::vector<Vec2>& motion, double t) {
+  const int n = warp.n;
+  tbb::parallel_for(0, n + 1, [&](int j) {
+    for (int i = 0; i <= n; ++i) {
+      const size_t k = static_cast<size_t>(j) * (n + 1) + i;
+      Vec2 p = (start[k] + t * motion[k]).cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
+      if (i == 0 || i == n) p.x() = start[k].x();
+      if (j == 0 || j == n) p.y() = start[k].y();
+      warp.points[k] = p;
+    }
+  });
+}
+
 /// Laplacian untangling of \p g: the interior corners of every cell that was convex (\p convex) and is
 /// not now, and the points within `ring` of them, move to the mean of their four lattice neighbours,
 /// in index order, round after round (the remap untangles its faces alike). The ring starts at 0 and
@@ -695,17 +710,7 @@ ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const E
   if (st.sweeps == 0) return st;
   const std::vector<Vec2> start = warp.points, motion = composed_motion(warp, before, coarse);
   const std::vector<char> convex = convex_cells(warp);
-  auto place = [&](double t) {
-    tbb::parallel_for(0, n + 1, [&](int j) {
-      for (int i = 0; i <= n; ++i) {
-        const size_t k = static_cast<size_t>(j) * (n + 1) + i;
-        Vec2 p = (start[k] + t * motion[k]).cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
-        if (i == 0 || i == n) p.x() = start[k].x();
-        if (j == 0 || j == n) p.y() = start[k].y();
-        warp.points[k] = p;
-      }
-    });
-  };
+  auto place = [&](double t) { place_moved(warp, start, motion, t); };
   // Where the motion still turns a cell of the warp (in strongly compressed spots, where the warp's
   // cells are much smaller than the coarse lattice's: 12–80 cells of 65k in the cases looked at), the
   // cell is untangled; if cells stay turned, the whole motion is halved.
@@ -722,6 +727,42 @@ ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const E
   }
   st.transfer_scale = t;
   return st;
+}
+
+/// Most turned cells add_polish_correction() untangles before it halves the correction instead.
+constexpr size_t kWarmUntangleCells = 32;
+
+double add_polish_correction(GridWarp& warp, const GridWarp& prev_flow, const GridWarp& prev_polished) {
+  const int n = warp.n, m = prev_flow.n;
+  const size_t count = static_cast<size_t>(n + 1) * (n + 1), prev = static_cast<size_t>(m + 1) * (m + 1);
+  if (n < 1 || m < 1 || prev_polished.n != m || warp.points.size() != count || prev_flow.points.size() != prev ||
+      prev_polished.points.size() != prev)
+    return 0;
+  // The correction at every point's own lattice coordinates (i/n, j/n): the previous lattices'
+  // bilinear maps there, so lattices of another size get it resampled (the pointwise difference when
+  // the sizes are equal).
+  std::vector<Vec2> correction(count);
+  tbb::parallel_for(0, n + 1, [&](int j) {
+    for (int i = 0; i <= n; ++i) {
+      const Vec2 u(double(i) / n, double(j) / n);
+      correction[static_cast<size_t>(j) * (n + 1) + i] =
+          m == n ? Vec2(prev_polished.at(i, j) - prev_flow.at(i, j))
+                 : Vec2(prev_polished.apply_lattice(u) - prev_flow.apply_lattice(u));
+    }
+  });
+  const std::vector<Vec2> start = warp.points;
+  const std::vector<char> convex = convex_cells(warp);
+  for (double t = 1; t >= 0.125; t *= 0.5) {
+    place_moved(warp, start, correction, t);
+    // A few turned cells are untangled; many mean the correction does not fit this flow (untangling
+    // them took seconds on a 100-cell lattice): halve it.
+    const std::vector<char> now = convex_cells(warp);
+    size_t turned = 0;
+    for (size_t c = 0; c < now.size(); ++c) turned += convex[c] && !now[c];
+    if (turned == 0 || (turned <= kWarmUntangleCells && untangle_cells(warp, convex) == 0)) return t;
+  }
+  warp.points = start;
+  return 0;
 }
 
 }  // namespace adaptex

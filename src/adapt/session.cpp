@@ -102,6 +102,7 @@ struct PaintSession::Impl {
   double coverage = 0;        // Σ over the history's dabs of π r² / surface area (a decal: 1)
   double area = 0;            // surface area of the input mesh
   bool held_from_cache = false;  // the held texture was resampled from the surface cache
+  bool held_warm = false;        // the held layout's polish started from an earlier cycle's (warm_start)
   bool exact_only = false;       // finish(): this cycle replays exactly
   // Each-stroke mode, density-flow: the history's signal on the initial layout's error-model rasters,
   // updated stroke by stroke (error_density.h), so the error model does not re-evaluate the history.
@@ -257,11 +258,12 @@ struct PaintSession::Impl {
     return density_reference.get();
   }
 
-  std::unique_ptr<AdaptResult> compute(const AdaptOptions& ao, const ErrorDensity* model) {
+  /// \p warm: an earlier cycle's result on the initial layout to warm-start from (each-stroke mode).
+  std::unique_ptr<AdaptResult> compute(const AdaptOptions& ao, const ErrorDensity* model, const AdaptResult* warm) {
     ErrorDensityReference* ref = density_reference_now(ao);
     if (base_painter)
-      return std::make_unique<AdaptResult>(adapt_parameterization(mesh, *base_param, base_painter->texture(),
-                                                                  base_painter->texel_map(), ao, &history, ref, model));
+      return std::make_unique<AdaptResult>(adapt_parameterization(
+          mesh, *base_param, base_painter->texture(), base_painter->texel_map(), ao, &history, ref, model, warm));
     return std::make_unique<AdaptResult>(
         adapt_parameterization(current_mesh(), *param, texture(), painter->texel_map(), ao, &history, ref));
   }
@@ -346,6 +348,7 @@ struct PaintSession::Impl {
   void adopt(Candidate&& c, AdaptResult& res, SafeguardPoints&& sg) {
     adapted = true;
     held_from_cache = c.from_cache;
+    held_warm = res.report.polish_warm_lattices > 0;
     if (path_independent()) held_density = damped_density(res.density, res.report.damping);
     res.param = *c.param;
     painter = std::move(c.painter);  // references *c.param and the candidate's mesh: keep both alive
@@ -371,6 +374,7 @@ struct PaintSession::Impl {
   void return_to_initial() {
     held_density = ImageF{};
     held_error = held_best = -1;
+    held_warm = false;
     if (!adapted) return;
     param = std::make_unique<Parameterization>(*base_param);
     held_from_cache = uses_surface_cache();
@@ -485,7 +489,10 @@ struct PaintSession::Impl {
     // candidate's texture) leaves the layout as it was, and a cycle still owed: finish() runs it.
     // record() clears it.
     pending = true;
-    std::unique_ptr<AdaptResult> res = compute(ao, model ? &model->density : nullptr);
+    // A cycle after a stroke starts its polish from the last cycle's (opt.warm_start); finish() and
+    // reparameterize() start cold, so the session still ends on end mode's layout.
+    const AdaptResult* warm = gated && opt.warm_start && base_param && last ? last.get() : nullptr;
+    std::unique_ptr<AdaptResult> res = compute(ao, model ? &model->density : nullptr, warm);
     const TriMesh& cand_mesh = res->refined_mesh ? *res->refined_mesh : source_mesh();
     AdaptReport& rep = res->report;
     if (model) {
@@ -616,10 +623,10 @@ void PaintSession::end_stroke() {
 void PaintSession::finish() {
   Impl& m = *impl_;
   if (m.opt.adapt.mode == AdaptMode::None) return;
-  // Each-stroke mode runs the last cycle again if it was skipped, or if the held texture was resampled
-  // from the surface cache: with exact replay, what end mode computes, so the session ends on end
-  // mode's layout and texture.
-  if (m.opt.schedule == ReparamSchedule::EachStroke && !m.pending && !m.held_from_cache) return;
+  // Each-stroke mode runs the last cycle again if it was skipped, if the held texture was resampled
+  // from the surface cache, or if the held layout was warm-started: cold and with exact replay, what
+  // end mode computes, so the session ends on end mode's layout and texture.
+  if (m.opt.schedule == ReparamSchedule::EachStroke && !m.pending && !m.held_from_cache && !m.held_warm) return;
   m.exact_only = m.opt.schedule == ReparamSchedule::EachStroke;
   struct Reset {
     bool& flag;
@@ -632,7 +639,7 @@ const AdaptReport& PaintSession::reparameterize() { return impl_->reparameterize
 bool PaintSession::settled() const {
   const Impl& m = *impl_;
   if (m.opt.adapt.mode == AdaptMode::None || m.history.strokes.empty()) return true;
-  return m.cycle_strokes == m.history.strokes.size() && !m.held_from_cache;
+  return m.cycle_strokes == m.history.strokes.size() && !m.held_from_cache && !m.held_warm;
 }
 const TriMesh& PaintSession::mesh() const { return impl_->current_mesh(); }
 const Parameterization& PaintSession::param() const { return *impl_->param; }

@@ -74,14 +74,17 @@ class DensityFlowWarp final : public WarpMethod {
     rep.flow_steps = st.total_steps;
     rep.flow_advected_points = st.advected_points;
     rep.time_flow = seconds_since(t0);
-    if (!o.flow.direct) polish(o, ed, in.texture, res);
+    if (!o.flow.direct) polish(o, ed, in.texture, in.warm_start, res);
   }
 
  private:
   /// Polishes lattice \p c of res.grids (coarse to fine, ErrorPolishOptions::prepass_sweeps) with
-  /// \p progress; \p cell gets the area of one of its cells in cells of the density raster.
+  /// \p progress; \p cell gets the area of one of its cells in cells of the density raster. With
+  /// \p warm (an earlier cycle's result whose lattice c has this size) the polish starts from that
+  /// cycle's correction and runs warm_sweeps; \p warmed says whether it did.
   static ErrorPolishStats polish_lattice(const AdaptOptions& o, const ErrorDensity& ed, const EdgeTensor& edges,
-                                         AdaptResult& res, size_t c, const ProgressCallback& progress, double& cell) {
+                                         const AdaptResult* warm, AdaptResult& res, size_t c,
+                                         const ProgressCallback& progress, double& cell, bool& warmed) {
     GridWarp& g = res.grids[c];
     UvRect src{Vec2(0, 0), Vec2(1, 1)};
     double scale = 1, extent = 1;
@@ -103,8 +106,12 @@ class DensityFlowWarp final : public WarpMethod {
     // from a strongly compressed flow starts from far worse cells than the flow's own (genus0
     // `mixed` 128²: 12.4 dB "gained" on the coarse lattice).
     const PolishFields own = m == g.n ? PolishFields{} : fields(g.n);
-    const double before = m == g.n ? 0.0 : polish_model_error(g, own, po);
-    if (po.prepass_sweeps > 0 && m >= 32) {
+    // The gain is reported against the flow's lattice, also when the polish starts from a warm start.
+    const double before = m != g.n ? polish_model_error(g, own, po) : warm ? polish_model_error(g, f, po) : -1.0;
+    warmed = warm && add_polish_correction(g, warm->flow_grids[c], warm->grids[c]) > 0;
+    if (warmed) {
+      po.sweeps = po.warm_sweeps;
+    } else if (po.prepass_sweeps > 0 && m >= 32) {
       // Coarse to fine (ErrorPolishOptions::prepass_sweeps): the half lattice first.
       ErrorPolishOptions pre = po;
       pre.sweeps = po.prepass_sweeps;
@@ -112,7 +119,8 @@ class DensityFlowWarp final : public WarpMethod {
       po.sweeps = po.sweeps_after_prepass;
     }
     ErrorPolishStats st = polish_warp(g, f, po);
-    if (m != g.n) st.error_before = before, st.error_after = polish_model_error(g, own, po);
+    if (before >= 0) st.error_before = before;
+    if (m != g.n) st.error_after = polish_model_error(g, own, po);
     // In cells of the density raster: a lattice cell covers area(src) / n² of the square.
     cell = src.area() / (double(g.n) * g.n) * ed.error.width * ed.error.width;
     return st;
@@ -122,8 +130,13 @@ class DensityFlowWarp final : public WarpMethod {
   /// are polished in parallel (each polish is also parallel inside): an atlas has many small lattices
   /// whose own sweeps cannot keep two cores busy (armadillo, 1024²: 15 charts of 16–55 polish cells).
   /// Each lattice's result does not depend on the others or on the threads.
-  static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture, AdaptResult& res) {
+  /// \p warm: an earlier cycle's result (WarpInput::warm_start) or null; used for the lattices whose
+  /// size matches.
+  static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture, const AdaptResult* warm,
+                     AdaptResult& res) {
     if (o.polish.sweeps <= 0 || (!res.chart_moves.empty() && !o.polish.charts)) return;
+    res.flow_grids = res.grids;
+    if (warm && (warm->grids.size() != res.grids.size() || warm->flow_grids.size() != res.grids.size())) warm = nullptr;
     const auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "polish", 0);
     const EdgeTensor edges = o.polish.isotropy < 1 ? edge_tensor(texture) : EdgeTensor{};
@@ -143,8 +156,11 @@ class DensityFlowWarp final : public WarpMethod {
       };
     std::vector<ErrorPolishStats> stats(count);
     std::vector<double> cells(count, 0.0);
+    std::vector<char> warmed(count, 0);
     auto one = [&](size_t c) {
-      stats[c] = polish_lattice(o, ed, edges, res, c, shared, cells[c]);
+      bool w = false;
+      stats[c] = polish_lattice(o, ed, edges, warm, res, c, shared, cells[c], w);
+      warmed[c] = w;
       ++done;
     };
     if (o.polish.parallel)
@@ -155,6 +171,7 @@ class DensityFlowWarp final : public WarpMethod {
       res.report.polish_sweeps = std::max(res.report.polish_sweeps, stats[c].sweeps);
       res.report.polish_error_before += cells[c] * stats[c].error_before;
       res.report.polish_error_after += cells[c] * stats[c].error_after;
+      res.report.polish_warm_lattices += warmed[c];
     }
     report_progress(user, "polish", 1);
     res.report.time_polish = seconds_since(t0);

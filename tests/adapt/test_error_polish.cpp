@@ -576,3 +576,107 @@ TEST(ErrorPolish, EdgeTensorOfAStripeFollowsItsEdges) {
   o.isotropy = 1.5;
   EXPECT_THROW(check_polish_options(o), InvalidInputError);
 }
+
+namespace {
+
+/// The dot case with its dot at (cx, 0.55): the flow lattice and the edge's fields.
+DotCase dot_case_at(double cx) {
+  const ImageF density = dot_density(kCells, cx, 0.55, 0.15);
+  DensityFlowOptions fo;
+  fo.cells = kCells;
+  return {density_equalizing_warp(density, fo), dot_edge(kCells, cx, 0.55, 0.15, 0.03, density)};
+}
+
+}  // namespace
+
+TEST(ErrorPolish, AWarmStartAddsThePreviousCorrectionAndConvergesInFewerSweeps) {
+  // The previous cycle: the dot at x = 0.45, polished to convergence. This cycle: the dot has grown a
+  // little to the right (the next stroke), its flow computed afresh.
+  DotCase prev = dot_case_at(0.45), now = dot_case_at(0.47);
+  ErrorPolishOptions full;
+  full.sweeps = 30;
+  GridWarp prev_polished = prev.flow;
+  polish_warp_by_error(prev_polished, prev.fields, full);
+
+  GridWarp warm = now.flow;
+  ASSERT_EQ(add_polish_correction(warm, prev.flow, prev_polished), 1.0);
+  // The correction is added point by point (an interior point away from the sides).
+  const int i = kCells / 3, j = kCells / 2;
+  const Vec2 expected = now.flow.at(i, j) + (prev_polished.at(i, j) - prev.flow.at(i, j));
+  EXPECT_NEAR((warm.at(i, j) - expected).norm(), 0.0, 1e-15);
+  EXPECT_GT(min_corner_det(warm), 0);
+  expect_keeps_the_square(warm);
+
+  ErrorPolishOptions few;
+  few.sweeps = 5;
+  few.tolerance = 0;
+  GridWarp cold5 = now.flow, cold30 = now.flow;
+  polish_warp_by_error(cold5, now.fields, few);
+  polish_warp_by_error(cold30, now.fields, full);
+  polish_warp_by_error(warm, now.fields, few);
+  const double e_flow = model_error(now.flow, now.fields), e_cold5 = model_error(cold5, now.fields),
+               e_cold30 = model_error(cold30, now.fields), e_warm5 = model_error(warm, now.fields);
+  std::printf("model error: flow %.5g, cold 5 sweeps %.5g, cold 30 sweeps %.5g, warm 5 sweeps %.5g\n", e_flow, e_cold5,
+              e_cold30, e_warm5);
+  // Five sweeps from the warm start get further than five from the flow, and about as far as thirty.
+  EXPECT_LT(e_warm5, e_cold5);
+  EXPECT_LT(10 * std::log10(e_warm5 / e_cold30), 0.05);
+  EXPECT_GT(min_corner_det(warm), 0);
+  expect_keeps_the_square(warm);
+}
+
+TEST(ErrorPolish, AWarmStartNeverTurnsACellAndNeedsMatchingPreviousLattices) {
+  const DotCase d = dot_case();
+  // Previous lattices of two different sizes: refused, the warp unchanged.
+  GridWarp w = d.flow;
+  EXPECT_EQ(add_polish_correction(w, GridWarp::uniform(kCells / 2), GridWarp::uniform(kCells)), 0.0);
+  EXPECT_EQ(w.points, d.flow.points);
+  // A correction that moves one interior point 1.4 cells across its neighbour would turn cells: they
+  // are untangled, and every cell stays convex.
+  GridWarp moved = d.flow;
+  const int i = kCells / 4, j = kCells / 4;
+  moved.at(i, j) += 1.4 * (d.flow.at(i + 1, j) - d.flow.at(i, j));
+  GridWarp raw = d.flow;
+  raw.at(i, j) = moved.at(i, j);
+  ASSERT_LE(min_corner_det(raw), 0);  // the correction as it is would turn a cell
+  w = d.flow;
+  EXPECT_GT(add_polish_correction(w, d.flow, moved), 0.0);
+  EXPECT_GT(min_corner_det(w), 0);
+  EXPECT_NE(w.points, d.flow.points);
+  expect_keeps_the_square(w);
+}
+
+TEST(ErrorPolish, AWarmStartFromALatticeOfAnotherSizeResamplesTheCorrection) {
+  // The previous cycle polished a lattice of half as many cells (a chart's lattice follows its
+  // re-packed rectangle's size).
+  const int m = kCells / 2;
+  const ImageF dm = dot_density(m, 0.45, 0.55, 0.15);
+  DensityFlowOptions fo;
+  fo.cells = m;
+  const GridWarp prev_flow = density_equalizing_warp(dm, fo);
+  GridWarp prev_polished = prev_flow;
+  ErrorPolishOptions full;
+  full.sweeps = 30;
+  polish_warp_by_error(prev_polished, dot_edge(m, 0.45, 0.55, 0.15, 0.03, dm), full);
+  const DotCase now = dot_case_at(0.47);
+  GridWarp warm = now.flow;
+  const double t = add_polish_correction(warm, prev_flow, prev_polished);
+  std::printf("correction from %d cells taken at t = %g\n", m, t);
+  ASSERT_GT(t, 0.0);
+  // An odd point of the finer lattice lies halfway between two of the coarser one's.
+  const int i = 2 * (m / 3) + 1, j = m;
+  const Vec2 halfway = 0.5 * (prev_polished.at(i / 2, j / 2) - prev_flow.at(i / 2, j / 2) +
+                              prev_polished.at(i / 2 + 1, j / 2) - prev_flow.at(i / 2 + 1, j / 2));
+  EXPECT_NEAR((warm.at(i, j) - now.flow.at(i, j) - t * halfway).norm(), 0.0, 1e-12);
+  ErrorPolishOptions few;
+  few.sweeps = 5;
+  few.tolerance = 0;
+  GridWarp cold5 = now.flow;
+  polish_warp_by_error(cold5, now.fields, few);
+  polish_warp_by_error(warm, now.fields, few);
+  std::printf("model error after 5 sweeps: cold %.5g, warm from %d cells %.5g\n", model_error(cold5, now.fields), m,
+              model_error(warm, now.fields));
+  EXPECT_LT(model_error(warm, now.fields), model_error(cold5, now.fields));
+  EXPECT_GT(min_corner_det(warm), 0);
+  expect_keeps_the_square(warm);
+}

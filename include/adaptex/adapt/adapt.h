@@ -137,6 +137,9 @@ struct AdaptReport {
   /// density-flow: the anisotropic model's error (error_polish.h) before and after the polish, summed
   /// over the lattices in cells of the density raster; 10·log10(before / after) is the polish's gain.
   double polish_error_before = 0, polish_error_after = 0;
+  /// density-flow: the lattices whose polish started from the warm start's (adapt_parameterization()),
+  /// with ErrorPolishOptions::warm_sweeps; 0 for a cold start.
+  int polish_warm_lattices = 0;
   int faces_before = 0, faces_after = 0;  ///< Mesh faces before / after refinement.
 };
 
@@ -151,6 +154,10 @@ struct AdaptResult {
   /// The warps in application order: {coarse, fine} for two-stage (fine in the coarse-warped domain),
   /// {fine} for single, {flow grid} for density-flow; empty for None.
   std::vector<GridWarp> grids;
+  /// density-flow with the polish: the flow's lattices before the polish, one per entry of grids. A
+  /// later cycle may start its polish from grids − flow_grids (add_polish_correction(), error_polish.h;
+  /// the warm_start of adapt_parameterization()). Empty otherwise.
+  std::vector<GridWarp> flow_grids;
   /// Set when refinement changed the mesh: the refined mesh (same surface, more faces), which
   /// result.param belongs to. nullptr: param belongs to the input mesh.
   std::shared_ptr<const TriMesh> refined_mesh;
@@ -184,7 +191,11 @@ struct AdaptResult {
 /// given, caches that signal for \p current at the texture's size (error_density.h); it is used when it
 /// matches and makes the error model's cost independent of the history's length. \p density, if given,
 /// is density-flow's error model for exactly these inputs and options (compute_error_density()), used
-/// instead of computing it again.
+/// instead of computing it again. \p warm_start, if given, is the result of an earlier cycle on the same
+/// \p current layout (a painting session's previous cycle): density-flow's polish starts every lattice
+/// whose size matches from that cycle's polish (AdaptResult::flow_grids, add_polish_correction()) and
+/// runs ErrorPolishOptions::warm_sweeps. The result then depends on that cycle, not on the inputs
+/// alone; other methods ignore it.
 /// \pre mesh, current and current_map are consistent; texture non-empty
 /// \throw InvalidInputError inconsistent sizes, bad options (grid < 1, α/β < 0, ...)
 /// \throw CancelledError the progress callback returned false
@@ -192,7 +203,7 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
                                    const ImageRGBA8& texture, const TexelMap& current_map,
                                    const AdaptOptions& options = {}, const StrokeFile* history = nullptr,
                                    ErrorDensityReference* density_reference = nullptr,
-                                   const ErrorDensity* density = nullptr);
+                                   const ErrorDensity* density = nullptr, const AdaptResult* warm_start = nullptr);
 
 /// Name of a mode as used on the command line: "none", "single", "two-stage", "density-flow".
 const char* to_string(AdaptMode mode);

@@ -58,6 +58,12 @@ struct ErrorPolishOptions {
   /// 20 + 10 gave −0.02 / −0.05 / +0.20 on 6 meshes at 256². 0: no prepass.
   int prepass_sweeps = 20;
   int sweeps_after_prepass = 5;  ///< Sweeps on the full lattice after a prepass (see prepass_sweeps).
+  /// Sweeps on the full lattice, without a prepass, when the polish starts from the previous cycle's
+  /// polish (add_polish_correction(); a painting session's cycle after a stroke, warm_start in
+  /// adapt_parameterization()). The hope was that the previous correction holds the slow modes the
+  /// prepass is for. On one dot that moved (test_error_polish.cpp) 5 warm sweeps reach 0.02 dB of 30
+  /// cold ones, but in real sessions they do not: PaintSessionOptions::warm_start is off by default.
+  int warm_sweeps = 5;
   /// Stop early when a sweep lowers E by less than this fraction of E.
   double tolerance = 1e-4;
   /// κ of the floor term, relative to the mean q of the painted cells.
@@ -182,6 +188,20 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
 /// \throw CancelledError options.progress returned false
 ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields,
                                       const ErrorPolishOptions& options = {});
+
+/// Warm start of a polish (issue 10, deliverable 2): \p warp, a flow lattice of this cycle, takes the
+/// correction the polish made to the previous cycle's flow lattice, t·(prev_polished − prev_flow), in
+/// the lattices' local coordinates: at point (i, j) of \p warp, the difference of the previous
+/// lattices' maps (GridWarp::apply_lattice) at (i/n, j/n), so a lattice of another size gets the
+/// correction resampled (a chart's lattice size follows its re-packed rectangle, atlas_flow.h). A
+/// stroke changes the target density only near it, so elsewhere this cycle's flow is close to the
+/// previous one and the correction still fits; the polish then needs ErrorPolishOptions::warm_sweeps
+/// instead of its prepass and sweeps. Cells of \p warp that were convex and are not are untangled as in
+/// polish_warp() when there are at most 32 of them; t = 1, halved (at most 3 times) while some stay
+/// turned. Side points keep their side coordinate, corners stay.
+/// \return t in (0, 1] if the correction was added; 0 if a lattice is empty or malformed, the previous
+///         two differ in size, or no t kept every convex cell convex (\p warp is then unchanged)
+double add_polish_correction(GridWarp& warp, const GridWarp& prev_flow, const GridWarp& prev_polished);
 
 /// The model's error part Σ q·Ψ of \p warp under \p fields and options' shape and floor weights
 /// (ErrorPolishStats::error_before of a polish without sweeps): what polish_warp() lowers, measured on

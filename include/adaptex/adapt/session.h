@@ -115,6 +115,17 @@ struct PaintSessionOptions {
   /// than 0.1 dB on the histories it was chosen on, but by 0.5–0.8 dB on another seed (armadillo,
   /// plane100k). See docs/adaptive.md, "Choosing the threshold".
   double min_gain_db = 0.3;
+  /// Each-stroke mode, density-flow: a cycle after a stroke starts its polish from the previous cycle's
+  /// (adapt_parameterization()'s warm_start; error_polish.h add_polish_correction()) and runs
+  /// ErrorPolishOptions::warm_sweeps instead of the prepass and sweeps (issue 10, deliverable 2). The
+  /// layouts held while painting then depend on which cycles ran, not on the history alone; finish()
+  /// runs the last cycle again cold, so the session still ends on end mode's layout and texture.
+  /// Off by default: measured over 100-stroke sessions on 5 meshes (docs/bench_adapt.md, session 21),
+  /// 5 warm sweeps take ~25 % off the polish but cost 0.3–1.1 dB of mean PSNR while painting; 10
+  /// sweeps cost as much time as a cold polish, 25 (−0.04 to −0.08 dB) more. The prepass's slow modes
+  /// do not carry over from one cycle to the next. false: every cycle starts cold (each held layout is
+  /// end mode's for a prefix of the history).
+  bool warm_start = false;
   std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
 };
 
@@ -146,15 +157,17 @@ class PaintSession {
   void begin_stroke(const Stroke& style);
   std::array<int, 4> add_dab(const Vec3& centre);
   void end_stroke();
-  /// End mode: re-parameterizes once. Each-stroke mode: re-parameterizes, with exact replay, if the
-  /// last cycle was skipped (min_gain_db) or the held texture came from the surface cache
-  /// (surface_cache), so that the session ends on end mode's layout and texture. No-op with mode None.
+  /// End mode: re-parameterizes once. Each-stroke mode: re-parameterizes, cold and with exact replay,
+  /// if the last cycle was skipped (min_gain_db), the held texture came from the surface cache
+  /// (surface_cache) or the held layout was warm-started (warm_start), so that the session ends on end
+  /// mode's layout and texture. No-op with mode None.
   void finish();
   /// Re-parameterizes now, whatever the schedule and min_gain_db. \return the report (also appended
   /// to reports()).
   const AdaptReport& reparameterize();
   /// finish() would change nothing: no strokes, mode None, or the last completed re-parameterization
-  /// saw the whole history and its texture was replayed exactly (not resampled from the surface cache).
+  /// saw the whole history, its texture was replayed exactly (not resampled from the surface cache)
+  /// and the held layout was not warm-started.
   /// Each-stroke mode is then on end mode's layout and texture for the history so far.
   bool settled() const;
 

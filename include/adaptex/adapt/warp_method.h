@@ -29,6 +29,9 @@ struct WarpInput {
   /// computes it first to decide whether re-parameterizing is worth it, session.h); density-flow then
   /// uses it instead of computing it again. Other methods ignore it.
   const ErrorDensity* density = nullptr;
+  /// Optional: an earlier cycle's result on the same layout; density-flow warm-starts its polish from
+  /// it (adapt_parameterization()). Other methods ignore it.
+  const AdaptResult* warm_start = nullptr;
 };
 
 /// A re-parameterization method: computes the warp of [0,1]² (homeomorphism keeping the square).
