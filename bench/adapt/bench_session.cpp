@@ -17,7 +17,7 @@
 //
 //   adaptex_bench_session [--meshes spot,plane] [--strokes 10,100,1000] [--size 512] [--reps 1]
 //                         [--full N] [--cache Q] [--cache-coverage C] [--min-gain G] [--psnr-every K] [--seed S]
-//                         [--warm 0|1] [--warm-sweeps K]
+//                         [--warm 0|1] [--warm-sweeps K] [--polish-cells K]
 //
 // --meshes: names/stems of ADAPTEX_SHARED_DIR/meshes or paths, and "plane" (a generated 100k-face height
 // field, one chart, uv = xy, as in cycle.cpp); a shared mesh that is absent is skipped with a message.
@@ -31,7 +31,7 @@
 // --min-gain G: that session's min_gain_db (default: the library's). --psnr-every K: after every K-th
 // stroke of that session, the PSNR of its texture against the exact history (400,000 samples).
 // --warm 0|1: that session's PaintSessionOptions::warm_start (default: the library's); --warm-sweeps K:
-// its adapt.polish.warm_sweeps.
+// its adapt.polish.warm_sweeps; --polish-cells K: its adapt.polish.cells (ErrorPolishOptions::cells).
 // Prints one markdown row per (mesh, stroke index, repetition), times in ms (wall clock; the last
 // column: CPU time of the process, all threads, for stroke + cycle).
 #include <algorithm>
@@ -70,6 +70,7 @@ struct Args {
   int psnr_every = 0;  ///< --full: PSNR after every this many strokes (0: none)
   bool warm_start = PaintSessionOptions{}.warm_start;  ///< --full's PaintSessionOptions::warm_start
   int warm_sweeps = ErrorPolishOptions{}.warm_sweeps;  ///< --full's adapt.polish.warm_sweeps
+  int polish_cells = ErrorPolishOptions{}.cells;       ///< --full's adapt.polish.cells
 };
 
 // Comma-separated items of \p s, each passed to \p add.
@@ -114,6 +115,8 @@ Args parse(int argc, char** argv) {
       a.warm_start = v == "1";
     } else if (k == "--warm-sweeps") {
       a.warm_sweeps = std::stoi(v);
+    } else if (k == "--polish-cells") {
+      a.polish_cells = std::stoi(v);
     } else if (k == "--full") {
       a.full = std::stoi(v);
     } else {
@@ -226,6 +229,7 @@ void full_session(const Scene& s, const StrokeFile& history, const Args& a) {
   o.min_gain_db = min_gain;
   o.warm_start = a.warm_start;
   o.adapt.polish.warm_sweeps = a.warm_sweeps;
+  o.adapt.polish.cells = a.polish_cells;
   o.texture_size = a.size;
   o.schedule = ReparamSchedule::EachStroke;  // adapt.mode: the library default
   PaintSession session(s.mesh, s.param, o, history.background);
