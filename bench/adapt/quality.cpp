@@ -16,7 +16,7 @@
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
 //                         [--untangle-sor W] [--polish-sweeps N] [--polish-omega W] [--polish-floor K] [--polish-reach C] [--polish-shape MU] [--polish-cells M] [--polish-isotropy B] [--polish-charts | --no-polish-charts]
-//                         [--no-damp-overlaps] [--snap-round R] [--polish-prepass N] [--polish-after N]
+//                         [--no-damp-overlaps] [--snap-round R] [--polish-prepass N] [--polish-after N] [--polish-levels N]
 //
 // Mode names go to cli::make_session_options() (apps/cli/session_options.h, parse_adapt_mode), so every mode the library knows works.
 // A mode written NAME:no-refine runs with mesh refinement off (see set_refine below); --no-refine
@@ -118,6 +118,7 @@ struct Args {
   int snap_round = -2;        ///< --snap-round R: SafeRemapOptions::snap_round (-2: the default).
   int polish_prepass = -1;    ///< --polish-prepass N: ErrorPolishOptions::prepass_sweeps (-1: the default).
   int polish_after = -1;      ///< --polish-after N: ErrorPolishOptions::sweeps_after_prepass (-1: the default).
+  int polish_levels = -1;     ///< --polish-levels N: ErrorPolishOptions::prepass_levels (-1: the default).
   int polish_reach = -1;        ///< --polish-reach: ErrorPolishOptions::reach_cells (-1: the default).
   int polish_cells = -1;        ///< --polish-cells: ErrorPolishOptions::cells (-1: the default; 0: the warp's).
   double polish_isotropy = -1;  ///< --polish-isotropy: ErrorPolishOptions::isotropy (-1: the default).
@@ -165,6 +166,7 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   if (a.snap_round != -2) o.adapt.remap.snap_round = a.snap_round;
   if (a.polish_prepass >= 0) o.adapt.polish.prepass_sweeps = a.polish_prepass;
   if (a.polish_after >= 0) o.adapt.polish.sweeps_after_prepass = a.polish_after;
+  if (a.polish_levels >= 0) o.adapt.polish.prepass_levels = a.polish_levels;
   if (a.polish_reach >= 0) o.adapt.polish.reach_cells = a.polish_reach;
   if (a.polish_cells >= 0) o.adapt.polish.cells = a.polish_cells;
   if (a.polish_isotropy > 0) o.adapt.polish.isotropy = a.polish_isotropy;
@@ -273,6 +275,7 @@ Args parse_args(int argc, char** argv) {
     else if (k == "--snap-round") a.snap_round = whole(k, v, -1, 1000);
     else if (k == "--polish-prepass") a.polish_prepass = whole(k, v, 0, 100000);
     else if (k == "--polish-after") a.polish_after = whole(k, v, 0, 100000);
+    else if (k == "--polish-levels") a.polish_levels = whole(k, v, 1, 4);
     else if (k == "--floor") a.floor = std::stod(v);
     else if (k == "--density-cells") a.density_cells = std::stoi(v);
     else if (k == "--refine-factor") a.refine_factor = positive(k, v);

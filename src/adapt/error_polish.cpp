@@ -513,6 +513,8 @@ class Polisher {
 void check_polish_options(const ErrorPolishOptions& options) {
   if (!(options.over_relaxation > 0 && options.over_relaxation < 2))
     throw InvalidInputError("polish options: over_relaxation must be in (0, 2)");
+  if (options.prepass_levels < 1 || options.prepass_levels > 4)
+    throw InvalidInputError("polish options: prepass_levels must be in [1, 4]");
   if (options.sweeps < 0 || options.prepass_sweeps < 0 || options.sweeps_after_prepass < 0 || options.warm_sweeps < 0 ||
       !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
       !(options.shape_weight >= 0) || options.reach_cells < 0 || options.cells < 0 ||

@@ -112,10 +112,15 @@ class DensityFlowWarp final : public WarpMethod {
     if (warmed) {
       po.sweeps = po.warm_sweeps;
     } else if (po.prepass_sweeps > 0 && m >= 32) {
-      // Coarse to fine (ErrorPolishOptions::prepass_sweeps): the half lattice first.
-      ErrorPolishOptions pre = po;
-      pre.sweeps = po.prepass_sweeps;
-      polish_warp(g, fields(m / 2), pre);
+      // Coarse to fine (ErrorPolishOptions::prepass_sweeps, prepass_levels): the coarsest lattice of
+      // at least 16 cells first, then each finer one.
+      int levels = 1;
+      while (levels < po.prepass_levels && (m >> (levels + 1)) >= 16) ++levels;
+      for (int level = levels; level >= 1; --level) {
+        ErrorPolishOptions pre = po;
+        pre.sweeps = level == levels ? po.prepass_sweeps : po.sweeps_after_prepass;
+        polish_warp(g, fields(m >> level), pre);
+      }
       po.sweeps = po.sweeps_after_prepass;
     }
     ErrorPolishStats st = polish_warp(g, f, po);

@@ -2,7 +2,9 @@
 // stretch reduction, replay vs resample, the quality property, the session and `adaptex reparam`.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
+#include <vector>
 
 #include <filesystem>
 #include <fstream>
@@ -217,14 +219,18 @@ TEST(AdaptMesh, OverlapsAroundASliverAreDampedLocally) {
 }
 
 TEST(AdaptMesh, ThePolishRunsCoarseToFine) {
-  // ErrorPolishOptions::prepass_sweeps: the polish lattice's half first, then sweeps_after_prepass
-  // sweeps on the full lattice (instead of sweeps). Both ways give a valid, better layout.
+  // ErrorPolishOptions::prepass_sweeps: the polish lattice's coarser levels first (prepass_levels),
+  // then sweeps_after_prepass sweeps on the full lattice (instead of sweeps). Every way gives a valid,
+  // better layout.
+  std::vector<std::vector<Vec2>> layouts;
   const SphereLines c;
-  auto run = [&](int prepass) {
+  auto run = [&](int prepass, int levels = 1) {
     AdaptOptions ao;
     ao.mode = AdaptMode::DensityFlow;
     ao.polish.prepass_sweeps = prepass;
+    ao.polish.prepass_levels = levels;
     const auto s = c.run(ao);
+    layouts.push_back(s->param().uv);
     const AdaptReport r = s->reports().back();
     EXPECT_TRUE(r.accepted);
     EXPECT_LT(r.polish_error_after, r.polish_error_before);
@@ -240,12 +246,23 @@ TEST(AdaptMesh, ThePolishRunsCoarseToFine) {
   const AdaptReport cascade = run(defaults.prepass_sweeps), plain = run(0);
   EXPECT_LE(cascade.polish_sweeps, defaults.sweeps_after_prepass);
   EXPECT_GT(plain.polish_sweeps, defaults.sweeps_after_prepass);
+  // prepass_levels: one level more or less than the default is another, equally valid, layout (the
+  // sphere's one chart polishes through 128 cells: a 16-cell coarsest level is allowed up to 3 levels).
+  const int more = defaults.prepass_levels + 1, fewer = std::max(1, defaults.prepass_levels - 1);
+  run(defaults.prepass_sweeps, defaults.prepass_levels == 1 ? more : fewer);
+  ASSERT_EQ(layouts.size(), 3u);
+  EXPECT_NE(layouts[2], layouts[0]);
   ErrorPolishOptions bad;
   bad.prepass_sweeps = -1;
   GridWarp g = GridWarp::uniform(4);
   PolishFields f;
   f.error = f.exponent = f.floor = ImageF(4, 4, 0.0f);
   EXPECT_THROW(polish_warp(g, f, bad), InvalidInputError);
+  for (int levels : {0, 5}) {
+    ErrorPolishOptions o;
+    o.prepass_levels = levels;
+    EXPECT_THROW(polish_warp(g, f, o), InvalidInputError) << levels;
+  }
 }
 
 TEST(AdaptMesh, ReplayEqualsFreshPaintAndResampleLosesSomething) {

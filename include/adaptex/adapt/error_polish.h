@@ -58,6 +58,11 @@ struct ErrorPolishOptions {
   /// 20 + 10 gave −0.02 / −0.05 / +0.20 on 6 meshes at 256². 0: no prepass.
   int prepass_sweeps = 20;
   int sweeps_after_prepass = 5;  ///< Sweeps on the full lattice after a prepass (see prepass_sweeps).
+  /// Coarser lattices of the prepass (with prepass_sweeps > 0): 1, the half lattice only; 2, a quarter
+  /// of the cells first (prepass_sweeps), then the half (sweeps_after_prepass), then the full
+  /// (sweeps_after_prepass); and so on, each level halving the cells, as long as the coarsest has at
+  /// least 16 cells. In [1, 4].
+  int prepass_levels = 1;
   /// Sweeps on the full lattice, without a prepass, when the polish starts from the previous cycle's
   /// polish (add_polish_correction(); a painting session's cycle after a stroke, warm_start in
   /// adapt_parameterization()). The hope was that the previous correction holds the slow modes the
