@@ -224,7 +224,7 @@ TEST(AdaptMesh, ThePolishRunsCoarseToFine) {
   // better layout.
   std::vector<std::vector<Vec2>> layouts;
   const SphereLines c;
-  auto run = [&](int prepass, int levels = 1) {
+  auto run = [&](int prepass, int levels = ErrorPolishOptions{}.prepass_levels) {
     AdaptOptions ao;
     ao.mode = AdaptMode::DensityFlow;
     ao.polish.prepass_sweeps = prepass;

@@ -57,12 +57,19 @@ struct ErrorPolishOptions {
   /// +0.04 / +0.01 / +0.19 / +0.38; the polish 0.67× the time (docs/quality.md, "Session 15").
   /// 20 + 10 gave −0.02 / −0.05 / +0.20 on 6 meshes at 256². 0: no prepass.
   int prepass_sweeps = 20;
-  int sweeps_after_prepass = 5;  ///< Sweeps on the full lattice after a prepass (see prepass_sweeps).
+  /// Sweeps on each finer level after the prepass's coarsest (see prepass_sweeps, prepass_levels). 3
+  /// since session 21 (5 before), with prepass_levels 2.
+  int sweeps_after_prepass = 3;
   /// Coarser lattices of the prepass (with prepass_sweeps > 0): 1, the half lattice only; 2, a quarter
   /// of the cells first (prepass_sweeps), then the half (sweeps_after_prepass), then the full
   /// (sweeps_after_prepass); and so on, each level halving the cells, as long as the coarsest has at
-  /// least 16 cells. In [1, 4].
-  int prepass_levels = 1;
+  /// least 16 cells. In [1, 4]. Session 21: 2 levels with 3 sweeps after the prepass (20 + 3 + 3)
+  /// against session 15's 1 level with 5 (20 + 5), mean dB per case (lines / dots / mixed / blobs):
+  /// the 9-mesh study (128²–512², 2M samples) −0.03 / −0.00 / +0.00; 6 meshes at 256²–1024² −0.03 /
+  /// +0.06 / −0.02; out of sample (11 meshes, seed 3, 128²–512²) −0.09 / +0.01 / +0.07 / +0.10; the
+  /// polish 0.66–0.78× the time, the whole re-parameterization about 0.9× (docs/quality.md, "Session
+  /// 21"). 3 levels gained no time; 2 levels with 2 sweeps lost 0.10 / 0.13 dB on lines / mixed.
+  int prepass_levels = 2;
   /// Sweeps on the full lattice, without a prepass, when the polish starts from the previous cycle's
   /// polish (add_polish_correction(); a painting session's cycle after a stroke, warm_start in
   /// adapt_parameterization()). The hope was that the previous correction holds the slow modes the
