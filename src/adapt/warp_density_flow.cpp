@@ -80,8 +80,8 @@ class DensityFlowWarp final : public WarpMethod {
  private:
   /// Polishes lattice \p c of res.grids (coarse to fine, ErrorPolishOptions::prepass_sweeps) with
   /// \p progress; \p cell gets the area of one of its cells in cells of the density raster. With
-  /// \p warm (an earlier cycle's result whose lattice c has this size) the polish starts from that
-  /// cycle's correction and runs warm_sweeps; \p warmed says whether it did.
+  /// \p warm (an earlier cycle's result) the polish starts from that cycle's correction
+  /// (add_polish_correction()) and runs warm_sweeps; \p warmed says whether it did.
   static ErrorPolishStats polish_lattice(const AdaptOptions& o, const ErrorDensity& ed, const EdgeTensor& edges,
                                          const AdaptResult* warm, AdaptResult& res, size_t c,
                                          const ProgressCallback& progress, double& cell, bool& warmed) {
@@ -135,8 +135,8 @@ class DensityFlowWarp final : public WarpMethod {
   /// are polished in parallel (each polish is also parallel inside): an atlas has many small lattices
   /// whose own sweeps cannot keep two cores busy (armadillo, 1024²: 15 charts of 16–55 polish cells).
   /// Each lattice's result does not depend on the others or on the threads.
-  /// \p warm: an earlier cycle's result (WarpInput::warm_start) or null; used for the lattices whose
-  /// size matches.
+  /// \p warm: an earlier cycle's result (WarpInput::warm_start) or null; used when it has as many
+  /// lattices.
   static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture, const AdaptResult* warm,
                      AdaptResult& res) {
     if (o.polish.sweeps <= 0 || (!res.chart_moves.empty() && !o.polish.charts)) return;

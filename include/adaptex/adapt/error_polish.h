@@ -48,8 +48,8 @@ struct ErrorPolishOptions {
   /// −0.26 dB on those meshes, −0.02 / +0.02 / −0.01 dB on the 5 multi-chart shared meshes.
   int sweeps = 20;
   /// Coarse-to-fine (the warp method's polish, warp_density_flow.cpp): where the polish lattice has
-  /// at least 32 cells, first prepass_sweeps sweeps on a lattice of half as many cells, then
-  /// sweeps_after_prepass (instead of sweeps) on the full one. Plain Gauss–Seidel leaves the slow,
+  /// at least 32 cells, first prepass_sweeps sweeps on a coarser lattice (half as many cells, or fewer:
+  /// prepass_levels), then sweeps_after_prepass (instead of sweeps) on each finer one. Plain Gauss–Seidel leaves the slow,
   /// global modes of the warp unconverged (on venus `mixed` 256² the energy still fell 0.4 % per
   /// sweep at sweep 20); the half lattice moves them at a quarter of the cost per sweep. Session 15,
   /// against 20 sweeps on the full lattice (mean dB per case, lines / dots / mixed / blobs): the
