@@ -2,6 +2,7 @@
 // budget (error_density.h, from the exact stroke history when there is one), reached by the flow-based
 // density-equalizing map (density_flow.h). docs/error_model.md explains the model and the choices.
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <atomic>
@@ -104,28 +105,40 @@ class DensityFlowWarp final : public WarpMethod {
     const PolishFields f = fields(m);
     // The report's figures are the model's on the warp's own lattice: a coarser lattice sampled
     // from a strongly compressed flow starts from far worse cells than the flow's own (genus0
-    // `mixed` 128²: 12.4 dB "gained" on the coarse lattice).
-    const PolishFields own = m == g.n ? PolishFields{} : fields(g.n);
-    // The gain is reported against the flow's lattice, also when the polish starts from a warm start.
-    const double before = m != g.n ? polish_model_error(g, own, po) : warm ? polish_model_error(g, f, po) : -1.0;
-    warmed = warm && add_polish_correction(g, warm->flow_grids[c], warm->grids[c]) > 0;
-    if (warmed) {
-      po.sweeps = po.warm_sweeps;
-    } else if (po.prepass_sweeps > 0 && m >= 32) {
-      // Coarse to fine (ErrorPolishOptions::prepass_sweeps, prepass_levels): the coarsest lattice of
-      // at least 16 cells first, then each finer one.
-      int levels = 1;
-      while (levels < po.prepass_levels && (m >> (levels + 1)) >= 16) ++levels;
-      for (int level = levels; level >= 1; --level) {
-        ErrorPolishOptions pre = po;
-        pre.sweeps = level == levels ? po.prepass_sweeps : po.sweeps_after_prepass;
-        polish_warp(g, fields(m >> level), pre);
-      }
-      po.sweeps = po.sweeps_after_prepass;
-    }
-    ErrorPolishStats st = polish_warp(g, f, po);
+    // `mixed` 128²: 12.4 dB "gained" on the coarse lattice). The gain is reported against the flow's
+    // lattice, also when the polish starts from a warm start. Measured on a copy, beside the polish:
+    // a lattice's coarsest levels are too small to keep two cores busy.
+    const bool own_lattice = m != g.n, measure = own_lattice || warm;
+    const GridWarp flow = measure ? g : GridWarp{};
+    const ErrorPolishOptions measure_options = po;  // the polish below changes po's sweeps
+    PolishFields own;
+    double before = -1;
+    ErrorPolishStats st;
+    tbb::parallel_invoke(
+        [&] {
+          if (own_lattice) own = fields(g.n);
+          if (measure) before = polish_model_error(flow, own_lattice ? own : f, measure_options);
+        },
+        [&] {
+          warmed = warm && add_polish_correction(g, warm->flow_grids[c], warm->grids[c]) > 0;
+          if (warmed) {
+            po.sweeps = po.warm_sweeps;
+          } else if (po.prepass_sweeps > 0 && m >= 32) {
+            // Coarse to fine (ErrorPolishOptions::prepass_sweeps, prepass_levels): the coarsest
+            // lattice of at least 16 cells first, then each finer one.
+            int levels = 1;
+            while (levels < po.prepass_levels && (m >> (levels + 1)) >= 16) ++levels;
+            for (int level = levels; level >= 1; --level) {
+              ErrorPolishOptions pre = po;
+              pre.sweeps = level == levels ? po.prepass_sweeps : po.sweeps_after_prepass;
+              polish_warp(g, fields(m >> level), pre);
+            }
+            po.sweeps = po.sweeps_after_prepass;
+          }
+          st = polish_warp(g, f, po);
+        });
     if (before >= 0) st.error_before = before;
-    if (m != g.n) st.error_after = polish_model_error(g, own, po);
+    if (own_lattice) st.error_after = polish_model_error(g, own, po);
     // In cells of the density raster: a lattice cell covers area(src) / n² of the square.
     cell = src.area() / (double(g.n) * g.n) * ed.error.width * ed.error.width;
     return st;
