@@ -84,6 +84,26 @@ void for_each_item(const std::string& s, F add) {
   }
 }
 
+// A whole number or a number of \p v, or std::invalid_argument naming \p k ("--size: not a number: x").
+int whole(const std::string& k, const std::string& v) {
+  size_t used = 0;
+  try {
+    const int x = std::stoi(v, &used);
+    if (used == v.size()) return x;
+  } catch (const std::logic_error&) {
+  }
+  throw std::invalid_argument(k + ": not a whole number: " + v);
+}
+double number(const std::string& k, const std::string& v) {
+  size_t used = 0;
+  try {
+    const double x = std::stod(v, &used);
+    if (used == v.size()) return x;
+  } catch (const std::logic_error&) {
+  }
+  throw std::invalid_argument(k + ": not a number: " + v);
+}
+
 Args parse(int argc, char** argv) {
   Args a;
   for (int i = 1; i < argc; ++i) {
@@ -95,34 +115,35 @@ Args parse(int argc, char** argv) {
       for_each_item(v, [&](const std::string& x) { a.meshes.push_back(x); });
     } else if (k == "--strokes") {
       a.strokes.clear();
-      for_each_item(v, [&](const std::string& x) { a.strokes.push_back(std::stoi(x)); });
+      for_each_item(v, [&](const std::string& x) { a.strokes.push_back(whole(k, x)); });
     } else if (k == "--size") {
-      a.size = std::stoi(v);
+      a.size = whole(k, v);
     } else if (k == "--reps") {
-      a.reps = std::stoi(v);
+      a.reps = whole(k, v);
     } else if (k == "--cache") {
-      a.cache = std::stod(v);
+      a.cache = number(k, v);
     } else if (k == "--cache-coverage") {
-      a.cache_coverage = std::stod(v);
+      a.cache_coverage = number(k, v);
     } else if (k == "--min-gain") {
-      a.min_gain = std::stod(v);
+      a.min_gain = number(k, v);
     } else if (k == "--seed") {
-      a.seed = std::stoi(v);
+      a.seed = whole(k, v);
     } else if (k == "--psnr-every") {
-      a.psnr_every = std::stoi(v);
+      a.psnr_every = whole(k, v);
     } else if (k == "--warm") {
       if (v != "0" && v != "1") throw std::invalid_argument("--warm takes 0 or 1");
       a.warm_start = v == "1";
     } else if (k == "--warm-sweeps") {
-      a.warm_sweeps = std::stoi(v);
+      a.warm_sweeps = whole(k, v);
     } else if (k == "--polish-cells") {
-      a.polish_cells = std::stoi(v);
+      a.polish_cells = whole(k, v);
     } else if (k == "--full") {
-      a.full = std::stoi(v);
+      a.full = whole(k, v);
     } else {
       throw std::invalid_argument("unknown option " + k);
     }
   }
+  if (a.warm_sweeps < 0 || a.polish_cells < 0) throw std::invalid_argument("--warm-sweeps and --polish-cells must be >= 0");
   return a;
 }
 
