@@ -192,9 +192,9 @@ struct AdaptResult {
 /// matches and makes the error model's cost independent of the history's length. \p density, if given,
 /// is density-flow's error model for exactly these inputs and options (compute_error_density()), used
 /// instead of computing it again. \p warm_start, if given, is the result of an earlier cycle on the same
-/// \p current layout (a painting session's previous cycle): density-flow's polish starts every lattice
-/// whose size matches from that cycle's polish (AdaptResult::flow_grids, add_polish_correction()) and
-/// runs ErrorPolishOptions::warm_sweeps. The result then depends on that cycle, not on the inputs
+/// \p current layout (a painting session's previous cycle): when it has as many lattices, density-flow's
+/// polish starts each from that cycle's polish (AdaptResult::flow_grids, add_polish_correction(), which
+/// resamples a lattice of another size) and runs ErrorPolishOptions::warm_sweeps. The result then depends on that cycle, not on the inputs
 /// alone; other methods ignore it.
 /// \pre mesh, current and current_map are consistent; texture non-empty
 /// \throw InvalidInputError inconsistent sizes, bad options (grid < 1, α/β < 0, ...)
