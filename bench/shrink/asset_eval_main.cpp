@@ -30,33 +30,25 @@ using nlohmann::ordered_json;
 
 namespace {
 
-/// Closest point on triangle (a, b, c) to p (Ericson, Real-Time Collision Detection 5.1.5).
-Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + d1 / (d1 - d3) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + d2 / (d2 - d6) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
-  const double den = 1 / (va + vb + vc);
-  return a + ab * (vb * den) + ac * (vc * den);
+/// How far \p p is from lying on triangle (a, b, c): its distance from the triangle's plane plus how
+/// far its projection falls outside (the negative barycentric parts, scaled by the longest edge).
+/// 0 exactly for a point on the triangle, which is all locate_parents() needs.
+double off_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 n = (b - a).cross(c - a);
+  const double n2 = n.squaredNorm();
+  if (!(n2 > 0)) return std::numeric_limits<double>::infinity();
+  const double la = n.dot((c - b).cross(p - b)) / n2, lb = n.dot((a - c).cross(p - c)) / n2, lc = 1 - la - lb;
+  const double edge = std::sqrt(std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()}));
+  return std::abs(n.dot(p - a)) / std::sqrt(n2) +
+         edge * (std::max(0.0, -la) + std::max(0.0, -lb) + std::max(0.0, -lc));
 }
 
 Vec3 centroid(const TriMesh& m, int f) {
   return (m.positions[m.faces[f][0]] + m.positions[m.faces[f][1]] + m.positions[m.faces[f][2]]) / 3.0;
 }
 
-/// Parent face (on \p ref) of every face of \p test: the ref face nearest to its centroid, found in a
-/// uniform grid of ref face bounding boxes. Empty when test has ref's faces in ref's order.
+/// Parent face (on \p ref) of every face of \p test: the ref face its centroid lies on (least
+/// off_triangle()), found in a uniform grid of ref face bounding boxes. Empty when test has ref's faces in ref's order.
 FaceData<int> locate_parents(const TriMesh& ref, const TriMesh& test, double* max_dist) {
   *max_dist = 0;
   Vec3 lo = ref.positions[0], hi = lo;
@@ -91,7 +83,7 @@ FaceData<int> locate_parents(const TriMesh& ref, const TriMesh& test, double* ma
             if (it == grid.end()) continue;
             for (int g : it->second) {
               const Face& t = ref.faces[g];
-              const double d = (closest_on_triangle(c, ref.positions[t[0]], ref.positions[t[1]], ref.positions[t[2]]) - c).norm();
+              const double d = off_triangle(c, ref.positions[t[0]], ref.positions[t[1]], ref.positions[t[2]]);
               if (d < best) best = d, parent[f] = g;
             }
           }
