@@ -371,10 +371,10 @@ int TexelFitter::Impl::solve(std::vector<Vec4d>& x, const std::vector<Vec4d>& b,
       z[k][c] = r[k][c] / diag[k];
     }
   p = z;
-  const Vec4d bb = dot4(b, b);
-  Vec4d rz = dot4(r, z), rr = dot4(r, r);
+  // Stop on the RMS of the Jacobi-scaled residual r / diag: about the texel change still to come.
+  Vec4d rz = dot4(r, z), zz = dot4(z, z);
   bool done[4];
-  auto rel = [&](int c) { return bb[c] > 0 ? std::sqrt(rr[c] / bb[c]) : 0.0; };
+  auto rel = [&](int c) { return std::sqrt(zz[c] / std::max(1, n)); };
   for (int c = 0; c < 4; ++c) done[c] = rel(c) <= options.tolerance;
   int it = 0;
   for (; it < options.max_iterations && !(done[0] && done[1] && done[2] && done[3]); ++it) {
@@ -392,7 +392,7 @@ int TexelFitter::Impl::solve(std::vector<Vec4d>& x, const std::vector<Vec4d>& b,
         }
     });
     const Vec4d rz_new = dot4(r, z);
-    rr = dot4(r, r);
+    zz = dot4(z, z);
     Vec4d beta;
     for (int c = 0; c < 4; ++c) {
       if (!done[c] && (rel(c) <= options.tolerance || !(pq[c] > 0))) done[c] = true;
