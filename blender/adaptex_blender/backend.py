@@ -2,6 +2,7 @@
 otherwise the `adaptex` command-line tool. Both run in a background Job that reports progress and
 can be cancelled. No bpy here (the work runs off Blender's main thread)."""
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -10,6 +11,11 @@ import threading
 import time
 
 from . import meshdata
+
+
+# How "make N× smaller" (the Adapt layout operator) runs: "reparam" (signal-adaptive warp of the
+# layout, then resampling). Every backend has one smaller_by_<path> method per path.
+MAKE_SMALLER = "reparam"
 
 
 class Cancelled(Exception):
@@ -83,7 +89,21 @@ def find_cli(path=""):
     return shutil.which("adaptex")
 
 
-class ModuleBackend:
+class Backend:
+    """What both backends do the same way on top of their unwrap() and reparam()."""
+
+    def make_smaller(self, V, F, UV, FT, texture, size, report):
+        """The painted texture at size x size on a new layout: a dict with UV, FT, texture (H x W x 4
+        uint8, or the path of a PNG for the CLI) and, where the path measures them, psnr and
+        psnr_plain (dB against the original, of the result and of plain downsizing)."""
+        return getattr(self, "smaller_by_" + MAKE_SMALLER)(V, F, UV, FT, texture, size, report)
+
+    def smaller_by_reparam(self, V, F, UV, FT, texture, size, report):
+        UV2, FT2, tex2 = self.reparam(V, F, UV, FT, texture, size, report)
+        return {"UV": UV2, "FT": FT2, "texture": tex2}
+
+
+class ModuleBackend(Backend):
     """Calls the Python module (GIL released, progress callback)."""
     name = "Python module"
 
@@ -133,7 +153,16 @@ def read_obj_layout(path, F):
     return np.array(uv, dtype=np.float64), corners[:, :, 1].astype(np.int32)
 
 
-class CliBackend:
+def cli_error(stderr, code):
+    """The CLI's error line as the add-on's user should read it: without the "adaptex: error:" prefix,
+    and the temporary files the add-on wrote named as what they hold."""
+    line = stderr.splitlines()[-1] if stderr else f"adaptex exited with {code}"
+    line = line.removeprefix("adaptex: error: ")
+    tmp = re.escape(tempfile.gettempdir().rstrip(os.sep)) + r"/adaptex-[^/\s]+/"
+    return re.sub(tmp + r"in\.obj", "the mesh", re.sub(tmp + r"in\.png", "the image", line))
+
+
+class CliBackend(Backend):
     """Runs the `adaptex` CLI in a subprocess (terminated on cancel)."""
     name = "adaptex CLI"
 
@@ -155,7 +184,7 @@ class CliBackend:
             err.seek(0)
             text = err.read().strip()
         if proc.returncode != 0:
-            raise RuntimeError(text.splitlines()[-1] if text else f"adaptex exited with {proc.returncode}")
+            raise RuntimeError(cli_error(text, proc.returncode))
 
     def unwrap(self, V, F, report):
         with tempfile.TemporaryDirectory(prefix="adaptex-") as tmp:
