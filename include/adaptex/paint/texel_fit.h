@@ -35,7 +35,9 @@ struct TexelFitOptions {
   // Solve.
   double smoothness = 1e-5;   ///< Laplacian weight between 4-neighbour texels, relative to the mean data weight (default 1e-5).
   int max_iterations = 200;   ///< Conjugate-gradient iterations at most (default 200).
-  double tolerance = 1e-4;    ///< Stop when every channel's preconditioned residual shrank by this factor (default 1e-4).
+  /// Stop when every channel's RMS Jacobi-scaled residual (about the texel change still to come, in
+  /// 8-bit units) is below this (default 0.01).
+  double tolerance = 0.01;
   // Output.
   bool fill_outside = true;   ///< Pull-push fill of the texels no lookup touches (default on); off: they keep \ref outside.
   std::array<std::uint8_t, 4> outside = {0, 0, 0, 0};  ///< Colour of untouched texels when fill_outside is off.
@@ -50,7 +52,7 @@ struct TexelFitResult {
   std::vector<bool> coverage;  ///< W*H: true for the texels some surface point's lookup touches.
   long long samples = 0;       ///< Surface samples of the quadrature.
   int iterations = 0;          ///< Conjugate-gradient iterations run.
-  double residual = 0;         ///< Largest final relative residual over the channels.
+  double residual = 0;         ///< Largest final RMS Jacobi-scaled residual over the channels (8-bit units).
 };
 
 /// Reusable fit for one pair of layouts (several maps of one material share the quadrature and the
