@@ -431,11 +431,30 @@ def draw_buttons(layout, context=None):
             col.label(text="Not better: the original stays assigned", icon="ERROR")
 
 
-def sidebar_panel(space):
-    """The adaptex tab of \p space's sidebar (3D View: object and texture paint modes; UV editor)."""
-    return type(f"{space.split('_')[0]}_PT_adaptex", (bpy.types.Panel,), {
-        "bl_label": "adaptex", "bl_space_type": space, "bl_region_type": "UI", "bl_category": "adaptex",
-        "draw": lambda self, context: draw_buttons(self.layout, context)})
+class ADAPTEX_PT_view3d(bpy.types.Panel):
+    """The adaptex tab of the 3D View's sidebar, in Object and Texture Paint mode."""
+    bl_label = "adaptex"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "adaptex"
+
+    @classmethod
+    def poll(cls, context):
+        return context.mode in {"OBJECT", "PAINT_TEXTURE"}
+
+    def draw(self, context):
+        draw_buttons(self.layout)
+
+
+class ADAPTEX_PT_uv_editor(bpy.types.Panel):
+    """The adaptex tab of the UV Editor's (Image Editor's) sidebar, in every mode."""
+    bl_label = "adaptex"
+    bl_space_type = "IMAGE_EDITOR"
+    bl_region_type = "UI"
+    bl_category = "adaptex"
+
+    def draw(self, context):
+        draw_buttons(self.layout)
 
 
 def uv_menu(self, context):
@@ -443,8 +462,7 @@ def uv_menu(self, context):
     draw_buttons(self.layout)
 
 
-classes = (AdaptexPreferences, ADAPTEX_OT_unwrap, ADAPTEX_OT_adapt_layout, sidebar_panel("VIEW_3D"),
-           sidebar_panel("IMAGE_EDITOR"))
+classes = (AdaptexPreferences, ADAPTEX_OT_unwrap, ADAPTEX_OT_adapt_layout, ADAPTEX_PT_view3d, ADAPTEX_PT_uv_editor)
 
 
 def register():

@@ -81,12 +81,27 @@ def import_module(extra_path=""):
     return None
 
 
+def installed():
+    """(module folder, CLI) where `cmake --install` put adaptex, recorded in the add-on's zip
+    (_install.py, blender/make_zip.py); empty strings for a zip made without them."""
+    try:
+        from . import _install
+    except ImportError:
+        return "", ""
+    return _install.MODULE_DIR, _install.CLI
+
+
 def find_cli(path=""):
-    """Path of the adaptex CLI: \\p path, else $ADAPTEX_CLI, else `adaptex` on PATH; None if none."""
+    """Path of the adaptex CLI: \\p path, else $ADAPTEX_CLI, else `adaptex` on PATH, else the
+    installed one; None if none."""
     for candidate in (path, os.environ.get("ADAPTEX_CLI", "")):
         if candidate and os.path.isfile(candidate) and os.access(candidate, os.X_OK):
             return candidate
-    return shutil.which("adaptex")
+    on_path = shutil.which("adaptex")
+    if on_path:
+        return on_path
+    cli = installed()[1]
+    return cli if cli and os.path.isfile(cli) and os.access(cli, os.X_OK) else None
 
 
 class Backend:
@@ -215,7 +230,7 @@ def choose(preference="AUTO", module_path="", cli_path=""):
     """The backend to use: the module where importable (unless CLI is asked for), else the CLI.
     \\throw RuntimeError neither is available."""
     if preference != "CLI":
-        module = import_module(module_path)
+        module = import_module(module_path) or import_module(installed()[0])
         if module is not None:
             return ModuleBackend(module)
         if preference == "MODULE":
