@@ -493,4 +493,9 @@ TexelFitResult fit_texels(const TriMesh& mesh, const Parameterization& source_pa
   return TexelFitter(mesh, source_param, source.width, source.height, param, width, height, options).fit(source);
 }
 
+TexelFitResult fit_resize(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture, int width,
+                          int height, const TexelFitOptions& options) {
+  return fit_texels(mesh, param, texture, param, width, height, options);
+}
+
 }  // namespace adaptex
