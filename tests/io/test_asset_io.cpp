@@ -9,6 +9,7 @@
 #include "adaptex/core/errors.h"
 #include "adaptex/io/asset_io.h"
 #include "adaptex/io/mesh_io.h"
+#include "asset_test_support.h"
 #include "image_test_files.h"
 #include "io_test_files.h"
 #include "test_support.h"
@@ -198,21 +199,7 @@ TEST(AssetIo, WindowsPathsInMaterialFilesAreFoundNextToTheMaterialFile) {
 
 // --- bad input: one line naming the file and the problem ---
 
-std::string asset_error(const fs::path& obj) {
-  try {
-    (void)read_textured_asset(obj);
-  } catch (const InvalidInputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-void expect_asset_rejected(const fs::path& obj, const std::string& file, const std::string& what) {
-  const std::string msg = asset_error(obj);
-  EXPECT_NE(msg.find(file), std::string::npos) << "expected the file '" << file << "' in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
-  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-}
+using test::expect_asset_rejected;
 
 TEST(AssetIo, MissingMaterialFileOrMap) {
   StripAsset a;
