@@ -1,6 +1,6 @@
 // Texel-fit benchmarks (docs/texel_fit.md): a 10,000-face torus with its unwrap() atlas and two
 // 1024² maps built in code (texel_fit_fixture.h), all cores, wall time.
-//  - BM_FitTexels/<size>: fit_texels() of one map onto the same atlas at size² (the artist's-layout
+//  - BM_FitTexels/<size>: fit_resize() of one map onto the same atlas at size² (the artist's-layout
 //    case of a shrink): quadrature, matrix, solve, pull-push. Counters: samples, CG iterations.
 //  - BM_FitTwoMaps/<size>: one TexelFitter and fit() of both maps (what a shrink with two maps pays).
 //  - BM_PointResample/<size>: build_texel_map() + resample_texture() of one map (today's reparam path).
@@ -24,7 +24,7 @@ void BM_FitTexels(benchmark::State& state) {
   const int size = static_cast<int>(state.range(0));
   TexelFitResult r;
   for (auto _ : state) {
-    r = fit_texels(f.mesh, f.param, f.diffuse, f.param, size, size);
+    r = fit_resize(f.mesh, f.param, f.diffuse, size, size);
     benchmark::DoNotOptimize(r.texture.data.data());
   }
   state.counters["faces"] = f.mesh.num_faces();

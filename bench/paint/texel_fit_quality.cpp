@@ -91,7 +91,7 @@ void artist_layout(const Asset& a, const Args& args) {
     const double box = psnr(a, a.mesh, a.param, box_downsize(a.texture, N, N));
     const double point = psnr(a, a.mesh, a.param, resample_texture(a.param, a.texture, build_texel_map(a.mesh, a.param, N, N), 4));
     const auto t0 = std::chrono::steady_clock::now();
-    const TexelFitResult r = fit_texels(a.mesh, a.param, a.texture, a.param, N, N, args.fit);
+    const TexelFitResult r = fit_resize(a.mesh, a.param, a.texture, N, N, args.fit);
     const double time = seconds_since(t0);
     const double fit = psnr(a, a.mesh, a.param, r.texture);
     std::printf("| %s | artist | %d | %.2f | %.2f | %.2f | **%+.2f** | %.0f ms, %lld samples, %d it |\n", a.name.c_str(), N,

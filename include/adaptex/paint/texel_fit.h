@@ -26,9 +26,9 @@ namespace adaptex {
 /// Settings of fit_texels() / TexelFitter, by stage.
 struct TexelFitOptions {
   // Quadrature (surface samples per face: a regular subdivision into m² triangles, one at each centroid).
-  double samples_per_texel = 4;         ///< Minimum samples per texel of the NEW texture a face covers (default 4).
+  double samples_per_texel = 16;        ///< Minimum samples per texel of the NEW texture a face covers (default 16).
   double samples_per_source_texel = 1;  ///< Minimum samples per texel of the ORIGINAL texture a face covers (default 1).
-  long long max_samples = 24'000'000;   ///< Cap on all samples (~28 bytes each); the densities shrink to fit (default 24M).
+  long long max_samples = 16'000'000;   ///< Cap on all samples (28 bytes each); the densities shrink to fit (default 16M).
   // Addressing of the two lookups.
   TextureAddress source_address = TextureAddress::ClampToEdge;  ///< Lookup of the original (default clamp).
   TextureAddress address = TextureAddress::ClampToEdge;         ///< Lookup of the fitted texture (default clamp).
@@ -93,6 +93,12 @@ class TexelFitter {
 TexelFitResult fit_texels(const TriMesh& mesh, const Parameterization& source_param, const ImageRGBA8& source,
                           const Parameterization& param, int width, int height,
                           const TexelFitOptions& options = {});
+
+/// The artist's own layout at another size (what a user compares with box downsizing):
+/// fit_texels(mesh, param, texture, param, width, height, options).
+/// \throw as fit_texels()
+TexelFitResult fit_resize(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture, int width,
+                          int height, const TexelFitOptions& options = {});
 
 /// Bilinear lookup of all four channels (RGBA, in [0,255]) at (u, v) with the given addressing;
 /// identical to sample_bilinear() for ClampToEdge (RGB / 255).
