@@ -15,6 +15,7 @@ cannot be written ``OutputError`` (``OSError``). Long calls (unwrap, paint, adap
 evaluate) release the GIL; unwrap, paint, adapt and reparam take ``progress(phase, fraction)``:
 returning ``False`` cancels the call with ``CancelledError``.
 """
+from ._version import __version__  # noqa: F401
 from ._adaptex import (  # noqa: F401
     CancelledError,
     Error,

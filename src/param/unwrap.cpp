@@ -884,7 +884,7 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
       std::max(options.chart_padding, options.gutter_texels / options.gutter_texture_size);
   // Components without interior vertices (strips, single triangles) are unfolded when several
   // charts share the square; segmented charts are not (their layouts stay those measured in
-  // docs/benchmarks.md).
+  // docs/history/benchmarks.md).
   // Auto on one component: the single chart is given up after its first cheap parameterization
   // when that predicts it cannot reach min_texel_share (UnwrapOptions::single_probe_l2).
   const bool probe =

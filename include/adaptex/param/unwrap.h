@@ -94,7 +94,7 @@ struct UnwrapOptions {
   /// are decided in their order with the same rule, so the layout does not depend on S or on the
   /// number of threads (test Unwrap.SpeculativeAttemptsGiveTheSequentialLayout). 1 (default): one
   /// count after the other, the least CPU time; on 2 cores 2 gave no wall-time gain that stood out
-  /// of the noise and up to 20 % more CPU time (docs/benchmarks.md).
+  /// of the noise and up to 20 % more CPU time (docs/history/benchmarks.md).
   int speculative_attempts = 1;
   /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight). 0 (compact
   /// geodesic charts) gave the highest texel share on every mesh measured (docs/charts.md).
@@ -156,7 +156,7 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options = {});
 /// \p base with the gutter of a layout that will hold a \p texture_size² texture painted with
 /// \p padding texels of seam padding: the gutter is the padding, at least 2 texels (the bilinear
 /// footprint of both neighbours), at most a fifth of the square. Issue 8 asks for at least the
-/// padding; measured with `adaptex paint` + `adaptex eval` (docs/quality.md, "Gutter of a paint run"),
+/// padding; measured with `adaptex paint` + `adaptex eval` (docs/history/quality.md, "Gutter of a paint run"),
 /// 2 texels beat 4 by a median 0.25 dB and 8 by 0.71 dB, so a wider gutter only costs texels. Used by
 /// `adaptex paint --size N --padding P` and by the studio, so both lay a mesh out the same way.
 /// \pre 1 <= texture_size <= kMaxTextureSize (core/limits.h), padding >= 0
