@@ -22,7 +22,7 @@
 #include "adaptex/param/stretch.h"
 #include "cli_common.h"
 #include "session_options.h"
-#include "shrink_report.h"
+#include "shrink_print.h"
 
 namespace adaptex::cli {
 
@@ -47,7 +47,8 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 AdaptOptions reparam_options(const ReparamArgs& a) {
   AdaptOptions opt;
   try {
-    opt.mode = parse_adapt_mode(a.mode);
+    // The shrink takes none of these settings, but they are checked all the same.
+    opt.mode = a.mode == kShrinkMode ? AdaptMode::DensityFlow : parse_adapt_mode(a.mode);
   } catch (const InvalidInputError&) {
     opt.mode = AdaptMode::None;
   }
@@ -88,8 +89,10 @@ nlohmann::ordered_json reparam_report(const ReparamArgs& a, const TexturedMesh& 
 /// The default: the artist's charts kept, repacked by the texture's error model (adapt/shrink.h).
 void run_reparam_shrink(const ReparamArgs& a, const Context& ctx) {
   const auto t_start = Clock::now();
-  check_export_name(a.name.empty() ? "mesh" : a.name);
-  const TexturedMesh tm = read_textured_obj(a.mesh);
+  // The shrink never needs a manifold mesh: non-manifold edges are split, not refused.
+  ReadOptions ro;
+  ro.repair = true;
+  const TexturedMesh tm = read_textured_obj(a.mesh, ro);
   std::vector<ShrinkMap> maps(1);
   maps[0].slot = "base_color";
   maps[0].image = read_image(a.texture);
@@ -103,6 +106,12 @@ void run_reparam_shrink(const ReparamArgs& a, const Context& ctx) {
   AtomicOutput out;
   const std::string name = a.name.empty() ? sanitize_export_name(std::filesystem::path(a.mesh).stem().string()) : a.name;
   export_textured_mesh(out, a.outdir, name, tm.mesh, res.param, res.maps[0]);
+  if (!a.debug_maps.empty()) {  // the layouts before and after, drawn over their textures
+    write_png(out.add(std::filesystem::path(a.debug_maps) / (name + "_layout_before.png")),
+              draw_uv_layout(tm.param, &maps[0].image, 1024));
+    write_png(out.add(std::filesystem::path(a.debug_maps) / (name + "_layout_after.png")),
+              draw_uv_layout(res.param, &res.maps[0], 1024));
+  }
   nlohmann::ordered_json j;
   j["input"] = a.mesh;
   j["texture"] = a.texture;
@@ -124,9 +133,9 @@ void run_reparam_shrink(const ReparamArgs& a, const Context& ctx) {
 }
 
 void run_reparam(const ReparamArgs& a, const Context& ctx) {
-  if (a.mode == kShrinkMode) return run_reparam_shrink(a, ctx);
   const auto t_start = Clock::now();
   const AdaptOptions opt = reparam_options(a);
+  if (a.mode == kShrinkMode) return run_reparam_shrink(a, ctx);
 
   const TexturedMesh tm = read_textured_obj(a.mesh);
   const ImageRGBA8 tex = read_image(a.texture);
@@ -194,7 +203,8 @@ void add_reparam_command(CLI::App& app, Context& ctx) {
   sub->add_option("--candidate", a->candidate,
                   "shrink: output this candidate (downsized, artist, repacked, budget) instead of the best");
   sub->add_option("--name", a->name, "Base name of the output files (default: the mesh file's stem)");
-  sub->add_option("--debug-maps", a->debug_maps, "Also write importance / stretch / L_s^2 / grid PNGs here");
+  sub->add_option("--debug-maps", a->debug_maps,
+                  "Also write importance / stretch / L_s^2 / grid PNGs here (shrink: the layouts before and after)");
   sub->callback([a, &ctx] { run_reparam(*a, ctx); });
 }
 

@@ -12,7 +12,7 @@ Inputs accept any floating-point dtype for V / UV and any integer dtype for F / 
 ``adaptex.Error`` subclasses: bad input raises ``InvalidInputError`` (a ``ValueError``; also
 ``TopologyError``), a file that cannot be read ``IoError`` (``ValueError`` and ``OSError``), one that
 cannot be written ``OutputError`` (``OSError``). Long calls (unwrap, paint, adapt, reparam,
-evaluate) release the GIL; unwrap, paint, adapt and reparam take ``progress(phase, fraction)``:
+evaluate, shrink) release the GIL; unwrap, paint, adapt, reparam and shrink take ``progress(phase, fraction)``:
 returning ``False`` cancels the call with ``CancelledError``.
 """
 from ._version import __version__  # noqa: F401
@@ -32,6 +32,7 @@ from ._adaptex import (  # noqa: F401
     read_mesh,
     read_textured_obj,
     reparam,
+    shrink,
     stretch,
     unwrap,
     validate_mesh,

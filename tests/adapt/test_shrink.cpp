@@ -8,7 +8,7 @@
 
 #include "adaptex/adapt/shrink.h"
 #include "adaptex/core/errors.h"
-#include "adaptex/paint/eval.h"
+#include "adaptex/paint/asset_eval.h"
 
 namespace adaptex {
 namespace {
@@ -66,22 +66,13 @@ ImageRGBA8 texture(int size, double x0, double x1, double y0, double y1) {
   return img;
 }
 
-/// Surface PSNR of \p out on \p param against \p original on \p ref_param (wrapped lookup of the
-/// original), on its own samples (not the shrink's).
+/// The measure (paint/asset_eval.h) on other samples than the shrink's own.
 double psnr(const TriMesh& mesh, const Parameterization& ref_param, const ImageRGBA8& original,
             const Parameterization& param, const ImageRGBA8& out) {
-  const std::vector<SurfacePoint> pts = sample_surface(mesh, 60000, 12345);
-  double sum = 0;
-  auto at = [](const Parameterization& p, const SurfacePoint& s) {
-    const Face& t = p.uv_faces[s.face];
-    return Vec2(s.b0 * p.uv[t[0]] + s.b1 * p.uv[t[1]] + (1 - s.b0 - s.b1) * p.uv[t[2]]);
-  };
-  for (const SurfacePoint& s : pts) {
-    Vec2 a = at(ref_param, s);
-    a = a - a.array().floor().matrix();  // wrap (texel-exact away from the tile border)
-    sum += (sample_bilinear(original, a.x(), a.y()) - sample_bilinear(out, at(param, s).x(), at(param, s).y())).squaredNorm();
-  }
-  return 10 * std::log10(3.0 * static_cast<double>(pts.size()) / sum);
+  SurfacePsnrOptions o;
+  o.samples = 60000;
+  o.seed = 12345;
+  return surface_psnr(mesh, ref_param, original, mesh, param, out, {}, o).psnr;
 }
 
 /// Every trap at once: two mirrored halves sharing their texels, a chart overlapping another in part,
@@ -160,7 +151,7 @@ TEST_F(Traps, ShrinkKeepsSharingOrientationAndBeatsDownsizing) {
   EXPECT_GT(r.before.shared_fraction, 0.3);
   EXPECT_GT(r.after.shared_fraction, r.before.shared_fraction - 0.05);
   // Never worse than plain downsizing (measured on other samples than the shrink's own).
-  const ImageRGBA8 down = box_resize(tex, 64, 64);
+  const ImageRGBA8 down = box_downsize(tex, 64, 64);
   const double p_down = psnr(a.mesh, a.param, tex, a.param, down);
   const double p_out = psnr(a.mesh, a.param, tex, r.param, r.maps[0]);
   EXPECT_GE(p_out, p_down - 0.1) << r.chosen;
@@ -186,7 +177,7 @@ TEST(Shrink, BudgetMovesTexelsToTheDetailedIsland) {
   EXPECT_EQ(r.chosen, "budget");
   EXPECT_GT(uv_area(detailed), 3.0 * uv_area(smooth));
   EXPECT_GT(r.psnr, r.psnr_downsized + 1.0);
-  const double p_down = psnr(a.mesh, a.param, tex, a.param, box_resize(tex, 64, 64));
+  const double p_down = psnr(a.mesh, a.param, tex, a.param, box_downsize(tex, 64, 64));
   EXPECT_GT(psnr(a.mesh, a.param, tex, r.param, r.maps[0]), p_down + 1.0);
 }
 
@@ -233,14 +224,6 @@ TEST(Shrink, ProgressCanCancel) {
   EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", texture(64, 0, 1, 0, 1), MapKind::Color}}, opt),
                CancelledError);
   EXPECT_EQ(calls, 3);
-}
-
-TEST(Shrink, BoxResizeAveragesExactly) {
-  ImageRGBA8 img(4, 2, {0, 0, 0, 255});
-  for (int i = 0; i < 4; ++i) img.texel(i, 0)[0] = img.texel(i, 1)[0] = static_cast<std::uint8_t>(40 * i);
-  const ImageRGBA8 out = box_resize(img, 2, 1);
-  EXPECT_EQ(out.texel(0, 0)[0], 20);
-  EXPECT_EQ(out.texel(1, 0)[0], 100);
 }
 
 }  // namespace

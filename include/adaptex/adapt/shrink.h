@@ -25,6 +25,10 @@ enum class MapKind {
   Data,    ///< Roughness / metallic / occlusion: squared channel difference, weight 0.25.
 };
 
+/// The kind of a map named \p slot: "normal" is Normal; "metallic_roughness", "roughness", "metallic",
+/// "occlusion", "bump", "specular" are Data; anything else (base colour, emissive) is Color.
+MapKind map_kind_of_slot(const std::string& slot);
+
 /// One map of the material: the texture and what it holds.
 struct ShrinkMap {
   std::string slot;  ///< Name of the map ("baseColor", "normal", ...): reports only.
@@ -71,6 +75,9 @@ struct ShrinkLayoutStats {
   /// Share of the chart-covered texels covered by two or more charts (texel centres; the input at
   /// its map's size, the output at the output size).
   double shared_fraction = 0;
+  /// Share of the surface (3-D area) whose texels other charts share too (the texel under each face's
+  /// centroid): unlike shared_fraction, it does not change when islands are scaled.
+  double shared_surface = 0;
 };
 
 /// Result of shrink_textured_mesh().
@@ -97,10 +104,6 @@ struct ShrinkResult {
 ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& param,
                                   const std::vector<ShrinkMap>& maps, const ShrinkOptions& options = {});
 
-/// The box-filtered (area-average) downsizing of \p img to width x height: the user's baseline.
-/// \pre img non-empty, width, height >= 1 \throw InvalidInputError otherwise
-ImageRGBA8 box_resize(const ImageRGBA8& img, int width, int height);
-
 /// Islands of a layout: UV-connected charts (faces sharing a wedge, or wedges of one vertex at the same
 /// UV) grouped by shared texels (coverage overlap, options.overlap_share, wrapped at \p resolution).
 struct UvIslands {
@@ -113,10 +116,10 @@ struct UvIslands {
 /// \pre param consistent, UVs finite. \p resolution >= 1: raster of the overlap test.
 UvIslands find_uv_islands(const Parameterization& param, int resolution, double overlap_share);
 
-/// Layout figures of \p param against \p reference (same faces): flips judged per face against the
-/// reference's own orientation, and the share of texels covered by several charts of \p face_chart at
-/// resolution x resolution (texel centres, UVs wrapped).
-ShrinkLayoutStats layout_stats(const Parameterization& reference, const Parameterization& param,
+/// Layout figures of \p param against \p reference (same faces of \p mesh): flips judged per face
+/// against the reference's own orientation, and the texels covered by several charts of \p face_chart
+/// at resolution x resolution (texel centres, UVs wrapped).
+ShrinkLayoutStats layout_stats(const TriMesh& mesh, const Parameterization& reference, const Parameterization& param,
                                const std::vector<int>& face_chart, int resolution);
 
 }  // namespace adaptex

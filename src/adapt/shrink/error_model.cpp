@@ -10,91 +10,13 @@
 #include <queue>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/paint/asset_eval.h"
 #include "adaptex/paint/eval.h"
 #include "shrink_internal.h"
 
 namespace adaptex {
 
-namespace {
-
-/// Area-average weights of one axis: output texel o covers input [o·n/m, (o+1)·n/m).
-struct AxisWeights {
-  std::vector<int> first, count;
-  std::vector<float> w;  ///< Concatenated weights, count[o] per output texel.
-};
-
-AxisWeights axis_weights(int n, int m) {
-  AxisWeights a;
-  a.first.resize(m);
-  a.count.resize(m);
-  const double r = static_cast<double>(n) / m;
-  for (int o = 0; o < m; ++o) {
-    const double lo = o * r, hi = (o + 1) * r;
-    const int i0 = static_cast<int>(std::floor(lo)), i1 = std::min(n - 1, static_cast<int>(std::ceil(hi)) - 1);
-    a.first[o] = i0;
-    a.count[o] = i1 - i0 + 1;
-    for (int i = i0; i <= i1; ++i)
-      a.w.push_back(static_cast<float>((std::min<double>(hi, i + 1) - std::max<double>(lo, i)) / r));
-  }
-  return a;
-}
-
-}  // namespace
-
-ImageRGBA8 box_resize(const ImageRGBA8& img, int width, int height) {
-  if (img.empty() || width < 1 || height < 1) throw InvalidInputError("box_resize: empty image or size < 1");
-  const AxisWeights ax = axis_weights(img.width, width), ay = axis_weights(img.height, height);
-  // Horizontal pass into floats (img.height x width), then vertical.
-  std::vector<float> tmp(static_cast<size_t>(img.height) * width * 4);
-  tbb::parallel_for(tbb::blocked_range<int>(0, img.height), [&](const tbb::blocked_range<int>& r) {
-    for (int j = r.begin(); j < r.end(); ++j) {
-      size_t wi = 0;
-      for (int o = 0; o < width; ++o) {
-        float acc[4] = {0, 0, 0, 0};
-        for (int k = 0; k < ax.count[o]; ++k, ++wi) {
-          const std::uint8_t* t = img.texel(ax.first[o] + k, j);
-          for (int c = 0; c < 4; ++c) acc[c] += ax.w[wi] * t[c];
-        }
-        for (int c = 0; c < 4; ++c) tmp[(static_cast<size_t>(j) * width + o) * 4 + c] = acc[c];
-      }
-    }
-  });
-  ImageRGBA8 out(width, height);
-  std::vector<size_t> wstart(height + 1, 0);
-  for (int o = 0; o < height; ++o) wstart[o + 1] = wstart[o] + ay.count[o];
-  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
-    for (int o = r.begin(); o < r.end(); ++o)
-      for (int i = 0; i < width; ++i) {
-        float acc[4] = {0, 0, 0, 0};
-        for (int k = 0; k < ay.count[o]; ++k) {
-          const float w = ay.w[wstart[o] + k];
-          const float* t = &tmp[(static_cast<size_t>(ay.first[o] + k) * width + i) * 4];
-          for (int c = 0; c < 4; ++c) acc[c] += w * t[c];
-        }
-        std::uint8_t* d = out.texel(i, o);
-        for (int c = 0; c < 4; ++c) d[c] = static_cast<std::uint8_t>(std::clamp(std::lround(acc[c]), 0L, 255L));
-      }
-  });
-  return out;
-}
-
 namespace shrink_detail {
-
-Vec3 sample_repeat(const ImageRGBA8& img, double u, double v) {
-  const double x = u * img.width - 0.5, y = v * img.height - 0.5;
-  const double fx = std::floor(x), fy = std::floor(y);
-  const double ax = x - fx, ay = y - fy;
-  auto wrap = [](long i, int n) { return static_cast<int>(((i % n) + n) % n); };
-  const int i0 = wrap(static_cast<long>(fx), img.width), i1 = wrap(static_cast<long>(fx) + 1, img.width);
-  const int j0 = wrap(static_cast<long>(fy), img.height), j1 = wrap(static_cast<long>(fy) + 1, img.height);
-  Vec3 out;
-  for (int c = 0; c < 3; ++c) {
-    const double a = img.texel(i0, j0)[c] * (1 - ax) + img.texel(i1, j0)[c] * ax;
-    const double b = img.texel(i0, j1)[c] * (1 - ax) + img.texel(i1, j1)[c] * ax;
-    out[c] = (a * (1 - ay) + b * ay) / 255.0;
-  }
-  return out;
-}
 
 namespace {
 
@@ -135,7 +57,7 @@ ErrorCurves island_error_curves(const TriMesh& mesh, const Parameterization& lay
   std::vector<double> albedo_sq(K, 0.25);
   for (const ShrinkMap& m : maps)
     if (m.kind == MapKind::Color) {
-      for (size_t k = 0; k < K; ++k) albedo_sq[k] = sample_repeat(m.image, uv[k].x(), uv[k].y()).squaredNorm() / 3.0;
+      for (size_t k = 0; k < K; ++k) albedo_sq[k] = sample_bilinear(m.image, uv[k].x(), uv[k].y()).squaredNorm() / 3.0;
       break;
     }
   std::vector<double> err(K * kLevels, 0.0);
@@ -146,15 +68,15 @@ ErrorCurves island_error_curves(const TriMesh& mesh, const Parameterization& lay
       const int w = std::min(m.image.width, S), h = std::min(m.image.height, S);
       if (w == m.image.width && h == m.image.height) continue;  // no coarser than the map: error ~0
       const ImageRGBA8& src = l >= 2 && !level[l - 2].empty() ? level[l - 2] : m.image;
-      level[l] = box_resize(src, w, h);
+      level[l] = box_downsize(src, w, h);
     }
     tbb::parallel_for(tbb::blocked_range<size_t>(0, K, 2048), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t k = r.begin(); k < r.end(); ++k) {
-        const Vec3 ref = sample_repeat(m.image, uv[k].x(), uv[k].y());
+        const Vec3 ref = sample_bilinear(m.image, uv[k].x(), uv[k].y());
         for (int l = 0; l < kLevels; ++l)
           if (!level[l].empty())
             err[k * kLevels + l] +=
-                kind_error(m.kind, ref, sample_repeat(level[l], uv[k].x(), uv[k].y()), albedo_sq[k]);
+                kind_error(m.kind, ref, sample_bilinear(level[l], uv[k].x(), uv[k].y()), albedo_sq[k]);
       }
     });
   }

@@ -52,7 +52,7 @@ Parameterization shifted_layout(const Parameterization& param, const UvIslands& 
 
 namespace {
 
-inline int wrap(int i, int n) {
+int wrap(int i, int n) {
   const int r = i % n;
   return r < 0 ? r + n : r;
 }
@@ -161,7 +161,7 @@ UvIslands find_uv_islands(const Parameterization& param, int resolution, double 
   return out;
 }
 
-ShrinkLayoutStats layout_stats(const Parameterization& reference, const Parameterization& param,
+ShrinkLayoutStats layout_stats(const TriMesh& mesh, const Parameterization& reference, const Parameterization& param,
                                const std::vector<int>& face_chart, int resolution) {
   ShrinkLayoutStats st;
   constexpr double kDegenerate = 1e-15;
@@ -185,6 +185,17 @@ ShrinkLayoutStats layout_stats(const Parameterization& reference, const Paramete
     multi += n >= 2;
   }
   st.shared_fraction = covered ? static_cast<double>(multi) / static_cast<double>(covered) : 0.0;
+  double total = 0, shared = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Face& t = param.uv_faces[f];
+    const Vec2 c = (param.uv[t[0]] + param.uv[t[1]] + param.uv[t[2]]) / 3.0 * resolution;
+    const int k = wrap(static_cast<int>(std::floor(c.y())), resolution) * resolution +
+                  wrap(static_cast<int>(std::floor(c.x())), resolution);
+    const double a = face_area(mesh, f);
+    total += a;
+    if (count[k] >= 2) shared += a;
+  }
+  st.shared_surface = total > 0 ? shared / total : 0.0;
   return st;
 }
 

@@ -66,23 +66,14 @@ std::vector<IslandPlacement> pack_islands(const Parameterization& layout, const 
 Parameterization apply_placements(const Parameterization& layout, const std::vector<int>& face_island,
                                   const std::vector<IslandPlacement>& placements, int size);
 
-/// Texels of \p dst (size x size) from \p src on \p src_param (repeat lookup), box-prefiltered to the
-/// local minification by supersampling, then seam padding.
-ImageRGBA8 transfer_texels(const TriMesh& mesh, const Parameterization& src_param, const ImageRGBA8& src,
-                           const Parameterization& dst_param, int size);
+/// Texels of the first \p count maps on \p dst_param (size x size), least-squares fitted to the
+/// originals on \p src_param (clamp-to-edge lookups, as the measure), pull-push outside the charts.
+std::vector<ImageRGBA8> fit_maps(const TriMesh& mesh, const Parameterization& src_param,
+                                 const std::vector<ShrinkMap>& maps, size_t count, const Parameterization& dst_param,
+                                 int size, const ProgressCallback& progress = {});
 
-/// Surface samples with their reference colours (first map, repeat lookup on the input layout).
-struct EvalSet {
-  std::vector<int> face;
-  std::vector<Vec2> bary;
-  std::vector<Vec3> reference;
-};
-EvalSet make_eval_set(const TriMesh& mesh, const Parameterization& layout, const ImageRGBA8& image,
-                      long long samples, std::uint64_t seed);
-/// PSNR (dB) of \p image on \p param (clamp-to-edge lookup) against the set's reference colours.
-double eval_psnr(const EvalSet& set, const Parameterization& param, const ImageRGBA8& image);
-
-/// Bilinear RGB lookup in [0,1] with wrapping (repeat).
-Vec3 sample_repeat(const ImageRGBA8& img, double u, double v);
+/// Surface PSNR (dB, paint/asset_eval.h) of \p image on \p param against \p original on \p ref_param.
+double layout_psnr(const TriMesh& mesh, const Parameterization& ref_param, const ImageRGBA8& original,
+                   const Parameterization& param, const ImageRGBA8& image, long long samples, std::uint64_t seed);
 
 }  // namespace adaptex::shrink_detail

@@ -1,12 +1,9 @@
-#include "shrink_report.h"
+/// \file shrink_report.cpp
+#include "adaptex/adapt/shrink_report.h"
 
-#include <chrono>
-#include <iomanip>
-#include <iostream>
-#include <memory>
-#include <sstream>
+#include <nlohmann/json.hpp>
 
-namespace adaptex::cli {
+namespace adaptex {
 
 namespace {
 nlohmann::ordered_json stats_json(const ShrinkLayoutStats& s) {
@@ -14,6 +11,7 @@ nlohmann::ordered_json stats_json(const ShrinkLayoutStats& s) {
   j["flipped"] = s.flipped;
   j["degenerate"] = s.degenerate;
   j["shared_fraction"] = s.shared_fraction;
+  j["shared_surface"] = s.shared_surface;
   return j;
 }
 }  // namespace
@@ -44,6 +42,7 @@ nlohmann::ordered_json shrink_report_json(const ShrinkResult& r, const std::vect
     cands.push_back(jc);
   }
   j["candidates"] = cands;
+  j["size"] = r.maps.empty() ? 0 : r.maps[0].width;
   j["predicted_budget_gain_db"] = r.predicted_gain_db;
   j["charts"] = r.charts;
   j["islands"] = r.islands;
@@ -56,30 +55,4 @@ nlohmann::ordered_json shrink_report_json(const ShrinkResult& r, const std::vect
   return j;
 }
 
-void print_shrink_summary(const ShrinkResult& r, const std::vector<std::string>& slots) {
-  for (size_t m = 0; m < r.maps.size(); ++m) {
-    std::ostringstream line;
-    line << std::fixed << std::setprecision(2);
-    line << (m < slots.size() ? slots[m] : "map" + std::to_string(m)) << ": psnr " << r.map_psnr[m]
-         << " dB, downsized " << r.map_psnr_downsized[m] << " dB, gain " << r.map_psnr[m] - r.map_psnr_downsized[m]
-         << " dB";
-    std::cout << line.str() << "\n";
-  }
-}
-
-ProgressCallback shrink_progress(const Context& ctx, const std::string& prefix) {
-  auto last = std::make_shared<std::string>();
-  const auto start = std::chrono::steady_clock::now();
-  return [&ctx, prefix, last, start](std::string_view phase, double) {
-    if (phase != *last) {
-      *last = std::string(phase);
-      std::ostringstream line;
-      line << prefix << ": " << *last << " (" << std::fixed << std::setprecision(2)
-           << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() << " s)";
-      ctx.info(line.str());
-    }
-    return true;
-  };
-}
-
-}  // namespace adaptex::cli
+}  // namespace adaptex

@@ -1,17 +1,14 @@
 #pragma once
-/// \file shrink_report.h
-/// The report of an atlas-preserving shrink (`adaptex shrink`, `adaptex reparam`'s default): the
-/// JSON of report.json and the lines printed on stdout.
+/// \file shrink_print.h
+/// What `adaptex shrink` and `adaptex reparam` (its default) print about a shrink.
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "adaptex/adapt/shrink.h"
+#include "adaptex/adapt/shrink_report.h"
 #include "cli_common.h"
 
 namespace adaptex::cli {
-
-/// report.json fields of \p r (slots name the maps, parallel to r.maps).
-nlohmann::ordered_json shrink_report_json(const ShrinkResult& r, const std::vector<std::string>& slots);
 
 /// Prints "psnr: X dB (downsized: Y dB, gain Z dB)" for every map on stdout.
 void print_shrink_summary(const ShrinkResult& r, const std::vector<std::string>& slots);
