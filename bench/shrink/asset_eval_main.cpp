@@ -1,6 +1,7 @@
 // adaptex_asset_eval: the measure of docs/assets.md on files (bench helper of asset_table.sh).
 //
 //   adaptex_asset_eval stats MESH.obj TEXTURE            atlas traps of an asset (JSON)
+//   adaptex_asset_eval downsize TEXTURE N OUT.png        the texture box-downsized to N² (renders)
 //   adaptex_asset_eval compare MESH.obj TEXTURE --size N [--test NAME=OBJ,TEXTURE]... [--samples K]
 //       PSNR (paint/asset_eval.h) of box downsizing to N² with the artist's UVs and of each test result
 //       against the original; the downsizing curve over sizes N/2 .. < native in steps of sqrt(2) per
@@ -93,36 +94,28 @@ FaceData<int> locate_parents(const TriMesh& ref, const TriMesh& test, double* ma
   return parent;
 }
 
-/// Atlas traps: UV range, faces outside [0,1], degenerate and mirrored UV faces, coverage and overlap
-/// of the texture's texel centres.
-ordered_json atlas_stats(const TexturedMesh& tm, int W, int H) {
-  const Parameterization& p = tm.param;
-  int outside = 0, degenerate = 0, mirrored = 0;
-  Vec2 lo = p.uv[0], hi = lo;
-  for (const Vec2& u : p.uv) lo = lo.cwiseMin(u), hi = hi.cwiseMax(u);
-  std::vector<double> chart_area(p.num_charts, 0.0);
+/// Share of the W x H texel centres inside some UV triangle (coverage), and of those inside two or
+/// more (shared: overlapping or mirrored charts using the same texels). UVs wrap, as a repeating
+/// sampler reads them.
+struct TexelCover {
+  double coverage = 0, shared = 0;
+};
+
+TexelCover texel_cover(const Parameterization& p, int W, int H) {
   std::vector<std::uint8_t> hits(static_cast<size_t>(W) * H, 0);
-  for (int f = 0; f < tm.mesh.num_faces(); ++f) {
+  const auto cross = [](const Vec2& u, const Vec2& v, const Vec2& w) {
+    return (v.x() - u.x()) * (w.y() - u.y()) - (v.y() - u.y()) * (w.x() - u.x());
+  };
+  for (size_t f = 0; f < p.uv_faces.size(); ++f) {
     const Face& t = p.uv_faces[f];
     const Vec2 a = p.uv[t[0]], b = p.uv[t[1]], c = p.uv[t[2]];
-    bool out = false;
-    for (const Vec2& u : {a, b, c}) out = out || u.x() < 0 || u.x() > 1 || u.y() < 0 || u.y() > 1;
-    outside += out;
-    const double area = uv_signed_area(p, f);
-    chart_area[p.face_chart[f]] += area;
-    if (std::abs(area) * W * H < 1e-6) ++degenerate;  // under a millionth of a texel
-    if (area < 0) ++mirrored;
-    if (area == 0) continue;
-    // Texel centres strictly inside the triangle (wrapped into [0,1) as a repeating sampler would).
+    const double s = cross(a, b, c) > 0 ? 1 : -1;
+    if (cross(a, b, c) == 0) continue;
     const double x0 = std::min({a.x(), b.x(), c.x()}) * W - 0.5, x1 = std::max({a.x(), b.x(), c.x()}) * W - 0.5;
     const double y0 = std::min({a.y(), b.y(), c.y()}) * H - 0.5, y1 = std::max({a.y(), b.y(), c.y()}) * H - 0.5;
     for (long long j = static_cast<long long>(std::ceil(y0)); j <= static_cast<long long>(std::floor(y1)); ++j)
       for (long long i = static_cast<long long>(std::ceil(x0)); i <= static_cast<long long>(std::floor(x1)); ++i) {
-        const Vec2 q((i + 0.5) / W, (j + 0.5) / H);
-        auto cross = [](const Vec2& u, const Vec2& v, const Vec2& w) {
-          return (v.x() - u.x()) * (w.y() - u.y()) - (v.y() - u.y()) * (w.x() - u.x());
-        };
-        const double s = area > 0 ? 1 : -1;
+        const Vec2 q((i + 0.5) / W, (j + 0.5) / H);  // strictly inside the triangle
         if (s * cross(a, b, q) <= 0 || s * cross(b, c, q) <= 0 || s * cross(c, a, q) <= 0) continue;
         const long long wi = ((i % W) + W) % W, wj = ((j % H) + H) % H;
         std::uint8_t& h = hits[static_cast<size_t>(wj) * W + wi];
@@ -131,8 +124,36 @@ ordered_json atlas_stats(const TexturedMesh& tm, int W, int H) {
   }
   long long covered = 0, shared = 0;
   for (std::uint8_t h : hits) covered += h > 0, shared += h > 1;
+  return {static_cast<double>(covered) / (static_cast<double>(W) * H),
+          covered ? static_cast<double>(shared) / covered : 0.0};
+}
+
+/// UV triangles of under a millionth of a texel at W x H.
+bool degenerate_uv(const Parameterization& p, int f, int W, int H) { return std::abs(uv_signed_area(p, f)) * W * H < 1e-6; }
+
+/// Atlas traps: UV range, faces outside [0,1], degenerate and mirrored UV faces, coverage and overlap
+/// of the texture's texel centres.
+ordered_json atlas_stats(const TexturedMesh& tm, int W, int H) {
+  const Parameterization& p = tm.param;
+  int outside = 0, degenerate = 0, mirrored = 0;
+  Vec2 lo = p.uv[0], hi = lo;
+  for (const Vec2& u : p.uv) lo = lo.cwiseMin(u), hi = hi.cwiseMax(u);
+  std::vector<double> chart_area(p.num_charts, 0.0);
+  for (int f = 0; f < tm.mesh.num_faces(); ++f) {
+    bool out = false;
+    for (int k = 0; k < 3; ++k) {
+      const Vec2& u = p.uv[p.uv_faces[f][k]];
+      out = out || u.x() < 0 || u.x() > 1 || u.y() < 0 || u.y() > 1;
+    }
+    outside += out;
+    const double area = uv_signed_area(p, f);
+    chart_area[p.face_chart[f]] += area;
+    degenerate += degenerate_uv(p, f, W, H);
+    mirrored += area < 0;
+  }
   int mirrored_charts = 0;
   for (double a : chart_area) mirrored_charts += a < 0;
+  const TexelCover cover = texel_cover(p, W, H);
   ordered_json j;
   j["faces"] = tm.mesh.num_faces();
   j["charts"] = p.num_charts;
@@ -143,8 +164,28 @@ ordered_json atlas_stats(const TexturedMesh& tm, int W, int H) {
   j["degenerate_uv_faces"] = degenerate;
   j["mirrored_faces"] = mirrored;
   j["mirrored_charts"] = mirrored_charts;
-  j["coverage"] = static_cast<double>(covered) / (static_cast<double>(W) * H);
-  j["shared_texels"] = covered ? static_cast<double>(shared) / covered : 0.0;
+  j["coverage"] = cover.coverage;
+  j["shared_texels"] = cover.shared;
+  return j;
+}
+
+/// Geometry of a result against its input: UV faces whose orientation differs from their input (parent)
+/// face's (a mirrored input face stays mirrored), degenerate UV faces, face growth, texel sharing.
+ordered_json result_geometry(const TexturedMesh& ref, const TexturedMesh& t, const FaceData<int>& parent, int W, int H) {
+  int flipped = 0, degenerate = 0;
+  for (int f = 0; f < t.mesh.num_faces(); ++f) {
+    const double a = uv_signed_area(t.param, f), b = uv_signed_area(ref.param, parent.empty() ? f : parent[f]);
+    flipped += (a > 0 && b < 0) || (a < 0 && b > 0);
+    degenerate += degenerate_uv(t.param, f, W, H);
+  }
+  const TexelCover cover = texel_cover(t.param, W, H);
+  ordered_json j;
+  j["faces"] = t.mesh.num_faces();
+  j["face_growth"] = static_cast<double>(t.mesh.num_faces()) / ref.mesh.num_faces() - 1.0;
+  j["flipped_vs_input"] = flipped;
+  j["degenerate_uv_faces"] = degenerate;
+  j["coverage"] = cover.coverage;
+  j["shared_texels"] = cover.shared;
   return j;
 }
 
@@ -168,6 +209,7 @@ ordered_json compare(const Asset& ref, int size, const std::vector<std::string>&
   };
   ordered_json j;
   j["size"] = size;
+  j["input"] = atlas_stats(ref.tm, ref.tex.width, ref.tex.height);
   j["downsized"] = downsized(size);
   // The downsizing curve: N/2 .. below the native size, sqrt(2) apart per side.
   std::vector<double> texels, psnr;
@@ -195,7 +237,7 @@ ordered_json compare(const Asset& ref, int size, const std::vector<std::string>&
     rj["psnr"] = r.psnr;
     rj["gain"] = r.psnr - j["downsized"].get<double>();
     rj["texture"] = {t.tex.width, t.tex.height};
-    rj["faces"] = t.tm.mesh.num_faces();
+    rj["geometry"] = result_geometry(ref.tm, t.tm, parent, t.tex.width, t.tex.height);
     rj["saving"] = std::isfinite(match.texels) ? match.texels / own : -1.0;  // -1: downsizing never matches
     rj["saving_extrapolated"] = match.above_range || match.below_range;
     rj["parent_max_distance"] = max_dist;
@@ -224,8 +266,17 @@ int main(int argc, char** argv) {
   cmp->add_option("--test", tests, "NAME=OBJ,TEXTURE: a result to judge (repeatable)");
   cmp->add_option("--samples", o.samples, "Surface samples")->check(CLI::Range(1LL, 100000000LL));
   cmp->add_option("--seed", o.seed, "Sample seed");
+  std::string out_png;
+  auto* ds = app.add_subcommand("downsize", "Write the texture box-downsized to N x N (plain downsizing)");
+  ds->add_option("texture", tex, "The original texture")->required();
+  ds->add_option("size", size, "N")->required()->check(CLI::Range(1, 16384));
+  ds->add_option("output", out_png, "PNG to write")->required();
   CLI11_PARSE(app, argc, argv);
   try {
+    if (ds->parsed()) {
+      write_png(out_png, box_downsize(read_image(tex), size, size));
+      return 0;
+    }
     const Asset a = load(mesh, tex);
     const ordered_json j = st->parsed() ? atlas_stats(a.tm, a.tex.width, a.tex.height) : compare(a, size, tests, o);
     std::cout << j.dump() << "\n";

@@ -8,7 +8,8 @@
 # from downsizing to N/2 .. < native in sqrt(2) steps, PSNR linear in log texels, / the result's texels).
 #
 #   bench/shrink/asset_table.sh [-b BUILD] [-a ASSETS] [-o OUT] [-s "256 128"] [-n "spot fuze"]
-# Prints a Markdown table and writes OUT/table.jsonl (one JSON line per asset and size); every
+# Prints two Markdown tables (PSNR, gain, saving; faces, flips, degenerate UV faces and shared texels of
+# every result against its input) and writes OUT/table.jsonl (one JSON line per asset and size); every
 # command's output stays in OUT/NAME_N_{reparam,shrink}/ with its log.
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
@@ -74,6 +75,18 @@ print(head)
 print('|' + '---|' * (3 + 3 * len(methods)))
 for r in rows:
     print(f"| {r['asset']} | {r['size']} | {r['downsized']:.2f} | " + ' | '.join(cell(r, m) for m in methods) + ' |')
+print()
+print('| asset | N | faces in | shared in | ' + ' | '.join(f'`{m}` faces | flipped | degenerate | shared' for m in methods) + ' |')
+print('|' + '---|' * (4 + 4 * len(methods)))
+def geo(r, m):
+    x = r['results'].get(m)
+    if x is None:
+        return ' | | | '
+    g = x['geometry']
+    return f"{g['faces']} ({100 * g['face_growth']:+.0f} %) | {g['flipped_vs_input']} | {g['degenerate_uv_faces']} | {100 * g['shared_texels']:.0f} %"
+for r in rows:
+    i = r['input']
+    print(f"| {r['asset']} | {r['size']} | {i['faces']} | {100 * i['shared_texels']:.0f} % | " + ' | '.join(geo(r, m) for m in methods) + ' |')
 print()
 for m in methods:
     for n in sorted({r['size'] for r in rows}, reverse=True):

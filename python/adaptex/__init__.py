@@ -12,8 +12,9 @@ Inputs accept any floating-point dtype for V / UV and any integer dtype for F / 
 ``adaptex.Error`` subclasses: bad input raises ``InvalidInputError`` (a ``ValueError``; also
 ``TopologyError``), a file that cannot be read ``IoError`` (``ValueError`` and ``OSError``), one that
 cannot be written ``OutputError`` (``OSError``). Long calls (unwrap, paint, adapt, reparam,
-evaluate, shrink) release the GIL; unwrap, paint, adapt, reparam and shrink take ``progress(phase, fraction)``:
-returning ``False`` cancels the call with ``CancelledError``.
+evaluate, shrink) release the GIL and take ``progress(phase, fraction)``: returning ``False`` cancels
+the call with ``CancelledError``; Ctrl+C interrupts them with ``KeyboardInterrupt``.
+``help(adaptex.adapt)`` lists every option keyword with its default.
 """
 from ._version import __version__  # noqa: F401
 from ._adaptex import (  # noqa: F401
@@ -24,6 +25,8 @@ from ._adaptex import (  # noqa: F401
     OutputError,
     SolverError,
     TopologyError,
+)
+from ._functions import (  # noqa: F401
     adapt,
     evaluate,
     option_defaults,

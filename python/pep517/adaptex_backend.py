@@ -135,7 +135,7 @@ def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
     tag = _tag()
     wheel_name = f"{NAME}-{_version()}-{tag}.whl"
     wheel = _Wheel(os.path.join(wheel_directory, wheel_name))
-    for n in ["__init__.py", "_version.py"] + extensions:
+    for n in [n for n in names if n.endswith(".py")] + extensions:
         wheel.add_file(f"{NAME}/{n}", os.path.join(package, n), executable=n in extensions)
     wheel.add_file(f"{NAME}-{_version()}.data/scripts/{NAME}", cli, executable=True)
     dist_info = _dist_info()

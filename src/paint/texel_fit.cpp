@@ -22,11 +22,15 @@ namespace {
 
 using Vec4d = std::array<double, 4>;
 
-/// The bilinear tap of one axis under \p address (clamp: bilinear_tap; repeat: indices wrap).
-BilinearTap tap(int size, double u, TextureAddress address) {
-  if (address == TextureAddress::ClampToEdge) return bilinear_tap(size, u);
+/// The bilinear tap of one axis under \p address: clamp gives exactly bilinear_tap() (inlined here,
+/// as the quadrature calls it several times per sample); repeat wraps the indices.
+inline BilinearTap tap(int size, double u, TextureAddress address) {
   const double x = u * size - 0.5;
   const double xf = std::floor(x);
+  if (address == TextureAddress::ClampToEdge) {
+    const int xi = static_cast<int>(std::clamp(xf, -1.0, static_cast<double>(size)));
+    return BilinearTap{std::clamp(xi, 0, size - 1), std::clamp(xi + 1, 0, size - 1), x - xf};
+  }
   double m = std::fmod(xf, static_cast<double>(size));
   if (m < 0) m += size;
   const int i0 = std::clamp(static_cast<int>(m), 0, size - 1);
@@ -39,13 +43,14 @@ struct Sample {
   float fx, fy;
   float su, sv;
   float weight;
+  float cell;  // area of the sample's cell in the original's UV square (sets the prefilter level)
 };
 
 /// A footprint as up to 4 distinct (texel, bilinear weight > 0) entries.
 struct Footprint {
   int n = 0;
   int texel[4];
-  int row[4];
+  int col[4], row[4];
   double b[4];
 };
 
@@ -61,9 +66,11 @@ Footprint footprint(const Sample& s, int W) {
       int k = 0;
       while (k < fp.n && fp.texel[k] != t) ++k;
       if (k == fp.n) {
-        fp.texel[fp.n] = t;
-        fp.row[fp.n] = js[b];
-        fp.b[fp.n++] = 0;
+        fp.texel[k] = t;
+        fp.col[k] = is[a];
+        fp.row[k] = js[b];
+        fp.b[k] = 0;
+        ++fp.n;
       }
       fp.b[k] += w;
     }
@@ -71,7 +78,7 @@ Footprint footprint(const Sample& s, int W) {
 }
 
 /// Stencil slot (0..8) of texel q seen from texel p, offsets canonical under wrapping (see offset()).
-int axis_offset(int d, int size) {
+inline int axis_offset(int d, int size) {
   if (d == 0) return 0;
   if (d == 1 || d == -(size - 1)) return 1;
   return -1;
@@ -104,46 +111,82 @@ std::vector<int> sample_grid(const TriMesh& mesh, const Parameterization& sp, in
   }
 }
 
-/// All samples, sorted (stably) by the footprint's first row j0; \p row_start[j] the first of row j.
-std::vector<Sample> generate_samples(const TriMesh& mesh, const Parameterization& sp,
-                                     const Parameterization& np, int W, int H, const std::vector<int>& m,
-                                     const TexelFitOptions& o, std::vector<long long>& row_start) {
+/// Calls \p emit(s, t) at the centroids of face-local coordinates (P = P0 + s (P1-P0) + t (P2-P0)) of
+/// the regular subdivision into n² triangles: "up" (a, b) with a + b <= n-1, "down" with a + b <= n-2.
+template <class Emit>
+void for_each_centroid(int n, const Emit& emit) {
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; a + b < n; ++b) {
+      emit((a + 1.0 / 3.0) / n, (b + 1.0 / 3.0) / n);
+      if (a + b <= n - 2) emit((a + 2.0 / 3.0) / n, (b + 2.0 / 3.0) / n);
+    }
+}
+
+/// Corner UV and edge vectors of face \p f of \p p.
+std::array<Vec2, 3> face_frame(const Parameterization& p, int f) {
+  const Face& w = p.uv_faces[f];
+  return {p.uv[w[0]], p.uv[w[1]] - p.uv[w[0]], p.uv[w[2]] - p.uv[w[0]]};
+}
+
+/// The sample at face-local (s, t). One out-of-line body, so that both passes of generate_samples()
+/// compute bit-identical rows.
+[[gnu::noinline]] Sample make_sample(const std::array<Vec2, 3>& nf, const std::array<Vec2, 3>& sf, double s, double t,
+                                     int W, int H, TextureAddress address, float weight, float cell) {
+  const Vec2 uv = nf[0] + s * nf[1] + t * nf[2], suv = sf[0] + s * sf[1] + t * sf[2];
+  const BilinearTap x = tap(W, uv.x(), address), y = tap(H, uv.y(), address);
+  return Sample{static_cast<std::uint16_t>(x.i0), static_cast<std::uint16_t>(x.i1),
+                static_cast<std::uint16_t>(y.i0), static_cast<std::uint16_t>(y.i1),
+                static_cast<float>(x.f), static_cast<float>(y.f),
+                static_cast<float>(suv.x()), static_cast<float>(suv.y()), weight, cell};
+}
+
+/// The samples in buckets by the footprint's first row j0 (\p row_start[j]: first sample of row j);
+/// inside a row in face order. Two passes over fixed blocks of faces: count per (block, row), then
+/// write every sample to its place, so the order does not depend on the thread count.
+std::unique_ptr<Sample[]> generate_samples(const TriMesh& mesh, const Parameterization& sp,
+                                           const Parameterization& np, int W, int H, const std::vector<int>& m,
+                                           const TexelFitOptions& o, std::vector<long long>& row_start) {
   const int F = static_cast<int>(mesh.faces.size());
-  std::vector<long long> first(F + 1, 0);
-  for (int f = 0; f < F; ++f) first[f + 1] = first[f] + static_cast<long long>(m[f]) * m[f];
-  std::vector<Sample> raw(static_cast<size_t>(first[F]));
-  tbb::parallel_for(tbb::blocked_range<int>(0, F, 64), [&](const tbb::blocked_range<int>& r) {
-    for (int f = r.begin(); f < r.end(); ++f) {
+  const int blocks = std::clamp(F / 64, 1, 256);
+  auto block_begin = [&](int b) { return static_cast<int>(static_cast<long long>(F) * b / blocks); };
+  // Pass 1: samples per (block, row).
+  std::vector<long long> count(static_cast<size_t>(blocks) * H, 0);
+  tbb::parallel_for(0, blocks, [&](int b) {
+    long long* c = count.data() + static_cast<size_t>(b) * H;
+    for (int f = block_begin(b); f < block_begin(b + 1); ++f) {
       if (m[f] == 0) continue;
-      const int n = m[f];
-      const float weight = static_cast<float>(face_area(mesh, f) / (double(n) * n));
-      const Face &nf = np.uv_faces[f], &sf = sp.uv_faces[f];
-      const Vec2 n0 = np.uv[nf[0]], n1 = np.uv[nf[1]] - n0, n2 = np.uv[nf[2]] - n0;
-      const Vec2 s0 = sp.uv[sf[0]], s1 = sp.uv[sf[1]] - s0, s2 = sp.uv[sf[2]] - s0;
-      Sample* out = raw.data() + first[f];
-      auto emit = [&](double s, double t) {
-        const Vec2 uv = n0 + s * n1 + t * n2, suv = s0 + s * s1 + t * s2;
-        const BilinearTap x = tap(W, uv.x(), o.address), y = tap(H, uv.y(), o.address);
-        *out++ = Sample{static_cast<std::uint16_t>(x.i0), static_cast<std::uint16_t>(x.i1),
-                        static_cast<std::uint16_t>(y.i0), static_cast<std::uint16_t>(y.i1),
-                        static_cast<float>(x.f), static_cast<float>(y.f),
-                        static_cast<float>(suv.x()), static_cast<float>(suv.y()), weight};
-      };
-      // Regular subdivision into n² triangles: "up" (a, b) with a + b <= n-1, "down" with a + b <= n-2.
-      for (int a = 0; a < n; ++a)
-        for (int b = 0; a + b < n; ++b) {
-          emit((a + 1.0 / 3.0) / n, (b + 1.0 / 3.0) / n);
-          if (a + b <= n - 2) emit((a + 2.0 / 3.0) / n, (b + 2.0 / 3.0) / n);
-        }
+      const auto nf = face_frame(np, f), sf = face_frame(sp, f);
+      for_each_centroid(m[f], [&](double s, double t) { ++c[make_sample(nf, sf, s, t, W, H, o.address, 0, 0).j0]; });
     }
   });
+  // Offsets: row by row, block by block.
   row_start.assign(static_cast<size_t>(H) + 1, 0);
-  for (const Sample& s : raw) ++row_start[s.j0 + 1];
-  for (int j = 0; j < H; ++j) row_start[j + 1] += row_start[j];
-  std::vector<long long> next(row_start.begin(), row_start.end() - 1);
-  std::vector<Sample> sorted(raw.size());
-  for (const Sample& s : raw) sorted[static_cast<size_t>(next[s.j0]++)] = s;
-  return sorted;
+  long long total = 0;
+  for (int j = 0; j < H; ++j) {
+    row_start[j] = total;
+    for (int b = 0; b < blocks; ++b) {
+      const long long c = count[static_cast<size_t>(b) * H + j];
+      count[static_cast<size_t>(b) * H + j] = total;
+      total += c;
+    }
+  }
+  row_start[H] = total;
+  // Pass 2: every sample to its place (uninitialised storage: every slot is written once).
+  std::unique_ptr<Sample[]> out(new Sample[static_cast<size_t>(total)]);
+  tbb::parallel_for(0, blocks, [&](int b) {
+    long long* next = count.data() + static_cast<size_t>(b) * H;
+    for (int f = block_begin(b); f < block_begin(b + 1); ++f) {
+      if (m[f] == 0) continue;
+      const float weight = static_cast<float>(face_area(mesh, f) / (double(m[f]) * m[f]));
+      const float cell = static_cast<float>(std::abs(uv_signed_area(sp, f)) / (double(m[f]) * m[f]));
+      const auto nf = face_frame(np, f), sf = face_frame(sp, f);
+      for_each_centroid(m[f], [&](double s, double t) {
+        const Sample smp = make_sample(nf, sf, s, t, W, H, o.address, weight, cell);
+        out[static_cast<size_t>(next[smp.j0]++)] = smp;
+      });
+    }
+  });
+  return out;
 }
 
 /// Runs \p body(j) for every row bucket j so that no two concurrent buckets write the same row:
@@ -172,10 +215,48 @@ std::array<double, 4> sample_bilinear_rgba(const ImageRGBA8& img, double u, doub
   return out;
 }
 
+namespace {
+
+/// \p img, then 2 x 2 box means of it, down to level ceil(max_level) (just \p img when max_level <= 0).
+std::vector<ImageRGBA8> box_pyramid(const ImageRGBA8& img, double max_level) {
+  std::vector<ImageRGBA8> levels{img};
+  const int top = static_cast<int>(std::ceil(std::min(max_level, 16.0)));
+  for (int l = 1; l <= top && (levels.back().width > 1 || levels.back().height > 1); ++l) {
+    const ImageRGBA8& f = levels.back();
+    ImageRGBA8 c((f.width + 1) / 2, (f.height + 1) / 2);
+    for (int J = 0; J < c.height; ++J)
+      for (int I = 0; I < c.width; ++I)
+        for (int ch = 0; ch < 4; ++ch) {
+          int sum = 0;
+          for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a) sum += f.texel(std::min(2 * I + a, f.width - 1), std::min(2 * J + b, f.height - 1))[ch];
+          c.texel(I, J)[ch] = static_cast<std::uint8_t>((sum + 2) / 4);
+        }
+    levels.push_back(std::move(c));
+  }
+  return levels;
+}
+
+/// Trilinear lookup at the level whose texels match the sample's cell (\p texels: level 0's count).
+Vec4d sample_trilinear(const std::vector<ImageRGBA8>& levels, const Sample& smp, double texels, TextureAddress address) {
+  const double lod = std::clamp(0.5 * std::log2(std::max(1e-30, double(smp.cell) * texels)), 0.0,
+                                static_cast<double>(levels.size() - 1));
+  const int l0 = static_cast<int>(lod);
+  const double f = lod - l0;
+  const Vec4d a = sample_bilinear_rgba(levels[l0], smp.su, smp.sv, address);
+  if (f <= 0 || l0 + 1 >= static_cast<int>(levels.size())) return a;
+  const Vec4d b = sample_bilinear_rgba(levels[l0 + 1], smp.su, smp.sv, address);
+  Vec4d out;
+  for (int c = 0; c < 4; ++c) out[c] = a[c] + (b[c] - a[c]) * f;
+  return out;
+}
+
+}  // namespace
+
 struct TexelFitter::Impl {
   int W = 0, H = 0;
   TexelFitOptions options;
-  std::vector<Sample> samples;         // sorted by j0
+  std::unique_ptr<Sample[]> samples;   // bucketed by j0 (row_start)
   std::vector<long long> row_start;    // H + 1
   std::vector<bool> coverage;          // W*H
   std::vector<int> index;              // W*H: compact index of a covered texel, -1 elsewhere
@@ -184,6 +265,7 @@ struct TexelFitter::Impl {
   std::vector<float> vals;             // 9n
   std::vector<double> diag;            // n
   std::vector<double> mass;            // n: sum of w * b over the samples touching the texel
+  double max_cell = 0;                 // largest Sample::cell
 
   void assemble();
   void add_smoothness(const std::vector<float>& stencil);
@@ -222,13 +304,13 @@ void TexelFitter::Impl::assemble() {
       const Sample& smp = samples[static_cast<size_t>(s)];
       const Footprint fp = footprint(smp, W);
       for (int p = 0; p < fp.n; ++p) {
-        const int tp = fp.texel[p], ip = tp % W;
+        const int tp = fp.texel[p];
         const double wb = double(smp.weight) * fp.b[p];
         mass_full[tp] += static_cast<float>(wb);
+        float* st = stencil.data() + static_cast<size_t>(tp) * 9;
         for (int q = 0; q < fp.n; ++q) {
-          const int tq = fp.texel[q];
-          const int slot = (axis_offset(fp.row[q] - fp.row[p], H) + 1) * 3 + axis_offset(tq % W - ip, W) + 1;
-          stencil[static_cast<size_t>(tp) * 9 + slot] += static_cast<float>(wb * fp.b[q]);
+          const int slot = (axis_offset(fp.row[q] - fp.row[p], H) + 1) * 3 + axis_offset(fp.col[q] - fp.col[p], W) + 1;
+          st[slot] += static_cast<float>(wb * fp.b[q]);
         }
       }
     }
@@ -289,12 +371,17 @@ void TexelFitter::Impl::add_smoothness(const std::vector<float>& stencil) {
 }
 
 std::vector<Vec4d> TexelFitter::Impl::rhs(const ImageRGBA8& source) const {
+  // Where a sample stands for more than one original texel (the sample cap bound), look the original
+  // up at the matching level of a 2 x 2 box pyramid (trilinear), so the quadrature does not alias.
+  const double texels = double(source.width) * source.height;
+  const std::vector<ImageRGBA8> levels = box_pyramid(source, 0.5 * std::log2(std::max(1.0, max_cell * texels)));
   std::vector<Vec4d> b(texel.size(), Vec4d{0, 0, 0, 0});
   for_buckets(H, [&](int j) {
     for (long long s = row_start[j]; s < row_start[j + 1]; ++s) {
       const Sample& smp = samples[static_cast<size_t>(s)];
       const Footprint fp = footprint(smp, W);
-      const Vec4d v = sample_bilinear_rgba(source, smp.su, smp.sv, options.source_address);
+      const Vec4d v = levels.size() == 1 ? sample_bilinear_rgba(source, smp.su, smp.sv, options.source_address)
+                                         : sample_trilinear(levels, smp, texels, options.source_address);
       for (int p = 0; p < fp.n; ++p) {
         Vec4d& out = b[static_cast<size_t>(index[fp.texel[p]])];
         const double wb = double(smp.weight) * fp.b[p];
@@ -330,10 +417,10 @@ int TexelFitter::Impl::solve(std::vector<Vec4d>& x, const std::vector<Vec4d>& b,
       z[k][c] = r[k][c] / diag[k];
     }
   p = z;
-  const Vec4d bb = dot4(b, b);
-  Vec4d rz = dot4(r, z), rr = dot4(r, r);
+  // Stop on the RMS of the Jacobi-scaled residual r / diag: about the texel change still to come.
+  Vec4d rz = dot4(r, z), zz = dot4(z, z);
   bool done[4];
-  auto rel = [&](int c) { return bb[c] > 0 ? std::sqrt(rr[c] / bb[c]) : 0.0; };
+  auto rel = [&](int c) { return std::sqrt(zz[c] / std::max(1, n)); };
   for (int c = 0; c < 4; ++c) done[c] = rel(c) <= options.tolerance;
   int it = 0;
   for (; it < options.max_iterations && !(done[0] && done[1] && done[2] && done[3]); ++it) {
@@ -351,7 +438,7 @@ int TexelFitter::Impl::solve(std::vector<Vec4d>& x, const std::vector<Vec4d>& b,
         }
     });
     const Vec4d rz_new = dot4(r, z);
-    rr = dot4(r, r);
+    zz = dot4(z, z);
     Vec4d beta;
     for (int c = 0; c < 4; ++c) {
       if (!done[c] && (rel(c) <= options.tolerance || !(pq[c] > 0))) done[c] = true;
@@ -410,6 +497,9 @@ TexelFitter::TexelFitter(const TriMesh& mesh, const Parameterization& source_par
   report_progress(options.progress, "fit samples", 0.0);
   const std::vector<int> grid = sample_grid(mesh, source_param, source_width, source_height, param, width, height, options);
   m.samples = generate_samples(mesh, source_param, param, width, height, grid, options, m.row_start);
+  for (size_t f = 0; f < grid.size(); ++f)
+    if (grid[f] > 0)
+      m.max_cell = std::max(m.max_cell, std::abs(uv_signed_area(source_param, static_cast<int>(f))) / (double(grid[f]) * grid[f]));
   report_progress(options.progress, "fit matrix", 0.0);
   m.assemble();
   report_progress(options.progress, "fit matrix", 1.0);
@@ -420,7 +510,7 @@ TexelFitter::TexelFitter(TexelFitter&&) noexcept = default;
 TexelFitter& TexelFitter::operator=(TexelFitter&&) noexcept = default;
 
 const std::vector<bool>& TexelFitter::coverage() const { return impl_->coverage; }
-long long TexelFitter::samples() const { return static_cast<long long>(impl_->samples.size()); }
+long long TexelFitter::samples() const { return impl_->row_start.back(); }
 
 TexelFitResult TexelFitter::fit(const ImageRGBA8& source) const {
   if (source.empty()) throw InvalidInputError("texel fit: empty original texture");
@@ -450,6 +540,11 @@ TexelFitResult fit_texels(const TriMesh& mesh, const Parameterization& source_pa
                           const Parameterization& param, int width, int height, const TexelFitOptions& options) {
   if (source.empty()) throw InvalidInputError("texel fit: empty original texture");
   return TexelFitter(mesh, source_param, source.width, source.height, param, width, height, options).fit(source);
+}
+
+TexelFitResult fit_resize(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture, int width,
+                          int height, const TexelFitOptions& options) {
+  return fit_texels(mesh, param, texture, param, width, height, options);
 }
 
 }  // namespace adaptex

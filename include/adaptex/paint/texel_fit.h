@@ -26,16 +26,18 @@ namespace adaptex {
 /// Settings of fit_texels() / TexelFitter, by stage.
 struct TexelFitOptions {
   // Quadrature (surface samples per face: a regular subdivision into m² triangles, one at each centroid).
-  double samples_per_texel = 4;         ///< Minimum samples per texel of the NEW texture a face covers (default 4).
+  double samples_per_texel = 16;        ///< Minimum samples per texel of the NEW texture a face covers (default 16).
   double samples_per_source_texel = 1;  ///< Minimum samples per texel of the ORIGINAL texture a face covers (default 1).
-  long long max_samples = 24'000'000;   ///< Cap on all samples (~28 bytes each); the densities shrink to fit (default 24M).
+  long long max_samples = 16'000'000;   ///< Cap on all samples (28 bytes each); the densities shrink to fit (default 16M).
   // Addressing of the two lookups.
   TextureAddress source_address = TextureAddress::ClampToEdge;  ///< Lookup of the original (default clamp).
   TextureAddress address = TextureAddress::ClampToEdge;         ///< Lookup of the fitted texture (default clamp).
   // Solve.
   double smoothness = 1e-5;   ///< Laplacian weight between 4-neighbour texels, relative to the mean data weight (default 1e-5).
   int max_iterations = 200;   ///< Conjugate-gradient iterations at most (default 200).
-  double tolerance = 1e-4;    ///< Stop when every channel's preconditioned residual shrank by this factor (default 1e-4).
+  /// Stop when every channel's RMS Jacobi-scaled residual (about the texel change still to come, in
+  /// 8-bit units) is below this (default 0.01).
+  double tolerance = 0.01;
   // Output.
   bool fill_outside = true;   ///< Pull-push fill of the texels no lookup touches (default on); off: they keep \ref outside.
   std::array<std::uint8_t, 4> outside = {0, 0, 0, 0};  ///< Colour of untouched texels when fill_outside is off.
@@ -50,7 +52,7 @@ struct TexelFitResult {
   std::vector<bool> coverage;  ///< W*H: true for the texels some surface point's lookup touches.
   long long samples = 0;       ///< Surface samples of the quadrature.
   int iterations = 0;          ///< Conjugate-gradient iterations run.
-  double residual = 0;         ///< Largest final relative residual over the channels.
+  double residual = 0;         ///< Largest final RMS Jacobi-scaled residual over the channels (8-bit units).
 };
 
 /// Reusable fit for one pair of layouts (several maps of one material share the quadrature and the
@@ -91,6 +93,12 @@ class TexelFitter {
 TexelFitResult fit_texels(const TriMesh& mesh, const Parameterization& source_param, const ImageRGBA8& source,
                           const Parameterization& param, int width, int height,
                           const TexelFitOptions& options = {});
+
+/// The artist's own layout at another size (what a user compares with box downsizing):
+/// fit_texels(mesh, param, texture, param, width, height, options).
+/// \throw as fit_texels()
+TexelFitResult fit_resize(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture, int width,
+                          int height, const TexelFitOptions& options = {});
 
 /// Bilinear lookup of all four channels (RGBA, in [0,255]) at (u, v) with the given addressing;
 /// identical to sample_bilinear() for ClampToEdge (RGB / 255).
