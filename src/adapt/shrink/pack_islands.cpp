@@ -154,10 +154,10 @@ void place(Bitmap& occ, const Bitmap& b, int X, int Y) {
 /// One packing attempt at common factor \p lambda; empty if some island does not fit.
 std::vector<IslandPlacement> try_pack(const Parameterization& layout, const std::vector<std::vector<int>>& faces,
                                       const std::vector<double>& scales, int size, int gutter, bool rotate,
-                                      double lambda, long& cells) {
+                                      double lambda, long& cells, bool count_only = false) {
   const int I = static_cast<int>(faces.size());
   const int E = size + 2 * gutter;  // the square with the gutter's overhang on every side
-  const int turns = rotate ? 4 : 1;
+  const int turns = count_only ? 1 : rotate ? 4 : 1;
   // Bitmaps of every island and turn (in parallel), then placement in order of decreasing size.
   std::vector<Bitmap> bm(static_cast<size_t>(I) * turns);
   std::vector<Vec2> shift(bm.size());
@@ -175,6 +175,7 @@ std::vector<IslandPlacement> try_pack(const Parameterization& layout, const std:
   std::vector<IslandPlacement> out(I);
   cells = 0;
   for (int i = 0; i < I; ++i) cells += bm[static_cast<size_t>(i) * turns].cells;
+  if (count_only) return {};
   for (int i : order) {
     int best_k = -1, best_x = 0, best_y = 0;
     for (int k = 0; k < turns; ++k) {
@@ -211,7 +212,7 @@ std::vector<IslandPlacement> try_pack(const Parameterization& layout, const std:
 
 std::vector<IslandPlacement> pack_islands(const Parameterization& layout, const std::vector<int>& face_island,
                                           int num_islands, const std::vector<double>& scales, int size,
-                                          int gutter, bool rotate, double* fill) {
+                                          int gutter, bool rotate, double fill_hint, double* fill) {
   std::vector<std::vector<int>> faces(num_islands);
   for (size_t f = 0; f < face_island.size(); ++f) faces[face_island[f]].push_back(static_cast<int>(f));
   long cells = 0;
@@ -231,12 +232,12 @@ std::vector<IslandPlacement> pack_islands(const Parameterization& layout, const 
     }
     return true;
   };
-  // First guess from the covered cells at factor 1 (they grow as the factor squared): 80 % full.
-  attempt(lambda);
-  if (cells > 0) lambda = std::sqrt(0.8 * static_cast<double>(size) * size / static_cast<double>(cells));
-  // Bracket the largest factor that fits, then bisect.
-  for (int n = 0; n < 60 && (lo == 0 || hi == 0) && lambda > 1e-6; ++n) lambda = attempt(lambda) ? lambda * 1.08 : lambda / 1.08;
-  for (int n = 0; n < 4 && lo > 0 && hi > 0; ++n) attempt(std::sqrt(lo * hi));
+  // First guess from the cells the islands cover at factor 1 (they grow as its square) and the fill
+  // a packing is expected to reach; then bracket the largest factor that fits, and bisect.
+  try_pack(layout, faces, scales, size, gutter, rotate, 1.0, cells, true);
+  if (cells > 0) lambda = std::sqrt(std::clamp(fill_hint, 0.05, 1.0) * size * size / static_cast<double>(cells));
+  for (int n = 0; n < 80 && (lo == 0 || hi == 0) && lambda > 1e-6; ++n) lambda = attempt(lambda) ? lambda * 1.04 : lambda / 1.04;
+  for (int n = 0; n < 3 && lo > 0 && hi > 0; ++n) attempt(std::sqrt(lo * hi));
   if (fill) *fill = static_cast<double>(best_cells) / (static_cast<double>(size) * size);
   return best;
 }

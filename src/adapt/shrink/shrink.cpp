@@ -6,9 +6,11 @@
 #include <chrono>
 #include <cmath>
 
+#include "adaptex/adapt/adapt.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
 #include "adaptex/paint/asset_eval.h"
+#include "adaptex/paint/texel_map.h"
 #include "shrink_internal.h"
 
 namespace adaptex {
@@ -53,24 +55,25 @@ struct Context {
   std::vector<int> face_island;
   int islands = 0;
 
-  double psnr(const Parameterization& p, const ImageRGBA8& img) const {
-    return layout_psnr(mesh, param, maps[0].image, p, img, opt.eval_samples, opt.seed);
+  /// PSNR of the first map on a quarter of the evaluation's samples (ranking the candidates).
+  double rank_psnr(const Parameterization& p, const ImageRGBA8& img) const {
+    return layout_psnr(mesh, param, maps[0].image, p, img, std::max(1000LL, opt.eval_samples / 4), opt.seed);
   }
-  /// The candidate of layout \p p with fitted texels.
+  /// The candidate of layout \p p with draft-fitted texels, ranked.
   Built fitted(const std::string& name, Parameterization p) const {
     Built b;
     b.info.name = name;
     b.param = std::move(p);
-    b.first = fit_maps(mesh, param, maps, 1, b.param, opt.size)[0];
-    b.info.psnr = psnr(b.param, b.first);
+    b.first = fit_maps(mesh, param, maps, 1, b.param, opt.size, true)[0];
+    b.info.psnr = rank_psnr(b.param, b.first);
     return b;
   }
 };
 
-Built repacked(const Context& cx, const std::string& name, const std::vector<double>& scales) {
+Built repacked(const Context& cx, const std::string& name, const std::vector<double>& scales, double fill_hint) {
   double fill = 0;
   const std::vector<IslandPlacement> pl = pack_islands(cx.layout, cx.face_island, cx.islands, scales, cx.opt.size,
-                                                       cx.opt.gutter, cx.opt.rotate, &fill);
+                                                       cx.opt.gutter, cx.opt.rotate, fill_hint, &fill);
   if (pl.empty()) {
     Built b;
     b.info.name = name;
@@ -93,11 +96,11 @@ Built budgeted(const Context& cx, const Built& uniform, const std::vector<double
   for (double a : area) budget += a * uniform.lambda * uniform.lambda;
   report_progress(o.progress, "pack", 0.5);
   std::vector<double> scales = allocate_island_scales(curves, area, budget, o.size, o.max_scale_ratio);
-  Built bud = repacked(cx, "budget", scales);
+  Built bud = repacked(cx, "budget", scales, uniform.info.fill);
   if (!bud.info.valid) return bud;
   std::vector<double> scales2 = allocate_island_scales(curves, area, budget * bud.lambda * bud.lambda, o.size,
                                                        o.max_scale_ratio);
-  Built bud2 = repacked(cx, "budget", scales2);
+  Built bud2 = repacked(cx, "budget", scales2, bud.info.fill);
   if (bud2.info.valid && bud2.info.psnr > bud.info.psnr) {
     bud = std::move(bud2);
     scales = scales2;
@@ -109,6 +112,28 @@ Built budgeted(const Context& cx, const Built& uniform, const std::vector<double
   }
   if (e_uni > 0 && e_bud > 0) *predicted_gain = 10 * std::log10(e_uni / e_bud);
   return bud;
+}
+
+/// The density-flow warp of the whole layout (adapt.h, no refinement: the input's faces), for layouts
+/// whose charts share no texels (it moves charts apart). Valid only if no face flips or degenerates.
+Built warped(const Context& cx, const ShrinkLayoutStats& before) {
+  Built b;
+  b.info.name = "warped";
+  b.info.valid = false;
+  const ImageRGBA8& tex = cx.maps[0].image;
+  // The flow warps the unit square: UVs just outside it are clamped onto it (a flip shows below).
+  Parameterization start = cx.param;
+  for (Vec2& p : start.uv) p = p.cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
+  AdaptOptions ao;
+  ao.refine = false;
+  ao.progress = cx.opt.progress;
+  const AdaptResult r =
+      adapt_parameterization(cx.mesh, start, tex, build_texel_map(cx.mesh, start, tex.width, tex.height), ao);
+  if (r.refined_mesh || !r.report.accepted) return b;
+  const ShrinkLayoutStats st = layout_stats(cx.mesh, cx.param, r.param, cx.param.face_chart, cx.opt.size);
+  if (st.flipped > 0 || st.degenerate > before.degenerate) return b;
+  b = cx.fitted("warped", r.param);
+  return b;
 }
 
 }  // namespace
@@ -144,19 +169,23 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
     b.info.name = "downsized";
     b.param = param;
     b.first = box_downsize(maps[0].image, N, N);
-    b.info.psnr = res.psnr_downsized = cx.psnr(param, b.first);
+    b.info.psnr = cx.rank_psnr(param, b.first);
     cands.push_back(std::move(b));
   }
   cands.push_back(cx.fitted("artist", param));
   report_progress(options.progress, "pack", 0);
   if (!isl.tiling) {
     const std::vector<double> area = island_areas(cx.layout, cx.face_island, cx.islands, R);
-    Built uni = repacked(cx, "repacked", std::vector<double>(cx.islands, 1.0));
+    Built uni = repacked(cx, "repacked", std::vector<double>(cx.islands, 1.0), 0.75);
     if (options.budget && uni.info.valid) {
       report_progress(options.progress, "error model", 0);
       cands.push_back(budgeted(cx, uni, area, &res.predicted_gain_db));
     }
     cands.push_back(std::move(uni));
+  }
+  if (options.warp && isl.num_islands == isl.num_charts) {
+    report_progress(options.progress, "warp", 0);
+    cands.push_back(warped(cx, res.before));
   }
   // The best valid candidate by measured PSNR (downsizing is always valid: the floor).
   size_t best = 0;
@@ -166,26 +195,34 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
   }
   for (size_t c = 0; c < cands.size(); ++c)
     if (cands[c].info.valid && cands[c].info.name == options.force_candidate) best = c;
-  Built& chosen = cands[best];
-  res.chosen = chosen.info.name;
-  res.psnr = chosen.info.psnr;
-  res.param = chosen.param;
+  // The chosen layout's maps, fitted in full, measured against downsizing on every sample.
   report_progress(options.progress, "texels", 0);
+  const std::vector<ImageRGBA8> downsized = [&] {
+    std::vector<ImageRGBA8> d;
+    for (const ShrinkMap& m : maps) d.push_back(box_downsize(m.image, N, N));
+    return d;
+  }();
+  auto measure = [&](size_t m, const Parameterization& p, const ImageRGBA8& img) {
+    return layout_psnr(mesh, param, maps[m].image, p, img, options.eval_samples, options.seed);
+  };
+  for (size_t m = 0; m < maps.size(); ++m) res.map_psnr_downsized.push_back(measure(m, param, downsized[m]));
+  res.psnr_downsized = res.map_psnr_downsized[0];
+  res.chosen = cands[best].info.name;
+  res.param = cands[best].param;
+  if (res.chosen != "downsized") {
+    res.maps = fit_maps(mesh, param, maps, maps.size(), res.param, N, false, options.progress);
+    report_progress(options.progress, "evaluate", 0.5);
+    for (size_t m = 0; m < maps.size(); ++m) res.map_psnr.push_back(measure(m, res.param, res.maps[m]));
+    if (res.map_psnr[0] < res.psnr_downsized && options.force_candidate.empty()) {  // the floor
+      res.chosen = "downsized";
+      res.param = param;
+    }
+  }
   if (res.chosen == "downsized") {
-    for (const ShrinkMap& m : maps) res.maps.push_back(box_downsize(m.image, N, N));
-  } else {
-    res.maps = maps.size() > 1 ? fit_maps(mesh, param, maps, maps.size(), res.param, N) : std::vector<ImageRGBA8>{};
-    if (maps.size() == 1) res.maps.push_back(chosen.first);
+    res.maps = downsized;
+    res.map_psnr = res.map_psnr_downsized;
   }
-  report_progress(options.progress, "evaluate", 0.5);
-  for (size_t m = 0; m < maps.size(); ++m) {
-    res.map_psnr.push_back(
-        m == 0 ? res.psnr : layout_psnr(mesh, param, maps[m].image, res.param, res.maps[m], options.eval_samples, options.seed));
-    res.map_psnr_downsized.push_back(
-        m == 0 ? res.psnr_downsized
-               : layout_psnr(mesh, param, maps[m].image, param, box_downsize(maps[m].image, N, N), options.eval_samples,
-                             options.seed));
-  }
+  res.psnr = res.map_psnr[0];
   res.after = layout_stats(mesh, param, res.param, isl.face_chart, N);
   res.time_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   return res;

@@ -57,10 +57,12 @@ struct IslandPlacement {
 
 /// Packs the islands of \p layout (shifted input layout) with relative scales \p scales into a
 /// size x size square, every island dilated by \p gutter texels, at the largest common factor found
-/// by bisection. \return I placements; empty if no factor fits.
+/// by bisection, starting from the factor at which the islands' texels fill \p fill_hint of the
+/// square. \p fill receives the share of the square's texels the packed islands touch.
+/// \return I placements; empty if no factor fits.
 std::vector<IslandPlacement> pack_islands(const Parameterization& layout, const std::vector<int>& face_island,
                                           int num_islands, const std::vector<double>& scales, int size,
-                                          int gutter, bool rotate, double* fill = nullptr);
+                                          int gutter, bool rotate, double fill_hint, double* fill);
 
 /// \p layout with every wedge placed by its island's placement (UVs in [0,1]²).
 Parameterization apply_placements(const Parameterization& layout, const std::vector<int>& face_island,
@@ -68,9 +70,10 @@ Parameterization apply_placements(const Parameterization& layout, const std::vec
 
 /// Texels of the first \p count maps on \p dst_param (size x size), least-squares fitted to the
 /// originals on \p src_param (clamp-to-edge lookups, as the measure), pull-push outside the charts.
+/// \p draft: a quarter of the quadrature's samples per original texel (ranking candidates).
 std::vector<ImageRGBA8> fit_maps(const TriMesh& mesh, const Parameterization& src_param,
                                  const std::vector<ShrinkMap>& maps, size_t count, const Parameterization& dst_param,
-                                 int size, const ProgressCallback& progress = {});
+                                 int size, bool draft, const ProgressCallback& progress = {});
 
 /// Surface PSNR (dB, paint/asset_eval.h) of \p image on \p param against \p original on \p ref_param.
 double layout_psnr(const TriMesh& mesh, const Parameterization& ref_param, const ImageRGBA8& original,

@@ -9,8 +9,9 @@ namespace adaptex::shrink_detail {
 
 std::vector<ImageRGBA8> fit_maps(const TriMesh& mesh, const Parameterization& src_param,
                                  const std::vector<ShrinkMap>& maps, size_t count, const Parameterization& dst_param,
-                                 int size, const ProgressCallback& progress) {
+                                 int size, bool draft, const ProgressCallback& progress) {
   TexelFitOptions opt;
+  if (draft) opt.samples_per_source_texel = 0.25;
   opt.source_address = TextureAddress::ClampToEdge;  // the original as the measure and the exporters read it
   opt.address = TextureAddress::ClampToEdge;
   opt.progress = progress;
