@@ -131,6 +131,10 @@ TEST(AssetIo, AtlasIsReadAsTheArtistMadeIt) {
   EXPECT_EQ(uv.faces_outside_unit, 2);
   EXPECT_EQ(uv.wrapped_charts, 1);
   EXPECT_EQ(uv.clamped_uvs, 0);
+  // Texel usage after wrapping: quads 0 and 1 cover the same 0.3² (shared), quad 2 0.4², quad 3's
+  // one non-degenerate triangle 0.03125: 0.28125 of the square, 0.09 of it shared.
+  EXPECT_NEAR(uv.covered_fraction, 0.28125, 0.002);
+  EXPECT_NEAR(uv.shared_fraction, 0.09 / 0.28125, 0.005);
   // The mirrored chart keeps its reversed orientation and shares the first chart's texels exactly.
   const Parameterization& p = asset.param;
   EXPECT_GT(uv_signed_area(p, 0), 0);
@@ -255,6 +259,12 @@ TEST(AssetIo, ChartsStraddlingTilesAndUdimAreRejectedClearly) {
   test::write_text(dir.path / "straddle.obj", obj);
   expect_asset_rejected(dir.path / "straddle.obj", "straddle.obj: UV chart 2 (face 5 and 1 more) spans u 0.8 to 1.9",
                         "crosses a UV tile border, which is not supported");
+  AssetReadOptions keep;
+  keep.keep_straddling_charts = true;
+  const TexturedAsset kept = read_textured_asset(dir.path / "straddle.obj", keep);
+  EXPECT_EQ(kept.uv.straddling_charts, 1);
+  EXPECT_EQ(kept.uv.wrapped_charts, 0);
+  EXPECT_EQ(kept.param.uv[kept.param.uv_faces[4][1]].x(), 1.9);  // left where it is
   // Maps named per UDIM tile, charts in two tiles.
   StripAsset a;
   test::write_text(a.dir.path / "mat.mtl", "newmtl skin\nmap_Kd skin.1001.png\nnewmtl cloth\n");
@@ -275,6 +285,24 @@ TEST(AssetIo, CoordinatesJustOutsideTheirTileAreClamped) {
   AssetReadOptions strict;
   strict.uv_tolerance = 1e-4;
   EXPECT_THROW((void)read_textured_asset(dir.path / "edge.obj", strict), InvalidInputError);
+}
+
+TEST(AssetIo, TexelUsageCountsSharedEdgesOnceAndOverlapsTwice) {
+  // The unit square as two triangles (sharing the diagonal, on which texel centres lie at 4²), and
+  // a third triangle over the lower half of it, mirrored.
+  Parameterization p;
+  p.uv = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  p.uv_faces = {Face{0, 1, 2}, Face{0, 2, 3}};
+  const TexelUsage square = measure_texel_usage(p, 4);
+  EXPECT_EQ(square.covered_fraction, 1.0);
+  EXPECT_EQ(square.shared_fraction, 0.0);
+  p.uv.push_back(Vec2(0, 0.5));
+  p.uv.push_back(Vec2(1, 0.5));
+  p.uv_faces.push_back(Face{0, 4, 1});  // clockwise: mirrored
+  const TexelUsage folded = measure_texel_usage(p, 8);
+  EXPECT_EQ(folded.covered_fraction, 1.0);
+  EXPECT_NEAR(folded.shared_fraction, 0.25, 1.0 / 64);  // the triangle (0,0) (0,0.5) (1,0): a quarter
+  EXPECT_THROW((void)measure_texel_usage(p, 0), InvalidInputError);
 }
 
 TEST(AssetIo, ParseMtlReadsOptionsAndNamesWithSpaces) {
