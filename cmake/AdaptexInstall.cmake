@@ -5,7 +5,6 @@ install(TARGETS adaptex adaptex_core adaptex_io adaptex_param adaptex_paint adap
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
         INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(TARGETS adaptex_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(EXPORT adaptexTargets NAMESPACE adaptex:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/adaptex)
 configure_package_config_file(cmake/adaptexConfig.cmake.in
   ${CMAKE_CURRENT_BINARY_DIR}/adaptexConfig.cmake

@@ -9,6 +9,7 @@
 #include <atomic>
 #include <exception>
 #include <optional>
+#include <thread>
 
 #include "adaptex/adapt/adapt.h"
 #include "adaptex/adapt/adapt_report.h"
@@ -31,21 +32,23 @@ namespace adaptex::python {
 
 namespace {
 
-/// The Python progress callback of one call. The C++ callback it hands to the library may be
-/// called from any thread while the GIL is released: it takes the GIL to call Python.
+/// The Python progress callback of one call, and Ctrl+C. The C++ callback it hands to the library may
+/// be called from any thread while the GIL is released: it takes the GIL to call Python. On the thread
+/// that called adaptex it also runs Python's signal handlers, so Ctrl+C (KeyboardInterrupt) stops a
+/// long call at its next progress report, with or without a Python callback.
 class Progress {
  public:
-  explicit Progress(py::object callback) : callback_(std::move(callback)) {}
-  /// The library's callback (empty without a Python callback).
+  explicit Progress(py::object callback) : callback_(std::move(callback)), caller_(std::this_thread::get_id()) {}
+  /// The library's callback.
   ProgressCallback callback() {
-    if (callback_.is_none()) return {};
     return [this](std::string_view phase, double fraction) { return call(phase, fraction); };
   }
   /// Reports progress between the steps of a binding (strokes). \throw CancelledError when cancelled
   void step(std::string_view phase, double fraction) {
-    if (!callback_.is_none() && !call(phase, fraction)) throw CancelledError();
+    if (!call(phase, fraction)) throw CancelledError();
   }
-  /// Runs \p fn without the GIL; a cancel caused by an exception in the callback re-raises it.
+  /// Runs \p fn without the GIL; a cancel caused by an exception (the callback's, or
+  /// KeyboardInterrupt) re-raises it.
   template <class Fn>
   auto run(Fn&& fn) -> decltype(fn()) {
     try {
@@ -60,8 +63,13 @@ class Progress {
  private:
   bool call(std::string_view phase, double fraction) {
     if (cancelled_) return false;
+    const bool on_caller = std::this_thread::get_id() == caller_;
+    if (callback_.is_none() && !on_caller) return true;
     py::gil_scoped_acquire gil;
     try {
+      // Python runs signal handlers on the main thread only; elsewhere this returns 0.
+      if (on_caller && PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (callback_.is_none()) return true;
       const py::object r = callback_(py::str(phase.data(), phase.size()), fraction);
       if (r.is_none() || PyObject_IsTrue(r.ptr()) == 1) return true;
     } catch (const py::error_already_set&) {
@@ -72,6 +80,7 @@ class Progress {
   }
 
   py::object callback_;
+  std::thread::id caller_;
   std::atomic<bool> cancelled_{false};
   std::exception_ptr error_;  ///< Written under the GIL.
 };
@@ -100,6 +109,17 @@ py::dict unwrap_report_dict(const UnwrapReport& r, const Parameterization& p) {
 
 std::filesystem::path fspath(py::handle path) {
   return std::filesystem::path(py::str(py::module_::import("os").attr("fspath")(path)));
+}
+
+/// \p path for a write: its folder must exist (the write functions never create folders).
+/// \throw OutputError naming the file and the missing folder
+std::filesystem::path output_path(py::handle path) {
+  const std::filesystem::path p = fspath(path);
+  const std::filesystem::path dir = p.parent_path();
+  std::error_code ec;
+  if (!dir.empty() && !std::filesystem::is_directory(dir, ec))
+    throw OutputError(p.string() + ": cannot write: folder " + dir.string() + " does not exist");
+  return p;
 }
 
 py::tuple py_read_mesh(py::handle path, bool repair) {
@@ -159,7 +179,7 @@ void py_write_obj(py::handle path, py::handle V, py::handle F, py::handle UV, py
   std::optional<Parameterization> param;
   if (!UV.is_none()) param = param_from_arrays(mesh, UV, FT, "write_obj");
   AtomicOutput out;  // a failed write leaves nothing behind (and never a truncated earlier file)
-  write_obj(out.add(fspath(path)), mesh, param ? &*param : nullptr);
+  write_obj(out.add(output_path(path)), mesh, param ? &*param : nullptr);
   out.commit();
 }
 
@@ -359,13 +379,13 @@ PYBIND11_MODULE(_adaptex, m) {
         "read_textured_obj(path) -> (V, F, UV, FT): an OBJ with vt and f v/vt (UV #W x 2 float64, FT #F x 3 int32).");
   m.def("write_obj", &py_write_obj, py::arg("path"), py::arg("V"), py::arg("F"), py::arg("UV") = py::none(),
         py::arg("FT") = py::none(), "write_obj(path, V, F, UV=None, FT=None): v / vt / f v/vt at round-trip precision; all or nothing "
-        "(written under a temporary name, renamed on success; missing folders are created).");
+        "(written under a temporary name, renamed on success; the folder must exist).");
   m.def("read_image", [](py::handle path) { return image_array(adaptex::read_image(fspath(path))); }, py::arg("path"),
         "read_image(path) -> texture H x W x 4 uint8, row 0 = v = 0 (the bottom row of the PNG).");
   m.def("write_image", [](py::handle path, py::handle texture) {
           const adaptex::ImageRGBA8 image = image_from_array(texture, "write_image", "texture");
           adaptex::AtomicOutput out;  // as write_obj: all or nothing
-          adaptex::write_png(out.add(fspath(path)), image);
+          adaptex::write_png(out.add(output_path(path)), image);
           out.commit();
         }, py::arg("path"), py::arg("texture"), "write_image(path, texture): PNG (row 0 of texture = bottom row); all or nothing, as write_obj.");
   m.def("unwrap", &py_unwrap, py::arg("V"), py::arg("F"), py::kw_only(), py::arg("progress") = py::none(),
@@ -397,4 +417,5 @@ PYBIND11_MODULE(_adaptex, m) {
         "stretch(V, F, UV, FT) -> dict(l2, linf, area_distortion, angle_distortion, flipped, degenerate, face_l2 #F).");
   m.def("option_defaults", &option_defaults,
         "option_defaults() -> {function: {keyword: default}}: the library's defaults of every option keyword.");
+  m.def("_option_choices", &option_choices, "{function: {keyword: [names]}}: the names each enum keyword accepts.");
 }

@@ -18,6 +18,7 @@ struct Field {
   std::string name;
   std::function<void(Opt&, py::handle, const std::string& where)> set;
   std::function<py::object(const Opt&)> get;
+  std::vector<std::string> choices;  ///< An enum's names (empty for other types).
 };
 
 template <class T>
@@ -66,7 +67,9 @@ Field<Opt> enum_member(const char* name, E Opt::*m, std::vector<std::pair<std::s
       if (e == o.*m) return py::str(n);
     return py::none();
   };
-  return {name, set, get};
+  std::vector<std::string> choices;
+  for (const auto& [n, e] : names) choices.push_back(n);
+  return {name, set, get, choices};
 }
 
 /// The fields of \p Inner reached through the member \p m of \p Outer (PaintSessionOptions::adapt).
@@ -75,7 +78,7 @@ std::vector<Field<Outer>> nested(const std::vector<Field<Inner>>& inner, Inner O
   std::vector<Field<Outer>> out;
   for (const Field<Inner>& f : inner)
     out.push_back({f.name, [m, set = f.set](Outer& o, py::handle v, const std::string& w) { set(o.*m, v, w); },
-                   [m, get = f.get](const Outer& o) { return get(o.*m); }});
+                   [m, get = f.get](const Outer& o) { return get(o.*m); }, f.choices});
   return out;
 }
 
@@ -195,6 +198,18 @@ py::dict defaults(const std::vector<Field<Opt>>& fields) {
   return d;
 }
 
+template <class Opt>
+py::dict choices(const std::vector<Field<Opt>>& fields) {
+  py::dict d;
+  for (const Field<Opt>& f : fields)
+    if (!f.choices.empty()) {
+      py::list names;
+      for (const std::string& c : f.choices) names.append(py::str(c));
+      d[py::str(f.name)] = names;
+    }
+  return d;
+}
+
 }  // namespace
 
 void set_options(UnwrapOptions& o, const py::dict& kw, const char* fn) { apply(o, kw, fn, unwrap_fields()); }
@@ -210,6 +225,16 @@ py::dict option_defaults() {
   d["reparam"] = defaults(adapt_fields());
   d["paint"] = defaults(painter_fields());
   d["evaluate"] = defaults(eval_fields());
+  return d;
+}
+
+py::dict option_choices() {
+  py::dict d;
+  d["unwrap"] = choices(unwrap_fields());
+  d["adapt"] = choices(session_fields());
+  d["reparam"] = choices(adapt_fields());
+  d["paint"] = choices(painter_fields());
+  d["evaluate"] = choices(eval_fields());
   return d;
 }
 

@@ -28,5 +28,7 @@ void set_options(EvalOptions& options, const py::dict& kwargs, const char* fn);
 /// The keyword arguments and their defaults of each function, as a dict:
 /// {"unwrap": {...}, "adapt": {...}, "reparam": {...}, "paint": {...}, "evaluate": {...}}.
 py::dict option_defaults();
+/// The names an enum keyword accepts, per function: {"adapt": {"mode": [...], ...}, ...}.
+py::dict option_choices();
 
 }  // namespace adaptex::python

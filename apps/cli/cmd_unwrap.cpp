@@ -112,6 +112,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
                    {"flipped_faces", rr.flipped_faces},
                    {"welded_vertices", rr.welded_vertices}};
     j["time"] = {{"read", time_read},         {"cut", r.time_cut},
+                 {"segment", r.time_segment},
                  {"floater", r.time_floater}, {"yoshizawa", r.time_yoshizawa},
                  {"augment", r.time_augment}, {"pack", r.time_pack},
                  {"unwrap", r.time_total},    {"write", time_write},

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   adaptex::cli::Context ctx;
   app.add_flag("-q,--quiet", ctx.quiet, "No progress or warning lines on stderr");
+  app.set_version_flag("--version", "adaptex " ADAPTEX_VERSION);
   adaptex::cli::add_info_command(app, ctx);
   adaptex::cli::add_unwrap_command(app, ctx);
   adaptex::cli::add_paint_command(app, ctx);
@@ -29,6 +30,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line, exit code 2, like every other bad input.

@@ -12,7 +12,7 @@
 # reparam_ms is report.json's adapt.reparameterizations.total_ms (wall time of the end-mode
 # re-parameterization), total_s the whole command's. The stroke files come from NEW's `strokes
 # generate` (the file format is a contract, so an older build reads them too). Used in
-# docs/benchmarks.md, "End mode against the build issue 12 was filed on"; the medians per case:
+# docs/benchmarks.md, "End mode against the thesis-relaxation build"; the medians per case:
 # python3 bench/adapt/end_mode_vs_build.py OUT.txt
 set -euo pipefail
 equal_quality=0

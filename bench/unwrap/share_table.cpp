@@ -4,11 +4,12 @@
 // covers on average ("chart fill" = coverage / rect fill), flipped and overlapping triangles,
 // UVs outside [0,1]², and wall / CPU seconds. See docs/benchmarks.md.
 //
-//   bench_share_table [--single] [--detail] [--hash] [--speculative S] [--no-probe] [--normal-weight W] [--max-charts K] [--chart-padding P] NAME...
+//   bench_share_table [--single] [--detail] [--hash] [--speculative S] [--no-probe] [--normal-weight W] [--max-charts K] [--chart-padding P] [--augment-time-budget S] NAME...
 //
 // NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
 // code: genusG (genus_surface(G)), sphereS,T (sphere(S, T)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
-// pinched hole), pinched_annulus, tiny200 (tiny_components(200)), 1M (torus(2000, 250)).
+// pinched hole), pinched_annulus, tiny200 (tiny_components(200)), 1M (torus(2000, 250)),
+// scanlikeF (scan_like_mesh(F) of tests/param/scan_fixtures.h: >100 components, handles, holes).
 // --single also prints the share of one chart per component; --detail one line per chart.
 // --no-probe: UnwrapOptions::single_probe_l2 = 0 (auto as before the probe: the single chart in
 // full, then 4, 6, 8, ... charts). "cut+seams" = UnwrapReport::cut_length (the cut of a single
@@ -18,6 +19,8 @@
 // --hash: after each row, a 64-bit FNV-1a hash of the layout (every UV's bits and every face's
 // wedges): equal hashes before and after a speed change show that the layout did not change.
 // --speculative S: UnwrapOptions::speculative_attempts (chart counts built at the same time).
+// --augment-time-budget S: UnwrapOptions::augment_time_budget (wall seconds; a large value keeps
+// the layouts independent of the machine's load).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -34,6 +37,7 @@
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
+#include "../../tests/param/scan_fixtures.h"
 
 namespace {
 
@@ -115,7 +119,10 @@ bool g_hash = false;  ///< --hash
 UnwrapOptions g_options;  ///< --normal-weight W, --max-charts K, --chart-padding P, --speculative S
 
 void row(const std::string& name, bool single) {
-  const TriMesh mesh = make_mesh(name);
+  // scanlikeF: tests/param/scan_fixtures.h's scan_like_mesh(F) (many components, handles, holes).
+  const TriMesh mesh = name.rfind("scanlike", 0) == 0
+                           ? test::scan_like_mesh(name.size() > 8 ? std::stoi(name.substr(8)) : 60000)
+                           : make_mesh(name);
   double single_share = -1;
   if (single) {
     UnwrapOptions o;
@@ -166,6 +173,8 @@ int main(int argc, char** argv) {
       g_options.chart_padding = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--max-charts") == 0 && i + 1 < argc)
       g_options.max_charts = std::stoi(argv[++i]);
+    else if (std::strcmp(argv[i], "--augment-time-budget") == 0 && i + 1 < argc)
+      g_options.augment_time_budget = std::stod(argv[++i]);
     else names.emplace_back(argv[i]);
   }
   std::printf("| mesh | faces | %scharts | cut+seams (bbox diag.) | L2 | coverage | rect fill | chart fill | share | flipped+degenerate | "

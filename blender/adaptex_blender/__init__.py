@@ -43,6 +43,19 @@ def choose_backend(context):
     return backend.choose(prefs.backend, bpy.path.abspath(prefs.module_path), bpy.path.abspath(prefs.cli_path))
 
 
+def user_message(error):
+    """\p error as the add-on's user should read it: the library and the CLI name their own flags in
+    some messages ("rerun with --repair ..."), which mean nothing here; such a clause is replaced."""
+    text = str(error)
+    clauses = [c for c in text.split("; ") if "--" not in c]
+    if len(clauses) < len(text.split("; ")):
+        if "repair" in text:
+            clauses.append("clean up the mesh first (Select > Select All by Trait > Non Manifold; "
+                           "Mesh > Clean Up)")
+        text = "; ".join(clauses)
+    return text
+
+
 def set_status(context, text):
     if getattr(context, "workspace", None) is not None:
         context.workspace.status_text_set(text)
@@ -120,17 +133,23 @@ class AdaptexJobOperator:
         return self.finish(context, job)
 
     def finish(self, context, job):
-        if isinstance(job.error, backend.Cancelled):
-            self.report({"WARNING"}, "adaptex: cancelled; nothing was changed")
-            return {"CANCELLED"}
-        if job.error is not None:
-            self.report({"ERROR"}, f"adaptex: {job.error}")
-            return {"CANCELLED"}
         try:
-            return self.apply(context, job.result)
-        except (ValueError, RuntimeError) as e:
-            self.report({"ERROR"}, f"adaptex: {e}")
-            return {"CANCELLED"}
+            if isinstance(job.error, backend.Cancelled):
+                self.report({"WARNING"}, "adaptex: cancelled; nothing was changed")
+                return {"CANCELLED"}
+            if job.error is not None:
+                self.report({"ERROR"}, f"adaptex: {user_message(job.error)}; nothing was changed")
+                return {"CANCELLED"}
+            try:
+                return self.apply(context, job.result)
+            except (ValueError, RuntimeError) as e:
+                self.report({"ERROR"}, f"adaptex: {user_message(e)}")
+                return {"CANCELLED"}
+        finally:
+            self.cleanup()
+
+    def cleanup(self):
+        """Drops what prepare() made for the job only (called after every job, done or not)."""
 
     def target(self, context):
         """The active mesh object and its triangles, or None (with an error report)."""
@@ -164,6 +183,8 @@ class AdaptexJobOperator:
 
 
 class ADAPTEX_OT_unwrap(AdaptexJobOperator, bpy.types.Operator):
+    triangulated = None  # with 'Triangulate first': the triangulated copy the job ran on (a bpy mesh)
+
     """Unwrap the active mesh with adaptex (cut to disks, stretch-minimizing layout, packing) into a new UV map"""
     bl_idname = "adaptex.unwrap"
     bl_label = "Unwrap with adaptex"
@@ -176,32 +197,52 @@ class ADAPTEX_OT_unwrap(AdaptexJobOperator, bpy.types.Operator):
                     "through a quad or n-gon cannot be stored in its UV map")
 
     def prepare(self, context):
-        obj = context.active_object
-        if self.triangulate and obj is not None and obj.type == "MESH":
-            import bmesh
-            leave_edit_mode(obj)
-            bm = bmesh.new()
-            bm.from_mesh(obj.data)
-            bmesh.ops.triangulate(bm, faces=bm.faces[:])
-            bm.to_mesh(obj.data)
-            bm.free()
         if self.target(context) is None:
             return None
+        self.triangulated = None
+        if self.triangulate:
+            # A triangulated copy: the mesh itself changes only with the result (a failed or
+            # cancelled job leaves it as it was).
+            self.triangulated = meshdata.triangulated_copy(context.active_object.data)
+            self.V, self.F = meshdata.triangles(self.triangulated)[:2]
         V, F, b = self.V, self.F, self.backend
         return lambda report: b.unwrap(V, F, report)
 
     def apply(self, context, result):
-        me = self.target_mesh()
+        me = self.target_mesh() if self.triangulated is None else self.write_triangulated()
         UV, FT = result
         per_loop, conflicts = meshdata.loop_uvs(me, self.loops, UV, FT)
         layer = meshdata.add_uv_map(me, self.uv_name, per_loop)
         me.update()
         msg = f"adaptex: new UV map '{layer.name}' ({self.backend.name})"
+        if self.triangulated is not None:
+            msg += "; the mesh was triangulated"
         if conflicts:
             msg += (f"; {conflicts} polygon corners lie on a seam through a polygon: run it again with "
                     "'Triangulate first' for an exact layout")
         self.report({"INFO"}, msg)
         return {"FINISHED"}
+
+    def write_triangulated(self):
+        """The object's mesh replaced by the triangulated copy (the job's triangles), after the job."""
+        obj = bpy.data.objects.get(self.object_name)
+        if obj is None or obj.type != "MESH":
+            raise RuntimeError("the object was deleted while adaptex ran")
+        me = obj.data
+        if len(me.vertices) != len(self.triangulated.vertices):
+            raise RuntimeError("the mesh was edited while adaptex ran; run it again")
+        meshdata.replace_geometry(me, self.triangulated)
+        bpy.data.meshes.remove(self.triangulated)
+        self.triangulated = None
+        V, F, self.loops = meshdata.triangles(me)
+        if len(F) != len(self.F) or (F != self.F).any():
+            raise RuntimeError("triangulating the mesh gave other triangles than the job's")
+        return me
+
+    def cleanup(self):
+        if self.triangulated is not None:
+            bpy.data.meshes.remove(self.triangulated)
+            self.triangulated = None
 
 
 def painted_image(context, obj):
@@ -222,9 +263,75 @@ def painted_image(context, obj):
     return None
 
 
+def image_nodes(obj, image):
+    """The image texture nodes of \p obj's materials that show \p image."""
+    out = []
+    for slot in obj.material_slots:
+        mat = slot.material
+        if mat is not None and mat.use_nodes:
+            out += [n for n in mat.node_tree.nodes if n.type == "TEX_IMAGE" and n.image == image]
+    return out
+
+
+def uv_source(node):
+    """Where the image node \p node takes its coordinates from, following Mapping and Reroute nodes
+    upstream: (socket, uv_map_node_or_None, kind) with kind "uvmap" (a UV Map node; its map, or the
+    render map when empty), "render" (unlinked, or the Texture Coordinate node's UV output: the
+    render-active UV map) or "other" (not a UV map). \p socket is the input the chain starts at."""
+    socket = node.inputs["Vector"]
+    for _ in range(32):  # a node chain, not a cycle
+        if not socket.is_linked:
+            return socket, None, "render"
+        link = socket.links[0]
+        src = link.from_node
+        if src.type == "UVMAP":
+            return socket, src, "uvmap"
+        if src.type == "TEX_COORD":
+            return socket, None, "render" if link.from_socket.name == "UV" else "other"
+        if src.type in ("MAPPING", "REROUTE", "VECT_TRANSFORM") and len(src.inputs) > 0:
+            socket = src.inputs[0]
+            continue
+        return socket, None, "other"
+    return socket, None, "other"
+
+
+def painted_uv_map(obj, image):
+    """The UV map \p image is painted on: the one its image texture node reads (through a UV Map
+    node), else the render-active UV map (what an unlinked image node uses). None when the node's
+    coordinates are not a UV map."""
+    me = obj.data
+    render = next((layer for layer in me.uv_layers if layer.active_render), None)
+    for node in image_nodes(obj, image):
+        _, uvnode, kind = uv_source(node)
+        if kind == "uvmap" and uvnode.uv_map:
+            return me.uv_layers.get(uvnode.uv_map)
+        if kind == "other":
+            return None
+        return render
+    return render if render is not None else me.uv_layers.active
+
+
+def show_image_on(obj, old_image, new_image, uv_map_name):
+    """Every image node of \p obj showing \p old_image shows \p new_image through the UV map
+    \p uv_map_name, clamped at the image border (no line of the opposite border along open edges)."""
+    for node in image_nodes(obj, old_image):
+        socket, uvnode, kind = uv_source(node)
+        node.image = new_image
+        node.extension = "EXTEND"
+        if kind == "uvmap":
+            uvnode.uv_map = uv_map_name
+        else:  # unlinked or the render UV map: an explicit UV Map node, so no other texture moves
+            nt = node.id_data
+            uvnode = nt.nodes.new("ShaderNodeUVMap")
+            uvnode.uv_map = uv_map_name
+            uvnode.location = (node.location.x - 200, node.location.y - 150)
+            nt.links.new(uvnode.outputs["UV"], socket)
+
+
 class ADAPTEX_OT_adapt_layout(AdaptexJobOperator, bpy.types.Operator):
-    """Re-parameterize the mesh by its painted image (texels go where the paint has detail) and resample
-    the image into a new UV map and a new image, keeping the originals"""
+    """Make the painted image N times smaller on a layout adapted to its paint (texels go where the
+    paint has detail): a new UV map and a new image, keeping the originals. Shows the PSNR of the
+    result and of plain downsizing; the result is assigned only when it is better"""
     bl_idname = "adaptex.adapt_layout"
     bl_label = "Adapt layout to paint"
     bl_options = {"REGISTER", "UNDO"}
@@ -240,8 +347,8 @@ class ADAPTEX_OT_adapt_layout(AdaptexJobOperator, bpy.types.Operator):
         default="4")
     size: IntProperty(name="Size", default=1024, min=8, max=8192, description="Width = height of the new image (Custom)")
     assign: BoolProperty(name="Show the result", default=True,
-                         description="Make the new UV map active and put the new image in the material's "
-                                     "image node (the originals are kept)")
+                         description="When the result beats plain downsizing: put the new image in the "
+                                     "material's image nodes, through the new UV map (the originals are kept)")
 
     def draw(self, context):
         for p in ("image", "scale", "size", "assign"):
@@ -255,9 +362,12 @@ class ADAPTEX_OT_adapt_layout(AdaptexJobOperator, bpy.types.Operator):
         if img is None or img.size[0] == 0:
             self.report({"ERROR"}, "adaptex: no painted image (paint one, or give its name)")
             return None
-        uv_layer = obj.data.uv_layers.active
-        if uv_layer is None:
+        if len(obj.data.uv_layers) == 0:
             self.report({"ERROR"}, "adaptex: the mesh has no UV map")
+            return None
+        uv_layer = painted_uv_map(obj, img)
+        if uv_layer is None:
+            self.report({"ERROR"}, f"adaptex: the image '{img.name}' is not mapped by a UV map of the mesh")
             return None
         self.image, self.uv_source = img.name, uv_layer.name
         texture = meshdata.image_pixels(img)
@@ -265,54 +375,86 @@ class ADAPTEX_OT_adapt_layout(AdaptexJobOperator, bpy.types.Operator):
         UV, FT = meshdata.wedges(obj.data, uv_layer, self.loops)
         self.old = (UV, FT, texture)
         V, F, b = self.V, self.F, self.backend
-        return lambda report: b.reparam(V, F, UV, FT, texture, n, report)
+        return lambda report: b.make_smaller(V, F, UV, FT, texture, n, report)
 
     def apply(self, context, result):
         me = self.target_mesh()
-        UV, FT, texture = result
+        UV, FT, texture = result["UV"], result["FT"], result["texture"]
         if isinstance(texture, str):  # the CLI's PNG
             texture = meshdata.read_png(bpy, texture)
         n = texture.shape[0]
         old_uv, old_ft, old_tex = self.old
-        plain = meshdata.area_resize(old_tex, n, n)
-        psnr_adapted, psnr_plain = meshdata.psnr_against(
-            (old_uv, old_ft, old_tex), [(UV, FT, texture), (old_uv, old_ft, plain)], self.V, self.F)
+        if "psnr" in result:
+            psnr_adapted, psnr_plain = result["psnr"], result["psnr_plain"]
+        else:
+            plain = meshdata.area_resize(old_tex, n, n)
+            psnr_adapted, psnr_plain = meshdata.psnr_against(
+                (old_uv, old_ft, old_tex), [(UV, FT, texture), (old_uv, old_ft, plain)], self.V, self.F)
+        better = psnr_adapted > psnr_plain
         per_loop, _ = meshdata.loop_uvs(me, self.loops, UV, FT)
+        active_before = me.uv_layers.active.name if me.uv_layers.active is not None else None
         layer = meshdata.add_uv_map(me, self.uv_source + "_adaptex", per_loop)
         img = meshdata.new_image(bpy, f"{self.image}_adaptex_{n}", texture)
-        if self.assign:
-            layer.active_render = True
-            obj = bpy.data.objects[self.object_name]
-            for slot in obj.material_slots:
-                if slot.material is not None and slot.material.use_nodes:
-                    for node in slot.material.node_tree.nodes:
-                        if node.type == "TEX_IMAGE" and node.image is not None and node.image.name == self.image:
-                            node.image = img
-                            # An explicit UV Map node feeding it must follow (else the active render map is used).
-                            for link in node.inputs["Vector"].links:
-                                if link.from_node.type == "UVMAP" and link.from_node.uv_map in ("", self.uv_source):
-                                    link.from_node.uv_map = layer.name
+        obj = bpy.data.objects[self.object_name]
+        if self.assign and better:
+            show_image_on(obj, bpy.data.images[self.image], img, layer.name)
+        elif active_before is not None:
+            me.uv_layers.active = me.uv_layers[active_before]  # the original stays what is shown
         me.update()
         result = {"image": img.name, "uv_map": layer.name, "size": n, "psnr": psnr_adapted,
-                  "psnr_plain": psnr_plain, "gain": psnr_adapted - psnr_plain, "backend": self.backend.name}
+                  "psnr_plain": psnr_plain, "gain": psnr_adapted - psnr_plain, "assigned": bool(self.assign and better),
+                  "uv_source": self.uv_source, "backend": self.backend.name}
         context.scene["adaptex_last"] = result
-        text = (f"adaptex: {n}x{n} '{img.name}', UV map '{layer.name}': PSNR {psnr_adapted:.2f} dB, "
-                f"{psnr_adapted - psnr_plain:+.2f} dB over plain downsizing to {n}x{n}")
-        self.report({"INFO"}, text)
+        figures = (f"PSNR {psnr_adapted:.2f} dB adapted, {psnr_plain:.2f} dB plain downsizing to {n}x{n} "
+                   f"({psnr_adapted - psnr_plain:+.2f} dB)")
+        if better:
+            text = f"adaptex: {n}x{n} '{img.name}', UV map '{layer.name}': {figures}"
+            self.report({"INFO"}, text)
+        else:
+            text = (f"adaptex: not better than plain downsizing: {figures}. The original image and UV map "
+                    f"stay assigned; the result is kept as '{img.name}' and UV map '{layer.name}'")
+            self.report({"WARNING"}, text)
         show_result(context, text)
         return {"FINISHED"}
 
 
-def draw_buttons(layout):
+def draw_buttons(layout, context=None):
     layout.operator(ADAPTEX_OT_unwrap.bl_idname, icon="UV")
     layout.operator(ADAPTEX_OT_adapt_layout.bl_idname, icon="TEXTURE")
+    last = context.scene.get("adaptex_last") if context is not None and context.scene is not None else None
+    if last is not None and "psnr_plain" in last:  # the two PSNRs of the last result
+        col = layout.column(align=True)
+        col.label(text=f"Last: {last['size']}x{last['size']} '{last['image']}'")
+        col.label(text=f"PSNR adapted {last['psnr']:.2f} dB")
+        col.label(text=f"PSNR plain downsizing {last['psnr_plain']:.2f} dB")
+        if not last.get("assigned", True):
+            col.label(text="Not better: the original stays assigned", icon="ERROR")
 
 
-def sidebar_panel(space):
-    """The adaptex tab of \p space's sidebar (3D View: object and texture paint modes; UV editor)."""
-    return type(f"{space.split('_')[0]}_PT_adaptex", (bpy.types.Panel,), {
-        "bl_label": "adaptex", "bl_space_type": space, "bl_region_type": "UI", "bl_category": "adaptex",
-        "draw": lambda self, context: draw_buttons(self.layout)})
+class ADAPTEX_PT_view3d(bpy.types.Panel):
+    """The adaptex tab of the 3D View's sidebar, in Object and Texture Paint mode."""
+    bl_label = "adaptex"
+    bl_space_type = "VIEW_3D"
+    bl_region_type = "UI"
+    bl_category = "adaptex"
+
+    @classmethod
+    def poll(cls, context):
+        return context.mode in {"OBJECT", "PAINT_TEXTURE"}
+
+    def draw(self, context):
+        draw_buttons(self.layout)
+
+
+class ADAPTEX_PT_uv_editor(bpy.types.Panel):
+    """The adaptex tab of the UV Editor's (Image Editor's) sidebar, in every mode."""
+    bl_label = "adaptex"
+    bl_space_type = "IMAGE_EDITOR"
+    bl_region_type = "UI"
+    bl_category = "adaptex"
+
+    def draw(self, context):
+        draw_buttons(self.layout)
 
 
 def uv_menu(self, context):
@@ -320,8 +462,7 @@ def uv_menu(self, context):
     draw_buttons(self.layout)
 
 
-classes = (AdaptexPreferences, ADAPTEX_OT_unwrap, ADAPTEX_OT_adapt_layout, sidebar_panel("VIEW_3D"),
-           sidebar_panel("IMAGE_EDITOR"))
+classes = (AdaptexPreferences, ADAPTEX_OT_unwrap, ADAPTEX_OT_adapt_layout, ADAPTEX_PT_view3d, ADAPTEX_PT_uv_editor)
 
 
 def register():

@@ -2,6 +2,7 @@
 otherwise the `adaptex` command-line tool. Both run in a background Job that reports progress and
 can be cancelled. No bpy here (the work runs off Blender's main thread)."""
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -10,6 +11,11 @@ import threading
 import time
 
 from . import meshdata
+
+
+# How "make N× smaller" (the Adapt layout operator) runs: "reparam" (signal-adaptive warp of the
+# layout, then resampling). Every backend has one smaller_by_<path> method per path.
+MAKE_SMALLER = "reparam"
 
 
 class Cancelled(Exception):
@@ -75,15 +81,44 @@ def import_module(extra_path=""):
     return None
 
 
+def installed():
+    """(module folder, CLI) where `cmake --install` put adaptex, recorded in the add-on's zip
+    (_install.py, blender/make_zip.py); empty strings for a zip made without them."""
+    try:
+        from . import _install
+    except ImportError:
+        return "", ""
+    return _install.MODULE_DIR, _install.CLI
+
+
 def find_cli(path=""):
-    """Path of the adaptex CLI: \\p path, else $ADAPTEX_CLI, else `adaptex` on PATH; None if none."""
+    """Path of the adaptex CLI: \\p path, else $ADAPTEX_CLI, else `adaptex` on PATH, else the
+    installed one; None if none."""
     for candidate in (path, os.environ.get("ADAPTEX_CLI", "")):
         if candidate and os.path.isfile(candidate) and os.access(candidate, os.X_OK):
             return candidate
-    return shutil.which("adaptex")
+    on_path = shutil.which("adaptex")
+    if on_path:
+        return on_path
+    cli = installed()[1]
+    return cli if cli and os.path.isfile(cli) and os.access(cli, os.X_OK) else None
 
 
-class ModuleBackend:
+class Backend:
+    """What both backends do the same way on top of their unwrap() and reparam()."""
+
+    def make_smaller(self, V, F, UV, FT, texture, size, report):
+        """The painted texture at size x size on a new layout: a dict with UV, FT, texture (H x W x 4
+        uint8, or the path of a PNG for the CLI) and, where the path measures them, psnr and
+        psnr_plain (dB against the original, of the result and of plain downsizing)."""
+        return getattr(self, "smaller_by_" + MAKE_SMALLER)(V, F, UV, FT, texture, size, report)
+
+    def smaller_by_reparam(self, V, F, UV, FT, texture, size, report):
+        UV2, FT2, tex2 = self.reparam(V, F, UV, FT, texture, size, report)
+        return {"UV": UV2, "FT": FT2, "texture": tex2}
+
+
+class ModuleBackend(Backend):
     """Calls the Python module (GIL released, progress callback)."""
     name = "Python module"
 
@@ -133,7 +168,16 @@ def read_obj_layout(path, F):
     return np.array(uv, dtype=np.float64), corners[:, :, 1].astype(np.int32)
 
 
-class CliBackend:
+def cli_error(stderr, code):
+    """The CLI's error line as the add-on's user should read it: without the "adaptex: error:" prefix,
+    and the temporary files the add-on wrote named as what they hold."""
+    line = stderr.splitlines()[-1] if stderr else f"adaptex exited with {code}"
+    line = line.removeprefix("adaptex: error: ")
+    tmp = re.escape(tempfile.gettempdir().rstrip(os.sep)) + r"/adaptex-[^/\s]+/"
+    return re.sub(tmp + r"in\.obj", "the mesh", re.sub(tmp + r"in\.png", "the image", line))
+
+
+class CliBackend(Backend):
     """Runs the `adaptex` CLI in a subprocess (terminated on cancel)."""
     name = "adaptex CLI"
 
@@ -155,7 +199,7 @@ class CliBackend:
             err.seek(0)
             text = err.read().strip()
         if proc.returncode != 0:
-            raise RuntimeError(text.splitlines()[-1] if text else f"adaptex exited with {proc.returncode}")
+            raise RuntimeError(cli_error(text, proc.returncode))
 
     def unwrap(self, V, F, report):
         with tempfile.TemporaryDirectory(prefix="adaptex-") as tmp:
@@ -186,7 +230,7 @@ def choose(preference="AUTO", module_path="", cli_path=""):
     """The backend to use: the module where importable (unless CLI is asked for), else the CLI.
     \\throw RuntimeError neither is available."""
     if preference != "CLI":
-        module = import_module(module_path)
+        module = import_module(module_path) or import_module(installed()[0])
         if module is not None:
             return ModuleBackend(module)
         if preference == "MODULE":

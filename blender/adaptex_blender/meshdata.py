@@ -24,6 +24,34 @@ def triangles(mesh):
     return V.reshape(-1, 3), F.reshape(-1, 3), loops.reshape(-1, 3)
 
 
+def triangulated_copy(mesh):
+    """A new mesh datablock: \p mesh with every polygon triangulated (UV maps, materials and the
+    vertex order kept); \p mesh is not touched. Remove it with bpy.data.meshes.remove."""
+    import bmesh
+    import bpy
+    bm = bmesh.new()
+    try:
+        bm.from_mesh(mesh)
+        bmesh.ops.triangulate(bm, faces=bm.faces[:])
+        copy = bpy.data.meshes.new(mesh.name + "_triangulated")
+        bm.to_mesh(copy)
+    finally:
+        bm.free()
+    return copy
+
+
+def replace_geometry(mesh, source):
+    """\p mesh gets the geometry and the layers (UV maps, ...) of \p source (a triangulated_copy)."""
+    import bmesh
+    bm = bmesh.new()
+    try:
+        bm.from_mesh(source)
+        bm.to_mesh(mesh)
+    finally:
+        bm.free()
+    mesh.update()
+
+
 def wedges(mesh, uv_layer, loops):
     """(UV, FT) of a UV map: loops with the same vertex and the same uv share a wedge (so charts
     are the groups of triangles connected through shared wedges, as in an OBJ file)."""

@@ -12,9 +12,11 @@ Inputs accept any floating-point dtype for V / UV and any integer dtype for F / 
 ``adaptex.Error`` subclasses: bad input raises ``InvalidInputError`` (a ``ValueError``; also
 ``TopologyError``), a file that cannot be read ``IoError`` (``ValueError`` and ``OSError``), one that
 cannot be written ``OutputError`` (``OSError``). Long calls (unwrap, paint, adapt, reparam,
-evaluate) release the GIL; unwrap, paint, adapt and reparam take ``progress(phase, fraction)``:
-returning ``False`` cancels the call with ``CancelledError``.
+evaluate) release the GIL and take ``progress(phase, fraction)``: returning ``False`` cancels the
+call with ``CancelledError``; Ctrl+C interrupts them with ``KeyboardInterrupt``. ``help(adaptex.adapt)``
+lists every option keyword with its default.
 """
+from ._version import __version__  # noqa: F401
 from ._adaptex import (  # noqa: F401
     CancelledError,
     Error,
@@ -23,6 +25,8 @@ from ._adaptex import (  # noqa: F401
     OutputError,
     SolverError,
     TopologyError,
+)
+from ._functions import (  # noqa: F401
     adapt,
     evaluate,
     option_defaults,

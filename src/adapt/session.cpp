@@ -10,7 +10,7 @@
 #include <optional>
 #include <string>
 
-#include "adaptex/adapt/point_transfer.h"
+#include "adaptex/paint/point_transfer.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
 #include "adaptex/core/timer.h"

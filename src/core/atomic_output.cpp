@@ -52,4 +52,11 @@ void AtomicOutput::commit() {
   committed_ = true;
 }
 
+std::vector<fs::path> AtomicOutput::final_paths() const {
+  std::vector<fs::path> out;
+  out.reserve(files_.size());
+  for (const auto& [tmp, final_path] : files_) out.push_back(final_path);
+  return out;
+}
+
 }  // namespace adaptex

@@ -1,9 +1,11 @@
 /// \file image_io.cpp
-/// PNG input and output through stb_image / stb_image_write (the implementations live in Debian's
-/// libstb.so). Files store the top row first, ImageRGBA8 stores v = 0 first: rows flip.
-/// Only PNG is read (stb would decode PSD, GIF, HDR, ... too: a 52-byte PSD header made it allocate
-/// 1 GB; issue 11): the signature and the IHDR size are checked before stb decodes anything, and the
-/// size must be within kMaxTextureSize per side and kMaxImagePixels in all.
+/// PNG, JPEG and TGA input and PNG output through stb_image / stb_image_write (the implementations
+/// live in Debian's libstb.so). Files store the top row first, ImageRGBA8 stores v = 0 first: rows flip.
+/// Only these three formats are read (stb would decode PSD, GIF, HDR, ... too: a 52-byte PSD header
+/// made it allocate 1 GB). Before stb decodes anything, adaptex walks the file's structure itself
+/// (PNG chunks, JPEG segments up to the end-of-image marker, TGA header, palette and RLE packets), so
+/// a truncated or forged file is one clear error, and the size from the header must be within
+/// kMaxTextureSize per side and kMaxImagePixels in all (stbi_info_from_memory must agree).
 #include "adaptex/io/image_io.h"
 
 #include <stb_image.h>
@@ -18,6 +20,7 @@
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
 #include "adaptex/io/input_file.h"
+#include "image_formats.h"
 
 namespace adaptex {
 
@@ -45,41 +48,6 @@ void check_image(const ImageRGBA8& img, const std::string& what) {
                   std::to_string(img.width) + "x" + std::to_string(img.height) + "x4");
 }
 
-/// Checks the PNG signature and the IHDR chunk's size against the caps, before decoding.
-void check_png_header(const std::string& bytes, const std::string& name) {
-  static constexpr std::string_view signature("\x89PNG\r\n\x1a\n", 8);
-  if (bytes.size() < 8 || std::string_view(bytes).substr(0, 8) != signature)
-    throw IoError(name + ": not a PNG file (only PNG images are read)");
-  if (bytes.size() < 33 || bytes.compare(12, 4, "IHDR") != 0)
-    throw IoError(name + ": corrupt PNG: no IHDR chunk after the signature");
-  const auto be32 = [&](std::size_t at) {
-    std::uint32_t v = 0;
-    for (int k = 0; k < 4; ++k) v = v << 8 | static_cast<unsigned char>(bytes[at + k]);
-    return v;
-  };
-  const std::uint64_t w = be32(16), h = be32(20);
-  if (w == 0 || h == 0) throw IoError(name + ": corrupt PNG: the header says " + std::to_string(w) + "x" + std::to_string(h));
-  if (w > static_cast<std::uint64_t>(kMaxTextureSize) || h > static_cast<std::uint64_t>(kMaxTextureSize) ||
-      w * h > kMaxImagePixels)
-    throw IoError(name + ": PNG of " + std::to_string(w) + "x" + std::to_string(h) + " pixels is larger than the " +
-                  std::to_string(kMaxTextureSize) + "x" + std::to_string(kMaxTextureSize) + " limit");
-  // Every chunk up to IEND must fit in the bytes left: stb grows its IDAT buffer to a chunk's claimed
-  // length before reading it (the fuzz smoke found a 2x2 PNG whose chunk claimed ~1 GB: a 2 GB
-  // allocation).
-  for (std::size_t at = 8; at + 8 <= bytes.size();) {
-    const std::uint64_t length = be32(at);
-    std::string type = bytes.substr(at + 4, 4);
-    for (char& c : type)  // a forged type may hold any byte: keep the message one printable line
-      if (c < 0x20 || c > 0x7e) c = '?';
-    if (length > bytes.size() - at - 8 || bytes.size() - at - 8 - length < 4)
-      throw IoError(name + ": corrupt PNG: chunk \"" + type + "\" at byte " + std::to_string(at) + " claims " +
-                    std::to_string(length) + " bytes, but only " + std::to_string(bytes.size() - at - 8) +
-                    " are left");
-    if (type == "IEND") break;
-    at += 12 + length;
-  }
-}
-
 }  // namespace
 
 ImageRGBA8 read_image(const std::filesystem::path& path) {
@@ -88,15 +56,26 @@ ImageRGBA8 read_image(const std::filesystem::path& path) {
 
 ImageRGBA8 read_image_from_memory(const std::string& bytes, const std::string& name) {
   check_input_size(bytes.size(), name);
-  check_png_header(bytes, name);
+  const io_detail::ImageHeader header = io_detail::check_image_file(bytes, name);
   if (bytes.size() > static_cast<size_t>(INT32_MAX)) throw IoError(name + ": cannot read image: file too large");
   int w = 0, h = 0, channels = 0;
+  // stb's own reading of the header must agree with adaptex's (the same decoder will then run).
+  if (!stbi_info_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<int>(bytes.size()), &w,
+                             &h, &channels) ||
+      w != header.width || h != header.height)
+    throw IoError(name + ": corrupt " + header.format + ": the decoder reads a different header (" + std::to_string(w) +
+                  "x" + std::to_string(h) + ", expected " + std::to_string(header.width) + "x" +
+                  std::to_string(header.height) + ")");
   unsigned char* pixels =
       stbi_load_from_memory(reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<int>(bytes.size()), &w,
                             &h, &channels, 4);
   if (!pixels) {
     const char* reason = stbi_failure_reason();
-    throw IoError(name + ": cannot decode image: " + (reason ? reason : "unknown error"));
+    throw IoError(name + ": corrupt " + header.format + ": cannot decode: " + (reason ? reason : "unknown error"));
+  }
+  if (w != header.width || h != header.height) {
+    stbi_image_free(pixels);
+    throw IoError(name + ": corrupt " + header.format + ": decoded to another size than its header's");
   }
   ImageRGBA8 img;
   img.width = w;

@@ -67,6 +67,25 @@ PolygonSoup read_ply_soup(const std::string& bytes, const SoupSource& source);
 PolygonSoup read_stl_soup(const std::string& bytes, const SoupSource& source);
 PolygonSoup read_gltf_soup(const std::string& bytes, const SoupSource& source);
 
+/// A polygon soup with texture coordinates (OBJ `vt`, glTF TEXCOORD_0) and materials per corner.
+struct TexturedSoup {
+  PolygonSoup soup;                   ///< tex_indices set: per corner, an index into texcoords (or -1).
+  std::vector<double> texcoords;      ///< 2 per texture coordinate.
+  std::vector<int> corner_material;   ///< Per corner: the material of its polygon (-1: none); may be empty.
+};
+
+/// Parses OBJ text with tinyobjloader (and re-converts the numbers, see obj_io.cpp). \p mtl_text is the
+/// material text tinyobjloader sees at the first `mtllib` (empty: no materials, every corner -1).
+TexturedSoup read_obj_data(const std::string& text, const std::string& name, const std::string& mtl_text);
+
+/// The textured mesh of a soup: every corner must have a finite texture coordinate; validation as
+/// soup_to_mesh(); wedges are the distinct (texture coordinate, vertex) pairs ordered by texture
+/// coordinate index, charts the faces connected through wedges (read_textured_obj()). When
+/// \p face_material is given it receives each face's material (from corner_material).
+/// \throw IoError, InvalidInputError, TopologyError as read_textured_obj()
+TexturedMesh textured_from_soup(TexturedSoup data, const std::string& name, const ReadOptions& options,
+                                ReadReport* report, std::vector<int>* face_material);
+
 /// "1 vertex" / "3 vertices": \p n with the singular or plural noun, for messages.
 inline std::string count_str(std::int64_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);

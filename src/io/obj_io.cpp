@@ -79,21 +79,19 @@ bool refine_numbers(const std::string& name, const std::string& text, const std:
   return true;
 }
 
-struct ObjData {
-  PolygonSoup soup;
-  std::vector<double> texcoords;     ///< 2 per vt.
-};
+}  // namespace
 
-ObjData read_obj_data(const std::string& text, const std::string& name) {
+TexturedSoup read_obj_data(const std::string& text, const std::string& name, const std::string& mtl_text) {
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  // From the text already read, with no material text: `mtllib` files are never opened (adaptex does
-  // not use materials on input, and a material path may name anything, e.g. /dev/zero).
-  if (!reader.ParseFromString(text, std::string(), config))
+  // From the text already read: tinyobjloader never opens a `mtllib` file (a material path may name
+  // anything, e.g. /dev/zero). The material text, when given, is read_textured_asset()'s list of the
+  // material names; tinyobjloader only maps `usemtl` to them.
+  if (!reader.ParseFromString(text, mtl_text, config))
     throw IoError(name + ": corrupt OBJ: " + first_line(reader.Error().empty() ? "tinyobjloader failed" : reader.Error()));
-  ObjData data;
+  TexturedSoup data;
   PolygonSoup& soup = data.soup;
   soup.format = "obj";
   soup.index_base = 1;
@@ -113,9 +111,11 @@ ObjData read_obj_data(const std::string& text, const std::string& name) {
     std::size_t c = 0;
     for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
       const unsigned n = shape.mesh.num_face_vertices[f];
+      const int material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
       for (unsigned k = 0; k < n; ++k, ++c) {
         soup.indices.push_back(shape.mesh.indices[c].vertex_index);
         soup.tex_indices.push_back(shape.mesh.indices[c].texcoord_index);
+        data.corner_material.push_back(material);
       }
       soup.end_polygon();
     }
@@ -123,20 +123,12 @@ ObjData read_obj_data(const std::string& text, const std::string& name) {
   return data;
 }
 
-}  // namespace
-
 PolygonSoup read_obj_soup(const std::string& bytes, const SoupSource& source) {
-  return read_obj_data(bytes, source.name).soup;
+  return read_obj_data(bytes, source.name, std::string()).soup;
 }
 
-}  // namespace io_detail
-
-TexturedMesh read_textured_obj(const std::filesystem::path& path, const ReadOptions& options, ReadReport* report) {
-  using namespace io_detail;
-  const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw IoError(name + ": cannot read: file does not exist");
-  ObjData data = read_obj_data(read_input_file(path), name);
+TexturedMesh textured_from_soup(TexturedSoup data, const std::string& name, const ReadOptions& options,
+                                ReadReport* report, std::vector<int>* face_material) {
   const PolygonSoup& soup = data.soup;
   const auto nt = static_cast<std::int64_t>(data.texcoords.size() / 2);
   for (std::int64_t p = 0; p < soup.num_polygons(); ++p)
@@ -161,6 +153,11 @@ TexturedMesh read_textured_obj(const std::filesystem::path& path, const ReadOpti
   TexturedMesh out;
   out.mesh = std::move(sm.mesh);
   const int nf = out.mesh.num_faces();
+  if (face_material) {
+    face_material->resize(nf);
+    for (int f = 0; f < nf; ++f)
+      (*face_material)[f] = data.corner_material.empty() ? -1 : data.corner_material[sm.face_corners[f][0]];
+  }
   // Wedges: distinct (vt, vertex) pairs ordered by vt, then by first use.
   Parameterization& param = out.param;
   std::map<std::pair<std::int64_t, int>, int> wedge_of;
@@ -198,6 +195,16 @@ TexturedMesh read_textured_obj(const std::filesystem::path& path, const ReadOpti
     param.face_chart[f] = c;
   }
   return out;
+}
+
+}  // namespace io_detail
+
+TexturedMesh read_textured_obj(const std::filesystem::path& path, const ReadOptions& options, ReadReport* report) {
+  using namespace io_detail;
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw IoError(name + ": cannot read: file does not exist");
+  return textured_from_soup(read_obj_data(read_input_file(path), name, std::string()), name, options, report, nullptr);
 }
 
 namespace {

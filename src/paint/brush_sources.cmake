@@ -10,4 +10,6 @@ target_sources(adaptex_paint PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/eval.cpp
   ${CMAKE_CURRENT_LIST_DIR}/generate.cpp
   ${CMAKE_CURRENT_LIST_DIR}/texel_saving.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/asset_eval.cpp       # surface PSNR of shrunk assets, box downsizing
+  ${CMAKE_CURRENT_LIST_DIR}/point_transfer.cpp   # sample points carried to a refined mesh
   ${CMAKE_CURRENT_LIST_DIR}/surface_cache.cpp)

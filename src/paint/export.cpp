@@ -188,8 +188,10 @@ std::vector<unsigned char> encode_glb_png(const TriMesh& mesh, const Parameteriz
   tinygltf::Sampler sampler;
   sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
   sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-  sampler.wrapS = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
-  sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  const int wrap = options.wrap == TextureAddress::Repeat ? TINYGLTF_TEXTURE_WRAP_REPEAT
+                                                         : TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  sampler.wrapS = wrap;
+  sampler.wrapT = wrap;
   model.samplers.push_back(sampler);
 
   tinygltf::Texture tex;
@@ -252,7 +254,7 @@ std::vector<unsigned char> encode_glb(const TriMesh& mesh, const Parameterizatio
   return encode_glb_png(mesh, param, encode_png(texture), options);
 }
 
-void write_mtl(const fs::path& path, const std::string& material, const std::string& texture_file) {
+void write_mtl(const fs::path& path, const std::string& material, const std::string& texture_file, bool clamp) {
   std::ofstream out(path, std::ios::binary);
   if (!out) throw OutputError(path.string() + ": cannot open for writing");
   out << "# adaptex painted material\n"
@@ -262,7 +264,7 @@ void write_mtl(const fs::path& path, const std::string& material, const std::str
       << "Ks 0 0 0\n"
       << "d 1\n"
       << "illum 1\n"
-      << "map_Kd " << texture_file << "\n";
+      << "map_Kd " << (clamp ? "-clamp on " : "") << texture_file << "\n";
   out.close();
   if (!out) throw OutputError(path.string() + ": write error");
 }
@@ -279,7 +281,7 @@ ExportedFiles export_textured_mesh(AtomicOutput& out, const fs::path& dir, const
     files.mtl = dir / (name + ".mtl");
     files.png = dir / (name + ".png");
     write_obj(out.add(files.obj), mesh, &param, name + ".mtl", options.material);
-    write_mtl(out.add(files.mtl), options.material, name + ".png");
+    write_mtl(out.add(files.mtl), options.material, name + ".png", options.mtl_clamp);
   }
   // The texture is PNG-encoded once, for NAME.png and the .glb alike (same bytes).
   const std::vector<unsigned char> png = encode_png(texture);

@@ -2,6 +2,9 @@
 /// Seam padding by ring-wise nearest-source propagation (see padding.h).
 #include "adaptex/paint/padding.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
 
 #include "adaptex/core/errors.h"
@@ -96,6 +99,102 @@ void apply_seam_padding(ImageRGBA8& img, const SeamPadding& pad) {
     const int s = pad.source[q];
     for (int c = 0; c < 4; ++c) img.data[static_cast<size_t>(q) * 4 + c] = img.data[static_cast<size_t>(s) * 4 + c];
   }
+}
+
+namespace {
+
+/// One level of the pull-push pyramid: RGBA colours and coverage weights in [0,1].
+struct PullPushLevel {
+  int w = 0, h = 0;
+  std::vector<std::array<float, 4>> c;
+  std::vector<float> wt;
+};
+
+/// Level 0: the image's colours, weight 1 on covered texels.
+PullPushLevel base_level(const ImageRGBA8& img, const std::vector<bool>& coverage) {
+  PullPushLevel L;
+  L.w = img.width;
+  L.h = img.height;
+  const size_t n = coverage.size();
+  L.c.resize(n);
+  L.wt.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    L.wt[k] = coverage[k] ? 1.0f : 0.0f;
+    for (int ch = 0; ch < 4; ++ch) L.c[k][ch] = img.data[k * 4 + ch];
+  }
+  return L;
+}
+
+/// The 2 x 2 coverage-weighted mean of \p fine (weights capped at 1).
+PullPushLevel pull(const PullPushLevel& fine) {
+  PullPushLevel L;
+  L.w = (fine.w + 1) / 2;
+  L.h = (fine.h + 1) / 2;
+  L.c.assign(static_cast<size_t>(L.w) * L.h, {0, 0, 0, 0});
+  L.wt.assign(static_cast<size_t>(L.w) * L.h, 0.0f);
+  for (int J = 0; J < L.h; ++J)
+    for (int I = 0; I < L.w; ++I) {
+      double W = 0;
+      std::array<double, 4> C{0, 0, 0, 0};
+      for (int b = 0; b < 2; ++b)
+        for (int a = 0; a < 2; ++a) {
+          const int i = 2 * I + a, j = 2 * J + b;
+          if (i >= fine.w || j >= fine.h) continue;
+          const size_t k = static_cast<size_t>(j) * fine.w + i;
+          W += fine.wt[k];
+          for (int ch = 0; ch < 4; ++ch) C[ch] += fine.wt[k] * fine.c[k][ch];
+        }
+      const size_t K = static_cast<size_t>(J) * L.w + I;
+      L.wt[K] = static_cast<float>(std::min(1.0, W));
+      if (W > 0)
+        for (int ch = 0; ch < 4; ++ch) L.c[K][ch] = static_cast<float>(C[ch] / W);
+    }
+  return L;
+}
+
+/// Bilinear lookup (clamp-to-edge) of the coarse level at the centre of fine texel (i, j).
+std::array<float, 4> upsample(const PullPushLevel& coarse, int i, int j) {
+  const BilinearTap x = bilinear_tap(coarse.w, (i + 0.5) / (2.0 * coarse.w));
+  const BilinearTap y = bilinear_tap(coarse.h, (j + 0.5) / (2.0 * coarse.h));
+  auto at = [&](int a, int b) -> const std::array<float, 4>& { return coarse.c[static_cast<size_t>(b) * coarse.w + a]; };
+  std::array<float, 4> out{};
+  for (int ch = 0; ch < 4; ++ch) {
+    const double bottom = at(x.i0, y.i0)[ch] + (at(x.i1, y.i0)[ch] - at(x.i0, y.i0)[ch]) * x.f;
+    const double top = at(x.i0, y.i1)[ch] + (at(x.i1, y.i1)[ch] - at(x.i0, y.i1)[ch]) * x.f;
+    out[ch] = static_cast<float>(bottom + (top - bottom) * y.f);
+  }
+  return out;
+}
+
+}  // namespace
+
+void pull_push_fill(ImageRGBA8& img, const std::vector<bool>& coverage) {
+  const size_t n = static_cast<size_t>(img.width) * img.height;
+  if (coverage.size() != n)
+    throw InvalidInputError("pull-push fill: the coverage mask has " + std::to_string(coverage.size()) +
+                            " entries, the image " + std::to_string(img.width) + "x" + std::to_string(img.height));
+  if (n == 0) return;
+  std::vector<PullPushLevel> levels;
+  levels.push_back(base_level(img, coverage));
+  while (levels.back().w > 1 || levels.back().h > 1) levels.push_back(pull(levels.back()));
+  if (levels.back().wt[0] <= 0) return;  // nothing covered
+  for (size_t l = levels.size() - 1; l-- > 0;) {
+    PullPushLevel& fine = levels[l];
+    const PullPushLevel& coarse = levels[l + 1];
+    for (int j = 0; j < fine.h; ++j)
+      for (int i = 0; i < fine.w; ++i) {
+        const size_t k = static_cast<size_t>(j) * fine.w + i;
+        const float w = fine.wt[k];
+        if (w >= 1.0f) continue;
+        const std::array<float, 4> up = upsample(coarse, i, j);
+        for (int ch = 0; ch < 4; ++ch) fine.c[k][ch] = w * fine.c[k][ch] + (1.0f - w) * up[ch];
+      }
+  }
+  const PullPushLevel& L0 = levels[0];
+  for (size_t k = 0; k < n; ++k)
+    if (!coverage[k])
+      for (int ch = 0; ch < 4; ++ch)
+        img.data[k * 4 + ch] = static_cast<std::uint8_t>(std::lround(std::clamp(L0.c[k][ch], 0.0f, 255.0f)));
 }
 
 }  // namespace adaptex

@@ -389,7 +389,8 @@ double seam_length(const TriMesh& mesh, const Parameterization& param) {
 /// (charts, cut length of the pieces, augmentations, stretch, coverage, effective texel share)
 /// into \p result; unwrap() replaces the cut length of several charts by their seam length.
 void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
-              const std::vector<Chart>& charts, double padding, UnwrapResult& result) {
+              const std::vector<Chart>& charts, double padding, const UnwrapOptions& options,
+              UnwrapResult& result) {
   UnwrapReport& rep = result.report;
   const int nc = static_cast<int>(pieces.size());
   // Rectangles of the chart's best aspect ratio and of area proportional to A3_c * L2_c (3-D area
@@ -403,8 +404,14 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
     const double area = std::max(pieces[c].area, 1e-300) * (std::isfinite(l2) && l2 > 0 ? l2 : 1.0);
     sizes[c] = Vec2(std::sqrt(area * a), std::sqrt(area / a));
   }
+  // No chart is smaller than the gap (tiny components keep a usable number of texels).
+  RectPackOptions po;
+  po.padding = padding;
+  po.min_side = options.min_chart_side_of_gap * padding;
+  po.may_turn = true;
+  po.progress = options.progress;
   std::vector<char> turned;
-  const std::vector<RectPlacement> place = pack_rectangles_turning(sizes, padding, turned);
+  const std::vector<RectPlacement> place = pack_rectangles(sizes, po, &turned);
   Parameterization& param = result.param;
   param = Parameterization{};
   param.num_charts = nc;
@@ -469,6 +476,22 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
                                                       : 0.0;
 }
 
+/// Appends the charts of \p comp given by \p label (F labels, charts.h) to \p pieces, with input
+/// face/vertex ids.
+void append_pieces(const Component& comp, const std::vector<int>& label,
+                   std::vector<Component>& pieces) {
+  const int k = *std::max_element(label.begin(), label.end()) + 1;
+  for (ChartMesh& cm : extract_charts(comp.mesh, label, k)) {
+    if (cm.faces.empty()) continue;
+    Component piece;
+    piece.mesh = std::move(cm.mesh);
+    for (int f : cm.faces) piece.faces.push_back(comp.faces[f]);
+    for (int v : cm.vertices) piece.vertices.push_back(comp.vertices[v]);
+    piece.area = surface_area(piece.mesh);
+    pieces.push_back(std::move(piece));
+  }
+}
+
 /// Splits every component into about \p total_charts charts in proportion to its area (at least
 /// one each) and returns the pieces with input face/vertex ids. \p segmenters: one slot per
 /// component, filled on first use and kept across the chart counts of one unwrap() (charts.h).
@@ -489,19 +512,32 @@ std::vector<Component> segment_components(const std::vector<Component>& comps, i
       continue;
     }
     if (!segmenters[c]) segmenters[c].emplace(comp.mesh);
-    const std::vector<int> label = segmenters[c]->segment(so);
-    const int k = *std::max_element(label.begin(), label.end()) + 1;
-    for (ChartMesh& cm : extract_charts(comp.mesh, label, k)) {
-      if (cm.faces.empty()) continue;
-      Component piece;
-      piece.mesh = std::move(cm.mesh);
-      for (int f : cm.faces) piece.faces.push_back(comp.faces[f]);
-      for (int v : cm.vertices) piece.vertices.push_back(comp.vertices[v]);
-      piece.area = surface_area(piece.mesh);
-      pieces.push_back(std::move(piece));
-    }
+    append_pieces(comp, segmenters[c]->segment(so), pieces);
   }
   return pieces;
+}
+
+/// Runs \p body(i) for i in [0, n) in parallel (TBB, one index per task). An exception must not
+/// leave a body: TBB would cancel the task group, and nested parallel algorithms still running
+/// would return with part of their work undone. The first exception is kept, \p failed is set
+/// (bodies poll it through their progress callbacks and stop) and it is rethrown once every body
+/// has returned. \p mutex guards the first exception (and the callers' progress reports).
+template <class Body>
+void parallel_keep_first_error(int n, std::mutex& mutex, std::atomic<bool>& failed, Body body) {
+  std::exception_ptr first_error;
+  tbb::parallel_for(
+      0, n,
+      [&](int i) {
+        try {
+          body(i);
+        } catch (...) {
+          const std::lock_guard<std::mutex> lock(mutex);
+          if (!first_error) first_error = std::current_exception();
+          failed = true;
+        }
+      },
+      tbb::simple_partitioner{});
+  if (first_error) std::rethrow_exception(first_error);
 }
 
 /// The chart of every piece (build_chart()), phase times added to \p rep. The charts share the
@@ -533,15 +569,10 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
     }
     return charts;
   }
-  // An exception must not leave a body: TBB would cancel the loop's task group, and the nested
-  // parallel algorithms of the charts still running (the weights of embedding_weights(), ...) would
-  // return early with part of their work undone, which those charts then read. The first
-  // exception is kept, the other charts stop at their next progress report, and it is rethrown
-  // once every body has returned.
+  // Exceptions: parallel_keep_first_error() (the other charts stop at their next progress report).
   std::mutex mutex;
   double reported = 0;
   std::atomic<bool> failed{false};
-  std::exception_ptr first_error;
   UnwrapOptions shared = options;
   shared.progress = [&](std::string_view phase, double f) {
     if (failed.load(std::memory_order_relaxed)) return false;  // another chart failed
@@ -559,23 +590,13 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
     return pieces[a].mesh.num_faces() > pieces[b].mesh.num_faces();
   });
   std::atomic<int> started{0};
-  tbb::parallel_for(
-      0, nc,
-      [&](int i) {
-        if (++started == nc && on_last_started) on_last_started();
-        const int c = order[i];
-        ChartContext ctx{shared, dopt, largest_use, deadline, reps[c], unfold, give_up_l2};  // cannot run out
-        try {
-          charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
-                                  static_cast<double>(c + 1) / nc);
-        } catch (...) {
-          const std::lock_guard<std::mutex> lock(mutex);
-          if (!first_error) first_error = std::current_exception();
-          failed = true;
-        }
-      },
-      tbb::simple_partitioner{});
-  if (first_error) std::rethrow_exception(first_error);
+  parallel_keep_first_error(nc, mutex, failed, [&](int i) {
+    if (++started == nc && on_last_started) on_last_started();
+    const int c = order[i];
+    ChartContext ctx{shared, dopt, largest_use, deadline, reps[c], unfold, give_up_l2};  // cannot run out
+    charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
+                            static_cast<double>(c + 1) / nc);
+  });
   for (const UnwrapReport& r : reps) {
     rep.time_cut += r.time_cut;
     rep.time_floater += r.time_floater;
@@ -599,15 +620,128 @@ bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
     if (c.abandoned) return false;
   const auto t0 = Clock::now();
   report_progress(options.progress, "pack", 0.0);
-  assemble(mesh, pieces, charts, padding, result);
+  assemble(mesh, pieces, charts, padding, options, result);
   report_progress(options.progress, "pack", 1.0);
   result.report.time_pack += seconds_since(t0);
   return true;
 }
 
+/// Cheap figures of one piece for the scan segmentation: degenerate + flipped UV triangles and the
+/// L2 stretch, at the best rectangle aspect, of its first cheap parameterization (the cut, then
+/// Floater + augment_yoshizawa_iterations Yoshizawa iterations, as build_chart() starts).
+struct PieceProbe {
+  long bad = 0;
+  double l2 = 0;
+};
+
+PieceProbe probe_piece(const Component& piece, const DiskParamOptions& dopt,
+                       const UnwrapOptions& options, const ProgressCallback& progress) {
+  const EdgeConnectivity ec = build_edges(piece.mesh);
+  const bool disk = piece.mesh.num_vertices() - ec.num_edges() + piece.mesh.num_faces() == 1;
+  const std::vector<char> cut =
+      disk ? std::vector<char>(ec.num_edges(), 0)
+           : initial_cut(piece.mesh, ec, build_edge_graph(piece.mesh, ec));
+  const SlicedDisk sd = slice_along_cut(piece.mesh, ec, cut);
+  DiskParamOptions cheap = dopt;
+  cheap.max_iterations = std::min(dopt.max_iterations, options.augment_yoshizawa_iterations);
+  cheap.yoshizawa = cheap.max_iterations > 0;
+  cheap.progress = progress;
+  const DiskParamResult r = parameterize_disk(sd.disk, sd.boundary_loop, cheap);
+  std::vector<double> aspects;
+  for (int i = -8; i <= 8; ++i) aspects.push_back(std::pow(4.0, i / 8.0));
+  PieceProbe p;
+  p.bad = static_cast<long>(r.degenerate) + r.flipped;
+  p.l2 = std::numeric_limits<double>::infinity();
+  for (double l2 : l2_stretch_of_aspects(sd.disk, r.uv, aspects))
+    if (std::isfinite(l2)) p.l2 = std::min(p.l2, l2);
+  return p;
+}
+
+/// The probes of \p pieces, computed in parallel (TBB); the first exception (a cancel) is rethrown
+/// after every body has returned. \p progress is called under a mutex.
+std::vector<PieceProbe> probe_pieces(const std::vector<Component>& pieces,
+                                     const DiskParamOptions& dopt, const UnwrapOptions& options,
+                                     double frac) {
+  std::vector<PieceProbe> probes(pieces.size());
+  std::mutex mutex;
+  std::atomic<bool> failed{false};
+  const ProgressCallback progress = [&](std::string_view, double) {
+    if (failed.load(std::memory_order_relaxed)) return false;
+    if (!options.progress) return true;
+    const std::lock_guard<std::mutex> lock(mutex);
+    return options.progress("segment", frac);
+  };
+  parallel_keep_first_error(static_cast<int>(pieces.size()), mutex, failed, [&](int i) {
+    probes[i] = probe_piece(pieces[i], dopt, options, progress);
+  });
+  return probes;
+}
+
+/// Splits \p piece into \p k charts (segment_charts()) appended to \p out; returns how many.
+size_t split_piece(const Component& piece, int k, const UnwrapOptions& options,
+                   std::vector<Component>& out) {
+  ChartSegmentOptions so;
+  so.num_charts = k;
+  so.normal_weight = options.chart_normal_weight;
+  const size_t before = out.size();
+  append_pieces(piece, ChartSegmenter(piece.mesh).segment(so), out);
+  return out.size() - before;
+}
+
+/// Segmentation for scans (many components, handles, holes; docs/charts.md, "Scans"): components
+/// of more than scan_piece_faces faces are first split into pieces of about that many faces; then,
+/// round after round, every piece whose cheap parameterization (probe_piece()) has degenerate or
+/// flipped triangles, or an L2 stretch above scan_chart_l2 while its predicted rectangle would
+/// keep a side of scan_min_chart_gaps gaps after halving, is split in two. The chart count thus
+/// follows the stretch and the texel budget: small components and pieces stay whole.
+std::vector<Component> scan_pieces(const std::vector<Component>& comps, const DiskParamOptions& dopt,
+                                   double gutter, const UnwrapOptions& options) {
+  constexpr int kMinSplitFaces = 16;
+  double total_area = 0;
+  for (const Component& c : comps) total_area += c.area;
+  std::vector<Component> done, queue;
+  for (const Component& c : comps) {
+    const long long f = c.mesh.num_faces();
+    if (f > options.scan_piece_faces)
+      split_piece(c, static_cast<int>((f + options.scan_piece_faces - 1) / options.scan_piece_faces),
+                  options, queue);
+    else if (f >= kMinSplitFaces)
+      queue.push_back(c);
+    else
+      done.push_back(c);
+  }
+  const double min_side = options.scan_min_chart_gaps * std::max(gutter, 1.0 / 1024);
+  for (int round = 0; round < options.scan_max_rounds && !queue.empty(); ++round) {
+    const double frac = static_cast<double>(round) / options.scan_max_rounds;
+    report_progress(options.progress, "segment", frac);
+    const std::vector<PieceProbe> probes = probe_pieces(queue, dopt, options, frac);
+    std::vector<Component> next;
+    for (size_t i = 0; i < queue.size(); ++i) {
+      const Component& p = queue[i];
+      const PieceProbe& pr = probes[i];
+      // Predicted side of the piece's rectangle (assemble(): area ∝ A3 · L2), halved by a split.
+      const double l2 = std::isfinite(pr.l2) ? pr.l2 : 1.0;
+      const double side = std::sqrt(p.area * l2 / std::max(total_area, 1e-300));
+      const bool worth =
+          pr.bad > 0 || (pr.l2 > options.scan_chart_l2 && side / std::sqrt(2.0) >= min_side);
+      bool split = false;
+      if (worth && p.mesh.num_faces() >= 2 * kMinSplitFaces) {
+        const size_t n = split_piece(p, 2, options, next);
+        split = n >= 2;
+        if (!split) next.resize(next.size() - n);
+      }
+      if (!split) done.push_back(std::move(queue[i]));
+    }
+    queue = std::move(next);
+  }
+  for (Component& c : queue) done.push_back(std::move(c));
+  return done;
+}
+
 /// Copies the phase times of \p from (they add up over the attempts of one unwrap()) into \p to.
 void copy_phase_times(const UnwrapReport& from, UnwrapReport& to) {
   to.time_cut = from.time_cut;
+  to.time_segment = from.time_segment;
   to.time_floater = from.time_floater;
   to.time_yoshizawa = from.time_yoshizawa;
   to.time_augment = from.time_augment;
@@ -631,6 +765,7 @@ std::vector<long long> auto_chart_counts(int num_components, int max_charts, int
 /// Adds the phase times of \p from to \p to.
 void add_phase_times(const UnwrapReport& from, UnwrapReport& to) {
   to.time_cut += from.time_cut;
+  to.time_segment += from.time_segment;
   to.time_floater += from.time_floater;
   to.time_yoshizawa += from.time_yoshizawa;
   to.time_augment += from.time_augment;
@@ -816,6 +951,27 @@ void segment_until_good(const TriMesh& mesh, const std::vector<Component>& comps
   }
 }
 
+/// ChartMode::Auto on a mesh with more components than max_charts / 2: the charts of
+/// scan_pieces(), and on meshes of at most scan_single_max_faces faces also one chart per
+/// component; the layout with the higher effective texel share is kept.
+void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
+                 const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
+                 const UnwrapOptions& options, UnwrapResult& result) {
+  UnwrapReport& rep = result.report;
+  const auto t0 = Clock::now();
+  const std::vector<Component> pieces = scan_pieces(comps, dopt, gutter, options);
+  rep.time_segment += seconds_since(t0);
+  unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, true);
+  if (mesh.num_faces() > options.scan_single_max_faces) return;
+  UnwrapResult single;
+  single.report = rep;
+  unwrap_pieces(mesh, comps, dopt, gutter, t_start, options, single, true);
+  if (single.report.effective_texel_share > rep.effective_texel_share)
+    result = std::move(single);
+  else
+    copy_phase_times(single.report, rep);
+}
+
 }  // namespace
 
 UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
@@ -837,6 +993,9 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
     throw InvalidInputError("unwrap: gutter of " + std::to_string(options.gutter_texels) +
                             " texels at " + std::to_string(options.gutter_texture_size) +
                             " is out of range");
+  if (!(options.min_chart_side_of_gap >= 0 && options.min_chart_side_of_gap <= 4))
+    throw InvalidInputError("unwrap: min_chart_side_of_gap " +
+                            std::to_string(options.min_chart_side_of_gap) + " is outside [0, 4]");
 
   auto t0 = Clock::now();
   report_progress(options.progress, "cut", 0.0);
@@ -884,11 +1043,17 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
       std::max(options.chart_padding, options.gutter_texels / options.gutter_texture_size);
   // Components without interior vertices (strips, single triangles) are unfolded when several
   // charts share the square; segmented charts are not (their layouts stay those measured in
-  // docs/benchmarks.md).
+  // docs/history/benchmarks.md).
   // Auto on one component: the single chart is given up after its first cheap parameterization
   // when that predicts it cannot reach min_texel_share (UnwrapOptions::single_probe_l2).
   const bool probe =
       options.charts == ChartMode::Auto && comps.size() == 1 && options.single_probe_l2 > 0;
+  if (options.charts == ChartMode::Auto && 2 * comps.size() > static_cast<size_t>(options.max_charts)) {
+    unwrap_scan(mesh, comps, dopt, gutter, t_start, options, result);
+    if (rep.num_charts > 1) rep.cut_length = seam_length(mesh, result.param);
+    rep.time_total = seconds_since(t_start);
+    return result;
+  }
   const bool single_built = unwrap_pieces(mesh, comps, dopt, gutter, t_start, options, result,
                                           comps.size() > 1, probe ? options.single_probe_l2 : 0);
   if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share) {

@@ -247,7 +247,7 @@ TEST(AtlasFlow, ManyChartLayoutGainsMoreThanOneFlowOverTheSquare) {
       // The two flow designs, unpolished. With the default polish (error_polish.h, on every lattice
       // since session 14) the designs come out even on this synthetic case: one flow 29.29 / 29.67 dB,
       // per chart 29.54 / 29.33 dB (128- / 256-cell flow), the per-chart polish gaining +0.01 / −0.11 dB
-      // here where it gains +0.35 dB on the shared meshes' lines (docs/quality.md, session 14).
+      // here where it gains +0.35 dB on the shared meshes' lines (docs/history/quality.md, "Session 14").
       ao.polish.sweeps = 0;
       const auto s = c.run(ao);
       ASSERT_EQ(s->reports().size(), 1u);

@@ -1,7 +1,8 @@
 // libFuzzer target: one input format per build (ADAPTEX_FUZZ_EXTENSION and the ADAPTEX_FUZZ_* flags, see
 // CMakeLists.txt). The bytes go through the same code as the CLI after its file checks: the in-memory
 // entry points that the path-based readers call once they have read the file (read_mesh_from_memory
-// with the CLI's validation and repair, parse_strokes, read_image_from_memory). The studio's project
+// with the CLI's validation and repair, parse_strokes, read_image_from_memory for PNG, JPEG and TGA,
+// parse_mtl for material files). The studio's project
 // reader has no in-memory entry point, so fuzz_project writes each input to a file and calls
 // read_project. With ADAPTEX_FUZZ_VIA_FILE=1 in the environment every target does that (writes the
 // input to a file, calls the path-based reader: read_mesh, read_strokes, read_image), the harness of
@@ -18,7 +19,9 @@
 #include <string>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/io/asset_io.h"
 #include "adaptex/io/image_io.h"
+#include "adaptex/io/input_file.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/strokes.h"
 #if ADAPTEX_FUZZ_PROJECT
@@ -60,6 +63,8 @@ void read_file(const std::filesystem::path& path) {
   (void)adaptex::read_strokes(path);
 #elif ADAPTEX_FUZZ_PNG
   (void)adaptex::read_image(path);
+#elif ADAPTEX_FUZZ_MTL
+  (void)adaptex::parse_mtl(adaptex::read_input_file(path), path);
 #elif ADAPTEX_FUZZ_PROJECT
   (void)adaptex::studio::read_project(path);
 #else
@@ -72,6 +77,9 @@ void read_memory([[maybe_unused]] const std::string& bytes, [[maybe_unused]] con
   (void)adaptex::parse_strokes(bytes, path.string(), path.parent_path());
 #elif ADAPTEX_FUZZ_PNG
   (void)adaptex::read_image_from_memory(bytes, path.string());
+#elif ADAPTEX_FUZZ_MTL
+  std::vector<std::string> warnings;
+  (void)adaptex::parse_mtl(bytes, path, &warnings);
 #elif ADAPTEX_FUZZ_PROJECT
   // not reached: via_file()
 #else

@@ -10,6 +10,7 @@
 #include "adaptex/core/limits.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/mesh_io.h"
+#include "image_test_files.h"
 #include "io_test_files.h"
 #include "test_support.h"
 
@@ -267,6 +268,47 @@ TEST(HostileFiles, ImagesArePngWithinThePixelCap) {
                                                       : "larger than the 8192x8192 limit");
     EXPECT_FALSE(std::filesystem::exists(normalized));
   }
+}
+
+TEST(HostileFiles, ReparamTexturesInJpegAndTgaTruncatedForgedOrOversized) {
+  TempDir dir;
+  const TriMesh mesh = shapes::plane(2);
+  Parameterization param;  // UV = the plane's x, y: one chart
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    param.uv.emplace_back(mesh.positions[v].x(), mesh.positions[v].y());
+    param.wedge_vertex.push_back(v);
+  }
+  param.uv_faces = mesh.faces;
+  param.face_chart.assign(mesh.faces.size(), 0);
+  param.num_charts = 1;
+  write_obj(dir.path / "m.obj", mesh, &param);
+  const ImageRGBA8 img = test::solid(64, 64, 200, 100, 50);
+  const std::string jpeg = test::jpeg_bytes(img), tga = test::tga_bytes(img, false);
+  test::write_text(dir.path / "cut.jpg", jpeg.substr(0, jpeg.size() / 2));
+  test::write_text(dir.path / "cut.tga", tga.substr(0, tga.size() - 100));
+  std::string forged = tga;
+  forged[12] = static_cast<char>(0x40), forged[13] = static_cast<char>(0x1F);  // 8000 x 64
+  test::write_text(dir.path / "forged.tga", forged);
+  std::string huge = jpeg;
+  const std::size_t sof = huge.find("\xFF\xC0");
+  ASSERT_NE(sof, std::string::npos);
+  huge[sof + 7] = static_cast<char>(0x27), huge[sof + 8] = static_cast<char>(0x10);  // width 10000
+  test::write_text(dir.path / "huge.jpg", huge);
+  const auto out = dir.path / "out";
+  const std::pair<const char*, const char*> cases[] = {
+      {"cut.jpg", "corrupt JPEG: truncated"},
+      {"cut.tga", "corrupt TGA: truncated"},
+      {"forged.tga", "corrupt TGA: truncated: the pixel data needs 2048018 bytes"},
+      {"huge.jpg", "JPEG of 10000x64 pixels is larger than the 8192x8192 limit"}};
+  for (const auto& [file, what] : cases) {
+    expect_rejected("reparam " + q(dir.path / "m.obj") + " " + q(dir.path / file) + " -o " + q(out), dir.path / file,
+                    what);
+    EXPECT_FALSE(std::filesystem::exists(out)) << file;
+  }
+  // The same textures whole are accepted.
+  test::write_text(dir.path / "whole.tga", tga);
+  const auto r = run_bounded("-q reparam " + q(dir.path / "m.obj") + " " + q(dir.path / "whole.tga") + " --size 32 -o " + q(out));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
 }  // namespace

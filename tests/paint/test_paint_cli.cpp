@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "adaptex/core/shapes.h"
@@ -260,9 +261,21 @@ TEST(PaintCli, DemoRunsAndReportsPsnr) {
   const auto r = test::run_cli("-q demo --size 256 --samples 50000 -o " + q(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("PSNR"), std::string::npos) << r.out;
-  for (const char* f : {"trefoil.obj", "trefoil.mtl", "trefoil.png", "trefoil.glb", "trefoil_layout.png",
-                        "trefoil_texture_layout.png", "strokes.json", "report.json"})
-    EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
+  const std::set<std::string> expected = {"trefoil.obj",        "trefoil.mtl",
+                                           "trefoil.png",        "trefoil.glb",
+                                           "trefoil_layout.png", "trefoil_texture_layout.png",
+                                           "strokes.json",       "report.json"};
+  std::set<std::string> written;
+  for (const auto& e : fs::directory_iterator(out)) written.insert(e.path().filename().string());
+  EXPECT_EQ(written, expected);
+  // The summary's "files" line names exactly the files in the folder, no more and no fewer.
+  const std::string tag = "  files   " + out.string() + "/:";
+  const auto at = r.out.find(tag);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  std::istringstream listed(r.out.substr(at + tag.size(), r.out.find('\n', at) - at - tag.size()));
+  std::set<std::string> names;
+  for (std::string n; listed >> n;) names.insert(n);
+  EXPECT_EQ(names, written);
   const auto rep = nlohmann::json::parse(slurp(out / "report.json"));
   const double psnr = rep["eval"]["psnr_db"].get<double>();
   EXPECT_GT(psnr, 20.0);

@@ -1,6 +1,6 @@
 """Headless Blender test of the add-on (run by run_blender.py inside `blender -b --python`).
 
-argv after "--": ADDON_ZIP BACKEND(MODULE|CLI) MODULE_DIR CLI WORKDIR
+argv after "--": ADDON_ZIP BACKEND(MODULE|CLI|INSTALLED) MODULE_DIR CLI WORKDIR
 Installs the zipped add-on, paints a mesh with the adaptex CLI, runs "Unwrap with adaptex" and
 "Adapt layout to paint" (4x smaller) and checks the new UV maps (no flips, in [0,1]^2), the new
 image, the originals, that the adapted image beats plain downsizing to the same size (PSNR against
@@ -56,7 +56,16 @@ import adaptex_blender  # noqa: E402
 from adaptex_blender import backend, meshdata  # noqa: E402
 
 prefs = bpy.context.preferences.addons["adaptex_blender"].preferences
-prefs.backend, prefs.module_path, prefs.cli_path = which, module_dir, cli
+if which == "INSTALLED":  # the zip `cmake --install` made, no preferences: it finds the installed module
+    check(os.path.dirname(backend.find_cli()) == os.path.dirname(cli), backend.find_cli())
+    which = "MODULE"
+else:
+    prefs.backend, prefs.module_path, prefs.cli_path = which, module_dir, cli
+# The panels follow Blender's naming, and the 3D View's shows in Object and Texture Paint mode only.
+check(hasattr(bpy.types, "ADAPTEX_PT_view3d") and hasattr(bpy.types, "ADAPTEX_PT_uv_editor"), "panels")
+check(not any(n.endswith("_PT_adaptex") for n in dir(bpy.types)), "an old panel name is still registered")
+for mode, shown in (("OBJECT", True), ("PAINT_TEXTURE", True), ("EDIT_MESH", False), ("SCULPT", False)):
+    check(bool(adaptex_blender.ADAPTEX_PT_view3d.poll(type("Context", (), {"mode": mode}))) == shown, mode)
 chosen = adaptex_blender.choose_backend(bpy.context)
 check(chosen.name == {"MODULE": "Python module", "CLI": "adaptex CLI"}[which], chosen.name)
 

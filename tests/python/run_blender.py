@@ -1,7 +1,7 @@
 """Runs the headless Blender test of the add-on (blender_addon_test.py) with one backend.
 Exits 77 (ctest SKIP) with a message when blender (or, for MODULE, the Python module) is absent.
 
-usage: run_blender.py BACKEND(MODULE|CLI) MODULE_DIR CLI"""
+usage: run_blender.py BACKEND(MODULE|CLI) MODULE_DIR CLI [SCRIPT (default blender_addon_test.py)]"""
 import os
 import shutil
 import subprocess
@@ -12,6 +12,7 @@ import zipfile
 
 def main():
     which, module_dir, cli = sys.argv[1:4]
+    script = sys.argv[4] if len(sys.argv) > 4 else "blender_addon_test.py"
     blender = shutil.which("blender")
     if blender is None:
         print("SKIP: blender is not installed (Debian package blender; scripts/setup.sh)")
@@ -31,7 +32,7 @@ def main():
                    BLENDER_USER_CONFIG=os.path.join(tmp, "config"))
         env.pop("PYTHONPATH", None)  # the add-on must find the module through its preferences
         cmd = [blender, "-b", "--factory-startup", "--python-exit-code", "1",
-               "--python", os.path.join(here, "blender_addon_test.py"), "--", zip_path, which, module_dir, cli, tmp]
+               "--python", os.path.join(here, script), "--", zip_path, which, module_dir, cli, tmp]
         r = subprocess.run(cmd, env=env, capture_output=True, text=True)
         print(r.stdout[-6000:], r.stderr[-4000:])
         ok = r.returncode == 0 and ("ADAPTEX_BLENDER_OK " + which) in r.stdout

@@ -11,7 +11,7 @@ namespace adaptex {
 /// top is kept (M_TRIM_THRESHOLD), and every thread allocates from that one heap (M_ARENA_MAX 1;
 /// call it before starting threads). Without it, each fresh buffer is paid in page faults: half of
 /// building a 1024² Painter (94 -> 44 ms, `bench_paint --benchmark_filter=PainterSetup`,
-/// docs/benchmarks.md "Session 16"). The price is that the resident size stays at its peak until
+/// docs/history/benchmarks.md, the allocator). The price is that the resident size stays at its peak until
 /// the process ends. Called by the adaptex programs (CLI, studio, benchmarks) at the start of
 /// main(); a program that embeds the library decides for itself. Other C libraries: no effect.
 /// \return true if the settings were applied (glibc).

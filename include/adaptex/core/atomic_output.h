@@ -21,6 +21,8 @@ class AtomicOutput {
   std::filesystem::path add(const std::filesystem::path& final_path);
   /// Renames every temporary into place. \throw OutputError if a rename fails.
   void commit();
+  /// The final paths registered so far, in the order add() was called.
+  std::vector<std::filesystem::path> final_paths() const;
 
  private:
   std::vector<std::pair<std::filesystem::path, std::filesystem::path>> files_;  // (tmp, final)

@@ -1,7 +1,7 @@
 #pragma once
 /// \file image_io.h
-/// PNG input/output through stb. Files store the top row first; ImageRGBA8 stores v = 0 first,
-/// so both functions flip rows.
+/// Image input (PNG, JPEG, TGA) and PNG output through stb. Files store the top row first; ImageRGBA8
+/// stores v = 0 first, so both directions flip rows.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -10,13 +10,16 @@
 
 namespace adaptex {
 
-/// Reads a PNG as RGBA8 (only PNG; regular files only; at most kMaxTextureSize per side and
-/// kMaxImagePixels, checked from the header before decoding).
-/// \throw IoError unreadable, not a PNG, larger than the caps, or corrupt.
+/// Reads a PNG, JPEG (baseline or progressive) or TGA (raw or RLE, true-colour, grey or colour-mapped)
+/// as RGBA8; the format is recognised by content (a TGA, which has no signature, by its header). Regular
+/// files only; at most kMaxTextureSize per side and kMaxImagePixels, checked from the header before
+/// decoding; the file's structure is walked first, so a truncated or forged file is rejected.
+/// \throw IoError unreadable, another format, larger than the caps, truncated or corrupt.
 ImageRGBA8 read_image(const std::filesystem::path& path);
-/// read_image() on the file's bytes already in memory (the same checks after the file ones: size caps
-/// from the header, PNG only); \p name stands for the file in messages.
-/// \pre none. \throw IoError empty, larger than kMaxInputFileBytes, not a PNG, larger than the caps, or corrupt.
+/// read_image() on the file's bytes already in memory (the same checks after the file ones: structure,
+/// size caps from the header, PNG/JPEG/TGA only); \p name stands for the file in messages.
+/// \pre none. \throw IoError empty, larger than kMaxInputFileBytes, another format, larger than the caps,
+/// truncated or corrupt.
 ImageRGBA8 read_image_from_memory(const std::string& bytes, const std::string& name);
 /// Writes a PNG. \throw OutputError the file cannot be written
 void write_png(const std::filesystem::path& path, const ImageRGBA8& img);

@@ -11,6 +11,7 @@
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
+#include "adaptex/paint/texture_address.h"
 
 namespace adaptex {
 
@@ -21,6 +22,10 @@ struct ExportOptions {
   bool normals = true;   ///< Add a NORMAL attribute to the .glb (area-weighted vertex normals,
                          ///< smooth across UV seams); the material is double-sided either way.
   std::string material = "adaptex_paint";  ///< Material name in the MTL / glTF.
+  /// The .glb sampler's wrapS / wrapT (default ClampToEdge; Repeat for layouts whose UVs tile).
+  TextureAddress wrap = TextureAddress::ClampToEdge;
+  /// Write `map_Kd -clamp on NAME.png` in the MTL, so OBJ importers clamp too (default off: plain map_Kd).
+  bool mtl_clamp = false;
 };
 
 /// The files export_textured_mesh() registered (empty paths for formats not written).
@@ -51,15 +56,16 @@ ExportedFiles export_textured_mesh(AtomicOutput& out, const std::filesystem::pat
 /// (float32, with min/max), optional NORMAL, TEXCOORD_0 = (u, 1 - v) and uint32 indices; one glTF
 /// vertex per wedge (glTF has per-vertex UVs only); a material whose pbrMetallicRoughness
 /// baseColorTexture is the PNG of \p texture embedded in a bufferView (sampler: linear magnification,
-/// trilinear minification, clamp-to-edge).
+/// trilinear minification, wrap mode options.wrap: clamp-to-edge by default).
 /// \throw InvalidInputError inconsistent input; OutputError encoding failed
 std::vector<unsigned char> encode_glb(const TriMesh& mesh, const Parameterization& param,
                                       const ImageRGBA8& texture, const ExportOptions& options = {});
 
-/// Writes a one-material MTL file (`newmtl`, `Kd 1 1 1`, `map_Kd`). Writes \p path directly.
+/// Writes a one-material MTL file (`newmtl`, `Kd 1 1 1`, `map_Kd`; `map_Kd -clamp on` when \p clamp).
+/// Writes \p path directly.
 /// \throw OutputError
 void write_mtl(const std::filesystem::path& path, const std::string& material,
-               const std::string& texture_file);
+               const std::string& texture_file, bool clamp = false);
 
 /// A picture of the UV layout: the texture (or white when \p texture is null / empty) scaled to
 /// size x size by nearest lookup, with every UV triangle edge blended 40% towards dark grey on top.

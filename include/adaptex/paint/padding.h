@@ -30,4 +30,14 @@ SeamPadding build_seam_padding(const TexelMap& map, int padding);
 /// opaque). \pre img is pad.width x pad.height
 void apply_seam_padding(ImageRGBA8& img, const SeamPadding& pad);
 
+/// Pull-push fill (Gortler et al. 1996, *The Lumigraph*, §3.3): the texels outside \p coverage take
+/// a smooth dilation of the covered colours, all four channels, so bilinear lookup and mip-mapping
+/// near a chart border see the chart's own colours, never a flat background. Pull: a pyramid of
+/// 2 x 2 coverage-weighted means (weights capped at 1); push: each level's uncovered part takes the
+/// bilinear upsampling of the level above. Covered texels are unchanged; with no covered texel the
+/// image is left as it is.
+/// \pre coverage.size() == img.width * img.height
+/// \throw InvalidInputError the sizes differ
+void pull_push_fill(ImageRGBA8& img, const std::vector<bool>& coverage);
+
 }  // namespace adaptex

@@ -8,6 +8,7 @@
 /// construction, and each chart stays inside its square.
 #include <vector>
 
+#include "adaptex/core/progress.h"
 #include "adaptex/core/types.h"
 
 namespace adaptex {
@@ -58,5 +59,36 @@ std::vector<RectPlacement> pack_rectangles(const std::vector<Vec2>& sizes, doubl
 /// \throw InvalidInputError as pack_rectangles()
 std::vector<RectPlacement> pack_rectangles_turning(const std::vector<Vec2>& sizes, double padding,
                                                    std::vector<char>& turned);
+
+/// Settings of pack_rectangles(sizes, options, turned).
+struct RectPackOptions {
+  /// Gap between rectangles and to the border, as in pack_charts(); default 0.
+  double padding = 0;
+  /// Smallest side of a placed rectangle, as a fraction of the unit square (a minimum texel
+  /// floor: 2 texels of a 1024² texture = 2.0 / 1024). A rectangle whose shorter side would come
+  /// out smaller is enlarged uniformly (its shape kept) to this side. Where the gaps and these
+  /// sides alone cannot fit (thousands of rectangles), both are halved until they do. Default 0
+  /// (none); in [0, 0.25).
+  double min_side = 0;
+  /// Rectangles may be turned by 90° (the flags go to \p turned). Default false.
+  bool may_turn = false;
+  /// Progress ("pack", fraction of the scale search) and cancel.
+  ProgressCallback progress;
+};
+
+/// pack_rectangles() with a minimum side, optional turning and progress. With at most 200
+/// rectangles and min_side = 0 the result is exactly that of pack_rectangles() (no turning) or
+/// pack_rectangles_turning(). With more, every scale tried costs O(n log n): shelves filled first
+/// fit by decreasing height (FFDH, a max-tree over the shelves' free widths; turned rectangles
+/// lie landscape when turning is allowed) and shelves in one row (next fit); the scale is found
+/// by bisection (a fixed number of steps), so the whole packing is O(n log n) (10^4 rectangles in
+/// tens of milliseconds). Non-finite or non-positive sizes get the smallest size.
+/// \param turned if not null, receives C flags (1: placement i has the shape (sizes[i].y(), sizes[i].x()))
+/// \return as pack_rectangles(); each rectangle is at least min_side wide and high
+/// \throw InvalidInputError padding or min_side out of range, no charts, or they cannot be packed
+/// \throw CancelledError the progress callback returned false
+std::vector<RectPlacement> pack_rectangles(const std::vector<Vec2>& sizes,
+                                           const RectPackOptions& options,
+                                           std::vector<char>* turned = nullptr);
 
 }  // namespace adaptex

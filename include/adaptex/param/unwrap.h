@@ -94,7 +94,7 @@ struct UnwrapOptions {
   /// are decided in their order with the same rule, so the layout does not depend on S or on the
   /// number of threads (test Unwrap.SpeculativeAttemptsGiveTheSequentialLayout). 1 (default): one
   /// count after the other, the least CPU time; on 2 cores 2 gave no wall-time gain that stood out
-  /// of the noise and up to 20 % more CPU time (docs/benchmarks.md).
+  /// of the noise and up to 20 % more CPU time (docs/history/benchmarks.md).
   int speculative_attempts = 1;
   /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight). 0 (compact
   /// geodesic charts) gave the highest texel share on every mesh measured (docs/charts.md).
@@ -106,7 +106,27 @@ struct UnwrapOptions {
   double gutter_texels = 8;
   /// See gutter_texels.
   int gutter_texture_size = 1024;
-  /// Progress / cancel callback (phases "cut", "floater", "yoshizawa", "augment", "pack").
+  /// Layouts of several charts: no chart's rectangle has a side shorter than this times the gap
+  /// between charts (a minimum texel floor for tiny components and slivers; 1: no chart smaller
+  /// than its gutter). 0 disables the floor. In [0, 4].
+  double min_chart_side_of_gap = 1.0;
+  // Auto on scans: meshes with more components than max_charts / 2 (docs/charts.md, "Scans").
+  /// Scans: components of more faces than this are first split into pieces of about this many
+  /// faces (bounds the size of the probing solves).
+  int scan_piece_faces = 50000;
+  /// Scans: a piece whose cheap parameterization has an L2 stretch above this (at its best
+  /// rectangle aspect) is split in two, while its rectangle keeps a side of scan_min_chart_gaps
+  /// gaps; a piece with degenerate or flipped UV triangles is split regardless.
+  double scan_chart_l2 = 1.2;
+  /// Scans: see scan_chart_l2 (predicted side after the split, in gaps between charts).
+  double scan_min_chart_gaps = 8;
+  /// Scans: rounds of splitting (each round at most doubles the pieces).
+  int scan_max_rounds = 12;
+  /// Scans: meshes of at most this many faces also build one chart per component, and the
+  /// layout with the higher effective texel share is kept.
+  int scan_single_max_faces = 100000;
+  /// Progress / cancel callback (phases "cut", "segment", "floater", "yoshizawa", "augment",
+  /// "pack").
   ProgressCallback progress;
 };
 
@@ -130,6 +150,7 @@ struct UnwrapReport {
   /// Phase times in s, summed over charts and attempts (the charts of an attempt may be built in
   /// parallel, so the sum can exceed time_total).
   double time_cut = 0, time_floater = 0, time_yoshizawa = 0, time_augment = 0, time_pack = 0;
+  double time_segment = 0;       ///< s, the scan segmentation (scan_pieces: probes and splits).
   double time_total = 0;         ///< s
 };
 
@@ -156,7 +177,7 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options = {});
 /// \p base with the gutter of a layout that will hold a \p texture_size² texture painted with
 /// \p padding texels of seam padding: the gutter is the padding, at least 2 texels (the bilinear
 /// footprint of both neighbours), at most a fifth of the square. Issue 8 asks for at least the
-/// padding; measured with `adaptex paint` + `adaptex eval` (docs/quality.md, "Gutter of a paint run"),
+/// padding; measured with `adaptex paint` + `adaptex eval` (docs/history/quality.md, "Gutter of a paint run"),
 /// 2 texels beat 4 by a median 0.25 dB and 8 by 0.71 dB, so a wider gutter only costs texels. Used by
 /// `adaptex paint --size N --padding P` and by the studio, so both lay a mesh out the same way.
 /// \pre 1 <= texture_size <= kMaxTextureSize (core/limits.h), padding >= 0

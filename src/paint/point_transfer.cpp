@@ -1,5 +1,5 @@
 // Surface points carried to a conforming refinement of their mesh.
-#include "adaptex/adapt/point_transfer.h"
+#include "adaptex/paint/point_transfer.h"
 
 #include <tbb/parallel_for.h>
 

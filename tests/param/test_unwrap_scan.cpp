@@ -1,0 +1,74 @@
+// Tests of --charts auto on scans (unwrap.h, "Auto on scans"; docs/charts.md, "Scans"): a mesh
+// built in code with over 100 components, handles, hundreds of holes, tiny strips and slivers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/core/topology.h"
+#include "adaptex/param/stretch.h"
+#include "adaptex/param/unwrap.h"
+#include "scan_fixtures.h"
+#include "unwrap_checks.h"
+
+namespace adaptex {
+namespace {
+
+TEST(UnwrapScan, ManyComponentsHandlesAndHolesGetDiskChartsWithHighShare) {
+  const TriMesh mesh = test::scan_like_mesh(30000);
+  const MeshTopology topo = analyze_topology(mesh);
+  ASSERT_GT(topo.num_components, 100);
+  ASSERT_GE(topo.total_genus(), 8);
+  ASSERT_GT(topo.total_loops(), 100);
+  UnwrapOptions opt;
+  opt.augment_time_budget = 1e9;  // the layout must not depend on the machine's load
+  UnwrapResult r;
+  test::check_unwrap("scan_like", mesh, opt, &r);  // disks, no flips, no overlaps, UVs in [0,1]²
+  // More charts than components (the large pieces and the handles were segmented), and far
+  // fewer than faces (the counts follow the stretch and the texel budget, not the face count).
+  EXPECT_GT(r.report.num_charts, topo.num_components);
+  EXPECT_LT(r.report.num_charts, mesh.num_faces() / 50);
+  // One chart per component reaches 0.05 on such meshes (docs/bench_unwrap.md, "Scans").
+  EXPECT_GE(r.report.effective_texel_share, 0.5);
+}
+
+TEST(UnwrapScan, ReportsEveryPhaseAndCancelsInEach) {
+  const TriMesh mesh = test::scan_like_mesh(20000);
+  std::set<std::string> phases;
+  UnwrapOptions opt;
+  opt.progress = [&](std::string_view phase, double f) {
+    EXPECT_GE(f, 0.0);
+    EXPECT_LE(f, 1.0);
+    phases.emplace(phase);
+    return true;
+  };
+  const UnwrapResult r = unwrap(mesh, opt);
+  EXPECT_GT(r.report.time_segment, 0.0);
+  for (const char* p : {"cut", "segment", "augment", "yoshizawa", "pack"}) EXPECT_TRUE(phases.count(p)) << p;
+  // A cancel in any phase stops the unwrap with CancelledError (and nothing else).
+  for (const std::string& phase : phases) {
+    SCOPED_TRACE(phase);
+    int seen = 0;
+    opt.progress = [&](std::string_view p, double) { return !(p == phase && ++seen >= 2); };
+    EXPECT_THROW(unwrap(mesh, opt), CancelledError);
+  }
+}
+
+TEST(UnwrapScan, SingleModeAndFewComponentsKeepTheirLayouts) {
+  // --charts single is one chart per component, scan or not.
+  const TriMesh mesh = test::scan_like_mesh(20000);
+  UnwrapOptions single;
+  single.charts = ChartMode::Single;
+  EXPECT_EQ(unwrap(mesh, single).report.num_charts, analyze_topology(mesh).num_components);
+  // The scan segmentation starts above max_charts / 2 components: five tori stay on the path
+  // of before (auto keeps one chart per torus when that reaches the share).
+  UnwrapOptions opt;
+  const UnwrapResult r = unwrap(test::five_tori(), opt);
+  EXPECT_EQ(r.report.time_segment, 0.0);
+}
+
+}  // namespace
+}  // namespace adaptex
