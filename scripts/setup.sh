@@ -9,7 +9,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri mesa-utils libgtk-3-dev
   xvfb xdotool x11-utils libx11-dev
-  python3-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib python3-venv python3-pip blender
+  python3-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib python3-venv python3-pip python3-build blender
 )
 # --fuzz: also what scripts/fuzz.sh needs (clang and its libFuzzer / sanitizer runtimes); not by default.
 if [ "${1:-}" = "--fuzz" ]; then PACKAGES+=(clang libclang-rt-14-dev); fi

@@ -139,8 +139,9 @@ void describe_session(const std::shared_ptr<const TriMesh>& mesh, PaintSession& 
     o.density = r->density;
     if (o.mesh != mesh && r->parent_face.size() == o.mesh->faces.size())
       o.normals = refined_normals(*mesh, *o.mesh, r->parent_face);
-    if (r->grids.size() == 2) o.coarse = r->grids[0];
-    if (!r->grids.empty()) o.fine = r->grids.back();
+    const std::vector<GridWarp>& grids = r->warp ? r->warp->lattices() : std::vector<GridWarp>{};
+    if (grids.size() == 2) o.coarse = grids[0];
+    if (!grids.empty()) o.fine = grids.back();
   }
 }
 }  // namespace

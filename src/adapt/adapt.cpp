@@ -37,20 +37,12 @@ void validate(const AdaptOptions& o) {
 /// refined_mesh, refined_layout (old UV domain) and parent_face are set.
 void refine_under_warp(const TriMesh& mesh, const Parameterization& current, int texture_size,
                        const AdaptOptions& o, AdaptResult& res) {
-  const WarpChain warps(res.warps());
-  const ChartMoveLocator moves(res.chart_moves);
-  const bool moved = !res.chart_moves.empty();
-  const FlowWarp* flow = res.flow.get();
-  auto warp = [&warps, &moves, moved, flow](const Vec2& p) {
-    const Vec2 q = moved ? moves.apply(p) : p;
-    if (flow) return flow->apply(q);  // the exact flow (DensityFlowOptions::direct)
-    return warps.apply(q);
-  };
+  const UvWarp& warp = *res.warp;
   RefineOptions ro;
   ro.tolerance = o.refine_tolerance_texels / texture_size;
   ro.max_levels = o.refine_max_levels;
   ro.max_faces = static_cast<long>(o.refine_max_face_factor * mesh.num_faces());
-  RefineResult rr = refine_for_warp(mesh, current, warp, ro);
+  RefineResult rr = refine_for_warp(mesh, current, [&warp](const Vec2& p) { return warp.apply(p); }, ro);
   if (rr.added_faces == 0) return;
   res.refined_mesh = std::make_shared<const TriMesh>(std::move(rr.mesh));
   res.refined_layout = std::make_shared<const Parameterization>(std::move(rr.param));
@@ -60,9 +52,15 @@ void refine_under_warp(const TriMesh& mesh, const Parameterization& current, int
 
 std::vector<const GridWarp*> AdaptResult::warps() const {
   std::vector<const GridWarp*> w;
-  for (const GridWarp& g : grids)
-    if (g.n > 0) w.push_back(&g);
+  if (warp)
+    for (const GridWarp& g : warp->lattices())
+      if (g.n > 0) w.push_back(&g);
   return w;
+}
+
+Parameterization AdaptResult::start_layout(const Parameterization& input) const {
+  const Parameterization& layout = refined_layout ? *refined_layout : input;
+  return warp ? warp->start_layout(layout) : layout;
 }
 
 std::unique_ptr<WarpMethod> make_warp_method(AdaptMode mode) {
@@ -139,19 +137,10 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
 
   const auto t0 = std::chrono::steady_clock::now();
   report_progress(o.progress, "remap", 0);
-  // Re-packed charts (multi-chart density-flow): move them first (an exact similarity per chart);
-  // the grids act on the moved charts.
-  if (!res.chart_moves.empty())
-    res.warp_start = std::make_shared<const Parameterization>(
-        move_charts(res.refined_mesh ? *res.refined_layout : current, res.chart_moves));
-  const Parameterization& src = res.start_layout(current);
-  if (res.flow) {  // direct: every wedge through the flow itself, not through the grids
-    auto warped = std::make_shared<Parameterization>(src);
-    res.flow->apply_all(warped->uv);
-    res.warped_layout = std::move(warped);
-  }
-  SafeRemapResult sr = res.warped_layout ? safe_remap_layout(src, *res.warped_layout, o.remap)
-                                         : safe_remap(src, res.warps(), o.remap);
+  // Re-packed charts (multi-chart density-flow) move first (an exact similarity per chart); the
+  // warp's map acts on the moved charts.
+  const Parameterization src = res.start_layout(current);
+  SafeRemapResult sr = safe_remap_layout(src, res.warp->warp_layout(src), o.remap);
   rep.remap_checks = sr.checks;
   rep.damping = sr.mean_damping;
   rep.global_damping = sr.damping;
@@ -160,28 +149,18 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
   rep.l2_after = measure_stretch(out_mesh, res.param).l2;
   if (o.geometry_safeguard && rep.signal_fraction == 0 && !(rep.l2_after < rep.l2_before) && rep.damping > 0) {
     // No signal: the only goal is lower L2 stretch. Try half the warp, else keep the input.
-    std::vector<GridWarp> half;
-    for (const GridWarp* w : res.warps()) half.push_back(w->blended(0.5 * rep.damping));
-    std::vector<const GridWarp*> ptrs;
-    for (auto& w : half) ptrs.push_back(&w);
-    SafeRemapResult h = res.warped_layout
-                            ? safe_remap_layout(src, blend_layouts(src, *res.warped_layout, 0.5 * rep.damping), o.remap)
-                            : safe_remap(src, ptrs, o.remap);
+    SafeRemapResult h = safe_remap_layout(src, res.warp->warp_layout(src, 0.5 * rep.damping), o.remap);
     rep.remap_checks += h.checks;
     const double l2h = measure_stretch(out_mesh, h.param).l2;
     if (l2h < rep.l2_before) {
       res.param = std::move(h.param);
       rep.damping = 0.5 * rep.damping * h.mean_damping;
       rep.l2_after = l2h;
-    } else {
+    } else {  // the warp stays in the result (pictures); nothing else of it
       res.param = current;
       res.refined_mesh.reset();
       res.refined_layout.reset();
-      res.warp_start.reset();
-      res.chart_moves.clear();
       res.parent_face.clear();
-      res.flow.reset();
-      res.warped_layout.reset();
       rep.faces_after = mesh.num_faces();
       rep.damping = 0;
       rep.l2_after = rep.l2_before;

@@ -295,14 +295,9 @@ struct PaintSession::Impl {
     if (t == 1.0) {
       c.param = std::make_unique<Parameterization>(res.param);
     } else {
-      const Parameterization& start = res.start_layout(source_param());
-      std::vector<GridWarp> damped;
-      for (const GridWarp* w : res.warps()) damped.push_back(w->blended(t * rep.damping));
-      std::vector<const GridWarp*> ptrs;
-      for (auto& w : damped) ptrs.push_back(&w);
+      const Parameterization start = res.start_layout(source_param());
       c.param = std::make_unique<Parameterization>(
-          res.warped_layout ? safe_remap_layout(start, blend_layouts(start, *res.warped_layout, t * rep.damping), ao.remap).param
-                            : safe_remap(start, ptrs, ao.remap).param);
+          safe_remap_layout(start, res.warp->warp_layout(start, t * rep.damping), ao.remap).param);
     }
     auto tm = std::chrono::steady_clock::now();
     c.painter = std::make_unique<Painter>(cand_mesh, *c.param, painter_options(), history.background);
@@ -501,7 +496,7 @@ struct PaintSession::Impl {
     }
     if (!opt.debug_dir.empty()) write_debug_maps(opt.debug_dir, "reparam" + std::to_string(reparam_count), *res);
     ++reparam_count;
-    if (!rep.accepted || (rep.damping == 0 && res->chart_moves.empty())) {
+    if (!rep.accepted || (rep.damping == 0 && !res->warp->moves_charts())) {
       if (path_independent()) return_to_initial();
       return record(std::move(res), t_all);
     }

@@ -50,24 +50,24 @@ class DensityFlowWarp final : public WarpMethod {
     DensityFlowStats st;
     const std::vector<UvRect> boxes = o.atlas_flow && in.param.num_charts > 1 ? chart_boxes(in.param) : std::vector<UvRect>{};
     const double gap = boxes.empty() ? 0.0 : smallest_box_gap(boxes);
+    std::vector<ChartMove> moves;
+    std::vector<GridWarp> lattices;
+    FlowWarp flow;  // with o.flow.direct
     if (gap > 0) {
       // Charts in disjoint boxes: re-pack them by density, then one flow per chart rectangle, with
       // the layout's own gutter (atlas_flow.h).
       ChartRepackOptions ro;
       const int texels = std::max(in.texture.width, in.texture.height);
       ro.padding = std::min(std::max(gap, o.chart_gutter_texels / texels), 0.2);
-      res.chart_moves = o.chart_sizes_by_error_model
-                            ? allocate_charts_by_error(boxes, res.density, ed.error, ed.exponent, ro)
-                            : repack_charts_by_density(boxes, res.density, ro);
-      res.grids = chart_flow_warps(res.chart_moves, res.density, o.flow, 8, &st);
-      if (o.flow.direct) res.flow = std::make_shared<const FlowWarp>(chart_flows(res.chart_moves, res.density, o.flow));
+      moves = o.chart_sizes_by_error_model ? allocate_charts_by_error(boxes, res.density, ed.error, ed.exponent, ro)
+                                           : repack_charts_by_density(boxes, res.density, ro);
+      lattices = chart_flow_warps(moves, res.density, o.flow, 8, &st);
+      if (o.flow.direct) flow = chart_flows(moves, res.density, o.flow);
     } else {
-      res.grids = {density_equalizing_warp(res.density, o.flow, &st)};
+      lattices = {density_equalizing_warp(res.density, o.flow, &st)};
       if (o.flow.direct) {
-        FlowWarp fw;
-        fw.options = o.flow;
-        fw.parts = {FlowWarp::Part{Vec2(0, 0), Vec2(1, 1), std::make_shared<const DensityFlow>(res.density)}};
-        res.flow = std::make_shared<const FlowWarp>(std::move(fw));
+        flow.options = o.flow;
+        flow.parts = {FlowWarp::Part{Vec2(0, 0), Vec2(1, 1), std::make_shared<const DensityFlow>(res.density)}};
       }
     }
     rep.flow_tangled_cells = st.tangled_cells;
@@ -75,23 +75,29 @@ class DensityFlowWarp final : public WarpMethod {
     rep.flow_steps = st.total_steps;
     rep.flow_advected_points = st.advected_points;
     rep.time_flow = seconds_since(t0);
-    if (!o.flow.direct) polish(o, ed, in.texture, in.warm_start, res);
+    if (o.flow.direct) {
+      res.warp = std::make_shared<const FlowLayoutWarp>(std::move(flow), std::move(lattices), std::move(moves));
+      return;
+    }
+    polish(o, ed, in.texture, in.warm_start, moves, lattices, res);
+    res.warp = std::make_shared<const LatticeWarp>(std::move(lattices), std::move(moves));
   }
 
  private:
-  /// Polishes lattice \p c of res.grids (coarse to fine, ErrorPolishOptions::prepass_sweeps) with
+  /// Polishes lattice \p c of \p lattices (coarse to fine, ErrorPolishOptions::prepass_sweeps) with
   /// \p progress; \p cell gets the area of one of its cells in cells of the density raster. With
   /// \p warm (an earlier cycle's result) the polish starts from that cycle's correction
   /// (add_polish_correction()) and runs warm_sweeps; \p warmed says whether it did.
   static ErrorPolishStats polish_lattice(const AdaptOptions& o, const ErrorDensity& ed, const EdgeTensor& edges,
-                                         const AdaptResult* warm, AdaptResult& res, size_t c,
+                                         const AdaptResult* warm, const std::vector<ChartMove>& moves,
+                                         std::vector<GridWarp>& lattices, AdaptResult& res, size_t c,
                                          const ProgressCallback& progress, double& cell, bool& warmed) {
-    GridWarp& g = res.grids[c];
+    GridWarp& g = lattices[c];
     UvRect src{Vec2(0, 0), Vec2(1, 1)};
     double scale = 1, extent = 1;
-    if (!res.chart_moves.empty()) {
-      src = res.chart_moves[c].src, scale = res.chart_moves[c].scale;
-      extent = std::clamp(res.chart_moves[c].dst().size().maxCoeff(), 1e-9, 1.0);
+    if (!moves.empty()) {
+      src = moves[c].src, scale = moves[c].scale;
+      extent = std::clamp(moves[c].dst().size().maxCoeff(), 1e-9, 1.0);
     }
     if (src.size().minCoeff() <= 0 || g.n < 2) return {};
     ErrorPolishOptions po = o.polish;
@@ -120,7 +126,7 @@ class DensityFlowWarp final : public WarpMethod {
           if (measure) before = polish_model_error(flow, own_lattice ? own : f, measure_options);
         },
         [&] {
-          warmed = warm && add_polish_correction(g, warm->flow_grids[c], warm->grids[c]) > 0;
+          warmed = warm && add_polish_correction(g, warm->flow_grids[c], warm->warp->lattices()[c]) > 0;
           if (warmed) {
             po.sweeps = po.warm_sweeps;
           } else if (po.prepass_sweeps > 0 && m >= 32) {
@@ -151,10 +157,12 @@ class DensityFlowWarp final : public WarpMethod {
   /// \p warm: an earlier cycle's result (WarpInput::warm_start) or null; used when it has as many
   /// lattices.
   static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture, const AdaptResult* warm,
-                     AdaptResult& res) {
-    if (o.polish.sweeps <= 0 || (!res.chart_moves.empty() && !o.polish.charts)) return;
-    res.flow_grids = res.grids;
-    if (warm && (warm->grids.size() != res.grids.size() || warm->flow_grids.size() != res.grids.size())) warm = nullptr;
+                     const std::vector<ChartMove>& moves, std::vector<GridWarp>& lattices, AdaptResult& res) {
+    if (o.polish.sweeps <= 0 || (!moves.empty() && !o.polish.charts)) return;
+    res.flow_grids = lattices;
+    if (warm && (!warm->warp || warm->warp->lattices().size() != lattices.size() ||
+                 warm->flow_grids.size() != lattices.size()))
+      warm = nullptr;
     const auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "polish", 0);
     const EdgeTensor edges = o.polish.isotropy < 1 ? edge_tensor(texture) : EdgeTensor{};
@@ -163,7 +171,7 @@ class DensityFlowWarp final : public WarpMethod {
     const ProgressCallback& user = o.polish.progress ? o.polish.progress : o.progress;
     std::mutex progress_mutex;
     std::atomic<size_t> done{0};
-    const size_t count = res.grids.size();
+    const size_t count = lattices.size();
     ProgressCallback shared;
     if (user && count == 1)
       shared = user;
@@ -177,7 +185,7 @@ class DensityFlowWarp final : public WarpMethod {
     std::vector<char> warmed(count, 0);
     auto one = [&](size_t c) {
       bool w = false;
-      stats[c] = polish_lattice(o, ed, edges, warm, res, c, shared, cells[c], w);
+      stats[c] = polish_lattice(o, ed, edges, warm, moves, lattices, res, c, shared, cells[c], w);
       warmed[c] = w;
       ++done;
     };

@@ -18,7 +18,9 @@ class SingleWarp final : public WarpMethod {
     GridWarp fine = GridWarp::uniform(o.fine_grid);
     res.report.fine_iterations =
         relax_grid(fine, pool_for_grid(res.ls2, o.fine_grid, o.pool), thesis_relax_options(in)).iterations;
-    res.grids = {std::move(fine)};
+    std::vector<GridWarp> lattices;
+    lattices.push_back(std::move(fine));
+    res.warp = std::make_shared<const LatticeWarp>(std::move(lattices));
     res.report.time_fine = seconds_since(t0);
   }
 };

@@ -33,7 +33,10 @@ class TwoStageWarp final : public WarpMethod {
     fo.max_iterations = o.fine_max_iterations;
     rep.fine_iterations = relax_grid(fine, field, fo).iterations;
     rep.time_fine = seconds_since(t0);
-    res.grids = {std::move(coarse), std::move(fine)};
+    std::vector<GridWarp> lattices;
+    lattices.push_back(std::move(coarse));
+    lattices.push_back(std::move(fine));
+    res.warp = std::make_shared<const LatticeWarp>(std::move(lattices));
   }
 };
 }  // namespace

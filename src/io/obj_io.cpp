@@ -144,7 +144,8 @@ TexturedMesh textured_from_soup(TexturedSoup data, const std::string& name, cons
     }
   for (std::int64_t t = 0; t < nt; ++t)
     if (!std::isfinite(data.texcoords[2 * t]) || !std::isfinite(data.texcoords[2 * t + 1]))
-      throw InvalidInputError(name + ": vt " + std::to_string(t + 1) + " is not finite (" +
+      throw InvalidInputError(name + (soup.format == "obj" ? ": vt " : ": texture coordinate ") + std::to_string(t + 1) +
+                              " is not finite (" +
                               std::to_string(data.texcoords[2 * t]) + ", " +
                               std::to_string(data.texcoords[2 * t + 1]) + ")");
   const std::vector<std::int64_t> tex = soup.tex_indices;

@@ -24,13 +24,45 @@
 #include <iterator>
 #include <set>
 #include <string_view>
-#include <nlohmann/json.hpp>
+#include <map>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
-#include "mesh_soup.h"
+#include "gltf_check.h"
 
 namespace adaptex::io_detail {
+
+/// Standard base64 (RFC 4648) of a data: URI's payload; stops at the first character outside the
+/// alphabet ('=' padding included). Written here because no dependency offers it to this layer:
+/// Debian's libassimp 5.2.4 installs assimp/Base64.hpp but does not export its symbols, and
+/// tinygltf's decoder is compiled only into the paint layer's exporter.
+std::string decode_base64(const std::string& text, std::size_t from) {
+  std::string out;
+  std::uint32_t acc = 0;
+  int bits = 0;
+  for (std::size_t k = from; k < text.size(); ++k) {
+    const char c = text[k];
+    int v = c >= 'A' && c <= 'Z' ? c - 'A' : c >= 'a' && c <= 'z' ? c - 'a' + 26 : c >= '0' && c <= '9' ? c - '0' + 52
+            : c == '+' ? 62 : c == '/' ? 63 : -1;
+    if (v < 0) break;
+    acc = (acc << 6) | static_cast<std::uint32_t>(v);
+    bits += 6;
+    if (bits >= 8) {
+      bits -= 8;
+      out.push_back(static_cast<char>((acc >> bits) & 0xFF));
+    }
+  }
+  return out;
+}
+
+/// The bytes of buffer \p b (check_buffers() accepted it) other than the GLB's BIN chunk: a data: URI,
+/// or a file next to the glTF.
+std::string uri_buffer_bytes(const json& b, const std::filesystem::path& dir) {
+  const std::string uri = b["uri"].get<std::string>();
+  if (uri.rfind("data:", 0) == 0) return decode_base64(uri, uri.find(',') + 1);
+  std::ifstream in(dir / uri, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 namespace {
 
@@ -40,13 +72,42 @@ Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
   return out;
 }
 
+/// What collect() gathers beyond positions and faces for read_gltf_textured_soup().
+struct UvCollector {
+  TexturedSoup* out = nullptr;
+  std::map<std::pair<float, float>, std::int64_t> index;  ///< Identical UVs share one texture coordinate.
+  unsigned materials = 0;                                  ///< Materials of the glTF (assimp adds a default after them).
+  std::string name;
+};
+
+/// The texture coordinate indices of \p mesh's vertices (TEXCOORD_0; assimp has flipped v to OBJ's
+/// convention, v = 0 at the bottom of the image).
+std::vector<std::int64_t> collect_uvs(const aiMesh* mesh, UvCollector& uvs) {
+  if (!mesh->mTextureCoords[0])
+    throw InvalidInputError(uvs.name + ": the mesh '" + std::string(mesh->mName.C_Str()) +
+                            "' has a primitive without texture coordinates (TEXCOORD_0)");
+  std::vector<std::int64_t> out(mesh->mNumVertices);
+  for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+    const aiVector3D& t = mesh->mTextureCoords[0][v];
+    const auto [it, added] = uvs.index.emplace(std::make_pair(t.x, t.y), static_cast<std::int64_t>(uvs.index.size()));
+    if (added) {
+      uvs.out->texcoords.push_back(t.x);
+      uvs.out->texcoords.push_back(t.y);
+    }
+    out[v] = it->second;
+  }
+  return out;
+}
+
 void collect(const aiScene* scene, const aiNode* node, const Eigen::Matrix4d& parent, PolygonSoup& soup,
-             int& skipped_primitives) {
+             int& skipped_primitives, UvCollector* uvs) {
   const Eigen::Matrix4d world = parent * to_eigen(node->mTransformation);
   const bool identity = world.isIdentity(0.0);
   for (unsigned i = 0; i < node->mNumMeshes; ++i) {
     const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];
     const auto base = static_cast<std::int64_t>(soup.positions.size());
+    const std::vector<std::int64_t> tex = uvs ? collect_uvs(mesh, *uvs) : std::vector<std::int64_t>();
+    const int material = uvs && mesh->mMaterialIndex < uvs->materials ? static_cast<int>(mesh->mMaterialIndex) : -1;
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
       const aiVector3D& p = mesh->mVertices[v];
       Eigen::Vector4d q(p.x, p.y, p.z, 1.0);
@@ -59,14 +120,19 @@ void collect(const aiScene* scene, const aiNode* node, const Eigen::Matrix4d& pa
         ++skipped_primitives;
         continue;
       }
-      for (unsigned k = 0; k < face.mNumIndices; ++k) soup.indices.push_back(base + face.mIndices[k]);
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        soup.indices.push_back(base + face.mIndices[k]);
+        if (uvs) {
+          soup.tex_indices.push_back(face.mIndices[k] < tex.size() ? tex[face.mIndices[k]] : -1);
+          uvs->out->corner_material.push_back(material);
+        }
+      }
       soup.end_polygon();
     }
   }
-  for (unsigned c = 0; c < node->mNumChildren; ++c) collect(scene, node->mChildren[c], world, soup, skipped_primitives);
+  for (unsigned c = 0; c < node->mNumChildren; ++c)
+    collect(scene, node->mChildren[c], world, soup, skipped_primitives, uvs);
 }
-
-using nlohmann::json;
 
 std::string first_line_of(const std::string& msg) { return msg.substr(0, msg.find('\n')); }
 
@@ -304,38 +370,6 @@ void check_references(const std::string& corrupt, const json& doc) {
   if (doc.contains("scene")) check_index(doc["scene"], doc.contains("scenes") ? doc["scenes"].size() : 0, corrupt + "scene");
 }
 
-/// Standard base64 (RFC 4648) of a data: URI's payload; stops at the first character outside the
-/// alphabet ('=' padding included). Written here because no dependency offers it to this layer:
-/// Debian's libassimp 5.2.4 installs assimp/Base64.hpp but does not export its symbols, and
-/// tinygltf's decoder is compiled only into the paint layer's exporter.
-std::string decode_base64(const std::string& text, std::size_t from) {
-  std::string out;
-  std::uint32_t acc = 0;
-  int bits = 0;
-  for (std::size_t k = from; k < text.size(); ++k) {
-    const char c = text[k];
-    int v = c >= 'A' && c <= 'Z' ? c - 'A' : c >= 'a' && c <= 'z' ? c - 'a' + 26 : c >= '0' && c <= '9' ? c - '0' + 52
-            : c == '+' ? 62 : c == '/' ? 63 : -1;
-    if (v < 0) break;
-    acc = (acc << 6) | static_cast<std::uint32_t>(v);
-    bits += 6;
-    if (bits >= 8) {
-      bits -= 8;
-      out.push_back(static_cast<char>((acc >> bits) & 0xFF));
-    }
-  }
-  return out;
-}
-
-/// The bytes of buffer \p b (check_buffers() accepted it) other than the GLB's BIN chunk: a data: URI,
-/// or a file next to the glTF.
-std::string uri_buffer_bytes(const json& b, const std::filesystem::path& dir) {
-  const std::string uri = b["uri"].get<std::string>();
-  if (uri.rfind("data:", 0) == 0) return decode_base64(uri, uri.find(',') + 1);
-  std::ifstream in(dir / uri, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
 /// Every index of every primitive names a vertex of its POSITION accessor. assimp follows index values
 /// without checking them for some primitive modes: found by fuzz_gltf (session 11), a line loop whose
 /// indices (a valid unsigned-short SCALAR accessor) were read from the positions' bytes made assimp
@@ -385,8 +419,9 @@ void check_index_values(const std::string& corrupt, const json& doc, const std::
     }
 }
 
-/// Rejects anything that is not glTF 2.0 whose sizes all agree with the bytes that exist.
-void check_gltf(const std::string& name, const std::filesystem::path& base_dir, const std::string& bytes) {
+}  // namespace
+
+CheckedGltf check_gltf(const std::string& name, const std::filesystem::path& base_dir, const std::string& bytes) {
   const std::string corrupt = name + ": corrupt glTF: ";
   std::uint64_t bin_length = 0;
   const bool glb = bytes.rfind("glTF", 0) == 0;
@@ -410,7 +445,10 @@ void check_gltf(const std::string& name, const std::filesystem::path& base_dir, 
   } catch (const json::exception& e) {  // a member the checks above let pass but this one cannot read
     throw IoError(corrupt + "cannot read the index data (" + first_line_of(e.what()) + ")");
   }
+  return {std::move(doc), glb, bin_offset, bin_length};
 }
+
+namespace {
 
 /// assimp's file system seen from the glTF's folder: relative names (external buffers) resolve there,
 /// as check_buffers() resolved them, and only regular files open.
@@ -432,10 +470,11 @@ class BaseDirIOSystem : public Assimp::DefaultIOSystem {
 
 }  // namespace
 
-PolygonSoup read_gltf_soup(const std::string& bytes, const SoupSource& source) {
+namespace {
+
+/// The soup of a checked glTF through assimp; with \p uvs, its texture coordinates and materials too.
+PolygonSoup soup_of_checked(const std::string& bytes, const SoupSource& source, bool glb, UvCollector* uvs) {
   const std::string& name = source.name;
-  check_gltf(name, source.base_dir, bytes);
-  const bool glb = bytes.rfind("glTF", 0) == 0;
   Assimp::Importer importer;
   importer.SetIOHandler(new BaseDirIOSystem(source.base_dir));  // the importer owns it
   // The format hint is the container check_gltf() accepted, so only the glTF 2.0 importer reads it.
@@ -450,10 +489,28 @@ PolygonSoup read_gltf_soup(const std::string& bytes, const SoupSource& source) {
   soup.format = glb ? "glb" : "gltf";
   soup.weld = true;
   int skipped = 0;
-  collect(scene, scene->mRootNode, Eigen::Matrix4d::Identity(), soup, skipped);
+  collect(scene, scene->mRootNode, Eigen::Matrix4d::Identity(), soup, skipped, uvs);
   if (skipped > 0)
     soup.warnings.push_back(name + ": ignored " + std::to_string(skipped) + " point/line primitives");
   return soup;
+}
+
+}  // namespace
+
+PolygonSoup read_gltf_soup(const std::string& bytes, const SoupSource& source) {
+  const CheckedGltf checked = check_gltf(source.name, source.base_dir, bytes);
+  return soup_of_checked(bytes, source, checked.glb, nullptr);
+}
+
+TexturedSoup read_gltf_textured_soup(const std::string& bytes, const SoupSource& source, const CheckedGltf& checked) {
+  TexturedSoup out;
+  UvCollector uvs;
+  uvs.out = &out;
+  uvs.name = source.name;
+  const auto materials = checked.doc.find("materials");
+  uvs.materials = materials != checked.doc.end() && materials->is_array() ? static_cast<unsigned>(materials->size()) : 0;
+  out.soup = soup_of_checked(bytes, source, checked.glb, &uvs);
+  return out;
 }
 
 }  // namespace adaptex::io_detail

@@ -6,10 +6,13 @@
 #include "uv_atlas.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <regex>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 
 namespace adaptex {
 
@@ -34,7 +37,70 @@ UvReport analyze_uvs(const TriMesh& mesh, const Parameterization& param) {
     if (outside(param.uv[t[0]]) || outside(param.uv[t[1]]) || outside(param.uv[t[2]])) ++r.faces_outside_unit;
   }
   for (std::size_t c = 0; c < positive.size(); ++c) r.mirrored_charts += negative[c] > positive[c];
+  const TexelUsage usage = measure_texel_usage(param);
+  r.covered_fraction = usage.covered_fraction;
+  r.shared_fraction = usage.shared_fraction;
   return r;
+}
+
+namespace {
+
+/// Edge function of the directed edge a -> b at s, computed from the edge's endpoints in a fixed
+/// (lexicographic) order so that the two triangles sharing the edge get exactly opposite values;
+/// \p forward tells whether a -> b is that fixed order (the top-left tie-break uses it).
+double edge_function(const Vec2& a, const Vec2& b, const Vec2& s, bool& forward) {
+  forward = a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  const Vec2& lo = forward ? a : b;
+  const Vec2& hi = forward ? b : a;
+  const double e = (hi.x() - lo.x()) * (s.y() - lo.y()) - (hi.y() - lo.y()) * (s.x() - lo.x());
+  return forward ? e : -e;
+}
+
+/// Adds 1 (saturating at 2) to every texel of \p count whose centre lies in the counter-clockwise
+/// triangle p (a sample on an edge belongs to the triangle that runs the edge in its fixed order).
+void rasterize(const std::array<Vec2, 3>& p, int n, std::vector<std::uint8_t>& count) {
+  const double lo_x = std::min({p[0].x(), p[1].x(), p[2].x()}), hi_x = std::max({p[0].x(), p[1].x(), p[2].x()});
+  const double lo_y = std::min({p[0].y(), p[1].y(), p[2].y()}), hi_y = std::max({p[0].y(), p[1].y(), p[2].y()});
+  const int i0 = std::max(0, static_cast<int>(std::ceil(lo_x * n - 0.5))), i1 = std::min(n - 1, static_cast<int>(std::floor(hi_x * n - 0.5)));
+  const int j0 = std::max(0, static_cast<int>(std::ceil(lo_y * n - 0.5))), j1 = std::min(n - 1, static_cast<int>(std::floor(hi_y * n - 0.5)));
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const Vec2 s((i + 0.5) / n, (j + 0.5) / n);
+      bool inside = true;
+      for (int k = 0; k < 3 && inside; ++k) {
+        bool forward = false;
+        const double e = edge_function(p[k], p[(k + 1) % 3], s, forward);
+        inside = e > 0 || (e == 0 && forward);
+      }
+      std::uint8_t& c = count[static_cast<std::size_t>(j) * n + i];
+      if (inside && c < 2) ++c;
+    }
+}
+
+}  // namespace
+
+TexelUsage measure_texel_usage(const Parameterization& param, int size) {
+  if (size < 1 || size > kMaxTextureSize)
+    throw InvalidInputError("measure_texel_usage: size " + std::to_string(size) + " is outside 1.." +
+                            std::to_string(kMaxTextureSize));
+  std::vector<std::uint8_t> count(static_cast<std::size_t>(size) * size, 0);
+  for (std::size_t f = 0; f < param.uv_faces.size(); ++f) {
+    const Face& t = param.uv_faces[f];
+    std::array<Vec2, 3> p{param.uv[t[0]], param.uv[t[1]], param.uv[t[2]]};
+    const double a = uv_signed_area(param, static_cast<int>(f));
+    if (std::abs(a) <= kDegenerateUvArea) continue;
+    if (a < 0) std::swap(p[1], p[2]);
+    rasterize(p, size, count);
+  }
+  std::size_t covered = 0, shared = 0;
+  for (std::uint8_t c : count) {
+    covered += c > 0;
+    shared += c > 1;
+  }
+  TexelUsage out;
+  out.covered_fraction = static_cast<double>(covered) / static_cast<double>(count.size());
+  out.shared_fraction = covered ? static_cast<double>(shared) / static_cast<double>(covered) : 0.0;
+  return out;
 }
 
 namespace io_detail {

@@ -43,6 +43,7 @@ struct Sample {
   float fx, fy;
   float su, sv;
   float weight;
+  float cell;  // area of the sample's cell in the original's UV square (sets the prefilter level)
 };
 
 /// A footprint as up to 4 distinct (texel, bilinear weight > 0) entries.
@@ -130,13 +131,13 @@ std::array<Vec2, 3> face_frame(const Parameterization& p, int f) {
 /// The sample at face-local (s, t). One out-of-line body, so that both passes of generate_samples()
 /// compute bit-identical rows.
 [[gnu::noinline]] Sample make_sample(const std::array<Vec2, 3>& nf, const std::array<Vec2, 3>& sf, double s, double t,
-                                     int W, int H, TextureAddress address, float weight) {
+                                     int W, int H, TextureAddress address, float weight, float cell) {
   const Vec2 uv = nf[0] + s * nf[1] + t * nf[2], suv = sf[0] + s * sf[1] + t * sf[2];
   const BilinearTap x = tap(W, uv.x(), address), y = tap(H, uv.y(), address);
   return Sample{static_cast<std::uint16_t>(x.i0), static_cast<std::uint16_t>(x.i1),
                 static_cast<std::uint16_t>(y.i0), static_cast<std::uint16_t>(y.i1),
                 static_cast<float>(x.f), static_cast<float>(y.f),
-                static_cast<float>(suv.x()), static_cast<float>(suv.y()), weight};
+                static_cast<float>(suv.x()), static_cast<float>(suv.y()), weight, cell};
 }
 
 /// The samples in buckets by the footprint's first row j0 (\p row_start[j]: first sample of row j);
@@ -155,7 +156,7 @@ std::unique_ptr<Sample[]> generate_samples(const TriMesh& mesh, const Parameteri
     for (int f = block_begin(b); f < block_begin(b + 1); ++f) {
       if (m[f] == 0) continue;
       const auto nf = face_frame(np, f), sf = face_frame(sp, f);
-      for_each_centroid(m[f], [&](double s, double t) { ++c[make_sample(nf, sf, s, t, W, H, o.address, 0).j0]; });
+      for_each_centroid(m[f], [&](double s, double t) { ++c[make_sample(nf, sf, s, t, W, H, o.address, 0, 0).j0]; });
     }
   });
   // Offsets: row by row, block by block.
@@ -177,9 +178,10 @@ std::unique_ptr<Sample[]> generate_samples(const TriMesh& mesh, const Parameteri
     for (int f = block_begin(b); f < block_begin(b + 1); ++f) {
       if (m[f] == 0) continue;
       const float weight = static_cast<float>(face_area(mesh, f) / (double(m[f]) * m[f]));
+      const float cell = static_cast<float>(std::abs(uv_signed_area(sp, f)) / (double(m[f]) * m[f]));
       const auto nf = face_frame(np, f), sf = face_frame(sp, f);
       for_each_centroid(m[f], [&](double s, double t) {
-        const Sample smp = make_sample(nf, sf, s, t, W, H, o.address, weight);
+        const Sample smp = make_sample(nf, sf, s, t, W, H, o.address, weight, cell);
         out[static_cast<size_t>(next[smp.j0]++)] = smp;
       });
     }
@@ -213,6 +215,44 @@ std::array<double, 4> sample_bilinear_rgba(const ImageRGBA8& img, double u, doub
   return out;
 }
 
+namespace {
+
+/// \p img, then 2 x 2 box means of it, down to level ceil(max_level) (just \p img when max_level <= 0).
+std::vector<ImageRGBA8> box_pyramid(const ImageRGBA8& img, double max_level) {
+  std::vector<ImageRGBA8> levels{img};
+  const int top = static_cast<int>(std::ceil(std::min(max_level, 16.0)));
+  for (int l = 1; l <= top && (levels.back().width > 1 || levels.back().height > 1); ++l) {
+    const ImageRGBA8& f = levels.back();
+    ImageRGBA8 c((f.width + 1) / 2, (f.height + 1) / 2);
+    for (int J = 0; J < c.height; ++J)
+      for (int I = 0; I < c.width; ++I)
+        for (int ch = 0; ch < 4; ++ch) {
+          int sum = 0;
+          for (int b = 0; b < 2; ++b)
+            for (int a = 0; a < 2; ++a) sum += f.texel(std::min(2 * I + a, f.width - 1), std::min(2 * J + b, f.height - 1))[ch];
+          c.texel(I, J)[ch] = static_cast<std::uint8_t>((sum + 2) / 4);
+        }
+    levels.push_back(std::move(c));
+  }
+  return levels;
+}
+
+/// Trilinear lookup at the level whose texels match the sample's cell (\p texels: level 0's count).
+Vec4d sample_trilinear(const std::vector<ImageRGBA8>& levels, const Sample& smp, double texels, TextureAddress address) {
+  const double lod = std::clamp(0.5 * std::log2(std::max(1e-30, double(smp.cell) * texels)), 0.0,
+                                static_cast<double>(levels.size() - 1));
+  const int l0 = static_cast<int>(lod);
+  const double f = lod - l0;
+  const Vec4d a = sample_bilinear_rgba(levels[l0], smp.su, smp.sv, address);
+  if (f <= 0 || l0 + 1 >= static_cast<int>(levels.size())) return a;
+  const Vec4d b = sample_bilinear_rgba(levels[l0 + 1], smp.su, smp.sv, address);
+  Vec4d out;
+  for (int c = 0; c < 4; ++c) out[c] = a[c] + (b[c] - a[c]) * f;
+  return out;
+}
+
+}  // namespace
+
 struct TexelFitter::Impl {
   int W = 0, H = 0;
   TexelFitOptions options;
@@ -225,6 +265,7 @@ struct TexelFitter::Impl {
   std::vector<float> vals;             // 9n
   std::vector<double> diag;            // n
   std::vector<double> mass;            // n: sum of w * b over the samples touching the texel
+  double max_cell = 0;                 // largest Sample::cell
 
   void assemble();
   void add_smoothness(const std::vector<float>& stencil);
@@ -330,12 +371,17 @@ void TexelFitter::Impl::add_smoothness(const std::vector<float>& stencil) {
 }
 
 std::vector<Vec4d> TexelFitter::Impl::rhs(const ImageRGBA8& source) const {
+  // Where a sample stands for more than one original texel (the sample cap bound), look the original
+  // up at the matching level of a 2 x 2 box pyramid (trilinear), so the quadrature does not alias.
+  const double texels = double(source.width) * source.height;
+  const std::vector<ImageRGBA8> levels = box_pyramid(source, 0.5 * std::log2(std::max(1.0, max_cell * texels)));
   std::vector<Vec4d> b(texel.size(), Vec4d{0, 0, 0, 0});
   for_buckets(H, [&](int j) {
     for (long long s = row_start[j]; s < row_start[j + 1]; ++s) {
       const Sample& smp = samples[static_cast<size_t>(s)];
       const Footprint fp = footprint(smp, W);
-      const Vec4d v = sample_bilinear_rgba(source, smp.su, smp.sv, options.source_address);
+      const Vec4d v = levels.size() == 1 ? sample_bilinear_rgba(source, smp.su, smp.sv, options.source_address)
+                                         : sample_trilinear(levels, smp, texels, options.source_address);
       for (int p = 0; p < fp.n; ++p) {
         Vec4d& out = b[static_cast<size_t>(index[fp.texel[p]])];
         const double wb = double(smp.weight) * fp.b[p];
@@ -451,6 +497,9 @@ TexelFitter::TexelFitter(const TriMesh& mesh, const Parameterization& source_par
   report_progress(options.progress, "fit samples", 0.0);
   const std::vector<int> grid = sample_grid(mesh, source_param, source_width, source_height, param, width, height, options);
   m.samples = generate_samples(mesh, source_param, param, width, height, grid, options, m.row_start);
+  for (size_t f = 0; f < grid.size(); ++f)
+    if (grid[f] > 0)
+      m.max_cell = std::max(m.max_cell, std::abs(uv_signed_area(source_param, static_cast<int>(f))) / (double(grid[f]) * grid[f]));
   report_progress(options.progress, "fit matrix", 0.0);
   m.assemble();
   report_progress(options.progress, "fit matrix", 1.0);

@@ -273,13 +273,13 @@ TEST(AtlasFlow, EveryChartEndsInsideItsNewRectangle) {
   AdaptOptions ao;
   ao.mode = AdaptMode::DensityFlow;
   const AdaptResult r = adapt_parameterization(c.mesh, c.param, p.texture(), p.texel_map(), ao, &c.strokes);
-  ASSERT_EQ(static_cast<int>(r.chart_moves.size()), c.param.num_charts);
-  ASSERT_TRUE(r.warp_start);
+  ASSERT_TRUE(r.warp);
+  ASSERT_EQ(static_cast<int>(r.warp->chart_moves().size()), c.param.num_charts);
   EXPECT_EQ(r.report.flow_inverted_cells, 0);
   const Parameterization& q = r.param;
   const std::vector<UvRect> after = chart_boxes(q);
   for (int ch = 0; ch < q.num_charts; ++ch) {
-    const UvRect d = r.chart_moves[ch].dst();
+    const UvRect d = r.warp->chart_moves()[ch].dst();
     EXPECT_GE(after[ch].lo.x(), d.lo.x() - 1e-9);
     EXPECT_GE(after[ch].lo.y(), d.lo.y() - 1e-9);
     EXPECT_LE(after[ch].hi.x(), d.hi.x() + 1e-9);
@@ -312,7 +312,7 @@ TEST(AtlasFlow, ChartLatticesArePolishedInParallelWithTheSameResultAndProgress) 
     return true;
   };
   const AdaptResult a = adapt_parameterization(c.mesh, c.param, p.texture(), p.texel_map(), ao, &c.strokes);
-  ASSERT_EQ(static_cast<int>(a.grids.size()), c.param.num_charts);
+  ASSERT_EQ(static_cast<int>(a.warp->lattices().size()), c.param.num_charts);
   EXPECT_FALSE(overlapped);
   ASSERT_GE(fractions.size(), 2u);
   EXPECT_EQ(fractions.front(), 0.0);
@@ -322,8 +322,9 @@ TEST(AtlasFlow, ChartLatticesArePolishedInParallelWithTheSameResultAndProgress) 
   ao.progress = nullptr;
   ao.polish.parallel = false;
   const AdaptResult b = adapt_parameterization(c.mesh, c.param, p.texture(), p.texel_map(), ao, &c.strokes);
-  ASSERT_EQ(a.grids.size(), b.grids.size());
-  for (size_t g = 0; g < a.grids.size(); ++g) EXPECT_EQ(a.grids[g].points, b.grids[g].points) << "chart " << g;
+  ASSERT_EQ(a.warp->lattices().size(), b.warp->lattices().size());
+  for (size_t g = 0; g < a.warp->lattices().size(); ++g)
+    EXPECT_EQ(a.warp->lattices()[g].points, b.warp->lattices()[g].points) << "chart " << g;
   ASSERT_EQ(a.param.uv.size(), b.param.uv.size());
   for (size_t k = 0; k < a.param.uv.size(); ++k) ASSERT_EQ(a.param.uv[k], b.param.uv[k]) << k;
   EXPECT_EQ(a.report.polish_error_after, b.report.polish_error_after);
@@ -352,8 +353,7 @@ TEST(AtlasFlow, DirectAdvectionAtASharpDensityLeavesNoFlipDegenerateOrOverlap) {
     ao.flow.direct = true;
     ao.density.blur_cells = 1.0;
     const AdaptResult r = adapt_parameterization(mesh, param, p.texture(), p.texel_map(), ao, &strokes);
-    ASSERT_TRUE(r.flow) << shape;
-    ASSERT_TRUE(r.warped_layout) << shape;
+    ASSERT_TRUE(dynamic_cast<const FlowLayoutWarp*>(r.warp.get())) << shape;
     const TriMesh& out_mesh = r.refined_mesh ? *r.refined_mesh : mesh;
     const StretchStats st = measure_stretch(out_mesh, r.param);
     EXPECT_EQ(st.flipped, 0) << shape;
@@ -367,9 +367,10 @@ TEST(AtlasFlow, DirectAdvectionAtASharpDensityLeavesNoFlipDegenerateOrOverlap) {
     // The remap started from the wedges moved by the flow itself (not by the lattice), and kept most
     // of that warp (measured: mean blend factor 0.96 on both; the untangling and local damping touch
     // the wedges of the faces that the 4x refinement budget leaves too large for a 1-cell density).
-    const Parameterization& start = r.start_layout(param);
-    ASSERT_EQ(start.uv.size(), r.warped_layout->uv.size());
-    for (size_t w = 0; w < start.uv.size(); w += 97) EXPECT_EQ(r.warped_layout->uv[w], r.flow->apply(start.uv[w]));
+    const Parameterization start = r.start_layout(param);
+    const Parameterization warped = r.warp->warp_layout(start);
+    ASSERT_EQ(start.uv.size(), warped.uv.size());
+    for (size_t w = 0; w < start.uv.size(); w += 97) EXPECT_EQ(warped.uv[w], r.warp->map(start.uv[w]));
     EXPECT_GT(r.report.damping, 0.9) << shape;
     double moved = 0;
     for (size_t w = 0; w < start.uv.size(); ++w) moved = std::max(moved, (r.param.uv[w] - start.uv[w]).norm());
@@ -377,7 +378,7 @@ TEST(AtlasFlow, DirectAdvectionAtASharpDensityLeavesNoFlipDegenerateOrOverlap) {
     // The torus unwraps to one chart (one flow over the square), the genus-2 surface to several (one
     // flow per re-packed chart rectangle): both paths of FlowWarp.
     EXPECT_EQ(param.num_charts > 1, shape == 1);
-    EXPECT_EQ(r.chart_moves.empty(), param.num_charts == 1);
+    EXPECT_EQ(r.warp->chart_moves().empty(), param.num_charts == 1);
     // Wedges on the square's sides stay on them.
     for (size_t w = 0; w < start.uv.size(); ++w)
       for (int axis = 0; axis < 2; ++axis)
@@ -385,8 +386,8 @@ TEST(AtlasFlow, DirectAdvectionAtASharpDensityLeavesNoFlipDegenerateOrOverlap) {
           EXPECT_TRUE(start.uv[w][axis] != side || r.param.uv[w][axis] == side) << shape << " wedge " << w;
     // Charts stay in their disjoint rectangles, with the gutter between them.
     const std::vector<UvRect> after = chart_boxes(r.param);
-    for (size_t ch = 0; ch < r.chart_moves.size(); ++ch) {
-      const UvRect d = r.chart_moves[ch].dst();
+    for (size_t ch = 0; ch < r.warp->chart_moves().size(); ++ch) {
+      const UvRect d = r.warp->chart_moves()[ch].dst();
       EXPECT_GE(after[ch].lo.x(), d.lo.x() - 1e-9);
       EXPECT_GE(after[ch].lo.y(), d.lo.y() - 1e-9);
       EXPECT_LE(after[ch].hi.x(), d.hi.x() + 1e-9);

@@ -2,7 +2,7 @@
 // CMakeLists.txt). The bytes go through the same code as the CLI after its file checks: the in-memory
 // entry points that the path-based readers call once they have read the file (read_mesh_from_memory
 // with the CLI's validation and repair, parse_strokes, read_image_from_memory for PNG, JPEG and TGA,
-// parse_mtl for material files). The studio's project
+// parse_mtl for material files; fuzz_obj and fuzz_gltf also run read_textured_asset_from_memory). The studio's project
 // reader has no in-memory entry point, so fuzz_project writes each input to a file and calls
 // read_project. With ADAPTEX_FUZZ_VIA_FILE=1 in the environment every target does that (writes the
 // input to a file, calls the path-based reader: read_mesh, read_strokes, read_image), the harness of
@@ -83,7 +83,16 @@ void read_memory([[maybe_unused]] const std::string& bytes, [[maybe_unused]] con
 #elif ADAPTEX_FUZZ_PROJECT
   // not reached: via_file()
 #else
-  (void)adaptex::read_mesh_from_memory(bytes, ADAPTEX_FUZZ_EXTENSION, path, mesh_options());
+  try {
+    (void)adaptex::read_mesh_from_memory(bytes, ADAPTEX_FUZZ_EXTENSION, path, mesh_options());
+  } catch (const adaptex::Error&) {
+  }
+#if ADAPTEX_FUZZ_ASSET
+  // The textured asset reader on the same bytes: UVs, materials and embedded images.
+  adaptex::AssetReadOptions options;
+  options.mesh = mesh_options();
+  (void)adaptex::read_textured_asset_from_memory(bytes, ADAPTEX_FUZZ_EXTENSION, path, options);
+#endif
 #endif
 }
 

@@ -9,6 +9,7 @@
 #include "adaptex/core/errors.h"
 #include "adaptex/io/asset_io.h"
 #include "adaptex/io/mesh_io.h"
+#include "asset_test_support.h"
 #include "image_test_files.h"
 #include "io_test_files.h"
 #include "test_support.h"
@@ -130,6 +131,10 @@ TEST(AssetIo, AtlasIsReadAsTheArtistMadeIt) {
   EXPECT_EQ(uv.faces_outside_unit, 2);
   EXPECT_EQ(uv.wrapped_charts, 1);
   EXPECT_EQ(uv.clamped_uvs, 0);
+  // Texel usage after wrapping: quads 0 and 1 cover the same 0.3² (shared), quad 2 0.4², quad 3's
+  // one non-degenerate triangle 0.03125: 0.28125 of the square, 0.09 of it shared.
+  EXPECT_NEAR(uv.covered_fraction, 0.28125, 0.002);
+  EXPECT_NEAR(uv.shared_fraction, 0.09 / 0.28125, 0.005);
   // The mirrored chart keeps its reversed orientation and shares the first chart's texels exactly.
   const Parameterization& p = asset.param;
   EXPECT_GT(uv_signed_area(p, 0), 0);
@@ -198,21 +203,7 @@ TEST(AssetIo, WindowsPathsInMaterialFilesAreFoundNextToTheMaterialFile) {
 
 // --- bad input: one line naming the file and the problem ---
 
-std::string asset_error(const fs::path& obj) {
-  try {
-    (void)read_textured_asset(obj);
-  } catch (const InvalidInputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
-void expect_asset_rejected(const fs::path& obj, const std::string& file, const std::string& what) {
-  const std::string msg = asset_error(obj);
-  EXPECT_NE(msg.find(file), std::string::npos) << "expected the file '" << file << "' in: " << msg;
-  EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
-  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
-}
+using test::expect_asset_rejected;
 
 TEST(AssetIo, MissingMaterialFileOrMap) {
   StripAsset a;
@@ -288,6 +279,24 @@ TEST(AssetIo, CoordinatesJustOutsideTheirTileAreClamped) {
   AssetReadOptions strict;
   strict.uv_tolerance = 1e-4;
   EXPECT_THROW((void)read_textured_asset(dir.path / "edge.obj", strict), InvalidInputError);
+}
+
+TEST(AssetIo, TexelUsageCountsSharedEdgesOnceAndOverlapsTwice) {
+  // The unit square as two triangles (sharing the diagonal, on which texel centres lie at 4²), and
+  // a third triangle over the lower half of it, mirrored.
+  Parameterization p;
+  p.uv = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  p.uv_faces = {Face{0, 1, 2}, Face{0, 2, 3}};
+  const TexelUsage square = measure_texel_usage(p, 4);
+  EXPECT_EQ(square.covered_fraction, 1.0);
+  EXPECT_EQ(square.shared_fraction, 0.0);
+  p.uv.push_back(Vec2(0, 0.5));
+  p.uv.push_back(Vec2(1, 0.5));
+  p.uv_faces.push_back(Face{0, 4, 1});  // clockwise: mirrored
+  const TexelUsage folded = measure_texel_usage(p, 8);
+  EXPECT_EQ(folded.covered_fraction, 1.0);
+  EXPECT_NEAR(folded.shared_fraction, 0.25, 1.0 / 64);  // the triangle (0,0) (0,0.5) (1,0): a quarter
+  EXPECT_THROW((void)measure_texel_usage(p, 0), InvalidInputError);
 }
 
 TEST(AssetIo, ParseMtlReadsOptionsAndNamesWithSpaces) {

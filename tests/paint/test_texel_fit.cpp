@@ -251,8 +251,10 @@ TEST(TexelFit, FitterIsReusableAcrossMaps) {
   EXPECT_LT(covered, 16 * 16);
 }
 
-// The result does not depend on the thread count (fixed sample order and summation blocks).
-TEST(TexelFit, DeterministicAcrossThreadCounts) {
+// The result does not depend on the thread count (fixed sample order and summation blocks), and a
+// sample cap at a quarter of the default densities (the original prefiltered to match) still beats
+// box downsizing on white noise, the worst case for aliasing.
+TEST(TexelFit, DeterministicAcrossThreadCountsAndCapped) {
   const TriMesh mesh = shapes::torus(40, 20);
   const Parameterization atlas = unwrap(mesh).param;
   const ImageRGBA8 tex = random_image(128, 128, 5);
@@ -261,6 +263,12 @@ TEST(TexelFit, DeterministicAcrossThreadCounts) {
   tbb::task_arena(2).execute([&] { two = fit_resize(mesh, atlas, tex, 32, 32); });
   EXPECT_EQ(one.texture.data, two.texture.data);
   EXPECT_EQ(one.iterations, two.iterations);
+  TexelFitOptions capped;
+  capped.max_samples = one.samples / 4;
+  const TexelFitResult c = fit_resize(mesh, atlas, tex, 32, 32, capped);
+  EXPECT_LE(c.samples, capped.max_samples);
+  EXPECT_GT(c.samples, capped.max_samples / 2);
+  EXPECT_LT(surface_mse(mesh, atlas, tex, atlas, c.texture), surface_mse(mesh, atlas, tex, atlas, box_down(tex, 4)));
 }
 
 // Pull-push: covered texels keep their bytes; uncovered ones take convex mixtures of the covered

@@ -26,6 +26,7 @@
 #include "adaptex/adapt/ls2.h"
 #include "adaptex/adapt/relax.h"
 #include "adaptex/adapt/remap.h"
+#include "adaptex/adapt/uv_warp.h"
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
@@ -151,12 +152,10 @@ struct AdaptResult {
   ImageF stretch;          ///< Normalized geometry stretch map at texture resolution (Fig. 3.8).
   ImageF ls2;              ///< L_s² at texture resolution (§3.6), before pooling (thesis methods).
   ImageF density;          ///< density-flow: target area density per cell (mean 1; error_density.h).
-  /// The warps in application order: {coarse, fine} for two-stage (fine in the coarse-warped domain),
-  /// {fine} for single, {flow grid} for density-flow; empty for None.
-  std::vector<GridWarp> grids;
-  /// density-flow with the polish: the flow's lattices before the polish, one per entry of grids. A
-  /// later cycle may start its polish from grids − flow_grids (add_polish_correction(), error_polish.h;
-  /// the warm_start of adapt_parameterization()). Empty otherwise.
+  /// The method's warp of the square (uv_warp.h); null for None. Kept when a safeguard rejects it.
+  std::shared_ptr<const UvWarp> warp;
+  /// density-flow with the polish: the flow's lattices before the polish, one per lattice of the
+  /// warp, for a later cycle's warm start (add_polish_correction(), error_polish.h). Empty otherwise.
   std::vector<GridWarp> flow_grids;
   /// Set when refinement changed the mesh: the refined mesh (same surface, more faces), which
   /// result.param belongs to. nullptr: param belongs to the input mesh.
@@ -164,25 +163,10 @@ struct AdaptResult {
   /// With refined_mesh: its layout before the warp (old UV domain), for damping the warp again.
   std::shared_ptr<const Parameterization> refined_layout;
   FaceData<int> parent_face;  ///< With refined_mesh: input face id of every refined face (size F').
-  /// Multi-chart density-flow (atlas_flow.h): the move of every chart (re-packed by its density
-  /// share), applied before the grids, which then act on the moved charts' rectangles. Empty: the
-  /// charts were not moved (one chart, thesis methods, or a layout whose chart boxes overlap).
-  std::vector<ChartMove> chart_moves;
-  /// With chart_moves: the layout the grids act on (the input layout, or refined_layout, with the
-  /// charts moved). Damping a warp again (blending) starts from here, not from the input layout.
-  std::shared_ptr<const Parameterization> warp_start;
-  /// density-flow with DensityFlowOptions::direct: the flows themselves (density_flow.h). Refinement
-  /// and the remap then advect the wedges of start_layout() through them instead of through grids
-  /// (which only draw pictures). nullptr: the grids are the warp.
-  std::shared_ptr<const FlowWarp> flow;
-  /// With flow: start_layout() with every wedge advected (the undamped warp). Damping the warp again
-  /// blends toward it (blend_layouts, remap.h).
-  std::shared_ptr<const Parameterization> warped_layout;
-  std::vector<const GridWarp*> warps() const;  ///< Pointers to grids, in application order.
-  /// The layout the grids act on: warp_start, else refined_layout, else \p input.
-  const Parameterization& start_layout(const Parameterization& input) const {
-    return warp_start ? *warp_start : refined_layout ? *refined_layout : input;
-  }
+  /// The lattices of the warp (empty without one), in application order.
+  std::vector<const GridWarp*> warps() const;
+  /// The layout the warp acts on: refined_layout, else \p input, with the warp's charts moved.
+  Parameterization start_layout(const Parameterization& input) const;
 };
 
 /// Re-parameterizes \p current from the signal of \p texture (drawn with \p current; \p current_map

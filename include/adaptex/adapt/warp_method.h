@@ -38,7 +38,7 @@ struct WarpInput {
 class WarpMethod {
  public:
   virtual ~WarpMethod() = default;
-  /// Fills result.grids (application order, non-empty), the maps the method used (result.importance,
+  /// Sets result.warp (uv_warp.h), the maps the method used (result.importance,
   /// stretch, ls2, density: whichever apply) and its report fields (times, iterations,
   /// signal_fraction). Must not touch result.param.
   /// \throw InvalidInputError bad options \throw CancelledError progress callback returned false

@@ -73,7 +73,26 @@ struct UvReport {
   int faces_outside_unit = 0;   ///< Faces with a UV corner outside [0,1]^2 as read (before wrapping).
   int wrapped_charts = 0;       ///< Charts lying in one integer tile other than [0,1]^2, moved into it.
   int clamped_uvs = 0;          ///< UV coordinates within AssetReadOptions::uv_tolerance outside their tile, clamped.
+  /// Fraction of the texels of a kTexelUsageResolution² grid over [0,1]^2 whose centre lies in a UV
+  /// triangle (after wrapping): how much of the square the atlas uses.
+  double covered_fraction = 0;
+  /// Fraction of those covered texels that lie in two or more UV triangles: texels shared by
+  /// overlapping (e.g. mirrored) charts or folds.
+  double shared_fraction = 0;
 };
+
+/// Grid of UvReport::covered_fraction and shared_fraction.
+inline constexpr int kTexelUsageResolution = 1024;
+
+/// Covered and shared texels of an atlas on a \p size x \p size grid over [0,1]^2 (texel centres;
+/// edges shared by two triangles count once, by the top-left rule; degenerate triangles cover nothing;
+/// parts outside [0,1]^2 are not counted).
+struct TexelUsage {
+  double covered_fraction = 0;  ///< Covered texels / size².
+  double shared_fraction = 0;   ///< Texels in two or more triangles / covered texels (0 when none is covered).
+};
+/// \pre size >= 1, every UV finite. \throw InvalidInputError size < 1 or larger than kMaxTextureSize
+TexelUsage measure_texel_usage(const Parameterization& param, int size = kTexelUsageResolution);
 
 /// Options of read_textured_asset().
 struct AssetReadOptions {
@@ -122,7 +141,8 @@ TexturedAsset read_textured_asset_from_memory(const std::string& bytes, const st
 std::vector<Material> parse_mtl(const std::string& text, const std::filesystem::path& name,
                                 std::vector<std::string>* warnings = nullptr);
 
-/// Counts what an atlas contains (UvReport; wrapped_charts and clamped_uvs stay 0).
+/// Counts what an atlas contains (UvReport; wrapped_charts and clamped_uvs stay 0; the texel usage is
+/// measured on the UVs as they are).
 /// \pre param.uv_faces.size() == mesh.faces.size(), param.face_chart set
 UvReport analyze_uvs(const TriMesh& mesh, const Parameterization& param);
 
