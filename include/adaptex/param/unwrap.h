@@ -115,11 +115,10 @@ struct UnwrapOptions {
   /// faces (bounds the size of the probing solves).
   int scan_piece_faces = 50000;
   /// Scans: a piece whose cheap parameterization has an L2 stretch above this (at its best
-  /// rectangle aspect) is split in two, while its rectangle keeps a side of scan_min_chart_gaps
-  /// gaps; a piece with degenerate or flipped UV triangles is split regardless.
-  double scan_chart_l2 = 1.2;
-  /// Scans: see scan_chart_l2 (predicted side after the split, in gaps between charts).
-  double scan_min_chart_gaps = 8;
+  /// rectangle aspect) is split in two when the predicted gain in texel share (lower L2) exceeds
+  /// the predicted loss (the gutter along the new seam); a piece with degenerate or flipped UV
+  /// triangles is split regardless (docs/charts.md, "Scans").
+  double scan_chart_l2 = 1.1;
   /// Scans: rounds of splitting (each round at most doubles the pieces).
   int scan_max_rounds = 12;
   /// Scans: meshes of at most this many faces also build one chart per component, and the
