@@ -31,7 +31,7 @@ struct TexelFitOptions {
   // Quadrature (surface samples per face: a regular subdivision into m² triangles, one at each centroid).
   double samples_per_texel = 16;        ///< Minimum samples per texel of the NEW texture a face covers (default 16).
   double samples_per_source_texel = 1;  ///< Minimum samples per texel of the ORIGINAL texture a face covers (default 1).
-  long long max_samples = 16'000'000;   ///< Cap on all samples (28 bytes each); the densities shrink to fit (default 16M).
+  long long max_samples = 16'000'000;   ///< Cap on all samples (32 bytes each); the densities shrink to fit (default 16M).
   // Addressing of the two lookups.
   TextureAddress source_address = TextureAddress::ClampToEdge;  ///< Lookup of the original (default clamp).
   TextureAddress address = TextureAddress::ClampToEdge;         ///< Lookup of the fitted texture (default clamp).
