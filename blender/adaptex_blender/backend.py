@@ -18,7 +18,7 @@ from . import meshdata
 # repacked by the texture's detail, texels fitted to the original; the library measures both PSNRs)
 # or "reparam" (signal-adaptive warp of the layout, then resampling; the add-on measures the PSNRs).
 # Every backend has one smaller_by_<path> method per path.
-MAKE_SMALLER = "reparam"
+MAKE_SMALLER = "shrink"
 
 
 class Cancelled(Exception):
@@ -159,10 +159,8 @@ class ModuleBackend(Backend):
                 "psnr_downsized": r["report"]["psnr_downsized"]}
 
 
-def write_obj(path, V, F, UV=None, FT=None, mtllib=None):
+def write_obj(path, V, F, UV=None, FT=None):
     with open(path, "w") as f:
-        if mtllib:
-            f.write(f"mtllib {mtllib}\nusemtl paint\n")
         f.writelines(f"v {x!r} {y!r} {z!r}\n" for x, y, z in V.tolist())
         if UV is None:
             f.writelines(f"f {a + 1} {b + 1} {c + 1}\n" for a, b, c in F.tolist())
@@ -231,21 +229,20 @@ class CliBackend(Backend):
             return read_obj_layout(out, F)
 
     def shrink(self, V, F, UV, FT, texture, size, report):
-        """As ModuleBackend.shrink, through `adaptex shrink` (an OBJ + MTL + PNG in a temporary folder);
-        the texture is the path of the result's PNG (read it with meshdata.read_png)."""
+        """As ModuleBackend.shrink, through `adaptex reparam --adapt shrink` (the same code; its
+        report.json holds both PSNRs); the texture is the path of the result's PNG (read it with
+        meshdata.read_png, which removes the temporary folder)."""
         tmp = tempfile.mkdtemp(prefix="adaptex-")
         try:
-            write_obj(os.path.join(tmp, "in.obj"), V, F, UV, FT, mtllib="in.mtl")
-            with open(os.path.join(tmp, "in.mtl"), "w") as f:
-                f.write("newmtl paint\nmap_Kd in.png\n")
+            write_obj(os.path.join(tmp, "in.obj"), V, F, UV, FT)
             meshdata.write_png(os.path.join(tmp, "in.png"), texture)
             out = os.path.join(tmp, "out")
-            self._run(["shrink", os.path.join(tmp, "in.obj"), "--size", str(size), "--name", "out", "-o", out],
-                      report, ["islands", "error model", "pack", "texels", "evaluate"])
+            self._run(["reparam", os.path.join(tmp, "in.obj"), os.path.join(tmp, "in.png"), "--adapt", "shrink",
+                       "--size", str(size), "--name", "out", "-o", out], report,
+                      ["islands", "error model", "pack", "warp", "texels", "fit solve", "evaluate"])
             UV2, FT2 = read_obj_layout(os.path.join(out, "out.obj"), F)
             with open(os.path.join(out, "report.json")) as f:
-                rep = json.load(f)
-            rep = rep.get("shrink", rep)
+                rep = json.load(f)["shrink"]
             return {"UV": UV2, "FT": FT2, "texture": os.path.join(out, "out.png"), "psnr": rep["psnr"],
                     "psnr_downsized": rep["psnr_downsized"]}
         except BaseException:
