@@ -129,8 +129,9 @@ bool is_udim_path(const std::string& path) {
          std::regex_search(path, tile_number);
 }
 
-void wrap_uv_charts(Parameterization& param, double tolerance, const std::string& name, const std::string& udim_map,
-                    UvReport& report) {
+void wrap_uv_charts(Parameterization& param, const AssetReadOptions& options, const std::string& name,
+                    const std::string& udim_map, UvReport& report) {
+  const double tolerance = options.uv_tolerance;
   const int nc = param.num_charts;
   std::vector<Vec2> lo(static_cast<std::size_t>(nc), Vec2::Constant(HUGE_VAL));
   std::vector<Vec2> hi(static_cast<std::size_t>(nc), Vec2::Constant(-HUGE_VAL));
@@ -147,12 +148,19 @@ void wrap_uv_charts(Parameterization& param, double tolerance, const std::string
     }
   }
   std::vector<Vec2> offset(static_cast<std::size_t>(nc), Vec2::Zero());
+  std::vector<char> keep(static_cast<std::size_t>(nc), 0);  // straddling charts left as they are
   int tiles_used = 0;
   std::vector<std::pair<double, double>> tiles;
   for (std::size_t c = 0; c < static_cast<std::size_t>(nc); ++c) {
     if (first_face[c] < 0) continue;
     double tu = 0, tv = 0;
-    if (!tile_of(lo[c].x(), hi[c].x(), tolerance, tu) || !tile_of(lo[c].y(), hi[c].y(), tolerance, tv))
+    const bool one_tile = tile_of(lo[c].x(), hi[c].x(), tolerance, tu) && tile_of(lo[c].y(), hi[c].y(), tolerance, tv);
+    if (!one_tile && options.keep_straddling_charts) {
+      ++report.straddling_charts;
+      keep[c] = 1;
+      continue;
+    }
+    if (!one_tile)
       throw InvalidInputError(name + ": UV chart " + std::to_string(c) + " (face " + std::to_string(first_face[c] + 1) +
                               " and " + std::to_string(faces[c] - 1) + " more) spans u " + number(lo[c].x()) + " to " +
                               number(hi[c].x()) + ", v " + number(lo[c].y()) + " to " + number(hi[c].y()) +
@@ -167,7 +175,7 @@ void wrap_uv_charts(Parameterization& param, double tolerance, const std::string
     throw InvalidInputError(name + ": UDIM tiles are not supported: the charts lie in " + std::to_string(tiles_used) +
                             " UV tiles and the maps are named per tile ('" + udim_map + "')");
   for (std::size_t w = 0; w < param.uv.size(); ++w) {
-    if (wedge_chart[w] < 0) continue;
+    if (wedge_chart[w] < 0 || keep[static_cast<std::size_t>(wedge_chart[w])]) continue;
     Vec2& p = param.uv[w];
     p -= offset[static_cast<std::size_t>(wedge_chart[w])];
     for (int k = 0; k < 2; ++k) {

@@ -259,6 +259,12 @@ TEST(AssetIo, ChartsStraddlingTilesAndUdimAreRejectedClearly) {
   test::write_text(dir.path / "straddle.obj", obj);
   expect_asset_rejected(dir.path / "straddle.obj", "straddle.obj: UV chart 2 (face 5 and 1 more) spans u 0.8 to 1.9",
                         "crosses a UV tile border, which is not supported");
+  AssetReadOptions keep;
+  keep.keep_straddling_charts = true;
+  const TexturedAsset kept = read_textured_asset(dir.path / "straddle.obj", keep);
+  EXPECT_EQ(kept.uv.straddling_charts, 1);
+  EXPECT_EQ(kept.uv.wrapped_charts, 0);
+  EXPECT_EQ(kept.param.uv[kept.param.uv_faces[4][1]].x(), 1.9);  // left where it is
   // Maps named per UDIM tile, charts in two tiles.
   StripAsset a;
   test::write_text(a.dir.path / "mat.mtl", "newmtl skin\nmap_Kd skin.1001.png\nnewmtl cloth\n");
