@@ -13,6 +13,8 @@
 
 #include "adaptex/adapt/adapt.h"
 #include "adaptex/adapt/adapt_report.h"
+#include "adaptex/adapt/shrink.h"
+#include "adaptex/adapt/shrink_report.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/adapt/texture_update.h"
 #include "adaptex/core/atomic_output.h"
@@ -260,11 +262,56 @@ py::dict py_adapt(py::handle V, py::handle F, py::handle UV, py::handle FT, py::
   return d;
 }
 
+/// The atlas-preserving shrink (adapt/shrink.h) of \p maps (slot -> image) on (mesh, param):
+/// dict(V, F, UV, FT, texture = the first map, maps = {slot: image}, report).
+py::dict shrink_dict(const TriMesh& mesh, const Parameterization& param, const std::vector<ShrinkMap>& maps,
+                     int size, py::object progress, const char* fn) {
+  if (size < 8 || size > kMaxTextureSize)
+    throw InvalidInputError(std::string(fn) + ": size must be in [8, " + std::to_string(kMaxTextureSize) + "]");
+  ShrinkOptions options;
+  options.size = size;
+  Progress p(std::move(progress));
+  options.progress = p.callback();
+  const ShrinkResult r = p.run([&] { return shrink_textured_mesh(mesh, param, maps, options); });
+  py::dict d = result_dict(mesh, r.param, r.maps[0]);
+  py::dict out_maps;
+  std::vector<std::string> slots;
+  for (size_t m = 0; m < maps.size(); ++m) {
+    out_maps[py::str(maps[m].slot)] = image_array(r.maps[m]);
+    slots.push_back(maps[m].slot);
+  }
+  d["maps"] = out_maps;
+  d["report"] = json_to_python(nlohmann::json::parse(shrink_report_json(r, slots).dump()));
+  return d;
+}
+
+py::dict py_shrink(py::handle V, py::handle F, py::handle UV, py::handle FT, py::handle maps, py::object progress,
+                   int size) {
+  const TriMesh mesh = mesh_from_arrays(V, F, "shrink");
+  const Parameterization param = param_from_arrays(mesh, UV, FT, "shrink");
+  std::vector<ShrinkMap> in;
+  if (py::isinstance<py::dict>(maps)) {
+    for (const auto& [slot, image] : py::reinterpret_borrow<py::dict>(maps)) {
+      const std::string name = py::str(slot);
+      in.push_back({name, image_from_array(image, "shrink", name.c_str()), map_kind_of_slot(name)});
+    }
+  } else {
+    in.push_back({"base_color", image_from_array(maps, "shrink", "maps"), MapKind::Color});
+  }
+  if (in.empty()) throw InvalidInputError("shrink: maps is empty");
+  return shrink_dict(mesh, param, in, size, std::move(progress), "shrink");
+}
+
 py::dict py_reparam(py::handle V, py::handle F, py::handle UV, py::handle FT, py::handle texture, py::object progress,
                     std::optional<int> size, std::optional<int> padding, py::kwargs kwargs) {
   const TriMesh mesh = mesh_from_arrays(V, F, "reparam");
   const Parameterization param = param_from_arrays(mesh, UV, FT, "reparam");
   const ImageRGBA8 tex = image_from_array(texture, "reparam", "texture");
+  // The default, as `adaptex reparam`: the shrink (the artist's charts kept; refine is moot there).
+  if (!kwargs.contains("mode") || py::str(kwargs["mode"]).cast<std::string>() == "shrink") {
+    return shrink_dict(mesh, param, {{"base_color", tex, MapKind::Color}}, size.value_or(std::max(tex.width, tex.height)),
+                       std::move(progress), "reparam");
+  }
   AdaptOptions options;
   set_options(options, kwargs, "reparam");
   if (options.mode == AdaptMode::None) throw InvalidInputError("reparam: mode must be density-flow, two-stage or single");
@@ -406,9 +453,16 @@ PYBIND11_MODULE(_adaptex, m) {
   m.def("reparam", &py_reparam, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("FT"), py::arg("texture"),
         py::kw_only(), py::arg("progress") = py::none(), py::arg("size") = py::none(), py::arg("padding") = py::none(),
         "reparam(V, F, UV, FT, texture, *, progress=None, size=None, padding=None, **options) -> dict(V, F, UV, FT, "
-        "texture, report): re-parameterizes by the texture's signal and resamples it (resample mode, as `adaptex "
-        "reparam`) into a size x size texture (default: the input's size). AdaptOptions fields as keywords; "
-        "refine=False keeps the mesh.");
+        "texture, report): as `adaptex reparam`, a size x size texture (default: the input's size). By default "
+        "(mode='shrink') the shrink below; mode='density-flow' / 'two-stage' / 'single' re-parameterize by the "
+        "texture's signal and resample it, with AdaptOptions fields as keywords (refine=False keeps the mesh).");
+  m.def("shrink", &py_shrink, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("FT"), py::arg("maps"),
+        py::kw_only(), py::arg("progress") = py::none(), py::arg("size") = 256,
+        "shrink(V, F, UV, FT, maps, *, progress=None, size=256) -> dict(V, F, UV, FT, texture, maps, report): "
+        "the artist's charts kept, charts sharing texels moved together, repacked by the textures' detail into "
+        "size x size maps fitted to the originals (as `adaptex shrink`). maps: an image (H x W x 4 uint8) or a "
+        "dict {slot: image} ('base_color', 'normal', 'roughness', ...; the first is the measured one). report: "
+        "PSNR of the result and of plain downsizing, candidates, flips, shared texels before/after.");
   m.def("evaluate", &py_evaluate, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("FT"), py::arg("texture"),
         py::arg("strokes"), py::kw_only(), py::arg("progress") = py::none(),
         "evaluate(V, F, UV, FT, texture, strokes, *, progress=None, samples=, seed=) -> dict(mse, psnr, samples, "

@@ -222,7 +222,9 @@ py::dict option_defaults() {
   py::dict d;
   d["unwrap"] = defaults(unwrap_fields());
   d["adapt"] = defaults(session_fields());
-  d["reparam"] = defaults(adapt_fields());
+  py::dict reparam = defaults(adapt_fields());
+  reparam["mode"] = "shrink";  // reparam's default (adapt/shrink.h); the other modes are AdaptOptions'
+  d["reparam"] = reparam;
   d["paint"] = defaults(painter_fields());
   d["evaluate"] = defaults(eval_fields());
   return d;
@@ -232,7 +234,12 @@ py::dict option_choices() {
   py::dict d;
   d["unwrap"] = choices(unwrap_fields());
   d["adapt"] = choices(session_fields());
-  d["reparam"] = choices(adapt_fields());
+  py::dict reparam = choices(adapt_fields());
+  py::list modes;
+  modes.append(py::str("shrink"));
+  for (const auto& m : reparam["mode"]) modes.append(m);
+  reparam["mode"] = modes;
+  d["reparam"] = reparam;
   d["paint"] = choices(painter_fields());
   d["evaluate"] = choices(eval_fields());
   return d;

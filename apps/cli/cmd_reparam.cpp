@@ -10,6 +10,7 @@
 
 #include "adaptex/adapt/adapt.h"
 #include "adaptex/adapt/session.h"
+#include "adaptex/adapt/shrink.h"
 #include "adaptex/adapt/texture_update.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
@@ -21,13 +22,18 @@
 #include "adaptex/param/stretch.h"
 #include "cli_common.h"
 #include "session_options.h"
+#include "shrink_print.h"
 
 namespace adaptex::cli {
 
 namespace {
 
+/// `--adapt` value of the atlas-preserving shrink (adapt/shrink.h), the default.
+constexpr const char* kShrinkMode = "shrink";
+
 struct ReparamArgs {
-  std::string mesh, texture, outdir, name, grid, mode = to_string(AdaptOptions{}.mode), debug_maps;
+  std::string mesh, texture, outdir, name, grid, mode = kShrinkMode, debug_maps;
+  std::string candidate;  // --candidate (shrink)
   bool no_refine = false;
   bool grid_given = false;  // --grid was on the command line
   double alpha = AdaptOptions{}.alpha, beta = AdaptOptions{}.beta;
@@ -40,8 +46,14 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 /// The re-parameterization settings of \p a, checked before any file is read. \throw InvalidInputError
 AdaptOptions reparam_options(const ReparamArgs& a) {
   AdaptOptions opt;
-  opt.mode = parse_adapt_mode(a.mode);
-  if (opt.mode == AdaptMode::None) throw InvalidInputError("--adapt must be density-flow, two-stage or single");
+  try {
+    // The shrink takes none of these settings, but they are checked all the same.
+    opt.mode = a.mode == kShrinkMode ? AdaptMode::DensityFlow : parse_adapt_mode(a.mode);
+  } catch (const InvalidInputError&) {
+    opt.mode = AdaptMode::None;
+  }
+  if (opt.mode == AdaptMode::None)
+    throw InvalidInputError("--adapt must be shrink, density-flow, two-stage or single (got '" + a.mode + "')");
   opt.refine = !a.no_refine;
   opt.alpha = a.alpha;
   opt.beta = a.beta;
@@ -74,9 +86,56 @@ nlohmann::ordered_json reparam_report(const ReparamArgs& a, const TexturedMesh& 
   return j;
 }
 
+/// The default: the artist's charts kept, repacked by the texture's error model (adapt/shrink.h).
+void run_reparam_shrink(const ReparamArgs& a, const Context& ctx) {
+  const auto t_start = Clock::now();
+  // The shrink never needs a manifold mesh: non-manifold edges are split, not refused.
+  ReadOptions ro;
+  ro.repair = true;
+  const TexturedMesh tm = read_textured_obj(a.mesh, ro);
+  std::vector<ShrinkMap> maps(1);
+  maps[0].slot = "base_color";
+  maps[0].image = read_image(a.texture);
+  ctx.info("reparam: " + a.mesh + ": " + std::to_string(tm.mesh.num_faces()) + " faces, texture " +
+           std::to_string(maps[0].image.width) + "x" + std::to_string(maps[0].image.height));
+  ShrinkOptions opt;
+  opt.size = a.size > 0 ? a.size : std::max(maps[0].image.width, maps[0].image.height);
+  opt.progress = shrink_progress(ctx, "reparam");
+  opt.force_candidate = a.candidate;
+  const ShrinkResult res = shrink_textured_mesh(tm.mesh, tm.param, maps, opt);
+  AtomicOutput out;
+  const std::string name = a.name.empty() ? sanitize_export_name(std::filesystem::path(a.mesh).stem().string()) : a.name;
+  export_textured_mesh(out, a.outdir, name, tm.mesh, res.param, res.maps[0]);
+  if (!a.debug_maps.empty()) {  // the layouts before and after, drawn over their textures
+    write_png(out.add(std::filesystem::path(a.debug_maps) / (name + "_layout_before.png")),
+              draw_uv_layout(tm.param, &maps[0].image, 1024));
+    write_png(out.add(std::filesystem::path(a.debug_maps) / (name + "_layout_after.png")),
+              draw_uv_layout(res.param, &res.maps[0], 1024));
+  }
+  nlohmann::ordered_json j;
+  j["input"] = a.mesh;
+  j["texture"] = a.texture;
+  j["faces"] = tm.mesh.num_faces();
+  j["faces_out"] = tm.mesh.num_faces();
+  j["size"] = {opt.size, opt.size};
+  j["update"] = "fit";
+  j["shrink"] = shrink_report_json(res, {"base_color"});
+  j["psnr"] = res.psnr;
+  j["psnr_downsized"] = res.psnr_downsized;
+  j["flipped"] = res.after.flipped;
+  j["degenerate"] = res.after.degenerate;
+  j["time_total_ms"] = 1e3 * since(t_start);
+  write_text(out, std::filesystem::path(a.outdir) / "report.json", j.dump(2) + "\n");
+  out.commit();
+  print_shrink_summary(res, {"base_color"});
+  ctx.info("reparam: shrink (" + res.chosen + "), wrote " + (std::filesystem::path(a.outdir) / name).string() +
+           ".{obj,mtl,png,glb} and report.json");
+}
+
 void run_reparam(const ReparamArgs& a, const Context& ctx) {
   const auto t_start = Clock::now();
   const AdaptOptions opt = reparam_options(a);
+  if (a.mode == kShrinkMode) return run_reparam_shrink(a, ctx);
 
   const TexturedMesh tm = read_textured_obj(a.mesh);
   const ImageRGBA8 tex = read_image(a.texture);
@@ -128,7 +187,10 @@ void add_reparam_command(CLI::App& app, Context& ctx) {
   sub->add_option("mesh", a->mesh, "OBJ with texture coordinates (vt, f v/vt)")->required()->check(CLI::ExistingFile);
   sub->add_option("texture", a->texture, "Its texture image (PNG, ...)")->required()->check(CLI::ExistingFile);
   sub->add_option("-o,--output", a->outdir, "Output directory")->required();
-  sub->add_option("--adapt", a->mode, "density-flow | two-stage | single")->capture_default_str();
+  sub->add_option("--adapt", a->mode,
+                  "shrink (keep the artist's charts, repack them by the texture's detail) | density-flow | "
+                  "two-stage | single")
+      ->capture_default_str();
   sub->add_flag("--no-refine", a->no_refine,
                 "Keep the input's vertices (density-flow refines triangles too large for the warp)");
   sub->add_option("--grid", a->grid, "Grid cells per side: FINE or COARSE,FINE (default 16,256)")
@@ -138,8 +200,11 @@ void add_reparam_command(CLI::App& app, Context& ctx) {
   sub->add_option("--size", a->size, "Output texture width = height (default: the input texture's size)")
       ->check(CLI::Range(1, adaptex::kMaxTextureSize));
   sub->add_option("--padding", a->padding, "Seam padding in texels")->check(CLI::Range(0, 64))->capture_default_str();
+  sub->add_option("--candidate", a->candidate,
+                  "shrink: output this candidate (downsized, artist, repacked, budget) instead of the best");
   sub->add_option("--name", a->name, "Base name of the output files (default: the mesh file's stem)");
-  sub->add_option("--debug-maps", a->debug_maps, "Also write importance / stretch / L_s^2 / grid PNGs here");
+  sub->add_option("--debug-maps", a->debug_maps,
+                  "Also write importance / stretch / L_s^2 / grid PNGs here (shrink: the layouts before and after)");
   sub->callback([a, &ctx] { run_reparam(*a, ctx); });
 }
 

@@ -33,9 +33,7 @@ App::App(std::unique_ptr<Renderer> renderer, AppOptions options)
     : renderer_(std::move(renderer)),
       options_(std::move(options)),
       store_(options_.config_dir, options_.recovery_dir, options_.autosave_delay,
-             [this](const std::string& text, bool error) { add_message(text, error); }) {
-  if (store_.pending_recovery() && options_.auto_recover) accept_recovery();
-}
+             [this](const std::string& text, bool error) { add_message(text, error); }) {}
 
 App::~App() { store_.finish(unsaved(), [this] { return snapshot(); }); }
 
@@ -62,6 +60,10 @@ Project App::snapshot() const {
     p.mesh_path = mesh_path();
     p.strokes = history().to_file();
   }
+  // The project file the strokes belong to (a recovery file names it); one being opened counts.
+  p.project_file = store_.project_path().string();
+  if (jobs_.loading() && !pending_.reload && !pending_.project_path.empty())
+    p.project_file = pending_.project_path.string();
   p.brush = brush_;
   p.view = view_;
   p.session = session_;
@@ -83,6 +85,7 @@ void App::perform(const Confirm& c) {
     case Confirm::Action::OpenMesh: open_mesh(c.path); break;
     case Confirm::Action::OpenProject: open_project(c.path); break;
     case Confirm::Action::New: new_scene(); break;
+    case Confirm::Action::Recover: recover(c.path); break;
   }
 }
 
@@ -92,6 +95,28 @@ void App::request_open_project(const std::filesystem::path& path) {
   ask_or_do({Confirm::Action::OpenProject, path.string()});
 }
 void App::request_new() { ask_or_do({Confirm::Action::New, {}}); }
+
+void App::request_open_file(const std::filesystem::path& p) {
+  std::string ext = p.extension().string();  // any case: PHOTO.JPG is an image
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
+  if (ext == ".adaptex") return request_open_project(p);
+  if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") return load_decal(p);
+  if (ext != ".json") return request_open_mesh(p.string());
+  // A project or a stroke file, read once (regular files only, bounded size: a dropped FIFO or
+  // directory is an error, not a hang). Every error message names the file.
+  try {
+    const std::string text = read_input_file(p);
+    const auto j = nlohmann::json::parse(text, nullptr, false);
+    if (j.is_object() && j.value("format", "") == "adaptex.studio-project") {
+      request_open_project(p);
+    } else {
+      replay(parse_strokes(text, p.string(), p.parent_path()));
+      add_message("replaying " + p.string(), false);
+    }
+  } catch (const std::exception& e) {
+    add_message(e.what(), true);
+  }
+}
 
 bool App::confirm_save(const std::filesystem::path& path) {
   if (!confirm_ || !save_project(path)) return false;
@@ -124,6 +149,9 @@ void App::open_mesh(const std::string& path_in) {
   const std::string path = absolute_path(path_in);
   const Vec3 bg = pending_.background.value_or(history().background());
   jobs_.start_load(path, session_, bg);
+  if (path.rfind("builtin:", 0) != 0) note_folder(path);
+  // A recovery file of this mesh or project (kept for later, or another one) is asked about first.
+  store_.recovery().reoffer(path, pending_.project_path);
 }
 
 void App::cancel_load() { jobs_.cancel_load(); }
@@ -171,7 +199,9 @@ void App::apply_project(Project p, bool from_project, const std::filesystem::pat
 
 void App::open_project(const std::filesystem::path& path) {
   try {
-    apply_project(read_project(path), true, std::filesystem::absolute(path).lexically_normal());
+    const auto file = std::filesystem::absolute(path).lexically_normal();
+    apply_project(read_project(path), true, file);
+    note_folder(file);
     add_message("opened project " + path.string(), false);
   } catch (const std::exception& e) {
     add_message(e.what(), true);
@@ -187,6 +217,7 @@ bool App::save_project(const std::filesystem::path& path) {
   }
   const auto file = std::filesystem::absolute(path).lexically_normal();
   if (!store_.save(file, snapshot(), history().version())) return false;
+  note_folder(file);
   if (waiting) {  // once loaded, they are what the file holds
     pending_.from_project = true;
     pending_.project_path = file;
@@ -202,26 +233,84 @@ bool App::save() {
   return save_project(store_.project_path());
 }
 
-std::string App::suggested_project_path() const {
-  if (!store_.project_path().empty()) return store_.project_path().string();
-  std::string stem = has_model() ? std::filesystem::path(mesh_path()).stem().string() : "project";
+void App::note_folder(const std::filesystem::path& file) {
+  store_.set_last_folder(std::filesystem::absolute(file).lexically_normal().parent_path());
+}
+
+std::filesystem::path App::last_folder() const {
+  std::error_code ec;
+  if (const auto& f = store_.last_folder(); !f.empty() && std::filesystem::is_directory(f, ec)) return f;
+  if (const std::string m = mesh_path(); !m.empty() && m.rfind("builtin:", 0) != 0)
+    return std::filesystem::path(m).parent_path();
+  return std::filesystem::current_path(ec);
+}
+
+std::filesystem::path App::suggested_path(FileKind kind) const {
+  std::string stem = has_model() ? std::filesystem::path(mesh_path()).stem().string() : "";
   if (stem.rfind("builtin:", 0) == 0) stem = stem.substr(8);
-  return (stem.empty() ? std::string("project") : stem) + ".adaptex.json";
+  if (stem.empty()) stem = "untitled";
+  switch (kind) {
+    case FileKind::SaveProject:
+      return store_.project_path().empty() ? last_folder() / (stem + ".adaptex") : store_.project_path();
+    case FileKind::ExportGlb: return last_folder() / (stem + ".glb");
+    case FileKind::Screenshot: return last_folder() / (stem + ".png");
+    default: return last_folder();
+  }
+}
+
+// ---- recovery ---------------------------------------------------------------------------------
+
+void App::recover_at_start() {
+  RecoveryFiles& r = store_.recovery();
+  if (options_.recover == RecoverMode::Ask) return;
+  if (options_.recover == RecoverMode::Yes && r.next_offer()) recover(r.next_offer()->file);
+  for (const RecoveryOffer& o : r.leave_all())
+    std::cerr << "adaptex-studio: recovery file " << o.file.string() << " left untouched (--recover "
+              << (options_.recover == RecoverMode::No ? "no" : "yes: not the newest") << "): "
+              << "unsaved: " << strokes_text(o.project.strokes.strokes.size()) << " on " << recovery_owner(o.project)
+              << std::endl;
 }
 
 void App::accept_recovery() {
+  if (const RecoveryOffer* o = recovery_offer()) ask_or_do({Confirm::Action::Recover, o->file.string()});
+}
+
+void App::recover(const std::filesystem::path& file) {
   try {
-    Project p = store_.accept_recovery();
+    Project p = store_.recovery().take(file);
     const size_t n = p.strokes.strokes.size();
-    const std::string mesh = p.mesh_path;
-    apply_project(std::move(p), false, {});
-    add_message("recovered " + std::to_string(n) + " strokes on " + mesh, false);
+    const std::string owner = recovery_owner(p);
+    const std::filesystem::path project = p.project_file;
+    apply_project(std::move(p), false, project);
+    pending_.recovered = true;
+    add_message("recovered " + strokes_text(n) + " on " + owner, false);
   } catch (const std::exception& e) {
     add_message(std::string("recovery failed: ") + e.what(), true);
   }
 }
 
-void App::discard_recovery() { store_.discard_recovery(); }
+void App::discard_recovery() {
+  const RecoveryOffer* o = recovery_offer();
+  if (!o) return;
+  const std::string file = o->file.string();
+  store_.recovery().discard(o->file);
+  add_message("discarded the recovery file " + file, false);
+}
+
+void App::defer_recovery() {
+  const RecoveryOffer* o = recovery_offer();
+  if (!o) return;
+  const std::string file = o->file.string();
+  store_.recovery().defer(o->file);
+  add_message("kept the recovery file " + file + " for later", false);
+}
+
+std::string App::current_file() const {
+  if (!store_.project_path().empty()) return store_.project_path().string();
+  if (jobs_.loading() && !pending_.reload)
+    return pending_.project_path.empty() ? jobs_.loading_path() : pending_.project_path.string();
+  return mesh_path();
+}
 
 // ---- queries ----------------------------------------------------------------------------------
 
@@ -359,7 +448,10 @@ void App::on_cursor(double x, double y) {
 
 void App::on_scroll(double steps) {
   if (input_.ui_mouse()) return;
-  camera_.zoom(steps);
+  // Towards the surface point under the cursor (else the point at the target's depth), which stays
+  // under the cursor, as Blender's and Substance's "zoom to mouse position".
+  const auto hit = pick(input_.x(), input_.y());
+  camera_.zoom_towards(steps, hit ? hit->point : camera_.point_at_target_depth(input_.x(), input_.y()));
   update_cursor();
 }
 
@@ -368,6 +460,10 @@ void App::on_key(int key, bool pressed, Mods mods) {
   if (!pressed) return;
   if (confirm_) {
     if (!input_.ui_text()) answer_key(key);
+    return;
+  }
+  if (recovery_offer()) {
+    if (!input_.ui_text()) answer_recovery_key(key);
     return;
   }
   if (resize_) {
@@ -384,6 +480,12 @@ void App::answer_key(int key) {
   if (key == keys::Escape) confirm_cancel();
   if (key == 'D') confirm_discard();
   if (key == 'S') confirm_save(confirm_->save_path);
+}
+
+void App::answer_recovery_key(int key) {
+  if (key == keys::Escape) defer_recovery();
+  if (key == 'D') discard_recovery();
+  if (key == 'R') accept_recovery();
 }
 
 void App::run_command(Command c) {
@@ -410,30 +512,7 @@ void App::run_command(Command c) {
 }
 
 void App::on_drop(const std::vector<std::string>& paths) {
-  if (paths.empty()) return;
-  const std::filesystem::path p = paths.front();
-  std::string ext = p.extension().string();  // any case: PHOTO.JPG is an image
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return char(std::tolower(ch)); });
-  if (ext == ".json") {
-    // A project or a stroke file, read once (regular files only, bounded size: a dropped FIFO or
-    // directory is an error, not a hang). Every error message names the file.
-    try {
-      const std::string text = read_input_file(p);
-      const auto j = nlohmann::json::parse(text, nullptr, false);
-      if (j.is_object() && j.value("format", "") == "adaptex.studio-project") {
-        request_open_project(p);
-      } else {
-        replay(parse_strokes(text, p.string(), p.parent_path()));
-        add_message("replaying " + p.string(), false);
-      }
-    } catch (const std::exception& e) {
-      add_message(e.what(), true);
-    }
-  } else if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") {
-    load_decal(p);
-  } else {
-    request_open_mesh(p.string());
-  }
+  if (!paths.empty()) request_open_file(paths.front());
 }
 
 void App::frame_model() {
@@ -535,6 +614,7 @@ void App::load_decal(const std::filesystem::path& path) {
   try {
     decal_image_ = load_image(path);
     decal_path_ = std::filesystem::absolute(path).lexically_normal().string();
+    note_folder(path);
     stencil_ = fit_stencil(camera_, double(decal_image_->width) / std::max(1, decal_image_->height));
     add_message("decal image " + path.string() +
                     " loaded as a stencil: right drag moves it, Shift scales, Ctrl rotates; P projects it",
@@ -658,8 +738,8 @@ void App::finish_load(Job<LoadResult>& job) {
     const auto model = r.model;
     painting_.set_model(model, std::move(r.surface), std::move(strokes), bg);
     // Strokes from a project are saved; replayed or recovered ones are not.
-    store_.mark_clean(pending.from_project || history().strokes().empty() ? history().version() : ~0ull,
-                      pending.project_path);
+    const bool saved = pending.from_project || (history().strokes().empty() && !pending.recovered);
+    store_.mark_clean(saved ? history().version() : ~0ull, pending.project_path);
     last_cycle_.clear();
     maps_.reset();
     comparison_.reset();
@@ -820,6 +900,7 @@ void App::export_obj(const std::filesystem::path& dir) {
     const std::string name = std::filesystem::path(mesh_path()).stem().string();
     studio::export_obj(dir, name.empty() ? "model" : name, *mesh(), *param(), *texture());
     add_message("exported OBJ+MTL+PNG to " + dir.string(), false);
+    note_folder(dir);
     note_export_while_adapting();
   } catch (const std::exception& e) {
     add_message(e.what(), true);
@@ -831,6 +912,7 @@ void App::export_glb(const std::filesystem::path& path) {
   try {
     studio::export_glb(path, *mesh(), *param(), *texture());
     add_message("exported " + path.string(), false);
+    note_folder(path);
     note_export_while_adapting();
   } catch (const std::exception& e) {
     add_message(e.what(), true);

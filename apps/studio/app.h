@@ -26,6 +26,7 @@
 #include "adaptex/adapt/session.h"
 #include "brush.h"
 #include "camera.h"
+#include "file_browser.h"
 #include "input.h"
 #include "painting.h"
 #include "renderer.h"
@@ -36,12 +37,19 @@
 
 namespace adaptex::studio {
 
+/// What to do at start with recovery files left by sessions that did not end cleanly.
+enum class RecoverMode {
+  Ask,  ///< The UI asks Recover / Discard / Later (interactive starts).
+  Yes,  ///< Recover the newest without asking.
+  No,   ///< Leave them untouched, say so on stderr (scripted runs).
+};
+
 /// Options given on the command line.
 struct AppOptions {
   std::filesystem::path config_dir;    ///< Recent files (empty: no config).
   std::filesystem::path recovery_dir;  ///< Recovery file folder (empty: no autosave).
   double autosave_delay = 2.0;         ///< Seconds after a change before the recovery file is written.
-  bool auto_recover = false;           ///< Accept a recovery file without asking.
+  RecoverMode recover = RecoverMode::Ask;  ///< Recovery files found at start (recover_at_start()).
 };
 
 /// A message for the status line / error popup.
@@ -60,9 +68,9 @@ struct Stats {
 
 /// An action that would drop unsaved strokes, waiting for Save / Discard / Cancel.
 struct Confirm {
-  enum class Action { Quit, OpenMesh, OpenProject, New };
+  enum class Action { Quit, OpenMesh, OpenProject, New, Recover };
   Action action = Action::Quit;
-  std::string path;       ///< File to open (OpenMesh, OpenProject).
+  std::string path;       ///< File to open (OpenMesh, OpenProject) or recover (Recover).
   std::string save_path;  ///< Where Save writes (App::suggested_project_path(); the UI may edit it).
 };
 
@@ -102,6 +110,9 @@ class App {
   void request_open_mesh(const std::string& path);
   void request_open_project(const std::filesystem::path& path);
   void request_new();
+  /// Opens \p path by what it is: a project (.adaptex, or a JSON project), a stroke file (replayed), an
+  /// image (decal stencil), else a mesh (a drop on the window, the command line). Asks when unsaved.
+  void request_open_file(const std::filesystem::path& path);
   /// The action waiting for an answer (the UI shows Save / Discard / Cancel).
   const std::optional<Confirm>& confirm() const { return confirm_; }
   /// Saves to \p path, then does the waiting action. \return false (nothing done) if saving failed
@@ -127,8 +138,14 @@ class App {
   bool save();
   /// The project file (empty: none yet).
   std::filesystem::path project_path() const { return store_.project_path(); }
-  /// Where Save As proposes to write: the project file, else MESHNAME.adaptex.json in the current folder.
-  std::string suggested_project_path() const;
+  /// Where Save As proposes to write (suggested_path(FileKind::SaveProject)).
+  std::string suggested_project_path() const { return suggested_path(FileKind::SaveProject).string(); }
+  /// The folder file dialogs start in: the last one a file was opened, saved or exported in (kept in
+  /// the config), else the mesh's folder, else the current folder.
+  std::filesystem::path last_folder() const;
+  /// What a dialog proposes: Save As the project file, else `<mesh stem>.adaptex`; Export GLB
+  /// `<mesh stem>.glb`; Screenshot `<mesh stem>.png`; in last_folder(). Other kinds: last_folder().
+  std::filesystem::path suggested_path(FileKind kind) const;
   /// Appends the strokes of a stroke file to the history (painted when the model is ready).
   void replay(const StrokeFile& file);
   /// Appends one finished stroke (brush or decal, the stroke-file contract) as if it had been painted:
@@ -162,8 +179,23 @@ class App {
   void request_adapt();
   /// The UI changed session_options(): re-parameterize for them (schedule each-stroke).
   void session_options_changed();
+
+  // ---- recovery files left by sessions that did not end cleanly (recovery.h) ----
+  /// Applies AppOptions::recover once the command line's files are opened: Yes recovers the newest
+  /// recovery file, No leaves every one untouched (one line each on stderr), Ask leaves them to the UI.
+  void recover_at_start();
+  /// The recovery file to ask about now (null: none). Asked with R (Recover), D (Discard) and Esc (Later).
+  const RecoveryOffer* recovery_offer() const { return store_.recovery().next_offer(); }
+  /// Recover: opens the offered file's mesh with its strokes, settings, view and project file (after
+  /// Save / Discard / Cancel when this session has unsaved strokes). The strokes count as unsaved.
   void accept_recovery();
+  /// Discard: deletes the offered recovery file.
   void discard_recovery();
+  /// Later: keeps the offered file; asked again when its mesh or project is opened, and at the next start.
+  void defer_recovery();
+  /// The file this session works on, as the recovery question names it: the project file, else the
+  /// mesh (also while it loads); empty: none.
+  std::string current_file() const;
 
   // ---- queries ----
   bool has_model() const { return painting_.model() != nullptr; }
@@ -207,7 +239,6 @@ class App {
   /// Background work in progress: (label, fraction) or nullopt.
   std::optional<std::pair<std::string, double>> progress() const { return jobs_.progress(); }
   bool load_running() const { return jobs_.loading(); }
-  std::optional<std::filesystem::path> pending_recovery() const { return store_.pending_recovery(); }
   const Stats& stats() const { return stats_; }
   void reset_stats() { stats_ = Stats(); }
   Renderer& renderer() { return *renderer_; }
@@ -246,6 +277,7 @@ class App {
     std::filesystem::path project_path;
     bool reload = false;  ///< The same model unwrapped again for another texture size (history kept).
     std::optional<Camera> camera;  ///< The project's view (else the model is framed).
+    bool recovered = false;        ///< Strokes from a recovery file: unsaved, even when none.
   };
 
   void add_message(std::string text, bool error);
@@ -276,6 +308,11 @@ class App {
   void end_resize(bool keep);
   void run_command(Command c);
   void answer_key(int key);
+  void answer_recovery_key(int key);
+  /// Takes the recovery file \p file and opens its session.
+  void recover(const std::filesystem::path& file);
+  /// Remembers the folder of a file opened, saved or exported (last_folder()).
+  void note_folder(const std::filesystem::path& file);
   // jobs
   void poll_jobs();
   void finish_load(Job<LoadResult>& job);

@@ -78,6 +78,17 @@ void Camera::zoom(double steps) {
   distance = std::clamp(distance * std::pow(0.85, steps), scene_radius * 0.02, scene_radius * 100.0);
 }
 
+void Camera::zoom_towards(double steps, const Vec3& p) {
+  const double before = distance;
+  zoom(steps);
+  target = p + (target - p) * (distance / before);  // eye - p scales by the same factor
+}
+
+Vec3 Camera::point_at_target_depth(double x, double y) const {
+  const Ray r = pixel_ray(x, y);
+  return r.origin + r.dir * (distance / std::max(1e-12, r.dir.dot(forward())));
+}
+
 void Camera::frame(const BoundingBox& box) {
   target = 0.5 * (box.min + box.max);
   scene_radius = std::max(1e-9, 0.5 * box.diagonal());

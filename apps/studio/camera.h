@@ -50,6 +50,10 @@ struct Camera {
   void pan(double dx_pixels, double dy_pixels);
   /// Wheel zoom: distance *= 0.85^steps (steps > 0 zooms in).
   void zoom(double steps);
+  /// Wheel zoom towards \p p: the view scales about \p p, which stays at the same pixel.
+  void zoom_towards(double steps, const Vec3& p);
+  /// The point under window pixel (x, y) at the depth of the target.
+  Vec3 point_at_target_depth(double x, double y) const;
   /// Frames a bounding box: target at its centre, the whole box visible.
   void frame(const BoundingBox& box);
 

@@ -18,8 +18,8 @@ FileRequest file_request(FileKind kind) {
   switch (kind) {
     case FileKind::OpenMesh:
       return {kind, "Open mesh", false, false, {".obj", ".off", ".ply", ".stl", ".gltf", ".glb"}};
-    case FileKind::OpenProject: return {kind, "Open project", false, false, {".json"}};
-    case FileKind::SaveProject: return {kind, "Save project as", true, false, {".json"}};
+    case FileKind::OpenProject: return {kind, "Open project", false, false, {".adaptex", ".json"}};
+    case FileKind::SaveProject: return {kind, "Save project as", true, false, {".adaptex", ".json"}};
     case FileKind::ExportGlb: return {kind, "Export GLB", true, false, {".glb"}};
     case FileKind::ExportObjFolder: return {kind, "Export OBJ + MTL + PNG into folder", false, true, {}};
     case FileKind::LoadImage: return {kind, "Load decal image", false, false, {".png", ".jpg", ".jpeg"}};

@@ -2,6 +2,8 @@
 /// The studio's each-stroke session on a worker thread (see live_adaptation.h).
 #include "live_adaptation.h"
 
+#include <pthread.h>
+
 #include <chrono>
 
 #include "adaptex/core/errors.h"
@@ -20,6 +22,7 @@ LiveAdaptation::LiveAdaptation(std::shared_ptr<const Model> model, std::uint64_t
   fed_ = queue_.size();
   settled_ = queue_.empty();  // nothing to adapt to
   thread_ = std::thread([this, model = std::move(model), options, bg = history.background]() mutable {
+    pthread_setname_np(pthread_self(), "adaptex-adapt");  // named in top, gdb and the GUI tests
     run(std::move(model), options, bg);
   });
 }

@@ -1,7 +1,7 @@
 /// \file main.cpp
 /// adaptex-studio: window (GLFW 3.3), OpenGL 3.3 core context, Dear ImGui 1.86, and the fixed frame
 /// loop around the App. Also the scripted mode used by tests and documentation:
-///   adaptex-studio MESH [--replay S.json] [--screenshot OUT.png] [--exit-after-frames K] ...
+///   adaptex-studio MESH|PROJECT [--replay S.json] [--screenshot OUT.png] [--exit-after-frames K] ...
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
@@ -119,8 +119,9 @@ struct CommandLine {
   std::string mesh, replay, screenshot, history_out, texture_out, export_dir, project, stats_out;
   std::string window = "1280x800", config_dir, recovery_dir, inspect, decal, stencil, stencil_place;
   std::string adapt_mode = to_string(AdaptOptions{}.mode);
+  std::string recover;  // yes | no | ask; empty: ask, no for scripted runs
   int exit_after = -1, texture_size = 0, orbit_frames = 0;
-  bool recover = false, hide_ui = false, no_vsync = false, no_recovery = false, wireframe = false, no_refine = false;
+  bool hide_ui = false, no_vsync = false, no_recovery = false, wireframe = false, no_refine = false;
   bool checker = false, fixed_layout = false;
   double yaw = 0, pitch = 0;
   int width = 1280, height = 800;
@@ -129,8 +130,10 @@ struct CommandLine {
 /// Parses argv into \p c. \return an exit code when the program should stop (help, bad option).
 std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
   CLI::App cli{"adaptex-studio: paint on 3-D models; the texture adapts to what you paint"};
-  cli.add_option("mesh", c.mesh, "Mesh file to open (OBJ, OFF, PLY, STL, glTF) or builtin:trefoil|sphere|torus|plane");
-  cli.add_option("--project", c.project, "Open a project file (.json)");
+  cli.add_option("mesh", c.mesh,
+                 "Mesh file to open (OBJ, OFF, PLY, STL, glTF), builtin:trefoil|sphere|torus|plane, or a project "
+                 "(.adaptex, or a project .json)");
+  cli.add_option("--project", c.project, "Open a project file (.adaptex or .json)");
   cli.add_option("--replay", c.replay, "Replay a stroke file onto the mesh");
   cli.add_option("--screenshot", c.screenshot, "Write a PNG of the window on the last scripted frame");
   cli.add_option("--exit-after-frames", c.exit_after,
@@ -143,7 +146,12 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
   cli.add_option("--config-dir", c.config_dir, "Config folder (recent files); default $XDG_CONFIG_HOME/adaptex");
   cli.add_option("--recovery-dir", c.recovery_dir, "Autosave / recovery folder; default the config folder");
   cli.add_flag("--no-recovery", c.no_recovery, "Do not autosave a recovery file");
-  cli.add_flag("--recover", c.recover, "Load an autosaved recovery file without asking");
+  CLI::Option* recover =
+      cli.add_option("--recover", c.recover,
+                     "Recovery files left by a session that did not end cleanly: yes (recover the newest), no (leave "
+                     "them untouched), ask (default; no for scripted runs: --replay, --exit-after-frames, "
+                     "--orbit-frames). --recover alone: yes")
+          ->expected(0, 1);
   cli.add_flag("--hide-ui", c.hide_ui, "Hide the panels (clean screenshots)");
   cli.add_flag("--wireframe", c.wireframe, "Start with the wireframe overlay on");
   cli.add_flag("--checker", c.checker, "Start with the texel-density checker on the model (C)");
@@ -169,6 +177,11 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return cli.exit(e);
+  }
+  if (recover->count() > 0 && c.recover.empty()) c.recover = "yes";
+  if (!c.recover.empty() && c.recover != "yes" && c.recover != "no" && c.recover != "ask") {
+    std::cerr << "adaptex-studio: --recover: expected yes, no or ask, got '" << c.recover << "'\n";
+    return 2;
   }
   double sx, sy, sh, sd;
   if (!c.stencil_place.empty() &&
@@ -196,7 +209,10 @@ AppOptions app_options(const CommandLine& c) {
   opt.recovery_dir = c.no_recovery          ? std::filesystem::path()
                      : c.recovery_dir.empty() ? opt.config_dir
                                               : std::filesystem::path(c.recovery_dir);
-  opt.auto_recover = c.recover;
+  // A scripted run never blocks on a question and never takes another session's work by guessing.
+  const bool scripted = !c.replay.empty() || c.exit_after >= 0 || c.orbit_frames > 0;
+  const std::string mode = !c.recover.empty() ? c.recover : scripted ? "no" : "ask";
+  opt.recover = mode == "yes" ? RecoverMode::Yes : mode == "no" ? RecoverMode::No : RecoverMode::Ask;
   if (!opt.recovery_dir.empty()) {
     std::error_code ec;
     std::filesystem::create_directories(opt.recovery_dir, ec);
@@ -304,7 +320,8 @@ int configure(App& app, const CommandLine& c) {
   o.adapt.mode = parse_adapt_mode(c.adapt_mode);
   if (c.no_refine) o.adapt.refine = false;
   if (!c.project.empty()) app.open_project(c.project);
-  if (!c.mesh.empty()) app.open_mesh(c.mesh);
+  if (!c.mesh.empty()) app.request_open_file(c.mesh);  // nothing is unsaved yet: opens without asking
+  app.recover_at_start();
   if (c.replay.empty()) return 0;
   try {
     app.replay(load_strokes(c.replay));
@@ -326,7 +343,8 @@ class Script {
   void before_ui(App& app) {
     // A scripted run starts from the settled layout of its strokes, without waiting for a pause.
     if (!ready_printed_) app.settle_adaptation_now();
-    idle_ = app.idle() && app.has_model() && !app.load_running();
+    // Loaded (or nothing to load: a start without a model counts its frames too).
+    idle_ = app.idle() && !app.load_running();
     if (idle_ && (c_.yaw != 0 || c_.pitch != 0) && !view_applied_) {
       app.camera().yaw = c_.yaw * 3.14159265358979 / 180;
       app.camera().pitch = c_.pitch * 3.14159265358979 / 180;

@@ -14,9 +14,40 @@ namespace adaptex::studio {
 
 #ifdef ADAPTEX_STUDIO_GTK
 namespace {
-/// Lets GTK finish closing its windows (the dialog disappears before the app draws again).
-void drain_gtk_events() {
-  while (gtk_events_pending()) gtk_main_iteration();
+/// Lets GTK handle what is pending (the dialog's input and drawing), without waiting.
+void pump_gtk_events() {
+  while (gtk_events_pending()) gtk_main_iteration_do(FALSE);
+}
+
+/// "*.[pP][nN][gG]": \p ext in any case.
+std::string any_case_pattern(const std::string& ext) {
+  std::string pattern(1, '*');
+  for (char c : ext) {
+    if (c == '.') {
+      pattern.push_back(c);
+      continue;
+    }
+    pattern.push_back('[');
+    pattern.push_back(char(std::tolower(static_cast<unsigned char>(c))));
+    pattern.push_back(char(std::toupper(static_cast<unsigned char>(c))));
+    pattern.push_back(']');
+  }
+  return pattern;
+}
+
+struct Answer {
+  int* response;
+  std::string* chosen;
+};
+
+void on_response(GtkNativeDialog* d, gint response, gpointer data) {
+  auto* a = static_cast<Answer*>(data);
+  *a->response = response == GTK_RESPONSE_ACCEPT ? 1 : -1;
+  if (response != GTK_RESPONSE_ACCEPT) return;
+  if (char* name = gtk_file_chooser_get_filename(GTK_FILE_CHOOSER(d))) {
+    *a->chosen = name;
+    g_free(name);
+  }
 }
 }  // namespace
 
@@ -29,7 +60,11 @@ bool native_dialogs_available() {
   return ok;
 }
 
-std::optional<std::string> run_native_dialog(const FileRequest& r, const std::string& folder) {
+void NativeDialog::open(const FileRequest& r, const std::string& folder, const std::string& name) {
+  cancel();
+  request_ = r;
+  response_ = 0;
+  chosen_.clear();
   const GtkFileChooserAction action = r.folder ? GTK_FILE_CHOOSER_ACTION_SELECT_FOLDER
                                       : r.save ? GTK_FILE_CHOOSER_ACTION_SAVE
                                                : GTK_FILE_CHOOSER_ACTION_OPEN;
@@ -38,39 +73,49 @@ std::optional<std::string> run_native_dialog(const FileRequest& r, const std::st
   GtkFileChooser* fc = GTK_FILE_CHOOSER(d);
   gtk_file_chooser_set_do_overwrite_confirmation(fc, TRUE);
   if (!folder.empty()) gtk_file_chooser_set_current_folder(fc, folder.c_str());
+  if (r.save && !name.empty()) gtk_file_chooser_set_current_name(fc, name.c_str());
   if (!r.extensions.empty()) {
     GtkFileFilter* f = gtk_file_filter_new();
     gtk_file_filter_set_name(f, r.title);
-    for (const std::string& e : r.extensions) {
-      std::string pattern(1, '*');  // any case: "*.[pP][nN][gG]"
-      for (char c : e) {
-        if (c == '.') {
-          pattern.push_back(c);
-          continue;
-        }
-        pattern.push_back('[');
-        pattern.push_back(char(std::tolower(static_cast<unsigned char>(c))));
-        pattern.push_back(char(std::toupper(static_cast<unsigned char>(c))));
-        pattern.push_back(']');
-      }
-      gtk_file_filter_add_pattern(f, pattern.c_str());
-    }
+    for (const std::string& e : r.extensions) gtk_file_filter_add_pattern(f, any_case_pattern(e).c_str());
     gtk_file_chooser_add_filter(fc, f);  // the chooser takes the filter
   }
-  std::optional<std::string> out;
-  if (gtk_native_dialog_run(GTK_NATIVE_DIALOG(d)) == GTK_RESPONSE_ACCEPT) {
-    if (char* name = gtk_file_chooser_get_filename(fc)) {
-      out = name;
-      g_free(name);
-    }
-  }
-  g_object_unref(d);
-  drain_gtk_events();
+  // The answer is written here by the "response" signal, during a later poll(); the Answer lives
+  // as long as the dialog (freed with it).
+  auto* answer = new Answer{&response_, &chosen_};
+  g_signal_connect_data(d, "response", G_CALLBACK(on_response), answer,
+                        [](gpointer data, GClosure*) { delete static_cast<Answer*>(data); }, GConnectFlags(0));
+  gtk_native_dialog_set_modal(GTK_NATIVE_DIALOG(d), TRUE);
+  gtk_native_dialog_show(GTK_NATIVE_DIALOG(d));
+  dialog_ = d;
+  pump_gtk_events();
+}
+
+std::optional<std::string> NativeDialog::poll() {
+  if (!dialog_) return std::nullopt;
+  pump_gtk_events();
+  if (response_ == 0) return std::nullopt;
+  std::string out = response_ > 0 ? chosen_ : std::string();
+  cancel();
   return out;
 }
+
+void NativeDialog::cancel() {
+  if (!dialog_) return;
+  auto* d = static_cast<GtkFileChooserNative*>(dialog_);
+  dialog_ = nullptr;
+  gtk_native_dialog_destroy(GTK_NATIVE_DIALOG(d));
+  g_object_unref(d);
+  pump_gtk_events();  // the dialog disappears before the app draws again
+}
+
+NativeDialog::~NativeDialog() { cancel(); }
 #else
 bool native_dialogs_available() { return false; }
-std::optional<std::string> run_native_dialog(const FileRequest&, const std::string&) { return std::nullopt; }
+void NativeDialog::open(const FileRequest&, const std::string&, const std::string&) {}
+std::optional<std::string> NativeDialog::poll() { return std::nullopt; }
+void NativeDialog::cancel() {}
+NativeDialog::~NativeDialog() = default;
 #endif
 
 }  // namespace adaptex::studio

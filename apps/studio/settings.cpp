@@ -82,6 +82,7 @@ void write_project(const std::filesystem::path& path, const Project& p) {
   j["format"] = "adaptex.studio-project";
   j["version"] = 1;
   j["mesh"] = p.mesh_path;
+  if (!p.project_file.empty()) j["project"] = p.project_file;
   j["strokes"] = strokes_to_json(p.strokes);
   const BrushSettings& b = p.brush;
   j["brush"] = {{"tool", int(b.tool)},       {"color", v3(b.color)},       {"radius", b.radius},
@@ -118,6 +119,7 @@ Project read_project(const std::filesystem::path& path) {
   try {
     Project p;
     p.mesh_path = j.at("mesh").get<std::string>();
+    p.project_file = j.value("project", std::string());
     p.strokes = strokes_from_json(j.at("strokes"), path.string(), path.parent_path());
     if (j.contains("brush")) {
       const json& b = j["brush"];

@@ -64,6 +64,8 @@ struct Project {
   ViewSettings view;
   PaintSessionOptions session = studio_session_options();  ///< Texture size and adaptation.
   std::optional<Camera> camera;
+  /// Recovery files only: the project file the strokes belong to (empty: never saved as a project).
+  std::string project_file;
 };
 
 /// Writes a project file atomically ("format": "adaptex.studio-project", version 1). \throw OutputError

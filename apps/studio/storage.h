@@ -1,10 +1,10 @@
 #pragma once
 /// \file storage.h
 /// Where adaptex-studio keeps work: the project file (Save / Save As), whether the history has
-/// unsaved changes, the recent-files list, and the recovery file (autosaved in the background, removed
-/// only after a successful save or an explicit Discard; at any other exit it is written, so a quit by
-/// signal or by a script never loses strokes). A recovery file found at start is offered once, as
-/// recovery.offered.json, and stays until its work is saved, discarded or autosaved again.
+/// unsaved changes, the recent-files list and the last folder used, and this session's recovery file
+/// (recovery.h: autosaved in the background, removed only after a successful save or an explicit
+/// Discard; at any other exit it is written, so a quit by signal or by a script never loses strokes).
+/// Recovery files left by sessions that did not end cleanly are offered (recovery.h RecoveryFiles).
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "jobs.h"
+#include "recovery.h"
 #include "settings.h"
 
 namespace adaptex::studio {
@@ -35,6 +36,9 @@ class ProjectStore {
 
   const std::vector<std::string>& recent() const { return recent_; }
   void add_recent(const std::string& path);
+  /// The folder of the last file opened, saved or exported (kept in the config; empty: none yet).
+  const std::filesystem::path& last_folder() const { return last_folder_; }
+  void set_last_folder(const std::filesystem::path& folder);
 
   /// The project file of this session (empty: never saved or opened as a project).
   const std::filesystem::path& project_path() const { return project_path_; }
@@ -50,14 +54,11 @@ class ProjectStore {
   /// Drops the unsaved work at \p version: the recovery files are removed (File > Discard).
   void discard(std::uint64_t version);
 
-  std::filesystem::path recovery_path() const;
-  /// A recovery file left by a session that did not exit cleanly (until accepted or discarded).
-  std::optional<std::filesystem::path> pending_recovery() const { return pending_recovery_; }
-  /// Reads the offered recovery file. It is kept until this session autosaves, saves or discards.
-  /// \throw IoError, InvalidInputError
-  Project accept_recovery();
-  /// Deletes the offered recovery file.
-  void discard_recovery();
+  /// This session's recovery file (empty until the first autosave, or without recovery).
+  const std::filesystem::path& recovery_path() const { return recovery_.claimed_path(); }
+  /// Recovery files left by sessions that did not end cleanly.
+  RecoveryFiles& recovery() { return recovery_; }
+  const RecoveryFiles& recovery() const { return recovery_; }
 
   /// Every frame: writes the recovery file in the background when the unsaved history at \p version
   /// has not been written and the autosave delay has passed since the change. \p snapshot is called
@@ -71,17 +72,18 @@ class ProjectStore {
  private:
   void load_config();
   void save_config() const;
-  void wait_autosave();
+  /// Waits for a running autosave. \return false if it failed (reported)
+  bool wait_autosave();
   void remove_recovery_files();
 
-  std::filesystem::path config_dir_, recovery_dir_;
+  std::filesystem::path config_dir_;
   double autosave_delay_;
   Sink sink_;
   std::vector<std::string> recent_;
+  std::filesystem::path last_folder_;
   std::filesystem::path project_path_;
   std::uint64_t clean_version_ = 0;
-  std::optional<std::filesystem::path> pending_recovery_;
-  bool offered_taken_ = false;      // the offered file's work is now this session's work
+  RecoveryFiles recovery_;
   std::uint64_t recovery_version_ = ~0ull;  // history version in the recovery file
   std::optional<Clock::time_point> change_time_;
   std::unique_ptr<Job<int>> autosave_job_;

@@ -3,6 +3,7 @@
 #include "ui.h"
 
 #include <imgui.h>
+#include <imgui_internal.h>  // the popup stack: Esc closes the menus and popups above any modal
 #include <imgui_stdlib.h>
 
 #include <algorithm>
@@ -84,6 +85,43 @@ void tooltip(const char* text) {
   ImGui::EndTooltip();
 }
 
+/// Opens (once) and begins the modal pop-up \p title, centred; says so on stdout the frame it appears
+/// (scripted tests wait for the line). \return ImGui::BeginPopupModal's answer (EndPopup when true)
+bool begin_modal(const char* title, App& app) {
+  if (!ImGui::IsPopupOpen(title)) ImGui::OpenPopup(title);
+  ImGui::SetNextWindowPos(ImVec2(app.camera().width * 0.5f, app.camera().height * 0.5f), ImGuiCond_Appearing,
+                          ImVec2(0.5f, 0.5f));
+  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings))
+    return false;
+  if (ImGui::IsWindowAppearing()) std::cout << "adaptex-studio: dialog: " << title << std::endl;
+  return true;
+}
+
+bool escape_pressed() { return ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false); }
+
+/// Esc closes the menus and (non-modal) pop-ups above the top-most modal; modals answer Esc themselves.
+void close_popups_on_escape() {
+  if (!escape_pressed()) return;
+  const ImGuiContext& g = *ImGui::GetCurrentContext();
+  int keep = g.OpenPopupStack.Size;
+  while (keep > 0) {
+    const ImGuiWindow* w = g.OpenPopupStack[keep - 1].Window;
+    if (w && (w->Flags & ImGuiWindowFlags_Modal)) break;
+    --keep;
+  }
+  if (keep < g.OpenPopupStack.Size) ImGui::ClosePopupToLevel(keep, true);
+}
+
+/// "12 s", "5 min", "3 h", "2 days".
+std::string age_text(double seconds) {
+  char buf[32];
+  if (seconds < 90) std::snprintf(buf, sizeof buf, "%.0f s", std::max(0.0, seconds));
+  else if (seconds < 5400) std::snprintf(buf, sizeof buf, "%.0f min", seconds / 60);
+  else if (seconds < 129600) std::snprintf(buf, sizeof buf, "%.0f h", seconds / 3600);
+  else std::snprintf(buf, sizeof buf, "%.0f days", seconds / 86400);
+  return buf;
+}
+
 /// \p m divided by its largest value (density maps have mean 1 and no fixed upper bound).
 ImageF scaled_to_max(const ImageF& m) {
   ImageF out = m;
@@ -97,16 +135,50 @@ ImageF scaled_to_max(const ImageF& m) {
 
 void StudioUi::draw(App& app) {
   overlay_.draw(app);  // over the 3-D view, under the panels; also with the panels hidden
-  if (!app.view().show_ui) return;
-  const float menu_h = menu_bar(app);
-  side_panel(app, menu_h);
-  if (show_inspect_) inspect_window(app, menu_h);
-  if (app.view().show_help) help_window(app);
-  if (app.take_open_dialog_request()) choose(app, FileKind::OpenMesh);
-  browser_window(app);
-  popups(app);
-  confirm_prompt(app);
-  status_bar(app);
+  collect_messages(app);
+  if (const auto answer = native_.poll(); answer && !answer->empty()) act(app, native_.request().kind, *answer);
+  // Every ordinary window first, the one modal last: a window that appears after a modal opened in
+  // the same frame trips Dear ImGui 1.86's assertion `blocking_modal != NULL` (its issue 4920).
+  if (app.view().show_ui) {
+    const float menu_h = menu_bar(app);
+    side_panel(app, menu_h);
+    if (show_inspect_) inspect_window(app, menu_h);
+    if (app.view().show_help) help_window(app);
+    if (app.take_open_dialog_request()) choose(app, FileKind::OpenMesh);
+    status_bar(app);
+    if (!toast_text_.empty() && ImGui::GetTime() < toast_until_) toast(app);
+  }
+  working_window(app);
+  modal(app);
+  close_popups_on_escape();
+}
+
+StudioUi::Modal StudioUi::which_modal(const App& app) const {
+  if (app.confirm()) return Modal::Confirm;  // also the follow-up of Recover with unsaved strokes
+  if (app.recovery_offer()) return Modal::Recovery;
+  if (native_.is_open()) return Modal::Native;
+  if (browser_) return Modal::Browser;
+  if (!error_text_.empty()) return Modal::Error;
+  return Modal::None;
+}
+
+void StudioUi::modal(App& app) {
+  const Modal m = which_modal(app);
+  if (m == Modal::None && !open_modal_.empty()) {  // answered elsewhere (a key, the App): close it
+    if (ImGui::BeginPopupModal(open_modal_.c_str(), nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      ImGui::CloseCurrentPopup();
+      ImGui::EndPopup();
+    }
+  }
+  open_modal_.clear();
+  switch (m) {
+    case Modal::Confirm: confirm_prompt(app); break;
+    case Modal::Recovery: recovery_prompt(app); break;
+    case Modal::Native: native_wait(app); break;
+    case Modal::Browser: browser_window(app); break;
+    case Modal::Error: error_prompt(app); break;
+    case Modal::None: break;
+  }
 }
 
 float StudioUi::menu_bar(App& app) {
@@ -180,17 +252,18 @@ void StudioUi::side_panel(App& app, float top) {
 }
 
 void StudioUi::choose(App& app, FileKind kind) {
+  if (native_.is_open() || browser_) return;  // one dialog at a time
   const FileRequest r = file_request(kind);
-  std::error_code ec;
-  const std::string folder = std::filesystem::current_path(ec).string();
-  if (native_dialogs_available()) {
-    if (const auto path = run_native_dialog(r, folder)) act(app, kind, *path);
-    return;
-  }
+  // Save dialogs propose a file name (<mesh stem>.adaptex / .glb / .png) in the last folder used.
+  const std::filesystem::path suggested = app.suggested_path(kind);
+  const bool named = r.save && suggested.has_filename();
+  const std::string folder = (named ? suggested.parent_path() : suggested).string();
+  const std::string name = named ? suggested.filename().string() : std::string();
+  if (native_dialogs_available()) return native_.open(r, folder, name);
   browser_ = r;  // the in-app browser (browser_window)
   browser_ready_ = false;
   browser_dir_ = folder;
-  browser_name_.clear();
+  browser_name_ = name;
 }
 
 void StudioUi::act(App& app, FileKind kind, const std::string& path) {
@@ -211,6 +284,8 @@ void StudioUi::browser_window(App& app) {
   if (!ImGui::IsPopupOpen(id)) ImGui::OpenPopup(id);
   ImGui::SetNextWindowSize(ImVec2(560, 420), ImGuiCond_Appearing);
   if (!ImGui::BeginPopupModal(id, nullptr)) return;
+  open_modal_ = id;
+  if (ImGui::IsWindowAppearing()) std::cout << "adaptex-studio: dialog: " << id << std::endl;
   ImGui::TextUnformatted(browser_->title);
   ImGui::InputText("Folder", &browser_dir_);
   const std::filesystem::path dir(browser_dir_);
@@ -239,7 +314,7 @@ void StudioUi::browser_window(App& app) {
     if (chosen->empty()) chosen.reset();
   }
   ImGui::SameLine();
-  const bool cancel = ImGui::Button("Cancel");
+  const bool cancel = ImGui::Button("Cancel (Esc)") || escape_pressed();
   if (chosen || cancel) {
     const FileKind kind = browser_->kind;
     browser_.reset();
@@ -279,6 +354,12 @@ bool StudioUi::path_row(const char* id, const char* hint, std::string& path, con
   return (ImGui::Button(button) || enter) && !path.empty();
 }
 
+void StudioUi::follow_suggestion(std::string& field, std::string& shown, const std::string& suggestion) {
+  if (field != shown) return;  // edited by the user
+  field = suggestion;
+  shown = suggestion;
+}
+
 void StudioUi::save(App& app) {
   if (app.project_path().empty())
     app.save_project(project_path_);
@@ -300,12 +381,10 @@ void StudioUi::file_panel(App& app) {
   if (ImGui::Button("New")) app.request_new();
   ImGui::SameLine();
   ImGui::TextDisabled("%s", app.project_path().empty() ? "(no project file)" : app.project_path().c_str());
-  // The proposed project file follows the model until the user edits it.
-  if (const std::string s = app.suggested_project_path(); project_path_ == suggested_path_) {
-    project_path_ = s;
-    suggested_path_ = s;
-  }
-  if (path_row("##project", "project file (.json)", project_path_, "Save As", Focus::ProjectPath))
+  // The proposed project and GLB files follow the model until the user edits them.
+  follow_suggestion(project_path_, suggested_project_, app.suggested_path(FileKind::SaveProject).string());
+  follow_suggestion(glb_path_, suggested_glb_, app.suggested_path(FileKind::ExportGlb).string());
+  if (path_row("##project", "project file (.adaptex)", project_path_, "Save As", Focus::ProjectPath))
     app.save_project(project_path_);
   if (ImGui::Button("Save (Ctrl+S)")) save(app);
   ImGui::SameLine();
@@ -574,24 +653,7 @@ void StudioUi::inspect_legend(const AdaptMaps* maps) const {
   ImGui::PopTextWrapPos();
 }
 
-void StudioUi::popups(App& app) {
-  if (auto rec = app.pending_recovery()) {
-    ImGui::OpenPopup("Recover session?");
-    if (ImGui::BeginPopupModal("Recover session?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-      ImGui::Text("adaptex-studio did not exit cleanly last time.\nAn autosaved session was found:\n%s",
-                  rec->string().c_str());
-      if (ImGui::Button("Recover")) {
-        app.accept_recovery();
-        ImGui::CloseCurrentPopup();
-      }
-      ImGui::SameLine();
-      if (ImGui::Button("Discard")) {
-        app.discard_recovery();
-        ImGui::CloseCurrentPopup();
-      }
-      ImGui::EndPopup();
-    }
-  }
+void StudioUi::collect_messages(App& app) {
   const auto& msgs = app.messages();
   if (msgs.size() < shown_messages_) shown_messages_ = 0;
   for (; shown_messages_ < msgs.size(); ++shown_messages_) {
@@ -602,29 +664,76 @@ void StudioUi::popups(App& app) {
       toast_until_ = ImGui::GetTime() + 4.0;
     }
   }
-  if (!toast_text_.empty() && ImGui::GetTime() < toast_until_) toast(app);
-  if (!error_text_.empty()) {
-    ImGui::OpenPopup("Error");
-    if (ImGui::BeginPopupModal("Error", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-      ImGui::PushTextWrapPos(520);
-      ImGui::TextUnformatted(error_text_.c_str());
-      ImGui::PopTextWrapPos();
-      if (ImGui::Button("OK")) {
-        error_text_.clear();
-        ImGui::CloseCurrentPopup();
-      }
-      ImGui::EndPopup();
-    }
+}
+
+void StudioUi::working_window(App& app) {
+  const auto pr = app.progress();
+  if (!pr || !app.load_running()) return;
+  ImGui::SetNextWindowPos(ImVec2(app.camera().width * 0.5f, app.camera().height * 0.5f), ImGuiCond_Always,
+                          ImVec2(0.5f, 0.5f));
+  ImGui::Begin("Working", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
+  ImGui::TextUnformatted(pr->first.c_str());
+  ImGui::ProgressBar(float(pr->second), ImVec2(360, 0));
+  if (ImGui::Button("Cancel")) app.cancel_load();
+  ImGui::End();
+}
+
+void StudioUi::error_prompt(App& app) {
+  if (!begin_modal("Error", app)) return;
+  open_modal_ = "Error";
+  ImGui::PushTextWrapPos(520);
+  ImGui::TextUnformatted(error_text_.c_str());
+  ImGui::PopTextWrapPos();
+  const bool key = escape_pressed() || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter), false);
+  if (ImGui::Button("OK") || key) {
+    error_text_.clear();
+    ImGui::CloseCurrentPopup();
   }
-  if (auto pr = app.progress(); pr && app.load_running()) {
-    ImGui::SetNextWindowPos(ImVec2(app.camera().width * 0.5f, app.camera().height * 0.5f), ImGuiCond_Always,
-                            ImVec2(0.5f, 0.5f));
-    ImGui::Begin("Working", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
-    ImGui::TextUnformatted(pr->first.c_str());
-    ImGui::ProgressBar(float(pr->second), ImVec2(360, 0));
-    if (ImGui::Button("Cancel")) app.cancel_load();
-    ImGui::End();
-  }
+  ImGui::EndPopup();
+}
+
+void StudioUi::recovery_prompt(App& app) {
+  const RecoveryOffer* o = app.recovery_offer();
+  const char* title = "Recover unsaved strokes?";
+  if (!o || !begin_modal(title, app)) return;
+  open_modal_ = title;
+  const Project& p = o->project;
+  const std::string owner = recovery_owner(p), current = app.current_file();
+  ImGui::Text("adaptex-studio did not exit cleanly. %s, unsaved, on",
+              strokes_text(p.strokes.strokes.size()).c_str());
+  ImGui::Text("    %s", owner.c_str());
+  if (!p.project_file.empty()) ImGui::Text("    (mesh %s)", p.mesh_path.c_str());
+  ImGui::Text("were autosaved %s ago.", age_text(o->age_seconds).c_str());
+  ImGui::Spacing();
+  const bool theirs = !current.empty() && (current == owner || current == p.mesh_path || current == p.project_file);
+  if (current.empty())
+    ImGui::TextUnformatted("Recover opens it with them.");
+  else if (theirs)
+    ImGui::TextUnformatted("They belong to the file you opened. Recover restores them.");
+  else
+    ImGui::Text("They belong to that file, not to the one you opened (%s).\nRecover opens %s with them.",
+                std::filesystem::path(current).filename().string().c_str(),
+                std::filesystem::path(owner).filename().string().c_str());
+  ImGui::TextDisabled("Recovery file: %s", o->file.string().c_str());
+  ImGui::Spacing();
+  // R, D and Esc are answered by App::on_key (keys pressed within one slow frame are not lost).
+  if (ImGui::Button("Recover (R)")) app.accept_recovery();
+  ImGui::SameLine();
+  if (ImGui::Button("Discard (D)")) app.discard_recovery();
+  ImGui::SameLine();
+  if (ImGui::Button("Later (Esc)")) app.defer_recovery();
+  ImGui::SameLine();
+  ImGui::TextDisabled("Later keeps the file for the next start.");
+  ImGui::EndPopup();
+}
+
+void StudioUi::native_wait(App& app) {
+  const char* title = "File dialog";
+  if (!begin_modal(title, app)) return;
+  open_modal_ = title;
+  ImGui::Text("%s: choose in the desktop's file dialog.", native_.request().title);
+  if (ImGui::Button("Cancel (Esc)") || escape_pressed()) native_.cancel();
+  ImGui::EndPopup();
 }
 
 void StudioUi::toast(App& app) {
@@ -644,24 +753,12 @@ void StudioUi::toast(App& app) {
 void StudioUi::confirm_prompt(App& app) {
   const char* title = "Unsaved strokes";
   const auto& c = app.confirm();
-  if (!c) {  // answered by a key (App::on_key): close the pop-up
-    if (prompt_open_ && ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-      ImGui::CloseCurrentPopup();
-      ImGui::EndPopup();
-    }
-    prompt_open_ = false;
-    return;
-  }
-  if (!prompt_open_) {
-    ImGui::OpenPopup(title);
-    prompt_open_ = true;
-  }
-  ImGui::SetNextWindowPos(ImVec2(app.camera().width * 0.5f, app.camera().height * 0.5f), ImGuiCond_Appearing,
-                          ImVec2(0.5f, 0.5f));
-  if (!ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  if (!c || !begin_modal(title, app)) return;
+  open_modal_ = title;
   const char* what = c->action == Confirm::Action::Quit          ? "Quitting"
                      : c->action == Confirm::Action::OpenMesh    ? "Opening another mesh"
                      : c->action == Confirm::Action::OpenProject ? "Opening a project"
+                     : c->action == Confirm::Action::Recover     ? "Recovering the autosaved strokes"
                                                                  : "Starting a new scene";
   ImGui::Text("%s loses the strokes painted since the last save.", what);
   ImGui::InputText("Save to", &app.confirm_save_path());
@@ -671,14 +768,12 @@ void StudioUi::confirm_prompt(App& app) {
   const bool discard = ImGui::Button("Discard (D)");
   ImGui::SameLine();
   const bool cancel = ImGui::Button("Cancel (Esc)");
-  if (save && app.confirm_save(app.confirm_save_path())) {
-    ImGui::CloseCurrentPopup();
+  if (save) {
+    app.confirm_save(app.confirm_save_path());
   } else if (discard) {
     app.confirm_discard();
-    ImGui::CloseCurrentPopup();
   } else if (cancel) {
     app.confirm_cancel();
-    ImGui::CloseCurrentPopup();
   }
   ImGui::EndPopup();
 }

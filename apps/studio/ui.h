@@ -1,14 +1,17 @@
 #pragma once
 /// \file ui.h
 /// The Dear ImGui panels of adaptex-studio (File, Brush, View, Adapt, Inspect, status line,
-/// progress + Cancel, recovery and error pop-ups). Only UI-local state lives here; everything else
-/// is read from and changed through the App.
+/// progress + Cancel) and its modal pop-ups (unsaved strokes, recovery, file dialogs, errors). Only
+/// UI-local state lives here; everything else is read from and changed through the App.
+/// Every frame draws the ordinary windows first and then at most one modal, chosen by priority
+/// (which_modal): a question of the App, then a file dialog, then an error.
 #include <cstdint>
 #include <string>
 
 #include "adaptex/core/image.h"
 #include "app.h"
 #include "file_browser.h"
+#include "native_dialog.h"
 #include "overlay.h"
 
 namespace adaptex::studio {
@@ -40,6 +43,8 @@ class StudioUi {
   /// was pressed with a path
   bool path_row(const char* id, const char* hint, std::string& path, const char* button, Focus focus = Focus::None);
   void save(App& app);
+  /// \p field shows \p suggestion as long as the user has not edited it (\p shown: the last one shown).
+  static void follow_suggestion(std::string& field, std::string& shown, const std::string& suggestion);
   /// Asks for a file: the desktop's dialog (native_dialog.h), else the in-app browser.
   void choose(App& app, FileKind kind);
   /// Does what \p kind asked for with the chosen \p path.
@@ -54,7 +59,20 @@ class StudioUi {
   void inspect_window(App& app, float top);
   /// Plain-words legend (colour bar and meaning) of the map shown in Inspect.
   void inspect_legend(const AdaptMaps* maps) const;
-  void popups(App& app);
+  /// The modal shown this frame, by priority.
+  enum class Modal { None, Confirm, Recovery, Native, Browser, Error };
+  Modal which_modal(const App& app) const;
+  /// Draws the one modal of this frame (after every other window) and closes one no longer wanted.
+  void modal(App& app);
+  /// New messages: errors for the Error pop-up, the others for the toast.
+  void collect_messages(App& app);
+  /// Loading progress with Cancel (not modal).
+  void working_window(App& app);
+  void error_prompt(App& app);
+  /// Recover / Discard / Later for a recovery file left by a session that did not exit cleanly.
+  void recovery_prompt(App& app);
+  /// Shown while the desktop's file dialog is open (the app keeps drawing): Cancel closes it.
+  void native_wait(App& app);
   /// The last message that is not an error (saved, exported, ...), for a few seconds.
   void toast(App& app);
   /// Save / Discard / Cancel before an action that would drop unsaved strokes.
@@ -62,7 +80,7 @@ class StudioUi {
   void status_bar(App& app);
 
   std::string open_path_, project_path_, export_dir_ = "export",
-              glb_path_ = "export/model.glb", screenshot_path_ = "screenshot.png", decal_path_;
+              glb_path_, screenshot_path_ = "screenshot.png", decal_path_;
   bool show_inspect_ = false;
   int inspect_mode_ = 1;       // 0 texture, 1 texture + UV wireframe, 2 importance, 3 stretch, 4 L_s^2
   bool inspect_grid_ = true;
@@ -74,8 +92,10 @@ class StudioUi {
   size_t shown_messages_ = 0;
   std::string error_text_, toast_text_;
   double toast_until_ = 0;
-  bool prompt_open_ = false;
-  std::string suggested_path_;  // the last App::suggested_project_path() shown in project_path_
+  std::string open_modal_;  // the modal drawn last frame (empty: none)
+  NativeDialog native_;
+  // The last suggestions shown in project_path_ and glb_path_ (follow_suggestion).
+  std::string suggested_project_, suggested_glb_;
   Overlay overlay_;
   Focus focus_ = Focus::None;
   std::optional<FileRequest> browser_;  // the in-app browser's open request

@@ -4,9 +4,10 @@
 //  - with --reparam, on the layout `adaptex reparam` makes (default options; --no-refine as the flag):
 //    point sampling (resample_texture, today's reparam) vs the fit, at equal layout.
 // Usage: texel_fit_quality [--sizes 256,128] [--reparam] [--no-refine] [--spt X] [--spst X]
-//        [--smooth X] [--tol X] [--synthetic] [MESH.obj TEXTURE.png]...
+//        [--smooth X] [--anchor X] [--tol X] [--write DIR] [--synthetic] [MESH.obj TEXTURE.png]...
 // --synthetic adds the code-built 10k-face torus with a 1024² map (texel_fit_fixture.h).
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -28,6 +29,7 @@ namespace {
 
 struct Args {
   std::vector<int> sizes{256, 128};
+  std::string write_dir;  // --write DIR: the box-downsized and fitted textures as PNGs
   bool reparam = false, refine = true, synthetic = false;
   TexelFitOptions fit;
   std::vector<std::pair<std::string, std::string>> assets;
@@ -67,6 +69,10 @@ Args parse(int argc, char** argv) {
       a.fit.samples_per_texel = std::stod(value());
     } else if (s == "--spst") {
       a.fit.samples_per_source_texel = std::stod(value());
+    } else if (s == "--write") {
+      a.write_dir = value();
+    } else if (s == "--anchor") {
+      a.fit.anchor = std::stod(value());
     } else if (s == "--tol") {
       a.fit.tolerance = std::stod(value());
     } else if (s == "--smooth") {
@@ -94,6 +100,11 @@ void artist_layout(const Asset& a, const Args& args) {
     const TexelFitResult r = fit_resize(a.mesh, a.param, a.texture, N, N, args.fit);
     const double time = seconds_since(t0);
     const double fit = psnr(a, a.mesh, a.param, r.texture);
+    if (!args.write_dir.empty()) {
+      const std::string stem = args.write_dir + "/" + std::filesystem::path(a.name).parent_path().parent_path().filename().string();
+      write_png(stem + "_box" + std::to_string(N) + ".png", box_downsize(a.texture, N, N));
+      write_png(stem + "_fit" + std::to_string(N) + ".png", r.texture);
+    }
     std::printf("| %s | artist | %d | %.2f | %.2f | %.2f | **%+.2f** | %.0f ms, %lld samples, %d it |\n", a.name.c_str(), N,
                 box, point, fit, fit - box, 1e3 * time, r.samples, r.iterations);
   }

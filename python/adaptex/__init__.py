@@ -12,9 +12,9 @@ Inputs accept any floating-point dtype for V / UV and any integer dtype for F / 
 ``adaptex.Error`` subclasses: bad input raises ``InvalidInputError`` (a ``ValueError``; also
 ``TopologyError``), a file that cannot be read ``IoError`` (``ValueError`` and ``OSError``), one that
 cannot be written ``OutputError`` (``OSError``). Long calls (unwrap, paint, adapt, reparam,
-evaluate) release the GIL and take ``progress(phase, fraction)``: returning ``False`` cancels the
-call with ``CancelledError``; Ctrl+C interrupts them with ``KeyboardInterrupt``. ``help(adaptex.adapt)``
-lists every option keyword with its default.
+evaluate, shrink) release the GIL and take ``progress(phase, fraction)``: returning ``False`` cancels
+the call with ``CancelledError``; Ctrl+C interrupts them with ``KeyboardInterrupt``.
+``help(adaptex.adapt)`` lists every option keyword with its default.
 """
 from ._version import __version__  # noqa: F401
 from ._adaptex import (  # noqa: F401
@@ -35,6 +35,7 @@ from ._functions import (  # noqa: F401
     read_mesh,
     read_textured_obj,
     reparam,
+    shrink,
     stretch,
     unwrap,
     validate_mesh,

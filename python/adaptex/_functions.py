@@ -291,7 +291,10 @@ def adapt(V, F, UV, FT, strokes, *, progress=None, **options):
 
 
 def reparam(V, F, UV, FT, texture, *, progress=None, size=None, padding=None, **options):
-    """Re-parameterize by a texture's own signal and resample it onto the new layout (``adaptex reparam``).
+    """Make a textured mesh's texture smaller on a better layout (``adaptex reparam``).
+
+    With ``mode='shrink'`` (the default) this is :func:`shrink` of the one texture; the other
+    modes re-parameterize by the texture's signal and resample it onto the new layout.
 
     Parameters
     ----------
@@ -310,13 +313,47 @@ def reparam(V, F, UV, FT, texture, *, progress=None, size=None, padding=None, **
     -------
     dict
         ``V``, ``F``, ``UV``, ``FT``, ``texture`` (as :func:`adapt`) and ``report``: the
-        re-parameterization's report. ``refine=False`` keeps the mesh.
+        shrink's or the re-parameterization's report. ``refine=False`` keeps the mesh (the
+        shrink always keeps it).
 
     Raises
     ------
 {raises_long}
     """
     return _adaptex.reparam(V, F, UV, FT, texture, progress=progress, size=size, padding=padding, **options)
+
+
+def shrink(V, F, UV, FT, maps, *, progress=None, size=256):
+    """Shrink a textured mesh's maps onto the artist's atlas, repacked by detail (``adaptex shrink``).
+
+    The artist's charts stay charts; charts that share texels (mirrors, overlaps) move together;
+    every island gets texels by the error model of the maps and the islands are repacked into the
+    square; every map is fitted to the original on the new layout. Plain downsizing is a candidate,
+    so the result is never worse than it on the measure (docs/shrink.md).
+
+    Parameters
+    ----------
+{arrays}
+{layout}
+    maps : (H, W, 4) array_like of uint8, or dict of str to such arrays
+        The texture, or ``{{slot: texture}}`` for every map of the material (``'base_color'``,
+        ``'normal'``, ``'roughness'``, ...); the first is the measured one. Painted on ``(UV, FT)``.
+{progress}
+    size : int, default 256
+        Width and height of every output map.
+
+    Returns
+    -------
+    dict
+        ``V``, ``F``, ``FT`` (the input's), ``UV`` (the new layout), ``texture`` (the first map),
+        ``maps`` (``{{slot: map}}``) and ``report``: the PSNR of the result and of plain
+        downsizing, the candidates, flips and shared texels before and after.
+
+    Raises
+    ------
+{raises_long}
+    """
+    return _adaptex.shrink(V, F, UV, FT, maps, progress=progress, size=size)
 
 
 def evaluate(V, F, UV, FT, texture, strokes, *, progress=None, **options):
@@ -382,7 +419,7 @@ def _fill(fn):
                                    raises_long=_RAISES_LONG)
 
 
-for _fn in (validate_mesh, write_obj, write_image, unwrap, paint, adapt, reparam, evaluate, stretch):
+for _fn in (validate_mesh, write_obj, write_image, unwrap, paint, adapt, reparam, shrink, evaluate, stretch):
     _fill(_fn)
 for _fn in (unwrap, paint, adapt, reparam, evaluate):
     _with_options(_fn.__name__)(_fn)

@@ -32,8 +32,9 @@ std::string decode_base64(const std::string& text, std::size_t from);
 std::string uri_buffer_bytes(const json& b, const std::filesystem::path& dir);
 
 /// The soup of read_gltf_soup() with TEXCOORD_0 per corner (identical UV values share one index) and
-/// the glTF material index of each corner's primitive (-1 without one).
-/// \throw IoError as read_gltf_soup(); InvalidInputError a primitive without TEXCOORD_0
+/// the glTF material index of each corner's primitive (-1 without one). A primitive without
+/// TEXCOORD_0 whose material has no map gets UV (0, 0) (TexturedSoup::untextured_polygons).
+/// \throw IoError as read_gltf_soup(); InvalidInputError a primitive without TEXCOORD_0 whose material has maps
 TexturedSoup read_gltf_textured_soup(const std::string& bytes, const SoupSource& source, const CheckedGltf& checked);
 
 }  // namespace adaptex::io_detail

@@ -72,6 +72,7 @@ struct TexturedSoup {
   PolygonSoup soup;                   ///< tex_indices set: per corner, an index into texcoords (or -1).
   std::vector<double> texcoords;      ///< 2 per texture coordinate.
   std::vector<int> corner_material;   ///< Per corner: the material of its polygon (-1: none); may be empty.
+  int untextured_polygons = 0;        ///< Polygons of a glTF primitive without TEXCOORD_0 (UV (0, 0)).
 };
 
 /// Parses OBJ text with tinyobjloader (and re-converts the numbers, see obj_io.cpp). \p mtl_text is the

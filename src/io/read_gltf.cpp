@@ -24,6 +24,7 @@
 #include <iterator>
 #include <set>
 #include <string_view>
+#include <cstdio>
 #include <map>
 
 #include "adaptex/core/errors.h"
@@ -76,19 +77,40 @@ Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
 struct UvCollector {
   TexturedSoup* out = nullptr;
   std::map<std::pair<float, float>, std::int64_t> index;  ///< Identical UVs share one texture coordinate.
-  unsigned materials = 0;                                  ///< Materials of the glTF (assimp adds a default after them).
+  std::vector<char> material_has_maps;                     ///< Per glTF material.
+  const json* doc = nullptr;                               ///< The glTF, with every mesh named by mesh_marker().
   std::string name;
+
+  /// The glTF material of \p mesh's primitive (-1: none). assimp's own material indices follow the
+  /// order in which it loaded the materials, not the file's, so the primitive is found by the name
+  /// assimp gives the mesh: the marker of its glTF mesh, then "-p" for primitive p when there are several.
+  int material_of(const aiMesh* mesh) const {
+    const std::string n = mesh->mName.C_Str();
+    std::size_t m = 0, p = 0;
+    if (std::sscanf(n.c_str(), "adaptex_mesh_%zu-%zu", &m, &p) < 1 || m >= (*doc)["meshes"].size())
+      throw IoError(name + ": corrupt glTF: cannot tell which glTF mesh assimp's mesh '" + n + "' is");
+    const json& prims = (*doc)["meshes"][m]["primitives"];
+    if (p >= prims.size()) throw IoError(name + ": corrupt glTF: assimp's mesh '" + n + "' has no glTF primitive");
+    const json& prim = prims[p];
+    if (!prim.contains("material")) return -1;
+    if (!prim["material"].is_number_unsigned() || prim["material"].get<std::size_t>() >= material_has_maps.size())
+      throw IoError(name + ": corrupt glTF: mesh " + std::to_string(m) + " primitive " + std::to_string(p) +
+                    " refers to a missing material");
+    return prim["material"].get<int>();
+  }
 };
 
 /// The texture coordinate indices of \p mesh's vertices (TEXCOORD_0; assimp has flipped v to OBJ's
-/// convention, v = 0 at the bottom of the image).
-std::vector<std::int64_t> collect_uvs(const aiMesh* mesh, UvCollector& uvs) {
-  if (!mesh->mTextureCoords[0])
-    throw InvalidInputError(uvs.name + ": the mesh '" + std::string(mesh->mName.C_Str()) +
-                            "' has a primitive without texture coordinates (TEXCOORD_0)");
+/// convention, v = 0 at the bottom of the image). A primitive without TEXCOORD_0 whose material has
+/// no map gets UV (0, 0) everywhere (counted in untextured_polygons).
+std::vector<std::int64_t> collect_uvs(const aiMesh* mesh, int material, UvCollector& uvs) {
+  const bool has_uvs = mesh->mTextureCoords[0] != nullptr;
+  if (!has_uvs && material >= 0 && uvs.material_has_maps[static_cast<std::size_t>(material)])
+    throw InvalidInputError(uvs.name + ": the mesh '" + std::string(mesh->mName.C_Str()) + "' has a primitive with material " +
+                            std::to_string(material) + ", which has texture maps, but no texture coordinates (TEXCOORD_0)");
   std::vector<std::int64_t> out(mesh->mNumVertices);
   for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
-    const aiVector3D& t = mesh->mTextureCoords[0][v];
+    const aiVector3D t = has_uvs ? mesh->mTextureCoords[0][v] : aiVector3D(0, 0, 0);
     const auto [it, added] = uvs.index.emplace(std::make_pair(t.x, t.y), static_cast<std::int64_t>(uvs.index.size()));
     if (added) {
       uvs.out->texcoords.push_back(t.x);
@@ -96,6 +118,7 @@ std::vector<std::int64_t> collect_uvs(const aiMesh* mesh, UvCollector& uvs) {
     }
     out[v] = it->second;
   }
+  if (!has_uvs) uvs.out->untextured_polygons += static_cast<int>(mesh->mNumFaces);
   return out;
 }
 
@@ -106,8 +129,8 @@ void collect(const aiScene* scene, const aiNode* node, const Eigen::Matrix4d& pa
   for (unsigned i = 0; i < node->mNumMeshes; ++i) {
     const aiMesh* mesh = scene->mMeshes[node->mMeshes[i]];
     const auto base = static_cast<std::int64_t>(soup.positions.size());
-    const std::vector<std::int64_t> tex = uvs ? collect_uvs(mesh, *uvs) : std::vector<std::int64_t>();
-    const int material = uvs && mesh->mMaterialIndex < uvs->materials ? static_cast<int>(mesh->mMaterialIndex) : -1;
+    const int material = uvs ? uvs->material_of(mesh) : -1;
+    const std::vector<std::int64_t> tex = uvs ? collect_uvs(mesh, material, *uvs) : std::vector<std::int64_t>();
     for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
       const aiVector3D& p = mesh->mVertices[v];
       Eigen::Vector4d q(p.x, p.y, p.z, 1.0);
@@ -502,14 +525,46 @@ PolygonSoup read_gltf_soup(const std::string& bytes, const SoupSource& source) {
   return soup_of_checked(bytes, source, checked.glb, nullptr);
 }
 
+namespace {
+
+/// \p bytes with the JSON replaced by \p doc (a GLB keeps its other chunks, after a JSON chunk padded
+/// with spaces to 4 bytes).
+std::string with_json(const std::string& bytes, const CheckedGltf& checked, const json& doc) {
+  std::string text = doc.dump(-1, ' ', false, json::error_handler_t::replace);  // never throws
+  if (!checked.glb) return text;
+  while (text.size() % 4) text += ' ';
+  const std::size_t rest = 12 + 8 + u32_at(bytes, 12);  // after the first (JSON) chunk
+  std::string out = bytes.substr(0, 12);
+  const auto put32 = [&](std::size_t at, std::uint32_t v) { std::memcpy(out.data() + at, &v, 4); };
+  out += std::string(8, '\0');
+  put32(12, static_cast<std::uint32_t>(text.size()));
+  put32(16, 0x4E4F534Au);
+  out += text;
+  out += bytes.substr(rest);
+  put32(8, static_cast<std::uint32_t>(out.size()));
+  return out;
+}
+
+}  // namespace
+
 TexturedSoup read_gltf_textured_soup(const std::string& bytes, const SoupSource& source, const CheckedGltf& checked) {
   TexturedSoup out;
   UvCollector uvs;
   uvs.out = &out;
   uvs.name = source.name;
-  const auto materials = checked.doc.find("materials");
-  uvs.materials = materials != checked.doc.end() && materials->is_array() ? static_cast<unsigned>(materials->size()) : 0;
-  out.soup = soup_of_checked(bytes, source, checked.glb, &uvs);
+  json doc = checked.doc;
+  if (const auto materials = doc.find("materials"); materials != doc.end() && materials->is_array())
+    for (const json& m : *materials) {
+      const auto has = [](const json& o, const char* key) { return o.is_object() && o.contains(key); };
+      const bool maps = has(m, "normalTexture") || has(m, "occlusionTexture") || has(m, "emissiveTexture") ||
+                        (has(m, "pbrMetallicRoughness") && (has(m["pbrMetallicRoughness"], "baseColorTexture") ||
+                                                            has(m["pbrMetallicRoughness"], "metallicRoughnessTexture")));
+      uvs.material_has_maps.push_back(maps ? 1 : 0);
+    }
+  if (const auto meshes = doc.find("meshes"); meshes != doc.end())  // an array of objects (check_references())
+    for (std::size_t m = 0; m < meshes->size(); ++m) (*meshes)[m]["name"] = "adaptex_mesh_" + std::to_string(m);
+  uvs.doc = &doc;
+  out.soup = soup_of_checked(with_json(bytes, checked, doc), source, checked.glb, &uvs);
   return out;
 }
 

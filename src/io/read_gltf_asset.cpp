@@ -5,6 +5,7 @@
 /// the GLB's BIN chunk or a buffer (bufferView), a data: URI, or a file next to the glTF, and decoded
 /// by read_image_from_memory() (PNG, JPEG, TGA: KTX2 and WebP images are rejected by name).
 #include <algorithm>
+#include <map>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/io/image_io.h"
@@ -124,8 +125,19 @@ class GltfMaterials {
     return (*it)[index];
   }
 
-  /// The image's bytes (from a buffer view, a data: URI or a file) decoded into \p map.
+  /// The image's bytes (from a buffer view, a data: URI or a file) decoded into \p map; an image used
+  /// by several maps is decoded once.
   void load_image(TextureMap& map, std::uint64_t index) {
+    if (const auto it = loaded_.find(index); it != loaded_.end()) {
+      map.path = it->second.path;
+      map.image = it->second.image;
+      return;
+    }
+    read_image_source(map, index);
+    loaded_[index] = map;
+  }
+
+  void read_image_source(TextureMap& map, std::uint64_t index) {
     const json& img = element("images", index, map.origin);
     std::string bytes;
     if (img.contains("bufferView")) {
@@ -177,6 +189,7 @@ class GltfMaterials {
   const AssetReadOptions& options_;
   ReadReport& report_;
   std::string non_repeat_map_;
+  std::map<std::uint64_t, TextureMap> loaded_;  ///< By image index.
 };
 
 }  // namespace
@@ -194,12 +207,18 @@ TexturedAsset read_gltf_asset(const std::string& bytes, const fs::path& name, co
                   std::string(e.what()).substr(0, std::string(e.what()).find('\n')) + ")");
   }
   TexturedSoup soup = read_gltf_textured_soup(bytes, {name.string(), name.parent_path()}, checked);
+  const int untextured = soup.untextured_polygons;
   std::vector<int> face_material;
   TexturedMesh tm = textured_from_soup(std::move(soup), name.string(), options.mesh, &report, &face_material);
   TexturedAsset out = finish_asset(std::move(tm), std::move(face_material), std::move(materials), name.string(), options, report);
-  if (out.uv.wrapped_charts > 0 && !reader.non_repeat_map().empty())
+  out.uv.untextured_faces = untextured;
+  if (untextured > 0)
+    report.warnings.push_back(name.string() + ": " + count_str(untextured, "face", "faces") +
+                              " without texture coordinates (their material has no map) get UV (0, 0)");
+  const int outside = out.uv.wrapped_charts + out.uv.straddling_charts;
+  if (outside > 0 && !reader.non_repeat_map().empty())
     throw InvalidInputError(reader.non_repeat_map() + ": the sampler does not repeat, but " +
-                            count_str(out.uv.wrapped_charts, "UV chart lies", "UV charts lie") +
+                            count_str(outside, "UV chart lies", "UV charts lie") +
                             " outside [0,1]; only repeat wrapping is supported there");
   return out;
 }

@@ -266,6 +266,7 @@ struct TexelFitter::Impl {
   std::vector<double> diag;            // n
   std::vector<double> mass;            // n: sum of w * b over the samples touching the texel
   double max_cell = 0;                 // largest Sample::cell
+  double anchor = 0;                   // weight of the pull towards the prefiltered start (added to diag)
 
   void assemble();
   void add_smoothness(const std::vector<float>& stencil);
@@ -336,6 +337,7 @@ void TexelFitter::Impl::add_smoothness(const std::vector<float>& stencil) {
   for (int k = 0; k < n; ++k) mean_diag += stencil[static_cast<size_t>(texel[k]) * 9 + 4];
   mean_diag /= std::max(1, n);
   const double lambda = options.smoothness * mean_diag;
+  anchor = options.anchor * mean_diag;
   const bool wrap = options.address == TextureAddress::Repeat;
   cols.assign(static_cast<size_t>(n) * 9, 0);
   vals.assign(static_cast<size_t>(n) * 9, 0.0f);
@@ -366,7 +368,7 @@ void TexelFitter::Impl::add_smoothness(const std::vector<float>& stencil) {
       cols[static_cast<size_t>(k) * 9 + s] = used ? nb[s] : k;
       vals[static_cast<size_t>(k) * 9 + s] = used && s != 4 ? static_cast<float>(row[s]) : 0.0f;
     }
-    diag[k] = row[4];
+    diag[k] = row[4] + anchor;
   });
 }
 
@@ -487,9 +489,12 @@ TexelFitter::TexelFitter(const TriMesh& mesh, const Parameterization& source_par
   check_layout(mesh, param, "new");
   check_size(source_width, source_height, "original texture");
   check_size(width, height, "output texture");
+  if (static_cast<long long>(width) * height > kMaxFitTexels)
+    throw InvalidInputError("texel fit: output " + std::to_string(width) + "x" + std::to_string(height) +
+                            " has more than 4096x4096 texels (about 300 bytes each while fitting)");
   if (!(options.samples_per_texel >= 0) || !(options.samples_per_source_texel >= 0) || options.max_samples < 1 ||
-      !(options.smoothness >= 0) || options.max_iterations < 0 || !(options.tolerance >= 0))
-    throw InvalidInputError("texel fit: sample densities, smoothness and tolerance must be >= 0, max_samples >= 1");
+      !(options.smoothness >= 0) || !(options.anchor >= 0) || options.max_iterations < 0 || !(options.tolerance >= 0))
+    throw InvalidInputError("texel fit: sample densities, smoothness, anchor and tolerance must be >= 0, max_samples >= 1");
   Impl& m = *impl_;
   m.W = width;
   m.H = height;
@@ -516,12 +521,16 @@ TexelFitResult TexelFitter::fit(const ImageRGBA8& source) const {
   if (source.empty()) throw InvalidInputError("texel fit: empty original texture");
   const Impl& m = *impl_;
   report_progress(m.options.progress, "fit solve", 0.0);
-  const std::vector<Vec4d> b = m.rhs(source);
   const size_t n = m.texel.size();
-  // Start from the footprint-weighted mean of the original (a matched prefilter).
+  // Start from the footprint-weighted mean of the original (a matched prefilter); the anchor term
+  // pulls towards it, which decides the texels that only a sliver of a footprint touches.
+  std::vector<Vec4d> b = m.rhs(source);
   std::vector<Vec4d> x(n);
   for (size_t k = 0; k < n; ++k)
-    for (int c = 0; c < 4; ++c) x[k][c] = b[k][c] / m.mass[k];
+    for (int c = 0; c < 4; ++c) {
+      x[k][c] = b[k][c] / m.mass[k];
+      b[k][c] += m.anchor * x[k][c];
+    }
   TexelFitResult res;
   res.iterations = m.solve(x, b, res.residual);
   report_progress(m.options.progress, "fit solve", 1.0);

@@ -688,12 +688,26 @@ size_t split_piece(const Component& piece, int k, const UnwrapOptions& options,
   return out.size() - before;
 }
 
+/// Whether splitting a piece in two pays in effective texel share (coverage / L2²), from its probe:
+/// the layout's L2² (the area-weighted mean of the pieces' L2², assemble()) drops by about
+/// a (λ² − λ) for a piece of area fraction a and L2 λ (its halves assumed at √λ); the coverage
+/// drops by the gutter along the new seam, about 2 · gap · side for a piece whose rectangle has
+/// side √(a λ) (in the unit square). Both are taken relative to a typical layout (L2² 1.4,
+/// coverage 0.75). A piece with degenerate or flipped UV triangles is always worth splitting.
+bool split_pays(const PieceProbe& probe, double area_fraction, double gap, double min_l2) {
+  if (probe.bad > 0) return true;
+  const double l2 = probe.l2;
+  if (!(l2 > min_l2)) return false;
+  const double gain = area_fraction * (l2 * l2 - l2) / 1.4;
+  const double loss = 2.0 * gap * std::sqrt(area_fraction * l2) / 0.75;
+  return gain > loss;
+}
+
 /// Segmentation for scans (many components, handles, holes; docs/charts.md, "Scans"): components
 /// of more than scan_piece_faces faces are first split into pieces of about that many faces; then,
 /// round after round, every piece whose cheap parameterization (probe_piece()) has degenerate or
-/// flipped triangles, or an L2 stretch above scan_chart_l2 while its predicted rectangle would
-/// keep a side of scan_min_chart_gaps gaps after halving, is split in two. The chart count thus
-/// follows the stretch and the texel budget: small components and pieces stay whole.
+/// flipped triangles, or an L2 stretch above scan_chart_l2 where split_pays(), is split in two.
+/// The chart count thus follows the stretch and the texel budget: small pieces stay whole.
 std::vector<Component> scan_pieces(const std::vector<Component>& comps, const DiskParamOptions& dopt,
                                    double gutter, const UnwrapOptions& options) {
   constexpr int kMinSplitFaces = 16;
@@ -710,7 +724,7 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
     else
       done.push_back(c);
   }
-  const double min_side = options.scan_min_chart_gaps * std::max(gutter, 1.0 / 1024);
+  const double gap = std::max(gutter, 1.0 / 4096);
   for (int round = 0; round < options.scan_max_rounds && !queue.empty(); ++round) {
     const double frac = static_cast<double>(round) / options.scan_max_rounds;
     report_progress(options.progress, "segment", frac);
@@ -719,11 +733,8 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
     for (size_t i = 0; i < queue.size(); ++i) {
       const Component& p = queue[i];
       const PieceProbe& pr = probes[i];
-      // Predicted side of the piece's rectangle (assemble(): area ∝ A3 · L2), halved by a split.
-      const double l2 = std::isfinite(pr.l2) ? pr.l2 : 1.0;
-      const double side = std::sqrt(p.area * l2 / std::max(total_area, 1e-300));
       const bool worth =
-          pr.bad > 0 || (pr.l2 > options.scan_chart_l2 && side / std::sqrt(2.0) >= min_side);
+          split_pays(pr, p.area / std::max(total_area, 1e-300), gap, options.scan_chart_l2);
       bool split = false;
       if (worth && p.mesh.num_faces() >= 2 * kMinSplitFaces) {
         const size_t n = split_piece(p, 2, options, next);
@@ -993,6 +1004,9 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
     throw InvalidInputError("unwrap: gutter of " + std::to_string(options.gutter_texels) +
                             " texels at " + std::to_string(options.gutter_texture_size) +
                             " is out of range");
+  if (options.scan_piece_faces < 64 || options.scan_max_rounds < 0 || !(options.scan_chart_l2 >= 1))
+    throw InvalidInputError("unwrap: scan_piece_faces must be >= 64, scan_max_rounds >= 0 and "
+                            "scan_chart_l2 >= 1");
   if (!(options.min_chart_side_of_gap >= 0 && options.min_chart_side_of_gap <= 4))
     throw InvalidInputError("unwrap: min_chart_side_of_gap " +
                             std::to_string(options.min_chart_side_of_gap) + " is outside [0, 4]");

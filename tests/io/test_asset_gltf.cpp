@@ -46,6 +46,8 @@ struct GlbOptions {
   std::string embedded_png;      ///< image 0, in the BIN chunk
   float nan_uv = 0;              ///< when NaN: the first UV
   std::string sampler = "";      ///< a "samplers" entry for texture 0, or none
+  int untextured_material = -2;  ///< > -2: a third primitive (a quad at z = 1) without TEXCOORD_0, with this material (-1: none)
+  bool swap_materials = false;   ///< primitive 0 gets material 1 and primitive 1 material 0
 };
 
 /// The strip as a GLB: primitive 0 (quads 0, 1) with material 0, primitive 1 (quads 2, 3) with
@@ -65,18 +67,28 @@ std::string strip_glb(const GlbOptions& o) {
   for (int prim = 0; prim < 2; ++prim)
     for (int q = 0; q < 2; ++q)
       for (int k : {0, 1, 2, 0, 2, 3}) test::put(bin, static_cast<std::uint16_t>(4 * q + k));
-  const std::size_t png_offset = bin.size();  // 416, a multiple of 4
+  for (const auto& p : {std::array<float, 3>{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}})  // at 368: the z = 1 quad
+    for (float c : p) test::put(bin, c);
+  for (int k : {0, 1, 2, 0, 2, 3}) test::put(bin, static_cast<std::uint16_t>(k));  // at 416
+  bin += std::string(4, '\0');
+  const std::size_t png_offset = bin.size();  // 432, a multiple of 4
   bin += o.embedded_png;
   while (bin.size() % 4) bin += '\0';
   const std::string data_png = test::png_bytes(test::solid(2, 2, 128, 128, 255));
   std::string json = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
   "meshes": [{"primitives": [
-    {"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "indices": 4, "material": 0},
-    {"attributes": {"POSITION": 1, "TEXCOORD_0": 3}, "indices": 5, "material": 1}]}],
+    {"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "indices": 4, "material": )" + std::string(o.swap_materials ? "1" : "0") + R"(},
+    {"attributes": {"POSITION": 1, "TEXCOORD_0": 3}, "indices": 5, "material": )" + std::string(o.swap_materials ? "0" : "1") + R"(})" +
+                     (o.untextured_material > -2
+                          ? R"(, {"attributes": {"POSITION": 6}, "indices": 7)" +
+                                (o.untextured_material >= 0 ? ", \"material\": " + std::to_string(o.untextured_material) : "") + "}"
+                          : "") +
+                     R"(]}],
   "buffers": [{"byteLength": )" + std::to_string(bin.size()) + R"(}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 96}, {"buffer": 0, "byteOffset": 96, "byteLength": 96},
     {"buffer": 0, "byteOffset": 192, "byteLength": 64}, {"buffer": 0, "byteOffset": 256, "byteLength": 64},
     {"buffer": 0, "byteOffset": 320, "byteLength": 24}, {"buffer": 0, "byteOffset": 344, "byteLength": 24},
+    {"buffer": 0, "byteOffset": 368, "byteLength": 48}, {"buffer": 0, "byteOffset": 416, "byteLength": 12},
     {"buffer": 0, "byteOffset": )" + std::to_string(png_offset) + R"(, "byteLength": )" +
                      std::to_string(o.embedded_png.size()) + R"(}],
   "accessors": [{"bufferView": 0, "componentType": 5126, "count": 8, "type": "VEC3"},
@@ -84,8 +96,10 @@ std::string strip_glb(const GlbOptions& o) {
     {"bufferView": 2, "componentType": 5126, "count": 8, "type": "VEC2"},
     {"bufferView": 3, "componentType": 5126, "count": 8, "type": "VEC2"},
     {"bufferView": 4, "componentType": 5123, "count": 12, "type": "SCALAR"},
-    {"bufferView": 5, "componentType": 5123, "count": 12, "type": "SCALAR"}],
-  "images": [{"bufferView": 6, "mimeType": "image/png"}, {"uri": "data:image/png;base64,)" + base64(data_png) +
+    {"bufferView": 5, "componentType": 5123, "count": 12, "type": "SCALAR"},
+    {"bufferView": 6, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 7, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+  "images": [{"bufferView": 8, "mimeType": "image/png"}, {"uri": "data:image/png;base64,)" + base64(data_png) +
                      R"("}, {"uri": "ao%20map.jpg"}, {"uri": "mr.tga"}],
   "textures": [{"source": 0)" + (o.sampler.empty() ? "" : ", \"sampler\": 0") + R"(}, {"source": 1}, {"source": 2}, {"source": 3}],)" +
                      (o.sampler.empty() ? "" : "\"samplers\": [" + o.sampler + "],") + R"(
@@ -94,7 +108,8 @@ std::string strip_glb(const GlbOptions& o) {
        "metallicFactor": 0.25, "roughnessFactor": 0.75},
      "normalTexture": {"index": 1, "scale": 0.5}, "occlusionTexture": {"index": 2, "strength": 0.7}},
     {"name": "cloth", "pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.3, 0.4, 1.0]},
-     "emissiveTexture": {"index": 0}, "emissiveFactor": [1, 0.5, 0]}]})";
+     "emissiveTexture": {"index": 0}, "emissiveFactor": [1, 0.5, 0]},
+    {"name": "glass", "pbrMetallicRoughness": {"baseColorFactor": [0, 0.04, 0.02, 1.0]}}]})";
   return test::glb(json, bin);
 }
 
@@ -118,7 +133,9 @@ TEST(AssetGltf, MaterialsWithEveryMapKindFromEveryKindOfImageSource) {
   ASSERT_EQ(asset.mesh.num_faces(), 8);
   EXPECT_EQ(asset.mesh.num_vertices(), 10);  // quads' corners welded by position
   EXPECT_EQ(asset.face_material, (std::vector<int>{0, 0, 0, 0, 1, 1, 1, 1}));
-  ASSERT_EQ(asset.materials.size(), 2u);
+  ASSERT_EQ(asset.materials.size(), 3u);
+  EXPECT_TRUE(asset.materials[2].maps.empty());
+  EXPECT_EQ(asset.uv.untextured_faces, 0);
   const Material& skin = asset.materials[0];
   EXPECT_EQ(skin.name, "skin");
   EXPECT_EQ(*skin.metallic, 0.25);
@@ -193,6 +210,31 @@ TEST(AssetGltf, BadImagesMissingFilesNanUvsAndClampedSamplers) {
   expect_asset_rejected(clamp.file, "baseColorTexture", "the sampler does not repeat, but 1 UV chart lies outside [0,1]");
   GlbAsset repeat({"", 0, R"({"wrapS": 10497})"});
   EXPECT_EQ(read_textured_asset(repeat.file).uv.wrapped_charts, 1);
+  GlbAsset textured_without_uvs({"", 0, "", 0});  // material 0 has maps
+  expect_asset_rejected(textured_without_uvs.file, "strip.glb",
+                        "has a primitive with material 0, which has texture maps, but no texture coordinates (TEXCOORD_0)");
+}
+
+TEST(AssetGltf, FaceMaterialsAreTheFilesIndicesWhateverOrderAssimpLoadsThemIn) {
+  // assimp numbers materials in the order primitives first use them: here material 1 comes first.
+  GlbAsset a({"", 0, "", -2, true});
+  const TexturedAsset asset = read_textured_asset(a.file);
+  EXPECT_EQ(asset.face_material, (std::vector<int>{1, 1, 1, 1, 0, 0, 0, 0}));
+  EXPECT_EQ(asset.materials[0].name, "skin");
+}
+
+TEST(AssetGltf, PrimitivesWithoutUvsAndWithoutMapsGetUvZero) {
+  for (int material : {2, -1}) {  // a material without maps (glass), or none
+    GlbAsset a({"", 0, "", material});
+    ReadReport report;
+    const TexturedAsset asset = read_textured_asset(a.file, {}, &report);
+    ASSERT_EQ(asset.mesh.num_faces(), 10);
+    EXPECT_EQ(asset.face_material[8], material);
+    EXPECT_EQ(asset.uv.untextured_faces, 2);
+    EXPECT_EQ(asset.uv.degenerate_uv_faces, 3);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(asset.param.uv[asset.param.uv_faces[9][k]], Vec2(0, 0));
+    EXPECT_NE(report.warnings.back().find("2 faces without texture coordinates"), std::string::npos);
+  }
 }
 
 }  // namespace

@@ -259,6 +259,12 @@ TEST(AssetIo, ChartsStraddlingTilesAndUdimAreRejectedClearly) {
   test::write_text(dir.path / "straddle.obj", obj);
   expect_asset_rejected(dir.path / "straddle.obj", "straddle.obj: UV chart 2 (face 5 and 1 more) spans u 0.8 to 1.9",
                         "crosses a UV tile border, which is not supported");
+  AssetReadOptions keep;
+  keep.keep_straddling_charts = true;
+  const TexturedAsset kept = read_textured_asset(dir.path / "straddle.obj", keep);
+  EXPECT_EQ(kept.uv.straddling_charts, 1);
+  EXPECT_EQ(kept.uv.wrapped_charts, 0);
+  EXPECT_EQ(kept.param.uv[kept.param.uv_faces[4][1]].x(), 1.9);  // left where it is
   // Maps named per UDIM tile, charts in two tiles.
   StripAsset a;
   test::write_text(a.dir.path / "mat.mtl", "newmtl skin\nmap_Kd skin.1001.png\nnewmtl cloth\n");
@@ -297,6 +303,25 @@ TEST(AssetIo, TexelUsageCountsSharedEdgesOnceAndOverlapsTwice) {
   EXPECT_EQ(folded.covered_fraction, 1.0);
   EXPECT_NEAR(folded.shared_fraction, 0.25, 1.0 / 64);  // the triangle (0,0) (0,0.5) (1,0): a quarter
   EXPECT_THROW((void)measure_texel_usage(p, 0), InvalidInputError);
+  // Coordinates far outside the square (found by fuzz_gltf: 3e30 overflowed an int) count nothing there.
+  p.uv.push_back(Vec2(3e30, -3e30));
+  p.uv_faces.push_back(Face{0, 1, 6});
+  const TexelUsage far = measure_texel_usage(p, 8);
+  EXPECT_EQ(far.covered_fraction, 1.0);
+}
+
+TEST(AssetIo, TexelUsageOfHostilyManyLargeTrianglesIsMeasuredOnACoarserGrid) {
+  // 3,000 copies of the square's two triangles: 6,000 bounding boxes of 1024² texels each would be
+  // 6 G texel tests; the grid is made coarser so that at most 64 Mi are tested.
+  Parameterization p;
+  p.uv = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  for (int k = 0; k < 3000; ++k) {
+    p.uv_faces.push_back(Face{0, 1, 2});
+    p.uv_faces.push_back(Face{0, 2, 3});
+  }
+  const TexelUsage usage = measure_texel_usage(p);
+  EXPECT_EQ(usage.covered_fraction, 1.0);
+  EXPECT_EQ(usage.shared_fraction, 1.0);
 }
 
 TEST(AssetIo, ParseMtlReadsOptionsAndNamesWithSpaces) {

@@ -116,7 +116,9 @@ TEST(TexelFit, ReproducesATextureThatIsBilinearOnTheNewLayout) {
   const Parameterization mirrored = layout_of(mesh, [](const Vec3& p) { return Vec2(1 - p.x(), p.y()); });
   const ImageRGBA8 T = random_image(16, 16, 3);
   const ImageRGBA8 old_tex = resample_through(T, 48, 48, [](double u, double v) { return Vec2(1 - u, v); });
-  const TexelFitResult r = fit_texels(mesh, old_layout, old_tex, mirrored, 16, 16);
+  TexelFitOptions exact;
+  exact.anchor = 0;  // the pure least-squares answer
+  const TexelFitResult r = fit_texels(mesh, old_layout, old_tex, mirrored, 16, 16, exact);
   EXPECT_LE(max_abs_diff(r.texture, T), 1);
   EXPECT_LE(r.residual, TexelFitOptions{}.tolerance);
   EXPECT_GT(r.samples, 16 * 16 * 4);
@@ -174,6 +176,33 @@ TEST(TexelFit, BeatsBoxDownsizingOnTheSameLayout) {
   EXPECT_LT(t_fit, 0.9 * t_box) << "fit " << t_fit << ", box " << t_box;
 }
 
+// A texel that only a sliver of the footprints touches (the column just past a chart's edge), where
+// the original ramps up steeply: pure least squares extrapolates it far past the original's range
+// (the speckles seen along real chart borders, which mip-mapping would spread); the default anchor
+// pulls it back towards the original's colours under it.
+TEST(TexelFit, AnchorKeepsSliverTexelsInRange) {
+  const TriMesh mesh = shapes::plane(8);
+  const Parameterization id = layout_of(mesh, [](const Vec3& p) { return Vec2(p.x(), p.y()); });
+  const Parameterization chart = layout_of(mesh, [](const Vec3& p) { return Vec2(0.1 + 0.506 * p.x(), 0.1 + 0.8 * p.y()); });
+  const ImageRGBA8 tex = image_of(64, 64, [](double u, double) {
+    const double s = std::clamp((u - 0.85) / 0.15, 0.0, 1.0);
+    return std::array<double, 4>{40 + 120 * s * s * (3 - 2 * s), 90, 90, 255};
+  });
+  auto brightest = [&](double anchor) {
+    TexelFitOptions o;
+    o.anchor = anchor;
+    const TexelFitResult r = fit_texels(mesh, id, tex, chart, 16, 16, o);
+    int m = 0;
+    for (size_t t = 0; t < r.coverage.size(); ++t)
+      if (r.coverage[t]) m = std::max<int>(m, r.texture.data[t * 4]);
+    return m;
+  };
+  // The original's red never exceeds 160; the overshoot past it at least halves with the anchor.
+  const int free_overshoot = brightest(0.0) - 160, anchored_overshoot = brightest(TexelFitOptions{}.anchor) - 160;
+  EXPECT_GT(free_overshoot, 40);
+  EXPECT_LE(2 * anchored_overshoot, free_overshoot);
+}
+
 // Two squares of areas 1 and 4 whose original charts hold colours a and b share one chart of the
 // new layout, the larger one mirrored: every fitted texel is the area-weighted mean (a + 4b) / 5.
 TEST(TexelFit, SharedChartsGetTheAreaWeightedCompromise) {
@@ -210,6 +239,7 @@ TEST(TexelFit, RepeatAddressingReproducesATiledTexture) {
   const ImageRGBA8 tile = random_image(16, 16, 11);
   TexelFitOptions opt;
   opt.source_address = opt.address = TextureAddress::Repeat;
+  opt.anchor = 0;  // the pure least-squares answer
   const TexelFitResult r = fit_texels(mesh, tiled, tile, id, 32, 32, opt);
   const ImageRGBA8 expect = resample_through(tile, 32, 32, [](double u, double v) { return Vec2(2 * u - 0.5, 2 * v + 1); },
                                              TextureAddress::Repeat);
@@ -227,6 +257,10 @@ TEST(TexelFit, RejectsBadInputAndCancels) {
   nan_layout.uv[2].x() = std::nan("");
   EXPECT_THROW(fit_texels(mesh, id, tex, nan_layout, 4, 4), InvalidInputError);
   EXPECT_THROW(fit_texels(mesh, id, tex, id, 0, 4), InvalidInputError);
+  EXPECT_THROW(fit_texels(mesh, id, tex, id, 8192, 4097), InvalidInputError);
+  TexelFitOptions negative;
+  negative.anchor = -1;
+  EXPECT_THROW(fit_texels(mesh, id, tex, id, 4, 4, negative), InvalidInputError);
   EXPECT_THROW(fit_texels(mesh, id, ImageRGBA8(), id, 4, 4), InvalidInputError);
   TexelFitOptions opt;
   opt.progress = [](std::string_view, double) { return false; };
@@ -240,7 +274,7 @@ TEST(TexelFit, RejectsBadInputAndCancels) {
 TEST(TexelFit, FitterIsReusableAcrossMaps) {
   const TriMesh mesh = shapes::plane(4);
   const Parameterization id = layout_of(mesh, [](const Vec3& p) { return Vec2(p.x(), p.y()); });
-  const Parameterization half = layout_of(mesh, [](const Vec3& p) { return Vec2(0.1 + 0.5 * p.x(), 0.2 + 0.6 * p.y()); });
+  const Parameterization half = layout_of(mesh, [](const Vec3& p) { return Vec2(0.1 + 0.506 * p.x(), 0.2 + 0.6 * p.y()); });
   const ImageRGBA8 a = random_image(32, 32, 1), b = random_image(32, 32, 2);
   const TexelFitter fitter(mesh, id, 32, 32, half, 16, 16);
   EXPECT_EQ(fitter.fit(a).texture.data, fit_texels(mesh, id, a, half, 16, 16).texture.data);

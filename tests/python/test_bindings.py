@@ -131,17 +131,36 @@ def test_reparam_keeps_the_mesh_and_resizes_the_texture(sphere, strokes):
     V, F = sphere
     UV, FT, _ = adaptex.unwrap(V, F, texture_size=128)
     tex = adaptex.paint(V, F, UV, FT, strokes, size=128)
-    r = adaptex.reparam(V, F, UV, FT, tex, size=32, refine=False)
+    r = adaptex.reparam(V, F, UV, FT, tex, size=32, refine=False, mode="density-flow")
     assert np.array_equal(r["V"], V) and np.array_equal(r["F"], F)
     assert r["texture"].shape == (32, 32, 4) and r["UV"].shape[1] == 2
     assert r["UV"].min() >= 0.0 and r["UV"].max() <= 1.0
     assert (signed_areas(r["UV"], r["FT"]) > 0).all()
     assert r["report"]["accepted"] is True
     assert not np.array_equal(r["UV"], UV)
-    refined = adaptex.reparam(V, F, UV, FT, tex)
+    refined = adaptex.reparam(V, F, UV, FT, tex, mode="density-flow")
     assert refined["texture"].shape == tex.shape and len(refined["F"]) >= len(F)
     with pytest.raises(adaptex.InvalidInputError, match="mode"):
         adaptex.reparam(V, F, UV, FT, tex, mode="none")
+
+
+def test_shrink_keeps_the_mesh_and_every_map_and_never_loses_to_downsizing(sphere, strokes):
+    V, F = sphere
+    UV, FT, _ = adaptex.unwrap(V, F, texture_size=128)
+    tex = adaptex.paint(V, F, UV, FT, strokes, size=128)
+    flat = np.full((64, 64, 4), (128, 128, 255, 255), np.uint8)
+    r = adaptex.shrink(V, F, UV, FT, {"base_color": tex, "normal": flat}, size=32)
+    assert np.array_equal(r["V"], V) and np.array_equal(r["F"], F) and np.array_equal(r["FT"], FT)
+    assert set(r["maps"]) == {"base_color", "normal"} and r["maps"]["normal"].shape == (32, 32, 4)
+    assert np.array_equal(r["texture"], r["maps"]["base_color"])
+    assert r["UV"].min() >= 0.0 and r["UV"].max() <= 1.0
+    assert r["report"]["psnr"] >= r["report"]["psnr_downsized"]
+    assert r["report"]["after"]["flipped"] == 0
+    # reparam's default is the same shrink.
+    d = adaptex.reparam(V, F, UV, FT, tex, size=32)
+    assert d["UV"].tobytes() == adaptex.shrink(V, F, UV, FT, tex, size=32)["UV"].tobytes()
+    with pytest.raises(adaptex.InvalidInputError, match="size"):
+        adaptex.shrink(V, F, UV, FT, tex, size=4)
 
 
 def test_stretch_of_an_isometric_and_of_a_mirrored_layout():

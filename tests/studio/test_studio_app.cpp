@@ -309,7 +309,9 @@ TEST(StudioApp, AutosaveIsOfferedAsRecoveryNextTime) {
   // Leaving without saving or discarding keeps the unsaved stroke recoverable.
   ASSERT_TRUE(std::filesystem::exists(dir.path / "recovery.json"));
   Harness g(opt, 256, "");
-  ASSERT_TRUE(g.app->pending_recovery());
+  ASSERT_TRUE(g.app->recovery_offer());
+  EXPECT_EQ(g.app->recovery_offer()->project.mesh_path, "builtin:sphere");
+  EXPECT_EQ(g.app->recovery_offer()->project.strokes.strokes.size(), 1u);
   g.app->accept_recovery();
   ASSERT_TRUE(g.app->wait_idle(120));
   EXPECT_EQ(g.app->history().strokes().size(), 1u);
@@ -333,7 +335,7 @@ TEST(StudioApp, RecoveredStrokesCanBeSavedWhileTheirModelLoads) {
   rec.strokes.strokes = {s};
   write_project(dir.path / "recovery.json", rec);
   Harness h(opt, 256, "");
-  ASSERT_TRUE(h.app->pending_recovery());
+  ASSERT_TRUE(h.app->recovery_offer());
   h.app->accept_recovery();
   ASSERT_FALSE(h.app->has_model());  // loading: the stroke waits for its model
   ASSERT_TRUE(h.app->unsaved());
@@ -1124,6 +1126,257 @@ TEST(StudioApp, SaveAsThenSaveWritesTheProjectFile) {
   h.app->on_key('S', true, Mods{false, true, false});  // Ctrl+S
   EXPECT_FALSE(h.app->unsaved());
   EXPECT_EQ(read_project(path).strokes.strokes.size(), 2u);
+}
+
+// ---- recovery files ----------------------------------------------------------------------------
+
+/// A recovery file as a session that was killed leaves it: \p n strokes on \p mesh, belonging to
+/// \p project, with a texture size and a brush colour of its own.
+Project crashed_session(const std::string& mesh, const std::filesystem::path& project, int n) {
+  Project p;
+  p.mesh_path = mesh;
+  p.project_file = project.string();
+  for (int k = 0; k < n; ++k) {
+    Stroke s;
+    s.color = Vec3(0.1, 0.2 + 0.1 * k, 0.9);
+    s.radius = 0.1;
+    s.dabs = {Vec3(0, 0, 1), Vec3(0.1 * (k + 1), 0, 0.99)};
+    p.strokes.strokes.push_back(s);
+  }
+  p.session.texture_size = 128;
+  p.brush.color = Vec3(0.3, 0.6, 0.1);
+  return p;
+}
+
+std::string slurp(const std::filesystem::path& p) { return read_input_file(p); }
+
+TEST(StudioRecovery, OpeningItsMeshOffersItAndRecoverKeepsProjectPathMeshAndSettings) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path / "rec";
+  std::filesystem::create_directories(opt.recovery_dir);
+  const Project crashed = crashed_session("builtin:sphere", dir.path / "work.adaptex", 2);
+  write_project(opt.recovery_dir / "recovery.json", crashed);
+  Harness h(opt, 256, "builtin:sphere");  // started with the model the strokes belong to
+  const RecoveryOffer* o = h.app->recovery_offer();
+  ASSERT_TRUE(o);
+  EXPECT_EQ(recovery_owner(o->project), (dir.path / "work.adaptex").string());  // the project names it
+  EXPECT_EQ(h.app->current_file(), "builtin:sphere");
+  h.app->on_key('R', true, {});  // Recover
+  EXPECT_FALSE(h.app->recovery_offer());
+  ASSERT_TRUE(h.app->wait_idle(120));
+  ASSERT_EQ(h.app->history().strokes().size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(h.app->history().strokes()[k].dabs, crashed.strokes.strokes[k].dabs);
+    EXPECT_EQ(h.app->history().strokes()[k].color, crashed.strokes.strokes[k].color);
+  }
+  EXPECT_EQ(h.app->project_path(), dir.path / "work.adaptex");  // the project file is kept
+  EXPECT_EQ(h.app->mesh_path(), "builtin:sphere");
+  EXPECT_EQ(h.app->session_options().texture_size, 128);  // and the settings
+  EXPECT_EQ(h.app->texture()->width, 128);
+  EXPECT_EQ(h.app->brush().color, Vec3(0.3, 0.6, 0.1));
+  EXPECT_TRUE(h.app->unsaved());
+  // Save (Ctrl+S) writes the project file the strokes belong to, and the recovery file goes.
+  h.app->on_key('S', true, Mods{false, true, false});
+  EXPECT_EQ(read_project(dir.path / "work.adaptex").strokes.strokes.size(), 2u);
+  EXPECT_FALSE(h.app->unsaved());
+  EXPECT_FALSE(std::filesystem::exists(opt.recovery_dir / "recovery.json"));
+}
+
+TEST(StudioRecovery, AnotherMeshStillOffersItNamingItsFileAndRecoverOpensThatFile) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path;
+  write_project(dir.path / "recovery.json", crashed_session("builtin:sphere", {}, 1));
+  Harness h(opt, 256, "builtin:torus");
+  const RecoveryOffer* o = h.app->recovery_offer();
+  ASSERT_TRUE(o);
+  EXPECT_EQ(recovery_owner(o->project), "builtin:sphere");  // no project: the mesh names it
+  EXPECT_EQ(h.app->current_file(), "builtin:torus");
+  h.app->accept_recovery();  // nothing unsaved on the torus: no question first
+  EXPECT_FALSE(h.app->confirm());
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_EQ(h.app->mesh_path(), "builtin:sphere");
+  EXPECT_EQ(h.app->history().strokes().size(), 1u);
+  EXPECT_TRUE(h.app->project_path().empty());
+  EXPECT_TRUE(h.app->unsaved());
+}
+
+TEST(StudioRecovery, RecoverAfterUnsavedWorkAsksFirstAndDiscardDeletesOnlyWhenAsked) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path;
+  write_project(dir.path / "recovery.json", crashed_session("builtin:torus", {}, 1));
+  Harness h(opt, 256, "builtin:sphere");
+  h.drag(150, 150, 250, 150);  // unsaved work of this session
+  ASSERT_TRUE(h.app->recovery_offer());
+  h.app->accept_recovery();
+  ASSERT_TRUE(h.app->confirm());  // Save / Discard / Cancel for the sphere's stroke first
+  EXPECT_EQ(h.app->confirm()->action, Confirm::Action::Recover);
+  h.app->on_key(keys::Escape, true, {});  // Cancel: nothing recovered, still offered
+  EXPECT_FALSE(h.app->confirm());
+  ASSERT_TRUE(h.app->recovery_offer());
+  EXPECT_EQ(h.app->mesh_path(), "builtin:sphere");
+  h.app->on_key('D', true, {});  // Discard the recovery file
+  EXPECT_FALSE(h.app->recovery_offer());
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "recovery.json"));
+  EXPECT_EQ(h.app->history().strokes().size(), 1u);  // this session's stroke is untouched
+}
+
+TEST(StudioRecovery, LaterKeepsTheFileAndOpeningOrDroppingItsMeshAsksAgain) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path / "rec";
+  opt.autosave_delay = 0;
+  std::filesystem::create_directories(opt.recovery_dir);
+  const auto mesh = dir.path / "ball.obj";
+  write_obj(mesh, shapes::sphere(24, 12), nullptr);
+  write_project(opt.recovery_dir / "recovery.json", crashed_session(mesh.string(), {}, 3));
+  const std::string before = slurp(opt.recovery_dir / "recovery.json");
+  Harness h(opt, 256, "builtin:sphere");
+  ASSERT_TRUE(h.app->recovery_offer());
+  h.app->on_key(keys::Escape, true, {});  // Later
+  EXPECT_FALSE(h.app->recovery_offer());
+  // This session's own work is autosaved beside it, never over it.
+  h.drag(150, 150, 250, 150);
+  run_frames_until_exists(*h.app, opt.recovery_dir / "recovery-2.json");
+  EXPECT_TRUE(std::filesystem::exists(opt.recovery_dir / "recovery-2.json"));
+  EXPECT_EQ(slurp(opt.recovery_dir / "recovery.json"), before);
+  h.app->request_new();
+  ASSERT_TRUE(h.app->confirm());
+  h.app->confirm_discard();
+  EXPECT_FALSE(std::filesystem::exists(opt.recovery_dir / "recovery-2.json"));  // its own file only
+  EXPECT_EQ(slurp(opt.recovery_dir / "recovery.json"), before);
+  // Dropping the mesh the strokes belong to on the window asks again.
+  h.app->on_drop({mesh.string()});
+  ASSERT_TRUE(h.app->recovery_offer());
+  EXPECT_EQ(h.app->recovery_offer()->project.mesh_path, mesh.string());
+  EXPECT_EQ(h.app->current_file(), mesh.string());
+  h.app->accept_recovery();
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_EQ(h.app->history().strokes().size(), 3u);
+  EXPECT_EQ(h.app->mesh_path(), mesh.string());
+}
+
+TEST(StudioRecovery, RecoverNoLeavesTheFileUntouchedAndAutosavesBesideIt) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path;
+  opt.recover = RecoverMode::No;
+  write_project(dir.path / "recovery.json", crashed_session("builtin:sphere", {}, 2));
+  const std::string before = slurp(dir.path / "recovery.json");
+  {
+    Harness h(opt, 256, "builtin:sphere");
+    h.app->recover_at_start();
+    EXPECT_FALSE(h.app->recovery_offer());
+    EXPECT_TRUE(h.app->history().strokes().empty());
+    h.drag(150, 150, 250, 150);
+  }  // ends with an unsaved stroke: kept in its own file
+  EXPECT_EQ(slurp(dir.path / "recovery.json"), before);
+  ASSERT_TRUE(std::filesystem::exists(dir.path / "recovery-2.json"));
+  EXPECT_EQ(read_project(dir.path / "recovery-2.json").strokes.strokes.size(), 1u);
+  // Both are offered next time, the newest first.
+  opt.recover = RecoverMode::Ask;
+  Harness g(opt, 256, "");
+  ASSERT_TRUE(g.app->recovery_offer());
+  EXPECT_EQ(g.app->recovery_offer()->file, dir.path / "recovery-2.json");
+  g.app->defer_recovery();
+  ASSERT_TRUE(g.app->recovery_offer());
+  EXPECT_EQ(g.app->recovery_offer()->file, dir.path / "recovery.json");
+}
+
+TEST(StudioRecovery, RecoverYesTakesTheNewestAtStart) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path;
+  opt.recover = RecoverMode::Yes;
+  write_project(dir.path / "recovery.json", crashed_session("builtin:torus", dir.path / "t.adaptex", 2));
+  Harness h(opt, 256, "");
+  h.app->recover_at_start();
+  EXPECT_FALSE(h.app->recovery_offer());
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_EQ(h.app->mesh_path(), "builtin:torus");
+  EXPECT_EQ(h.app->history().strokes().size(), 2u);
+  EXPECT_EQ(h.app->project_path(), dir.path / "t.adaptex");
+}
+
+TEST(StudioRecovery, ARunningSessionsFileIsNeverOfferedAndTwoSessionsUseTwoFiles) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path;
+  opt.autosave_delay = 0;
+  Harness a(opt);
+  a.drag(150, 150, 250, 150);
+  run_frames_until_exists(*a.app, dir.path / "recovery.json");
+  ASSERT_TRUE(std::filesystem::exists(dir.path / "recovery.json"));
+  Harness b(opt);  // another window while the first one runs
+  EXPECT_FALSE(b.app->recovery_offer());
+  b.drag(150, 150, 250, 150);
+  b.drag(150, 120, 250, 120);
+  run_frames_until_exists(*b.app, dir.path / "recovery-2.json");
+  ASSERT_TRUE(std::filesystem::exists(dir.path / "recovery-2.json"));
+  a.app->begin_frame();
+  EXPECT_EQ(read_project(dir.path / "recovery.json").strokes.strokes.size(), 1u);
+}
+
+TEST(StudioRecovery, AnUnreadableRecoveryFileIsKeptAsideNotOfferedEveryTime) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path;
+  std::ofstream(dir.path / "recovery.json") << "{\"format\": \"adaptex.studio-proj";
+  Harness h(opt, 256, "");
+  EXPECT_FALSE(h.app->recovery_offer());
+  EXPECT_TRUE(std::filesystem::exists(dir.path / "recovery.json.unreadable"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "recovery.json"));
+}
+
+TEST(StudioFiles, SaveAsAndExportSuggestTheMeshStemInTheLastFolderUsed) {
+  TempDir dir;
+  Harness h(AppOptions{}, 256, "");
+  const auto mesh = dir.path / "models" / "ball.obj";
+  std::filesystem::create_directories(mesh.parent_path());
+  write_obj(mesh, shapes::sphere(24, 12), nullptr);
+  h.app->open_mesh(mesh.string());
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_EQ(h.app->suggested_path(FileKind::SaveProject), mesh.parent_path() / "ball.adaptex");
+  EXPECT_EQ(h.app->suggested_path(FileKind::ExportGlb), mesh.parent_path() / "ball.glb");
+  std::filesystem::create_directories(dir.path / "out");
+  h.app->export_glb(dir.path / "out" / "first.glb");
+  EXPECT_EQ(h.app->last_folder(), dir.path / "out");
+  EXPECT_EQ(h.app->suggested_path(FileKind::ExportGlb), dir.path / "out" / "ball.glb");
+  EXPECT_EQ(h.app->suggested_path(FileKind::SaveProject), dir.path / "out" / "ball.adaptex");
+  ASSERT_TRUE(h.app->save_project(dir.path / "p.adaptex"));
+  EXPECT_EQ(h.app->suggested_path(FileKind::SaveProject), dir.path / "p.adaptex");  // the project file
+  // A dropped .adaptex file is a project.
+  h.app->request_new();
+  h.app->on_drop({(dir.path / "p.adaptex").string()});
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_EQ(h.app->mesh_path(), mesh.string());
+  EXPECT_EQ(h.app->project_path(), dir.path / "p.adaptex");
+}
+
+TEST(StudioCamera, WheelZoomsTowardsThePointUnderTheCursor) {
+  Harness h;
+  const double x = 250, y = 120;  // off-centre, on the sphere
+  h.app->on_cursor(x, y);
+  const auto before = h.app->pick(x, y);
+  ASSERT_TRUE(before);
+  const double d0 = h.app->camera().distance;
+  for (int k = 0; k < 3; ++k) h.app->on_scroll(1);
+  EXPECT_LT(h.app->camera().distance, d0 * 0.7);
+  const Vec3 s = h.app->camera().project(before->point);
+  EXPECT_NEAR(s.x(), x, 1e-4);  // the point stays under the cursor
+  EXPECT_NEAR(s.y(), y, 1e-4);
+  const auto after = h.app->pick(x, y);
+  ASSERT_TRUE(after);
+  EXPECT_LT((after->point - before->point).norm(), 1e-6);
+  // Off the model: towards the point at the target's depth, which stays under the cursor too.
+  const Vec3 p = h.app->camera().point_at_target_depth(5, 5);
+  h.app->on_cursor(5, 5);
+  h.app->on_scroll(-2);
+  const Vec3 q = h.app->camera().project(p);
+  EXPECT_NEAR(q.x(), 5, 1e-4);
+  EXPECT_NEAR(q.y(), 5, 1e-4);
 }
 
 }  // namespace

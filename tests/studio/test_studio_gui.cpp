@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <dirent.h>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -148,15 +149,21 @@ int xdo(const Xvfb& x, const std::string& args) {
   return std::system(("DISPLAY=" + x.display() + " xdotool " + args).c_str());
 }
 
-/// Asks the studio's window to close as a window manager's close button does (a WM_DELETE_WINDOW
-/// client message; Xvfb runs no window manager). \return false if no window was found
-bool close_window(const Xvfb& x) {
-  FILE* p = popen(("DISPLAY=" + x.display() + " xdotool search --name 'adaptex studio'").c_str(), "r");
-  if (!p) return false;
+/// The studio's window ids (xdotool search).
+std::vector<unsigned long> studio_windows(const Xvfb& x) {
   std::vector<unsigned long> ids;
+  FILE* p = popen(("DISPLAY=" + x.display() + " xdotool search --name 'adaptex studio'").c_str(), "r");
+  if (!p) return ids;
   char line[64];
   while (std::fgets(line, sizeof line, p)) ids.push_back(std::strtoul(line, nullptr, 10));
   pclose(p);
+  return ids;
+}
+
+/// Asks the studio's window to close as a window manager's close button does (a WM_DELETE_WINDOW
+/// client message; Xvfb runs no window manager). \return false if no window was found
+bool close_window(const Xvfb& x) {
+  const std::vector<unsigned long> ids = studio_windows(x);
   if (ids.empty()) return false;
   Display* d = XOpenDisplay(x.display().c_str());
   if (!d) return false;
@@ -175,6 +182,67 @@ bool close_window(const Xvfb& x) {
   return true;
 }
 
+/// Drops \p file on the studio's window at window pixel (x, y) as a file manager does: the XDND
+/// protocol (XdndEnter / XdndPosition / XdndDrop, then the text/uri-list selection GLFW asks for).
+/// \return false if no window took it within 10 s
+bool drop_file(const Xvfb& x, const fs::path& file, int px, int py) {
+  const std::vector<unsigned long> ids = studio_windows(x);
+  if (ids.empty()) return false;
+  Display* d = XOpenDisplay(x.display().c_str());
+  if (!d) return false;
+  const Window source = XCreateSimpleWindow(d, DefaultRootWindow(d), 0, 0, 1, 1, 0, 0, 0);
+  const Atom selection = XInternAtom(d, "XdndSelection", False), uri_list = XInternAtom(d, "text/uri-list", False);
+  XSetSelectionOwner(d, selection, source, CurrentTime);
+  const auto send = [&](Window target, const char* type, long l1, long l2, long l3, long l4) {
+    XEvent e{};
+    e.xclient.type = ClientMessage;
+    e.xclient.window = target;
+    e.xclient.message_type = XInternAtom(d, type, False);
+    e.xclient.format = 32;
+    e.xclient.data.l[0] = static_cast<long>(source);
+    e.xclient.data.l[1] = l1;
+    e.xclient.data.l[2] = l2;
+    e.xclient.data.l[3] = l3;
+    e.xclient.data.l[4] = l4;
+    XSendEvent(d, target, False, NoEventMask, &e);
+  };
+  const std::string uri = "file://" + file.string() + "\r\n";
+  bool answered = false;
+  for (unsigned long target : ids) {
+    send(target, "XdndEnter", 5L << 24, static_cast<long>(uri_list), 0, 0);
+    send(target, "XdndPosition", 0, (long(px) << 16) | py, CurrentTime,
+         static_cast<long>(XInternAtom(d, "XdndActionCopy", False)));
+    send(target, "XdndDrop", 0, CurrentTime, 0, 0);
+  }
+  XFlush(d);
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!answered && std::chrono::steady_clock::now() - t0 < 10s) {
+    while (XPending(d)) {
+      XEvent e;
+      XNextEvent(d, &e);
+      if (e.type != SelectionRequest) continue;
+      const XSelectionRequestEvent& r = e.xselectionrequest;
+      XChangeProperty(d, r.requestor, r.property, r.target, 8, PropModeReplace,
+                      reinterpret_cast<const unsigned char*>(uri.data()), static_cast<int>(uri.size()));
+      XEvent n{};
+      n.xselection.type = SelectionNotify;
+      n.xselection.requestor = r.requestor;
+      n.xselection.selection = r.selection;
+      n.xselection.target = r.target;
+      n.xselection.property = r.property;
+      n.xselection.time = r.time;
+      XSendEvent(d, r.requestor, False, NoEventMask, &n);
+      XFlush(d);
+      answered = true;
+    }
+    std::this_thread::sleep_for(20ms);
+  }
+  std::this_thread::sleep_for(500ms);  // the source window outlives the transfer (XdndFinished)
+  XDestroyWindow(d, source);
+  XCloseDisplay(d);
+  return answered;
+}
+
 /// Occurrences of \p needle in the file \p log.
 int count_in(const fs::path& log, const std::string& needle) {
   const std::string text = slurp(log);
@@ -188,11 +256,12 @@ bool running(pid_t pid) {
   return waitpid(pid, &st, WNOHANG) == 0;
 }
 
-/// A left-button drag across the sphere in the middle of an 800x600 window (right of the panel).
-std::string paint_drag() {
+/// A left-button drag across the sphere in the middle of an 800x600 window (right of the panel), at
+/// height \p y.
+std::string paint_drag(int y = 200) {
   std::ostringstream cmd;
-  cmd << "mousemove 330 200 sleep 0.3 mousedown 1 sleep 0.2";
-  for (int px = 340; px <= 470; px += 10) cmd << " mousemove " << px << " 200 sleep 0.05";
+  cmd << "mousemove 330 " << y << " sleep 0.3 mousedown 1 sleep 0.2";
+  for (int px = 340; px <= 470; px += 10) cmd << " mousemove " << px << " " << y << " sleep 0.05";
   cmd << " sleep 0.2 mouseup 1 sleep 0.3 mousemove 700 80 sleep 0.5";
   return cmd.str();
 }
@@ -246,6 +315,14 @@ int terminate(pid_t app) {
   const int rc = wait_exit(app, 60s);
   if (rc < 0) kill(app, SIGKILL), wait_exit(app, 5s);
   return rc;
+}
+
+/// The app on builtin:sphere in an 800x600 window without recovery files, writing its history to
+/// \p hist at the end.
+pid_t spawn_sphere(const Xvfb& x, const fs::path& dir, const fs::path& log, const fs::path& hist) {
+  return spawn({ADAPTEX_STUDIO_PATH, "builtin:sphere", "--window", "800x600", "--texture-size", "256", "--config-dir",
+                (dir / "cfg").string(), "--no-recovery", "--history-out", hist.string()},
+               x.env(), log);
 }
 
 /// Each test gets a temporary folder and its own Xvfb server (skipped without Xvfb or xdotool).
@@ -408,10 +485,7 @@ TEST_F(StudioGui, QuittingWithUnsavedStrokesAsksAndCancelKeepsTheAppRunning) {
 
 TEST_F(StudioGui, OpeningAnotherMeshWithUnsavedStrokesAsks) {
   const fs::path log = dir.path / "app.log", hist = dir.path / "h.json";
-  const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "builtin:sphere", "--window", "800x600", "--texture-size", "256",
-                           "--config-dir", (dir.path / "cfg").string(), "--no-recovery", "--history-out",
-                           hist.string()},
-                          x->env(), log);
+  const pid_t app = spawn_sphere(*x, dir.path, log, hist);
   ASSERT_GT(app, 0);
   ASSERT_TRUE(wait_ready(log)) << slurp(log);
   ASSERT_EQ(xdo(*x, paint_drag()), 0);
@@ -582,6 +656,352 @@ TEST_F(StudioGui, FileMenuOpensAMeshThroughTheInAppBrowser) {
   ASSERT_TRUE(wait_for([&] { return slurp(log).find("loaded " + mesh.string()) != std::string::npos; }, 120s))
       << slurp(log);
   ASSERT_EQ(terminate(app), 0) << slurp(log);
+}
+
+// ---- recovery after a crash, however the app starts ------------------------------------------------
+
+/// A key held across frames (Dear ImGui 1.86 and a slow frame lose a press and release in one frame).
+std::string hold(const std::string& key) { return "keydown " + key + " sleep 0.3 keyup " + key; }
+
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in, nullptr, false);
+}
+
+/// The strokes of a project or recovery file (empty when it is missing or unreadable).
+nlohmann::json project_strokes(const fs::path& p) {
+  const auto j = read_json(p);
+  if (!j.is_object() || !j.contains("strokes")) return nlohmann::json::array();
+  return j["strokes"]["strokes"];
+}
+
+/// recovery*.json files in \p dir.
+std::vector<fs::path> recovery_files(const fs::path& dir) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string n = it->path().filename().string();
+    if (n.rfind("recovery", 0) == 0 && it->path().extension() == ".json") out.push_back(it->path());
+  }
+  return out;
+}
+
+/// The dabs of each stroke of a stroke array (what a history, a project and a recovery file share).
+std::vector<nlohmann::json> dabs_of(const nlohmann::json& strokes) {
+  std::vector<nlohmann::json> out;
+  for (const auto& s : strokes) out.push_back(s["dabs"]);
+  return out;
+}
+
+/// A project file with no strokes on builtin:sphere, as Save As writes one.
+void write_empty_project(const fs::path& p) {
+  std::ofstream(p) << R"({"format":"adaptex.studio-project","version":1,"mesh":"builtin:sphere",)"
+                   << R"("strokes":{"format":"adaptex.strokes","version":1,"strokes":[]}})";
+}
+
+/// True if the studio's adaptation worker thread (named adaptex-adapt) is running or runnable now.
+bool adapt_worker_running(pid_t pid) {
+  const fs::path tasks = "/proc/" + std::to_string(pid) + "/task";
+  std::error_code ec;
+  for (fs::directory_iterator it(tasks, ec), end; !ec && it != end; it.increment(ec)) {
+    if (slurp(it->path() / "comm").rfind("adaptex-adapt", 0) != 0) continue;
+    const std::string stat = slurp(it->path() / "stat");
+    const size_t close = stat.rfind(')');
+    if (close != std::string::npos && close + 2 < stat.size() && stat[close + 2] == 'R') return true;
+  }
+  return false;
+}
+
+enum class Start { Bare, Model, Project, Scripted };  // Bare: no argument (Xlib defines None)
+
+std::string start_name(const ::testing::TestParamInfo<Start>& info) {
+  switch (info.param) {
+    case Start::Bare: return "NoArgument";
+    case Start::Model: return "WithTheModel";
+    case Start::Project: return "WithTheProject";
+    case Start::Scripted: return "ScriptedReplay";
+  }
+  return "?";
+}
+
+class StudioRecoveryGui : public StudioGui, public ::testing::WithParamInterface<Start> {};
+class StudioModalGui : public StudioRecoveryGui {};
+
+/// Files with extension \p ext in \p dir.
+int count_files(const fs::path& dir, const std::string& ext) {
+  int n = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) n += it->path().extension() == ext;
+  return n;
+}
+
+// Session 1 opens a project, paints a stroke and is killed (SIGKILL) once the stroke is autosaved.
+// Session 2 starts with the model, the project or nothing, answers the prompt with R (Recover) and
+// Ctrl+S: the project file then holds exactly the autosaved strokes (the project path was kept).
+TEST_P(StudioRecoveryGui, Kill9ThenRecoverGivesTheStrokesBackAndKeepsTheProjectPath) {
+  const fs::path project = dir.path / "work.adaptex", rec = dir.path / "rec", cfg = dir.path / "cfg",
+                 log1 = dir.path / "app1.log", log2 = dir.path / "app2.log", hist = dir.path / "h.json";
+  write_empty_project(project);
+  const std::vector<std::string> common = {"--window", "800x600", "--texture-size", "256", "--config-dir",
+                                           cfg.string(), "--recovery-dir", rec.string()};
+  std::vector<std::string> args = {ADAPTEX_STUDIO_PATH, project.string()};
+  args.insert(args.end(), common.begin(), common.end());
+  const pid_t first = spawn(args, x->env(), log1);
+  ASSERT_GT(first, 0);
+  ASSERT_TRUE(wait_ready(log1)) << slurp(log1);
+  ASSERT_EQ(xdo(*x, paint_drag()), 0);
+  ASSERT_TRUE(wait_for([&] { return project_strokes(rec / "recovery.json").size() == 1; }, 60s)) << slurp(log1);
+  kill(first, SIGKILL);
+  wait_exit(first, 10s);
+  const nlohmann::json autosaved = read_json(rec / "recovery.json");
+  ASSERT_EQ(autosaved["project"], project.string());  // the recovery file names its project and mesh
+  ASSERT_EQ(autosaved["mesh"], "builtin:sphere");
+
+  args = {ADAPTEX_STUDIO_PATH};
+  if (GetParam() == Start::Model) args.push_back("builtin:sphere");
+  if (GetParam() == Start::Project) args.push_back(project.string());
+  args.insert(args.end(), common.begin(), common.end());
+  args.insert(args.end(), {"--history-out", hist.string()});
+  const pid_t again = spawn(args, x->env(), log2);
+  ASSERT_GT(again, 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log2, "dialog: Recover unsaved strokes?") == 1; }, 120s))
+      << slurp(log2);
+  ASSERT_TRUE(wait_ready(log2)) << slurp(log2);  // the model given on the command line is loaded
+  const int loaded = count_in(log2, "loaded builtin:sphere");
+  ASSERT_EQ(xdo(*x, hold("r")), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log2, "recovered 1 stroke on " + project.string()) == 1; }, 30s))
+      << slurp(log2);
+  ASSERT_TRUE(wait_for([&] { return count_in(log2, "loaded builtin:sphere") > loaded; }, 120s)) << slurp(log2);
+  ASSERT_EQ(xdo(*x, "mousemove 600 300 sleep 0.2 " + hold("ctrl+s")), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log2, "saved project " + project.string()) == 1; }, 30s))
+      << slurp(log2);
+  ASSERT_EQ(terminate(again), 0) << slurp(log2);
+  EXPECT_EQ(project_strokes(project), autosaved["strokes"]["strokes"]);  // identical strokes, in the project
+  EXPECT_EQ(dabs_of(read_json(hist)["strokes"]), dabs_of(autosaved["strokes"]["strokes"]));
+  EXPECT_TRUE(recovery_files(rec).empty());  // saved: no recovery file is left
+  EXPECT_EQ(slurp(log2).find("Assertion"), std::string::npos);
+}
+
+INSTANTIATE_TEST_SUITE_P(AnyStart, StudioRecoveryGui, ::testing::Values(Start::Bare, Start::Model, Start::Project),
+                         start_name);
+
+TEST_F(StudioGui, Kill9WhileTheAdaptationWorkerRunsIsRecoveredWithTheSameStrokes) {
+  const fs::path rec = dir.path / "rec", cfg = dir.path / "cfg", log1 = dir.path / "app1.log",
+                 log2 = dir.path / "app2.log", hist = dir.path / "h.json";
+  const std::vector<std::string> common = {ADAPTEX_STUDIO_PATH, "builtin:sphere", "--window", "800x600",
+                                           "--texture-size", "1024", "--config-dir", cfg.string(),
+                                           "--recovery-dir", rec.string()};
+  const pid_t first = spawn(common, x->env(), log1);
+  ASSERT_GT(first, 0);
+  ASSERT_TRUE(wait_ready(log1)) << slurp(log1);
+  // Strokes until one is autosaved while the adaptation worker (density-flow, the default) runs.
+  bool caught = false;
+  size_t strokes = 0;
+  for (int k = 0; k < 6 && !caught; ++k) {
+    ASSERT_EQ(xdo(*x, paint_drag(170 + 25 * k)), 0);
+    ++strokes;
+    const auto t0 = std::chrono::steady_clock::now();
+    while (!caught && std::chrono::steady_clock::now() - t0 < 5s) {
+      caught = project_strokes(rec / "recovery.json").size() == strokes && adapt_worker_running(first);
+      if (caught) kill(first, SIGKILL);
+      std::this_thread::sleep_for(10ms);
+    }
+  }
+  if (!caught) kill(first, SIGKILL);
+  wait_exit(first, 10s);
+  ASSERT_TRUE(caught) << "the adaptation worker was never seen running after an autosave\n" << slurp(log1);
+  const nlohmann::json autosaved = read_json(rec / "recovery.json");
+  ASSERT_EQ(autosaved["strokes"]["strokes"].size(), strokes);
+
+  std::vector<std::string> args = common;
+  args.insert(args.end(), {"--history-out", hist.string()});
+  const pid_t again = spawn(args, x->env(), log2);
+  ASSERT_GT(again, 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log2, "dialog: Recover unsaved strokes?") == 1; }, 120s))
+      << slurp(log2);
+  ASSERT_TRUE(wait_ready(log2)) << slurp(log2);
+  ASSERT_EQ(xdo(*x, hold("r")), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log2, "loaded builtin:sphere") == 2; }, 120s)) << slurp(log2);
+  ASSERT_EQ(terminate(again), 0) << slurp(log2);
+  EXPECT_EQ(dabs_of(read_json(hist)["strokes"]), dabs_of(autosaved["strokes"]["strokes"]));
+  // Recovered, not saved: the scripted end keeps them in a recovery file (the same one).
+  EXPECT_EQ(project_strokes(rec / "recovery.json"), autosaved["strokes"]["strokes"]);
+}
+
+TEST_F(StudioGui, TwoScriptedReplaysWithTheSameRecoveryFolderBothExport) {
+  const fs::path strokes = dir.path / "s.json", rec = dir.path / "rec";
+  std::ofstream(strokes) << R"({"format":"adaptex.strokes","version":1,"strokes":[{"color":[0.1,0.3,0.9],
+    "radius":0.2,"hardness":0.5,"dabs":[[0,0,1],[0.3,0.2,0.93]]}]})";
+  std::string first_recovery;
+  for (int run = 0; run < 2; ++run) {
+    const fs::path out = dir.path / ("out" + std::to_string(run)), log = dir.path / ("run" + std::to_string(run) + ".log");
+    const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "builtin:sphere", "--replay", strokes.string(), "--export-obj",
+                             out.string(), "--recovery-dir", rec.string(), "--config-dir", (dir.path / "cfg").string(),
+                             "--window", "640x480", "--texture-size", "256", "--exit-after-frames", "30"},
+                            x->env(), log);
+    ASSERT_GT(app, 0);
+    ASSERT_EQ(wait_exit(app, 180s), 0) << slurp(log);
+    EXPECT_EQ(count_files(out, ".obj"), 1) << slurp(log);
+    EXPECT_EQ(count_files(out, ".png"), 1) << slurp(log);
+    EXPECT_EQ(slurp(log).find("dialog:"), std::string::npos) << slurp(log);  // never asked
+    if (run == 0) {
+      ASSERT_TRUE(fs::exists(rec / "recovery.json"));  // its replayed strokes, never saved
+      first_recovery = slurp(rec / "recovery.json");
+    } else {
+      // --recover no (the scripted default): the first run's file is left as it was, and says so.
+      EXPECT_NE(slurp(log).find("recovery file " + (rec / "recovery.json").string() + " left untouched (--recover no)"),
+                std::string::npos)
+          << slurp(log);
+      EXPECT_EQ(slurp(rec / "recovery.json"), first_recovery);
+    }
+  }
+}
+
+// Every modal of the app, in every start mode, each opened while other windows appear: the recovery
+// prompt on the first frame (with the loading window), the in-app file browser, an error, the unsaved
+// strokes question. Dear ImGui 1.86 aborted with `blocking_modal != NULL` on the first of these.
+TEST_P(StudioModalGui, EveryModalOpensAndClosesWithoutAborting) {
+  const fs::path project = dir.path / "work.adaptex", rec = dir.path / "rec", log = dir.path / "app.log",
+                 mesh = dir.path / "ring.obj", strokes = dir.path / "s.json";
+  write_empty_project(project);
+  adaptex::write_obj(mesh, adaptex::shapes::torus(24, 12, 1.0, 0.3), nullptr);
+  std::ofstream(strokes) << R"({"format":"adaptex.strokes","version":1,"strokes":[{"color":[0.1,0.3,0.9],
+    "radius":0.2,"hardness":0.5,"dabs":[[0,0,1],[0.3,0.2,0.93]]}]})";
+  fs::create_directories(rec);
+  std::ofstream(rec / "recovery.json") << R"({"format":"adaptex.studio-project","version":1,"mesh":"builtin:torus",)"
+                                       << R"("strokes":{"format":"adaptex.strokes","version":1,"strokes":[{)"
+                                       << R"("color":[0.9,0.3,0.1],"radius":0.2,"dabs":[[0,0,1]]}]}})";
+  const std::string orphan = slurp(rec / "recovery.json");
+  std::vector<std::string> args = {ADAPTEX_STUDIO_PATH};
+  if (GetParam() == Start::Model || GetParam() == Start::Scripted) args.push_back("builtin:sphere");
+  if (GetParam() == Start::Project) args.push_back(project.string());
+  if (GetParam() == Start::Scripted) args.insert(args.end(), {"--replay", strokes.string()});
+  args.insert(args.end(), {"--window", "800x600", "--texture-size", "256", "--config-dir", (dir.path / "cfg").string(),
+                           "--recovery-dir", rec.string(), "--recover", "ask"});
+  std::vector<std::string> env = x->env();
+  env.push_back("ADAPTEX_STUDIO_DIALOG=builtin");
+  const pid_t app = spawn(args, env, log);
+  ASSERT_GT(app, 0);
+  const auto shown = [&](const std::string& title, int n) {
+    return wait_for([&] { return count_in(log, "dialog: " + title) >= n; }, 60s);
+  };
+  // 1. The recovery prompt; Esc (Later) keeps the file.
+  ASSERT_TRUE(shown("Recover unsaved strokes?", 1)) << slurp(log);
+  ASSERT_TRUE(wait_ready(log)) << slurp(log);
+  ASSERT_EQ(xdo(*x, "mousemove 600 300 sleep 0.2 " + hold("Escape")), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, "for later") == 1; }, 30s)) << slurp(log);
+  // 2. Without a model: the in-app browser opens one.
+  int browsed = 0;
+  if (GetParam() == Start::Bare) {
+    ASSERT_EQ(xdo(*x, "sleep 0.5 " + hold("ctrl+o")), 0);
+    ASSERT_TRUE(shown("Choose a file", ++browsed)) << slurp(log);
+    ASSERT_TRUE(wait_for([&] { return count_in(log, "file browser: Open mesh") == browsed; }, 30s));
+    ASSERT_EQ(xdo(*x, "type --delay 40 '" + mesh.string() + "'"), 0);
+    ASSERT_EQ(xdo(*x, "sleep 0.3 " + hold("Return")), 0);
+    ASSERT_TRUE(wait_for([&] { return count_in(log, "loaded " + mesh.string()) == 1; }, 120s)) << slurp(log);
+  }
+  // 3. Unsaved strokes: Ctrl+Q asks, Esc cancels.
+  ASSERT_EQ(xdo(*x, "sleep 0.5 " + paint_drag()), 0);
+  ASSERT_EQ(xdo(*x, hold("ctrl+q")), 0);
+  ASSERT_TRUE(shown("Unsaved strokes", 1)) << slurp(log);
+  ASSERT_EQ(xdo(*x, hold("Escape")), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, kCancelled) == 1; }, 30s)) << slurp(log);
+  // 4. The browser again, a mesh that does not exist: Save / Discard / Cancel first (D), then an error.
+  ASSERT_EQ(xdo(*x, "sleep 0.5 " + hold("ctrl+o")), 0);
+  ASSERT_TRUE(shown("Choose a file", ++browsed)) << slurp(log);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, "file browser: Open mesh") == browsed; }, 30s));
+  ASSERT_EQ(xdo(*x, "type --delay 40 '" + (dir.path / "missing.obj").string() + "'"), 0);
+  ASSERT_EQ(xdo(*x, "sleep 0.3 " + hold("Return")), 0);
+  ASSERT_TRUE(shown("Unsaved strokes", 2)) << slurp(log);
+  ASSERT_EQ(xdo(*x, hold("d")), 0);
+  ASSERT_TRUE(shown("Error", 1)) << slurp(log);
+  ASSERT_EQ(xdo(*x, "sleep 0.3 " + hold("Return")), 0);  // Enter (or Esc) closes it
+  std::this_thread::sleep_for(1s);
+  ASSERT_TRUE(running(app)) << slurp(log);
+  ASSERT_EQ(terminate(app), 0) << slurp(log);
+  EXPECT_EQ(slurp(log).find("Assertion"), std::string::npos) << slurp(log);
+  EXPECT_EQ(slurp(rec / "recovery.json"), orphan);  // Later: untouched
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryStart, StudioModalGui,
+                         ::testing::Values(Start::Bare, Start::Model, Start::Project, Start::Scripted), start_name);
+
+// Started with no argument, the prompt is answered Later (Esc); dropping the mesh the strokes belong to
+// on the window asks again, and Recover (R) gives them back on it.
+TEST_F(StudioGui, DroppingTheMeshOfALaterRecoveryOnTheWindowOffersItAgain) {
+  const fs::path rec = dir.path / "rec", log = dir.path / "app.log", hist = dir.path / "h.json",
+                 mesh = dir.path / "ball.obj";
+  adaptex::write_obj(mesh, adaptex::shapes::sphere(32, 16), nullptr);
+  fs::create_directories(rec);
+  std::ofstream(rec / "recovery.json") << R"({"format":"adaptex.studio-project","version":1,"mesh":")" << mesh.string()
+                                       << R"(","strokes":{"format":"adaptex.strokes","version":1,"strokes":[{)"
+                                       << R"("color":[0.9,0.3,0.1],"radius":0.2,"dabs":[[0,0,1],[0.2,0,0.98]]}]}})";
+  const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "--window", "800x600", "--texture-size", "256", "--config-dir",
+                           (dir.path / "cfg").string(), "--recovery-dir", rec.string(), "--history-out", hist.string()},
+                          x->env(), log);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, "dialog: Recover unsaved strokes?") == 1; }, 60s)) << slurp(log);
+  ASSERT_EQ(xdo(*x, "mousemove 600 300 sleep 0.2 " + hold("Escape")), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, "for later") == 1; }, 30s)) << slurp(log);
+  // Dropped again if nothing came of it (seen once in 8 runs under load: GLFW asked for the selection
+  // and the drop callback never came), as a user would.
+  bool offered = false;
+  int drops = 0;
+  for (; drops < 3 && !offered; ++drops) {
+    ASSERT_TRUE(drop_file(*x, mesh, 500, 300)) << slurp(log);
+    offered = wait_for([&] { return count_in(log, "dialog: Recover unsaved strokes?") == 2; }, 20s);
+  }
+  ASSERT_TRUE(offered) << drops << " drops\n" << slurp(log);
+  ASSERT_EQ(xdo(*x, hold("r")), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, "recovered 1 stroke on " + mesh.string()) == 1; }, 30s))
+      << slurp(log);
+  // Loaded after the recovery (the drop's own load may have been replaced by it).
+  ASSERT_TRUE(wait_for(
+      [&] {
+        const std::string text = slurp(log);
+        const size_t loaded = text.rfind("loaded " + mesh.string());
+        return loaded != std::string::npos && loaded > text.find("recovered 1 stroke");
+      },
+      120s))
+      << slurp(log);
+  ASSERT_EQ(terminate(app), 0) << slurp(log);
+  const auto h = read_json(hist)["strokes"];
+  ASSERT_EQ(h.size(), 1u);
+  EXPECT_EQ(h[0]["dabs"], nlohmann::json::parse("[[0,0,1],[0.2,0,0.98]]"));
+}
+
+TEST_F(StudioGui, EscapeClosesAnOpenMenu) {
+  const fs::path log = dir.path / "app.log", hist = dir.path / "h.json";
+  const pid_t app = spawn_sphere(*x, dir.path, log, hist);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_ready(log)) << slurp(log);
+  // File menu, then Esc; a drag on the view then paints (with the menu open, the press would only close it).
+  ASSERT_EQ(xdo(*x, "mousemove 18 9 sleep 0.2 mousedown 1 sleep 0.2 mouseup 1 sleep 0.5 mousemove 600 300 sleep 0.3 " +
+                        hold("Escape") + " sleep 0.3"),
+            0);
+  ASSERT_EQ(xdo(*x, paint_drag(300)), 0);
+  ASSERT_EQ(terminate(app), 0) << slurp(log);
+  EXPECT_EQ(read_json(hist)["strokes"].size(), 1u);
+}
+
+TEST_F(StudioGui, TheViewKeepsDrawingWhileTheDesktopFileDialogIsOpen) {
+  const fs::path log = dir.path / "app.log", shot = dir.path / "shot.png";
+  const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "builtin:sphere", "--window", "800x600", "--texture-size", "256",
+                           "--config-dir", (dir.path / "cfg").string(), "--no-recovery", "--screenshot",
+                           shot.string()},
+                          x->env(), log);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_ready(log)) << slurp(log);
+  ASSERT_EQ(xdo(*x, "mousemove 600 300 sleep 0.2 " + hold("ctrl+o")), 0);
+  if (!wait_for([&] { return count_in(log, "dialog: File dialog") == 1; }, 30s)) {
+    terminate(app);
+    GTEST_SKIP() << "no desktop file dialog (built without GTK 3?)\n" << slurp(log);
+  }
+  std::this_thread::sleep_for(1s);
+  // SIGTERM is handled by the frame loop: it ends the app only if frames are still drawn.
+  ASSERT_EQ(terminate(app), 0) << slurp(log);
+  const adaptex::ImageRGBA8 s = adaptex::read_image(shot);
+  EXPECT_EQ(s.width, 800);
 }
 
 }  // namespace

@@ -73,6 +73,11 @@ struct UvReport {
   int faces_outside_unit = 0;   ///< Faces with a UV corner outside [0,1]^2 as read (before wrapping).
   int wrapped_charts = 0;       ///< Charts lying in one integer tile other than [0,1]^2, moved into it.
   int clamped_uvs = 0;          ///< UV coordinates within AssetReadOptions::uv_tolerance outside their tile, clamped.
+  /// Charts crossing a UV tile border, left where they are (AssetReadOptions::keep_straddling_charts).
+  int straddling_charts = 0;
+  /// Faces without texture coordinates (a glTF primitive without TEXCOORD_0 whose material has no
+  /// map): every corner gets UV (0, 0), so they are degenerate too.
+  int untextured_faces = 0;
   /// Fraction of the texels of a kTexelUsageResolution² grid over [0,1]^2 whose centre lies in a UV
   /// triangle (after wrapping): how much of the square the atlas uses.
   double covered_fraction = 0;
@@ -86,7 +91,8 @@ inline constexpr int kTexelUsageResolution = 1024;
 
 /// Covered and shared texels of an atlas on a \p size x \p size grid over [0,1]^2 (texel centres;
 /// edges shared by two triangles count once, by the top-left rule; degenerate triangles cover nothing;
-/// parts outside [0,1]^2 are not counted).
+/// parts outside [0,1]^2 are not counted). When the triangles' bounding boxes would make it test more
+/// than 64 Mi texel centres (hostile input) the grid is made coarser so that it does not.
 struct TexelUsage {
   double covered_fraction = 0;  ///< Covered texels / size².
   double shared_fraction = 0;   ///< Texels in two or more triangles / covered texels (0 when none is covered).
@@ -101,13 +107,18 @@ struct AssetReadOptions {
   /// How far (in UV units) a chart may cross the border of its integer tile and still count as inside
   /// it; such coordinates are clamped to the border (and counted). Default 0.001: one texel at 1024².
   double uv_tolerance = 1e-3;
+  /// Leave charts that cross a UV tile border where they are, with UVs outside [0,1]^2 (counted in
+  /// UvReport::straddling_charts, with a warning), instead of rejecting the asset: for callers that
+  /// sample the maps with repeat wrapping. Default false (an InvalidInputError names the chart).
+  bool keep_straddling_charts = false;
 };
 
 /// A mesh with its artist's UV atlas and materials.
 struct TexturedAsset {
   TriMesh mesh;
   /// The atlas: charts are the connected components of the UV faces; every UV lies in [0,1]^2 after
-  /// wrapping (see UvReport::wrapped_charts). Wedges are ordered as read_textured_obj() orders them.
+  /// wrapping (see UvReport::wrapped_charts), except in charts kept by keep_straddling_charts. Wedges
+  /// are ordered as read_textured_obj() orders them.
   Parameterization param;
   std::vector<int> face_material;   ///< F: index into materials, or -1 (no material).
   std::vector<Material> materials;  ///< In the order the file defines them.

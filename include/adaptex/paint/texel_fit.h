@@ -23,17 +23,24 @@
 
 namespace adaptex {
 
+/// Largest output the fit accepts (width x height): it keeps about 300 bytes per covered texel.
+inline constexpr long long kMaxFitTexels = 4096LL * 4096;
+
 /// Settings of fit_texels() / TexelFitter, by stage.
 struct TexelFitOptions {
   // Quadrature (surface samples per face: a regular subdivision into m² triangles, one at each centroid).
   double samples_per_texel = 16;        ///< Minimum samples per texel of the NEW texture a face covers (default 16).
   double samples_per_source_texel = 1;  ///< Minimum samples per texel of the ORIGINAL texture a face covers (default 1).
-  long long max_samples = 16'000'000;   ///< Cap on all samples (28 bytes each); the densities shrink to fit (default 16M).
+  long long max_samples = 16'000'000;   ///< Cap on all samples (32 bytes each); the densities shrink to fit (default 16M).
   // Addressing of the two lookups.
   TextureAddress source_address = TextureAddress::ClampToEdge;  ///< Lookup of the original (default clamp).
   TextureAddress address = TextureAddress::ClampToEdge;         ///< Lookup of the fitted texture (default clamp).
   // Solve.
   double smoothness = 1e-5;   ///< Laplacian weight between 4-neighbour texels, relative to the mean data weight (default 1e-5).
+  /// Pull of every texel towards the footprint-weighted mean of the original under it, relative to the
+  /// mean data weight (default 1e-2): negligible where samples determine a texel, decisive on texels
+  /// that only a sliver of a footprint touches (chart borders), which would otherwise take extreme values.
+  double anchor = 1e-2;
   int max_iterations = 200;   ///< Conjugate-gradient iterations at most (default 200).
   /// Stop when every channel's RMS Jacobi-scaled residual (about the texel change still to come, in
   /// 8-bit units) is below this (default 0.01).
@@ -64,9 +71,10 @@ class TexelFitter {
   /// \param source_param layout of the original texture; \p source_width x \p source_height its size
   ///        (sets the sample density; fit() accepts any size)
   /// \param param the new layout, fitted at \p width x \p height
-  /// \pre both layouts have mesh.faces.size() faces; sizes in [1, kMaxTextureSize]
+  /// \pre both layouts have mesh.faces.size() faces; sizes in [1, kMaxTextureSize], width x height
+  ///      <= kMaxFitTexels
   /// \throw InvalidInputError a layout does not match the mesh, a size is out of range, a UV is not
-  ///        finite; CancelledError options.progress returned false
+  ///        finite, an option is negative; CancelledError options.progress returned false
   TexelFitter(const TriMesh& mesh, const Parameterization& source_param, int source_width, int source_height,
               const Parameterization& param, int width, int height, const TexelFitOptions& options = {});
   ~TexelFitter();

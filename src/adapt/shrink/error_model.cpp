@@ -1,0 +1,187 @@
+/// \file error_model.cpp
+/// The error model of the shrink: per island, how much error a box-downsized copy of every map leaves
+/// at each texel spacing (measured on surface samples, so each island counts by its surface area),
+/// and the island scales that minimise the total error for the texel budget (equal marginal gain).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/paint/asset_eval.h"
+#include "adaptex/paint/eval.h"
+#include "shrink_internal.h"
+
+namespace adaptex {
+
+namespace shrink_detail {
+
+namespace {
+
+constexpr int kLevels = 15;  // spacings 1/1024 · 2^(l/2): 1/1024 ... 1/8
+
+double level_spacing(int l) { return std::pow(2.0, 0.5 * l) / 1024.0; }
+
+/// Squared error of \p rec against \p ref for a map of \p kind, in units of colour MSE (mean over RGB):
+/// a normal map by the Lambert shading change it causes under a light uniform over the sphere
+/// (E[(Δn·l)²] = |Δn|²/3, times the albedo's mean square).
+double kind_error(MapKind kind, const Vec3& ref, const Vec3& rec, double albedo_sq) {
+  const double d = (ref - rec).squaredNorm();
+  switch (kind) {
+    case MapKind::Color: return d / 3.0;
+    case MapKind::Normal: return albedo_sq * 4.0 * d / 3.0;
+    case MapKind::Data: return 0.25 * d / 3.0;
+  }
+  return d / 3.0;
+}
+
+}  // namespace
+
+ErrorCurves island_error_curves(const TriMesh& mesh, const Parameterization& layout,
+                                const std::vector<int>& face_island, int num_islands,
+                                const std::vector<ShrinkMap>& maps, long long samples, std::uint64_t seed) {
+  ErrorCurves curves;
+  for (int l = 0; l < kLevels; ++l) curves.spacing.push_back(level_spacing(l));
+  curves.error.assign(num_islands, std::vector<double>(kLevels, 0.0));
+  curves.weight.assign(num_islands, 0.0);
+  const std::vector<SurfacePoint> pts = sample_surface(mesh, samples, seed);
+  const size_t K = pts.size();
+  std::vector<Vec2> uv(K);
+  for (size_t k = 0; k < K; ++k) {
+    const Face& t = layout.uv_faces[pts[k].face];
+    uv[k] = pts[k].b0 * layout.uv[t[0]] + pts[k].b1 * layout.uv[t[1]] + (1 - pts[k].b0 - pts[k].b1) * layout.uv[t[2]];
+  }
+  // Albedo's mean square at each sample (for normal maps): the first colour map, else mid grey.
+  std::vector<double> albedo_sq(K, 0.25);
+  for (const ShrinkMap& m : maps)
+    if (m.kind == MapKind::Color) {
+      for (size_t k = 0; k < K; ++k) albedo_sq[k] = sample_bilinear(m.image, uv[k].x(), uv[k].y()).squaredNorm() / 3.0;
+      break;
+    }
+  std::vector<double> err(K * kLevels, 0.0);
+  for (const ShrinkMap& m : maps) {
+    std::vector<ImageRGBA8> level(kLevels);
+    for (int l = 0; l < kLevels; ++l) {
+      const int S = static_cast<int>(std::lround(1.0 / level_spacing(l)));
+      const int w = std::min(m.image.width, S), h = std::min(m.image.height, S);
+      if (w == m.image.width && h == m.image.height) continue;  // no coarser than the map: error ~0
+      const ImageRGBA8& src = l >= 2 && !level[l - 2].empty() ? level[l - 2] : m.image;
+      level[l] = box_downsize(src, w, h);
+    }
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, K, 2048), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t k = r.begin(); k < r.end(); ++k) {
+        const Vec3 ref = sample_bilinear(m.image, uv[k].x(), uv[k].y());
+        for (int l = 0; l < kLevels; ++l)
+          if (!level[l].empty())
+            err[k * kLevels + l] +=
+                kind_error(m.kind, ref, sample_bilinear(level[l], uv[k].x(), uv[k].y()), albedo_sq[k]);
+      }
+    });
+  }
+  std::vector<long> count(num_islands, 0);
+  for (size_t k = 0; k < K; ++k) {
+    const int i = face_island[pts[k].face];
+    ++count[i];
+    for (int l = 0; l < kLevels; ++l) curves.error[i][l] += err[k * kLevels + l];
+  }
+  for (int i = 0; i < num_islands; ++i) {
+    curves.weight[i] = K ? static_cast<double>(count[i]) / static_cast<double>(K) : 0.0;
+    for (int l = 0; l < kLevels; ++l) curves.error[i][l] /= std::max(1L, count[i]);
+    // A coarser copy never reconstructs better in the model (measurement noise aside).
+    for (int l = 1; l < kLevels; ++l) curves.error[i][l] = std::max(curves.error[i][l], curves.error[i][l - 1]);
+  }
+  return curves;
+}
+
+double island_error(const ErrorCurves& curves, int i, double h) {
+  const std::vector<double>& e = curves.error[i];
+  const std::vector<double>& s = curves.spacing;
+  if (h <= s.front()) return e.front() * h / s.front();
+  if (h >= s.back()) return e.back();
+  const double t = std::log2(h / s.front()) * 2.0;
+  const int l = std::min(static_cast<int>(t), kLevels - 2);
+  const double f = t - l;
+  constexpr double kTiny = 1e-12;
+  return std::exp((1 - f) * std::log(e[l] + kTiny) + f * std::log(e[l + 1] + kTiny)) - kTiny;
+}
+
+std::vector<double> allocate_island_scales(const ErrorCurves& curves, const std::vector<double>& area,
+                                           double budget, int size, double max_ratio) {
+  const int I = static_cast<int>(area.size());
+  double total_area = 0;
+  for (double a : area) total_area += a;
+  const double s_uniform = total_area > 0 ? std::sqrt(budget / total_area) : 1.0;
+  if (!(total_area > 0) || I == 0) return std::vector<double>(I, s_uniform);
+  constexpr int kStepsPerOctave = 8;
+  const int T = std::max(0, static_cast<int>(std::lround(kStepsPerOctave * std::log2(std::max(1.0, max_ratio)))));
+  auto scale = [&](int t) { return s_uniform * std::pow(2.0, static_cast<double>(t) / kStepsPerOctave); };
+  auto cost = [&](int i, int t) { return area[i] * scale(t) * scale(t); };
+  auto err = [&](int i, int t) { return curves.weight[i] * island_error(curves, i, 1.0 / (size * scale(t))); };
+  // Per island, the lower convex hull of (cost, error) over the levels: greedy steps along the hulls
+  // give every unit of area where it removes the most error, even across flat stretches of e_i.
+  std::vector<std::vector<int>> hull(I);
+  for (int i = 0; i < I; ++i) {
+    if (!(area[i] > 0)) {
+      hull[i] = {T};
+      continue;
+    }
+    std::vector<int>& h = hull[i];
+    for (int t = -T; t <= T; ++t) {
+      // Pop while the last point lies on or above the segment from its predecessor to t.
+      while (h.size() >= 2) {
+        const int a = h[h.size() - 2], b = h.back();
+        const double cross = (cost(i, b) - cost(i, a)) * (err(i, t) - err(i, a)) -
+                             (err(i, b) - err(i, a)) * (cost(i, t) - cost(i, a));
+        if (cross <= 0) h.pop_back();  // b is not below the chord a -> t
+        else break;
+      }
+      h.push_back(t);
+    }
+    // Keep the decreasing part (more area never costs error in the model).
+    size_t m = 1;
+    while (m < h.size() && err(i, h[m]) < err(i, h[m - 1])) ++m;
+    h.resize(m);
+  }
+  std::vector<size_t> pos(I, 0);
+  std::vector<int> partial(I, -T);
+  double used = 0;
+  for (int i = 0; i < I; ++i) used += cost(i, hull[i][0]);
+  struct Step {
+    double ratio;
+    int island;
+    bool operator<(const Step& o) const { return ratio < o.ratio; }
+  };
+  auto step = [&](int i) {
+    const int a = hull[i][pos[i]], b = hull[i][pos[i] + 1];
+    return Step{(err(i, a) - err(i, b)) / std::max(1e-300, cost(i, b) - cost(i, a)), i};
+  };
+  std::priority_queue<Step> queue;
+  for (int i = 0; i < I; ++i)
+    if (hull[i].size() > 1) queue.push(step(i));
+  while (!queue.empty()) {
+    const int i = queue.top().island;
+    queue.pop();
+    const double dc = cost(i, hull[i][pos[i] + 1]) - cost(i, hull[i][pos[i]]);
+    if (used + dc > budget) {
+      // The whole step does not fit: go as far towards it as the budget allows; the island is done.
+      int t = hull[i][pos[i]];
+      while (t < hull[i][pos[i] + 1] && used + cost(i, t + 1) - cost(i, hull[i][pos[i]]) <= budget) ++t;
+      used += cost(i, t) - cost(i, hull[i][pos[i]]);
+      partial[i] = t;
+      continue;
+    }
+    used += dc;
+    if (++pos[i] + 1 < hull[i].size()) queue.push(step(i));
+  }
+  std::vector<int> level(I);
+  for (int i = 0; i < I; ++i) level[i] = std::max(hull[i][pos[i]], partial[i]);
+  std::vector<double> out(I);
+  for (int i = 0; i < I; ++i) out[i] = scale(level[i]);
+  return out;
+}
+
+}  // namespace shrink_detail
+
+}  // namespace adaptex

@@ -1,0 +1,231 @@
+/// \file shrink.cpp
+/// shrink_textured_mesh(): islands -> error model -> budget -> repack -> texels -> the best candidate.
+#include "adaptex/adapt/shrink.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "adaptex/adapt/adapt.h"
+#include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
+#include "adaptex/paint/asset_eval.h"
+#include "adaptex/paint/texel_map.h"
+#include "shrink_internal.h"
+
+namespace adaptex {
+
+using namespace shrink_detail;
+
+namespace {
+
+void check_inputs(const TriMesh& mesh, const Parameterization& param, const std::vector<ShrinkMap>& maps,
+                  const ShrinkOptions& opt) {
+  if (maps.empty()) throw InvalidInputError("shrink: no texture map");
+  for (const ShrinkMap& m : maps)
+    if (m.image.empty()) throw InvalidInputError("shrink: map '" + m.slot + "' is empty");
+  if (opt.size < 8 || opt.size > kMaxTextureSize)
+    throw InvalidInputError("shrink: size must be in [8, " + std::to_string(kMaxTextureSize) + "]");
+  if (param.uv_faces.size() != mesh.faces.size()) throw InvalidInputError("shrink: the layout does not match the mesh");
+  for (const Face& t : param.uv_faces)
+    for (int w : t)
+      if (w < 0 || w >= param.num_wedges()) throw InvalidInputError("shrink: a UV index is out of range");
+  for (const Vec2& p : param.uv)
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y())) throw InvalidInputError("shrink: a texture coordinate is not finite");
+  if (!(opt.overlap_share >= 0) || !(opt.max_scale_ratio >= 1) || opt.gutter < 0 || opt.gutter > 16 ||
+      opt.error_samples < 1000 || opt.eval_samples < 1000)
+    throw InvalidInputError("shrink: bad options (overlap_share >= 0, max_scale_ratio >= 1, gutter in [0,16], samples >= 1000)");
+}
+
+/// A candidate layout with its first map.
+struct Built {
+  ShrinkCandidate info;
+  Parameterization param;
+  ImageRGBA8 first;
+  double lambda = 0;  ///< Repacked: the common factor the packing reached (scales · λ).
+};
+
+/// Everything the candidates share.
+struct Context {
+  const TriMesh& mesh;
+  const Parameterization& param;  // the input layout (the texels' source)
+  const std::vector<ShrinkMap>& maps;
+  const ShrinkOptions& opt;
+  Parameterization layout;        // the input layout with every chart shifted into [0,1)² (packing)
+  std::vector<int> face_island;
+  int islands = 0;
+
+  /// PSNR of the first map on a quarter of the evaluation's samples (ranking the candidates).
+  double rank_psnr(const Parameterization& p, const ImageRGBA8& img) const {
+    return layout_psnr(mesh, param, maps[0].image, p, img, std::max(1000LL, opt.eval_samples / 4), opt.seed);
+  }
+  /// The candidate of layout \p p with draft-fitted texels, ranked.
+  Built fitted(const std::string& name, Parameterization p) const {
+    Built b;
+    b.info.name = name;
+    b.param = std::move(p);
+    b.first = fit_maps(mesh, param, maps, 1, b.param, opt.size, true)[0];
+    b.info.psnr = rank_psnr(b.param, b.first);
+    return b;
+  }
+};
+
+Built repacked(const Context& cx, const std::string& name, const std::vector<double>& scales, double fill_hint) {
+  double fill = 0;
+  const std::vector<IslandPlacement> pl = pack_islands(cx.layout, cx.face_island, cx.islands, scales, cx.opt.size,
+                                                       cx.opt.gutter, cx.opt.rotate, fill_hint, &fill);
+  if (pl.empty()) {
+    Built b;
+    b.info.name = name;
+    b.info.valid = false;
+    return b;
+  }
+  Built b = cx.fitted(name, apply_placements(cx.layout, cx.face_island, pl, cx.opt.size));
+  b.lambda = pl[0].sigma / (cx.opt.size * scales[0]);
+  b.info.fill = fill;
+  return b;
+}
+
+/// The budgeted candidate: island scales from the error model for the area the uniform packing
+/// reached (\p uniform), packed, then allocated again for the area that packing reached.
+Built budgeted(const Context& cx, const Built& uniform, const std::vector<double>& area, double* predicted_gain) {
+  const ShrinkOptions& o = cx.opt;
+  const ErrorCurves curves =
+      island_error_curves(cx.mesh, cx.param, cx.face_island, cx.islands, cx.maps, o.error_samples, o.seed + 1);
+  double budget = 0;
+  for (double a : area) budget += a * uniform.lambda * uniform.lambda;
+  report_progress(o.progress, "pack", 0.5);
+  std::vector<double> scales = allocate_island_scales(curves, area, budget, o.size, o.max_scale_ratio);
+  Built bud = repacked(cx, "budget", scales, uniform.info.fill);
+  if (!bud.info.valid) return bud;
+  std::vector<double> scales2 = allocate_island_scales(curves, area, budget * bud.lambda * bud.lambda, o.size,
+                                                       o.max_scale_ratio);
+  Built bud2 = repacked(cx, "budget", scales2, bud.info.fill);
+  if (bud2.info.valid && bud2.info.psnr > bud.info.psnr) {
+    bud = std::move(bud2);
+    scales = scales2;
+  }
+  double e_uni = 0, e_bud = 0;
+  for (int i = 0; i < cx.islands; ++i) {
+    e_uni += curves.weight[i] * island_error(curves, i, 1.0 / (o.size * uniform.lambda));
+    e_bud += curves.weight[i] * island_error(curves, i, 1.0 / (o.size * scales[i] * bud.lambda));
+  }
+  if (e_uni > 0 && e_bud > 0) *predicted_gain = 10 * std::log10(e_uni / e_bud);
+  return bud;
+}
+
+/// The density-flow warp of the whole layout (adapt.h, no refinement: the input's faces), for layouts
+/// whose charts share no texels (it moves charts apart). Valid only if no face flips or degenerates.
+Built warped(const Context& cx, const ShrinkLayoutStats& before) {
+  Built b;
+  b.info.name = "warped";
+  b.info.valid = false;
+  const ImageRGBA8& tex = cx.maps[0].image;
+  // The flow warps the unit square: UVs just outside it are clamped onto it (a flip shows below).
+  Parameterization start = cx.param;
+  for (Vec2& p : start.uv) p = p.cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
+  AdaptOptions ao;
+  ao.refine = false;
+  ao.progress = cx.opt.progress;
+  const AdaptResult r =
+      adapt_parameterization(cx.mesh, start, tex, build_texel_map(cx.mesh, start, tex.width, tex.height), ao);
+  if (r.refined_mesh || !r.report.accepted) return b;
+  const ShrinkLayoutStats st = layout_stats(cx.mesh, cx.param, r.param, cx.param.face_chart, cx.opt.size);
+  if (st.flipped > 0 || st.degenerate > before.degenerate) return b;
+  b = cx.fitted("warped", r.param);
+  return b;
+}
+
+}  // namespace
+
+MapKind map_kind_of_slot(const std::string& slot) {
+  if (slot == "normal") return MapKind::Normal;
+  for (const char* data : {"metallic_roughness", "roughness", "metallic", "occlusion", "bump", "specular"})
+    if (slot == data) return MapKind::Data;
+  return MapKind::Color;
+}
+
+ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& param,
+                                  const std::vector<ShrinkMap>& maps, const ShrinkOptions& options) {
+  const auto t_start = std::chrono::steady_clock::now();
+  check_inputs(mesh, param, maps, options);
+  const int N = options.size;
+  const int R = std::clamp(maps[0].image.width, 64, 2048);
+  report_progress(options.progress, "islands", 0);
+  const UvIslands isl = find_uv_islands(param, R, options.overlap_share);
+  Context cx{mesh, param, maps, options, shifted_layout(param, isl), {}, isl.num_islands};
+  cx.face_island.resize(mesh.faces.size());
+  for (size_t f = 0; f < mesh.faces.size(); ++f) cx.face_island[f] = isl.chart_island[isl.face_chart[f]];
+  ShrinkResult res;
+  res.charts = isl.num_charts;
+  res.islands = isl.num_islands;
+  res.faces_before = res.faces_after = mesh.num_faces();
+  res.before = layout_stats(mesh, param, param, isl.face_chart, R);
+
+  report_progress(options.progress, "evaluate", 0);
+  std::vector<Built> cands;
+  {  // The user's baseline: the artist's UVs, every map box-downsized.
+    Built b;
+    b.info.name = "downsized";
+    b.param = param;
+    b.first = box_downsize(maps[0].image, N, N);
+    b.info.psnr = cx.rank_psnr(param, b.first);
+    cands.push_back(std::move(b));
+  }
+  cands.push_back(cx.fitted("artist", param));
+  report_progress(options.progress, "pack", 0);
+  if (!isl.tiling) {
+    const std::vector<double> area = island_areas(cx.layout, cx.face_island, cx.islands, R);
+    Built uni = repacked(cx, "repacked", std::vector<double>(cx.islands, 1.0), 0.75);
+    if (options.budget && uni.info.valid) {
+      report_progress(options.progress, "error model", 0);
+      cands.push_back(budgeted(cx, uni, area, &res.predicted_gain_db));
+    }
+    cands.push_back(std::move(uni));
+  }
+  if (options.warp && isl.num_islands == isl.num_charts) {
+    report_progress(options.progress, "warp", 0);
+    cands.push_back(warped(cx, res.before));
+  }
+  // The best valid candidate by measured PSNR (downsizing is always valid: the floor).
+  size_t best = 0;
+  for (size_t c = 0; c < cands.size(); ++c) {
+    res.candidates.push_back(cands[c].info);
+    if (cands[c].info.valid && cands[c].info.psnr > cands[best].info.psnr) best = c;
+  }
+  for (size_t c = 0; c < cands.size(); ++c)
+    if (cands[c].info.valid && cands[c].info.name == options.force_candidate) best = c;
+  // The chosen layout's maps, fitted in full, measured against downsizing on every sample.
+  report_progress(options.progress, "texels", 0);
+  const std::vector<ImageRGBA8> downsized = [&] {
+    std::vector<ImageRGBA8> d;
+    for (const ShrinkMap& m : maps) d.push_back(box_downsize(m.image, N, N));
+    return d;
+  }();
+  auto measure = [&](size_t m, const Parameterization& p, const ImageRGBA8& img) {
+    return layout_psnr(mesh, param, maps[m].image, p, img, options.eval_samples, options.seed);
+  };
+  for (size_t m = 0; m < maps.size(); ++m) res.map_psnr_downsized.push_back(measure(m, param, downsized[m]));
+  res.psnr_downsized = res.map_psnr_downsized[0];
+  res.chosen = cands[best].info.name;
+  res.param = cands[best].param;
+  if (res.chosen != "downsized") {
+    res.maps = fit_maps(mesh, param, maps, maps.size(), res.param, N, false, options.progress);
+    report_progress(options.progress, "evaluate", 0.5);
+    for (size_t m = 0; m < maps.size(); ++m) res.map_psnr.push_back(measure(m, res.param, res.maps[m]));
+    if (res.map_psnr[0] < res.psnr_downsized && options.force_candidate.empty()) {  // the floor
+      res.chosen = "downsized";
+      res.param = param;
+    }
+  }
+  if (res.chosen == "downsized") {
+    res.maps = downsized;
+    res.map_psnr = res.map_psnr_downsized;
+  }
+  res.psnr = res.map_psnr[0];
+  res.after = layout_stats(mesh, param, res.param, isl.face_chart, N);
+  res.time_total = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  return res;
+}
+
+}  // namespace adaptex

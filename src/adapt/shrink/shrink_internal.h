@@ -1,0 +1,82 @@
+#pragma once
+/// \file shrink_internal.h
+/// The stages of shrink_textured_mesh() (adapt/shrink.h), one file each: islands.cpp, error_model.cpp,
+/// pack_islands.cpp, texels.cpp; shrink.cpp runs them.
+#include <functional>
+#include <vector>
+
+#include "adaptex/adapt/shrink.h"
+
+namespace adaptex::shrink_detail {
+
+/// Calls \p fn(i, j) for every texel (i, j) of an unbounded grid of \p width x \p height texels per
+/// UV unit whose centre ((i+0.5)/W, (j+0.5)/H) lies in the UV triangle (a, b, c) (either orientation;
+/// centres on an edge count). Indices may be negative or >= the size (the caller wraps them).
+void for_each_texel_centre(const Vec2& a, const Vec2& b, const Vec2& c, int width, int height,
+                           const std::function<void(int, int)>& fn);
+
+/// \p param with every wedge moved by its chart's integer shift (islands.chart_shift); unchanged
+/// under a wrapping (repeat) lookup.
+Parameterization shifted_layout(const Parameterization& param, const UvIslands& islands);
+
+/// UV footprint of every island (texel centres covered by any of its faces at resolution², wrapped),
+/// in square UV units; overlapping charts count once.
+std::vector<double> island_areas(const Parameterization& layout, const std::vector<int>& face_island,
+                                 int num_islands, int resolution);
+
+/// Per island: the mean squared reconstruction error of every map (weighted by kind) over surface
+/// samples, as a function of the texel spacing h of a box-downsized, bilinearly reconstructed copy.
+struct ErrorCurves {
+  std::vector<double> spacing;              ///< L texel spacings h_l (UV units of the input layout), increasing.
+  std::vector<std::vector<double>> error;   ///< I x L: mean error of island i at spacing l.
+  std::vector<double> weight;               ///< I: share of the surface samples in island i.
+};
+/// \p layout: the shifted input layout; \p face_island: island of every face.
+ErrorCurves island_error_curves(const TriMesh& mesh, const Parameterization& layout,
+                                const std::vector<int>& face_island, int num_islands,
+                                const std::vector<ShrinkMap>& maps, long long samples, std::uint64_t seed);
+
+/// Error of island \p i at spacing \p h (log-log interpolation between the curve's levels; constant
+/// beyond them, 0 below the finest).
+double island_error(const ErrorCurves& curves, int i, double h);
+
+/// Relative island scales (s_i: new UV size / input UV size, up to one common factor) minimising
+/// Σ weight_i · e_i(1 / (size · s_i)) under Σ area_i · s_i² = budget (equal marginal gain), with
+/// s_i within [1/ratio, ratio] of the uniform scale sqrt(budget / Σ area_i).
+std::vector<double> allocate_island_scales(const ErrorCurves& curves, const std::vector<double>& area,
+                                           double budget, int size, double max_ratio);
+
+/// Placement of one island: its texel coordinates in the output are rotate_k(sigma · uv) + offset
+/// (uv in the shifted input layout), where rotate_k turns by k · 90° counter-clockwise; divided by
+/// the size, they are the new UVs.
+struct IslandPlacement {
+  double sigma = 1;            ///< Output texels per input UV unit (size · s_i · λ).
+  int turns = 0;               ///< k in {0, 1, 2, 3}.
+  Vec2 offset = Vec2::Zero();  ///< In texels of the output.
+};
+
+/// Packs the islands of \p layout (shifted input layout) with relative scales \p scales into a
+/// size x size square, every island dilated by \p gutter texels, at the largest common factor found
+/// by bisection, starting from the factor at which the islands' texels fill \p fill_hint of the
+/// square. \p fill receives the share of the square's texels the packed islands touch.
+/// \return I placements; empty if no factor fits.
+std::vector<IslandPlacement> pack_islands(const Parameterization& layout, const std::vector<int>& face_island,
+                                          int num_islands, const std::vector<double>& scales, int size,
+                                          int gutter, bool rotate, double fill_hint, double* fill);
+
+/// \p layout with every wedge placed by its island's placement (UVs in [0,1]²).
+Parameterization apply_placements(const Parameterization& layout, const std::vector<int>& face_island,
+                                  const std::vector<IslandPlacement>& placements, int size);
+
+/// Texels of the first \p count maps on \p dst_param (size x size), least-squares fitted to the
+/// originals on \p src_param (clamp-to-edge lookups, as the measure), pull-push outside the charts.
+/// \p draft: a quarter of the quadrature's samples per original texel (ranking candidates).
+std::vector<ImageRGBA8> fit_maps(const TriMesh& mesh, const Parameterization& src_param,
+                                 const std::vector<ShrinkMap>& maps, size_t count, const Parameterization& dst_param,
+                                 int size, bool draft, const ProgressCallback& progress = {});
+
+/// Surface PSNR (dB, paint/asset_eval.h) of \p image on \p param against \p original on \p ref_param.
+double layout_psnr(const TriMesh& mesh, const Parameterization& ref_param, const ImageRGBA8& original,
+                   const Parameterization& param, const ImageRGBA8& image, long long samples, std::uint64_t seed);
+
+}  // namespace adaptex::shrink_detail

@@ -1,0 +1,230 @@
+// Tests of the atlas-preserving shrink (adapt/shrink.h) on small textured assets built in code with
+// the traps of real atlases: mirrored charts that share texels, overlapping charts, UVs outside
+// [0,1], degenerate UV triangles, and islands whose textures differ in detail.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "adaptex/adapt/shrink.h"
+#include "adaptex/core/errors.h"
+#include "adaptex/paint/asset_eval.h"
+
+namespace adaptex {
+namespace {
+
+/// A textured asset under construction: patches of n x n quads, each its own chart.
+struct Asset {
+  TriMesh mesh;
+  Parameterization param;
+
+  /// A flat patch at 3-D offset (x0, y0, z) of size w x h, with UV (u0,v0) + (s·x, t·y) for its local
+  /// (x, y) in [0,w] x [0,h] (s < 0: mirrored); returns its first face.
+  int patch(double x0, double y0, double z, double w, double h, int n, Vec2 uv0, double s, double t) {
+    const int v0 = mesh.num_vertices(), w0 = param.num_wedges(), f0 = mesh.num_faces();
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const double x = w * i / n, y = h * j / n;
+        mesh.positions.push_back(Vec3(x0 + x, y0 + y, z));
+        param.uv.push_back(uv0 + Vec2(s * x, t * y));
+        param.wedge_vertex.push_back(mesh.num_vertices() - 1);
+      }
+    auto id = [n](int i, int j) { return j * (n + 1) + i; };
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Face a{id(i, j), id(i + 1, j), id(i + 1, j + 1)}, b{id(i, j), id(i + 1, j + 1), id(i, j + 1)};
+        for (const Face& f : {a, b}) {
+          mesh.faces.push_back({v0 + f[0], v0 + f[1], v0 + f[2]});
+          param.uv_faces.push_back({w0 + f[0], w0 + f[1], w0 + f[2]});
+          param.face_chart.push_back(param.num_charts);
+        }
+      }
+    ++param.num_charts;
+    return f0;
+  }
+};
+
+/// Waves of periods 10 and 14 texels (of a 256² map) inside [x0,x1] x [y0,y1] of the square, a smooth ramp
+/// elsewhere.
+ImageRGBA8 texture(int size, double x0, double x1, double y0, double y1) {
+  ImageRGBA8 img(size, size, {0, 0, 0, 255});
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const double u = (i + 0.5) / size, v = (j + 0.5) / size;
+      std::uint8_t* t = img.texel(i, j);
+      if (u >= x0 && u <= x1 && v >= y0 && v <= y1) {
+        const double w = std::sin(2 * M_PI * i / 10.0) * std::sin(2 * M_PI * j / 14.0);
+        t[0] = static_cast<std::uint8_t>(128 + 100 * w);
+        t[1] = static_cast<std::uint8_t>(128 - 90 * w);
+        t[2] = static_cast<std::uint8_t>(100 + 100 * u);
+      } else {
+        t[0] = static_cast<std::uint8_t>(60 + 80 * u);
+        t[1] = static_cast<std::uint8_t>(90 + 60 * v);
+        t[2] = 120;
+      }
+    }
+  return img;
+}
+
+/// The measure (paint/asset_eval.h) on other samples than the shrink's own.
+double psnr(const TriMesh& mesh, const Parameterization& ref_param, const ImageRGBA8& original,
+            const Parameterization& param, const ImageRGBA8& out) {
+  SurfacePsnrOptions o;
+  o.samples = 60000;
+  o.seed = 12345;
+  return surface_psnr(mesh, ref_param, original, mesh, param, out, {}, o).psnr;
+}
+
+/// Every trap at once: two mirrored halves sharing their texels, a chart overlapping another in part,
+/// a chart whose UVs lie in the tile [1,2] x [0,1], a degenerate UV triangle.
+struct Traps : ::testing::Test {
+  Asset a;
+  int left = 0, right = 0, shifted = 0, partial = 0, flat = 0;
+  ImageRGBA8 tex = texture(256, 0.05, 0.45, 0.05, 0.45);
+
+  void SetUp() override {
+    // Left and right halves of a "face": the right one is mirrored onto the same texels.
+    left = a.patch(0, 0, 0, 1, 1, 6, Vec2(0.05, 0.05), 0.4, 0.4);
+    right = a.patch(1.2, 0, 0, 1, 1, 6, Vec2(0.45, 0.05), -0.4, 0.4);
+    // A chart in the next UV tile (wraps onto [0.55, 0.95] x [0.05, 0.35]).
+    shifted = a.patch(0, 2, 0, 1, 0.75, 4, Vec2(1.55, 0.05), 0.4, 0.4);
+    // Two charts overlapping in part (half of the second lies on the first).
+    flat = a.patch(0, 4, 0, 1, 1, 4, Vec2(0.05, 0.55), 0.35, 0.35);
+    partial = a.patch(2, 4, 0, 1, 1, 4, Vec2(0.225, 0.55), 0.35, 0.35);
+    // A degenerate UV triangle: collapse one corner of the last chart onto its neighbour's line.
+    const Face& t = a.param.uv_faces[partial];
+    a.param.uv[t[1]] = 0.5 * (a.param.uv[t[0]] + a.param.uv[t[2]]);
+  }
+};
+
+TEST_F(Traps, IslandsGroupSharedCharts) {
+  const UvIslands isl = find_uv_islands(a.param, 256, 0.02);
+  EXPECT_EQ(isl.num_charts, 5);
+  const auto island = [&](int face) { return isl.chart_island[isl.face_chart[face]]; };
+  EXPECT_EQ(island(left), island(right));      // mirrored, fully shared
+  EXPECT_EQ(island(flat), island(partial));    // half overlapping
+  EXPECT_NE(island(left), island(shifted));    // disjoint after wrapping
+  EXPECT_NE(island(left), island(flat));
+  EXPECT_EQ(isl.num_islands, 3);
+  EXPECT_EQ(isl.chart_shift[isl.face_chart[shifted]], Vec2(-1, 0));
+}
+
+TEST_F(Traps, ShrinkKeepsSharingOrientationAndBeatsDownsizing) {
+  ShrinkOptions opt;
+  opt.size = 64;
+  opt.error_samples = 20000;
+  opt.eval_samples = 40000;
+  const ShrinkResult r = shrink_textured_mesh(a.mesh, a.param, {{"base_color", tex, MapKind::Color}}, opt);
+  ASSERT_EQ(r.maps.size(), 1u);
+  ASSERT_EQ(r.maps[0].width, 64);
+  // Topology kept exactly.
+  EXPECT_EQ(r.param.uv_faces, a.param.uv_faces);
+  EXPECT_EQ(r.faces_after, r.faces_before);
+  // Every output UV is finite and inside the square.
+  for (const Vec2& p : r.param.uv) {
+    ASSERT_TRUE(std::isfinite(p.x()) && std::isfinite(p.y()));
+    EXPECT_GE(p.minCoeff(), 0.0);
+    EXPECT_LE(p.maxCoeff(), 1.0);
+  }
+  // No face changed orientation (the mirrored half stays mirrored); the degenerate one stays the only one.
+  int flipped = 0, degenerate = 0;
+  for (int f = 0; f < a.mesh.num_faces(); ++f) {
+    const double a0 = uv_signed_area(a.param, f), a1 = uv_signed_area(r.param, f);
+    if (std::abs(a1) <= 1e-15) {
+      ++degenerate;
+      continue;
+    }
+    if (std::abs(a0) > 1e-15) flipped += (a0 > 0) != (a1 > 0);
+  }
+  EXPECT_EQ(flipped, 0);
+  EXPECT_EQ(degenerate, 1);
+  EXPECT_EQ(r.after.flipped, 0);
+  EXPECT_LT(uv_signed_area(r.param, right + 3), 0.0);
+  // Shared texels still shared, in the same mirror relation: wedges that had one UV keep one UV.
+  const int n = 7 * 7;
+  for (int k = 0; k < n; ++k) {
+    const int wl = a.param.uv_faces[left][0] + k, wr = a.param.uv_faces[right][0] + k;
+    const int i = k % 7, j = k / 7, kr = j * 7 + (6 - i);  // the mirrored partner of wedge k
+    (void)wr;
+    EXPECT_NEAR((r.param.uv[wl] - r.param.uv[a.param.uv_faces[right][0] + kr]).norm(), 0.0, 1e-12) << k;
+  }
+  EXPECT_GT(r.before.shared_fraction, 0.3);
+  EXPECT_GT(r.after.shared_fraction, r.before.shared_fraction - 0.05);
+  // Never worse than plain downsizing (measured on other samples than the shrink's own).
+  const ImageRGBA8 down = box_downsize(tex, 64, 64);
+  const double p_down = psnr(a.mesh, a.param, tex, a.param, down);
+  const double p_out = psnr(a.mesh, a.param, tex, r.param, r.maps[0]);
+  EXPECT_GE(p_out, p_down - 0.1) << r.chosen;
+  EXPECT_GE(r.psnr, r.psnr_downsized);
+}
+
+TEST(Shrink, BudgetMovesTexelsToTheDetailedIsland) {
+  // Two charts of equal 3-D and UV area: the left holds fine stripes, the right a smooth ramp.
+  Asset a;
+  const int detailed = a.patch(0, 0, 0, 1, 1, 4, Vec2(0.05, 0.3), 0.4, 0.4);
+  const int smooth = a.patch(2, 0, 0, 1, 1, 4, Vec2(0.55, 0.3), 0.4, 0.4);
+  const ImageRGBA8 tex = texture(256, 0.0, 0.5, 0.0, 1.0);
+  ShrinkOptions opt;
+  opt.size = 64;
+  opt.error_samples = 20000;
+  opt.eval_samples = 40000;
+  const ShrinkResult r = shrink_textured_mesh(a.mesh, a.param, {{"base_color", tex, MapKind::Color}}, opt);
+  auto uv_area = [&](int f0) {
+    double s = 0;
+    for (int f = f0; f < f0 + 32; ++f) s += std::abs(uv_signed_area(r.param, f));
+    return s;
+  };
+  EXPECT_EQ(r.chosen, "budget");
+  EXPECT_GT(uv_area(detailed), 3.0 * uv_area(smooth));
+  EXPECT_GT(r.psnr, r.psnr_downsized + 1.0);
+  const double p_down = psnr(a.mesh, a.param, tex, a.param, box_downsize(tex, 64, 64));
+  EXPECT_GT(psnr(a.mesh, a.param, tex, r.param, r.maps[0]), p_down + 1.0);
+}
+
+TEST(Shrink, EveryMapFollowsTheLayout) {
+  Asset a;
+  a.patch(0, 0, 0, 1, 1, 4, Vec2(0.1, 0.1), 0.3, 0.3);
+  a.patch(2, 0, 0, 1, 1, 4, Vec2(0.6, 0.6), 0.3, 0.3);
+  const ImageRGBA8 tex = texture(128, 0.0, 0.5, 0.0, 0.5);
+  ImageRGBA8 normal(64, 64, {128, 128, 255, 255});
+  ShrinkOptions opt;
+  opt.size = 32;
+  opt.error_samples = 10000;
+  opt.eval_samples = 20000;
+  const ShrinkResult r = shrink_textured_mesh(
+      a.mesh, a.param, {{"base_color", tex, MapKind::Color}, {"normal", normal, MapKind::Normal}}, opt);
+  ASSERT_EQ(r.maps.size(), 2u);
+  EXPECT_EQ(r.maps[1].width, 32);
+  // A flat normal map stays flat wherever a chart reads it.
+  EXPECT_GT(r.map_psnr[1], 45.0);
+  ASSERT_EQ(r.map_psnr.size(), 2u);
+}
+
+TEST(Shrink, RejectsBadInput) {
+  Asset a;
+  a.patch(0, 0, 0, 1, 1, 2, Vec2(0.1, 0.1), 0.3, 0.3);
+  const ImageRGBA8 tex = texture(64, 0, 1, 0, 1);
+  EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {}), InvalidInputError);
+  ShrinkOptions opt;
+  opt.size = 4;
+  EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", tex, MapKind::Color}}, opt), InvalidInputError);
+  Asset nan = a;
+  nan.param.uv[0].x() = std::nan("");
+  EXPECT_THROW(shrink_textured_mesh(nan.mesh, nan.param, {{"c", tex, MapKind::Color}}), InvalidInputError);
+  EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", ImageRGBA8(), MapKind::Color}}), InvalidInputError);
+}
+
+TEST(Shrink, ProgressCanCancel) {
+  Asset a;
+  a.patch(0, 0, 0, 1, 1, 2, Vec2(0.1, 0.1), 0.3, 0.3);
+  ShrinkOptions opt;
+  opt.size = 32;
+  int calls = 0;
+  opt.progress = [&](std::string_view, double) { return ++calls < 3; };
+  EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", texture(64, 0, 1, 0, 1), MapKind::Color}}, opt),
+               CancelledError);
+  EXPECT_EQ(calls, 3);
+}
+
+}  // namespace
+}  // namespace adaptex
