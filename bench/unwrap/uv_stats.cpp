@@ -1,7 +1,12 @@
 // Layout figures of an OBJ with texture coordinates, measured as unwrap() measures its own
 // (docs/bench_unwrap.md, "Scans"): for the side-by-side with xatlas on the same scans.
 //
-//   bench_uv_stats LAYOUT.obj [REFERENCE_MESH]
+//   bench_uv_stats [--mirror-ok] LAYOUT.obj [REFERENCE_MESH]
+//
+// --mirror-ok: for layouts that lay some charts out mirrored (xatlas: a light map does not care):
+// a UV triangle of negative area counts with its absolute area (its corners and the face's are
+// swapped), and UV triangles of zero area are left out of the L2 (their number is still printed
+// with the flipped ones).
 //
 // Prints one Markdown row: faces, components, genus, boundary loops, charts (UV components), L2
 // stretch, coverage, effective texel share = coverage / L2², flipped + degenerate UV triangles,
@@ -11,6 +16,8 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <string>
+#include <utility>
 
 #include "adaptex/core/topology.h"
 #include "adaptex/io/mesh_io.h"
@@ -18,16 +25,39 @@
 
 int main(int argc, char** argv) {
   using namespace adaptex;
+  const bool mirror_ok = argc > 1 && std::string(argv[1]) == "--mirror-ok";
+  if (mirror_ok) --argc, ++argv;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s LAYOUT.obj [REFERENCE_MESH]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s [--mirror-ok] LAYOUT.obj [REFERENCE_MESH]\n", argv[0]);
     return 2;
   }
   try {
     ReadOptions ro;
     ro.repair = true;
-    const TexturedMesh t = read_textured_obj(argv[1], ro);
+    TexturedMesh t = read_textured_obj(argv[1], ro);
     const MeshTopology topo = analyze_topology(t.mesh);
-    const StretchStats s = measure_stretch(t.mesh, t.param);
+    StretchStats s = measure_stretch(t.mesh, t.param);
+    if (mirror_ok) {
+      const long bad = s.flipped + s.degenerate;
+      TexturedMesh kept = t;
+      kept.mesh.faces.clear();
+      kept.param.uv_faces.clear();
+      kept.param.face_chart.clear();
+      for (int f = 0; f < t.mesh.num_faces(); ++f) {
+        const double a = uv_signed_area(t.param, f);
+        if (a == 0.0 || !std::isfinite(a)) continue;
+        Face m = t.mesh.faces[f];
+        auto u = t.param.uv_faces[f];
+        if (a < 0) std::swap(m[1], m[2]), std::swap(u[1], u[2]);
+        kept.mesh.faces.push_back(m);
+        kept.param.uv_faces.push_back(u);
+        kept.param.face_chart.push_back(t.param.face_chart[f]);
+      }
+      t = std::move(kept);
+      s = measure_stretch(t.mesh, t.param);
+      s.flipped = static_cast<int>(bad);
+      s.degenerate = 0;
+    }
     double coverage = 0;
     for (int f = 0; f < t.mesh.num_faces(); ++f) coverage += std::max(0.0, uv_signed_area(t.param, f));
     coverage = std::min(1.0, coverage);

@@ -1,6 +1,7 @@
 """How the add-on runs adaptex: the Python module `adaptex` where Blender's Python can import it,
 otherwise the `adaptex` command-line tool. Both run in a background Job that reports progress and
 can be cancelled. No bpy here (the work runs off Blender's main thread)."""
+import json
 import os
 import re
 import shutil
@@ -13,9 +14,11 @@ import time
 from . import meshdata
 
 
-# How "make N× smaller" (the Adapt layout operator) runs: "reparam" (signal-adaptive warp of the
-# layout, then resampling). Every backend has one smaller_by_<path> method per path.
-MAKE_SMALLER = "reparam"
+# How "make N× smaller" (the Adapt layout operator) runs: "shrink" (the artist's charts kept and
+# repacked by the texture's detail, texels fitted to the original; the library measures both PSNRs)
+# or "reparam" (signal-adaptive warp of the layout, then resampling; the add-on measures the PSNRs).
+# Every backend has one smaller_by_<path> method per path.
+MAKE_SMALLER = "shrink"
 
 
 class Cancelled(Exception):
@@ -117,6 +120,11 @@ class Backend:
         UV2, FT2, tex2 = self.reparam(V, F, UV, FT, texture, size, report)
         return {"UV": UV2, "FT": FT2, "texture": tex2}
 
+    def smaller_by_shrink(self, V, F, UV, FT, texture, size, report):
+        r = self.shrink(V, F, UV, FT, texture, size, report)
+        return {"UV": r["UV"], "FT": r["FT"], "texture": r["texture"], "psnr": float(r["psnr"]),
+                "psnr_plain": float(r["psnr_downsized"])}
+
 
 class ModuleBackend(Backend):
     """Calls the Python module (GIL released, progress callback)."""
@@ -138,6 +146,17 @@ class ModuleBackend(Backend):
         except self.m.CancelledError:
             raise Cancelled() from None
         return r["UV"], r["FT"], r["texture"]
+
+    def shrink(self, V, F, UV, FT, texture, size, report):
+        """adaptex.shrink: dict with UV, FT, texture and the library's psnr / psnr_downsized."""
+        try:
+            r = self.m.shrink(V, F, UV, FT, texture, size=size, progress=report)
+        except self.m.CancelledError:
+            raise Cancelled() from None
+        if len(r["FT"]) != len(F):
+            raise RuntimeError("adaptex changed the triangles of the mesh; clean the mesh up first (Mesh > Clean Up)")
+        return {"UV": r["UV"], "FT": r["FT"], "texture": r["texture"], "psnr": r["report"]["psnr"],
+                "psnr_downsized": r["report"]["psnr_downsized"]}
 
 
 def write_obj(path, V, F, UV=None, FT=None):
@@ -208,6 +227,27 @@ class CliBackend(Backend):
             self._run(["unwrap", os.path.join(tmp, "in.obj"), "-o", out], report,
                       ["cut", "floater", "yoshizawa", "augment", "pack"])
             return read_obj_layout(out, F)
+
+    def shrink(self, V, F, UV, FT, texture, size, report):
+        """As ModuleBackend.shrink, through `adaptex reparam --adapt shrink` (the same code; its
+        report.json holds both PSNRs); the texture is the path of the result's PNG (read it with
+        meshdata.read_png, which removes the temporary folder)."""
+        tmp = tempfile.mkdtemp(prefix="adaptex-")
+        try:
+            write_obj(os.path.join(tmp, "in.obj"), V, F, UV, FT)
+            meshdata.write_png(os.path.join(tmp, "in.png"), texture)
+            out = os.path.join(tmp, "out")
+            self._run(["reparam", os.path.join(tmp, "in.obj"), os.path.join(tmp, "in.png"), "--adapt", "shrink",
+                       "--size", str(size), "--name", "out", "-o", out], report,
+                      ["islands", "error model", "pack", "warp", "texels", "fit solve", "evaluate"])
+            UV2, FT2 = read_obj_layout(os.path.join(out, "out.obj"), F)
+            with open(os.path.join(out, "report.json")) as f:
+                rep = json.load(f)["shrink"]
+            return {"UV": UV2, "FT": FT2, "texture": os.path.join(out, "out.png"), "psnr": rep["psnr"],
+                    "psnr_downsized": rep["psnr_downsized"]}
+        except BaseException:
+            shutil.rmtree(tmp, ignore_errors=True)
+            raise
 
     def reparam(self, V, F, UV, FT, texture, size, report):
         """As ModuleBackend.reparam, but the texture is returned as the path of a PNG in a

@@ -1004,6 +1004,9 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
     throw InvalidInputError("unwrap: gutter of " + std::to_string(options.gutter_texels) +
                             " texels at " + std::to_string(options.gutter_texture_size) +
                             " is out of range");
+  if (options.scan_piece_faces < 64 || options.scan_max_rounds < 0 || !(options.scan_chart_l2 >= 1))
+    throw InvalidInputError("unwrap: scan_piece_faces must be >= 64, scan_max_rounds >= 0 and "
+                            "scan_chart_l2 >= 1");
   if (!(options.min_chart_side_of_gap >= 0 && options.min_chart_side_of_gap <= 4))
     throw InvalidInputError("unwrap: min_chart_side_of_gap " +
                             std::to_string(options.min_chart_side_of_gap) + " is outside [0, 4]");

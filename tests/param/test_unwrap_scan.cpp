@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
@@ -68,6 +69,18 @@ TEST(UnwrapScan, SingleModeAndFewComponentsKeepTheirLayouts) {
   UnwrapOptions opt;
   const UnwrapResult r = unwrap(test::five_tori(), opt);
   EXPECT_EQ(r.report.time_segment, 0.0);
+}
+
+TEST(UnwrapScan, OptionsOutOfRangeAreOneClearError) {
+  const TriMesh mesh = test::scan_like_mesh(20000);
+  for (int k = 0; k < 4; ++k) {
+    UnwrapOptions o;
+    if (k == 0) o.scan_piece_faces = 0;
+    if (k == 1) o.scan_max_rounds = -1;
+    if (k == 2) o.scan_chart_l2 = std::numeric_limits<double>::quiet_NaN();
+    if (k == 3) o.min_chart_side_of_gap = 5;
+    EXPECT_THROW(unwrap(mesh, o), InvalidInputError) << k;
+  }
 }
 
 }  // namespace

@@ -5,8 +5,8 @@ argv after "--": ADDON_ZIP BACKEND(MODULE|CLI) MODULE_DIR CLI WORKDIR
 Checks that the operator reads the UV map the image is painted on (a UV Map node's, else the
 render-active one), never merely the active one; shows both PSNRs; keeps the original assigned with a
 warning when the result is not better than plain downsizing; and that a failed job (a non-manifold
-mesh) leaves the mesh exactly as it was, with a message that names no command-line flag, for both
-operators ('Triangulate first' included)."""
+mesh to unwrap, a NaN in the painted UV map) leaves the mesh exactly as it was, with a message that
+names no command-line flag, for both operators ('Triangulate first' included)."""
 import os
 import sys
 
@@ -161,19 +161,27 @@ def nonmanifold(name, quads):
     return o
 
 
-for op, kwargs, quads in [(bpy.ops.adaptex.adapt_layout, {"scale": "2"}, False),
-                          (bpy.ops.adaptex.unwrap, {"triangulate": True}, True),
-                          (bpy.ops.adaptex.unwrap, {}, False)]:
-    o = nonmanifold(f"fin_{op.idname()}_{quads}", quads)
-    before = state(o)
+def expect_failure(op, kwargs, obj, needle):
+    before = state(obj)
     try:
         op(**kwargs)
-        check(False, f"{op.idname()} on a non-manifold mesh did not fail")
+        check(False, f"{op.idname()} did not fail")
     except RuntimeError as e:
         msg = str(e)
         print(f"{op.idname()} {kwargs}: {msg.strip()}")
         check("--" not in msg, f"the message names a command-line flag: {msg}")
-        check("manifold" in msg, msg)
-    check(state(o) == before, f"{op.idname()} {kwargs}: the failed job changed the mesh")
+        check(needle in msg, msg)
+    check(state(obj) == before, f"{op.idname()} {kwargs}: the failed job changed the mesh")
+
+
+for op, kwargs, quads in [(bpy.ops.adaptex.unwrap, {"triangulate": True}, True), (bpy.ops.adaptex.unwrap, {}, False)]:
+    expect_failure(op, kwargs, nonmanifold(f"fin_{quads}", quads), "manifold")
+# A painted UV map with a NaN: every backend refuses it.
+obj, node, _ = textured_grid("nan", detail_texture(), linked_uv_node=False)
+uv = np.empty(2 * len(obj.data.loops), dtype=np.float32)
+obj.data.uv_layers["painted"].data.foreach_get("uv", uv)
+uv[7] = np.nan
+obj.data.uv_layers["painted"].data.foreach_set("uv", uv)
+expect_failure(bpy.ops.adaptex.adapt_layout, {"scale": "2"}, obj, "finite")
 
 print("ADAPTEX_BLENDER_OK", which)

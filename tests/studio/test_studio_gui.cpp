@@ -149,15 +149,21 @@ int xdo(const Xvfb& x, const std::string& args) {
   return std::system(("DISPLAY=" + x.display() + " xdotool " + args).c_str());
 }
 
-/// Asks the studio's window to close as a window manager's close button does (a WM_DELETE_WINDOW
-/// client message; Xvfb runs no window manager). \return false if no window was found
-bool close_window(const Xvfb& x) {
-  FILE* p = popen(("DISPLAY=" + x.display() + " xdotool search --name 'adaptex studio'").c_str(), "r");
-  if (!p) return false;
+/// The studio's window ids (xdotool search).
+std::vector<unsigned long> studio_windows(const Xvfb& x) {
   std::vector<unsigned long> ids;
+  FILE* p = popen(("DISPLAY=" + x.display() + " xdotool search --name 'adaptex studio'").c_str(), "r");
+  if (!p) return ids;
   char line[64];
   while (std::fgets(line, sizeof line, p)) ids.push_back(std::strtoul(line, nullptr, 10));
   pclose(p);
+  return ids;
+}
+
+/// Asks the studio's window to close as a window manager's close button does (a WM_DELETE_WINDOW
+/// client message; Xvfb runs no window manager). \return false if no window was found
+bool close_window(const Xvfb& x) {
+  const std::vector<unsigned long> ids = studio_windows(x);
   if (ids.empty()) return false;
   Display* d = XOpenDisplay(x.display().c_str());
   if (!d) return false;
@@ -174,6 +180,67 @@ bool close_window(const Xvfb& x) {
   XFlush(d);
   XCloseDisplay(d);
   return true;
+}
+
+/// Drops \p file on the studio's window at window pixel (x, y) as a file manager does: the XDND
+/// protocol (XdndEnter / XdndPosition / XdndDrop, then the text/uri-list selection GLFW asks for).
+/// \return false if no window took it within 10 s
+bool drop_file(const Xvfb& x, const fs::path& file, int px, int py) {
+  const std::vector<unsigned long> ids = studio_windows(x);
+  if (ids.empty()) return false;
+  Display* d = XOpenDisplay(x.display().c_str());
+  if (!d) return false;
+  const Window source = XCreateSimpleWindow(d, DefaultRootWindow(d), 0, 0, 1, 1, 0, 0, 0);
+  const Atom selection = XInternAtom(d, "XdndSelection", False), uri_list = XInternAtom(d, "text/uri-list", False);
+  XSetSelectionOwner(d, selection, source, CurrentTime);
+  const auto send = [&](Window target, const char* type, long l1, long l2, long l3, long l4) {
+    XEvent e{};
+    e.xclient.type = ClientMessage;
+    e.xclient.window = target;
+    e.xclient.message_type = XInternAtom(d, type, False);
+    e.xclient.format = 32;
+    e.xclient.data.l[0] = static_cast<long>(source);
+    e.xclient.data.l[1] = l1;
+    e.xclient.data.l[2] = l2;
+    e.xclient.data.l[3] = l3;
+    e.xclient.data.l[4] = l4;
+    XSendEvent(d, target, False, NoEventMask, &e);
+  };
+  const std::string uri = "file://" + file.string() + "\r\n";
+  bool answered = false;
+  for (unsigned long target : ids) {
+    send(target, "XdndEnter", 5L << 24, static_cast<long>(uri_list), 0, 0);
+    send(target, "XdndPosition", 0, (long(px) << 16) | py, CurrentTime,
+         static_cast<long>(XInternAtom(d, "XdndActionCopy", False)));
+    send(target, "XdndDrop", 0, CurrentTime, 0, 0);
+  }
+  XFlush(d);
+  const auto t0 = std::chrono::steady_clock::now();
+  while (!answered && std::chrono::steady_clock::now() - t0 < 10s) {
+    while (XPending(d)) {
+      XEvent e;
+      XNextEvent(d, &e);
+      if (e.type != SelectionRequest) continue;
+      const XSelectionRequestEvent& r = e.xselectionrequest;
+      XChangeProperty(d, r.requestor, r.property, r.target, 8, PropModeReplace,
+                      reinterpret_cast<const unsigned char*>(uri.data()), static_cast<int>(uri.size()));
+      XEvent n{};
+      n.xselection.type = SelectionNotify;
+      n.xselection.requestor = r.requestor;
+      n.xselection.selection = r.selection;
+      n.xselection.target = r.target;
+      n.xselection.property = r.property;
+      n.xselection.time = r.time;
+      XSendEvent(d, r.requestor, False, NoEventMask, &n);
+      XFlush(d);
+      answered = true;
+    }
+    std::this_thread::sleep_for(20ms);
+  }
+  std::this_thread::sleep_for(500ms);  // the source window outlives the transfer (XdndFinished)
+  XDestroyWindow(d, source);
+  XCloseDisplay(d);
+  return answered;
 }
 
 /// Occurrences of \p needle in the file \p log.
@@ -858,6 +925,50 @@ TEST_P(StudioModalGui, EveryModalOpensAndClosesWithoutAborting) {
 
 INSTANTIATE_TEST_SUITE_P(EveryStart, StudioModalGui,
                          ::testing::Values(Start::Bare, Start::Model, Start::Project, Start::Scripted), start_name);
+
+// Started with no argument, the prompt is answered Later (Esc); dropping the mesh the strokes belong to
+// on the window asks again, and Recover (R) gives them back on it.
+TEST_F(StudioGui, DroppingTheMeshOfALaterRecoveryOnTheWindowOffersItAgain) {
+  const fs::path rec = dir.path / "rec", log = dir.path / "app.log", hist = dir.path / "h.json",
+                 mesh = dir.path / "ball.obj";
+  adaptex::write_obj(mesh, adaptex::shapes::sphere(32, 16), nullptr);
+  fs::create_directories(rec);
+  std::ofstream(rec / "recovery.json") << R"({"format":"adaptex.studio-project","version":1,"mesh":")" << mesh.string()
+                                       << R"(","strokes":{"format":"adaptex.strokes","version":1,"strokes":[{)"
+                                       << R"("color":[0.9,0.3,0.1],"radius":0.2,"dabs":[[0,0,1],[0.2,0,0.98]]}]}})";
+  const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "--window", "800x600", "--texture-size", "256", "--config-dir",
+                           (dir.path / "cfg").string(), "--recovery-dir", rec.string(), "--history-out", hist.string()},
+                          x->env(), log);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, "dialog: Recover unsaved strokes?") == 1; }, 60s)) << slurp(log);
+  ASSERT_EQ(xdo(*x, "mousemove 600 300 sleep 0.2 " + hold("Escape")), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, "for later") == 1; }, 30s)) << slurp(log);
+  // Dropped again if nothing came of it (seen once in 8 runs under load: GLFW asked for the selection
+  // and the drop callback never came), as a user would.
+  bool offered = false;
+  int drops = 0;
+  for (; drops < 3 && !offered; ++drops) {
+    ASSERT_TRUE(drop_file(*x, mesh, 500, 300)) << slurp(log);
+    offered = wait_for([&] { return count_in(log, "dialog: Recover unsaved strokes?") == 2; }, 20s);
+  }
+  ASSERT_TRUE(offered) << drops << " drops\n" << slurp(log);
+  ASSERT_EQ(xdo(*x, hold("r")), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log, "recovered 1 stroke on " + mesh.string()) == 1; }, 30s))
+      << slurp(log);
+  // Loaded after the recovery (the drop's own load may have been replaced by it).
+  ASSERT_TRUE(wait_for(
+      [&] {
+        const std::string text = slurp(log);
+        const size_t loaded = text.rfind("loaded " + mesh.string());
+        return loaded != std::string::npos && loaded > text.find("recovered 1 stroke");
+      },
+      120s))
+      << slurp(log);
+  ASSERT_EQ(terminate(app), 0) << slurp(log);
+  const auto h = read_json(hist)["strokes"];
+  ASSERT_EQ(h.size(), 1u);
+  EXPECT_EQ(h[0]["dabs"], nlohmann::json::parse("[[0,0,1],[0.2,0,0.98]]"));
+}
 
 TEST_F(StudioGui, EscapeClosesAnOpenMenu) {
   const fs::path log = dir.path / "app.log", hist = dir.path / "h.json";

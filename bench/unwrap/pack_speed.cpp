@@ -1,0 +1,37 @@
+// Speed of pack_rectangles() (RectPackOptions, turning, gap of 8 texels at 4096) for 100 to 20000
+// chart rectangles spread over three decades of size: the MaxRects strategies up to 200
+// rectangles, FFDH and next-fit shelves above (O(n log n) per scale tried). docs/bench_unwrap.md.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <vector>
+
+#include "adaptex/param/pack.h"
+
+namespace {
+
+std::vector<adaptex::Vec2> spread(int n) {
+  std::vector<adaptex::Vec2> s(n);
+  for (int i = 0; i < n; ++i) {
+    const double side = std::pow(10.0, -3.0 * ((i * 7919) % 1000) / 1000.0);
+    const double aspect = std::pow(4.0, ((i * 31) % 17 - 8) / 8.0);
+    s[i] = adaptex::Vec2(side * std::sqrt(aspect), side / std::sqrt(aspect));
+  }
+  return s;
+}
+
+void BM_PackRectangles(benchmark::State& state) {
+  const std::vector<adaptex::Vec2> sizes = spread(static_cast<int>(state.range(0)));
+  adaptex::RectPackOptions o;
+  o.padding = 8.0 / 4096;
+  o.min_side = o.padding;
+  o.may_turn = true;
+  for (auto _ : state) benchmark::DoNotOptimize(adaptex::pack_rectangles(sizes, o).data());
+  state.SetComplexityN(state.range(0));
+}
+BENCHMARK(BM_PackRectangles)->Arg(100)->Arg(200)->Arg(201)->Arg(1000)->Arg(5000)->Arg(20000)
+    ->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
