@@ -168,17 +168,15 @@ TexturedAsset finish_asset(TexturedMesh tm, std::vector<int> face_material, std:
   out.param = std::move(tm.param);
   out.face_material = std::move(face_material);
   out.materials = std::move(materials);
-  out.uv = analyze_uvs(out.mesh, out.param);
+  out.uv = count_uvs(out.mesh, out.param);
   std::string udim_map;
   for (const Material& m : out.materials)
     for (const TextureMap& map : m.maps)
       if (udim_map.empty() && is_udim_path(map.path.string())) udim_map = map.path.filename().string();
   wrap_uv_charts(out.param, options, name, udim_map, out.uv);
-  if (out.uv.wrapped_charts > 0 || out.uv.clamped_uvs > 0) {  // measured again on the moved charts
-    const TexelUsage usage = measure_texel_usage(out.param);
-    out.uv.covered_fraction = usage.covered_fraction;
-    out.uv.shared_fraction = usage.shared_fraction;
-  }
+  const TexelUsage usage = measure_texel_usage(out.param);  // on the charts as moved
+  out.uv.covered_fraction = usage.covered_fraction;
+  out.uv.shared_fraction = usage.shared_fraction;
   if (out.uv.wrapped_charts > 0)
     report.warnings.push_back(name + ": " + count_str(out.uv.wrapped_charts, "UV chart", "UV charts") +
                               " outside [0,1] moved into it by whole tiles (the same texels under repeat wrapping)");

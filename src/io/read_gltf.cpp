@@ -530,7 +530,7 @@ namespace {
 /// \p bytes with the JSON replaced by \p doc (a GLB keeps its other chunks, after a JSON chunk padded
 /// with spaces to 4 bytes).
 std::string with_json(const std::string& bytes, const CheckedGltf& checked, const json& doc) {
-  std::string text = doc.dump();
+  std::string text = doc.dump(-1, ' ', false, json::error_handler_t::replace);  // never throws
   if (!checked.glb) return text;
   while (text.size() % 4) text += ' ';
   const std::size_t rest = 12 + 8 + u32_at(bytes, 12);  // after the first (JSON) chunk

@@ -17,6 +17,16 @@
 namespace adaptex {
 
 UvReport analyze_uvs(const TriMesh& mesh, const Parameterization& param) {
+  UvReport r = io_detail::count_uvs(mesh, param);
+  const TexelUsage usage = measure_texel_usage(param);
+  r.covered_fraction = usage.covered_fraction;
+  r.shared_fraction = usage.shared_fraction;
+  return r;
+}
+
+namespace io_detail {
+
+UvReport count_uvs(const TriMesh& mesh, const Parameterization& param) {
   UvReport r;
   r.charts = param.num_charts;
   std::vector<double> positive(static_cast<std::size_t>(std::max(param.num_charts, 0)), 0.0);
@@ -37,11 +47,10 @@ UvReport analyze_uvs(const TriMesh& mesh, const Parameterization& param) {
     if (outside(param.uv[t[0]]) || outside(param.uv[t[1]]) || outside(param.uv[t[2]])) ++r.faces_outside_unit;
   }
   for (std::size_t c = 0; c < positive.size(); ++c) r.mirrored_charts += negative[c] > positive[c];
-  const TexelUsage usage = measure_texel_usage(param);
-  r.covered_fraction = usage.covered_fraction;
-  r.shared_fraction = usage.shared_fraction;
   return r;
 }
+
+}  // namespace io_detail
 
 namespace {
 
@@ -56,13 +65,19 @@ double edge_function(const Vec2& a, const Vec2& b, const Vec2& s, bool& forward)
   return forward ? e : -e;
 }
 
+/// The texel range [first, last] whose centres (k + 0.5) / n lie in [lo, hi] (clipped to the grid;
+/// empty when first > last). Computed in double: coordinates may be huge.
+std::pair<int, int> texel_range(double lo, double hi, int n) {
+  const double first = std::clamp(std::ceil(lo * n - 0.5), 0.0, static_cast<double>(n));
+  const double last = std::clamp(std::floor(hi * n - 0.5), -1.0, static_cast<double>(n - 1));
+  return {static_cast<int>(first), static_cast<int>(last)};
+}
+
 /// Adds 1 (saturating at 2) to every texel of \p count whose centre lies in the counter-clockwise
 /// triangle p (a sample on an edge belongs to the triangle that runs the edge in its fixed order).
 void rasterize(const std::array<Vec2, 3>& p, int n, std::vector<std::uint8_t>& count) {
-  const double lo_x = std::min({p[0].x(), p[1].x(), p[2].x()}), hi_x = std::max({p[0].x(), p[1].x(), p[2].x()});
-  const double lo_y = std::min({p[0].y(), p[1].y(), p[2].y()}), hi_y = std::max({p[0].y(), p[1].y(), p[2].y()});
-  const int i0 = std::max(0, static_cast<int>(std::ceil(lo_x * n - 0.5))), i1 = std::min(n - 1, static_cast<int>(std::floor(hi_x * n - 0.5)));
-  const int j0 = std::max(0, static_cast<int>(std::ceil(lo_y * n - 0.5))), j1 = std::min(n - 1, static_cast<int>(std::floor(hi_y * n - 0.5)));
+  const auto [i0, i1] = texel_range(std::min({p[0].x(), p[1].x(), p[2].x()}), std::max({p[0].x(), p[1].x(), p[2].x()}), n);
+  const auto [j0, j1] = texel_range(std::min({p[0].y(), p[1].y(), p[2].y()}), std::max({p[0].y(), p[1].y(), p[2].y()}), n);
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
       const Vec2 s((i + 0.5) / n, (j + 0.5) / n);
@@ -77,12 +92,31 @@ void rasterize(const std::array<Vec2, 3>& p, int n, std::vector<std::uint8_t>& c
     }
 }
 
+/// Texel centres rasterize() visits for \p param's triangles on an n x n grid (their clipped bounding boxes).
+double samples_visited(const Parameterization& param, int n) {
+  double visited = 0;
+  for (const Face& t : param.uv_faces) {
+    const Vec2 &a = param.uv[t[0]], &b = param.uv[t[1]], &c = param.uv[t[2]];
+    const auto [i0, i1] = texel_range(std::min({a.x(), b.x(), c.x()}), std::max({a.x(), b.x(), c.x()}), n);
+    const auto [j0, j1] = texel_range(std::min({a.y(), b.y(), c.y()}), std::max({a.y(), b.y(), c.y()}), n);
+    if (i0 <= i1 && j0 <= j1) visited += static_cast<double>(i1 - i0 + 1) * (j1 - j0 + 1);
+  }
+  return visited;
+}
+
+/// At most this many texel centres are tested (about 0.3 s): an atlas whose triangles' bounding boxes
+/// cover the square more than 60 times over (hostile input, not an artist's atlas) is measured on a
+/// coarser grid.
+constexpr double kMaxSamplesVisited = 64.0 * 1024 * 1024;
+
 }  // namespace
 
 TexelUsage measure_texel_usage(const Parameterization& param, int size) {
   if (size < 1 || size > kMaxTextureSize)
     throw InvalidInputError("measure_texel_usage: size " + std::to_string(size) + " is outside 1.." +
                             std::to_string(kMaxTextureSize));
+  if (const double visited = samples_visited(param, size); visited > kMaxSamplesVisited)
+    size = std::max(16, static_cast<int>(size * std::sqrt(kMaxSamplesVisited / visited)));
   std::vector<std::uint8_t> count(static_cast<std::size_t>(size) * size, 0);
   for (std::size_t f = 0; f < param.uv_faces.size(); ++f) {
     const Face& t = param.uv_faces[f];

@@ -7,6 +7,9 @@
 
 namespace adaptex::io_detail {
 
+/// analyze_uvs() without the texel usage (covered_fraction, shared_fraction stay 0).
+UvReport count_uvs(const TriMesh& mesh, const Parameterization& param);
+
 /// True when \p path names one tile of a UDIM texture set: a "<UDIM>", "<UVTILE>" or "%(UDIM)d"
 /// token, or a tile number 1001-1199 just before the extension ("skin.1001.png", "skin_1002.tga").
 bool is_udim_path(const std::string& path);

@@ -303,6 +303,25 @@ TEST(AssetIo, TexelUsageCountsSharedEdgesOnceAndOverlapsTwice) {
   EXPECT_EQ(folded.covered_fraction, 1.0);
   EXPECT_NEAR(folded.shared_fraction, 0.25, 1.0 / 64);  // the triangle (0,0) (0,0.5) (1,0): a quarter
   EXPECT_THROW((void)measure_texel_usage(p, 0), InvalidInputError);
+  // Coordinates far outside the square (found by fuzz_gltf: 3e30 overflowed an int) count nothing there.
+  p.uv.push_back(Vec2(3e30, -3e30));
+  p.uv_faces.push_back(Face{0, 1, 6});
+  const TexelUsage far = measure_texel_usage(p, 8);
+  EXPECT_EQ(far.covered_fraction, 1.0);
+}
+
+TEST(AssetIo, TexelUsageOfHostilyManyLargeTrianglesIsMeasuredOnACoarserGrid) {
+  // 3,000 copies of the square's two triangles: 6,000 bounding boxes of 1024² texels each would be
+  // 6 G texel tests; the grid is made coarser so that at most 64 Mi are tested.
+  Parameterization p;
+  p.uv = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)};
+  for (int k = 0; k < 3000; ++k) {
+    p.uv_faces.push_back(Face{0, 1, 2});
+    p.uv_faces.push_back(Face{0, 2, 3});
+  }
+  const TexelUsage usage = measure_texel_usage(p);
+  EXPECT_EQ(usage.covered_fraction, 1.0);
+  EXPECT_EQ(usage.shared_fraction, 1.0);
 }
 
 TEST(AssetIo, ParseMtlReadsOptionsAndNamesWithSpaces) {

@@ -91,7 +91,8 @@ inline constexpr int kTexelUsageResolution = 1024;
 
 /// Covered and shared texels of an atlas on a \p size x \p size grid over [0,1]^2 (texel centres;
 /// edges shared by two triangles count once, by the top-left rule; degenerate triangles cover nothing;
-/// parts outside [0,1]^2 are not counted).
+/// parts outside [0,1]^2 are not counted). When the triangles' bounding boxes would make it test more
+/// than 64 Mi texel centres (hostile input) the grid is made coarser so that it does not.
 struct TexelUsage {
   double covered_fraction = 0;  ///< Covered texels / size².
   double shared_fraction = 0;   ///< Texels in two or more triangles / covered texels (0 when none is covered).
