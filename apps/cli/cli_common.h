@@ -45,6 +45,7 @@ void add_paint_command(CLI::App& app, Context& ctx);
 void add_eval_command(CLI::App& app, Context& ctx);
 void add_strokes_command(CLI::App& app, Context& ctx);
 void add_reparam_command(CLI::App& app, Context& ctx);
+void add_shrink_command(CLI::App& app, Context& ctx);
 void add_demo_command(CLI::App& app, Context& ctx);
 
 }  // namespace adaptex::cli

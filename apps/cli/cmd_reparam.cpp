@@ -105,7 +105,9 @@ void run_reparam_shrink(const ReparamArgs& a, const Context& ctx) {
   const ShrinkResult res = shrink_textured_mesh(tm.mesh, tm.param, maps, opt);
   AtomicOutput out;
   const std::string name = a.name.empty() ? sanitize_export_name(std::filesystem::path(a.mesh).stem().string()) : a.name;
-  export_textured_mesh(out, a.outdir, name, tm.mesh, res.param, res.maps[0]);
+  ExportOptions eo;
+  eo.mtl_clamp = true;  // the layout ends at the square's border: no renderer may wrap
+  export_textured_mesh(out, a.outdir, name, tm.mesh, res.param, res.maps[0], eo);
   if (!a.debug_maps.empty()) {  // the layouts before and after, drawn over their textures
     write_png(out.add(std::filesystem::path(a.debug_maps) / (name + "_layout_before.png")),
               draw_uv_layout(tm.param, &maps[0].image, 1024));

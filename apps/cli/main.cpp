@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   adaptex::cli::add_eval_command(app, ctx);
   adaptex::cli::add_strokes_command(app, ctx);
   adaptex::cli::add_reparam_command(app, ctx);
+  adaptex::cli::add_shrink_command(app, ctx);
   adaptex::cli::add_demo_command(app, ctx);
   try {
     app.parse(argc, argv);

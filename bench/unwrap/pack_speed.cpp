@@ -29,7 +29,7 @@ void BM_PackRectangles(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(adaptex::pack_rectangles(sizes, o).data());
   state.SetComplexityN(state.range(0));
 }
-BENCHMARK(BM_PackRectangles)->Arg(100)->Arg(200)->Arg(201)->Arg(1000)->Arg(5000)->Arg(20000)
+BENCHMARK(BM_PackRectangles)->Arg(100)->Arg(200)->Arg(500)->Arg(501)->Arg(1000)->Arg(5000)->Arg(20000)
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -115,10 +115,12 @@ std::string sanitize_export_name(const std::string& stem) {
 
 namespace {
 
-/// encode_glb() with the texture already encoded as \p png (shared with NAME.png by the exporter).
+/// encode_glb() with the texture already encoded as \p png (shared with NAME.png by the exporter),
+/// and options.maps encoded as \p extra_png (parallel).
 std::vector<unsigned char> encode_glb_png(const TriMesh& mesh, const Parameterization& param,
                                           const std::vector<unsigned char>& png,
-                                          const ExportOptions& options) {
+                                          const ExportOptions& options,
+                                          const std::vector<std::vector<unsigned char>>& extra_png) {
   const int nw = param.num_wedges();
   std::vector<float> pos(3 * static_cast<size_t>(nw)), uv(2 * static_cast<size_t>(nw));
   std::vector<double> pmin(3, std::numeric_limits<double>::infinity()),
@@ -200,10 +202,32 @@ std::vector<unsigned char> encode_glb_png(const TriMesh& mesh, const Parameteriz
   model.textures.push_back(tex);
 
   tinygltf::Material mat;
+  // More maps: one image and texture each, with the same sampler.
+  for (size_t m = 0; m < extra_png.size(); ++m) {
+    const std::string& slot = options.maps[m].slot;
+    tinygltf::Image extra;
+    extra.name = options.material + "_" + slot;
+    extra.mimeType = "image/png";
+    extra.bufferView = add_buffer_view(model, buf, extra_png[m].data(), extra_png[m].size(), 0);
+    model.images.push_back(extra);
+    tinygltf::Texture t;
+    t.source = static_cast<int>(model.images.size()) - 1;
+    t.sampler = 0;
+    model.textures.push_back(t);
+    const int index = static_cast<int>(model.textures.size()) - 1;
+    if (slot == "normal") mat.normalTexture.index = index;
+    if (slot == "metallic_roughness") mat.pbrMetallicRoughness.metallicRoughnessTexture.index = index;
+    if (slot == "occlusion") mat.occlusionTexture.index = index;
+    if (slot == "emissive") {
+      mat.emissiveTexture.index = index;
+      mat.emissiveFactor = {1.0, 1.0, 1.0};
+    }
+  }
   mat.name = options.material;
   mat.pbrMetallicRoughness.baseColorTexture.index = 0;
   mat.pbrMetallicRoughness.baseColorFactor = {1.0, 1.0, 1.0, 1.0};
-  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  const bool has_mr = mat.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0;
+  mat.pbrMetallicRoughness.metallicFactor = has_mr ? 1.0 : 0.0;
   mat.pbrMetallicRoughness.roughnessFactor = 1.0;
   // Input meshes may be wound either way: double-sided so no viewer culls the painted side.
   mat.doubleSided = true;
@@ -251,12 +275,16 @@ void write_bytes(AtomicOutput& out, const fs::path& path, const std::vector<unsi
 std::vector<unsigned char> encode_glb(const TriMesh& mesh, const Parameterization& param,
                                       const ImageRGBA8& texture, const ExportOptions& options) {
   check_inputs(mesh, param, texture);
-  return encode_glb_png(mesh, param, encode_png(texture), options);
+  std::vector<std::vector<unsigned char>> extra;
+  for (const ExportMap& m : options.maps) extra.push_back(encode_png(m.image));
+  return encode_glb_png(mesh, param, encode_png(texture), options, extra);
 }
 
-void write_mtl(const fs::path& path, const std::string& material, const std::string& texture_file, bool clamp) {
+void write_mtl(const fs::path& path, const std::string& material, const std::string& texture_file, bool clamp,
+               const std::vector<std::pair<std::string, std::string>>& maps) {
   std::ofstream out(path, std::ios::binary);
   if (!out) throw OutputError(path.string() + ": cannot open for writing");
+  const std::string opt = clamp ? "-clamp on " : "";
   out << "# adaptex painted material\n"
       << "newmtl " << material << "\n"
       << "Ka 0 0 0\n"
@@ -264,9 +292,22 @@ void write_mtl(const fs::path& path, const std::string& material, const std::str
       << "Ks 0 0 0\n"
       << "d 1\n"
       << "illum 1\n"
-      << "map_Kd " << (clamp ? "-clamp on " : "") << texture_file << "\n";
+      << "map_Kd " << opt << texture_file << "\n";
+  for (const auto& [slot, file] : maps) {
+    if (slot == "normal") out << "norm " << opt << file << "\n";
+    else if (slot == "emissive") out << "map_Ke " << opt << file << "\n";
+    else if (slot == "roughness") out << "map_Pr " << opt << file << "\n";
+    else if (slot == "metallic") out << "map_Pm " << opt << file << "\n";
+    else if (slot == "bump") out << "bump " << opt << file << "\n";
+    else if (slot == "specular") out << "map_Ks " << opt << file << "\n";
+    else out << "# " << slot << ": " << file << "\n";
+  }
   out.close();
   if (!out) throw OutputError(path.string() + ": write error");
+}
+
+void write_mtl(const fs::path& path, const std::string& material, const std::string& texture_file, bool clamp) {
+  write_mtl(path, material, texture_file, clamp, {});
 }
 
 ExportedFiles export_textured_mesh(AtomicOutput& out, const fs::path& dir, const std::string& name,
@@ -280,15 +321,29 @@ ExportedFiles export_textured_mesh(AtomicOutput& out, const fs::path& dir, const
     files.obj = dir / (name + ".obj");
     files.mtl = dir / (name + ".mtl");
     files.png = dir / (name + ".png");
+    std::vector<std::pair<std::string, std::string>> maps;
+    for (const ExportMap& m : options.maps) {
+      check_export_name(m.slot);
+      maps.emplace_back(m.slot, name + "_" + m.slot + ".png");
+    }
     write_obj(out.add(files.obj), mesh, &param, name + ".mtl", options.material);
-    write_mtl(out.add(files.mtl), options.material, name + ".png", options.mtl_clamp);
+    write_mtl(out.add(files.mtl), options.material, name + ".png", options.mtl_clamp, maps);
   }
-  // The texture is PNG-encoded once, for NAME.png and the .glb alike (same bytes).
+  // Every texture is PNG-encoded once, for the PNG files and the .glb alike (same bytes).
   const std::vector<unsigned char> png = encode_png(texture);
-  if (options.obj) write_bytes(out, files.png, png);
+  std::vector<std::vector<unsigned char>> extra;
+  for (const ExportMap& m : options.maps) {
+    if (m.image.empty()) throw InvalidInputError("export: map '" + m.slot + "' is empty");
+    extra.push_back(encode_png(m.image));
+  }
+  if (options.obj) {
+    write_bytes(out, files.png, png);
+    for (size_t m = 0; m < extra.size(); ++m)
+      write_bytes(out, dir / (name + "_" + options.maps[m].slot + ".png"), extra[m]);
+  }
   if (options.glb) {
     files.glb = dir / (name + ".glb");
-    write_bytes(out, files.glb, encode_glb_png(mesh, param, png, options));
+    write_bytes(out, files.glb, encode_glb_png(mesh, param, png, options, extra));
   }
   return files;
 }

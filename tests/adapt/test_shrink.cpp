@@ -3,12 +3,17 @@
 // [0,1], degenerate UV triangles, and islands whose textures differ in detail.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <map>
 
 #include "adaptex/adapt/shrink.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/io/image_io.h"
+#include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/asset_eval.h"
+#include "test_support.h"
 
 namespace adaptex {
 namespace {
@@ -224,6 +229,37 @@ TEST(Shrink, ProgressCanCancel) {
   EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", texture(64, 0, 1, 0, 1), MapKind::Color}}, opt),
                CancelledError);
   EXPECT_EQ(calls, 3);
+}
+
+TEST(ShrinkCli, WritesEveryMapAndTheReportOrNothing) {
+  test::TempDir dir;
+  Asset a;
+  a.patch(0, 0, 0, 1, 1, 4, Vec2(0.05, 0.3), 0.4, 0.4);
+  a.patch(2, 0, 0, 1, 1, 4, Vec2(0.55, 0.3), -0.4, 0.4);
+  write_obj(dir.path / "m.obj", a.mesh, &a.param, std::string("m.mtl"), "skin");
+  std::ofstream(dir.path / "m.mtl") << "newmtl skin\nmap_Kd m.png\nnorm m_n.png\n";
+  write_png(dir.path / "m.png", texture(128, 0.0, 0.5, 0.0, 1.0));
+  write_png(dir.path / "m_n.png", ImageRGBA8(64, 64, {128, 128, 255, 255}));
+  const auto out = dir.path / "out";
+  auto r = test::run_cli("shrink " + (dir.path / "m.obj").string() + " --size 32 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* f : {"m.obj", "m.mtl", "m.png", "m_normal.png", "m.glb", "report.json"})
+    EXPECT_TRUE(std::filesystem::exists(out / f)) << f;
+  EXPECT_NE(r.out.find("base_color: psnr"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("normal: psnr"), std::string::npos) << r.out;
+  const TexturedMesh back = read_textured_obj(out / "m.obj");
+  EXPECT_EQ(back.mesh.num_faces(), a.mesh.num_faces());
+  EXPECT_EQ(read_image(out / "m_normal.png").width, 32);
+  // A map that is missing: exit 2, one line, no output.
+  std::ofstream(dir.path / "m.mtl") << "newmtl skin\nmap_Kd gone.png\n";
+  const auto bad = dir.path / "bad";
+  r = test::run_cli("shrink " + (dir.path / "m.obj").string() + " --size 32 -o " + bad.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(bad));
+  r = test::run_cli("shrink " + (dir.path / "m.obj").string() + " -o " + bad.string());  // no size
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(bad));
 }
 
 }  // namespace

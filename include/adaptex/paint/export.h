@@ -15,6 +15,16 @@
 
 namespace adaptex {
 
+/// A map of the material besides the base colour (export_textured_mesh() writes it as NAME_SLOT.png).
+struct ExportMap {
+  /// "normal" (MTL `norm`, glTF normalTexture), "metallic_roughness" (glTF metallicRoughnessTexture),
+  /// "occlusion" (glTF occlusionTexture), "emissive" (MTL `map_Ke`, glTF emissiveTexture),
+  /// "roughness" (MTL `map_Pr`), "metallic" (MTL `map_Pm`), "bump" (MTL `bump`), "specular" (MTL
+  /// `map_Ks`); a slot a format has no statement for is written as a file and named in a comment.
+  std::string slot;
+  ImageRGBA8 image;
+};
+
 /// Settings of export_textured_mesh() and encode_glb().
 struct ExportOptions {
   bool obj = true;       ///< Write NAME.obj, NAME.mtl and NAME.png.
@@ -26,6 +36,8 @@ struct ExportOptions {
   TextureAddress wrap = TextureAddress::ClampToEdge;
   /// Write `map_Kd -clamp on NAME.png` in the MTL, so OBJ importers clamp too (default off: plain map_Kd).
   bool mtl_clamp = false;
+  /// More maps of the material, on the same layout (default none). Slots must be distinct.
+  std::vector<ExportMap> maps;
 };
 
 /// The files export_textured_mesh() registered (empty paths for formats not written).

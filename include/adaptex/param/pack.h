@@ -40,11 +40,12 @@ struct RectPlacement {
 /// has the shape of \p sizes[i] (width, height; only the ratios between all the sizes matter), all
 /// scaled by the same factor, the largest at which one of these packings fits with gap \p padding
 /// between rectangles and to the border (bisection on the factor, relative accuracy 1e-4): a shelf
-/// packing (tallest first, rows left to right) and, for at most 200 rectangles, MaxRects (Jylänki
+/// packing (tallest first, rows left to right) and, for at most 500 rectangles, MaxRects (Jylänki
 /// 2010, "A thousand ways to pack the bin") with the bottom-left and the best-short-side-fit rules,
 /// each with the rectangles sorted by height, area, longest side and width. If the gaps alone do
-/// not fit (thousands of rectangles), the gap is halved until they do. A single rectangle fills the
-/// unit square. Rectangles are never turned.
+/// not fit (thousands of rectangles), the gap is halved until they do. Above 500 rectangles the
+/// shelves of pack_rectangles(sizes, options). A single rectangle fills the unit square.
+/// Rectangles are never turned.
 /// \param sizes C positive (width, height) pairs (non-positive entries get the smallest size)
 /// \param padding as in pack_charts()
 /// \return C placements: pairwise disjoint rectangles at least \p padding apart, inside [0,1]^2;
@@ -76,9 +77,10 @@ struct RectPackOptions {
   ProgressCallback progress;
 };
 
-/// pack_rectangles() with a minimum side, optional turning and progress. With at most 200
-/// rectangles and min_side = 0 the result is exactly that of pack_rectangles() (no turning) or
-/// pack_rectangles_turning(). With more, every scale tried costs O(n log n): shelves filled first
+/// pack_rectangles() with a minimum side, optional turning and progress. With min_side = 0 the
+/// result is exactly that of pack_rectangles() (no turning) or pack_rectangles_turning(). Up to
+/// 500 rectangles: the MaxRects and shelf strategies (0.5 s of CPU at 500). With more, every
+/// scale tried costs O(n log n): shelves filled first
 /// fit by decreasing height (FFDH, a max-tree over the shelves' free widths; turned rectangles
 /// lie landscape when turning is allowed) and shelves in one row (next fit); the scale is found
 /// by bisection (a fixed number of steps), so the whole packing is O(n log n) (10^4 rectangles in
