@@ -1,4 +1,4 @@
-// Signal-adaptive re-parameterization: the framework around the warp methods (warp_method.h):
+// Signal-adaptive re-parameterization: the framework around the methods (method.h):
 // validation, the method's warp, refinement, the flip-free remap and the geometry safeguard.
 #include "adaptex/adapt/adapt.h"
 
@@ -7,7 +7,7 @@
 #include <string>
 
 #include "adaptex/adapt/refine.h"
-#include "adaptex/adapt/warp_method.h"
+#include "adaptex/adapt/method.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/timer.h"
 #include "adaptex/param/stretch.h"
@@ -63,45 +63,15 @@ Parameterization AdaptResult::start_layout(const Parameterization& input) const 
   return warp ? warp->start_layout(layout) : layout;
 }
 
-std::unique_ptr<WarpMethod> make_warp_method(AdaptMode mode) {
-  switch (mode) {
-    case AdaptMode::Single: return make_single_warp();
-    case AdaptMode::TwoStage: return make_two_stage_warp();
-    case AdaptMode::DensityFlow: return make_density_flow_warp();
-    case AdaptMode::None: break;
-  }
-  throw InvalidInputError("adapt mode 'none' has no warp method");
-}
-
-const char* to_string(AdaptMode mode) {
-  switch (mode) {
-    case AdaptMode::None: return "none";
-    case AdaptMode::Single: return "single";
-    case AdaptMode::TwoStage: return "two-stage";
-    case AdaptMode::DensityFlow: return "density-flow";
-  }
-  return "?";
-}
-
-const std::vector<AdaptMode>& adapt_modes() {
-  static const std::vector<AdaptMode> modes{AdaptMode::None, AdaptMode::Single, AdaptMode::TwoStage,
-                                            AdaptMode::DensityFlow};
-  return modes;
-}
-
-AdaptMode parse_adapt_mode(const std::string& name) {
-  for (AdaptMode m : adapt_modes())
-    if (name == to_string(m)) return m;
-  if (name == "two_stage" || name == "twostage") return AdaptMode::TwoStage;
-  if (name == "density_flow") return AdaptMode::DensityFlow;
-  throw InvalidInputError("unknown adapt mode '" + name + "' (expected none, single, two-stage or density-flow)");
-}
-
-AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current,
-                                   const ImageRGBA8& texture, const TexelMap& current_map,
-                                   const AdaptOptions& o, const StrokeFile* history,
-                                   ErrorDensityReference* density_reference, const ErrorDensity* density,
-                                   const AdaptResult* warm_start) {
+namespace {
+/// The adaptation around \p method's warp (null for None): validation, the warp, refinement, the
+/// flip-free remap and the geometry safeguard.
+AdaptResult run(AdaptMethod* method, const WarpInput& in) {
+  const TriMesh& mesh = in.mesh;
+  const Parameterization& current = in.param;
+  const ImageRGBA8& texture = in.texture;
+  const TexelMap& current_map = in.map;
+  const AdaptOptions& o = in.options;
   validate(o);
   if (current.uv_faces.size() != mesh.faces.size())
     throw InvalidInputError("parameterization has " + std::to_string(current.uv_faces.size()) +
@@ -115,15 +85,14 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
   rep.mode = o.mode;
   rep.faces_before = rep.faces_after = mesh.num_faces();
   rep.l2_before = measure_stretch(mesh, current).l2;
-  if (o.mode == AdaptMode::None) {
+  if (!method) {
     res.param = current;
     rep.l2_after = rep.l2_before;
     rep.damping = 0;
     rep.time_total = seconds_since(t_start);
     return res;
   }
-  const std::unique_ptr<WarpMethod> method = make_warp_method(o.mode);
-  method->compute(WarpInput{mesh, current, texture, current_map, history, o, density_reference, density, warm_start}, res);
+  method->compute(in, res);
 
   // Refinement: where the warp varies faster than the triangles, split them (same surface).
   if (o.refine && method->wants_refinement()) {
@@ -171,5 +140,17 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
   rep.time_total = seconds_since(t_start);
   return res;
 }
+}  // namespace
+
+AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current, const ImageRGBA8& texture,
+                                   const TexelMap& current_map, const AdaptOptions& options,
+                                   const StrokeFile* history) {
+  const WarpInput in{mesh, current, texture, current_map, history, options};
+  if (options.mode == AdaptMode::None) return run(nullptr, in);
+  const std::unique_ptr<AdaptMethod> method = make_adapt_method(options.mode);
+  return run(method.get(), in);
+}
+
+AdaptResult adapt_with(AdaptMethod& method, const WarpInput& input) { return run(&method, input); }
 
 }  // namespace adaptex

@@ -570,8 +570,8 @@ struct ErrorDensityReference::Impl {
   TexelMap ref_map, half_map;
   PointSignalCache ref_signal, half_signal;
   // The last compute_error_density() with this reference: its three rasters and cell sums. The next
-  // call (after a stroke) sums again only the cell rows whose rasters changed (issue 10: after a
-  // stroke, only the dirty region's density inputs change). Empty before the first call.
+  // call (after a stroke) sums again only the cell rows whose rasters changed (after a stroke,
+  // only the dirty region's density inputs change). Empty before the first call.
   struct Last {
     Raster ref, a, b;
     CellErrors cells;

@@ -1,4 +1,4 @@
-// Conforming longest-edge refinement of a mesh for a warp of its UV domain (issue 12 item 3).
+// Conforming longest-edge refinement of a mesh for a warp of its UV domain.
 #include "adaptex/adapt/refine.h"
 
 #include <tbb/blocked_range.h>

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "adaptex/paint/point_transfer.h"
+#include "adaptex/adapt/method.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
 #include "adaptex/core/timer.h"
@@ -23,18 +24,6 @@
 namespace adaptex {
 
 namespace {
-
-/// \p density (mean 1) of a warp applied with blend factor \p t: ρ^t, scaled to mean 1 again (the
-/// warp's Jacobian determinant interpolated geometrically; t = 0: the unwarped layout, empty).
-ImageF damped_density(const ImageF& density, double t) {
-  if (t <= 0 || density.data.empty()) return ImageF{};
-  if (t == 1.0) return density;
-  ImageF d = density;
-  double sum = 0;
-  for (float& v : d.data) sum += (v = static_cast<float>(std::pow(v, t)));
-  for (float& v : d.data) v = static_cast<float>(v * d.data.size() / sum);
-  return d;
-}
 
 // Strokes painted since the last re-parameterization, in resample mode: composited over the
 // resampled base (composite_over_base) from the segment painted over black and over white.
@@ -104,17 +93,13 @@ struct PaintSession::Impl {
   bool held_from_cache = false;  // the held texture was resampled from the surface cache
   bool held_warm = false;        // the held layout's polish started from an earlier cycle's (warm_start)
   bool exact_only = false;       // finish(): this cycle replays exactly
-  // Each-stroke mode, density-flow: the history's signal on the initial layout's error-model rasters,
-  // updated stroke by stroke (error_density.h), so the error model does not re-evaluate the history.
-  std::unique_ptr<ErrorDensityReference> density_reference;
+  // The method's solver, for the session's life (method.h): with a fixed layout it keeps what it
+  // derives from that layout and the history (density-flow: the error model's reference).
+  std::unique_ptr<AdaptMethod> method;
   double texel_spacing = 0;  // sqrt(surface area / chart texels) of the initial layout
   int reparam_count = 0;
   bool adapted = false;  ///< A re-parameterization has been accepted: the current layout is adapted.
-  // Each-stroke gating (opt.min_gain_db): the UV area density of the held layout relative to the initial
-  // layout, on the error model's raster (empty: the initial layout itself), and whether a cycle was
-  // skipped since the last one that ran.
-  ImageF held_density;
-  // The held layout's measured error (the safeguard's MSE on the samples) and the model's least error
+  // Each-stroke gating (opt.min_gain_db): the held layout's measured error (the safeguard's MSE on the samples) and the model's least error
   // (predicted_error at its own density) when it was made; -1: unknown (then only the model predicts).
   double held_error = -1, held_best = -1;
   bool pending = false;
@@ -210,7 +195,7 @@ struct PaintSession::Impl {
     coverage += s.type == Stroke::Type::Decal ? 1.0 : s.dabs.size() * std::numbers::pi * s.radius * s.radius / area;
     history.strokes.push_back(std::move(s));
     if (uses_surface_cache()) surface_cache_now();
-    density_reference_now(adapt_options());  // each-stroke density-flow: O(stroke) now, not O(history) later
+    if (fixed_layout()) method->update(history, adapt_options());  // O(stroke) now, not O(history) later
     if (!opt.safeguard || opt.safeguard_samples == 0) return;
     ensure_samples();
     cached_signal(samples);
@@ -245,27 +230,18 @@ struct PaintSession::Impl {
   const TriMesh& source_mesh() const { return base_param ? mesh : current_mesh(); }
   const Parameterization& source_param() const { return base_param ? *base_param : *param; }
 
-  /// Each-stroke mode (an initial layout on the input mesh, both fixed for the session's life) with
-  /// replay and density-flow: the error model's history signal on that layout, built once and brought
-  /// up to date stroke by stroke (O(new strokes)); null otherwise, where the layout a re-parameterization
-  /// starts from changes and a cache would be rebuilt every time (and could outlive a refined mesh).
-  ErrorDensityReference* density_reference_now(const AdaptOptions& ao) {
-    if (!base_param || opt.update != TextureUpdate::Replay || ao.mode != AdaptMode::DensityFlow) return nullptr;
-    if (!density_reference)
-      density_reference =
-          std::make_unique<ErrorDensityReference>(mesh, *base_param, opt.texture_size, history.background, ao.density);
-    density_reference->update(history);
-    return density_reference.get();
-  }
+  /// Each-stroke mode with replay: every cycle starts from the initial layout on the input mesh, both
+  /// fixed for the session's life, so the method may cache what it derives from them
+  /// (AdaptMethod::fix_layout()).
+  bool fixed_layout() const { return base_param && opt.update == TextureUpdate::Replay; }
 
-  /// \p warm: an earlier cycle's result on the initial layout to warm-start from (each-stroke mode).
-  std::unique_ptr<AdaptResult> compute(const AdaptOptions& ao, const ErrorDensity* model, const AdaptResult* warm) {
-    ErrorDensityReference* ref = density_reference_now(ao);
+  /// \p warm: the cycle may start from the method's previous one (each-stroke mode).
+  std::unique_ptr<AdaptResult> compute(const AdaptOptions& ao, bool warm) {
     if (base_painter)
-      return std::make_unique<AdaptResult>(adapt_parameterization(
-          mesh, *base_param, base_painter->texture(), base_painter->texel_map(), ao, &history, ref, model, warm));
+      return std::make_unique<AdaptResult>(adapt_with(
+          *method, WarpInput{mesh, *base_param, base_painter->texture(), base_painter->texel_map(), &history, ao, warm}));
     return std::make_unique<AdaptResult>(
-        adapt_parameterization(current_mesh(), *param, texture(), painter->texel_map(), ao, &history, ref));
+        adapt_with(*method, WarpInput{current_mesh(), *param, texture(), painter->texel_map(), &history, ao}));
   }
 
   /// Moves the samples to the candidate's mesh, evaluates the exact signal there and the reference
@@ -344,7 +320,7 @@ struct PaintSession::Impl {
     adapted = true;
     held_from_cache = c.from_cache;
     held_warm = res.report.polish_warm_lattices > 0;
-    if (path_independent()) held_density = damped_density(res.density, res.report.damping);
+    if (path_independent()) method->hold(&res);
     res.param = *c.param;
     painter = std::move(c.painter);  // references *c.param and the candidate's mesh: keep both alive
     param = std::move(c.param);
@@ -367,7 +343,7 @@ struct PaintSession::Impl {
 
   /// Path-independent mode without an accepted candidate: the initial layout, the history replayed.
   void return_to_initial() {
-    held_density = ImageF{};
+    method->hold(nullptr);
     held_error = held_best = -1;
     held_warm = false;
     if (!adapted) return;
@@ -410,8 +386,8 @@ struct PaintSession::Impl {
     return reports.back();
   }
 
-  /// Each-stroke density-flow with replay (where density_reference_now() applies) and a history: the
-  /// error model for the history so far, and its predicted gain in dB over the held layout.
+  /// Each-stroke mode with replay (fixed_layout()) and a history: the method's model for the history
+  /// so far (AdaptMethod::predict_gain()), and its predicted gain in dB over the held layout.
   ///
   /// The gain over the held layout: where the held layout's error was measured when it was made
   /// (held_error, with the model's least error then, held_best), the error a new layout would reach
@@ -420,22 +396,22 @@ struct PaintSession::Impl {
   /// the isotropic model cannot: a new stroke across the direction the held layout's texels were
   /// stretched along (error_polish.h). Otherwise: the model alone, E(ρ_held) / E(ρ_new).
   struct Model {
-    ErrorDensity density;
-    double best = 0;  // predicted_error(density, density.density)
+    GainModel gain;
     double gain_over_held_db = 0;
     double seconds = 0;
   };
   /// \p measure: measure the held layout's error now (only a gated cycle needs it: it decides).
   std::optional<Model> model_now(const AdaptOptions& ao, bool measure) {
-    ErrorDensityReference* ref = density_reference_now(ao);
-    if (!ref || history.strokes.empty()) return std::nullopt;
+    if (!fixed_layout() || history.strokes.empty()) return std::nullopt;
     const auto t0 = std::chrono::steady_clock::now();
-    Model m{compute_error_density(mesh, *base_param, base_painter->texture(), base_painter->texel_map(), history, *ref,
-                                  ao.density)};
-    m.best = predicted_error(m.density, m.density.density);
-    const double now = measure && held_error > 0 && held_best > 0 && m.best > 0 ? current_error() : -1;
-    const double held = now > 0 ? now : predicted_error(m.density, held_density);
-    const double reachable = now > 0 ? held_error * m.best / held_best : m.best;
+    const std::optional<GainModel> g =
+        method->predict_gain(WarpInput{mesh, *base_param, base_painter->texture(), base_painter->texel_map(), &history, ao});
+    if (!g) return std::nullopt;
+    Model m{*g};
+    const double best = g->least_error;
+    const double now = measure && held_error > 0 && held_best > 0 && best > 0 ? current_error() : -1;
+    const double held = now > 0 ? now : g->held_error;
+    const double reachable = now > 0 ? held_error * best / held_best : best;
     m.gain_over_held_db = held > 0 && reachable > 0 ? 10 * std::log10(held / reachable) : 0.0;
     m.seconds = seconds_since(t0);
     return m;
@@ -458,8 +434,8 @@ struct PaintSession::Impl {
     rep.skipped = true;
     rep.accepted = false;
     rep.damping = 0;
-    rep.signal_fraction = m.density.signal_fraction;
-    rep.predicted_gain_db = m.density.predicted_gain_db;
+    rep.signal_fraction = m.gain.signal_fraction;
+    rep.predicted_gain_db = m.gain.predicted_gain_db;
     rep.gain_over_held_db = m.gain_over_held_db;
     rep.faces_before = rep.faces_after = current_mesh().num_faces();
     if (held_l2 < 0) held_l2 = measure_stretch(current_mesh(), *param).l2;
@@ -486,8 +462,7 @@ struct PaintSession::Impl {
     pending = true;
     // A cycle after a stroke starts its polish from the last cycle's (opt.warm_start); finish() and
     // reparameterize() start cold, so the session still ends on end mode's layout.
-    const AdaptResult* warm = gated && opt.warm_start && base_param && last ? last.get() : nullptr;
-    std::unique_ptr<AdaptResult> res = compute(ao, model ? &model->density : nullptr, warm);
+    std::unique_ptr<AdaptResult> res = compute(ao, gated && opt.warm_start && base_param);
     const TriMesh& cand_mesh = res->refined_mesh ? *res->refined_mesh : source_mesh();
     AdaptReport& rep = res->report;
     if (model) {
@@ -518,7 +493,7 @@ struct PaintSession::Impl {
       keep(*res);
     // What the gate of the next cycles compares with (model_now()).
     held_error = !use_safeguard ? -1.0 : accept ? rep.error_after : rep.error_before;
-    held_best = model && held_error > 0 ? model->best : -1.0;
+    held_best = model && held_error > 0 ? model->gain.least_error : -1.0;
     return record(std::move(res), t_all);
   }
 };
@@ -554,6 +529,8 @@ PaintSession::PaintSession(TriMesh mesh, Parameterization initial, const PaintSe
     m.base_painter = std::make_unique<Painter>(m.mesh, *m.base_param, m.painter_options(), background);
   }
   m.area = std::max(surface_area(m.mesh), 1e-300);
+  m.method = make_adapt_method(m.adapt_options().mode);
+  if (m.fixed_layout()) m.method->fix_layout(m.mesh, *m.base_param, options.texture_size, background);
   // The surface cache's size now (it is built when the history is long enough): too large, exact replay.
   m.surface_fits = m.base_param && options.update == TextureUpdate::Replay && options.surface_cache > 0 &&
                    SurfaceSignalCache::count_samples(m.mesh, m.texel_spacing / options.surface_cache) <=

@@ -1,7 +1,7 @@
 #pragma once
 /// \file adapt.h
 /// Signal-adaptive re-parameterization in one call. The method that computes the warp of the square is
-/// selected by AdaptMode (warp_method.h, one file each):
+/// selected by AdaptMode (method.h, one folder each):
 /// - `density-flow` (default): the texel density that minimizes the reconstruction error for the
 ///   texel budget (error_density.h, measured from the exact stroke history), reached exactly by a
 ///   flow-based density-equalizing map that cannot fold (density_flow.h); triangles too large for the
@@ -14,6 +14,7 @@
 /// docs/error_model.md and docs/quality.md.
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "adaptex/adapt/atlas_flow.h"
@@ -35,13 +36,26 @@
 
 namespace adaptex {
 
-/// Which re-parameterization to run.
-enum class AdaptMode {
-  None,      ///< Keep the parameterization (the baseline of every comparison).
-  Single,    ///< One grid of fine_grid cells (thesis §3.7).
-  TwoStage,  ///< coarse_grid then fine_grid (thesis §3.8).
-  DensityFlow,  ///< Error-model density + flow-based density-equalizing map. Default.
+/// Which re-parameterization to run: a method by the name it is registered under (method.h). The
+/// built-in ones are named here; parse_adapt_mode() also finds methods registered later.
+class AdaptMode {
+ public:
+  /// \p name must outlive the value (a literal, or a name held by the registry).
+  constexpr explicit AdaptMode(const char* name) : name_(name) {}
+  static const AdaptMode None;         ///< Keep the parameterization (the baseline of every comparison).
+  static const AdaptMode Single;       ///< One grid of fine_grid cells (thesis §3.7).
+  static const AdaptMode TwoStage;     ///< coarse_grid then fine_grid (thesis §3.8).
+  static const AdaptMode DensityFlow;  ///< Error-model density + flow-based density-equalizing map. Default.
+  constexpr const char* name() const { return name_; }
+  friend bool operator==(const AdaptMode& a, const AdaptMode& b) { return std::string_view(a.name_) == b.name_; }
+
+ private:
+  const char* name_;
 };
+inline constexpr AdaptMode AdaptMode::None{"none"};
+inline constexpr AdaptMode AdaptMode::Single{"single"};
+inline constexpr AdaptMode AdaptMode::TwoStage{"two-stage"};
+inline constexpr AdaptMode AdaptMode::DensityFlow{"density-flow"};
 
 /// Largest grid of the thesis' relaxation, in cells per side (AdaptOptions::coarse_grid, fine_grid;
 /// a 4096² grid already has 16.8 M points, far past any texture this library paints).
@@ -82,8 +96,7 @@ struct AdaptOptions {
   /// square, damped where charts would meet (kept for comparison; docs/error_model.md §6).
   bool atlas_flow = true;
   /// atlas_flow: the error model chooses how strongly the charts are resized by their density share
-  /// (allocate_charts_by_error(): the re-packing's lost texels count against it); false: always by
-  /// the full share, sizes ∝ sqrt(mean ρ) (repack_charts_by_density(), sessions 3–10).
+  /// (allocate_charts_by_error()); false: always by the full share (repack_charts_by_density()).
   bool chart_sizes_by_error_model = true;
   /// atlas_flow: least gap between re-packed charts, in texels of the texture (the layout's own gap
   /// is kept when it is larger). Bilinear lookup near a chart border reads the texels next to it, so
@@ -154,9 +167,6 @@ struct AdaptResult {
   ImageF density;          ///< density-flow: target area density per cell (mean 1; error_density.h).
   /// The method's warp of the square (uv_warp.h); null for None. Kept when a safeguard rejects it.
   std::shared_ptr<const UvWarp> warp;
-  /// density-flow with the polish: the flow's lattices before the polish, one per lattice of the
-  /// warp, for a later cycle's warm start (add_polish_correction(), error_polish.h). Empty otherwise.
-  std::vector<GridWarp> flow_grids;
   /// Set when refinement changed the mesh: the refined mesh (same surface, more faces), which
   /// result.param belongs to. nullptr: param belongs to the input mesh.
   std::shared_ptr<const TriMesh> refined_mesh;
@@ -171,29 +181,22 @@ struct AdaptResult {
 
 /// Re-parameterizes \p current from the signal of \p texture (drawn with \p current; \p current_map
 /// is its texel map, same size as the texture) and, if given, the exact stroke \p history (used by
-/// density-flow's error model; without it the texture is the only signal). \p density_reference, if
-/// given, caches that signal for \p current at the texture's size (error_density.h); it is used when it
-/// matches and makes the error model's cost independent of the history's length. \p density, if given,
-/// is density-flow's error model for exactly these inputs and options (compute_error_density()), used
-/// instead of computing it again. \p warm_start, if given, is the result of an earlier cycle on the same
-/// \p current layout (a painting session's previous cycle): when it has as many lattices, density-flow's
-/// polish starts each from that cycle's polish (AdaptResult::flow_grids, add_polish_correction(), which
-/// resamples a lattice of another size) and runs ErrorPolishOptions::warm_sweeps. The result then depends on that cycle, not on the inputs
-/// alone; other methods ignore it.
+/// density-flow's error model; without it the texture is the only signal), with a new solver of
+/// options.mode (method.h; a painting session keeps one solver instead, adapt_with()).
 /// \pre mesh, current and current_map are consistent; texture non-empty
-/// \throw InvalidInputError inconsistent sizes, bad options (grid < 1, α/β < 0, ...)
+/// \throw InvalidInputError inconsistent sizes, bad options (grid < 1, α/β < 0, ...), unknown mode
 /// \throw CancelledError the progress callback returned false
 AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current,
                                    const ImageRGBA8& texture, const TexelMap& current_map,
-                                   const AdaptOptions& options = {}, const StrokeFile* history = nullptr,
-                                   ErrorDensityReference* density_reference = nullptr,
-                                   const ErrorDensity* density = nullptr, const AdaptResult* warm_start = nullptr);
+                                   const AdaptOptions& options = {}, const StrokeFile* history = nullptr);
 
-/// Name of a mode as used on the command line: "none", "single", "two-stage", "density-flow".
+/// Name of a mode as used on the command line: "none", "single", "two-stage", "density-flow", ...
 const char* to_string(AdaptMode mode);
-/// Parses a name of to_string(). \throw InvalidInputError otherwise (the message lists the names)
+/// The registered mode named \p name (method.h). \throw InvalidInputError otherwise (the message
+/// lists the names)
 AdaptMode parse_adapt_mode(const std::string& name);
-/// Every mode, in the order a UI lists them (None first, the default last).
-const std::vector<AdaptMode>& adapt_modes();
+/// Every registered mode, in the order a UI lists them (None first, then the built-in methods, the
+/// default last of them, then the methods registered later).
+std::vector<AdaptMode> adapt_modes();
 
 }  // namespace adaptex

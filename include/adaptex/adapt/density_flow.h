@@ -25,49 +25,24 @@
 
 namespace adaptex {
 
-/// Settings of density_equalizing_warp().
+/// Settings of density_equalizing_warp(). Why each default: docs/decisions.md ("A 256-cell flow
+/// lattice and a 3-cell density blur", "The flow is sampled on a lattice").
 struct DensityFlowOptions {
-  /// Cells per side n of the output GridWarp (lattice of (n+1)² points). 256 since session 10, with
-  /// the step and tolerance below doubled in cells (the same in uv as 128 cells' 2 / 0.01) and the
-  /// density blur at 3 cells (error_density.h): 9 shared meshes × lines/dots/mixed × 128²/256², 2M
-  /// samples, against 128 cells at blur 4, mean per case +0.27 / +0.03 / +0.11 dB, no lines case
-  /// worse, median texel saving 4.79 / 3.90 / 4.15 against 4.12 / 3.67 / 4.52; out of sample (seed 7,
-  /// a code-built mesh) +0.07 / +0.01 / +0.07 dB (docs/quality.md, session 10). Session 5 had
-  /// measured 128 ahead on 4 meshes at 400k samples.
-  int cells = 256;
+  int cells = 256;             ///< Cells per side n of the output GridWarp (lattice of (n+1)² points).
   double tolerance = 2e-2;     ///< Local error bound of the adaptive integration, in output cells.
   int max_steps = 4000;        ///< Cap on integration steps per point (never reached on sane input).
   /// Longest move of a point in one integration step, in cells of the output lattice (the step-size
-  /// control adds its own limit). Session 4 measured it in cells of the finer of the density raster
-  /// and the lattice (2: a quarter of the steps of 0.5 at the same density error); session 5 counts
-  /// lattice cells, which on the default 128-cell lattice over a 256² density doubles the step of a
-  /// one-chart flow (venus lines 256²: 703k -> 403k steps, density error 0.175 -> 0.184; the texel
-  /// saving within noise, docs/benchmarks.md). Per-chart flows were already counted this way.
-  /// Session 10: 4 on the 256-cell lattice (the same move in uv as 2 on 128 cells).
+  /// control adds its own limit).
   double max_step_cells = 4.0;
   bool parallel = true;        ///< Advect points and measure the lattice with TBB (identical results either way).
-  /// Coarse-to-fine advection, in output cells (session 9; 0: advect every point). On an even
-  /// lattice (cells >= 16) the lattice of the even points is built first (recursively, down to 8
-  /// cells); in each of its cells where the fourth differences of the advected points around the
-  /// cell bound the error of cubic interpolation (5/64 |Δ⁴X|) below this tolerance, the other points
-  /// are interpolated instead of advected. The map is smooth where the density is (floor regions,
-  /// the blurred paint), so most of the square takes the cheap path: venus lines 256², 5,591 of
-  /// 16,641 points and 151k of 403k steps; end-mode re-parameterization 109–122 -> 80–107 ms CPU. In
-  /// quality, 9 shared meshes x lines/dots/mixed x 128²/256² (2M samples): mean change -0.009 /
-  /// +0.007 / +0.032 dB, worst case -0.24 dB (0.1 and 0.5 alike; docs/benchmarks.md, session 9).
-  /// Session 10: 1 on the 256-cell lattice (0.5 of a 128-cell lattice's cells, measured alike there).
+  /// Coarse-to-fine advection, in output cells (0: advect every point). On an even lattice (cells >=
+  /// 16) the lattice of the even points is built first (recursively, down to 8 cells); in each of its
+  /// cells where the fourth differences of the advected points bound the error of cubic interpolation
+  /// (5/64 |Δ⁴X|) below this tolerance, the other points are interpolated instead of advected.
   double interpolation_tolerance = 1.0;
-  /// density-flow: advect the mesh's wedges (and refinement's test points) through the flow itself
-  /// (DensityFlow / FlowWarp below) instead of through the bilinear lattice, which then only draws
-  /// the debug pictures and the studio's grid. The exact flow reaches the density (venus dots 256²:
-  /// relative L1 error 0.010 against the lattice's 0.26; 0.077 against 0.77 at blur 2), but the texel
-  /// saving does not follow: the flow's map is strongly anisotropic where it magnifies (mean
-  /// σmax/σmin 5.3 in the cells with ρ > 1.5, the lattice's 3.3; at blur 2 13 against 2.0) and the
-  /// error model counts area only. Measured on small meshes × dots × 128²/256² (docs/quality.md,
-  /// session 6): median texel saving 3.19 (blur 4, 4 meshes) / 3.72 (blur 3) / 3.71 (blur 2, 6 meshes)
-  /// against the lattice's 3.61 at blur 4 (at 2M evaluation samples 3.56 / 3.52 / 3.53 against 3.66),
-  /// with per-case swings of 0.5× to 1.7× the lattice's, and
-  /// refinement 37× slower (venus dots 256²: 517 ms against 14 ms). Off by default.
+  /// Advect the mesh's wedges (and refinement's test points) through the flow itself (DensityFlow /
+  /// FlowWarp below) instead of through the bilinear lattice, which then only draws pictures. Not
+  /// adopted (docs/decisions.md): kept for the study of bench/adapt/quality.cpp (--direct-flow).
   bool direct = false;
   /// direct: local error bound of the integration, in cells of the density raster the flow was
   /// solved on (the velocity varies at that scale, not at the lattice's).

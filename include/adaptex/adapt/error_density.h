@@ -44,16 +44,11 @@ struct ErrorDensityOptions {
   /// nearest N/2 centre; the shifted grid has the same distances in the same proportions, so both
   /// levels' errors are sampled alike, with a quarter of the exact evaluations and of the reference
   /// texel map. It also stays finer than the texture at N >= max_reference, where the capped raster
-  /// is the texture's own texel centres. Not with fewer points per cell: with 1 (N = cells = 256) the
-  /// per-cell errors of small dots got noisy, the density too peaked, and it lost 0.2–0.3 dB; with 4
-  /// the model predicted +18 % more gain on dots than the 2N raster (docs/quality.md, "Session 11").
-  /// Its cost, measured out of sample in session 12 at 1024² (stroke seed 3, docs/quality.md): on
-  /// `mixed` −0.17 dB mean on 4 shared meshes (dino −0.57) and −0.44 dB on 4 code-built meshes (torus
-  /// −0.66), lines −0.07, dots +0.01; kept for the model's 3× speed at N >= 1024 (the studio's cycle),
-  /// a trade-off, not a free gain. false: always the reference_factor·N raster.
+  /// is the texture's own texel centres. A trade-off for the model's 3× speed at N >= 1024, not a free
+  /// gain (docs/decisions.md, "A quarter-texel reference"). false: always the reference_factor·N raster.
   bool quarter_texel_reference = true;
-  /// Gaussian σ, in cells, of the error fields before the density solve. 3 since session 10 (4 before):
-  /// with the 256-cell flow lattice, +0.06 dB on lines / dots / mixed over 4 (alone it is neutral).
+  /// Gaussian σ, in cells, of the error fields before the density solve (docs/decisions.md, "A
+  /// 256-cell flow lattice and a 3-cell density blur").
   double blur_cells = 3.0;
   /// Least surface texel density, relative to a uniform-density layout of the same budget, of any cell
   /// (unpainted regions). 0.02 = spacing at most ~7× the uniform spacing.
@@ -83,7 +78,7 @@ struct ErrorDensity {
 /// max_reference, or the quarter-texel-shifted N x N grid: quarter_texel_reference) and
 /// of the N/2 level, kept up to date stroke by stroke (paint/signal.h, PointSignalCache). A painting
 /// session re-parameterizes from its initial layout after every stroke (session.h): with this cache
-/// the error model evaluates only the new strokes' dabs, not the whole history (issue 10). It also
+/// the error model evaluates only the new strokes' dabs, not the whole history. It also
 /// keeps the rasters and per-cell error sums of its last compute_error_density() call, so that the
 /// next call sums again only the rows of cells whose inputs changed (a stroke touches few of them);
 /// the result is the same, bit for bit, as summing every row. Those rasters take 12 bytes per texel of

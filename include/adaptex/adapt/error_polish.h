@@ -7,7 +7,7 @@
 /// det J of the warp's Jacobian J. Around a painted dot the flow magnifies radially less than
 /// tangentially wherever the target density varies, and the dot's edge lies exactly there: measured on
 /// the lattice of venus `dots` at 256², the worse direction's texel density gains 0.4–1.3 dB less than
-/// the area density (docs/quality.md, session 12). Error model with direction: an edge of unit normal
+/// the area density. Error model with direction: an edge of unit normal
 /// n, in a layout whose Jacobian (old uv → new uv, in texels) is J, leaves an error per unit length
 /// ∝ |J⁻ᵀn|^p (p as measured by error_density.h: 1 for hard edges); averaged over edge directions
 /// (dots, curved strokes), |J⁻ᵀn|² → |J⁻¹|²_F / 2, so the polish minimizes
@@ -25,7 +25,7 @@
 /// are swept one after the other, points of one colour in parallel (they share no cell), so the
 /// result does not depend on the thread count.
 ///
-/// Session 14 (docs/error_model.md §12): the mean over directions is replaced by the paint's own
+/// Where the paint has edges (docs/error_model.md §12), the mean over directions is replaced by the paint's own
 /// edge directions where it has edges, |J⁻ᵀ|²_T = tr(T·J⁻¹J⁻ᵀ) with T the cell's direction tensor
 /// blended with I/2 (PolishFields::txx, add_edge_directions(), ErrorPolishOptions::isotropy), so
 /// texels get fine across edges and may stretch along them; the flow's lattice is polished through a
@@ -38,89 +38,39 @@
 
 namespace adaptex {
 
-/// Settings of polish_warp_by_error().
+/// Settings of polish_warp_by_error(). Why each default: docs/decisions.md ("The flow lattice is
+/// polished by the anisotropic error model", "A three-level coarse-to-fine polish", "settle_cells",
+/// "Warm start of the polish: off").
 struct ErrorPolishOptions {
-  /// Gauss–Seidel sweeps over the lattice (0: no polish). 20 with ω = 1.8: on the 4 one-chart shared
-  /// meshes × lines / dots / mixed × 128² / 256² (2M samples) against no polish, mean +0.47 / +0.90 /
-  /// +0.85 dB; 10 sweeps gave +0.42 / +0.73 / +0.72, 40 gave +0.47 / +0.97 / +0.81, ω = 1 with 30
-  /// sweeps +0.38 / +0.77 / +0.74 (docs/quality.md, session 13, on the 256-cell lattice). Through the
-  /// 128-cell lattice with the edge directions (session 14), 10 sweeps against 20: −0.07 / −0.10 /
-  /// −0.26 dB on those meshes, −0.02 / +0.02 / −0.01 dB on the 5 multi-chart shared meshes.
-  int sweeps = 20;
-  /// Coarse-to-fine (the warp method's polish, warp_density_flow.cpp): where the polish lattice has
-  /// at least 32 cells, first prepass_sweeps sweeps on a coarser lattice (half as many cells, or fewer:
-  /// prepass_levels), then sweeps_after_prepass (instead of sweeps) on each finer one. Plain Gauss–Seidel leaves the slow,
-  /// global modes of the warp unconverged (on venus `mixed` 256² the energy still fell 0.4 % per
-  /// sweep at sweep 20); the half lattice moves them at a quarter of the cost per sweep. Session 15,
-  /// against 20 sweeps on the full lattice (mean dB per case, lines / dots / mixed / blobs): the
-  /// 9-mesh study (128²–512², seed 1) −0.03 / +0.00 / +0.14; out of sample (13 meshes, seed 3)
-  /// +0.04 / +0.01 / +0.19 / +0.38; the polish 0.67× the time (docs/quality.md, "Session 15").
-  /// 20 + 10 gave −0.02 / −0.05 / +0.20 on 6 meshes at 256². 0: no prepass.
+  int sweeps = 20;  ///< Gauss–Seidel sweeps over the lattice (0: no polish).
+  /// Coarse to fine: where the polish lattice has at least 32 cells, first this many sweeps on a
+  /// lattice of 2^-prepass_levels as many cells, then sweeps_after_prepass on each finer one (0: none).
   int prepass_sweeps = 20;
-  /// Sweeps on each finer level after the prepass's coarsest (see prepass_sweeps, prepass_levels). 3
-  /// since session 21 (5 before), with prepass_levels 2.
-  int sweeps_after_prepass = 3;
-  /// Coarser lattices of the prepass (with prepass_sweeps > 0): 1, the half lattice only; 2, a quarter
-  /// of the cells first (prepass_sweeps), then the half (sweeps_after_prepass), then the full
-  /// (sweeps_after_prepass); and so on, each level halving the cells, as long as the coarsest has at
-  /// least 16 cells. In [1, 4]. Session 21: 2 levels with 3 sweeps after the prepass (20 + 3 + 3)
-  /// against session 15's 1 level with 5 (20 + 5), mean dB per case (lines / dots / mixed / blobs):
-  /// the 9-mesh study (128²–512², 2M samples) −0.03 / −0.00 / +0.00; 6 meshes at 256²–1024² −0.03 /
-  /// +0.06 / −0.02; out of sample (11 meshes, seed 3, 128²–512²) −0.09 / +0.01 / +0.07 / +0.10; the
-  /// polish 0.66–0.78× the time, the whole re-parameterization about 0.9× (docs/quality.md, "Session
-  /// 21"). 3 levels gained no time; 2 levels with 2 sweeps lost 0.10 / 0.13 dB on lines / mixed.
-  int prepass_levels = 2;
+  int sweeps_after_prepass = 3;  ///< Sweeps on each finer level after the prepass's coarsest.
+  int prepass_levels = 2;        ///< Coarser levels of the prepass, each halving the cells (≥ 16), in [1, 4].
   /// Sweeps on the full lattice, without a prepass, when the polish starts from the previous cycle's
-  /// polish (add_polish_correction(); a painting session's cycle after a stroke, warm_start in
-  /// adapt_parameterization()). The hope was that the previous correction holds the slow modes the
-  /// prepass is for. On one dot that moved (test_error_polish.cpp) 5 warm sweeps reach 0.02 dB of 30
-  /// cold ones, but in real sessions they do not: PaintSessionOptions::warm_start is off by default.
+  /// (add_polish_correction(); PaintSessionOptions::warm_start).
   int warm_sweeps = 5;
-  /// Stop early when a sweep lowers E by less than this fraction of E.
-  double tolerance = 1e-4;
-  /// κ of the floor term, relative to the mean q of the painted cells.
-  double floor_weight = 10.0;
-  /// Weight μ, relative to the mean q of the painted cells, of a shape term μ·|J|²_F / (2 det J) in every
-  /// cell (≥ 1, 1 for a round texel at any size). Without it the unpainted cells, which only have the
-  /// floor on their area, took the compression in one-cell-wide cracks of extreme shear. 0.01: on the
-  /// 4 one-chart shared meshes × lines / dots / mixed × 128² / 256² −0.06 / +0.02 / +0.01 dB against 0,
-  /// out of sample (seed 3, 6 meshes) +0.01 / +0.06 / +0.05 dB, and a third fewer refined faces.
+  double tolerance = 1e-4;     ///< Stop when a sweep lowers E by less than this fraction of E.
+  double floor_weight = 10.0;  ///< κ of the floor term, relative to the mean q of the painted cells.
+  /// Weight μ, relative to the mean q of the painted cells, of a shape term μ·|J|²_F / (2 det J) in
+  /// every cell: keeps the unpainted cells from taking the compression in cracks of extreme shear.
   double shape_weight = 0.01;
-  /// Only points within this many cells of the warp's lattice of a painted cell move (elsewhere E has
-  /// no gradient except through the floor, which the flow already meets); polish_warp() scales it to
-  /// its coarser lattice.
+  /// Only points within this many cells of a painted cell move (polish_warp() scales it).
   int reach_cells = 12;
-  /// Also polish the per-chart lattices of a re-packed atlas (atlas_flow.h). Session 13 left it off:
-  /// with round texels (isotropy 1) the polished chart lattices lost 0.1–0.4 dB on `lines` and `mixed`
-  /// (dino, bunny, spot, triceratops at 128² / 256²). With the edges' directions (isotropy below) they
-  /// gain: docs/error_model.md §12.
-  bool charts = true;
+  bool charts = true;  ///< Also polish the per-chart lattices of a re-packed atlas (atlas_flow.h).
   /// A point is relaxed again only if it or a neighbour moved by more than this many lattice cells in
-  /// the sweep before (0: every point in every sweep). At 1e-3 nearly every point is relaxed in every
-  /// sweep. 0.05 took 40 % off the polish of `mixed` (venus, camelhead 256²) and was neutral on the 4
-  /// one-chart meshes (+0.00 / +0.01 / +0.02 dB) but cost −0.01 / −0.08 / −0.05 dB out of sample
-  /// (seed 3, 6 meshes): not adopted.
+  /// the sweep before (0: every point in every sweep).
   double settle_cells = 1e-3;
-  /// ω of the Newton step (over-relaxation; the line search still only accepts a lower energy), in
-  /// (0, 2). 1.8: the model's gain after 10 sweeps as after 30 at ω = 1 (venus, spot, kitten,
-  /// camelhead dots 256²).
+  /// ω of the Newton step (over-relaxation; the line search still only accepts a lower energy), in (0, 2).
   double over_relaxation = 1.8;
-  /// Cells per side of the unit square of the lattice the polish runs on (polish_cells(),
-  /// polish_warp(); a chart's lattice gets as many per side of the square): a finer warp lattice is
-  /// sampled at this lattice's points, which are polished, and the warp's points follow them.
-  /// 0: the warp's own lattice. 128 on the flow's
-  /// 256-cell lattice: a quarter of the points and of the time (venus `mixed` 256²: 320 → 80 ms), and
-  /// against polishing the 256 cells themselves, on the 4 one-chart shared meshes × lines / dots /
-  /// mixed, mean +0.02 / +0.03 / +0.07 dB at 128² / 256² and +0.08 / +0.05 / +0.26 dB at 512² / 1024²
-  /// (2M samples); 64 cells lost 0.09–0.11 dB (docs/error_model.md §12).
+  /// Cells per side of the square of the lattice the polish runs on (polish_cells(), polish_warp()):
+  /// a finer warp lattice is sampled there, polished, and follows. 0: the warp's own lattice.
   int cells = 128;
-  /// Weight of the isotropic model against the paint's own edge directions (PolishFields::txx;
-  /// add_edge_directions()), in (0, 1]: 1 measures the texel spacing in every direction alike (texels
-  /// become round), lower values let texels stretch along the paint's edges.
+  /// Weight of the isotropic model against the paint's own edge directions (add_edge_directions()),
+  /// in (0, 1]: 1 makes texels round, lower values let them stretch along the paint's edges.
   double isotropy = 0.25;
-  /// Sweep a colour's points with TBB, and (the warp method's polish) polish the charts' lattices in
-  /// parallel; the same result either way.
-  bool parallel = true;
+  bool parallel = true;  ///< Sweep points and charts' lattices with TBB (the same result either way).
   ProgressCallback progress;  ///< Called with ("polish", sweeps done / sweeps) after every sweep.
 };
 
@@ -201,7 +151,7 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
 ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields,
                                       const ErrorPolishOptions& options = {});
 
-/// Warm start of a polish (issue 10, deliverable 2): \p warp, a flow lattice of this cycle, takes the
+/// Warm start of a polish: \p warp, a flow lattice of this cycle, takes the
 /// correction the polish made to the previous cycle's flow lattice, t·(prev_polished − prev_flow), in
 /// the lattices' local coordinates: at point (i, j) of \p warp, the difference of the previous
 /// lattices' maps (GridWarp::apply_lattice) at (i/n, j/n), so a lattice of another size gets the

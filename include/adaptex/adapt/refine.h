@@ -1,6 +1,6 @@
 #pragma once
 /// \file refine.h
-/// Conforming refinement of a mesh for a warp of its UV domain (issue 12 item 3). UVs are linear per
+/// Conforming refinement of a mesh for a warp of its UV domain. UVs are linear per
 /// triangle: a warped layout only moves the wedges, so a triangle that is large for the warp's
 /// variation either flips or smears the detail the warp was meant to magnify. refine_for_warp()
 /// splits exactly those triangles, in the *old* UV domain, before the caller warps the wedges:

@@ -80,20 +80,13 @@ struct SafeRemapOptions {
   int untangle_patience = 200;
   int untangle_max_rounds = 2000;  ///< Hard cap of the rounds (see untangle_patience).
   /// Untangling rounds update the wedges in place (Gauss–Seidel: a wedge reads its ring as already
-  /// moved this round) instead of all from the previous round's positions (Jacobi, sessions 3–10).
-  /// Same fixed point, fewer rounds: the face mask's 256² dots remap 557 → 365 ms, face mixed 256²
-  /// 105 → 45 ms; over 54 cases of the quality study the PSNR moved by −0.07 to +0.10 dB (mean 0.00).
+  /// moved this round) instead of all from the previous round's positions (Jacobi): same fixed point,
+  /// fewer rounds (docs/decisions.md, "Untangling in place, without over-relaxation").
   bool untangle_in_place = true;
-  /// Over-relaxation of the in-place untangling (successive over-relaxation): a wedge moves to
-  /// p + ω (ring mean − p); must be in (0, 2). 1: to the ring mean. Session 12 measured 1.5: the face
-  /// mask's dots at 256² untangled in 405 rounds instead of 610 (remap 282 → 205 ms), but over 54
-  /// cases of the quality study the PSNR fell by 0.046 / 0.012 / 0.014 dB on lines / dots / mixed
-  /// (lines down to −0.28), so the default stays 1 (docs/quality.md, "Session 12").
+  /// Over-relaxation ω of the in-place untangling: a wedge moves to p + ω (ring mean − p); in (0, 2).
   double untangle_over_relaxation = 1.0;
-
-  /// Untangling also moves the 1-rings of the failing faces' wedges (as before session 5). Off: only
-  /// the failing faces' own wedges move, which disturbs fewer good faces; measured on the shared
-  /// meshes' lines at 256², the rounds needed went 13-493 -> 10-249 (docs/error_model.md §6).
+  /// Untangling also moves the 1-rings of the failing faces' wedges (off: only the failing faces' own
+  /// wedges move, which disturbs fewer good faces).
   bool untangle_rings = false;
 };
 

@@ -28,8 +28,7 @@
 /// is below it (the layout is then end mode's for an earlier part of the history) and finish() catches
 /// up, so the last layout is still end mode's.
 /// The exact signal at the samples is kept up to date stroke by stroke (paint/signal.h
-/// PointSignalCache), so the safeguard does not evaluate the whole history again after every stroke
-/// (issue 10).
+/// PointSignalCache), so the safeguard does not evaluate the whole history again after every stroke.
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -73,58 +72,29 @@ struct PaintSessionOptions {
   /// so no safeguard: every candidate is taken).
   int safeguard_samples = 60000;
   std::uint64_t safeguard_seed = 0x5eedada;  ///< Seed of those samples (paint/eval.h sample_surface).
-  /// Accept a candidate only if its estimated MSE is below (1 - margin) x the reference's. 0.02
-  /// (≈ 0.09 dB): the estimate uses 60,000 samples, and with margin 0 a candidate measured 0.12 dB
-  /// worse by the 400,000-sample evaluation was accepted (triceratops lines at 128², density-flow).
-  /// Applies whenever the reference is the fixed (initial) layout; against an adapted current layout
-  /// (resample mode, or end mode re-parameterizing again) a candidate only has to be better.
+  /// Accept a candidate only if its estimated MSE is below (1 - margin) x the reference's, whenever
+  /// the reference is the fixed (initial) layout; against an adapted current layout (resample mode,
+  /// or end mode re-parameterizing again) a candidate only has to be better (docs/decisions.md, "The
+  /// never-worse safeguard and its 0.02 margin").
   double safeguard_margin = 0.02;
-  /// Each-stroke mode with replay: replay through a surface signal cache (paint/surface_cache.h, Mesh
-  /// Colors) once the history is long (surface_cache_coverage). The texture of a candidate layout is
-  /// then resampled from per-face samples of the exact signal, updated stroke by stroke, in O(texels),
-  /// instead of replaying every dab of the history on it, so a cycle's cost stops growing with the
-  /// history (issue 10). The value is the number of samples per texel spacing of the initial layout
-  /// (3: the sample spacing is a third of a texel's; the texture is then within a fraction of a dB of
-  /// exact replay, tests/paint/test_surface_cache.cpp). 0: always exact replay. The lattice takes 8
-  /// bytes per sample (at 3, ~25 samples per chart texel: ~150 MB for the 86k-face armadillo at 1024²);
-  /// one of more than kMaxSurfaceCacheSamples samples is not built, and the session replays exactly
-  /// (surface_cache_samples() is then 0). finish() ends on exact replay: if the held texture came from
-  /// the cache it runs the last cycle again with exact replay, so the session ends on end mode's
-  /// layout and texture. End mode replays the history once per re-parameterization and never uses it.
+  /// Each-stroke mode with replay: once the history's dabs cover the surface surface_cache_coverage
+  /// times (Σ π r² / area; a decal counts 1), a candidate's texture is resampled in O(texels) from a
+  /// surface signal cache (paint/surface_cache.h) instead of replaying the history. The value is the
+  /// samples per texel spacing of the initial layout (8 bytes each; a lattice of more than
+  /// kMaxSurfaceCacheSamples is not built). 0: always exact replay. finish() ends on exact replay.
+  /// End mode never uses it (docs/decisions.md, "Replay exactly, then resample from a surface cache").
   double surface_cache = 3;
-  /// The surface cache is built, from the whole history, and used from the stroke after which the
-  /// history's brush dabs cover the surface this many times over (Σ over dabs of π r² / surface area;
-  /// a decal counts 1). Exact replay costs about in proportion to that coverage, resampling from the
-  /// cache about as much as 4 covers (armadillo 1024², bench_session: replay 17 ms at 1.9 covers,
-  /// 360 ms at 25; from the cache 43–68 ms). Keeping the cache costs ~5 ms per stroke, and building it
-  /// composites the whole history once (~1 s at 1024² after ~100 strokes). 0: from the first stroke.
-  double surface_cache_coverage = 4;
-  /// Each-stroke mode with density-flow and replay: after a stroke, the cycle first computes the error
-  /// model (error_density.h) and re-parameterizes only if a new layout is predicted to gain at least
-  /// this PSNR, in dB, over the layout the session holds; otherwise the stroke stays painted on the
-  /// held layout and the report says `skipped` (35–45 ms at 1024² on 86k faces). The prediction:
-  /// where the safeguard measured the held layout's error when it was made, that error scaled by the
-  /// model's least error (predicted_error()) from then to now, against the held layout's error
-  /// measured now on the same samples; otherwise the model alone, E(held density) / E(new density). A skipped stroke's signal is not
-  /// lost: the next cycle's model sees the whole history, so small strokes add up until the gain is
-  /// worth a new layout. finish() re-parameterizes once more if the last cycle was skipped, so the
-  /// session ends on end mode's layout. 0: re-parameterize after every stroke (each layout is then
-  /// end mode's for the history so far). 0.3 (session 19; 0.1 before): over 100 `mixed` strokes on 5
-  /// meshes, 47–56 % of the cycles skipped instead of 33–43 %, at a mean live PSNR cost against a cycle
-  /// after every stroke of 0.03–0.11 dB instead of 0.01–0.06 dB; the worst checkpoint moved by less
-  /// than 0.1 dB on the histories it was chosen on, but by 0.5–0.8 dB on another seed (armadillo,
-  /// plane100k). See docs/adaptive.md, "Choosing the threshold".
+  double surface_cache_coverage = 4;  ///< Covers of the surface from which the surface cache is used (0: at once).
+  /// Each-stroke mode with replay: after a stroke, re-parameterize only if the method's model predicts
+  /// a gain of at least this PSNR, in dB, over the held layout (AdaptMethod::predict_gain(); where the
+  /// safeguard measured the held layout's error, that error scaled by the model's least error from
+  /// then to now against the held layout's error now); otherwise the report says `skipped` and the
+  /// strokes add up for the next cycle. finish() catches up, so the session ends on end mode's layout.
+  /// 0: a cycle after every stroke (docs/decisions.md, "The min-gain gate").
   double min_gain_db = 0.3;
-  /// Each-stroke mode, density-flow: a cycle after a stroke starts its polish from the previous cycle's
-  /// (adapt_parameterization()'s warm_start; error_polish.h add_polish_correction()) and runs
-  /// ErrorPolishOptions::warm_sweeps instead of the prepass and sweeps (issue 10, deliverable 2). The
-  /// layouts held while painting then depend on which cycles ran, not on the history alone; finish()
-  /// runs the last cycle again cold, so the session still ends on end mode's layout and texture.
-  /// Off by default: measured over 100-stroke sessions on 5 meshes (docs/bench_adapt.md, session 21),
-  /// 5 warm sweeps take ~25 % off the polish but cost 0.3–1.1 dB of mean PSNR while painting; 10
-  /// sweeps cost as much time as a cold polish, 25 (−0.04 to −0.08 dB) more. The prepass's slow modes
-  /// do not carry over from one cycle to the next. false: every cycle starts cold (each held layout is
-  /// end mode's for a prefix of the history).
+  /// Each-stroke mode: a cycle after a stroke may start from the method's previous cycle (density-flow:
+  /// its polish, ErrorPolishOptions::warm_sweeps). The held layouts then depend on which cycles ran;
+  /// finish() runs the last cycle again cold. Off (docs/decisions.md, "Warm start of the polish: off").
   bool warm_start = false;
   std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
 };

@@ -1,39 +1,49 @@
-// `--adapt density-flow`: the texel density that minimizes the reconstruction error for the texel
-// budget (error_density.h, from the exact stroke history when there is one), reached by the flow-based
-// density-equalizing map (density_flow.h). docs/error_model.md explains the model and the choices.
+// `--adapt density-flow` (density_flow_method.h). docs/error_model.md explains the model and the
+// choices.
+#include "adaptex/adapt/density_flow_method.h"
+
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <vector>
 
 #include "adaptex/adapt/error_polish.h"
-#include "adaptex/adapt/warp_method.h"
 #include "adaptex/core/timer.h"
 
 namespace adaptex {
 
 namespace {
-class DensityFlowWarp final : public WarpMethod {
- public:
-  bool wants_refinement() const override { return true; }
+/// A previous compute()'s lattices: the flow's, and the same polished (the warm start).
+struct Lattices {
+  std::vector<GridWarp> flow, polished;
+};
 
-  void compute(const WarpInput& in, AdaptResult& res) const override {
+/// \p density (mean 1) of a warp applied with blend factor \p t: ρ^t, scaled to mean 1 again (the
+/// warp's Jacobian determinant interpolated geometrically; t = 0: the unwarped layout, empty).
+ImageF damped_density(const ImageF& density, double t) {
+  if (t <= 0 || density.data.empty()) return ImageF{};
+  if (t == 1.0) return density;
+  ImageF d = density;
+  double sum = 0;
+  for (float& v : d.data) sum += (v = static_cast<float>(std::pow(v, t)));
+  for (float& v : d.data) v = static_cast<float>(v * d.data.size() / sum);
+  return d;
+}
+}  // namespace
+
+struct DensityFlowMethod::State {
+  void compute(const WarpInput& in, AdaptResult& res) {
     const AdaptOptions& o = in.options;
     AdaptReport& rep = res.report;
     auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "density", 0);
-    const ErrorDensityOptions& eo = o.density;
-    ErrorDensityReference* cache = in.density_reference;
-    const bool cached = in.history && cache && cache->matches(in.mesh, in.param, in.texture.width, eo);
-    ErrorDensity ed = in.density   ? *in.density
-                      : cached     ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, *cache, eo)
-                      : in.history ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, eo)
-                                   : compute_error_density(in.mesh, in.param, in.texture, in.map, eo);
+    ErrorDensity ed = error_model(in);
     rep.signal_fraction = ed.signal_fraction;
     rep.predicted_gain_db = ed.predicted_gain_db;
     // The error map, scaled to [0,1], is what the studio and the debug maps show as "importance".
@@ -76,20 +86,64 @@ class DensityFlowWarp final : public WarpMethod {
     rep.flow_advected_points = st.advected_points;
     rep.time_flow = seconds_since(t0);
     if (o.flow.direct) {
+      previous.reset();  // no polish: the next cycle starts cold
       res.warp = std::make_shared<const FlowLayoutWarp>(std::move(flow), std::move(lattices), std::move(moves));
       return;
     }
-    polish(o, ed, in.texture, in.warm_start, moves, lattices, res);
+    const Lattices* warm = in.warm && previous ? &*previous : nullptr;
+    std::vector<GridWarp> flow_lattices;
+    polish(o, ed, in.texture, warm, moves, lattices, flow_lattices, res);
+    previous = Lattices{std::move(flow_lattices), lattices};
     res.warp = std::make_shared<const LatticeWarp>(std::move(lattices), std::move(moves));
   }
 
- private:
+  /// The error model of \p in: predict_gain()'s when it was computed for this input, else through
+  /// the reference when it applies, else from the history or the texture alone.
+  ErrorDensity error_model(const WarpInput& in) {
+    const ErrorDensityOptions& eo = in.options.density;
+    ErrorDensityReference* cache = in.history ? reference_now(*in.history, in.options) : nullptr;
+    if (model && in.history && model_strokes == in.history->strokes.size() && fixed && &in.param == fixed->layout) {
+      ErrorDensity ed = std::move(*model);
+      model.reset();
+      return ed;
+    }
+    model.reset();
+    const bool cached = cache && cache->matches(in.mesh, in.param, in.texture.width, eo);
+    return cached       ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, *cache, eo)
+           : in.history ? compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, eo)
+                        : compute_error_density(in.mesh, in.param, in.texture, in.map, eo);
+  }
+
+  /// The history's signal on the fixed layout, built on first use and brought up to date; null
+  /// without a fixed layout.
+  ErrorDensityReference* reference_now(const StrokeFile& history, const AdaptOptions& o) {
+    if (!fixed) return nullptr;
+    if (!reference)
+      reference = std::make_unique<ErrorDensityReference>(*fixed->mesh, *fixed->layout, fixed->texture_size,
+                                                          fixed->background, o.density);
+    reference->update(history);
+    return reference.get();
+  }
+
+  struct Fixed {
+    const TriMesh* mesh;
+    const Parameterization* layout;
+    int texture_size;
+    Vec3 background;
+  };
+  std::optional<Fixed> fixed;                       // fix_layout()
+  std::unique_ptr<ErrorDensityReference> reference;  // the history's signal on fixed->layout
+  std::optional<ErrorDensity> model;                 // predict_gain()'s, for the next compute()
+  size_t model_strokes = 0;                          // the history's length it saw
+  ImageF held_density;                               // hold(): the held layout's density, empty: fixed
+  std::optional<Lattices> previous;                  // the last compute()'s lattices (warm start)
+
   /// Polishes lattice \p c of \p lattices (coarse to fine, ErrorPolishOptions::prepass_sweeps) with
   /// \p progress; \p cell gets the area of one of its cells in cells of the density raster. With
   /// \p warm (an earlier cycle's result) the polish starts from that cycle's correction
   /// (add_polish_correction()) and runs warm_sweeps; \p warmed says whether it did.
   static ErrorPolishStats polish_lattice(const AdaptOptions& o, const ErrorDensity& ed, const EdgeTensor& edges,
-                                         const AdaptResult* warm, const std::vector<ChartMove>& moves,
+                                         const Lattices* warm, const std::vector<ChartMove>& moves,
                                          std::vector<GridWarp>& lattices, AdaptResult& res, size_t c,
                                          const ProgressCallback& progress, double& cell, bool& warmed) {
     GridWarp& g = lattices[c];
@@ -126,7 +180,7 @@ class DensityFlowWarp final : public WarpMethod {
           if (measure) before = polish_model_error(flow, own_lattice ? own : f, measure_options);
         },
         [&] {
-          warmed = warm && add_polish_correction(g, warm->flow_grids[c], warm->warp->lattices()[c]) > 0;
+          warmed = warm && add_polish_correction(g, warm->flow[c], warm->polished[c]) > 0;
           if (warmed) {
             po.sweeps = po.warm_sweeps;
           } else if (po.prepass_sweeps > 0 && m >= 32) {
@@ -154,15 +208,14 @@ class DensityFlowWarp final : public WarpMethod {
   /// are polished in parallel (each polish is also parallel inside): an atlas has many small lattices
   /// whose own sweeps cannot keep two cores busy (armadillo, 1024²: 15 charts of 16–55 polish cells).
   /// Each lattice's result does not depend on the others or on the threads.
-  /// \p warm: an earlier cycle's result (WarpInput::warm_start) or null; used when it has as many
-  /// lattices.
-  static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture, const AdaptResult* warm,
-                     const std::vector<ChartMove>& moves, std::vector<GridWarp>& lattices, AdaptResult& res) {
+  /// \p warm: the previous compute()'s lattices (WarpInput::warm) or null; used when it has as many
+  /// lattices. \p flow_lattices gets the lattices before the polish.
+  static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture, const Lattices* warm,
+                     const std::vector<ChartMove>& moves, std::vector<GridWarp>& lattices,
+                     std::vector<GridWarp>& flow_lattices, AdaptResult& res) {
     if (o.polish.sweeps <= 0 || (!moves.empty() && !o.polish.charts)) return;
-    res.flow_grids = lattices;
-    if (warm && (!warm->warp || warm->warp->lattices().size() != lattices.size() ||
-                 warm->flow_grids.size() != lattices.size()))
-      warm = nullptr;
+    flow_lattices = lattices;
+    if (warm && (warm->polished.size() != lattices.size() || warm->flow.size() != lattices.size())) warm = nullptr;
     const auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "polish", 0);
     const EdgeTensor edges = o.polish.isotropy < 1 ? edge_tensor(texture) : EdgeTensor{};
@@ -203,8 +256,39 @@ class DensityFlowWarp final : public WarpMethod {
     res.report.time_polish = seconds_since(t0);
   }
 };
-}  // namespace
 
-std::unique_ptr<WarpMethod> make_density_flow_warp() { return std::make_unique<DensityFlowWarp>(); }
+DensityFlowMethod::DensityFlowMethod() : s_(std::make_unique<State>()) {}
+DensityFlowMethod::~DensityFlowMethod() = default;
+
+void DensityFlowMethod::compute(const WarpInput& input, AdaptResult& result) { s_->compute(input, result); }
+
+void DensityFlowMethod::fix_layout(const TriMesh& mesh, const Parameterization& layout, int texture_size,
+                                   const Vec3& background) {
+  s_->fixed = State::Fixed{&mesh, &layout, texture_size, background};
+  s_->reference.reset();
+}
+
+void DensityFlowMethod::update(const StrokeFile& history, const AdaptOptions& options) {
+  s_->reference_now(history, options);
+}
+
+std::optional<GainModel> DensityFlowMethod::predict_gain(const WarpInput& in) {
+  if (!in.history || in.history->strokes.empty()) return std::nullopt;
+  ErrorDensityReference* ref = s_->reference_now(*in.history, in.options);
+  if (!ref) return std::nullopt;
+  s_->model = compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, *ref, in.options.density);
+  s_->model_strokes = in.history->strokes.size();
+  const ErrorDensity& m = *s_->model;
+  GainModel g;
+  g.least_error = predicted_error(m, m.density);
+  g.held_error = predicted_error(m, s_->held_density);
+  g.signal_fraction = m.signal_fraction;
+  g.predicted_gain_db = m.predicted_gain_db;
+  return g;
+}
+
+void DensityFlowMethod::hold(const AdaptResult* result) {
+  s_->held_density = result ? damped_density(result->density, result->report.damping) : ImageF{};
+}
 
 }  // namespace adaptex

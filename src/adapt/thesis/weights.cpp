@@ -1,30 +1,13 @@
-// Thesis §3.5–§3.7: importance, geometry stretch, L_s² and one relaxed grid (`--adapt single`).
+// Thesis §3.5–§3.7: the weights the relaxation methods share (importance, stretch map, L_s²).
 #include <chrono>
 
+#include "adaptex/adapt/importance.h"
+#include "adaptex/adapt/ls2.h"
 #include "adaptex/adapt/stretch_map.h"
-#include "adaptex/adapt/warp_method.h"
 #include "adaptex/core/timer.h"
+#include "thesis_methods.h"
 
 namespace adaptex {
-
-namespace {
-class SingleWarp final : public WarpMethod {
- public:
-  void compute(const WarpInput& in, AdaptResult& res) const override {
-    compute_thesis_weights(in, res);
-    const AdaptOptions& o = in.options;
-    const auto t0 = std::chrono::steady_clock::now();
-    report_progress(o.progress, "fine", 0);
-    GridWarp fine = GridWarp::uniform(o.fine_grid);
-    res.report.fine_iterations =
-        relax_grid(fine, pool_for_grid(res.ls2, o.fine_grid, o.pool), thesis_relax_options(in)).iterations;
-    std::vector<GridWarp> lattices;
-    lattices.push_back(std::move(fine));
-    res.warp = std::make_shared<const LatticeWarp>(std::move(lattices));
-    res.report.time_fine = seconds_since(t0);
-  }
-};
-}  // namespace
 
 RelaxOptions thesis_relax_options(const WarpInput& in) {
   const AdaptOptions& o = in.options;
@@ -64,7 +47,5 @@ void compute_thesis_weights(const WarpInput& in, AdaptResult& res) {
   res.ls2 = compute_ls2(res.importance, res.stretch, lo);
   rep.time_ls2 = seconds_since(t0);
 }
-
-std::unique_ptr<WarpMethod> make_single_warp() { return std::make_unique<SingleWarp>(); }
 
 }  // namespace adaptex

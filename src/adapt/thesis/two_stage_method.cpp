@@ -4,15 +4,15 @@
 #include <algorithm>
 #include <chrono>
 
-#include "adaptex/adapt/warp_method.h"
 #include "adaptex/core/timer.h"
+#include "thesis_methods.h"
 
 namespace adaptex {
 
 namespace {
-class TwoStageWarp final : public WarpMethod {
+class TwoStageMethod final : public AdaptMethod {
  public:
-  void compute(const WarpInput& in, AdaptResult& res) const override {
+  void compute(const WarpInput& in, AdaptResult& res) override {
     compute_thesis_weights(in, res);
     const AdaptOptions& o = in.options;
     AdaptReport& rep = res.report;
@@ -41,6 +41,6 @@ class TwoStageWarp final : public WarpMethod {
 };
 }  // namespace
 
-std::unique_ptr<WarpMethod> make_two_stage_warp() { return std::make_unique<TwoStageWarp>(); }
+std::unique_ptr<AdaptMethod> make_two_stage_method() { return std::make_unique<TwoStageMethod>(); }
 
 }  // namespace adaptex
