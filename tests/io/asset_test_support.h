@@ -11,9 +11,9 @@
 namespace adaptex::test {
 
 /// The message of the InvalidInputError (or subclass) that reading \p file throws, or "(no error)".
-inline std::string asset_error(const std::filesystem::path& file) {
+inline std::string asset_error(const std::filesystem::path& file, const AssetReadOptions& options = {}) {
   try {
-    (void)read_textured_asset(file);
+    (void)read_textured_asset(file, options);
   } catch (const InvalidInputError& e) {
     return e.what();
   }
@@ -21,8 +21,9 @@ inline std::string asset_error(const std::filesystem::path& file) {
 }
 
 /// Reading \p file is rejected with one line that contains \p who (the file, and where in it) and \p what.
-inline void expect_asset_rejected(const std::filesystem::path& file, const std::string& who, const std::string& what) {
-  const std::string msg = asset_error(file);
+inline void expect_asset_rejected(const std::filesystem::path& file, const std::string& who, const std::string& what,
+                                  const AssetReadOptions& options = {}) {
+  const std::string msg = asset_error(file, options);
   EXPECT_NE(msg.find(who), std::string::npos) << "expected '" << who << "' in: " << msg;
   EXPECT_NE(msg.find(what), std::string::npos) << "expected '" << what << "' in: " << msg;
   EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;

@@ -252,16 +252,16 @@ TEST(AssetIo, NanUvIsRejected) {
   expect_asset_rejected(dir.path / "nan.obj", "nan.obj", "vt 3 is not finite");
 }
 
-TEST(AssetIo, ChartsStraddlingTilesAndUdimAreRejectedClearly) {
+TEST(AssetIo, StraddlingChartsAreKeptByDefaultAndUdimIsRejectedClearly) {
   test::TempDir dir;
   std::string obj = strip_obj("");
   obj.replace(obj.find("vt 1.5 0.5"), 10, "vt 0.8 0.5");  // quad 2 spans u 0.8 .. 1.9
   test::write_text(dir.path / "straddle.obj", obj);
+  AssetReadOptions strict;
+  strict.keep_straddling_charts = false;
   expect_asset_rejected(dir.path / "straddle.obj", "straddle.obj: UV chart 2 (face 5 and 1 more) spans u 0.8 to 1.9",
-                        "crosses a UV tile border, which is not supported");
-  AssetReadOptions keep;
-  keep.keep_straddling_charts = true;
-  const TexturedAsset kept = read_textured_asset(dir.path / "straddle.obj", keep);
+                        "crosses a UV tile border, which is not supported", strict);
+  const TexturedAsset kept = read_textured_asset(dir.path / "straddle.obj");  // kept by default
   EXPECT_EQ(kept.uv.straddling_charts, 1);
   EXPECT_EQ(kept.uv.wrapped_charts, 0);
   EXPECT_EQ(kept.param.uv[kept.param.uv_faces[4][1]].x(), 1.9);  // left where it is
@@ -284,7 +284,10 @@ TEST(AssetIo, CoordinatesJustOutsideTheirTileAreClamped) {
   EXPECT_EQ(asset.uv.wrapped_charts, 1);
   AssetReadOptions strict;
   strict.uv_tolerance = 1e-4;
+  strict.keep_straddling_charts = false;
   EXPECT_THROW((void)read_textured_asset(dir.path / "edge.obj", strict), InvalidInputError);
+  strict.keep_straddling_charts = true;  // the default keeps the chart where it is
+  EXPECT_EQ(read_textured_asset(dir.path / "edge.obj", strict).uv.straddling_charts, 1);
 }
 
 TEST(AssetIo, TexelUsageCountsSharedEdgesOnceAndOverlapsTwice) {

@@ -108,9 +108,10 @@ struct AssetReadOptions {
   /// it; such coordinates are clamped to the border (and counted). Default 0.001: one texel at 1024².
   double uv_tolerance = 1e-3;
   /// Leave charts that cross a UV tile border where they are, with UVs outside [0,1]^2 (counted in
-  /// UvReport::straddling_charts, with a warning), instead of rejecting the asset: for callers that
-  /// sample the maps with repeat wrapping. Default false (an InvalidInputError names the chart).
-  bool keep_straddling_charts = false;
+  /// UvReport::straddling_charts, with a warning), as real atlases often have them (a chart a little
+  /// past the border reads the edge texels under clamp-to-edge). Default true; false rejects such an
+  /// asset with an InvalidInputError that names the chart.
+  bool keep_straddling_charts = true;
 };
 
 /// A mesh with its artist's UV atlas and materials.
@@ -132,7 +133,8 @@ struct TexturedAsset {
 /// \pre none (every problem is reported by an exception).
 /// \throw IoError unreadable or corrupt file, a material file or map that is missing, unreadable,
 /// corrupt, or the asset/material file itself
-/// \throw InvalidInputError no UVs, NaN/inf UVs, a chart that straddles a UV tile border, UDIM tiles
+/// \throw InvalidInputError no UVs, NaN/inf UVs, UDIM tiles, a chart that straddles a UV tile border
+/// (only with keep_straddling_charts false)
 /// \throw TopologyError as read_mesh()
 TexturedAsset read_textured_asset(const std::filesystem::path& path, const AssetReadOptions& options = {},
                                   ReadReport* report = nullptr);
