@@ -1,6 +1,6 @@
 // `adaptex demo [-o DIR]`: the whole pipeline on the embedded default mesh (a trefoil-knot tube):
 // a seeded `mixed` stroke set, unwrap, paint at 1024^2, export OBJ/MTL/PNG/GLB + layout pictures +
-// stroke file + report, and the PSNR of the texture against the exact strokes (issue 3 item 7).
+// stroke file + report, and the PSNR of the texture against the exact strokes.
 #include <iomanip>
 #include <memory>
 #include <sstream>

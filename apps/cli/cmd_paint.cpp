@@ -1,6 +1,6 @@
 // `adaptex paint MESH --strokes S.json [--size N] [--adapt none] -o OUTDIR`: unwrap, paint the stroke
-// file exactly into an N x N texture, export OBJ/MTL/PNG/GLB and report.json (issue 3 item 5; the
-// --adapt family of flags is issue 4 item 8). All outputs are committed together or not at all.
+// file exactly into an N x N texture, export OBJ/MTL/PNG/GLB and report.json (docs/export.md; the
+// --adapt family of flags: docs/adaptive.md). All outputs are committed together or not at all.
 #include <cmath>
 #include <memory>
 #include <sstream>

@@ -53,7 +53,7 @@ inline ProgressCallback phase_printer(const Context& ctx, const std::string& pre
   };
 }
 
-/// Settings of the adaptive re-parameterization (issue 4, `--adapt` and friends), parsed and
+/// Settings of the adaptive re-parameterization (`--adapt` and friends), parsed and
 /// validated by `adaptex paint` and turned into PaintSessionOptions by make_session_options().
 struct AdaptSettings {
   std::string mode = to_string(AdaptOptions{}.mode);  ///< none | single | two-stage | density-flow
@@ -108,7 +108,7 @@ inline UnwrapOptions paint_unwrap_options(const PaintRunOptions& options, Progre
 }
 
 /// Unwraps \p mesh (progress lines on stderr) and paints every stroke of \p strokes.
-/// The adaptive step of issue 4 plugs in here, in the "paint" phase (see the comment there).
+/// The adaptive step plugs in here, in the "paint" phase (see the comment there).
 inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
                                  const PaintRunOptions& options, const Context& ctx) {
   PaintRun run;
@@ -133,7 +133,7 @@ inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
     run.texel_updates = painter.texel_updates();
     run.chart_texels = static_cast<long long>(painter.texel_map().inside.size());
   } else {
-    // Signal-adaptive re-parameterization (issue 4): a PaintSession paints every stroke and
+    // Signal-adaptive re-parameterization: a PaintSession paints every stroke and
     // re-parameterizes after each stroke or once at the end, replaying or resampling the texture.
     const AdaptSettings& a = options.adapt;
     const PaintSessionOptions so = make_session_options(

@@ -1,8 +1,8 @@
 #pragma once
 /// \file session_options.h
 /// Option strings of `adaptex paint` (and of the quality bench, which takes the same strings) turned
-/// into PaintSessionOptions. String parsing belongs to the command line, not to the library
-/// (issue 12 item 4): the library takes enums and numbers.
+/// into PaintSessionOptions. String parsing belongs to the command line, not to the library:
+/// the library takes enums and numbers.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -24,7 +24,7 @@ ReparamSchedule parse_reparam_schedule(const std::string& name);
 /// Parses "replay" / "resample". \throw InvalidInputError any other string
 TextureUpdate parse_texture_update(const std::string& name);
 
-/// Session options from the command-line strings of `adaptex paint` (issue 4 item 8):
+/// Session options from the command-line strings of `adaptex paint`:
 /// mode as parse_adapt_mode ("none" | "single" | "two-stage" | "density-flow"); grid {} (defaults),
 /// {FINE} or {COARSE, FINE}, each in [1, 4096]; alpha/beta < 0 = default, must be finite;
 /// reparam "each-stroke" | "end"; update "replay" | "resample"; debug_maps empty = none.

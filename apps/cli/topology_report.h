@@ -1,6 +1,6 @@
 #pragma once
 /// \file topology_report.h
-/// Per-component topology in the `info` and `unwrap --report` outputs (issue 8): faces, vertices
+/// Per-component topology in the `info` and `unwrap --report` outputs: faces, vertices
 /// (fans), edges, Euler characteristic, genus and boundary loops of every connected component, so
 /// that euler == 2 - 2 genus - boundary_loops can be checked component by component.
 #include <nlohmann/json.hpp>

@@ -703,7 +703,7 @@ void App::maybe_start_rebuild() {
   painting_.catch_up();  // pure appends (redo, decals): painted onto the current canvas
   if (!adapt_wanted()) return;
   if (adapts_live()) {
-    // The live session paints the new strokes and adapts to them in the background (issue 10): the
+    // The live session paints the new strokes and adapts to them in the background: the
     // cost per stroke does not grow with the history, unlike a rebuild from the initial layout.
     jobs_.feed_live(painting_.model(), history().generation(), history().strokes(), history().background(), session_);
     adapt_pending_ = false;

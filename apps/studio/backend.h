@@ -97,7 +97,7 @@ SessionOutcome paint_history(const std::shared_ptr<const TriMesh>& mesh, const P
 
 /// An adaptex::PaintSession on the schedule `adaptex paint --reparam each-stroke` uses (replay, the
 /// surface cache, the min-gain gate), kept across strokes by the studio's live adaptation
-/// (live_adaptation.h): a cycle costs the same after 10 strokes as after 1,000 (issue 10), where
+/// (live_adaptation.h): a cycle costs the same after 10 strokes as after 1,000, where
 /// paint_history() replays the whole history. Not thread-safe: one thread drives it.
 class LiveSession {
  public:

@@ -3,7 +3,7 @@
 /// The studio's adaptation while painting (schedule each-stroke): one background LiveSession kept
 /// across strokes. The UI feeds it every finished stroke; it paints them and runs one each-stroke
 /// cycle per batch (a cycle's cost does not grow with the history: the surface cache, the min-gain
-/// gate; issue 10), and publishes a new surface whenever the layout changes. Once no stroke has come
+/// gate), and publishes a new surface whenever the layout changes. Once no stroke has come
 /// for settle_delay (or at once after settle_now()), it settles on end mode's layout and texture for
 /// the history (PaintSession::finish), so the layout still depends on the history alone; a stroke
 /// arriving meanwhile cancels that and is adapted to first.

@@ -138,7 +138,7 @@ void StudioUi::draw(App& app) {
   collect_messages(app);
   if (const auto answer = native_.poll(); answer && !answer->empty()) act(app, native_.request().kind, *answer);
   // Every ordinary window first, the one modal last: a window that appears after a modal opened in
-  // the same frame trips Dear ImGui 1.86's assertion `blocking_modal != NULL` (its issue 4920).
+  // the same frame trips Dear ImGui 1.86's assertion `blocking_modal != NULL` (its bug #4920).
   if (app.view().show_ui) {
     const float menu_h = menu_bar(app);
     side_panel(app, menu_h);

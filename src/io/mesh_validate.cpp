@@ -1,5 +1,5 @@
 /// \file mesh_validate.cpp
-/// Validation and repair of triangle meshes (issue 2, "Mesh input"): non-finite coordinates, indices
+/// Validation and repair of triangle meshes: non-finite coordinates, indices
 /// out of range, degenerate faces and unreferenced vertices (dropped with a warning), pinched vertices
 /// (split with a warning), duplicate faces and non-manifold edges (rejected, or repaired with
 /// ReadOptions::repair), mixed face winding (made consistent with a warning), and the common

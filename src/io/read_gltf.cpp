@@ -5,7 +5,7 @@
 /// attribute set), so the soup is welded by identical position afterwards.
 ///
 /// assimp trusts the file: a forged GLB chunk length made it allocate 4 GB, and it guesses the format
-/// from the content, so any file named .glb reached every assimp importer (issue 11). So before assimp
+/// from the content, so any file named .glb reached every assimp importer. So before assimp
 /// sees a file, check_gltf() requires real glTF 2.0 (the GLB container, or a JSON object with
 /// asset.version 2.x), checks every GLB chunk length, buffer, buffer view and accessor against the
 /// bytes that exist, and requires external buffers to be regular files.
@@ -394,7 +394,7 @@ void check_references(const std::string& corrupt, const json& doc) {
 }
 
 /// Every index of every primitive names a vertex of its POSITION accessor. assimp follows index values
-/// without checking them for some primitive modes: found by fuzz_gltf (session 11), a line loop whose
+/// without checking them for some primitive modes: found by fuzz_gltf, a line loop whose
 /// indices (a valid unsigned-short SCALAR accessor) were read from the positions' bytes made assimp
 /// read address 0. Runs after check_views_and_accessors() and check_references(), so every accessor
 /// and view read here lies inside its buffer.

@@ -1,7 +1,7 @@
 /// \file read_off.cpp
 /// OFF (incl. COFF/NOFF/STOFF/4OFF/nOFF with n = 3, CRLF line ends, '#' comments): a strict reader of
 /// its own. CGAL's File_scanner_OFF, used before, crashed on an out-of-range colour-map index and read
-/// negative counts and indices as huge unsigned numbers (issue 11); this reader checks every count
+/// negative counts and indices as huge unsigned numbers; this reader checks every count
 /// against the bytes left in the file before allocating. Like CGAL's scanner, a vertex is its
 /// coordinates followed by anything up to the line end (normals, colours, texture coordinates: skipped),
 /// and a face is its corner count, the corner indices, then anything up to the line end (a colour).

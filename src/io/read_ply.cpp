@@ -2,7 +2,7 @@
 /// PLY (ascii, binary little and big endian; `face`/`faces` with `vertex_indices`/`vertex_index` of any
 /// integer type; `element tristrips`): a strict reader of its own. CGAL's PLY_reader, used before,
 /// crashed on a property declared before any element and allocated whatever a list count claimed
-/// (2^31 entries, or a negative count read as a huge size; issue 11). Here every element count and
+/// (2^31 entries, or a negative count read as a huge size). Here every element count and
 /// every list count is checked against the bytes left in the file before anything is allocated.
 /// Ascii numbers are converted with std::from_chars (correctly rounded doubles, also for properties
 /// declared `float`: the file's decimal text is kept), binary numbers bit-exactly.

@@ -1,5 +1,5 @@
 /// \file export.cpp
-/// OBJ/MTL/PNG and glTF 2.0 binary export of a painted mesh (issue 3 item 5; docs/export.md).
+/// OBJ/MTL/PNG and glTF 2.0 binary export of a painted mesh (docs/export.md).
 #include "adaptex/paint/export.h"
 
 #include <tiny_gltf.h>

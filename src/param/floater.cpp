@@ -695,7 +695,7 @@ void TutteSolver::solve_assembled(const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d&
     ok = im.solve_direct(backend_, rhs, x);
   }
   if (!ok) {
-    // Fallback (issue 8): the iterative solver did not converge or the direct one failed. A direct
+    // Fallback: the iterative solver did not converge or the direct one failed. A direct
     // LU with partial pivoting (UMFPACK, else SparseLU) from scratch; the Tutte matrix of strictly
     // positive convex weights is a non-singular M-matrix, so this only fails on non-finite weights.
     ++fallbacks_;

@@ -1,6 +1,6 @@
 #pragma once
 /// \file export.h
-/// Export of a painted mesh to the formats artists use (issue 3 item 5): Wavefront OBJ + MTL + PNG
+/// Export of a painted mesh to the formats artists use: Wavefront OBJ + MTL + PNG
 /// and a binary glTF 2.0 (.glb) with the PNG embedded as baseColorTexture. Conventions (OBJ v = 0
 /// bottom, glTF v flipped, one glTF vertex per wedge) are described in docs/export.md.
 #include <filesystem>

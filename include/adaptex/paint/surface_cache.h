@@ -2,7 +2,7 @@
 /// \file surface_cache.h
 /// A surface-space cache of the painted signal, finer than the texture, updated per stroke, from
 /// which the texture of any layout of the same surface is resampled in O(texels) — instead of
-/// replaying every dab of the history on it (issue 10). Per-face samples on a regular barycentric
+/// replaying every dab of the history on it. Per-face samples on a regular barycentric
 /// lattice, as Mesh Colors (Yuksel, Keyser, House: "Mesh Colors", Tech. Rep. TAMU 2010): face f of
 /// longest edge e carries n_f = ceil(e / spacing) subdivisions, i.e. (n_f+1)(n_f+2)/2 samples at
 /// barycentrics (1 - i/n - j/n, i/n, j/n), 0 <= i + j <= n (edge and corner samples are stored once

@@ -1,6 +1,6 @@
 #pragma once
 /// \file texel_saving.h
-/// Texel saving factor of an adaptive parameterization (issue 12 acceptance, docs/quality.md): the
+/// Texel saving factor of an adaptive parameterization (docs/quality.md): the
 /// texture area that the fixed layout (`none`) needs to reach the adaptive method's PSNR at N x N,
 /// relative to N x N. PSNR of `none` is taken as piecewise linear in log2(size) through its values at
 /// N, 2N and 4N (Sander et al. 2002 report such savings as "texture size needed for equal error").

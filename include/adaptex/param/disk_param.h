@@ -27,7 +27,7 @@ struct DiskParamOptions {
   /// (restarting from the best weights so far).
   double min_improvement = 1e-3;
   /// Stop after this many halvings of η (0: stop at the first iterate that does not improve enough).
-  /// 1 (session 16; 2 before): the iterations after a second halving changed the final L2 of the
+  /// 1 (2 before): the iterations after a second halving changed the final L2 of the
   /// shared meshes by < 0.2 % (docs/bench_unwrap.md, "One halving of η") and cost one or two solves
   /// (venus' unwrap 6.1 -> 5.9 ms), so they are skipped.
   int max_halvings = 1;

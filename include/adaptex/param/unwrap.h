@@ -79,9 +79,9 @@ struct UnwrapOptions {
   double single_probe_l2 = 3.0;
   /// Auto, after the probe above gave up the single chart: the chart counts >= this are tried
   /// first (12: 12, 16, 24, ..., then 4, 6, 8). 4 keeps the order 4, 6, 8, ...: the probe then only
-  /// skips the single chart, and the fewest charts that reach the share are kept. 12 (default since
-  /// session 15) builds one layout where 4 first builds three or four: triceratops 52 -> 24 ms, dino
-  /// 103 -> 34 ms (issue 8's speed targets). Session 5 had reverted to 4 because triceratops' 12
+  /// skips the single chart, and the fewest charts that reach the share are kept. 12 (the default)
+  /// builds one layout where 4 first builds three or four: triceratops 52 -> 24 ms, dino
+  /// 103 -> 34 ms. An earlier default of 4 was kept because triceratops' 12
   /// charts adapted badly (texel saving ~1.7x); the cause was the safe remap (a 3-D sliver whose
   /// neighbours overlapped, SafeRemapOptions::damp_overlaps), not the layout. With it fixed, 12
   /// first gains 0.5 dB on lines, dots and mixed on the meshes whose layout changes, and its seams
@@ -179,8 +179,8 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options = {});
 
 /// \p base with the gutter of a layout that will hold a \p texture_size² texture painted with
 /// \p padding texels of seam padding: the gutter is the padding, at least 2 texels (the bilinear
-/// footprint of both neighbours), at most a fifth of the square. Issue 8 asks for at least the
-/// padding; measured with `adaptex paint` + `adaptex eval` (docs/history/quality.md, "Gutter of a paint run"),
+/// footprint of both neighbours), at most a fifth of the square. At least the padding is
+/// required; measured with `adaptex paint` + `adaptex eval` (docs/history/quality.md, "Gutter of a paint run"),
 /// 2 texels beat 4 by a median 0.25 dB and 8 by 0.71 dB, so a wider gutter only costs texels. Used by
 /// `adaptex paint --size N --padding P` and by the studio, so both lay a mesh out the same way.
 /// \pre 1 <= texture_size <= kMaxTextureSize (core/limits.h), padding >= 0
