@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <chrono>
 #include <iostream>
-#include <regex>
 
 #include "adaptex/core/errors.h"
 
@@ -17,9 +16,16 @@ namespace adaptex::studio {
 
 namespace {
 /// recovery.json, recovery-N.json, and recovery.offered.json (written by earlier versions).
+/// Hand-written rather than std::regex, which trips GCC 12's -Wmaybe-uninitialized under sanitizers.
 bool is_recovery_name(const std::string& name) {
-  static const std::regex re(R"(recovery(-[0-9]{1,6}|\.offered)?\.json)");
-  return std::regex_match(name, re);
+  const std::string head = "recovery", tail = ".json";
+  if (name.size() < head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
+      name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+    return false;
+  const std::string mid = name.substr(head.size(), name.size() - head.size() - tail.size());
+  if (mid.empty() || mid == ".offered") return true;
+  if (mid[0] != '-' || mid.size() < 2 || mid.size() > 7) return false;
+  return std::all_of(mid.begin() + 1, mid.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 std::filesystem::path lock_path(const std::filesystem::path& file) {
   std::string name(1, '.');  // appended, not "." + name: GCC 12's -Wrestrict misfires on the latter

@@ -7,9 +7,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
-#include <regex>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
@@ -156,11 +156,27 @@ bool tile_of(double lo, double hi, double tol, double& tile) {
 
 }  // namespace
 
+namespace {
+
+/// True when \p path ends in a UDIM tile number and an extension: `[._-]1[01]NN.ext` (letters only).
+/// Hand-written rather than std::regex, which trips GCC 12's -Wmaybe-uninitialized under sanitizers.
+bool has_tile_number(const std::string& path) {
+  const std::size_t dot = path.rfind('.');
+  if (dot == std::string::npos || dot + 1 == path.size() || dot < 5) return false;
+  for (std::size_t i = dot + 1; i < path.size(); ++i)
+    if (!std::isalpha(static_cast<unsigned char>(path[i]))) return false;
+  const auto digit = [&](std::size_t i) { return std::isdigit(static_cast<unsigned char>(path[i])) != 0; };
+  const char sep = path[dot - 5];
+  return (sep == '.' || sep == '_' || sep == '-') && path[dot - 4] == '1' &&
+         (path[dot - 3] == '0' || path[dot - 3] == '1') && digit(dot - 2) && digit(dot - 1);
+}
+
+}  // namespace
+
 bool is_udim_path(const std::string& path) {
-  static const std::regex tile_number(R"([._-]1[01][0-9][0-9]\.[A-Za-z]+$)");
   return path.find("<UDIM>") != std::string::npos || path.find("<UVTILE>") != std::string::npos ||
          path.find("%(UDIM)d") != std::string::npos || path.find("<udim>") != std::string::npos ||
-         std::regex_search(path, tile_number);
+         has_tile_number(path);
 }
 
 void wrap_uv_charts(Parameterization& param, const AssetReadOptions& options, const std::string& name,
