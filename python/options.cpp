@@ -108,32 +108,54 @@ const std::vector<Field<UnwrapOptions>>& unwrap_fields() {
   return fields;
 }
 
+const std::vector<Field<ThesisOptions>>& thesis_fields() {
+  using O = ThesisOptions;
+  static const std::vector<Field<O>> fields = {
+      member("coarse_grid", &O::coarse_grid),
+      member("fine_grid", &O::fine_grid),
+      member("alpha", &O::alpha),
+      member("geometry_scale", &O::geometry_scale),
+      member("beta", &O::beta),
+      member("min_weight", &O::min_weight),
+      member("use_geometry_stretch", &O::use_geometry_stretch),
+      member("slide_boundary", &O::slide_boundary),
+      member("epsilon_texels", &O::epsilon_texels),
+      member("max_iterations", &O::max_iterations),
+      member("fine_max_iterations", &O::fine_max_iterations),
+  };
+  return fields;
+}
+
+const std::vector<Field<DensityFlowMethodOptions>>& density_flow_fields() {
+  using O = DensityFlowMethodOptions;
+  static const std::vector<Field<O>> fields = {member("chart_gutter_texels", &O::chart_gutter_texels)};
+  return fields;
+}
+
+/// Refinement's keywords keep their flat names: refine, refine_tolerance_texels, ...
+const std::vector<Field<WarpRefineOptions>>& refine_fields() {
+  using O = WarpRefineOptions;
+  static const std::vector<Field<O>> fields = {
+      member("refine", &O::enabled),
+      member("refine_tolerance_texels", &O::tolerance_texels),
+      member("refine_max_levels", &O::max_levels),
+      member("refine_max_face_factor", &O::max_face_factor),
+  };
+  return fields;
+}
+
+/// The keywords of AdaptOptions are flat (the names of the nested structs' fields).
 const std::vector<Field<AdaptOptions>>& adapt_fields() {
   using O = AdaptOptions;
   static const std::vector<Field<O>> fields = [] {
     std::vector<std::pair<std::string, AdaptMode>> modes;
     for (AdaptMode m : adapt_modes()) modes.emplace_back(to_string(m), m);
-    return std::vector<Field<O>>{
-        enum_member("mode", &O::mode, modes),
-        member("coarse_grid", &O::coarse_grid),
-        member("fine_grid", &O::fine_grid),
-        member("alpha", &O::alpha),
-        member("geometry_scale", &O::geometry_scale),
-        member("beta", &O::beta),
-        member("min_weight", &O::min_weight),
-        member("use_geometry_stretch", &O::use_geometry_stretch),
-        member("slide_boundary", &O::slide_boundary),
-        member("epsilon_texels", &O::epsilon_texels),
-        member("max_iterations", &O::max_iterations),
-        member("fine_max_iterations", &O::fine_max_iterations),
-        member("geometry_safeguard", &O::geometry_safeguard),
-        member("atlas_flow", &O::atlas_flow),
-        member("chart_gutter_texels", &O::chart_gutter_texels),
-        member("refine", &O::refine),
-        member("refine_tolerance_texels", &O::refine_tolerance_texels),
-        member("refine_max_levels", &O::refine_max_levels),
-        member("refine_max_face_factor", &O::refine_max_face_factor),
-    };
+    std::vector<Field<O>> f = {enum_member("mode", &O::mode, modes)};
+    for (auto& t : nested(thesis_fields(), &O::thesis)) f.push_back(std::move(t));
+    f.push_back(member("geometry_safeguard", &O::geometry_safeguard));
+    for (auto& d : nested(density_flow_fields(), &O::density_flow)) f.push_back(std::move(d));
+    for (auto& r : nested(refine_fields(), &O::refine)) f.push_back(std::move(r));
+    return f;
   }();
   return fields;
 }

@@ -36,7 +36,7 @@ struct ReparamArgs {
   std::string candidate;  // --candidate (shrink)
   bool no_refine = false;
   bool grid_given = false;  // --grid was on the command line
-  double alpha = AdaptOptions{}.alpha, beta = AdaptOptions{}.beta;
+  double alpha = AdaptOptions{}.thesis.alpha, beta = AdaptOptions{}.thesis.beta;
   int size = 0, padding = 4;
 };
 
@@ -54,11 +54,12 @@ AdaptOptions reparam_options(const ReparamArgs& a) {
   }
   if (opt.mode == AdaptMode::None)
     throw InvalidInputError("--adapt must be shrink, density-flow, two-stage or single (got '" + a.mode + "')");
-  opt.refine = !a.no_refine;
-  opt.alpha = a.alpha;
-  opt.beta = a.beta;
+  opt.refine.enabled = !a.no_refine;
+  opt.thesis.alpha = a.alpha;
+  opt.thesis.beta = a.beta;
   if (a.grid_given) set_grid(opt, parse_grid(a.grid));  // --grid "" is an error, not the default
-  if (!(opt.alpha >= 0) || !(opt.beta >= 0) || !std::isfinite(opt.alpha) || !std::isfinite(opt.beta))
+  const ThesisOptions& t = opt.thesis;
+  if (!(t.alpha >= 0) || !(t.beta >= 0) || !std::isfinite(t.alpha) || !std::isfinite(t.beta))
     throw InvalidInputError("--alpha and --beta must be finite numbers >= 0");
   check_export_name(a.name.empty() ? "mesh" : a.name);
   return opt;

@@ -57,7 +57,7 @@ inline ProgressCallback phase_printer(const Context& ctx, const std::string& pre
 /// validated by `adaptex paint` and turned into PaintSessionOptions by make_session_options().
 struct AdaptSettings {
   std::string mode = to_string(AdaptOptions{}.mode);  ///< none | single | two-stage | density-flow
-  bool refine = AdaptOptions{}.refine;  ///< false: --no-refine (keep the input's vertices)
+  bool refine = AdaptOptions{}.refine.enabled;  ///< false: --no-refine (keep the input's vertices)
   std::vector<int> grid;             ///< --grid: 1 (single) or 2 (coarse, fine) grid sizes; empty = default
   std::optional<double> alpha, beta; ///< --alpha / --beta L_s^2 weights; unset = the adaptive defaults
   std::string reparam = "end";       ///< each-stroke | end
@@ -140,7 +140,7 @@ inline PaintRun unwrap_and_paint(const TriMesh& mesh, const StrokeFile& strokes,
         options.size, options.padding, a.mode, a.grid, a.alpha.value_or(-1.0), a.beta.value_or(-1.0),
         a.reparam, a.update, a.debug_maps);
     PaintSessionOptions sor = so;
-    sor.adapt.refine = a.refine;
+    sor.adapt.refine.enabled = a.refine;
     if (a.min_gain) sor.min_gain_db = *a.min_gain;
     PaintSession session(mesh, run.param, sor, strokes.background);
     const size_t n = strokes.strokes.size();

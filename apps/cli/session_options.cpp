@@ -36,8 +36,8 @@ void set_grid(AdaptOptions& o, const std::vector<int>& grid) {
     if (g < 1 || g > kMaxGridCells)
       throw InvalidInputError("--grid: sizes must be in [1, " + std::to_string(kMaxGridCells) + "], got " +
                               std::to_string(g));
-  if (!grid.empty()) o.fine_grid = grid.back();
-  if (grid.size() == 2) o.coarse_grid = grid.front();
+  if (!grid.empty()) o.thesis.fine_grid = grid.back();
+  if (grid.size() == 2) o.thesis.coarse_grid = grid.front();
 }
 
 ReparamSchedule parse_reparam_schedule(const std::string& name) {
@@ -61,8 +61,8 @@ PaintSessionOptions make_session_options(int size, int padding, const std::strin
   o.padding = padding;
   o.adapt.mode = parse_adapt_mode(mode);
   set_grid(o.adapt, grid);
-  if (alpha >= 0) o.adapt.alpha = alpha;
-  if (beta >= 0) o.adapt.beta = beta;
+  if (alpha >= 0) o.adapt.thesis.alpha = alpha;
+  if (beta >= 0) o.adapt.thesis.beta = beta;
   if (!std::isfinite(alpha) || !std::isfinite(beta)) throw InvalidInputError("--alpha/--beta must be finite");
   o.schedule = parse_reparam_schedule(reparam);
   o.update = parse_texture_update(update);

@@ -318,7 +318,7 @@ int configure(App& app, const CommandLine& c) {
   PaintSessionOptions& o = app.session_options();
   if (c.texture_size > 0) o.texture_size = std::clamp(c.texture_size, 16, adaptex::kMaxTextureSize);
   o.adapt.mode = parse_adapt_mode(c.adapt_mode);
-  if (c.no_refine) o.adapt.refine = false;
+  if (c.no_refine) o.adapt.refine.enabled = false;
   if (!c.project.empty()) app.open_project(c.project);
   if (!c.mesh.empty()) app.request_open_file(c.mesh);  // nothing is unsaved yet: opens without asking
   app.recover_at_start();

@@ -36,12 +36,12 @@ int clamped_int(const json& j, const char* key, int def, int lo, int hi) {
 json session_to_json(const PaintSessionOptions& o) {
   const AdaptOptions& a = o.adapt;
   return {{"mode", to_string(a.mode)},
-          {"alpha", a.alpha},
-          {"beta", a.beta},
-          {"geometry_scale", a.geometry_scale},
-          {"coarse_grid", a.coarse_grid},
-          {"fine_grid", a.fine_grid},
-          {"refine", a.refine},
+          {"alpha", a.thesis.alpha},
+          {"beta", a.thesis.beta},
+          {"geometry_scale", a.thesis.geometry_scale},
+          {"coarse_grid", a.thesis.coarse_grid},
+          {"fine_grid", a.thesis.fine_grid},
+          {"refine", a.refine.enabled},
           {"texture_size", o.texture_size},
           {"padding", o.padding},
           {"reparam", o.schedule == ReparamSchedule::EachStroke ? "each-stroke" : "end"}};
@@ -52,12 +52,12 @@ PaintSessionOptions session_from_json(const json& j) {
   PaintSessionOptions o = studio_session_options();
   AdaptOptions& a = o.adapt;
   if (j.contains("mode")) a.mode = parse_adapt_mode(j["mode"].get<std::string>());
-  a.alpha = j.value("alpha", a.alpha);
-  a.beta = j.value("beta", a.beta);
-  a.geometry_scale = j.value("geometry_scale", a.geometry_scale);
-  a.coarse_grid = clamped_int(j, "coarse_grid", a.coarse_grid, 2, kMaxGridCells);
-  a.fine_grid = clamped_int(j, "fine_grid", a.fine_grid, 2, kMaxGridCells);
-  a.refine = j.value("refine", a.refine);
+  a.thesis.alpha = j.value("alpha", a.thesis.alpha);
+  a.thesis.beta = j.value("beta", a.thesis.beta);
+  a.thesis.geometry_scale = j.value("geometry_scale", a.thesis.geometry_scale);
+  a.thesis.coarse_grid = clamped_int(j, "coarse_grid", a.thesis.coarse_grid, 2, kMaxGridCells);
+  a.thesis.fine_grid = clamped_int(j, "fine_grid", a.thesis.fine_grid, 2, kMaxGridCells);
+  a.refine.enabled = j.value("refine", a.refine.enabled);
   o.texture_size = clamped_int(j, "texture_size", o.texture_size, 16, kMaxTextureSize);
   o.padding = clamped_int(j, "padding", o.padding, 0, 256);
   if (j.contains("reparam")) {

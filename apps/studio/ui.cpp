@@ -488,23 +488,23 @@ void StudioUi::adapt_panel(App& app) {
           "the number of strokes; after a 2 s pause it settles on the layout the whole history gives. "
           "Off: only when you press Re-parameterize now.");
   if (a.mode == AdaptMode::DensityFlow) {
-    changed |= ImGui::Checkbox("Refine the mesh", &a.refine);
+    changed |= ImGui::Checkbox("Refine the mesh", &a.refine.enabled);
     tooltip("Split triangles that are too large to follow the layout's change inside painted areas. The "
             "surface keeps its shape; exports carry the extra triangles. Off keeps your vertices.");
   } else if (a.mode != AdaptMode::None) {
-    float al = float(a.alpha), be = float(a.beta);
-    if (ImGui::SliderFloat("alpha", &al, 0.f, 2.f)) a.alpha = al, changed = true;
+    float al = float(a.thesis.alpha), be = float(a.thesis.beta);
+    if (ImGui::SliderFloat("alpha", &al, 0.f, 2.f)) a.thesis.alpha = al, changed = true;
     tooltip("How much the surface's own stretch counts where there is paint (thesis alpha).");
-    if (ImGui::SliderFloat("beta", &be, 0.f, 2.f)) a.beta = be, changed = true;
+    if (ImGui::SliderFloat("beta", &be, 0.f, 2.f)) a.thesis.beta = be, changed = true;
     tooltip("How much the painted detail counts (thesis beta): higher gathers more texels on detail.");
     if (a.mode == AdaptMode::TwoStage) {
-      changed |= ImGui::InputInt("Coarse grid", &a.coarse_grid);
+      changed |= ImGui::InputInt("Coarse grid", &a.thesis.coarse_grid);
       tooltip("Cells per side of the first, coarse grid: moves texels between large regions.");
     }
-    changed |= ImGui::InputInt("Fine grid", &a.fine_grid);
+    changed |= ImGui::InputInt("Fine grid", &a.thesis.fine_grid);
     tooltip("Cells per side of the fine grid: spreads texels around small detail.");
-    a.coarse_grid = std::clamp(a.coarse_grid, 2, kMaxGridCells);
-    a.fine_grid = std::clamp(a.fine_grid, 2, kMaxGridCells);
+    a.thesis.coarse_grid = std::clamp(a.thesis.coarse_grid, 2, kMaxGridCells);
+    a.thesis.fine_grid = std::clamp(a.thesis.fine_grid, 2, kMaxGridCells);
   }
   const char* sizes[] = {"256", "512", "1024", "2048", "4096"};
   int si = std::clamp(int(std::lround(std::log2(o.texture_size))) - 8, 0, 4);

@@ -124,7 +124,7 @@ void BM_ErrorDensity(benchmark::State& state) {
   state.SetLabel(name);
   Painter painter(s->mesh, s->param, PainterOptions{256, 256, PaintSessionOptions{}.padding}, s->strokes.background);
   painter.paint_all(s->strokes);
-  const ErrorDensityOptions o = AdaptOptions{}.density;
+  const ErrorDensityOptions o = AdaptOptions{}.density_flow.density;
   double gain = 0;
   for (auto _ : state) {
     const ErrorDensity d = compute_error_density(s->mesh, s->param, painter.texture(), painter.texel_map(), s->strokes, o);

@@ -249,8 +249,8 @@ void full_session(const Scene& s, const StrokeFile& history, const Args& a) {
   o.surface_cache_coverage = a.cache_coverage;
   o.min_gain_db = min_gain;
   o.warm_start = a.warm_start;
-  o.adapt.polish.warm_sweeps = a.warm_sweeps;
-  o.adapt.polish.cells = a.polish_cells;
+  o.adapt.density_flow.polish.warm_sweeps = a.warm_sweeps;
+  o.adapt.density_flow.polish.cells = a.polish_cells;
   o.texture_size = a.size;
   o.schedule = ReparamSchedule::EachStroke;  // adapt.mode: the library default
   PaintSession session(s.mesh, s.param, o, history.background);

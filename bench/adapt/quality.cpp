@@ -11,8 +11,8 @@
 //                         [--count N] [--seed S]
 //                         [--grid C,F] [--alpha A] [--beta B] [--schedule end|each-stroke]
 //                         [--update replay|resample] [--no-safeguard] [--no-refine] [--verbose]
-//                         [--charts single|auto] [--unwrap-gutter paint|fixed] [--probe-first-charts N] [--floor F] [--density-cells L] [--no-atlas]
-//                         [--full-chart-share] [--no-quarter-texel]
+//                         [--charts single|auto] [--unwrap-gutter paint|fixed] [--probe-first-charts N] [--floor F] [--density-cells L]
+//                         [--no-quarter-texel]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
 //                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
 //                         [--untangle-sor W] [--polish-sweeps N] [--polish-omega W] [--polish-floor K] [--polish-reach C] [--polish-shape MU] [--polish-cells M] [--polish-isotropy B] [--polish-charts | --no-polish-charts]
@@ -94,9 +94,6 @@ struct Args {
   int probe_first_charts = -1;  ///< --probe-first-charts: UnwrapOptions::probe_first_charts (-1: the default).
   double floor = -1;            ///< --floor: ErrorDensityOptions::floor (-1: the default).
   int density_cells = -1;       ///< --density-cells: ErrorDensityOptions::cells (-1: the default).
-  bool atlas = true;            ///< --no-atlas: AdaptOptions::atlas_flow = false (one flow over the square).
-  /// --full-chart-share: AdaptOptions::chart_sizes_by_error_model = false (sizes ∝ sqrt(mean ρ)).
-  bool full_chart_share = false;
   /// --no-quarter-texel: ErrorDensityOptions::quarter_texel_reference = false (the 2N reference raster at every N).
   bool no_quarter_texel = false;
   double refine_factor = -1;    ///< --refine-factor: AdaptOptions::refine_max_face_factor (-1: default).
@@ -127,53 +124,40 @@ struct Args {
   bool direct_flow = false;     ///< --direct-flow: DensityFlowOptions::direct = true (wedges through the flow itself).
 };
 
-// ---- Mesh refinement switch (issue 12): the ONE place where this tool sets refinement on/off. ----
-// Uses PaintSessionOptions::refine or AdaptOptions::refine, whichever this build has; a build with
-// neither can only run with refinement at its default (asking for no-refine is then an error).
-template <class Options>
-void set_refine(Options& o, bool refine) {
-  if constexpr (requires { o.refine = refine; }) {
-    o.refine = refine;
-  } else if constexpr (requires { o.adapt.refine = refine; }) {
-    o.adapt.refine = refine;
-  } else if (!refine) {
-    throw std::invalid_argument("no-refine: this build's PaintSessionOptions has no refinement switch");
-  }
-}
+/// Refinement on or off (AdaptOptions::refine).
+void set_refine(PaintSessionOptions& o, bool refine) { o.adapt.refine.enabled = refine; }
 
 PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) {
   PaintSessionOptions o = cli::make_session_options(size, 4, m.name, a.grid, a.alpha, a.beta, a.schedule, a.update);
   o.safeguard = a.safeguard;
   set_refine(o, m.refine);
-  o.adapt.atlas_flow = a.atlas;
-  o.adapt.chart_sizes_by_error_model = !a.full_chart_share;
-  if (a.no_quarter_texel) o.adapt.density.quarter_texel_reference = false;
-  if (a.floor >= 0) o.adapt.density.floor = a.floor;
-  if (a.density_cells > 0) o.adapt.density.cells = a.density_cells;
-  if (a.refine_factor > 0) o.adapt.refine_max_face_factor = a.refine_factor;
-  if (a.blur >= 0) o.adapt.density.blur_cells = a.blur;
-  if (a.max_density > 0) o.adapt.density.max_density = a.max_density;
-  if (a.refine_levels >= 0) o.adapt.refine_max_levels = a.refine_levels;
-  if (a.refine_tol > 0) o.adapt.refine_tolerance_texels = a.refine_tol;
-  if (a.flow_cells > 0) o.adapt.flow.cells = a.flow_cells;
-  if (a.flow_step > 0) o.adapt.flow.max_step_cells = a.flow_step;
-  if (a.flow_tol > 0) o.adapt.flow.tolerance = a.flow_tol;
-  if (a.flow_interp >= 0) o.adapt.flow.interpolation_tolerance = a.flow_interp;
-  if (a.polish_sweeps >= 0) o.adapt.polish.sweeps = a.polish_sweeps;
-  if (a.polish_omega > 0) o.adapt.polish.over_relaxation = a.polish_omega;
-  if (a.polish_charts >= 0) o.adapt.polish.charts = a.polish_charts == 1;
+  if (a.no_quarter_texel) o.adapt.density_flow.density.quarter_texel_reference = false;
+  if (a.floor >= 0) o.adapt.density_flow.density.floor = a.floor;
+  if (a.density_cells > 0) o.adapt.density_flow.density.cells = a.density_cells;
+  if (a.refine_factor > 0) o.adapt.refine.max_face_factor = a.refine_factor;
+  if (a.blur >= 0) o.adapt.density_flow.density.blur_cells = a.blur;
+  if (a.max_density > 0) o.adapt.density_flow.density.max_density = a.max_density;
+  if (a.refine_levels >= 0) o.adapt.refine.max_levels = a.refine_levels;
+  if (a.refine_tol > 0) o.adapt.refine.tolerance_texels = a.refine_tol;
+  if (a.flow_cells > 0) o.adapt.density_flow.flow.cells = a.flow_cells;
+  if (a.flow_step > 0) o.adapt.density_flow.flow.max_step_cells = a.flow_step;
+  if (a.flow_tol > 0) o.adapt.density_flow.flow.tolerance = a.flow_tol;
+  if (a.flow_interp >= 0) o.adapt.density_flow.flow.interpolation_tolerance = a.flow_interp;
+  if (a.polish_sweeps >= 0) o.adapt.density_flow.polish.sweeps = a.polish_sweeps;
+  if (a.polish_omega > 0) o.adapt.density_flow.polish.over_relaxation = a.polish_omega;
+  if (a.polish_charts >= 0) o.adapt.density_flow.polish.charts = a.polish_charts == 1;
   o.adapt.remap.damp_overlaps = a.damp_overlaps;
   if (a.snap_round != -2) o.adapt.remap.snap_round = a.snap_round;
-  if (a.polish_prepass >= 0) o.adapt.polish.prepass_sweeps = a.polish_prepass;
-  if (a.polish_after >= 0) o.adapt.polish.sweeps_after_prepass = a.polish_after;
-  if (a.polish_levels >= 0) o.adapt.polish.prepass_levels = a.polish_levels;
-  if (a.polish_reach >= 0) o.adapt.polish.reach_cells = a.polish_reach;
-  if (a.polish_cells >= 0) o.adapt.polish.cells = a.polish_cells;
-  if (a.polish_isotropy > 0) o.adapt.polish.isotropy = a.polish_isotropy;
-  if (a.polish_shape >= 0) o.adapt.polish.shape_weight = a.polish_shape;
-  if (a.polish_floor >= 0) o.adapt.polish.floor_weight = a.polish_floor;
+  if (a.polish_prepass >= 0) o.adapt.density_flow.polish.prepass_sweeps = a.polish_prepass;
+  if (a.polish_after >= 0) o.adapt.density_flow.polish.sweeps_after_prepass = a.polish_after;
+  if (a.polish_levels >= 0) o.adapt.density_flow.polish.prepass_levels = a.polish_levels;
+  if (a.polish_reach >= 0) o.adapt.density_flow.polish.reach_cells = a.polish_reach;
+  if (a.polish_cells >= 0) o.adapt.density_flow.polish.cells = a.polish_cells;
+  if (a.polish_isotropy > 0) o.adapt.density_flow.polish.isotropy = a.polish_isotropy;
+  if (a.polish_shape >= 0) o.adapt.density_flow.polish.shape_weight = a.polish_shape;
+  if (a.polish_floor >= 0) o.adapt.density_flow.polish.floor_weight = a.polish_floor;
   if (a.untangle_sor > 0) o.adapt.remap.untangle_over_relaxation = a.untangle_sor;
-  if (a.direct_flow) o.adapt.flow.direct = true;
+  if (a.direct_flow) o.adapt.density_flow.flow.direct = true;
   return o;
 }
 
@@ -237,8 +221,6 @@ Args parse_args(int argc, char** argv) {
     if (k == "--no-refine") { no_refine = true; continue; }
     if (k == "--verbose") { a.verbose = true; continue; }
     if (k == "--direct-flow") { a.direct_flow = true; continue; }
-    if (k == "--no-atlas") { a.atlas = false; continue; }
-    if (k == "--full-chart-share") { a.full_chart_share = true; continue; }
     if (k == "--no-quarter-texel") { a.no_quarter_texel = true; continue; }
     if (k == "--no-damp-overlaps") {
       a.damp_overlaps = false;

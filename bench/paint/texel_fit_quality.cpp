@@ -113,7 +113,7 @@ void artist_layout(const Asset& a, const Args& args) {
 /// Point sampling vs fit on the layout adaptex reparam makes (same adaptation as cmd_reparam.cpp).
 void reparam_layout(const Asset& a, const Args& args) {
   AdaptOptions opt;
-  opt.refine = args.refine;
+  opt.refine.enabled = args.refine;
   const TexelMap old_map = build_texel_map(a.mesh, a.param, a.texture.width, a.texture.height);
   const AdaptResult res = adapt_parameterization(a.mesh, a.param, a.texture, old_map, opt);
   const TriMesh& out_mesh = res.refined_mesh ? *res.refined_mesh : a.mesh;

@@ -16,20 +16,20 @@ namespace adaptex {
 
 namespace {
 void validate(const AdaptOptions& o) {
-  check_polish_options(o.polish);
-  if (o.coarse_grid < 1 || o.fine_grid < 1)
-    throw InvalidInputError("grid sizes must be >= 1 cell, got " + std::to_string(o.coarse_grid) + "," +
-                            std::to_string(o.fine_grid));
-  if (o.coarse_grid > kMaxGridCells || o.fine_grid > kMaxGridCells)
+  check_polish_options(o.density_flow.polish);
+  if (o.thesis.coarse_grid < 1 || o.thesis.fine_grid < 1)
+    throw InvalidInputError("grid sizes must be >= 1 cell, got " + std::to_string(o.thesis.coarse_grid) + "," +
+                            std::to_string(o.thesis.fine_grid));
+  if (o.thesis.coarse_grid > kMaxGridCells || o.thesis.fine_grid > kMaxGridCells)
     throw InvalidInputError("grid sizes must be <= " + std::to_string(kMaxGridCells) + " cells per side");
-  if (!(o.alpha >= 0) || !(o.beta >= 0) || !std::isfinite(o.alpha) || !std::isfinite(o.beta))
+  if (!(o.thesis.alpha >= 0) || !(o.thesis.beta >= 0) || !std::isfinite(o.thesis.alpha) || !std::isfinite(o.thesis.beta))
     throw InvalidInputError("alpha and beta must be finite and >= 0");
-  if (!(o.min_weight > 0 && o.min_weight <= 1)) throw InvalidInputError("min_weight must be in (0, 1]");
-  if (!(o.epsilon_texels >= 0) || o.max_iterations < 0 || o.fine_max_iterations < 0)
+  if (!(o.thesis.min_weight > 0 && o.thesis.min_weight <= 1)) throw InvalidInputError("min_weight must be in (0, 1]");
+  if (!(o.thesis.epsilon_texels >= 0) || o.thesis.max_iterations < 0 || o.thesis.fine_max_iterations < 0)
     throw InvalidInputError("epsilon must be >= 0 and max_iterations >= 0");
-  if (!(o.chart_gutter_texels >= 0 && o.chart_gutter_texels <= 64))
+  if (!(o.density_flow.chart_gutter_texels >= 0 && o.density_flow.chart_gutter_texels <= 64))
     throw InvalidInputError("chart_gutter_texels must be in [0, 64]");
-  if (!(o.refine_tolerance_texels > 0) || o.refine_max_levels < 0 || !(o.refine_max_face_factor >= 1))
+  if (!(o.refine.tolerance_texels > 0) || o.refine.max_levels < 0 || !(o.refine.max_face_factor >= 1))
     throw InvalidInputError("refinement: tolerance must be > 0, levels >= 0 and the face factor >= 1");
 }
 
@@ -39,9 +39,9 @@ void refine_under_warp(const TriMesh& mesh, const Parameterization& current, int
                        const AdaptOptions& o, AdaptResult& res) {
   const UvWarp& warp = *res.warp;
   RefineOptions ro;
-  ro.tolerance = o.refine_tolerance_texels / texture_size;
-  ro.max_levels = o.refine_max_levels;
-  ro.max_faces = static_cast<long>(o.refine_max_face_factor * mesh.num_faces());
+  ro.tolerance = o.refine.tolerance_texels / texture_size;
+  ro.max_levels = o.refine.max_levels;
+  ro.max_faces = static_cast<long>(o.refine.max_face_factor * mesh.num_faces());
   RefineResult rr = refine_for_warp(mesh, current, [&warp](const Vec2& p) { return warp.apply(p); }, ro);
   if (rr.added_faces == 0) return;
   res.refined_mesh = std::make_shared<const TriMesh>(std::move(rr.mesh));
@@ -95,7 +95,7 @@ AdaptResult run(AdaptMethod* method, const WarpInput& in) {
   method->compute(in, res);
 
   // Refinement: where the warp varies faster than the triangles, split them (same surface).
-  if (o.refine && method->wants_refinement()) {
+  if (o.refine.enabled && method->wants_refinement()) {
     const auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "refine", 0);
     refine_under_warp(mesh, current, std::max(texture.width, texture.height), o, res);

@@ -213,7 +213,7 @@ struct PaintSession::Impl {
     AdaptOptions ao = opt.adapt;
     if (ao.mode == AdaptMode::None) ao.mode = AdaptOptions{}.mode;  // explicit request: the default method
     // Resample mode maps old texels to new ones face by face: it keeps the mesh.
-    if (opt.update == TextureUpdate::Resample) ao.refine = false;
+    if (opt.update == TextureUpdate::Resample) ao.refine.enabled = false;
     return ao;
   }
 

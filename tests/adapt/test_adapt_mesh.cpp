@@ -61,8 +61,8 @@ TEST(AdaptMesh, TwoComponentLayoutStaysOverlapFreeAndFlipFree) {
   for (AdaptMode mode : {AdaptMode::Single, AdaptMode::TwoStage}) {
     AdaptOptions o;
     o.mode = mode;
-    o.fine_grid = 128;
-    o.geometry_scale = 1.0;  // the thesis' full geometry term: larger warps
+    o.thesis.fine_grid = 128;
+    o.thesis.geometry_scale = 1.0;  // the thesis' full geometry term: larger warps
     const AdaptResult r = adapt_parameterization(mesh, param, painter.texture(), painter.texel_map(), o);
     EXPECT_EQ(count_overlapping_triangles(r.param), 0);
     const StretchStats st = measure_stretch(mesh, r.param);
@@ -155,7 +155,7 @@ TEST(AdaptMesh, DensityFlowGainsMostWithRefinementOnConcentratedLines) {
   for (bool refine : {true, false}) {
     AdaptOptions ao;
     ao.mode = AdaptMode::DensityFlow;
-    ao.refine = refine;
+    ao.refine.enabled = refine;
     const auto s = c.run(ao);
     ASSERT_EQ(s->reports().size(), 1u);
     const AdaptReport& r = s->reports().back();
@@ -227,8 +227,8 @@ TEST(AdaptMesh, ThePolishRunsCoarseToFine) {
   auto run = [&](int prepass, int levels = ErrorPolishOptions{}.prepass_levels) {
     AdaptOptions ao;
     ao.mode = AdaptMode::DensityFlow;
-    ao.polish.prepass_sweeps = prepass;
-    ao.polish.prepass_levels = levels;
+    ao.density_flow.polish.prepass_sweeps = prepass;
+    ao.density_flow.polish.prepass_levels = levels;
     const auto s = c.run(ao);
     layouts.push_back(s->param().uv);
     const AdaptReport r = s->reports().back();
@@ -275,7 +275,7 @@ TEST(AdaptMesh, ReplayEqualsFreshPaintAndResampleLosesSomething) {
   so.schedule = ReparamSchedule::EachStroke;
   so.safeguard = false;  // every stroke re-parameterizes
   so.min_gain_db = 0;    // and no cycle is skipped for a small predicted gain
-  so.adapt.fine_grid = 64;
+  so.adapt.thesis.fine_grid = 64;
   PaintSession replay(mesh, param, so, strokes.background);
   so.update = TextureUpdate::Resample;
   PaintSession resample(mesh, param, so, strokes.background);

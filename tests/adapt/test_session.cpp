@@ -135,7 +135,7 @@ TEST(PaintSession, PolishedLatticeRaisesThePsnrOfDots) {
   const StrokeFile strokes = generated(mesh, StrokeKind::Dots, 40, 5);
   const int N = 128;
   PaintSessionOptions off;
-  off.adapt.polish.sweeps = 0;
+  off.adapt.density_flow.polish.sweeps = 0;
   const auto plain = painted(mesh, param, strokes, ReparamSchedule::End, N, -1, off);
   const auto polished = painted(mesh, param, strokes, ReparamSchedule::End, N);
   const AdaptReport& r = polished->reports().back();
@@ -169,12 +169,12 @@ TEST(PaintSession, EachStrokeLayoutIsEndModesLayoutForTheHistorySoFar) {
   // with every point advected, blur 4, no polish. Coarse-to-fine advection, the finer default lattice
   // or the polish (error_polish.h) change the candidates by a fraction of a texel and this knife-edge
   // case then accepts or rejects all four. Path independence does not depend on it.
-  so.adapt.polish.sweeps = 0;
-  so.adapt.flow.interpolation_tolerance = 0;
-  so.adapt.flow.cells = 128;
-  so.adapt.flow.tolerance = 1e-2;
-  so.adapt.flow.max_step_cells = 2;
-  so.adapt.density.blur_cells = 4;
+  so.adapt.density_flow.polish.sweeps = 0;
+  so.adapt.density_flow.flow.interpolation_tolerance = 0;
+  so.adapt.density_flow.flow.cells = 128;
+  so.adapt.density_flow.flow.tolerance = 1e-2;
+  so.adapt.density_flow.flow.max_step_cells = 2;
+  so.adapt.density_flow.density.blur_cells = 4;
   PaintSession each(mesh, param, so, strokes.background);
   int accepted = 0, rejected_after_accept = 0;
   for (int k = 0; k < n; ++k) {

@@ -259,7 +259,7 @@ TEST(StudioApp, ProjectSaveLoadRoundTrip) {
   h.drag(150, 140, 250, 160);
   h.app->brush().hardness = 0.8;
   h.app->brush().symmetry_axis = 2;
-  h.app->session_options().adapt.alpha = 0.3;
+  h.app->session_options().adapt.thesis.alpha = 0.3;
   h.app->view().wireframe = true;
   h.app->set_background_colour(Vec3(0.9, 0.9, 0.8));
   h.app->camera().orbit(40, 25);
@@ -280,7 +280,7 @@ TEST(StudioApp, ProjectSaveLoadRoundTrip) {
   EXPECT_EQ(g.app->history().background(), Vec3(0.9, 0.9, 0.8));
   EXPECT_EQ(g.app->brush().hardness, 0.8);
   EXPECT_EQ(g.app->brush().symmetry_axis, 2);
-  EXPECT_EQ(g.app->session_options().adapt.alpha, 0.3);
+  EXPECT_EQ(g.app->session_options().adapt.thesis.alpha, 0.3);
   EXPECT_EQ(g.app->session_options().adapt.mode, AdaptMode::None);  // the project's, not the default
   EXPECT_EQ(g.app->project_path(), std::filesystem::absolute(path).lexically_normal());
   EXPECT_FALSE(g.app->unsaved());
@@ -446,8 +446,8 @@ TEST(StudioProject, NumbersBeyondAnIntAreClampedAndNotConverted) {
               "fine_grid": -1e300, "coarse_grid": 1e19, "padding": 3.9}})";
   const Project pr = read_project(p);
   EXPECT_EQ(pr.session.texture_size, kMaxTextureSize);
-  EXPECT_EQ(pr.session.adapt.fine_grid, 2);
-  EXPECT_EQ(pr.session.adapt.coarse_grid, kMaxGridCells);
+  EXPECT_EQ(pr.session.adapt.thesis.fine_grid, 2);
+  EXPECT_EQ(pr.session.adapt.thesis.coarse_grid, kMaxGridCells);
   EXPECT_EQ(pr.session.padding, 3);
   EXPECT_EQ(pr.brush.tool, Tool::Eyedropper);
   EXPECT_EQ(pr.brush.symmetry_axis, -1);
@@ -494,7 +494,7 @@ TEST(StudioApp, LoadingCanBeCancelled) {
 TEST(StudioApp, AdaptsInTheBackgroundWhilePaintingContinues) {
   Harness h;
   h.app->session_options().adapt.mode = AdaptMode::TwoStage;
-  h.app->session_options().adapt.fine_grid = 64;
+  h.app->session_options().adapt.thesis.fine_grid = 64;
   h.app->brush().radius = 0.05;
   h.app->brush().hardness = 0.9;
   const auto serial = h.app->surface_serial();
@@ -810,11 +810,11 @@ TEST(StudioApp, AdaptsByDefaultWithTheLibrarysDefaultMethod) {
   const AdaptOptions lib;
   EXPECT_EQ(o.adapt.mode, lib.mode);
   EXPECT_EQ(o.adapt.mode, AdaptMode::DensityFlow);
-  EXPECT_EQ(o.adapt.alpha, lib.alpha);
-  EXPECT_EQ(o.adapt.beta, lib.beta);
-  EXPECT_EQ(o.adapt.geometry_scale, lib.geometry_scale);
-  EXPECT_EQ(o.adapt.fine_grid, lib.fine_grid);
-  EXPECT_EQ(o.adapt.refine, lib.refine);
+  EXPECT_EQ(o.adapt.thesis.alpha, lib.thesis.alpha);
+  EXPECT_EQ(o.adapt.thesis.beta, lib.thesis.beta);
+  EXPECT_EQ(o.adapt.thesis.geometry_scale, lib.thesis.geometry_scale);
+  EXPECT_EQ(o.adapt.thesis.fine_grid, lib.thesis.fine_grid);
+  EXPECT_EQ(o.adapt.refine.enabled, lib.refine.enabled);
   EXPECT_EQ(o.texture_size, PaintSessionOptions{}.texture_size);
   EXPECT_EQ(o.padding, PaintSessionOptions{}.padding);
   EXPECT_EQ(o.schedule, ReparamSchedule::EachStroke);

@@ -57,61 +57,52 @@ inline constexpr AdaptMode AdaptMode::Single{"single"};
 inline constexpr AdaptMode AdaptMode::TwoStage{"two-stage"};
 inline constexpr AdaptMode AdaptMode::DensityFlow{"density-flow"};
 
-/// Largest grid of the thesis' relaxation, in cells per side (AdaptOptions::coarse_grid, fine_grid;
-/// a 4096² grid already has 16.8 M points, far past any texture this library paints).
+/// Largest grid of the thesis' relaxation, in cells per side (a 4096² grid has 16.8 M points).
 inline constexpr int kMaxGridCells = 4096;
 
-/// Settings of adapt_parameterization(). Defaults are justified in docs/adaptive.md.
+/// `single` / `two-stage`: the thesis' grid relaxation (§3.5–3.8; docs/adaptive.md).
+struct ThesisOptions {
+  int coarse_grid = 16;              ///< Cells per side of the coarse stage (two-stage), in [1, kMaxGridCells]; 16.
+  int fine_grid = 256;               ///< Cells per side of the fine (or single) stage, in [1, kMaxGridCells]; 256.
+  double alpha = 1.0;                ///< L_s² weight α of the geometry stretch where there is signal (§3.6); 1.
+  double geometry_scale = 0.25;      ///< Share of the normalized geometry stretch in L_s² (1: as written); 0.25.
+  double beta = 0.95;                ///< L_s² weight β of the signal stretch E_h (§3.6); 0.95.
+  double min_weight = 0.02;          ///< Strictly positive lower clamp of L_s²; 0.02.
+  bool use_geometry_stretch = true;  ///< false: L2 = 0 everywhere (signal only, Fig. 3.9e); true.
+  ImportanceOptions importance;      ///< Normalization of the Sobel importance map (importance.h).
+  PoolMode pool = PoolMode::Mean;    ///< Sampling of L_s² at each grid's scale; Mean.
+  GridRing ring = GridRing::Eight;   ///< 1-ring of the relaxation; Eight.
+  bool slide_boundary = false;       ///< Boundary grid points slide along the square's sides; false.
+  double epsilon_texels = 0.05;      ///< Stop a stage when the largest move < this many texels; 0.05.
+  int max_iterations = 300;          ///< Sweep cap of the coarse (or single) stage; 300.
+  int fine_max_iterations = 40;      ///< Sweep cap of two-stage's fine stage (it only refines locally); 40.
+};
+
+/// `density-flow`: error-model density, flow map, polish, re-pack of the charts (docs/error_model.md).
+struct DensityFlowMethodOptions {
+  ErrorDensityOptions density;       ///< The error model and its target density (error_density.h).
+  DensityFlowOptions flow;           ///< The flow map: lattice size, accuracy (density_flow.h).
+  ErrorPolishOptions polish;         ///< The polish of the flow lattices (error_polish.h; sweeps = 0: off).
+  double chart_gutter_texels = 2.0;  ///< Least gap between re-packed charts, in texels (atlas_flow.h); 2.
+};
+
+/// Refinement of triangles too large for the warp (refine.h), for methods that ask for it.
+struct WarpRefineOptions {
+  bool enabled = true;              ///< false keeps the input's vertices (`--no-refine`); true.
+  double tolerance_texels = 0.5;    ///< Largest deviation of the warp from linear along a UV edge, texels; 0.5.
+  int max_levels = 4;               ///< Refinement rounds (each can halve an edge); 4.
+  double max_face_factor = 4.0;     ///< Face budget, as a multiple of the input's face count; 4.
+};
+
+/// Settings of adapt_parameterization(), grouped by method and stage (docs/decisions.md: why).
 struct AdaptOptions {
-  AdaptMode mode = AdaptMode::DensityFlow;  ///< density-flow / two-stage / single / none.
-  int coarse_grid = 16;   ///< Cells per side of the coarse stage (two-stage only), in [1, kMaxGridCells].
-  int fine_grid = 256;    ///< Cells per side of the fine stage (and of the single stage), in [1, kMaxGridCells].
-  double alpha = 1.0;     ///< L_s² weight α of the geometry stretch where there is signal (§3.6).
-  /// Share of the normalized geometry stretch in L_s² (L2 ← geometry_scale · L2n in both cases of
-  /// §3.6). 1 is the thesis as written; lower values let the signal dominate (docs/adaptive.md).
-  double geometry_scale = 0.25;
-  double beta = 0.95;     ///< L_s² weight β of the signal stretch E_h (§3.6).
-  double min_weight = 0.02;  ///< Strictly positive lower clamp of L_s².
-  bool use_geometry_stretch = true;  ///< false: L2 = 0 everywhere (signal only, thesis Fig. 3.9e).
-  ImportanceOptions importance;      ///< Normalization of the Sobel importance map.
-  PoolMode pool = PoolMode::Mean;    ///< Sampling of L_s² at each grid's scale.
-  GridRing ring = GridRing::Eight;   ///< 1-ring of the relaxation.
-  bool slide_boundary = false;       ///< Boundary grid points slide along the square's sides.
-  double epsilon_texels = 0.05;      ///< Stop a stage when the largest move < this many texels.
-  int max_iterations = 300;          ///< Sweep cap of the coarse (or single) stage.
-  /// Sweep cap of the fine stage of TwoStage: it only refines locally around detail (thesis §3.8,
-  /// Fig. 3.13); its global modes converge very slowly and are the coarse stage's job.
-  int fine_max_iterations = 40;
-  SafeRemapOptions remap;            ///< Flip / degeneracy / overlap guarantees of the remap.
-  /// Only when there is no signal at all (importance map zero): keep the result only if it lowers the
-  /// mesh L2 stretch, else try it damped by half, else keep the input (report.accepted = false).
-  bool geometry_safeguard = true;
-  ErrorDensityOptions density;  ///< density-flow: the error model and its target density.
-  DensityFlowOptions flow;      ///< density-flow: the flow map (its output grid size, accuracy).
-  /// density-flow: the flow lattices polished by the error model with the texel grid's anisotropy
-  /// and the paint's edge directions counted (error_polish.h; sweeps = 0: off). Not with flow.direct (the exact flow is the warp then).
-  ErrorPolishOptions polish;
-  /// density-flow on a layout of several charts in disjoint boxes: re-pack the charts by their share
-  /// of the density, then one flow per chart rectangle (atlas_flow.h). false: one flow over the whole
-  /// square, damped where charts would meet (kept for comparison; docs/error_model.md §6).
-  bool atlas_flow = true;
-  /// atlas_flow: the error model chooses how strongly the charts are resized by their density share
-  /// (allocate_charts_by_error()); false: always by the full share (repack_charts_by_density()).
-  bool chart_sizes_by_error_model = true;
-  /// atlas_flow: least gap between re-packed charts, in texels of the texture (the layout's own gap
-  /// is kept when it is larger). Bilinear lookup near a chart border reads the texels next to it, so
-  /// a gap below ~2 texels lets neighbouring charts bleed into each other at small texture sizes.
-  double chart_gutter_texels = 2.0;
-  /// density-flow: refine triangles that are too large for the warp's variation (new vertices on the
-  /// original faces; the surface is unchanged). false keeps the input's vertices (`--no-refine`).
-  bool refine = true;
-  /// Refinement tolerance: largest allowed deviation of the warp from linear along a UV edge, in texels
-  /// of the texture (refine.h).
-  double refine_tolerance_texels = 0.5;
-  int refine_max_levels = 4;    ///< Refinement rounds (each can halve an edge).
-  /// Face budget of the refined mesh, as a multiple of the input's face count.
-  double refine_max_face_factor = 4.0;
-  ProgressCallback progress;  ///< Phases "importance", "stretch", "ls2", "coarse", "fine", "density", "flow", "polish", "refine", "remap".
+  AdaptMode mode = AdaptMode::DensityFlow;    ///< The method (method.h); density-flow.
+  ThesisOptions thesis;                       ///< single / two-stage.
+  DensityFlowMethodOptions density_flow;      ///< density-flow.
+  WarpRefineOptions refine;                   ///< Refinement under the warp (density-flow).
+  SafeRemapOptions remap;                     ///< Flip / degeneracy / overlap guarantees of the remap.
+  bool geometry_safeguard = true;             ///< No signal at all: keep the warp only if it lowers L2; true.
+  ProgressCallback progress;                  ///< Phases "importance" … "remap" (core/progress.h).
 };
 
 /// Timings (seconds) and figures of one re-parameterization. The texel-map / texture-update times are

@@ -1,21 +1,10 @@
 #pragma once
 /// \file density_flow.h
-/// Flow-based density-equalizing map of the unit square (Gastner, Seguy & More, "Fast flow-based
-/// algorithm for creating density-equalizing map projections", PNAS 115(10), 2018).
-///
-/// Given a density ρ₀ > 0 on an L x L cell raster of [0,1]² (mean ρ̄), the map X: [0,1]² → [0,1]²
-/// has Jacobian determinant det ∇X(x) = ρ₀(x) / ρ̄: a cell of density 4ρ̄ becomes 4 times larger.
-/// Construction: ρ_t = (1 − t)ρ₀ + tρ̄ for t ∈ [0,1]; the flux J = −∇φ with ∇²φ = ρ̄ − ρ₀ and zero
-/// normal flux on the sides (one DCT Poisson solve, FFTW REDFT10/REDFT01) satisfies ∂ρ_t/∂t + ∇·J = 0,
-/// so advecting points with v(x, t) = J(x) / ρ_t(x) from t = 0 to 1 pushes ρ₀ forward to ρ̄.
-/// The flow of a smooth velocity field is a diffeomorphism: the map cannot fold, and because the
-/// normal velocity vanishes on the sides, boundary points slide along their side and corners stay.
-///
-/// The result is a GridWarp (grid.h): the advected (n+1)² lattice points; GridWarp::apply then
-/// interpolates the map bilinearly between them, which is how remap.h consumes every warp. Where the
-/// flow bends a cell so much that the quad of its advected corners is not convex (sharp density
-/// contrast at the scale of one cell), the lattice is untangled locally by Laplacian smoothing, so
-/// that every cell is convex and the bilinear warp is one-to-one.
+/// Flow-based density-equalizing map of the unit square (Gastner, Seguy & More, PNAS 115(10), 2018):
+/// for a density ρ₀ > 0 on an L x L raster (mean ρ̄), X: [0,1]² → [0,1]² with det ∇X = ρ₀ / ρ̄, by
+/// advecting points through v = J / ρ_t, J = −∇φ, ∇²φ = ρ̄ − ρ₀ (one DCT Poisson solve, FFTW). The
+/// flow cannot fold; side points slide along their side. The result is a GridWarp (grid.h) whose
+/// non-convex cells are untangled by Laplacian smoothing. docs/error_model.md.
 #include <functional>
 #include <memory>
 #include <vector>
@@ -25,29 +14,17 @@
 
 namespace adaptex {
 
-/// Settings of density_equalizing_warp(). Why each default: docs/decisions.md ("A 256-cell flow
-/// lattice and a 3-cell density blur", "The flow is sampled on a lattice").
+/// Settings of density_equalizing_warp() (docs/decisions.md: why each default).
 struct DensityFlowOptions {
-  int cells = 256;             ///< Cells per side n of the output GridWarp (lattice of (n+1)² points).
-  double tolerance = 2e-2;     ///< Local error bound of the adaptive integration, in output cells.
-  int max_steps = 4000;        ///< Cap on integration steps per point (never reached on sane input).
-  /// Longest move of a point in one integration step, in cells of the output lattice (the step-size
-  /// control adds its own limit).
-  double max_step_cells = 4.0;
-  bool parallel = true;        ///< Advect points and measure the lattice with TBB (identical results either way).
-  /// Coarse-to-fine advection, in output cells (0: advect every point). On an even lattice (cells >=
-  /// 16) the lattice of the even points is built first (recursively, down to 8 cells); in each of its
-  /// cells where the fourth differences of the advected points bound the error of cubic interpolation
-  /// (5/64 |Δ⁴X|) below this tolerance, the other points are interpolated instead of advected.
-  double interpolation_tolerance = 1.0;
-  /// Advect the mesh's wedges (and refinement's test points) through the flow itself (DensityFlow /
-  /// FlowWarp below) instead of through the bilinear lattice, which then only draws pictures. Not
-  /// adopted (docs/decisions.md): kept for the study of bench/adapt/quality.cpp (--direct-flow).
-  bool direct = false;
-  /// direct: local error bound of the integration, in cells of the density raster the flow was
-  /// solved on (the velocity varies at that scale, not at the lattice's).
-  double direct_tolerance = 2e-3;
-  double direct_max_step_cells = 1.0;  ///< direct: longest move in one step, in density-raster cells.
+  int cells = 256;                       ///< Cells per side n of the output GridWarp ((n+1)² points); 256.
+  double tolerance = 2e-2;               ///< Local error bound of the adaptive integration, output cells; 2e-2.
+  int max_steps = 4000;                  ///< Cap on integration steps per point; 4000.
+  double max_step_cells = 4.0;           ///< Longest move of a point in one step, output cells; 4.
+  bool parallel = true;                  ///< Advect with TBB (identical results either way); true.
+  double interpolation_tolerance = 1.0;  ///< Coarse-to-fine: interpolate where 5/64·|Δ⁴X| < this, cells (0: off); 1.
+  bool direct = false;                   ///< Wedges through the exact flow, not the lattice (not adopted); false.
+  double direct_tolerance = 2e-3;        ///< direct: integration error bound, density-raster cells; 2e-3.
+  double direct_max_step_cells = 1.0;    ///< direct: longest move in one step, density-raster cells; 1.
 };
 
 /// What density_equalizing_warp() did.
@@ -56,19 +33,12 @@ struct DensityFlowStats {
   int max_steps = 0;           ///< Most steps any point took.
   long advected_points = 0;    ///< Lattice points integrated (the rest were interpolated).
   double max_displacement = 0; ///< Largest point displacement (uv units).
-  /// Cells of the advected lattice whose corner quad was not convex (the flow bends or shears faster
-  /// than one cell); they and their neighbours were Laplacian-smoothed until every cell was convex.
-  int tangled_cells = 0;
+  int tangled_cells = 0;       ///< Cells whose advected quad was not convex (then untangled).
   int inverted_cells = 0;      ///< Cells still not convex after that (0: the bilinear warp is one-to-one).
-  /// Relative L1 error of the achieved cell areas against ρ₀/ρ̄, sampled on the output lattice
-  /// (Σ |area·n² − ρ₀/ρ̄| / n²): how exactly the map reached the density.
-  double density_error = 0;
+  double density_error = 0;    ///< Σ |area·n² − ρ₀/ρ̄| / n² on the output lattice.
 };
 
-/// The flow of a density-equalizing map, solved once (one DCT Poisson solve), that advects any point
-/// of [0,1]² from t = 0 to t = 1 through v(x, t) = J(x) / ((1 − t)ρ₀(x) + tρ̄) (J and ρ₀ bilinear on
-/// the density raster's corner lattice) with the adaptive Bogacki–Shampine RK3(2) of the lattice
-/// warp. Cheap to copy (shared, immutable state); advect() is thread-safe.
+/// The flow of a density-equalizing map, solved once; advect() (Bogacki–Shampine RK3(2)) is thread-safe.
 class DensityFlow {
  public:
   /// \pre density.width == density.height >= 2, every value finite and > 0
@@ -88,10 +58,7 @@ class DensityFlow {
   std::shared_ptr<const Field> field_;
 };
 
-/// Exact flow maps on disjoint axis-aligned rectangles of the square (one per chart rectangle,
-/// atlas_flow.h, or one over the whole square): the maps that GridWarps of density_equalizing_warp()
-/// sample on a lattice. Each acts in its rectangle's local coordinates (uv − lo) / (hi − lo) and maps
-/// the rectangle onto itself; apply() is the identity outside every rectangle.
+/// Exact flow maps on disjoint rectangles of the square, each in its local coordinates; identity outside.
 struct FlowWarp {
   /// One flow and its rectangle.
   struct Part {
@@ -109,13 +76,10 @@ struct FlowWarp {
 
 /// How a map of the square realizes \p density: what flow_shape() measures.
 struct FlowShape {
-  /// Relative L1 error of the mapped cell areas against ρ/ρ̄ (as DensityFlowStats::density_error).
-  double density_error = 0;
-  double dense_target = 0;   ///< Share of the square's area that the dense cells (ρ > threshold·ρ̄) should get.
-  double dense_area = 0;     ///< Share they get.
-  /// Area-weighted mean of σmax/σmin of the mapped dense cells (1: the map magnifies them
-  /// isotropically; capped at 50 per cell). The error model assumes 1 (texel spacing h·ρ^(−1/2)).
-  double dense_anisotropy = 0;
+  double density_error = 0;     ///< As DensityFlowStats::density_error.
+  double dense_target = 0;      ///< Share of the square's area that the dense cells (ρ > threshold·ρ̄) should get.
+  double dense_area = 0;        ///< Share they get.
+  double dense_anisotropy = 0;  ///< Area-weighted mean σmax/σmin of the mapped dense cells (≤ 50 per cell).
   int folded_cells = 0;      ///< Mapped cells with signed area <= 0.
 };
 

@@ -58,25 +58,24 @@ struct DensityFlowMethod::State {
     t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "flow", 0);
     DensityFlowStats st;
-    const std::vector<UvRect> boxes = o.atlas_flow && in.param.num_charts > 1 ? chart_boxes(in.param) : std::vector<UvRect>{};
+    const std::vector<UvRect> boxes = in.param.num_charts > 1 ? chart_boxes(in.param) : std::vector<UvRect>{};
     const double gap = boxes.empty() ? 0.0 : smallest_box_gap(boxes);
     std::vector<ChartMove> moves;
     std::vector<GridWarp> lattices;
-    FlowWarp flow;  // with o.flow.direct
+    FlowWarp flow;  // with o.density_flow.flow.direct
     if (gap > 0) {
       // Charts in disjoint boxes: re-pack them by density, then one flow per chart rectangle, with
       // the layout's own gutter (atlas_flow.h).
       ChartRepackOptions ro;
       const int texels = std::max(in.texture.width, in.texture.height);
-      ro.padding = std::min(std::max(gap, o.chart_gutter_texels / texels), 0.2);
-      moves = o.chart_sizes_by_error_model ? allocate_charts_by_error(boxes, res.density, ed.error, ed.exponent, ro)
-                                           : repack_charts_by_density(boxes, res.density, ro);
-      lattices = chart_flow_warps(moves, res.density, o.flow, 8, &st);
-      if (o.flow.direct) flow = chart_flows(moves, res.density, o.flow);
+      ro.padding = std::min(std::max(gap, o.density_flow.chart_gutter_texels / texels), 0.2);
+      moves = allocate_charts_by_error(boxes, res.density, ed.error, ed.exponent, ro);
+      lattices = chart_flow_warps(moves, res.density, o.density_flow.flow, 8, &st);
+      if (o.density_flow.flow.direct) flow = chart_flows(moves, res.density, o.density_flow.flow);
     } else {
-      lattices = {density_equalizing_warp(res.density, o.flow, &st)};
-      if (o.flow.direct) {
-        flow.options = o.flow;
+      lattices = {density_equalizing_warp(res.density, o.density_flow.flow, &st)};
+      if (o.density_flow.flow.direct) {
+        flow.options = o.density_flow.flow;
         flow.parts = {FlowWarp::Part{Vec2(0, 0), Vec2(1, 1), std::make_shared<const DensityFlow>(res.density)}};
       }
     }
@@ -85,7 +84,7 @@ struct DensityFlowMethod::State {
     rep.flow_steps = st.total_steps;
     rep.flow_advected_points = st.advected_points;
     rep.time_flow = seconds_since(t0);
-    if (o.flow.direct) {
+    if (o.density_flow.flow.direct) {
       previous.reset();  // no polish: the next cycle starts cold
       res.warp = std::make_shared<const FlowLayoutWarp>(std::move(flow), std::move(lattices), std::move(moves));
       return;
@@ -100,7 +99,7 @@ struct DensityFlowMethod::State {
   /// The error model of \p in: predict_gain()'s when it was computed for this input, else through
   /// the reference when it applies, else from the history or the texture alone.
   ErrorDensity error_model(const WarpInput& in) {
-    const ErrorDensityOptions& eo = in.options.density;
+    const ErrorDensityOptions& eo = in.options.density_flow.density;
     ErrorDensityReference* cache = in.history ? reference_now(*in.history, in.options) : nullptr;
     if (model && in.history && model_strokes == in.history->strokes.size() && fixed && &in.param == fixed->layout) {
       ErrorDensity ed = std::move(*model);
@@ -120,7 +119,7 @@ struct DensityFlowMethod::State {
     if (!fixed) return nullptr;
     if (!reference)
       reference = std::make_unique<ErrorDensityReference>(*fixed->mesh, *fixed->layout, fixed->texture_size,
-                                                          fixed->background, o.density);
+                                                          fixed->background, o.density_flow.density);
     reference->update(history);
     return reference.get();
   }
@@ -154,12 +153,12 @@ struct DensityFlowMethod::State {
       extent = std::clamp(moves[c].dst().size().maxCoeff(), 1e-9, 1.0);
     }
     if (src.size().minCoeff() <= 0 || g.n < 2) return {};
-    ErrorPolishOptions po = o.polish;
+    ErrorPolishOptions po = o.density_flow.polish;
     po.progress = progress;
     const int m = polish_cells(g.n, po, extent);
     auto fields = [&](int cells) {
       PolishFields f = polish_fields(ed.error, ed.exponent, res.density, src.lo, src.hi, cells, scale);
-      if (o.polish.isotropy < 1) add_edge_directions(f, edges, src.lo, src.hi, o.polish.isotropy);
+      if (o.density_flow.polish.isotropy < 1) add_edge_directions(f, edges, src.lo, src.hi, o.density_flow.polish.isotropy);
       return f;
     };
     const PolishFields f = fields(m);
@@ -213,15 +212,15 @@ struct DensityFlowMethod::State {
   static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture, const Lattices* warm,
                      const std::vector<ChartMove>& moves, std::vector<GridWarp>& lattices,
                      std::vector<GridWarp>& flow_lattices, AdaptResult& res) {
-    if (o.polish.sweeps <= 0 || (!moves.empty() && !o.polish.charts)) return;
+    if (o.density_flow.polish.sweeps <= 0 || (!moves.empty() && !o.density_flow.polish.charts)) return;
     flow_lattices = lattices;
     if (warm && (warm->polished.size() != lattices.size() || warm->flow.size() != lattices.size())) warm = nullptr;
     const auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "polish", 0);
-    const EdgeTensor edges = o.polish.isotropy < 1 ? edge_tensor(texture) : EdgeTensor{};
+    const EdgeTensor edges = o.density_flow.polish.isotropy < 1 ? edge_tensor(texture) : EdgeTensor{};
     // The caller's callback is called by one thread at a time: with one lattice, with its sweeps'
     // fraction; with several, with the fraction of lattices done.
-    const ProgressCallback& user = o.polish.progress ? o.polish.progress : o.progress;
+    const ProgressCallback& user = o.density_flow.polish.progress ? o.density_flow.polish.progress : o.progress;
     std::mutex progress_mutex;
     std::atomic<size_t> done{0};
     const size_t count = lattices.size();
@@ -242,7 +241,7 @@ struct DensityFlowMethod::State {
       warmed[c] = w;
       ++done;
     };
-    if (o.polish.parallel)
+    if (o.density_flow.polish.parallel)
       tbb::parallel_for(size_t(0), count, one);
     else
       for (size_t c = 0; c < count; ++c) one(c);
@@ -276,7 +275,7 @@ std::optional<GainModel> DensityFlowMethod::predict_gain(const WarpInput& in) {
   if (!in.history || in.history->strokes.empty()) return std::nullopt;
   ErrorDensityReference* ref = s_->reference_now(*in.history, in.options);
   if (!ref) return std::nullopt;
-  s_->model = compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, *ref, in.options.density);
+  s_->model = compute_error_density(in.mesh, in.param, in.texture, in.map, *in.history, *ref, in.options.density_flow.density);
   s_->model_strokes = in.history->strokes.size();
   const ErrorDensity& m = *s_->model;
   GainModel g;

@@ -125,7 +125,7 @@ Built warped(const Context& cx, const ShrinkLayoutStats& before) {
   Parameterization start = cx.param;
   for (Vec2& p : start.uv) p = p.cwiseMax(Vec2(0, 0)).cwiseMin(Vec2(1, 1));
   AdaptOptions ao;
-  ao.refine = false;
+  ao.refine.enabled = false;
   ao.progress = cx.opt.progress;
   const AdaptResult r =
       adapt_parameterization(cx.mesh, start, tex, build_texel_map(cx.mesh, start, tex.width, tex.height), ao);

@@ -14,9 +14,9 @@ class SingleMethod final : public AdaptMethod {
     const AdaptOptions& o = in.options;
     const auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "fine", 0);
-    GridWarp fine = GridWarp::uniform(o.fine_grid);
+    GridWarp fine = GridWarp::uniform(o.thesis.fine_grid);
     res.report.fine_iterations =
-        relax_grid(fine, pool_for_grid(res.ls2, o.fine_grid, o.pool), thesis_relax_options(in)).iterations;
+        relax_grid(fine, pool_for_grid(res.ls2, o.thesis.fine_grid, o.thesis.pool), thesis_relax_options(in)).iterations;
     std::vector<GridWarp> lattices;
     lattices.push_back(std::move(fine));
     res.warp = std::make_shared<const LatticeWarp>(std::move(lattices));

@@ -19,18 +19,18 @@ class TwoStageMethod final : public AdaptMethod {
     const RelaxOptions ro = thesis_relax_options(in);
     auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "coarse", 0);
-    GridWarp coarse = GridWarp::uniform(o.coarse_grid);
-    rep.coarse_iterations = relax_grid(coarse, pool_for_grid(res.ls2, o.coarse_grid, o.pool), ro).iterations;
+    GridWarp coarse = GridWarp::uniform(o.thesis.coarse_grid);
+    rep.coarse_iterations = relax_grid(coarse, pool_for_grid(res.ls2, o.thesis.coarse_grid, o.thesis.pool), ro).iterations;
     rep.time_coarse = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "fine", 0);
     // The fine stage's weight field is the L_s² of the content now at each place (pulled back through
     // the coarse warp). It only refines locally (thesis Fig. 3.13): capped at fine_max_iterations.
-    const ImageF pooled = pool_for_grid(res.ls2, o.fine_grid, o.pool);
+    const ImageF pooled = pool_for_grid(res.ls2, o.thesis.fine_grid, o.thesis.pool);
     const ImageF field = pull_back_field(pooled, coarse, std::max(pooled.width, pooled.height));
-    GridWarp fine = GridWarp::uniform(o.fine_grid);
+    GridWarp fine = GridWarp::uniform(o.thesis.fine_grid);
     RelaxOptions fo = ro;
-    fo.max_iterations = o.fine_max_iterations;
+    fo.max_iterations = o.thesis.fine_max_iterations;
     rep.fine_iterations = relax_grid(fine, field, fo).iterations;
     rep.time_fine = seconds_since(t0);
     std::vector<GridWarp> lattices;
