@@ -45,7 +45,8 @@ struct ShrinkOptions {
   double overlap_share = 0.02;
   // Budget.
   bool budget = true;  ///< Per-island texel budget from the error model; false: one scale for all (default on).
-  long long error_samples = 100000;  ///< Surface samples of the error model (default 100k).
+  /// Surface samples of the error model, taken from the evaluation's (at most eval_samples; default 100k).
+  long long error_samples = 100000;
   /// Largest ratio between an island's texel spacing and the uniform layout's, either way (default 4).
   double max_scale_ratio = 4.0;
   // Packing.
