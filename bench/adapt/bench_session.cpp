@@ -17,7 +17,7 @@
 //
 //   adaptex_bench_session [--meshes spot,plane] [--strokes 10,100,1000] [--size 512] [--reps 1]
 //                         [--full N] [--cache Q] [--cache-coverage C] [--min-gain G] [--psnr-every K] [--seed S]
-//                         [--warm 0|1] [--warm-sweeps K] [--polish-cells K]
+//                         [--polish-cells K]
 //
 // --meshes: names/stems of ADAPTEX_SHARED_DIR/meshes or paths, and "plane" (a generated 100k-face height
 // field, one chart, uv = xy, as in cycle.cpp); a shared mesh that is absent is skipped with a message.
@@ -30,8 +30,7 @@
 // the number after it: the model's predicted gain over the held layout in dB, AdaptReport::gain_over_held_db).
 // --min-gain G: that session's min_gain_db (default: the library's). --psnr-every K: after every K-th
 // stroke of that session, the PSNR of its texture against the exact history (400,000 samples).
-// --warm 0|1: that session's PaintSessionOptions::warm_start (default: the library's); --warm-sweeps K:
-// its adapt.polish.warm_sweeps; --polish-cells K: its adapt.polish.cells (ErrorPolishOptions::cells).
+// --polish-cells K: that session's adapt.density_flow.polish.cells (ErrorPolishOptions::cells).
 // Prints one markdown row per (mesh, stroke index, repetition), times in ms (wall clock; the last
 // column: CPU time of the process, all threads, for stroke + cycle).
 #include <algorithm>
@@ -68,8 +67,6 @@ struct Args {
   double cache_coverage = PaintSessionOptions{}.surface_cache_coverage;  ///< ...::surface_cache_coverage
   double min_gain = PaintSessionOptions{}.min_gain_db;  ///< --full's PaintSessionOptions::min_gain_db
   int psnr_every = 0;  ///< --full: PSNR after every this many strokes (0: none)
-  bool warm_start = PaintSessionOptions{}.warm_start;  ///< --full's PaintSessionOptions::warm_start
-  int warm_sweeps = ErrorPolishOptions{}.warm_sweeps;  ///< --full's adapt.polish.warm_sweeps
   int polish_cells = ErrorPolishOptions{}.cells;       ///< --full's adapt.polish.cells
 };
 
@@ -130,11 +127,6 @@ Args parse(int argc, char** argv) {
       a.seed = whole(k, v);
     } else if (k == "--psnr-every") {
       a.psnr_every = whole(k, v);
-    } else if (k == "--warm") {
-      if (v != "0" && v != "1") throw std::invalid_argument("--warm takes 0 or 1");
-      a.warm_start = v == "1";
-    } else if (k == "--warm-sweeps") {
-      a.warm_sweeps = whole(k, v);
     } else if (k == "--polish-cells") {
       a.polish_cells = whole(k, v);
     } else if (k == "--full") {
@@ -143,7 +135,7 @@ Args parse(int argc, char** argv) {
       throw std::invalid_argument("unknown option " + k);
     }
   }
-  if (a.warm_sweeps < 0 || a.polish_cells < 0) throw std::invalid_argument("--warm-sweeps and --polish-cells must be >= 0");
+  if (a.polish_cells < 0) throw std::invalid_argument("--polish-cells must be >= 0");
   return a;
 }
 
@@ -248,8 +240,6 @@ void full_session(const Scene& s, const StrokeFile& history, const Args& a) {
   o.surface_cache = a.cache;
   o.surface_cache_coverage = a.cache_coverage;
   o.min_gain_db = min_gain;
-  o.warm_start = a.warm_start;
-  o.adapt.density_flow.polish.warm_sweeps = a.warm_sweeps;
   o.adapt.density_flow.polish.cells = a.polish_cells;
   o.texture_size = a.size;
   o.schedule = ReparamSchedule::EachStroke;  // adapt.mode: the library default

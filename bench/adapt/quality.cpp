@@ -14,7 +14,7 @@
 //                         [--charts single|auto] [--unwrap-gutter paint|fixed] [--probe-first-charts N] [--floor F] [--density-cells L]
 //                         [--no-quarter-texel]
 //                         [--refine-factor F] [--blur CELLS] [--max-density D]
-//                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS] [--direct-flow]
+//                         [--refine-levels L] [--refine-tol TEXELS] [--flow-cells C] [--flow-step CELLS] [--flow-tol CELLS] [--flow-interp CELLS]
 //                         [--untangle-sor W] [--polish-sweeps N] [--polish-omega W] [--polish-floor K] [--polish-reach C] [--polish-shape MU] [--polish-cells M] [--polish-isotropy B] [--polish-charts | --no-polish-charts]
 //                         [--no-damp-overlaps] [--snap-round R] [--polish-prepass N] [--polish-after N] [--polish-levels N]
 //
@@ -121,7 +121,6 @@ struct Args {
   double polish_isotropy = -1;  ///< --polish-isotropy: ErrorPolishOptions::isotropy (-1: the default).
   double polish_shape = -1;     ///< --polish-shape: ErrorPolishOptions::shape_weight (-1: the default).
   double untangle_sor = -1;     ///< --untangle-sor: SafeRemapOptions::untangle_over_relaxation (-1: the default).
-  bool direct_flow = false;     ///< --direct-flow: DensityFlowOptions::direct = true (wedges through the flow itself).
 };
 
 /// Refinement on or off (AdaptOptions::refine).
@@ -157,7 +156,6 @@ PaintSessionOptions session_options(const Args& a, const ModeSpec& m, int size) 
   if (a.polish_shape >= 0) o.adapt.density_flow.polish.shape_weight = a.polish_shape;
   if (a.polish_floor >= 0) o.adapt.density_flow.polish.floor_weight = a.polish_floor;
   if (a.untangle_sor > 0) o.adapt.remap.untangle_over_relaxation = a.untangle_sor;
-  if (a.direct_flow) o.adapt.density_flow.flow.direct = true;
   return o;
 }
 
@@ -220,7 +218,6 @@ Args parse_args(int argc, char** argv) {
     if (k == "--no-safeguard") { a.safeguard = false; continue; }
     if (k == "--no-refine") { no_refine = true; continue; }
     if (k == "--verbose") { a.verbose = true; continue; }
-    if (k == "--direct-flow") { a.direct_flow = true; continue; }
     if (k == "--no-quarter-texel") { a.no_quarter_texel = true; continue; }
     if (k == "--no-damp-overlaps") {
       a.damp_overlaps = false;

@@ -340,27 +340,4 @@ std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, cons
   return warps;
 }
 
-FlowWarp chart_flows(const std::vector<ChartMove>& moves, const ImageF& density, const DensityFlowOptions& flow,
-                     int min_cells) {
-  check_density(density, "chart_flows");
-  if (min_cells < 2) throw InvalidInputError("chart_flows: min_cells must be >= 2");
-  const int C = static_cast<int>(moves.size());
-  FlowWarp fw;
-  fw.options = flow;
-  fw.parts.resize(C);
-  const int L = std::max(density.width, density.height);
-  tbb::parallel_for(0, C, [&](int c) {
-    const ChartMove& m = moves[c];
-    const UvRect dst = m.dst();
-    fw.parts[c].lo = dst.lo;
-    fw.parts[c].hi = dst.hi;
-    if (m.src.size().minCoeff() <= 0) return;  // degenerate chart (no area): the identity
-    // The density raster's own resolution over the chart's rectangle (its longer side): the flow's
-    // cost is its DCT and the points advected, not its raster.
-    const int n = std::clamp(static_cast<int>(std::ceil(m.src.size().maxCoeff() * L)), min_cells, 2 * L);
-    fw.parts[c].flow = std::make_shared<const DensityFlow>(local_density(density, m.src, n));
-  });
-  return fw;
-}
-
 }  // namespace adaptex

@@ -323,40 +323,6 @@ Vec2 DensityFlow::advect(const Vec2& x, double tolerance, double max_move, int m
   return p;
 }
 
-Vec2 DensityFlow::advect(const Vec2& x, const DensityFlowOptions& o, int* steps) const {
-  const double cell = 1.0 / field_->L;
-  return advect(x, o.direct_tolerance * cell, o.direct_max_step_cells * cell, o.max_steps, steps);
-}
-
-Vec2 FlowWarp::apply(const Vec2& uv, int* steps) const {
-  constexpr double eps = 1e-12;
-  if (steps) *steps = 0;
-  for (const Part& part : parts) {
-    if (uv.x() < part.lo.x() - eps || uv.x() > part.hi.x() + eps || uv.y() < part.lo.y() - eps ||
-        uv.y() > part.hi.y() + eps)
-      continue;
-    if (!part.flow) return uv;
-    const Vec2 size = part.hi - part.lo;
-    const Vec2 local = (uv - part.lo).cwiseQuotient(size);
-    return part.lo + part.flow->advect(local, options, steps).cwiseProduct(size);
-  }
-  return uv;
-}
-
-long FlowWarp::apply_all(std::vector<Vec2>& uv) const {
-  std::atomic<long> total{0};
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, uv.size(), 64), [&](const tbb::blocked_range<size_t>& r) {
-    long local = 0;
-    for (size_t k = r.begin(); k < r.end(); ++k) {
-      int s = 0;
-      uv[k] = apply(uv[k], &s);
-      local += s;
-    }
-    total += local;
-  });
-  return total;
-}
-
 FlowShape flow_shape(const ImageF& density, const std::function<Vec2(const Vec2&)>& map, int n, double threshold) {
   check_density(density);
   if (n < 1 || !(threshold > 0)) throw InvalidInputError("flow_shape: n must be >= 1 and the threshold > 0");
@@ -392,8 +358,7 @@ FlowShape flow_shape(const ImageF& density, const std::function<Vec2(const Vec2&
 GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions& o, DensityFlowStats* stats) {
   check_density(density);
   if (o.cells < 1 || o.cells > 8192) throw InvalidInputError("density_equalizing_warp: cells must be in [1, 8192]");
-  if (!(o.tolerance > 0) || o.max_steps < 1 || !(o.max_step_cells > 0) || !(o.direct_tolerance > 0) ||
-      !(o.direct_max_step_cells > 0) || !(o.interpolation_tolerance >= 0))
+  if (!(o.tolerance > 0) || o.max_steps < 1 || !(o.max_step_cells > 0) || !(o.interpolation_tolerance >= 0))
     throw InvalidInputError(
         "density_equalizing_warp: tolerances and step limits must be > 0 (the interpolation tolerance >= 0) "
         "and max_steps >= 1");

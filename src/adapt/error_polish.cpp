@@ -143,6 +143,10 @@ void add_edge_directions(PolishFields& fields, const EdgeTensor& edges, const Ve
 
 namespace {
 
+/// A point is relaxed again only if its ring moved more than this many lattice cells in the sweep
+/// before: 1e-3 relaxes nearly every point (docs/decisions.md, "settle_cells").
+constexpr double kSettleCells = 1e-3;
+
 double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// x^e for x > 0: exact at the exponents the error model clamps to (p = 1 and 4: e = 0.5, 2), else in
@@ -453,9 +457,9 @@ class Polisher {
     const size_t points = static_cast<size_t>(n_ + 1) * (n_ + 1);
     std::vector<double> gain(points, 0.0);
     // A point is relaxed again only if it or one of its 8 neighbours moved by more than
-    // options.settle_cells in the previous sweep (the others already sit at their local minimum).
+    // kSettleCells in the previous sweep (the others already sit at their local minimum).
     std::vector<char> moved(points, 1), moved_now(points, 0);
-    const double settle = o_.settle_cells / n_;
+    const double settle = kSettleCells / n_;
     auto wants = [&](int i, int j) {
       for (int b = std::max(0, j - 1); b <= std::min(n_, j + 1); ++b)
         for (int a = std::max(0, i - 1); a <= std::min(n_, i + 1); ++a)
@@ -515,7 +519,7 @@ void check_polish_options(const ErrorPolishOptions& options) {
     throw InvalidInputError("polish options: over_relaxation must be in (0, 2)");
   if (options.prepass_levels < 1 || options.prepass_levels > 4)
     throw InvalidInputError("polish options: prepass_levels must be in [1, 4]");
-  if (options.sweeps < 0 || options.prepass_sweeps < 0 || options.sweeps_after_prepass < 0 || options.warm_sweeps < 0 ||
+  if (options.sweeps < 0 || options.prepass_sweeps < 0 || options.sweeps_after_prepass < 0 ||
       !(options.tolerance >= 0) || !(options.floor_weight >= 0) ||
       !(options.shape_weight >= 0) || options.reach_cells < 0 || options.cells < 0 ||
       !(options.isotropy > 0 && options.isotropy <= 1))
@@ -668,42 +672,6 @@ ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const E
   }
   st.transfer_scale = t;
   return st;
-}
-
-/// Most turned cells add_polish_correction() untangles before it halves the correction instead.
-constexpr size_t kWarmUntangleCells = 32;
-
-double add_polish_correction(GridWarp& warp, const GridWarp& prev_flow, const GridWarp& prev_polished) {
-  const int n = warp.n, m = prev_flow.n;
-  const size_t count = static_cast<size_t>(n + 1) * (n + 1), prev = static_cast<size_t>(m + 1) * (m + 1);
-  if (n < 1 || m < 1 || prev_polished.n != m || warp.points.size() != count || prev_flow.points.size() != prev ||
-      prev_polished.points.size() != prev)
-    return 0;
-  // The correction at every point's own lattice coordinates (i/n, j/n): the previous lattices'
-  // bilinear maps there, so lattices of another size get it resampled (the pointwise difference when
-  // the sizes are equal).
-  std::vector<Vec2> correction(count);
-  tbb::parallel_for(0, n + 1, [&](int j) {
-    for (int i = 0; i <= n; ++i) {
-      const Vec2 u(double(i) / n, double(j) / n);
-      correction[static_cast<size_t>(j) * (n + 1) + i] =
-          m == n ? Vec2(prev_polished.at(i, j) - prev_flow.at(i, j))
-                 : Vec2(prev_polished.apply_lattice(u) - prev_flow.apply_lattice(u));
-    }
-  });
-  const std::vector<Vec2> start = warp.points;
-  const std::vector<char> convex = convex_cells(warp);
-  for (double t = 1; t >= 0.125; t *= 0.5) {
-    place_moved(warp, start, correction, t);
-    // A few turned cells are untangled; many mean the correction does not fit this flow (untangling
-    // them took seconds on a 100-cell lattice): halve it.
-    const std::vector<char> now = convex_cells(warp);
-    size_t turned = 0;
-    for (size_t c = 0; c < now.size(); ++c) turned += convex[c] && !now[c];
-    if (turned == 0 || (turned <= kWarmUntangleCells && untangle_turned_cells(warp, convex) == 0)) return t;
-  }
-  warp.points = start;
-  return 0;
 }
 
 }  // namespace adaptex

@@ -91,7 +91,6 @@ struct PaintSession::Impl {
   double coverage = 0;        // Σ over the history's dabs of π r² / surface area (a decal: 1)
   double area = 0;            // surface area of the input mesh
   bool held_from_cache = false;  // the held texture was resampled from the surface cache
-  bool held_warm = false;        // the held layout's polish started from an earlier cycle's (warm_start)
   bool exact_only = false;       // finish(): this cycle replays exactly
   // The method's solver, for the session's life (method.h): with a fixed layout it keeps what it
   // derives from that layout and the history (density-flow: the error model's reference).
@@ -235,11 +234,10 @@ struct PaintSession::Impl {
   /// (AdaptMethod::fix_layout()).
   bool fixed_layout() const { return base_param && opt.update == TextureUpdate::Replay; }
 
-  /// \p warm: the cycle may start from the method's previous one (each-stroke mode).
-  std::unique_ptr<AdaptResult> compute(const AdaptOptions& ao, bool warm) {
+  std::unique_ptr<AdaptResult> compute(const AdaptOptions& ao) {
     if (base_painter)
       return std::make_unique<AdaptResult>(adapt_with(
-          *method, WarpInput{mesh, *base_param, base_painter->texture(), base_painter->texel_map(), &history, ao, warm}));
+          *method, WarpInput{mesh, *base_param, base_painter->texture(), base_painter->texel_map(), &history, ao}));
     return std::make_unique<AdaptResult>(
         adapt_with(*method, WarpInput{current_mesh(), *param, texture(), painter->texel_map(), &history, ao}));
   }
@@ -319,7 +317,6 @@ struct PaintSession::Impl {
   void adopt(Candidate&& c, AdaptResult& res, SafeguardPoints&& sg) {
     adapted = true;
     held_from_cache = c.from_cache;
-    held_warm = res.report.polish_warm_lattices > 0;
     if (path_independent()) method->hold(&res);
     res.param = *c.param;
     painter = std::move(c.painter);  // references *c.param and the candidate's mesh: keep both alive
@@ -345,7 +342,6 @@ struct PaintSession::Impl {
   void return_to_initial() {
     method->hold(nullptr);
     held_error = held_best = -1;
-    held_warm = false;
     if (!adapted) return;
     param = std::make_unique<Parameterization>(*base_param);
     held_from_cache = uses_surface_cache();
@@ -460,9 +456,7 @@ struct PaintSession::Impl {
     // candidate's texture) leaves the layout as it was, and a cycle still owed: finish() runs it.
     // record() clears it.
     pending = true;
-    // A cycle after a stroke starts its polish from the last cycle's (opt.warm_start); finish() and
-    // reparameterize() start cold, so the session still ends on end mode's layout.
-    std::unique_ptr<AdaptResult> res = compute(ao, gated && opt.warm_start && base_param);
+    std::unique_ptr<AdaptResult> res = compute(ao);
     const TriMesh& cand_mesh = res->refined_mesh ? *res->refined_mesh : source_mesh();
     AdaptReport& rep = res->report;
     if (model) {
@@ -595,10 +589,10 @@ void PaintSession::end_stroke() {
 void PaintSession::finish() {
   Impl& m = *impl_;
   if (m.opt.adapt.mode == AdaptMode::None) return;
-  // Each-stroke mode runs the last cycle again if it was skipped, if the held texture was resampled
-  // from the surface cache, or if the held layout was warm-started: cold and with exact replay, what
-  // end mode computes, so the session ends on end mode's layout and texture.
-  if (m.opt.schedule == ReparamSchedule::EachStroke && !m.pending && !m.held_from_cache && !m.held_warm) return;
+  // Each-stroke mode runs the last cycle again if it was skipped or if the held texture was resampled
+  // from the surface cache: with exact replay, what end mode computes, so the session ends on end
+  // mode's layout and texture.
+  if (m.opt.schedule == ReparamSchedule::EachStroke && !m.pending && !m.held_from_cache) return;
   m.exact_only = m.opt.schedule == ReparamSchedule::EachStroke;
   struct Reset {
     bool& flag;
@@ -611,7 +605,7 @@ const AdaptReport& PaintSession::reparameterize() { return impl_->reparameterize
 bool PaintSession::settled() const {
   const Impl& m = *impl_;
   if (m.opt.adapt.mode == AdaptMode::None || m.history.strokes.empty()) return true;
-  return m.cycle_strokes == m.history.strokes.size() && !m.held_from_cache && !m.held_warm;
+  return m.cycle_strokes == m.history.strokes.size() && !m.held_from_cache;
 }
 const TriMesh& PaintSession::mesh() const { return impl_->current_mesh(); }
 const Parameterization& PaintSession::param() const { return *impl_->param; }

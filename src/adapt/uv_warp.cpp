@@ -43,14 +43,4 @@ Parameterization LatticeWarp::warp_layout(const Parameterization& start, double 
   return remap_parameterization(start, ptrs);
 }
 
-FlowLayoutWarp::FlowLayoutWarp(FlowWarp flow, std::vector<GridWarp> lattices, std::vector<ChartMove> moves)
-    : UvWarp(std::move(moves), std::move(lattices)), flow_(std::move(flow)) {}
-
-Parameterization FlowLayoutWarp::warp_layout(const Parameterization& start, double t) const {
-  Parameterization warped = start;
-  flow_.apply_all(warped.uv);
-  if (t == 1.0) return warped;
-  return blend_layouts(start, warped, t);
-}
-
 }  // namespace adaptex

@@ -325,9 +325,9 @@ TEST(AtlasFlow, ChartLatticesArePolishedInParallelWithTheSameResultAndProgress) 
   EXPECT_THROW(adapt_parameterization(c.mesh, c.param, p.texture(), p.texel_map(), ao, &c.strokes), CancelledError);
 }
 
-TEST(AtlasFlow, DirectAdvectionAtASharpDensityLeavesNoFlipDegenerateOrOverlap) {
-  // DensityFlowOptions::direct: the wedges go through the flows themselves, here at a 1-cell blur (a
-  // per-dot density that tangles the lattice), on code-built closed surfaces of genus 1 and 2.
+TEST(AtlasFlow, ASharpDensityLeavesNoFlipDegenerateOrOverlap) {
+  // A 1-cell blur (a per-dot density that tangles the lattice), on code-built closed surfaces of genus
+  // 1 and 2.
   for (int shape = 0; shape < 2; ++shape) {
     const TriMesh mesh = shape == 0 ? shapes::torus(48, 24) : shapes::double_torus(32);
     const Parameterization param = unwrap(mesh).param;
@@ -342,10 +342,9 @@ TEST(AtlasFlow, DirectAdvectionAtASharpDensityLeavesNoFlipDegenerateOrOverlap) {
     p.paint_all(strokes);
     AdaptOptions ao;
     ao.mode = AdaptMode::DensityFlow;
-    ao.density_flow.flow.direct = true;
     ao.density_flow.density.blur_cells = 1.0;
     const AdaptResult r = adapt_parameterization(mesh, param, p.texture(), p.texel_map(), ao, &strokes);
-    ASSERT_TRUE(dynamic_cast<const FlowLayoutWarp*>(r.warp.get())) << shape;
+    ASSERT_TRUE(r.warp) << shape;
     const TriMesh& out_mesh = r.refined_mesh ? *r.refined_mesh : mesh;
     const StretchStats st = measure_stretch(out_mesh, r.param);
     EXPECT_EQ(st.flipped, 0) << shape;
@@ -356,9 +355,8 @@ TEST(AtlasFlow, DirectAdvectionAtASharpDensityLeavesNoFlipDegenerateOrOverlap) {
       EXPECT_GE(uv.minCoeff(), 0.0);
       EXPECT_LE(uv.maxCoeff(), 1.0);
     }
-    // The remap started from the wedges moved by the flow itself (not by the lattice), and kept most
-    // of that warp (measured: mean blend factor 0.96 on both; the untangling and local damping touch
-    // the wedges of the faces that the 4x refinement budget leaves too large for a 1-cell density).
+    // The remap started from the wedges moved by the warp, and kept most of it (the untangling and
+    // local damping touch the wedges of faces the refinement budget leaves too large for the density).
     const Parameterization start = r.start_layout(param);
     const Parameterization warped = r.warp->warp_layout(start);
     ASSERT_EQ(start.uv.size(), warped.uv.size());
@@ -368,7 +366,7 @@ TEST(AtlasFlow, DirectAdvectionAtASharpDensityLeavesNoFlipDegenerateOrOverlap) {
     for (size_t w = 0; w < start.uv.size(); ++w) moved = std::max(moved, (r.param.uv[w] - start.uv[w]).norm());
     EXPECT_GT(moved, 0.01) << shape;
     // The torus unwraps to one chart (one flow over the square), the genus-2 surface to several (one
-    // flow per re-packed chart rectangle): both paths of FlowWarp.
+    // flow per re-packed chart rectangle): both paths of the method.
     EXPECT_EQ(param.num_charts > 1, shape == 1);
     EXPECT_EQ(r.warp->chart_moves().empty(), param.num_charts == 1);
     // Wedges on the square's sides stay on them.

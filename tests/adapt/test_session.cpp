@@ -63,12 +63,8 @@ TEST(PaintSession, EachStrokeEndsWithinATenthOfADecibelOfEndAfter50Strokes) {
   every.min_gain_db = 0;  // 50 re-parameterizations, none skipped for a small predicted gain
   const auto each = painted(mesh, param, strokes, ReparamSchedule::EachStroke, N, -1, every);
   ASSERT_EQ(end->reports().size(), 1u);
-  // One cycle per stroke, and one more in finish() when the last one held a warm-started layout
-  // (PaintSessionOptions::warm_start): finish() runs it again cold.
-  ASSERT_GE(each->reports().size(), strokes.strokes.size());
-  const AdaptReport& last_cycle = each->reports()[strokes.strokes.size() - 1];
-  const size_t again = last_cycle.accepted && last_cycle.polish_warm_lattices > 0 ? 1 : 0;
-  ASSERT_EQ(each->reports().size(), strokes.strokes.size() + again);
+  // One cycle per stroke; finish() owes none (the last cycle saw the whole history, replayed exactly).
+  ASSERT_EQ(each->reports().size(), strokes.strokes.size());
   int accepted = 0;
   for (const AdaptReport& r : each->reports()) accepted += r.accepted;
   EvalOptions eo;
@@ -86,44 +82,6 @@ TEST(PaintSession, EachStrokeEndsWithinATenthOfADecibelOfEndAfter50Strokes) {
   const StretchStats st = measure_stretch(each->mesh(), each->param());
   EXPECT_EQ(st.flipped, 0);
   EXPECT_EQ(st.degenerate, 0);
-}
-
-TEST(PaintSession, WarmStartedCyclesEndOnEndModesLayoutAndColdOnesStayPathIndependent) {
-  // PaintSessionOptions::warm_start: a cycle after a stroke starts its polish from the cycle before's.
-  const TriMesh mesh = shapes::torus(48, 24);
-  const Parameterization param = unwrap(mesh).param;
-  const StrokeFile strokes = generated(mesh, StrokeKind::Lines, 8, 3);
-  const int n = 8, N = 128;
-  PaintSessionOptions so = every_stroke(N);
-  so.warm_start = true;
-  PaintSession warm(mesh, param, so, strokes.background);
-  so.warm_start = false;
-  PaintSession cold(mesh, param, so, strokes.background);
-  for (int k = 0; k < n; ++k) {
-    warm.add_stroke(strokes.strokes[k]);
-    cold.add_stroke(strokes.strokes[k]);
-  }
-  int warm_cycles = 0;
-  for (const AdaptReport& r : warm.reports()) warm_cycles += r.polish_warm_lattices > 0;
-  for (const AdaptReport& r : cold.reports()) EXPECT_EQ(r.polish_warm_lattices, 0);
-  EXPECT_EQ(warm.reports().front().polish_warm_lattices, 0);  // nothing to start from yet
-  EXPECT_GE(warm_cycles, n / 2);
-  // The last cycle was warm-started and taken (this history's, measured): its layout is not end mode's,
-  // and it is not settled: finish() owes the cold cycle.
-  const AdaptReport& last = warm.reports().back();
-  ASSERT_TRUE(last.accepted);
-  ASSERT_GT(last.polish_warm_lattices, 0);
-  EXPECT_FALSE(warm.settled());
-  const auto end = painted(mesh, param, strokes, ReparamSchedule::End, N, n, so);
-  EXPECT_FALSE(same_layout(warm, *end));
-  // Cold cycles: the layout after the last stroke is end mode's, with nothing left for finish().
-  EXPECT_TRUE(cold.settled());
-  EXPECT_TRUE(same_layout(cold, *end));
-  // Warm cycles: finish() brings the session back to it.
-  warm.finish();
-  EXPECT_TRUE(warm.settled());
-  EXPECT_TRUE(same_layout(warm, *end));
-  EXPECT_EQ(warm.reports().back().polish_warm_lattices, 0);
 }
 
 TEST(PaintSession, PolishedLatticeRaisesThePsnrOfDots) {
@@ -237,10 +195,8 @@ TEST(PaintSession, EachStrokeSkipsTheCyclesThatGainLessThanMinGainAndEndsOnEndMo
     }
     const size_t before_finish = each.reports().size();
     each.finish();
-    // finish() catches up once when the last cycle was skipped, or held a warm-started layout
-    // (PaintSessionOptions::warm_start): the session ends on end mode's layout.
-    const AdaptReport& last_cycle = each.reports()[before_finish - 1];
-    const bool owed = last_cycle.skipped || (last_cycle.accepted && last_cycle.polish_warm_lattices > 0);
+    // finish() catches up once when the last cycle was skipped: the session ends on end mode's layout.
+    const bool owed = each.reports()[before_finish - 1].skipped;
     EXPECT_EQ(each.reports().size(), before_finish + (owed ? 1 : 0));
     EXPECT_FALSE(each.reports().back().skipped);
     EXPECT_TRUE(same_layout(each, *end)) << "min_gain " << min_gain;

@@ -842,8 +842,7 @@ TEST(StudioApp, EveryReparameterizationStartsFromTheInitialLayout) {
   // ... which is also what PaintSession's each-stroke schedule gives after these strokes ...
   PaintSessionOptions each = h.app->session_options();
   each.schedule = ReparamSchedule::EachStroke;
-  each.min_gain_db = 0;      // a cycle after every stroke (none skipped) ...
-  each.warm_start = false;   // ... each from scratch: each layout is end mode's
+  each.min_gain_db = 0;  // a cycle after every stroke (none skipped): each layout is end mode's
   PaintSession session(*sphere, initial, each, h.app->history().background());
   for (const Stroke& s : h.app->history().strokes()) session.add_stroke(s);
   EXPECT_EQ(h.app->param()->uv, session.param().uv);

@@ -1,17 +1,9 @@
 #pragma once
 /// \file adapt.h
-/// Signal-adaptive re-parameterization in one call. The method that computes the warp of the square is
-/// selected by AdaptMode (method.h, one folder each):
-/// - `density-flow` (default): the texel density that minimizes the reconstruction error for the
-///   texel budget (error_density.h, measured from the exact stroke history), reached exactly by a
-///   flow-based density-equalizing map that cannot fold (density_flow.h); triangles too large for the
-///   warp are refined conformingly (refine.h);
-/// - `single` / `two-stage`: the thesis' grid relaxation (§3.7 / §3.8): a coarse grid (16 cells) first
-///   gathers points in low-signal regions, then a fine grid (256 cells) relaxed in the domain warped
-///   by the coarse stage spreads points around detail; new uv = fine(coarse(old uv)).
-/// The remap is flip-, degeneracy- and overlap-free for every method (remap.h). Texture update:
-/// texture_update.h; the painting loop with history: session.h. Why the default changed:
-/// docs/error_model.md and docs/quality.md.
+/// Signal-adaptive re-parameterization in one call. AdaptMode selects the method that warps the square
+/// (method.h): `density-flow` (default; error_density.h, density_flow.h, error_polish.h) or the
+/// thesis' `single` / `two-stage` relaxation (§3.7–3.8). Refinement (refine.h) and a flip-, degeneracy-
+/// and overlap-free remap (remap.h) follow for every method. The painting loop: session.h.
 #include <memory>
 #include <string>
 #include <string_view>
@@ -36,8 +28,7 @@
 
 namespace adaptex {
 
-/// Which re-parameterization to run: a method by the name it is registered under (method.h). The
-/// built-in ones are named here; parse_adapt_mode() also finds methods registered later.
+/// A method by the name it is registered under (method.h); parse_adapt_mode() finds any of them.
 class AdaptMode {
  public:
   /// \p name must outlive the value (a literal, or a name held by the registry).
@@ -105,8 +96,7 @@ struct AdaptOptions {
   ProgressCallback progress;                  ///< Phases "importance" … "remap" (core/progress.h).
 };
 
-/// Timings (seconds) and figures of one re-parameterization. The texel-map / texture-update times are
-/// filled by the caller that updates the texture (PaintSession, `adaptex reparam`).
+/// Timings (seconds) and figures of one re-parameterization (texture-update times: filled by the caller).
 struct AdaptReport {
   AdaptMode mode = AdaptMode::TwoStage;
   double time_importance = 0, time_stretch_map = 0, time_ls2 = 0;
@@ -125,26 +115,15 @@ struct AdaptReport {
   bool accepted = true;        ///< false: a safeguard kept the previous parameterization.
   double error_before = -1, error_after = -1;  ///< Safeguard error estimates (MSE), -1 if not run.
   double predicted_gain_db = 0;  ///< density-flow: the error model's predicted PSNR gain.
-  /// Each-stroke sessions (PaintSessionOptions::min_gain_db): the predicted PSNR gain of a new layout
-  /// over the layout the session held before this cycle (0 where not computed; session.h says how it
-  /// is predicted). Only a cycle the gate decides (min_gain_db > 0, after a stroke) measures the held
-  /// layout's error for it; other cycles report the model's prediction alone.
-  double gain_over_held_db = 0;
-  /// Each-stroke sessions: true if the cycle stopped after the error model because the predicted gain
-  /// over the held layout was below min_gain_db; the session kept its layout and texture (accepted is
-  /// false, only time_density and time_total are set).
-  bool skipped = false;
+  double gain_over_held_db = 0;  ///< Each-stroke: predicted PSNR gain over the held layout (0: not computed).
+  bool skipped = false;          ///< Each-stroke: the gate stopped the cycle (gain < min_gain_db; accepted false).
   int flow_tangled_cells = 0;    ///< density-flow: flow-grid cells untangled (density_flow.h).
   int flow_inverted_cells = 0;   ///< density-flow: cells still not convex after that (0 expected).
   long flow_steps = 0;           ///< density-flow: accepted integration steps over every lattice point.
   long flow_advected_points = 0; ///< density-flow: lattice points integrated (the others interpolated).
   int polish_sweeps = 0;         ///< density-flow: most polish sweeps of a lattice (error_polish.h).
-  /// density-flow: the anisotropic model's error (error_polish.h) before and after the polish, summed
-  /// over the lattices in cells of the density raster; 10·log10(before / after) is the polish's gain.
-  double polish_error_before = 0, polish_error_after = 0;
-  /// density-flow: the lattices whose polish started from the warm start's (adapt_parameterization()),
-  /// with ErrorPolishOptions::warm_sweeps; 0 for a cold start.
-  int polish_warm_lattices = 0;
+  double polish_error_before = 0, polish_error_after = 0;  ///< density-flow: the polish's model error before / after.
+  int polish_warm_lattices = 0;  ///< Always 0 (the polish always starts cold); kept in report.json.
   int faces_before = 0, faces_after = 0;  ///< Mesh faces before / after refinement.
 };
 
@@ -156,24 +135,16 @@ struct AdaptResult {
   ImageF stretch;          ///< Normalized geometry stretch map at texture resolution (Fig. 3.8).
   ImageF ls2;              ///< L_s² at texture resolution (§3.6), before pooling (thesis methods).
   ImageF density;          ///< density-flow: target area density per cell (mean 1; error_density.h).
-  /// The method's warp of the square (uv_warp.h); null for None. Kept when a safeguard rejects it.
-  std::shared_ptr<const UvWarp> warp;
-  /// Set when refinement changed the mesh: the refined mesh (same surface, more faces), which
-  /// result.param belongs to. nullptr: param belongs to the input mesh.
-  std::shared_ptr<const TriMesh> refined_mesh;
-  /// With refined_mesh: its layout before the warp (old UV domain), for damping the warp again.
-  std::shared_ptr<const Parameterization> refined_layout;
+  std::shared_ptr<const UvWarp> warp;               ///< The method's warp (uv_warp.h); null for None.
+  std::shared_ptr<const TriMesh> refined_mesh;      ///< The refined mesh param belongs to; null: the input.
+  std::shared_ptr<const Parameterization> refined_layout;  ///< With refined_mesh: its layout before the warp.
   FaceData<int> parent_face;  ///< With refined_mesh: input face id of every refined face (size F').
-  /// The lattices of the warp (empty without one), in application order.
-  std::vector<const GridWarp*> warps() const;
-  /// The layout the warp acts on: refined_layout, else \p input, with the warp's charts moved.
-  Parameterization start_layout(const Parameterization& input) const;
+  std::vector<const GridWarp*> warps() const;  ///< The warp's lattices, in application order.
+  Parameterization start_layout(const Parameterization& input) const;  ///< refined_layout or \p input, charts moved.
 };
 
-/// Re-parameterizes \p current from the signal of \p texture (drawn with \p current; \p current_map
-/// is its texel map, same size as the texture) and, if given, the exact stroke \p history (used by
-/// density-flow's error model; without it the texture is the only signal), with a new solver of
-/// options.mode (method.h; a painting session keeps one solver instead, adapt_with()).
+/// Re-parameterizes \p current from \p texture (its texel map \p current_map) and, if given, the exact
+/// stroke \p history, with a new solver of options.mode (a session keeps one: adapt_with()).
 /// \pre mesh, current and current_map are consistent; texture non-empty
 /// \throw InvalidInputError inconsistent sizes, bad options (grid < 1, α/β < 0, ...), unknown mode
 /// \throw CancelledError the progress callback returned false
@@ -183,11 +154,9 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
 
 /// Name of a mode as used on the command line: "none", "single", "two-stage", "density-flow", ...
 const char* to_string(AdaptMode mode);
-/// The registered mode named \p name (method.h). \throw InvalidInputError otherwise (the message
-/// lists the names)
+/// The registered mode named \p name. \throw InvalidInputError otherwise (listing the names)
 AdaptMode parse_adapt_mode(const std::string& name);
-/// Every registered mode, in the order a UI lists them (None first, then the built-in methods, the
-/// default last of them, then the methods registered later).
+/// Every registered mode, in the order a UI lists them (None first).
 std::vector<AdaptMode> adapt_modes();
 
 }  // namespace adaptex

@@ -1,9 +1,7 @@
 #pragma once
 /// \file atlas_flow.h
-/// density-flow on multi-chart layouts, each chart in its own rectangle (docs/error_model.md §5):
-///  1. re-pack: each chart's rectangle is scaled by its share of the target density and the
-///     rectangles are packed again (a similarity per chart; Sander et al. 2002, §5);
-///  2. one density-equalizing flow per chart rectangle, which maps the rectangle onto itself.
+/// density-flow on multi-chart layouts (docs/error_model.md §5): 1. re-pack the charts' rectangles
+/// sized by their density share (Sander et al. 2002, §5); 2. one flow per rectangle, onto itself.
 #include <vector>
 
 #include "adaptex/adapt/density_flow.h"
@@ -43,26 +41,19 @@ struct ChartRepackOptions {
 };
 
 /// Step 1 above: new rectangles for the charts, sized by their integral of \p density.
-/// \param boxes C chart rectangles (chart_boxes()), pairwise disjoint
-/// \param density L x L target density over the square (error_density.h; > 0)
-/// \return C moves; the dst() rectangles are pairwise disjoint, at least options.padding apart,
-///         inside [0,1]^2, each with the aspect ratio of its box
+/// \return one move per box; dst() rectangles disjoint, padded, in [0,1]², aspect kept
 /// \throw InvalidInputError empty density, bad padding, or boxes that cannot be packed
 std::vector<ChartMove> repack_charts_by_density(const std::vector<UvRect>& boxes, const ImageF& density,
                                                 const ChartRepackOptions& options = {});
 
 /// Step 1 with the error model choosing the resize: sizes ∝ (mean ρ)^(γ/2), γ ∈ {1, ¾, ½, ¼, 0}, or the
 /// charts left in place (if already padded); the least predicted_chart_error() wins (ties: the earlier).
-/// \param error, exponent L x L: the model's q (0 where unpainted) and p, as in ErrorDensity
-/// \param chosen_gamma if given: the chosen γ, or −1 for the charts left in place
-/// \return as repack_charts_by_density()
-/// \throw InvalidInputError as repack_charts_by_density(), or error / exponent not L x L
+/// \param chosen_gamma if given: the chosen γ, −1 for in place \throw InvalidInputError as above, or not L x L
 std::vector<ChartMove> allocate_charts_by_error(const std::vector<UvRect>& boxes, const ImageF& density,
                                                 const ImageF& error, const ImageF& exponent,
                                                 const ChartRepackOptions& options = {}, double* chosen_gamma = nullptr);
 
 /// The model's error after \p moves and a flow per chart: Σ q·(s_c²·ρ / mean_c ρ)^(−p/2) over painted cells.
-/// \pre density, error, exponent L x L; moves' src boxes pairwise disjoint
 /// \throw InvalidInputError rasters of different sizes, or empty
 double predicted_chart_error(const std::vector<ChartMove>& moves, const ImageF& density, const ImageF& error,
                              const ImageF& exponent, const ChartRepackOptions& options = {});
@@ -74,10 +65,8 @@ Parameterization move_charts(const Parameterization& param, const std::vector<Ch
 /// The move whose source rectangle contains a point (bucket grid). Thread-safe after construction.
 class ChartMoveLocator {
  public:
-  /// Keeps a copy of \p moves. \pre the moves' src rectangles are pairwise disjoint
-  explicit ChartMoveLocator(std::vector<ChartMove> moves);
-  /// The moved point; points outside every source rectangle are returned unchanged.
-  Vec2 apply(const Vec2& uv) const;
+  explicit ChartMoveLocator(std::vector<ChartMove> moves);  ///< \pre src rectangles pairwise disjoint
+  Vec2 apply(const Vec2& uv) const;  ///< The moved point (unchanged outside every src rectangle).
 
  private:
   std::vector<ChartMove> moves_;
@@ -92,16 +81,9 @@ class ChartMoveLocator {
 std::vector<int> chart_lattice_cells(const std::vector<ChartMove>& moves, int cells, int min_cells);
 
 /// Step 2: one density-equalizing GridWarp per chart on its dst() rectangle, from \p density over its src.
-/// \param stats if given: sums of the per-chart stats (tangled / inverted cells, steps), max of max_*
-/// \throw InvalidInputError empty density or bad flow options
+/// \param stats if given: the charts' stats summed \throw InvalidInputError empty density or bad options
 std::vector<GridWarp> chart_flow_warps(const std::vector<ChartMove>& moves, const ImageF& density,
                                        const DensityFlowOptions& flow, int min_cells = 8,
                                        DensityFlowStats* stats = nullptr);
-
-/// The exact flows that chart_flow_warps() samples (one part per chart; degenerate charts: identity).
-/// \param flow the integration settings the FlowWarp keeps (direct_tolerance, direct_max_step_cells)
-/// \throw InvalidInputError empty density or min_cells < 2
-FlowWarp chart_flows(const std::vector<ChartMove>& moves, const ImageF& density, const DensityFlowOptions& flow,
-                     int min_cells = 8);
 
 }  // namespace adaptex

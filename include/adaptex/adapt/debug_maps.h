@@ -8,9 +8,7 @@
 
 namespace adaptex {
 
-/// Writes the maps and grids of \p result into \p dir with file prefix \p prefix: importance (or the
-/// error map of density-flow), stretch, ls2, density (grey levels, log scale) and every warp grid drawn
-/// over the L_s² or density map (thesis Figs. 3.8, 3.9). \throw IoError
+/// Writes \p result's maps and warp grids as PNGs \p dir/\p prefix* (thesis Figs. 3.8, 3.9). \throw IoError
 void write_debug_maps(const std::filesystem::path& dir, const std::string& prefix, const AdaptResult& result);
 
 }  // namespace adaptex

@@ -1,9 +1,7 @@
 #pragma once
 /// \file error_density.h
-/// The texel density that minimizes the reconstruction error for a fixed texel budget. Per cell the
-/// local error e(h) = q·h^p is measured (exact signal vs. reconstructions at h_N and 2h_N, weighted
-/// by surface area); Σ q ρ^(−p/2) under Σ ρ = const gives ρ ∝ q^(1/(1+p/2)), with a floor where
-/// nothing is painted. Derivation: docs/error_model.md.
+/// The texel density minimizing the reconstruction error for a texel budget: e = q·h^p measured per
+/// cell (at h_N and 2h_N), ρ ∝ q^(1/(1+p/2)), a floor where unpainted. docs/error_model.md.
 #include <memory>
 
 #include "adaptex/core/image.h"
@@ -43,22 +41,17 @@ struct ErrorDensity {
 /// gives the same result bit for bit (28 MB at N = 1024).
 class ErrorDensityReference {
  public:
-  /// \param mesh, param the layout (the mesh is kept by reference: it must outlive this object)
-  /// \param texture_size N, the side of the texture the layout is painted at
-  /// \param background the history's background colour, RGB in [0,1]
-  /// \throw InvalidInputError param inconsistent with mesh, texture_size < 1, bad options
+  /// \p mesh must outlive this. \throw InvalidInputError param inconsistent, texture_size < 1, bad options
   ErrorDensityReference(const TriMesh& mesh, const Parameterization& param, int texture_size,
                         const Vec3& background, const ErrorDensityOptions& options = {});
   ~ErrorDensityReference();
   ErrorDensityReference(ErrorDensityReference&&) noexcept;
   ErrorDensityReference& operator=(ErrorDensityReference&&) noexcept;
 
-  /// True if this reference was built for \p mesh (the same object) and \p param (same UVs and faces)
-  /// at \p texture_size with the raster sizes that \p options give.
+  /// Built for this \p mesh object, \p param, \p texture_size and \p options' raster sizes.
   bool matches(const TriMesh& mesh, const Parameterization& param, int texture_size,
                const ErrorDensityOptions& options) const;
-  /// Composites the strokes of \p history not added yet. \pre the strokes added so far are the first
-  /// ones of \p history \throw InvalidInputError a stroke breaks the contract's rules
+  /// Adds \p history's new strokes. \pre a prefix was added \throw InvalidInputError a bad stroke
   void update(const StrokeFile& history);
 
   struct Impl;
@@ -72,21 +65,17 @@ class ErrorDensityReference {
 
 /// The model's total error Σ_c q_c · ρ_c^(−p_c/2) of a layout of UV area density \p density (L x L, mean
 /// 1) relative to the model's layout, or of that layout itself when \p density is empty.
-/// \pre model.error and model.exponent are L x L
-/// \throw InvalidInputError density is neither empty nor L x L, or holds a value that is not finite and > 0
+/// \throw InvalidInputError density neither empty nor L x L with finite values > 0
 double predicted_error(const ErrorDensity& model, const ImageF& density);
 
 /// Target density from the exact stroke history; \p texture / \p map give the h_N level.
-/// \pre mesh/param consistent; map is the texel map of param at the texture's size
 /// \throw InvalidInputError inconsistent sizes or bad options
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
                                    const TexelMap& map, const StrokeFile& history,
                                    const ErrorDensityOptions& options = {});
 
-/// The same, with the history's signal from \p reference (brought up to date with \p history first):
-/// equal to the overload above, at a cost that does not grow with the history.
-/// \pre reference.matches(mesh, param, texture.width, options)
-/// \throw InvalidInputError inconsistent sizes, bad options, or a reference for another layout
+/// The same from \p reference (updated with \p history first): equal, at a cost independent of the history.
+/// \throw InvalidInputError as above, or !reference.matches(...)
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
                                    const TexelMap& map, const StrokeFile& history, ErrorDensityReference& reference,
                                    const ErrorDensityOptions& options = {});

@@ -1,11 +1,8 @@
 #pragma once
 /// \file error_polish.h
-/// Polish of a warp lattice by the error model with the texel grid's anisotropy and the paint's edge
-/// directions counted (density-flow, after the flow). Minimizes, over the lattice points,
-///     E(X) = Σ_cells q_c · mean over the cell's 4 corner triangles of (tr(T·J⁻¹J⁻ᵀ))^(p_c/2)
-///          + κ Σ_unpainted cells max(0, ρ_floor / det J − 1)²
-/// by coloured nonlinear Gauss–Seidel (damped Newton per point, line search keeping cells convex).
-/// Derivation and measurements: docs/error_model.md §11–12; defaults: docs/decisions.md.
+/// Polish of a warp lattice by the error model with the texels' anisotropy and the paint's edge
+/// directions T counted: minimizes Σ q_c·mean(tr(T·J⁻¹J⁻ᵀ))^(p_c/2) + κ·Σ_unpainted max(0, ρ_floor/det J − 1)²
+/// by coloured Gauss–Seidel Newton steps that keep cells convex. docs/error_model.md §11–12.
 #include <vector>
 
 #include "adaptex/adapt/grid.h"
@@ -20,13 +17,11 @@ struct ErrorPolishOptions {
   int prepass_sweeps = 20;       ///< Lattices ≥ 32 cells: sweeps on the coarsest prepass level (0: none); 20.
   int sweeps_after_prepass = 3;  ///< Sweeps on each finer level after the prepass's coarsest; 3.
   int prepass_levels = 2;        ///< Coarser levels of the prepass, each halving the cells (≥ 16), in [1, 4]; 2.
-  int warm_sweeps = 5;           ///< Sweeps when starting from the previous cycle's (add_polish_correction()); 5.
   double tolerance = 1e-4;       ///< Stop when a sweep lowers E by less than this fraction of E; 1e-4.
   double floor_weight = 10.0;    ///< κ of the floor term, relative to the painted cells' mean q; 10.
   double shape_weight = 0.01;    ///< μ of a shape term μ·|J|²_F / (2 det J) in every cell (vs. shear); 0.01.
   int reach_cells = 12;          ///< Only points this many cells from a painted cell move; 12.
   bool charts = true;            ///< Also polish the per-chart lattices of a re-packed atlas; true.
-  double settle_cells = 1e-3;    ///< Skip a point whose ring moved less than this (cells) last sweep; 1e-3.
   double over_relaxation = 1.8;  ///< ω of the Newton step, in (0, 2); 1.8.
   int cells = 128;               ///< Cells per side of the square of the polish lattice (0: the warp's); 128.
   double isotropy = 0.25;        ///< Weight of round texels against the paint's edge directions, in (0, 1]; 0.25.
@@ -57,8 +52,7 @@ struct PolishFields {
   ImageF txx, txy, tyy;  ///< n x n or empty (T = I/2): edge-direction tensor T per cell (add_edge_directions()).
 };
 
-/// The paint's edge directions per texel of a texture: the structure tensor Σ g gᵀ of its colour
-/// gradient g (central differences per texel, summed over R, G and B; one-sided at the borders).
+/// The paint's edge directions per texel: the structure tensor Σ g gᵀ of the RGB gradients.
 struct EdgeTensor {
   ImageF xx, xy, yy;  ///< W x H each.
   std::vector<double> sum_xx, sum_xy, sum_yy;  ///< (W+1) x (H+1) summed-area tables of xx, xy, yy.
@@ -69,33 +63,21 @@ EdgeTensor edge_tensor(const ImageRGBA8& texture);
 
 /// Sets \p fields' txx, txy, tyy for a lattice over [lo, hi]: \p edges summed over each cell and its
 /// ring, normalized to trace 1, T = (1 − isotropy)·T_edges + isotropy·I/2 (I/2 where the sum is 0).
-/// \pre isotropy in (0, 1]; lo < hi inside [0,1]²; fields.error n x n, n >= 1; \p edges from
-///      edge_tensor() (three rasters of one non-empty size and their tables)
-/// \throw InvalidInputError a precondition fails
+/// \pre isotropy in (0, 1]; lo < hi in [0,1]²; \p edges from edge_tensor() \throw InvalidInputError otherwise
 void add_edge_directions(PolishFields& fields, const EdgeTensor& edges, const Vec2& lo, const Vec2& hi,
                          double isotropy);
 
 /// error_density.h's \p error, \p exponent, \p density (L x L) sampled on an n x n lattice over [lo, hi];
 /// \p scale: the chart's re-pack scale (ChartMove::scale; the error there is q·scale^(−p)).
-/// \pre error, exponent, density L x L, L >= 1; n >= 1; lo < hi inside [0,1]²; scale > 0
-/// \throw InvalidInputError a precondition fails
+/// \pre rasters L x L, n >= 1, lo < hi in [0,1]², scale > 0 \throw InvalidInputError otherwise
 PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const ImageF& density, const Vec2& lo,
                            const Vec2& hi, int n, double scale = 1);
 
-/// Moves the points of \p warp (in its local coordinates) to lower E above. Every cell that was convex
-/// stays convex; side points stay on their side and corners stay.
-/// \pre fields' rasters are warp.n x warp.n; every cell of warp convex (density_equalizing_warp()
-///      guarantees it); exponent in [0, 8]
-/// \throw InvalidInputError a precondition fails or check_polish_options() does
+/// Moves \p warp's points to lower E; convex cells stay convex, side points on their side.
+/// \pre fields warp.n x warp.n, every cell convex, exponent in [0, 8] \throw InvalidInputError otherwise
 /// \throw CancelledError options.progress returned false
 ErrorPolishStats polish_warp_by_error(GridWarp& warp, const PolishFields& fields,
                                       const ErrorPolishOptions& options = {});
-
-/// Warm start: adds t·(prev_polished − prev_flow), resampled at \p warp's points, to \p warp (t = 1,
-/// halved at most 3 times while cells stay turned after untangling). Side points keep their side.
-/// \return t in (0, 1] if the correction was added; 0 if a lattice is empty or malformed, the previous
-///         two differ in size, or no t kept every convex cell convex (\p warp is then unchanged)
-double add_polish_correction(GridWarp& warp, const GridWarp& prev_flow, const GridWarp& prev_polished);
 
 /// The model's error part Σ q·Ψ of \p warp under \p fields (what polish_warp() lowers).
 /// \pre as polish_warp_by_error() \throw InvalidInputError a precondition fails
@@ -106,12 +88,9 @@ double polish_model_error(const GridWarp& warp, const PolishFields& fields, cons
 /// \pre warp_cells >= 1, extent in (0, 1] \throw InvalidInputError a precondition fails, or options.cells < 0
 int polish_cells(int warp_cells, const ErrorPolishOptions& options, double extent = 1);
 
-/// The polish of \p warp through an m-cell lattice (m = fields' size, ≤ warp.n): the coarse lattice is
-/// polished and every point of \p warp follows its map (turned cells untangled, else the motion halved).
-/// Convex cells stay convex. Energies returned are the m-cell lattice's.
-/// \pre fields' rasters are m x m, 1 <= m <= warp.n; warp.n >= 1 and (n+1)² points; the rest as
-///      polish_warp_by_error()
-/// \throw InvalidInputError a precondition fails or check_polish_options() does
+/// The polish of \p warp through an m-cell lattice (m = fields' size) that \p warp's points follow;
+/// convex cells stay convex. Energies returned are the m-cell lattice's.
+/// \pre fields m x m, 1 <= m <= warp.n; as polish_warp_by_error() \throw InvalidInputError otherwise
 /// \throw CancelledError options.progress returned false
 ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options = {});
 

@@ -1,10 +1,8 @@
 #pragma once
 /// \file session.h
-/// A painting session with signal-adaptive re-parameterization (thesis Fig. 3.1): mesh, layout, exact
-/// stroke history, a Painter, and the policy. Each-stroke mode re-parameterizes from the *initial*
-/// layout every time, so after every stroke it holds end mode's layout for the history so far. The
-/// "never worse" safeguard keeps a candidate (or it damped by half) only if its estimated MSE on fixed
-/// surface samples is lower than the reference layout's. docs/adaptive.md.
+/// A painting session with signal-adaptive re-parameterization (thesis Fig. 3.1). Each-stroke mode
+/// adapts from the *initial* layout every time (it holds end mode's layout for the history so far);
+/// the "never worse" safeguard keeps a candidate only if its estimated MSE is lower. docs/adaptive.md.
 ///
 ///   PaintSession s(mesh, unwrap(mesh).param, opts, history.background);
 ///   for (auto& st : history.strokes) s.add_stroke(st);   // each-stroke mode re-parameterizes here
@@ -49,18 +47,12 @@ struct PaintSessionOptions {
   double surface_cache = 3;                  ///< Each-stroke replay: surface cache samples per texel (0: off); 3.
   double surface_cache_coverage = 4;         ///< Covers of the surface from which the cache is used; 4.
   double min_gain_db = 0.3;                  ///< Each-stroke: skip cycles predicted to gain less, dB (0: none); 0.3.
-  bool warm_start = false;                   ///< Each-stroke: polish from the previous cycle's; false.
   std::filesystem::path debug_dir;  ///< If set: PNGs of the maps and grids of every re-parameterization.
 };
 
 class PaintSession {
  public:
-  /// \param mesh the surface (moved into the session)
-  /// \param initial its initial parameterization (e.g. unwrap(mesh).param)
-  /// \param background colour of unpainted surface (the history's background)
-  /// \throw InvalidInputError bad options (texture size outside [1, kMaxTextureSize], negative padding,
-  ///        safeguard_samples outside [0, kMaxSafeguardSamples], surface_cache or surface_cache_coverage
-  ///        negative or not finite) or param/mesh mismatch
+  /// \param background colour of unpainted surface \throw InvalidInputError bad options, param/mesh mismatch
   PaintSession(TriMesh mesh, Parameterization initial, const PaintSessionOptions& options,
                const Vec3& background = Vec3(1, 1, 1));
   ~PaintSession();
@@ -77,11 +69,9 @@ class PaintSession {
   void begin_stroke(const Stroke& style);
   std::array<int, 4> add_dab(const Vec3& centre);
   void end_stroke();
-  /// End mode: re-parameterizes once. Each-stroke mode: once more, cold with exact replay, unless
-  /// settled(), so the session ends on end mode's layout and texture. No-op with mode None.
+  /// Ends on end mode's layout and texture: end mode adapts once, each-stroke once more unless settled().
   void finish();
-  /// Re-parameterizes now, whatever the schedule and min_gain_db. \return the report (also appended
-  /// to reports()).
+  /// Re-parameterizes now, whatever the schedule and min_gain_db. \return the report (in reports())
   const AdaptReport& reparameterize();
   /// finish() would change nothing (the last cycle saw the whole history, replayed exactly, cold).
   bool settled() const;

@@ -19,11 +19,6 @@
 namespace adaptex {
 
 namespace {
-/// A previous compute()'s lattices: the flow's, and the same polished (the warm start).
-struct Lattices {
-  std::vector<GridWarp> flow, polished;
-};
-
 /// \p density (mean 1) of a warp applied with blend factor \p t: ρ^t, scaled to mean 1 again (the
 /// warp's Jacobian determinant interpolated geometrically; t = 0: the unwarped layout, empty).
 ImageF damped_density(const ImageF& density, double t) {
@@ -62,7 +57,6 @@ struct DensityFlowMethod::State {
     const double gap = boxes.empty() ? 0.0 : smallest_box_gap(boxes);
     std::vector<ChartMove> moves;
     std::vector<GridWarp> lattices;
-    FlowWarp flow;  // with o.density_flow.flow.direct
     if (gap > 0) {
       // Charts in disjoint boxes: re-pack them by density, then one flow per chart rectangle, with
       // the layout's own gutter (atlas_flow.h).
@@ -71,28 +65,15 @@ struct DensityFlowMethod::State {
       ro.padding = std::min(std::max(gap, o.density_flow.chart_gutter_texels / texels), 0.2);
       moves = allocate_charts_by_error(boxes, res.density, ed.error, ed.exponent, ro);
       lattices = chart_flow_warps(moves, res.density, o.density_flow.flow, 8, &st);
-      if (o.density_flow.flow.direct) flow = chart_flows(moves, res.density, o.density_flow.flow);
     } else {
       lattices = {density_equalizing_warp(res.density, o.density_flow.flow, &st)};
-      if (o.density_flow.flow.direct) {
-        flow.options = o.density_flow.flow;
-        flow.parts = {FlowWarp::Part{Vec2(0, 0), Vec2(1, 1), std::make_shared<const DensityFlow>(res.density)}};
-      }
     }
     rep.flow_tangled_cells = st.tangled_cells;
     rep.flow_inverted_cells = st.inverted_cells;
     rep.flow_steps = st.total_steps;
     rep.flow_advected_points = st.advected_points;
     rep.time_flow = seconds_since(t0);
-    if (o.density_flow.flow.direct) {
-      previous.reset();  // no polish: the next cycle starts cold
-      res.warp = std::make_shared<const FlowLayoutWarp>(std::move(flow), std::move(lattices), std::move(moves));
-      return;
-    }
-    const Lattices* warm = in.warm && previous ? &*previous : nullptr;
-    std::vector<GridWarp> flow_lattices;
-    polish(o, ed, in.texture, warm, moves, lattices, flow_lattices, res);
-    previous = Lattices{std::move(flow_lattices), lattices};
+    polish(o, ed, in.texture, moves, lattices, res);
     res.warp = std::make_shared<const LatticeWarp>(std::move(lattices), std::move(moves));
   }
 
@@ -135,16 +116,13 @@ struct DensityFlowMethod::State {
   std::optional<ErrorDensity> model;                 // predict_gain()'s, for the next compute()
   size_t model_strokes = 0;                          // the history's length it saw
   ImageF held_density;                               // hold(): the held layout's density, empty: fixed
-  std::optional<Lattices> previous;                  // the last compute()'s lattices (warm start)
 
   /// Polishes lattice \p c of \p lattices (coarse to fine, ErrorPolishOptions::prepass_sweeps) with
-  /// \p progress; \p cell gets the area of one of its cells in cells of the density raster. With
-  /// \p warm (an earlier cycle's result) the polish starts from that cycle's correction
-  /// (add_polish_correction()) and runs warm_sweeps; \p warmed says whether it did.
+  /// \p progress; \p cell gets the area of one of its cells in cells of the density raster.
   static ErrorPolishStats polish_lattice(const AdaptOptions& o, const ErrorDensity& ed, const EdgeTensor& edges,
-                                         const Lattices* warm, const std::vector<ChartMove>& moves,
-                                         std::vector<GridWarp>& lattices, AdaptResult& res, size_t c,
-                                         const ProgressCallback& progress, double& cell, bool& warmed) {
+                                         const std::vector<ChartMove>& moves, std::vector<GridWarp>& lattices,
+                                         AdaptResult& res, size_t c, const ProgressCallback& progress,
+                                         double& cell) {
     GridWarp& g = lattices[c];
     UvRect src{Vec2(0, 0), Vec2(1, 1)};
     double scale = 1, extent = 1;
@@ -165,10 +143,10 @@ struct DensityFlowMethod::State {
     // The report's figures are the model's on the warp's own lattice: a coarser lattice sampled
     // from a strongly compressed flow starts from far worse cells than the flow's own (genus0
     // `mixed` 128²: 12.4 dB "gained" on the coarse lattice). The gain is reported against the flow's
-    // lattice, also when the polish starts from a warm start. Measured on a copy, beside the polish:
-    // a lattice's coarsest levels are too small to keep two cores busy.
-    const bool own_lattice = m != g.n, measure = own_lattice || warm;
-    const GridWarp flow = measure ? g : GridWarp{};
+    // lattice. Measured on a copy, beside the polish: a lattice's coarsest levels are too small to
+    // keep two cores busy.
+    const bool own_lattice = m != g.n;
+    const GridWarp flow = own_lattice ? g : GridWarp{};
     const ErrorPolishOptions measure_options = po;  // the polish below changes po's sweeps
     PolishFields own;
     double before = -1;
@@ -176,13 +154,10 @@ struct DensityFlowMethod::State {
     tbb::parallel_invoke(
         [&] {
           if (own_lattice) own = fields(g.n);
-          if (measure) before = polish_model_error(flow, own_lattice ? own : f, measure_options);
+          if (own_lattice) before = polish_model_error(flow, own, measure_options);
         },
         [&] {
-          warmed = warm && add_polish_correction(g, warm->flow[c], warm->polished[c]) > 0;
-          if (warmed) {
-            po.sweeps = po.warm_sweeps;
-          } else if (po.prepass_sweeps > 0 && m >= 32) {
+          if (po.prepass_sweeps > 0 && m >= 32) {
             // Coarse to fine (ErrorPolishOptions::prepass_sweeps, prepass_levels): the coarsest
             // lattice of at least 16 cells first, then each finer one.
             int levels = 1;
@@ -207,14 +182,9 @@ struct DensityFlowMethod::State {
   /// are polished in parallel (each polish is also parallel inside): an atlas has many small lattices
   /// whose own sweeps cannot keep two cores busy (armadillo, 1024²: 15 charts of 16–55 polish cells).
   /// Each lattice's result does not depend on the others or on the threads.
-  /// \p warm: the previous compute()'s lattices (WarpInput::warm) or null; used when it has as many
-  /// lattices. \p flow_lattices gets the lattices before the polish.
-  static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture, const Lattices* warm,
-                     const std::vector<ChartMove>& moves, std::vector<GridWarp>& lattices,
-                     std::vector<GridWarp>& flow_lattices, AdaptResult& res) {
+  static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture,
+                     const std::vector<ChartMove>& moves, std::vector<GridWarp>& lattices, AdaptResult& res) {
     if (o.density_flow.polish.sweeps <= 0 || (!moves.empty() && !o.density_flow.polish.charts)) return;
-    flow_lattices = lattices;
-    if (warm && (warm->polished.size() != lattices.size() || warm->flow.size() != lattices.size())) warm = nullptr;
     const auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "polish", 0);
     const EdgeTensor edges = o.density_flow.polish.isotropy < 1 ? edge_tensor(texture) : EdgeTensor{};
@@ -234,11 +204,8 @@ struct DensityFlowMethod::State {
       };
     std::vector<ErrorPolishStats> stats(count);
     std::vector<double> cells(count, 0.0);
-    std::vector<char> warmed(count, 0);
     auto one = [&](size_t c) {
-      bool w = false;
-      stats[c] = polish_lattice(o, ed, edges, warm, moves, lattices, res, c, shared, cells[c], w);
-      warmed[c] = w;
+      stats[c] = polish_lattice(o, ed, edges, moves, lattices, res, c, shared, cells[c]);
       ++done;
     };
     if (o.density_flow.polish.parallel)
@@ -249,7 +216,6 @@ struct DensityFlowMethod::State {
       res.report.polish_sweeps = std::max(res.report.polish_sweeps, stats[c].sweeps);
       res.report.polish_error_before += cells[c] * stats[c].error_before;
       res.report.polish_error_after += cells[c] * stats[c].error_after;
-      res.report.polish_warm_lattices += warmed[c];
     }
     report_progress(user, "polish", 1);
     res.report.time_polish = seconds_since(t0);
