@@ -33,8 +33,11 @@ void check_inputs(const TriMesh& mesh, const Parameterization& param, const std:
   for (const Vec2& p : param.uv)
     if (!std::isfinite(p.x()) || !std::isfinite(p.y())) throw InvalidInputError("shrink: a texture coordinate is not finite");
   if (!(opt.overlap_share >= 0) || !(opt.max_scale_ratio >= 1) || opt.gutter < 0 || opt.gutter > 16 ||
-      opt.error_samples < 1000 || opt.eval_samples < 1000)
-    throw InvalidInputError("shrink: bad options (overlap_share >= 0, max_scale_ratio >= 1, gutter in [0,16], samples >= 1000)");
+      opt.error_samples < 1000 || opt.eval_samples < 1000 || !(opt.max_face_growth >= 0) ||
+      !std::isfinite(opt.max_face_growth))
+    throw InvalidInputError(
+        "shrink: bad options (overlap_share >= 0, max_scale_ratio >= 1, gutter in [0,16], samples >= 1000, "
+        "max_face_growth >= 0)");
 }
 
 /// A candidate layout with its first map.
@@ -125,7 +128,7 @@ Built budgeted(const Context& cx, const Built& uniform, const std::vector<double
 
 /// The density-flow warp of the whole layout (adapt.h, no refinement: the input's faces), for layouts
 /// whose charts share no texels (it moves charts apart). Valid only if no face flips or degenerates.
-Built warped(const Context& cx, const ShrinkLayoutStats& before) {
+Built warped(const Context& cx, const ShrinkLayoutStats& input_at_size) {
   Built b;
   b.info.name = "warped";
   b.info.valid = false;
@@ -140,7 +143,7 @@ Built warped(const Context& cx, const ShrinkLayoutStats& before) {
       adapt_parameterization(cx.mesh, start, tex, build_texel_map(cx.mesh, start, tex.width, tex.height), ao);
   if (r.refined_mesh || !r.report.accepted) return b;
   const ShrinkLayoutStats st = layout_stats(cx.mesh, cx.param, r.param, cx.param.face_chart, cx.opt.size);
-  if (st.flipped > 0 || st.degenerate > before.degenerate) return b;
+  if (st.flipped > 0 || st.degenerate > input_at_size.degenerate) return b;
   b = cx.fitted("warped", r.param);
   return b;
 }
@@ -195,7 +198,7 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
   }
   if (options.warp && isl.num_islands == isl.num_charts) {
     report_progress(options.progress, "warp", 0);
-    cands.push_back(warped(cx, res.before));
+    cands.push_back(warped(cx, layout_stats(mesh, param, param, isl.face_chart, N)));
   }
   // The best valid candidate by measured PSNR (downsizing is always valid: the floor).
   size_t best = 0;
@@ -217,6 +220,7 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
   res.psnr_downsized = res.map_psnr_downsized[0];
   res.chosen = cands[best].info.name;
   res.param = cands[best].param;
+  res.lifted_faces = lift_degenerate_faces(res.param, param, N);  // before the texels are fitted to it
   if (res.chosen != "downsized") {
     res.maps = fit_maps(mesh, param, maps, maps.size(), res.param, N, false, options.progress);
     report_progress(options.progress, "evaluate", 0.5);
@@ -224,6 +228,7 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
     if (res.map_psnr[0] < res.psnr_downsized && options.force_candidate.empty()) {  // the floor
       res.chosen = "downsized";
       res.param = param;
+      res.lifted_faces = lift_degenerate_faces(res.param, param, N);
     }
   }
   if (res.chosen == "downsized") {

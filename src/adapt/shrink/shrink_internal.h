@@ -86,6 +86,15 @@ std::vector<IslandPlacement> pack_islands(const Parameterization& layout, const 
                                           int num_islands, const std::vector<double>& scales, int size,
                                           int gutter, bool rotate, double fill_hint, double* fill);
 
+/// A UV face is degenerate when its area is below this many square texels (as the evaluation counts).
+constexpr double kDegenerateTexelArea = 1e-6;
+
+/// Gives every degenerate face of \p out (a layout of \p input's faces, texels of 1 / \p size) an
+/// area of about 1e-3 square texels in its input orientation (its chart's where the input has none):
+/// one corner moves off the line of the other two, a shared wedge only where the other faces keep
+/// their orientation and area, else a new wedge of the face's own. \return faces lifted.
+int lift_degenerate_faces(Parameterization& out, const Parameterization& input, int size);
+
 /// \p layout with every wedge placed by its island's placement (UVs in [0,1]²).
 Parameterization apply_placements(const Parameterization& layout, const std::vector<int>& face_island,
                                   const std::vector<IslandPlacement>& placements, int size);
