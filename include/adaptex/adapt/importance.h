@@ -1,7 +1,6 @@
 #pragma once
 /// \file importance.h
-/// Importance map of thesis §3.5 (Fig. 3.6): Sobel gradient magnitude over RGB, normalized to [0,1];
-/// neighbours outside every chart count as the centre texel, texels outside charts get 0.
+/// Importance map of thesis §3.5 (Fig. 3.6): Sobel gradient magnitude over RGB inside charts, in [0,1].
 #include "adaptex/core/image.h"
 #include "adaptex/paint/texel_map.h"
 

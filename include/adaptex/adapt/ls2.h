@@ -1,7 +1,6 @@
 #pragma once
 /// \file ls2.h
-/// The L_s² weight of thesis §3.6: 1 − L2 where E_h = 0, 1 − (α·L2 + β·E_h) elsewhere, clamped to
-/// [min_weight, 1] (> 0, or the relaxation folds); pooled at each grid's scale. docs/adaptive.md.
+/// L_s² of thesis §3.6: 1 − L2 where E_h = 0, else 1 − (α·L2 + β·E_h), clamped to [min_weight, 1].
 #include "adaptex/core/image.h"
 
 namespace adaptex {

@@ -1,8 +1,7 @@
 #pragma once
 /// \file refine.h
-/// Conforming refinement of a mesh for a warp of its UV domain: edges the warp bends by more than a
-/// tolerance (or of faces it flips) are split at their 3-D midpoint by longest-edge bisection (Rivara
-/// 1984), so the surface is unchanged and there are no T-junctions. docs/adaptive.md.
+/// Conforming refinement for a warp of the UV domain: bent edges split at their 3-D midpoint by
+/// longest-edge bisection (Rivara 1984); the surface is unchanged, no T-junctions.
 #include <functional>
 
 #include "adaptex/core/mesh.h"

@@ -1,7 +1,6 @@
 #pragma once
 /// \file relax.h
-/// Grid relaxation of thesis §3.7.1: each interior point moves to the L_s²-weighted mean of its ring
-/// (Gauss–Seidel, coloured for parallel sweeps) until the largest move is below ε.
+/// Grid relaxation of thesis §3.7.1: points move to the L_s²-weighted mean of their ring (Gauss–Seidel).
 #include "adaptex/adapt/grid.h"
 #include "adaptex/core/image.h"
 #include "adaptex/core/progress.h"

@@ -1,7 +1,6 @@
 #pragma once
 /// \file stretch_map.h
-/// Geometry-stretch map of thesis §3.5 (Fig. 3.8): per face, L2n = clamp((L2 − 1) / (L2_ref − 1), 0, 1)
-/// with L2_ref the area-weighted 99th percentile (not the maximum: docs/adaptive.md), per texel.
+/// Geometry-stretch map of thesis §3.5 (Fig. 3.8): clamp((L2 − 1) / (L2_ref − 1), 0, 1), L2_ref the 99th percentile.
 #include <vector>
 
 #include "adaptex/core/image.h"

@@ -1,7 +1,6 @@
 #pragma once
 /// \file texture_update.h
-/// Texture update after a re-parameterization (thesis §3.7.3): replay the stroke history exactly, or
-/// resample the old texture through the old UVs of each texel's surface point (blurs a little).
+/// Texture update after a re-parameterization (thesis §3.7.3): exact replay of the history, or resample.
 #include "adaptex/core/image.h"
 #include "adaptex/core/progress.h"
 #include "adaptex/core/mesh.h"
