@@ -35,6 +35,8 @@ struct ReparamArgs {
   std::string mesh, texture, outdir, name, grid, mode = kShrinkMode, debug_maps;
   std::string candidate;  // --candidate (shrink)
   bool no_refine = false;
+  double max_face_growth = ShrinkOptions{}.max_face_growth;
+  bool max_face_growth_given = false;  // --max-face-growth was on the command line
   bool grid_given = false;  // --grid was on the command line
   double alpha = AdaptOptions{}.alpha, beta = AdaptOptions{}.beta;
   int size = 0, padding = 4;
@@ -55,6 +57,8 @@ AdaptOptions reparam_options(const ReparamArgs& a) {
   if (opt.mode == AdaptMode::None)
     throw InvalidInputError("--adapt must be shrink, " + or_list(adapt_method_names(false)) + " (got '" + a.mode + "')");
   opt.refine = !a.no_refine;
+  // density-flow's refinement keeps its own face budget unless the user bounds the growth.
+  if (a.max_face_growth_given) opt.refine_max_face_factor = 1.0 + a.max_face_growth;
   opt.alpha = a.alpha;
   opt.beta = a.beta;
   if (a.grid_given) set_grid(opt, parse_grid(a.grid));  // --grid "" is an error, not the default
@@ -102,6 +106,7 @@ void run_reparam_shrink(const ReparamArgs& a, const Context& ctx) {
   opt.size = a.size > 0 ? a.size : std::max(maps[0].image.width, maps[0].image.height);
   opt.progress = shrink_progress(ctx, "reparam");
   opt.force_candidate = a.candidate;
+  opt.max_face_growth = a.no_refine ? 0.0 : a.max_face_growth;
   const ShrinkResult res = shrink_textured_mesh(tm.mesh, tm.param, maps, opt);
   AtomicOutput out;
   const std::string name = a.name.empty() ? sanitize_export_name(std::filesystem::path(a.mesh).stem().string()) : a.name;
@@ -195,6 +200,11 @@ void add_reparam_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   sub->add_flag("--no-refine", a->no_refine,
                 "Keep the input's vertices (density-flow refines triangles too large for the warp)");
+  sub->add_option("--max-face-growth", a->max_face_growth,
+                  "Largest share of faces refinement may add (0.1 = 10 %; shrink adds none; density-flow: "
+                  "default its own budget)")
+      ->check(CLI::NonNegativeNumber)
+      ->each([a](const std::string&) { a->max_face_growth_given = true; });
   sub->add_option("--grid", a->grid, "Grid cells per side: FINE or COARSE,FINE (default 16,256)")
       ->each([a](const std::string&) { a->grid_given = true; });
   sub->add_option("--alpha", a->alpha, "L_s^2 weight of the geometry stretch where there is signal")->capture_default_str();

@@ -25,6 +25,8 @@ struct ShrinkArgs {
   int size = 0;
   double factor = 0;
   std::string candidate;
+  double max_face_growth = ShrinkOptions{}.max_face_growth;
+  bool no_refine = false;
 };
 
 /// The maps of the asset's one textured material, base colour first. \throw InvalidInputError
@@ -68,6 +70,7 @@ void run_shrink(const ShrinkArgs& a, const Context& ctx) {
                         : std::max(8, static_cast<int>(std::lround(std::max(first.width, first.height) / std::sqrt(a.factor))));
   opt.progress = shrink_progress(ctx, "shrink");
   opt.force_candidate = a.candidate;
+  opt.max_face_growth = a.no_refine ? 0.0 : a.max_face_growth;
   ctx.info("shrink: " + a.mesh + ": " + std::to_string(asset.mesh.num_faces()) + " faces, " +
            std::to_string(maps.size()) + " map(s) " + std::to_string(first.width) + "x" + std::to_string(first.height) +
            " -> " + std::to_string(opt.size) + "x" + std::to_string(opt.size));
@@ -110,6 +113,11 @@ void add_shrink_command(CLI::App& app, Context& ctx) {
   sub->add_option("--factor", a->factor, "Or: K times fewer texels than the base colour map (each side / sqrt(K))");
   sub->add_option("--candidate", a->candidate,
                   "Output this candidate (downsized, artist, repacked, budget, warped) instead of the best");
+  sub->add_option("--max-face-growth", a->max_face_growth,
+                  "Largest share of faces the new layout may add (0.1 = 10 %; the shrink adds none)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_flag("--no-refine", a->no_refine, "Keep the input's faces exactly (--max-face-growth 0)");
   sub->add_option("--name", a->name, "Base name of the output files (default: the mesh file's stem)");
   sub->callback([a, &ctx] { run_shrink(*a, ctx); });
 }

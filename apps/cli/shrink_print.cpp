@@ -17,6 +17,11 @@ void print_shrink_summary(const ShrinkResult& r, const std::vector<std::string>&
          << " dB";
     std::cout << line.str() << "\n";
   }
+  std::ostringstream faces;
+  faces << std::fixed << std::setprecision(1) << "faces: " << r.faces_before << " -> " << r.faces_after << " (+"
+        << (r.faces_before ? 100.0 * (r.faces_after - r.faces_before) / r.faces_before : 0.0) << " %), "
+        << r.lifted_faces << " degenerate UV face(s) given an area";
+  std::cout << faces.str() << "\n";
 }
 
 ProgressCallback shrink_progress(const Context& ctx, const std::string& prefix) {

@@ -10,7 +10,8 @@
 
 namespace adaptex::cli {
 
-/// Prints "psnr: X dB (downsized: Y dB, gain Z dB)" for every map on stdout.
+/// Prints "SLOT: psnr X dB, downsized Y dB, gain Z dB" for every map, then the face counts before and
+/// after, on stdout.
 void print_shrink_summary(const ShrinkResult& r, const std::vector<std::string>& slots);
 
 /// A progress callback printing one line per phase ("shrink: pack") on stderr unless quiet.

@@ -166,97 +166,6 @@ int advect_point(const Field& f, Vec2& x, double tol, double max_move, int max_s
   return steps;
 }
 
-/// True if cell (i, j) of \p g is a strictly convex, positively oriented quad (then its bilinear map
-/// is one-to-one).
-bool cell_convex(const GridWarp& g, int i, int j) {
-  const Vec2 q[4] = {g.at(i, j), g.at(i + 1, j), g.at(i + 1, j + 1), g.at(i, j + 1)};
-  for (int k = 0; k < 4; ++k) {
-    const Vec2 a = q[(k + 1) % 4] - q[k], b = q[(k + 3) % 4] - q[k];
-    if (!(a.x() * b.y() - a.y() * b.x() > 0)) return false;
-  }
-  return true;
-}
-
-/// Where the advected lattice is folded at the scale of one cell (a cell image so strongly bent or
-/// sheared that the quad of its corners is not convex), Laplacian-smooths the points of the bad cells
-/// and their neighbours, growing the region until every cell is convex. Side points slide along their
-/// side, corners stay. \return the number of bad cells before untangling
-int untangle(GridWarp& g) {
-  const int n = g.n;
-  const size_t cells = static_cast<size_t>(n) * n, points = static_cast<size_t>(n + 1) * (n + 1);
-  // Only the cells around a smoothed point change, so after the first full scan a round re-checks
-  // just those: the same rounds and the same points as re-checking every cell, far fewer tests.
-  std::vector<char> convex(cells), bad(cells, 0), mark(points, 0);
-  std::vector<int> bad_cells, marked, checked(cells, 0);  // checked: last round that re-checked a cell
-  int count = 0;
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const size_t c = static_cast<size_t>(j) * n + i;
-      convex[c] = cell_convex(g, i, j);
-      if (!convex[c]) {
-        ++count;
-        bad[c] = 1;
-        bad_cells.push_back(static_cast<int>(c));
-      }
-    }
-  const int first = count;
-  int marked_grow = 0;    // the halo width the marked points were taken with
-  size_t halo_done = 0;   // bad_cells[0, halo_done) are marked with that halo
-  for (int round = 0; round < 200 && count > 0; ++round) {
-    const int grow = 1 + round / 10;  // widen the smoothed region when smoothing alone does not untangle
-    // The smoothed region only grows (bad cells stay bad, the halo widens): add the new points, of
-    // the new bad cells, or of all of them when the halo widens.
-    const size_t before = marked.size();
-    if (grow != marked_grow) halo_done = 0;
-    marked_grow = grow;
-    for (; halo_done < bad_cells.size(); ++halo_done) {
-      const int c = bad_cells[halo_done];
-      const int i = c % n, j = c / n;
-      for (int b = std::max(0, j - grow); b <= std::min(n, j + 1 + grow); ++b)
-        for (int a = std::max(0, i - grow); a <= std::min(n, i + 1 + grow); ++a) {
-          const int k = b * (n + 1) + a;
-          if (!mark[static_cast<size_t>(k)]) {
-            mark[static_cast<size_t>(k)] = 1;
-            marked.push_back(k);
-          }
-        }
-    }
-    // Raster order, as a sweep over the whole lattice visits them.
-    const auto mid = marked.begin() + static_cast<std::ptrdiff_t>(before);
-    std::sort(mid, marked.end());
-    std::inplace_merge(marked.begin(), mid, marked.end());
-    for (int sweep = 0; sweep < 4; ++sweep)
-      for (int k : marked) {
-        const int i = k % (n + 1), j = k / (n + 1);
-        const bool side_x = i == 0 || i == n, side_y = j == 0 || j == n;
-        if (side_x && side_y) continue;  // corner
-        Vec2& p = g.at(i, j);
-        if (side_x) p.y() = 0.5 * (g.at(i, j - 1).y() + g.at(i, j + 1).y());
-        else if (side_y) p.x() = 0.5 * (g.at(i - 1, j).x() + g.at(i + 1, j).x());
-        else p = 0.25 * (g.at(i - 1, j) + g.at(i + 1, j) + g.at(i, j - 1) + g.at(i, j + 1));
-      }
-    // Re-check the cells that have a smoothed corner.
-    for (int k : marked) {
-      const int i = k % (n + 1), j = k / (n + 1);
-      for (int b = std::max(0, j - 1); b <= std::min(n - 1, j); ++b)
-        for (int a = std::max(0, i - 1); a <= std::min(n - 1, i); ++a) {
-          const size_t c = static_cast<size_t>(b) * n + a;
-          if (checked[c] == round + 1) continue;
-          checked[c] = round + 1;
-          const bool now = cell_convex(g, a, b);
-          if (now == static_cast<bool>(convex[c])) continue;
-          convex[c] = now;
-          count += now ? -1 : 1;
-          if (!now && !bad[c]) {
-            bad[c] = 1;
-            bad_cells.push_back(static_cast<int>(c));
-          }
-        }
-    }
-  }
-  return first;
-}
-
 double cell_signed_area(const GridWarp& g, int i, int j) {
   const Vec2 a = g.at(i, j), b = g.at(i + 1, j), c = g.at(i + 1, j + 1), d = g.at(i, j + 1);
   const auto cross = [](const Vec2& p, const Vec2& q) { return p.x() * q.y() - p.y() * q.x(); };
@@ -502,7 +411,7 @@ GridWarp density_equalizing_warp(const ImageF& density, const DensityFlowOptions
     g.at(k, 0).y() = 0;
     g.at(k, o.cells).y() = 1;
   }
-  const int tangled = untangle(g);
+  const int tangled = untangle_lattice(g);
   if (stats) {
     stats->tangled_cells = tangled;
     stats->total_steps = adv.total_steps;

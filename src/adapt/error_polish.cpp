@@ -569,24 +569,6 @@ int polish_cells(int warp_cells, const ErrorPolishOptions& options, double exten
 
 namespace {
 
-/// True if the four corner triangles of cell (ci, cj) of \p g have positive area.
-bool cell_convex(const GridWarp& g, int ci, int cj) {
-  const Vec2 c[4] = {g.at(ci, cj), g.at(ci + 1, cj), g.at(ci + 1, cj + 1), g.at(ci, cj + 1)};
-  for (int k = 0; k < 4; ++k)
-    if (!(cross(c[(k + 1) % 4] - c[k], c[(k + 3) % 4] - c[k]) > 0)) return false;
-  return true;
-}
-
-/// cell_convex() of every cell, row-major.
-std::vector<char> convex_cells(const GridWarp& g) {
-  const int n = g.n;
-  std::vector<char> ok(static_cast<size_t>(n) * n, 0);
-  tbb::parallel_for(0, n, [&](int cj) {
-    for (int ci = 0; ci < n; ++ci) ok[static_cast<size_t>(cj) * n + ci] = cell_convex(g, ci, cj);
-  });
-  return ok;
-}
-
 /// The m-cell lattice at \p warp's positions (GridWarp::apply_lattice); sides and corners exactly on
 /// the square's.
 GridWarp sample_lattice(const GridWarp& warp, int m) {
@@ -650,49 +632,6 @@ void place_moved(GridWarp& warp, const std::vector<Vec2>& start, const std::vect
   });
 }
 
-/// Laplacian untangling of \p g: the interior corners of every cell that was convex (\p convex) and is
-/// not now, and the points within `ring` of them, move to the mean of their four lattice neighbours,
-/// in index order, round after round (the remap untangles its faces alike). The ring starts at 0 and
-/// widens by one whenever 20 rounds did not lower the number of such cells, up to 4; at most 1000
-/// rounds. Returns the number of such cells left; \p turned (if set) gets their number before.
-size_t untangle_cells(GridWarp& g, const std::vector<char>& convex, int* turned = nullptr) {
-  const int n = g.n;
-  const std::vector<char> now = convex_cells(g);
-  std::vector<int> bad, points, cells;
-  for (size_t c = 0; c < now.size(); ++c)
-    if (convex[c] && !now[c]) bad.push_back(static_cast<int>(c));
-  if (turned) *turned = static_cast<int>(bad.size());
-  int ring = 0;
-  size_t best = bad.size();
-  for (int round = 0, since_best = 0; round < 1000 && !bad.empty(); ++round) {
-    if (bad.size() < best) best = bad.size(), since_best = 0;
-    else if (++since_best >= 20) {
-      if (ring == 4) break;
-      ++ring, since_best = 0;
-    }
-    points.clear();
-    for (int c : bad)
-      for (int j = std::max(1, c / n - ring); j <= std::min(n - 1, c / n + 1 + ring); ++j)
-        for (int i = std::max(1, c % n - ring); i <= std::min(n - 1, c % n + 1 + ring); ++i)
-          points.push_back(j * (n + 1) + i);
-    std::sort(points.begin(), points.end());
-    points.erase(std::unique(points.begin(), points.end()), points.end());
-    cells = bad;  // only the cells around moved points can change
-    for (int k : points) {
-      const int i = k % (n + 1), j = k / (n + 1);
-      g.at(i, j) = 0.25 * (g.at(i - 1, j) + g.at(i + 1, j) + g.at(i, j - 1) + g.at(i, j + 1));
-      for (int cj = j - 1; cj <= j; ++cj)
-        for (int ci = i - 1; ci <= i; ++ci) cells.push_back(cj * n + ci);
-    }
-    std::sort(cells.begin(), cells.end());
-    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-    bad.clear();
-    for (int c : cells)
-      if (convex[c] && !cell_convex(g, c % n, c / n)) bad.push_back(c);
-  }
-  return bad.size();
-}
-
 }  // namespace
 
 ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const ErrorPolishOptions& options) {
@@ -718,7 +657,7 @@ ErrorPolishStats polish_warp(GridWarp& warp, const PolishFields& fields, const E
   // cell is untangled; if cells stay turned, the whole motion is halved.
   double t = 1;
   place(t);
-  for (int halving = 0; untangle_cells(warp, convex, halving == 0 ? &st.turned_cells : nullptr) > 0; ++halving) {
+  for (int halving = 0; untangle_turned_cells(warp, convex, halving == 0 ? &st.turned_cells : nullptr) > 0; ++halving) {
     if (halving == 6) {
       warp.points = start;
       t = 0;
@@ -761,7 +700,7 @@ double add_polish_correction(GridWarp& warp, const GridWarp& prev_flow, const Gr
     const std::vector<char> now = convex_cells(warp);
     size_t turned = 0;
     for (size_t c = 0; c < now.size(); ++c) turned += convex[c] && !now[c];
-    if (turned == 0 || (turned <= kWarmUntangleCells && untangle_cells(warp, convex) == 0)) return t;
+    if (turned == 0 || (turned <= kWarmUntangleCells && untangle_turned_cells(warp, convex) == 0)) return t;
   }
   warp.points = start;
   return 0;

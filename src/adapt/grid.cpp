@@ -181,4 +181,143 @@ ImageF pull_back_field(const ImageF& field, const GridWarp& warp, int res) {
   return out;
 }
 
+bool cell_convex(const GridWarp& g, int i, int j) {
+  const Vec2 q[4] = {g.at(i, j), g.at(i + 1, j), g.at(i + 1, j + 1), g.at(i, j + 1)};
+  for (int k = 0; k < 4; ++k) {
+    const Vec2 a = q[(k + 1) % 4] - q[k], b = q[(k + 3) % 4] - q[k];
+    if (!(a.x() * b.y() - a.y() * b.x() > 0)) return false;
+  }
+  return true;
+}
+
+std::vector<char> convex_cells(const GridWarp& g) {
+  const int n = g.n;
+  std::vector<char> ok(static_cast<size_t>(n) * n, 0);
+  tbb::parallel_for(0, n, [&](int j) {
+    for (int i = 0; i < n; ++i) ok[static_cast<size_t>(j) * n + i] = cell_convex(g, i, j);
+  });
+  return ok;
+}
+
+namespace {
+/// Moves lattice point (i, j) of \p g to the mean of its four neighbours; a side point slides along
+/// its side (the mean of its two side neighbours); a corner stays.
+void smooth_point(GridWarp& g, int i, int j) {
+  const int n = g.n;
+  const bool side_x = i == 0 || i == n, side_y = j == 0 || j == n;
+  if (side_x && side_y) return;
+  Vec2& p = g.at(i, j);
+  if (side_x) p.y() = 0.5 * (g.at(i, j - 1).y() + g.at(i, j + 1).y());
+  else if (side_y) p.x() = 0.5 * (g.at(i - 1, j).x() + g.at(i + 1, j).x());
+  else p = 0.25 * (g.at(i - 1, j) + g.at(i + 1, j) + g.at(i, j - 1) + g.at(i, j + 1));
+}
+}  // namespace
+
+int untangle_lattice(GridWarp& g) {
+  const int n = g.n;
+  const size_t cells = static_cast<size_t>(n) * n, points = static_cast<size_t>(n + 1) * (n + 1);
+  // Only the cells around a smoothed point change, so after the first full scan a round re-checks
+  // just those: the same rounds and the same points as re-checking every cell, far fewer tests.
+  std::vector<char> convex(cells), bad(cells, 0), mark(points, 0);
+  std::vector<int> bad_cells, marked, checked(cells, 0);  // checked: last round that re-checked a cell
+  int count = 0;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const size_t c = static_cast<size_t>(j) * n + i;
+      convex[c] = cell_convex(g, i, j);
+      if (!convex[c]) {
+        ++count;
+        bad[c] = 1;
+        bad_cells.push_back(static_cast<int>(c));
+      }
+    }
+  const int first = count;
+  int marked_grow = 0;    // the halo width the marked points were taken with
+  size_t halo_done = 0;   // bad_cells[0, halo_done) are marked with that halo
+  for (int round = 0; round < 200 && count > 0; ++round) {
+    const int grow = 1 + round / 10;  // widen the smoothed region when smoothing alone does not untangle
+    // The smoothed region only grows (bad cells stay bad, the halo widens): add the new points, of
+    // the new bad cells, or of all of them when the halo widens.
+    const size_t before = marked.size();
+    if (grow != marked_grow) halo_done = 0;
+    marked_grow = grow;
+    for (; halo_done < bad_cells.size(); ++halo_done) {
+      const int c = bad_cells[halo_done];
+      const int i = c % n, j = c / n;
+      for (int b = std::max(0, j - grow); b <= std::min(n, j + 1 + grow); ++b)
+        for (int a = std::max(0, i - grow); a <= std::min(n, i + 1 + grow); ++a) {
+          const int k = b * (n + 1) + a;
+          if (!mark[static_cast<size_t>(k)]) {
+            mark[static_cast<size_t>(k)] = 1;
+            marked.push_back(k);
+          }
+        }
+    }
+    // Raster order, as a sweep over the whole lattice visits them.
+    const auto mid = marked.begin() + static_cast<std::ptrdiff_t>(before);
+    std::sort(mid, marked.end());
+    std::inplace_merge(marked.begin(), mid, marked.end());
+    for (int sweep = 0; sweep < 4; ++sweep)
+      for (int k : marked) smooth_point(g, k % (n + 1), k / (n + 1));
+    // Re-check the cells that have a smoothed corner.
+    for (int k : marked) {
+      const int i = k % (n + 1), j = k / (n + 1);
+      for (int b = std::max(0, j - 1); b <= std::min(n - 1, j); ++b)
+        for (int a = std::max(0, i - 1); a <= std::min(n - 1, i); ++a) {
+          const size_t c = static_cast<size_t>(b) * n + a;
+          if (checked[c] == round + 1) continue;
+          checked[c] = round + 1;
+          const bool now = cell_convex(g, a, b);
+          if (now == static_cast<bool>(convex[c])) continue;
+          convex[c] = now;
+          count += now ? -1 : 1;
+          if (!now && !bad[c]) {
+            bad[c] = 1;
+            bad_cells.push_back(static_cast<int>(c));
+          }
+        }
+    }
+  }
+  return first;
+}
+
+size_t untangle_turned_cells(GridWarp& g, const std::vector<char>& convex, int* turned) {
+  const int n = g.n;
+  const std::vector<char> now = convex_cells(g);
+  std::vector<int> bad, points, cells;
+  for (size_t c = 0; c < now.size(); ++c)
+    if (convex[c] && !now[c]) bad.push_back(static_cast<int>(c));
+  if (turned) *turned = static_cast<int>(bad.size());
+  int ring = 0;
+  size_t best = bad.size();
+  for (int round = 0, since_best = 0; round < 1000 && !bad.empty(); ++round) {
+    if (bad.size() < best) best = bad.size(), since_best = 0;
+    else if (++since_best >= 20) {
+      if (ring == 4) break;
+      ++ring, since_best = 0;
+    }
+    // Interior points only: a turned cell's sides stay where the motion put them.
+    points.clear();
+    for (int c : bad)
+      for (int j = std::max(1, c / n - ring); j <= std::min(n - 1, c / n + 1 + ring); ++j)
+        for (int i = std::max(1, c % n - ring); i <= std::min(n - 1, c % n + 1 + ring); ++i)
+          points.push_back(j * (n + 1) + i);
+    std::sort(points.begin(), points.end());
+    points.erase(std::unique(points.begin(), points.end()), points.end());
+    cells = bad;  // only the cells around moved points can change
+    for (int k : points) {
+      const int i = k % (n + 1), j = k / (n + 1);
+      smooth_point(g, i, j);
+      for (int cj = j - 1; cj <= j; ++cj)
+        for (int ci = i - 1; ci <= i; ++ci) cells.push_back(cj * n + ci);
+    }
+    std::sort(cells.begin(), cells.end());
+    cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+    bad.clear();
+    for (int c : cells)
+      if (convex[c] && !cell_convex(g, c % n, c / n)) bad.push_back(c);
+  }
+  return bad.size();
+}
+
 }  // namespace adaptex

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 
 #include "adaptex/adapt/shrink.h"
 #include "adaptex/core/errors.h"
@@ -122,8 +123,13 @@ TEST_F(Traps, ShrinkKeepsSharingOrientationAndBeatsDownsizing) {
   const ShrinkResult r = shrink_textured_mesh(a.mesh, a.param, {{"base_color", tex, MapKind::Color}}, opt);
   ASSERT_EQ(r.maps.size(), 1u);
   ASSERT_EQ(r.maps[0].width, 64);
-  // Topology kept exactly.
-  EXPECT_EQ(r.param.uv_faces, a.param.uv_faces);
+  // Topology kept exactly: the mesh is the input's; only the degenerate face may get a wedge of its own.
+  ASSERT_EQ(r.param.uv_faces.size(), a.param.uv_faces.size());
+  std::vector<Face> expected = a.param.uv_faces;
+  expected[partial] = r.param.uv_faces[partial];
+  EXPECT_EQ(r.param.uv_faces, expected);
+  for (size_t f = 0; f < a.param.uv_faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(r.param.wedge_vertex[r.param.uv_faces[f][k]], a.mesh.faces[f][k]);
   EXPECT_EQ(r.faces_after, r.faces_before);
   // Every output UV is finite and inside the square.
   for (const Vec2& p : r.param.uv) {
@@ -131,18 +137,18 @@ TEST_F(Traps, ShrinkKeepsSharingOrientationAndBeatsDownsizing) {
     EXPECT_GE(p.minCoeff(), 0.0);
     EXPECT_LE(p.maxCoeff(), 1.0);
   }
-  // No face changed orientation (the mirrored half stays mirrored); the degenerate one stays the only one.
+  // No face changed orientation (the mirrored half stays mirrored); the degenerate one got an area.
   int flipped = 0, degenerate = 0;
   for (int f = 0; f < a.mesh.num_faces(); ++f) {
     const double a0 = uv_signed_area(a.param, f), a1 = uv_signed_area(r.param, f);
-    if (std::abs(a1) <= 1e-15) {
-      ++degenerate;
-      continue;
-    }
-    if (std::abs(a0) > 1e-15) flipped += (a0 > 0) != (a1 > 0);
+    degenerate += std::abs(a1) * 64 * 64 < 1e-6;
+    flipped += (a0 > 0 && a1 < 0) || (a0 < 0 && a1 > 0);
   }
   EXPECT_EQ(flipped, 0);
-  EXPECT_EQ(degenerate, 1);
+  EXPECT_EQ(degenerate, 0);
+  EXPECT_EQ(r.lifted_faces, 1);
+  EXPECT_EQ(r.before.degenerate, 1);
+  EXPECT_EQ(r.after.degenerate, 0);
   EXPECT_EQ(r.after.flipped, 0);
   EXPECT_LT(uv_signed_area(r.param, right + 3), 0.0);
   // Shared texels still shared, in the same mirror relation: wedges that had one UV keep one UV.
@@ -205,6 +211,55 @@ TEST(Shrink, EveryMapFollowsTheLayout) {
   ASSERT_EQ(r.map_psnr.size(), 2u);
 }
 
+TEST(Shrink, NoDegenerateOutputFaceWhateverTheCandidate) {
+  // A plain and a mirrored chart, each with degenerate UV faces: one collapsed onto a line, one onto a
+  // point (which also squeezes its neighbours), and UVs outside [0,1].
+  Asset a;
+  const int plain = a.patch(0, 0, 0, 1, 1, 4, Vec2(1.05, 0.05), 0.4, 0.4);
+  const int mirrored = a.patch(2, 0, 0, 1, 1, 4, Vec2(0.95, 0.55), -0.4, 0.4);
+  {
+    const Face& t = a.param.uv_faces[plain + 10];
+    a.param.uv[t[1]] = 0.25 * a.param.uv[t[0]] + 0.75 * a.param.uv[t[2]];
+    const Face& p = a.param.uv_faces[mirrored + 12];
+    a.param.uv[p[1]] = a.param.uv[p[2]] = a.param.uv[p[0]];
+  }
+  const int F = a.mesh.num_faces();
+  auto degenerate = [&](const Parameterization& p, int n) {
+    int d = 0;
+    for (int f = 0; f < F; ++f) d += std::abs(uv_signed_area(p, f)) * n * n < 1e-6;
+    return d;
+  };
+  ASSERT_GE(degenerate(a.param, 64), 2);
+  const ImageRGBA8 tex = texture(128, 0.0, 0.5, 0.0, 1.0);
+  for (const std::string candidate : {"", "downsized", "artist", "repacked", "budget"}) {
+    ShrinkOptions opt;
+    opt.size = 64;
+    opt.error_samples = 10000;
+    opt.eval_samples = 20000;
+    opt.force_candidate = candidate;
+    const ShrinkResult r = shrink_textured_mesh(a.mesh, a.param, {{"base_color", tex, MapKind::Color}}, opt);
+    EXPECT_TRUE(candidate.empty() || r.chosen == candidate) << r.chosen;
+    EXPECT_EQ(degenerate(r.param, 64), 0) << candidate;
+    EXPECT_EQ(r.after.degenerate, 0) << candidate;
+    EXPECT_GE(r.lifted_faces, 2) << candidate;
+    int flipped = 0;
+    for (int f = 0; f < F; ++f) {
+      const double a0 = uv_signed_area(a.param, f), a1 = uv_signed_area(r.param, f);
+      flipped += (a0 > 0 && a1 < 0) || (a0 < 0 && a1 > 0);
+    }
+    EXPECT_EQ(flipped, 0) << candidate;
+    // The 3-D mesh is untouched: every face's wedges still name its vertices.
+    ASSERT_EQ(static_cast<int>(r.param.uv_faces.size()), F);
+    for (int f = 0; f < F; ++f)
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(r.param.wedge_vertex[r.param.uv_faces[f][k]], a.mesh.faces[f][k]);
+    // Lifted faces stay tiny (well under a texel), where they were.
+    for (int f = 0; f < F; ++f)
+      EXPECT_TRUE(std::abs(uv_signed_area(a.param, f)) * 64 * 64 >= 1e-6 ||
+                  std::abs(uv_signed_area(r.param, f)) * 64 * 64 < 0.05)
+          << candidate << " " << f;
+  }
+}
+
 TEST(Shrink, RejectsBadInput) {
   Asset a;
   a.patch(0, 0, 0, 1, 1, 2, Vec2(0.1, 0.1), 0.3, 0.3);
@@ -260,6 +315,43 @@ TEST(ShrinkCli, WritesEveryMapAndTheReportOrNothing) {
   r = test::run_cli("shrink " + (dir.path / "m.obj").string() + " -o " + bad.string());  // no size
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_FALSE(std::filesystem::exists(bad));
+}
+
+TEST(ShrinkCli, ReportsFacesAndBoundsTheirGrowth) {
+  test::TempDir dir;
+  Asset a;
+  a.patch(0, 0, 0, 1, 1, 4, Vec2(0.05, 0.05), 0.9, 0.9);
+  write_obj(dir.path / "m.obj", a.mesh, &a.param, std::string("m.mtl"), "skin");
+  std::ofstream(dir.path / "m.mtl") << "newmtl skin\nmap_Kd m.png\n";
+  write_png(dir.path / "m.png", texture(256, 0.05, 0.5, 0.05, 0.5));
+  const std::string mesh = (dir.path / "m.obj").string(), tex = (dir.path / "m.png").string();
+  const int F = a.mesh.num_faces();
+  // shrink --no-refine: the input's faces exactly, said on stdout and in report.json.
+  auto r = test::run_cli("shrink " + mesh + " --size 64 --no-refine -o " + (dir.path / "s").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string n = std::to_string(F);
+  EXPECT_NE(r.out.find("faces: " + n + " -> " + n + " (+0.0 %)"), std::string::npos) << r.out;
+  const auto report = nlohmann::json::parse(std::ifstream(dir.path / "s" / "report.json"));
+  EXPECT_EQ(report["shrink"]["faces_before"], F);
+  EXPECT_EQ(report["shrink"]["faces_after"], F);
+  EXPECT_EQ(report["shrink"]["face_growth"], 0.0);
+  EXPECT_EQ(read_textured_obj(dir.path / "s" / "m.obj").mesh.faces, a.mesh.faces);
+  // A negative bound: exit 2, one line, no output.
+  r = test::run_cli("shrink " + mesh + " --size 64 --max-face-growth -0.5 -o " + (dir.path / "bad").string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "bad"));
+  // density-flow refines this coarse patch under fine detail; --max-face-growth 0.1 bounds it.
+  r = test::run_cli("reparam " + mesh + " " + tex + " --adapt density-flow -o " + (dir.path / "free").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const int free_faces = read_textured_obj(dir.path / "free" / "m.obj").mesh.num_faces();
+  EXPECT_GT(free_faces, F + F / 10);
+  r = test::run_cli("reparam " + mesh + " " + tex + " --adapt density-flow --max-face-growth 0.1 -o " +
+                    (dir.path / "bounded").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const int bounded = read_textured_obj(dir.path / "bounded" / "m.obj").mesh.num_faces();
+  EXPECT_LE(bounded, F + F / 10);
+  EXPECT_GE(bounded, F);
 }
 
 }  // namespace

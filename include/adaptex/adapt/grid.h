@@ -72,4 +72,23 @@ class WarpChain {
 /// warp) keep the value at q itself. Parallel over rows.
 /// \pre res >= 1; warp points inside [0,1]^2
 ImageF pull_back_field(const ImageF& field, const GridWarp& warp, int res);
+
+/// True if cell (i, j) of \p g is a strictly convex, positively oriented quad (its four corner
+/// triangles have positive area): then its bilinear map is one-to-one. \pre 0 <= i, j < g.n
+bool cell_convex(const GridWarp& g, int i, int j);
+/// cell_convex() of every cell of \p g, row-major (index j * n + i). Parallel over rows.
+std::vector<char> convex_cells(const GridWarp& g);
+
+/// Untangles a freshly built lattice (the advected flow lattice): Laplacian-smooths the points of
+/// every non-convex cell and a halo around them (1 + round/10 points wide, 4 sweeps per round, side
+/// points slide along their side, corners stay), the region only growing, until every cell is convex
+/// or 200 rounds passed. \return the number of non-convex cells before
+int untangle_lattice(GridWarp& g);
+/// Untangles the cells a motion turned: the interior corners of every cell that was convex
+/// (\p convex, from convex_cells()) and is not now, and the points within `ring` of them, move to the
+/// mean of their four neighbours in index order, round after round. The ring starts at 0 and widens by
+/// one whenever 20 rounds did not lower the number of such cells, up to 4; at most 1000 rounds.
+/// \return the number of such cells left; \p turned (if set) gets their number before.
+/// \pre convex.size() == g.n * g.n
+size_t untangle_turned_cells(GridWarp& g, const std::vector<char>& convex, int* turned = nullptr);
 }  // namespace adaptex

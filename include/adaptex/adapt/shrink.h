@@ -45,7 +45,8 @@ struct ShrinkOptions {
   double overlap_share = 0.02;
   // Budget.
   bool budget = true;  ///< Per-island texel budget from the error model; false: one scale for all (default on).
-  long long error_samples = 100000;  ///< Surface samples of the error model (default 100k).
+  /// Surface samples of the error model, taken from the evaluation's (at most eval_samples; default 100k).
+  long long error_samples = 100000;
   /// Largest ratio between an island's texel spacing and the uniform layout's, either way (default 4).
   double max_scale_ratio = 4.0;
   // Packing.
@@ -55,6 +56,11 @@ struct ShrinkOptions {
   /// Also try the density-flow warp of the whole layout (adapt.h, without refinement) when no charts
   /// share texels (default on).
   bool warp = true;
+  // Topology.
+  /// Largest share of faces a layout may add to the input's (default 0.10); 0 keeps the input's faces
+  /// exactly (`--no-refine`). Every candidate keeps the input's faces (none refines), so every
+  /// candidate is within any bound (reported as faces_before / faces_after).
+  double max_face_growth = 0.10;
   // Candidates.
   long long eval_samples = 200000;  ///< Surface samples of the PSNR that picks the candidate (default 200k).
   std::uint64_t seed = 7;  ///< Seed of the surface samples (default 7).
@@ -77,7 +83,7 @@ struct ShrinkCandidate {
 /// Geometry and sharing figures of a layout against the input.
 struct ShrinkLayoutStats {
   int flipped = 0;     ///< Faces whose UV orientation differs from the input's (0 expected).
-  int degenerate = 0;  ///< Faces with a UV area <= 1e-14 (square units).
+  int degenerate = 0;  ///< Faces with a UV area below 1e-6 square texels (of the layout's resolution).
   /// Share of the chart-covered texels covered by two or more charts (texel centres; the input at
   /// its map's size, the output at the output size).
   double shared_fraction = 0;
@@ -98,6 +104,9 @@ struct ShrinkResult {
   int charts = 0, islands = 0;     ///< UV-connected charts of the input; islands that move together.
   ShrinkLayoutStats before, after; ///< Input layout (at the first map's size) / output layout.
   int faces_before = 0, faces_after = 0;
+  /// Degenerate UV faces (after.degenerate's measure) given a tiny area in their input orientation,
+  /// so that none remains: the input's, which scaling keeps, and any a layout made.
+  int lifted_faces = 0;
   double predicted_gain_db = 0;    ///< Error model: budget over uniform repack at the packed scale.
   double time_total = 0;           ///< Seconds.
 };

@@ -39,50 +39,60 @@ double kind_error(MapKind kind, const Vec3& ref, const Vec3& rec, double albedo_
 
 }  // namespace
 
-ErrorCurves island_error_curves(const TriMesh& mesh, const Parameterization& layout,
+ErrorCurves island_error_curves(const SampleSet& set, size_t stride, const Parameterization& layout,
                                 const std::vector<int>& face_island, int num_islands,
-                                const std::vector<ShrinkMap>& maps, long long samples, std::uint64_t seed) {
+                                const std::vector<ShrinkMap>& maps, double h_min, double h_max) {
   ErrorCurves curves;
   for (int l = 0; l < kLevels; ++l) curves.spacing.push_back(level_spacing(l));
   curves.error.assign(num_islands, std::vector<double>(kLevels, 0.0));
   curves.weight.assign(num_islands, 0.0);
-  const std::vector<SurfacePoint> pts = sample_surface(mesh, samples, seed);
-  const size_t K = pts.size();
+  stride = std::max<size_t>(stride, 1);
+  const size_t K = (set.points().size() + stride - 1) / stride;
+  const auto point = [&](size_t k) -> const SurfacePoint& { return set.points()[k * stride]; };
   std::vector<Vec2> uv(K);
   for (size_t k = 0; k < K; ++k) {
-    const Face& t = layout.uv_faces[pts[k].face];
-    uv[k] = pts[k].b0 * layout.uv[t[0]] + pts[k].b1 * layout.uv[t[1]] + (1 - pts[k].b0 - pts[k].b1) * layout.uv[t[2]];
+    const Face& t = layout.uv_faces[point(k).face];
+    uv[k] = point(k).b0 * layout.uv[t[0]] + point(k).b1 * layout.uv[t[1]] + (1 - point(k).b0 - point(k).b1) * layout.uv[t[2]];
   }
+  // The measured levels: those the budget reads, with one level of margin.
+  int l_lo = 0, l_hi = kLevels - 1;
+  while (l_lo + 1 < kLevels && level_spacing(l_lo + 1) <= 0.5 * h_min) ++l_lo;
+  while (l_hi > l_lo && level_spacing(l_hi - 1) >= 2.0 * h_max) --l_hi;
   // Albedo's mean square at each sample (for normal maps): the first colour map, else mid grey.
   std::vector<double> albedo_sq(K, 0.25);
-  for (const ShrinkMap& m : maps)
-    if (m.kind == MapKind::Color) {
-      for (size_t k = 0; k < K; ++k) albedo_sq[k] = sample_bilinear(m.image, uv[k].x(), uv[k].y()).squaredNorm() / 3.0;
+  for (size_t m = 0; m < maps.size(); ++m)
+    if (maps[m].kind == MapKind::Color) {
+      for (size_t k = 0; k < K; ++k) albedo_sq[k] = set.reference(m)[k * stride].squaredNorm() / 3.0;
       break;
     }
   std::vector<double> err(K * kLevels, 0.0);
-  for (const ShrinkMap& m : maps) {
+  for (size_t mi = 0; mi < maps.size(); ++mi) {
+    const ShrinkMap& m = maps[mi];
     std::vector<ImageRGBA8> level(kLevels);
-    for (int l = 0; l < kLevels; ++l) {
+    for (int l = l_lo; l <= l_hi; ++l) {
       const int S = static_cast<int>(std::lround(1.0 / level_spacing(l)));
       const int w = std::min(m.image.width, S), h = std::min(m.image.height, S);
       if (w == m.image.width && h == m.image.height) continue;  // no coarser than the map: error ~0
-      const ImageRGBA8& src = l >= 2 && !level[l - 2].empty() ? level[l - 2] : m.image;
+      const ImageRGBA8& src = l - 2 >= l_lo && !level[l - 2].empty() ? level[l - 2] : m.image;
       level[l] = box_downsize(src, w, h);
     }
     tbb::parallel_for(tbb::blocked_range<size_t>(0, K, 2048), [&](const tbb::blocked_range<size_t>& r) {
       for (size_t k = r.begin(); k < r.end(); ++k) {
-        const Vec3 ref = sample_bilinear(m.image, uv[k].x(), uv[k].y());
-        for (int l = 0; l < kLevels; ++l)
+        const Vec3& ref = set.reference(mi)[k * stride];
+        for (int l = l_lo; l <= l_hi; ++l)
           if (!level[l].empty())
             err[k * kLevels + l] +=
                 kind_error(m.kind, ref, sample_bilinear(level[l], uv[k].x(), uv[k].y()), albedo_sq[k]);
       }
     });
   }
+  for (size_t k = 0; k < K; ++k) {  // levels outside the measured range: the nearest measured one
+    for (int l = 0; l < l_lo; ++l) err[k * kLevels + l] = err[k * kLevels + l_lo];
+    for (int l = l_hi + 1; l < kLevels; ++l) err[k * kLevels + l] = err[k * kLevels + l_hi];
+  }
   std::vector<long> count(num_islands, 0);
   for (size_t k = 0; k < K; ++k) {
-    const int i = face_island[pts[k].face];
+    const int i = face_island[point(k).face];
     ++count[i];
     for (int l = 0; l < kLevels; ++l) curves.error[i][l] += err[k * kLevels + l];
   }

@@ -165,9 +165,10 @@ ShrinkLayoutStats layout_stats(const TriMesh& mesh, const Parameterization& refe
                                const std::vector<int>& face_chart, int resolution) {
   ShrinkLayoutStats st;
   constexpr double kDegenerate = 1e-15;
+  const double texels = static_cast<double>(resolution) * resolution;
   for (int f = 0; f < static_cast<int>(param.uv_faces.size()); ++f) {
     const double a0 = uv_signed_area(reference, f), a1 = uv_signed_area(param, f);
-    if (std::abs(a1) <= kDegenerate) {
+    if (std::abs(a1) * texels < kDegenerateTexelArea) {
       ++st.degenerate;
       continue;
     }

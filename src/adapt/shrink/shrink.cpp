@@ -33,8 +33,11 @@ void check_inputs(const TriMesh& mesh, const Parameterization& param, const std:
   for (const Vec2& p : param.uv)
     if (!std::isfinite(p.x()) || !std::isfinite(p.y())) throw InvalidInputError("shrink: a texture coordinate is not finite");
   if (!(opt.overlap_share >= 0) || !(opt.max_scale_ratio >= 1) || opt.gutter < 0 || opt.gutter > 16 ||
-      opt.error_samples < 1000 || opt.eval_samples < 1000)
-    throw InvalidInputError("shrink: bad options (overlap_share >= 0, max_scale_ratio >= 1, gutter in [0,16], samples >= 1000)");
+      opt.error_samples < 1000 || opt.eval_samples < 1000 || !(opt.max_face_growth >= 0) ||
+      !std::isfinite(opt.max_face_growth))
+    throw InvalidInputError(
+        "shrink: bad options (overlap_share >= 0, max_scale_ratio >= 1, gutter in [0,16], samples >= 1000, "
+        "max_face_growth >= 0)");
 }
 
 /// A candidate layout with its first map.
@@ -54,11 +57,10 @@ struct Context {
   Parameterization layout;        // the input layout with every chart shifted into [0,1)² (packing)
   std::vector<int> face_island;
   int islands = 0;
+  SampleSet samples;              // the measure's samples, the originals' colours at them
 
   /// PSNR of the first map on a quarter of the evaluation's samples (ranking the candidates).
-  double rank_psnr(const Parameterization& p, const ImageRGBA8& img) const {
-    return layout_psnr(mesh, param, maps[0].image, p, img, std::max(1000LL, opt.eval_samples / 4), opt.seed);
-  }
+  double rank_psnr(const Parameterization& p, const ImageRGBA8& img) const { return samples.psnr(0, p, img, 4); }
   /// The candidate of layout \p p with draft-fitted texels, ranked.
   Built fitted(const std::string& name, Parameterization p) const {
     Built b;
@@ -90,14 +92,30 @@ Built repacked(const Context& cx, const std::string& name, const std::vector<dou
 /// reached (\p uniform), packed, then allocated again for the area that packing reached.
 Built budgeted(const Context& cx, const Built& uniform, const std::vector<double>& area, double* predicted_gain) {
   const ShrinkOptions& o = cx.opt;
-  const ErrorCurves curves =
-      island_error_curves(cx.mesh, cx.param, cx.face_island, cx.islands, cx.maps, o.error_samples, o.seed + 1);
+  // The spacings the two allocations below can read: the uniform one's, times the packing's factor
+  // (within the ratio either way), within max_scale_ratio.
+  const double h_uniform = 1.0 / (o.size * uniform.lambda);
+  const size_t stride = static_cast<size_t>(std::max(1LL, o.eval_samples / o.error_samples));
+  const ErrorCurves curves = island_error_curves(cx.samples, stride, cx.param, cx.face_island, cx.islands, cx.maps,
+                                                 h_uniform / (2 * o.max_scale_ratio), h_uniform * 2 * o.max_scale_ratio);
   double budget = 0;
   for (double a : area) budget += a * uniform.lambda * uniform.lambda;
   report_progress(o.progress, "pack", 0.5);
   std::vector<double> scales = allocate_island_scales(curves, area, budget, o.size, o.max_scale_ratio);
   Built bud = repacked(cx, "budget", scales, uniform.info.fill);
+  // The error model's gain of the chosen budget layout over the uniform repack.
+  const auto finish = [&](const std::vector<double>& chosen) {
+    double e_uni = 0, e_bud = 0;
+    for (int i = 0; i < cx.islands; ++i) {
+      e_uni += curves.weight[i] * island_error(curves, i, 1.0 / (o.size * uniform.lambda));
+      e_bud += curves.weight[i] * island_error(curves, i, 1.0 / (o.size * chosen[i] * bud.lambda));
+    }
+    if (e_uni > 0 && e_bud > 0) *predicted_gain = 10 * std::log10(e_uni / e_bud);
+    return std::move(bud);
+  };
   if (!bud.info.valid) return bud;
+  // Allocated again for the area the packing reached, unless it reached about the area it was given.
+  if (std::abs(bud.lambda - 1.0) < 0.02) return finish(scales);
   std::vector<double> scales2 = allocate_island_scales(curves, area, budget * bud.lambda * bud.lambda, o.size,
                                                        o.max_scale_ratio);
   Built bud2 = repacked(cx, "budget", scales2, bud.info.fill);
@@ -105,18 +123,12 @@ Built budgeted(const Context& cx, const Built& uniform, const std::vector<double
     bud = std::move(bud2);
     scales = scales2;
   }
-  double e_uni = 0, e_bud = 0;
-  for (int i = 0; i < cx.islands; ++i) {
-    e_uni += curves.weight[i] * island_error(curves, i, 1.0 / (o.size * uniform.lambda));
-    e_bud += curves.weight[i] * island_error(curves, i, 1.0 / (o.size * scales[i] * bud.lambda));
-  }
-  if (e_uni > 0 && e_bud > 0) *predicted_gain = 10 * std::log10(e_uni / e_bud);
-  return bud;
+  return finish(scales);
 }
 
 /// The density-flow warp of the whole layout (adapt.h, no refinement: the input's faces), for layouts
 /// whose charts share no texels (it moves charts apart). Valid only if no face flips or degenerates.
-Built warped(const Context& cx, const ShrinkLayoutStats& before) {
+Built warped(const Context& cx, const ShrinkLayoutStats& input_at_size) {
   Built b;
   b.info.name = "warped";
   b.info.valid = false;
@@ -131,7 +143,7 @@ Built warped(const Context& cx, const ShrinkLayoutStats& before) {
       adapt_parameterization(cx.mesh, start, tex, build_texel_map(cx.mesh, start, tex.width, tex.height), ao);
   if (r.refined_mesh || !r.report.accepted) return b;
   const ShrinkLayoutStats st = layout_stats(cx.mesh, cx.param, r.param, cx.param.face_chart, cx.opt.size);
-  if (st.flipped > 0 || st.degenerate > before.degenerate) return b;
+  if (st.flipped > 0 || st.degenerate > input_at_size.degenerate) return b;
   b = cx.fitted("warped", r.param);
   return b;
 }
@@ -153,7 +165,8 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
   const int R = std::clamp(maps[0].image.width, 64, 2048);
   report_progress(options.progress, "islands", 0);
   const UvIslands isl = find_uv_islands(param, R, options.overlap_share);
-  Context cx{mesh, param, maps, options, shifted_layout(param, isl), {}, isl.num_islands};
+  Context cx{mesh,   param, maps, options, shifted_layout(param, isl), {}, isl.num_islands,
+             SampleSet(mesh, param, maps, options.eval_samples, options.seed)};
   cx.face_island.resize(mesh.faces.size());
   for (size_t f = 0; f < mesh.faces.size(); ++f) cx.face_island[f] = isl.chart_island[isl.face_chart[f]];
   ShrinkResult res;
@@ -185,7 +198,7 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
   }
   if (options.warp && isl.num_islands == isl.num_charts) {
     report_progress(options.progress, "warp", 0);
-    cands.push_back(warped(cx, res.before));
+    cands.push_back(warped(cx, layout_stats(mesh, param, param, isl.face_chart, N)));
   }
   // The best valid candidate by measured PSNR (downsizing is always valid: the floor).
   size_t best = 0;
@@ -202,13 +215,12 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
     for (const ShrinkMap& m : maps) d.push_back(box_downsize(m.image, N, N));
     return d;
   }();
-  auto measure = [&](size_t m, const Parameterization& p, const ImageRGBA8& img) {
-    return layout_psnr(mesh, param, maps[m].image, p, img, options.eval_samples, options.seed);
-  };
+  auto measure = [&](size_t m, const Parameterization& p, const ImageRGBA8& img) { return cx.samples.psnr(m, p, img); };
   for (size_t m = 0; m < maps.size(); ++m) res.map_psnr_downsized.push_back(measure(m, param, downsized[m]));
   res.psnr_downsized = res.map_psnr_downsized[0];
   res.chosen = cands[best].info.name;
   res.param = cands[best].param;
+  res.lifted_faces = lift_degenerate_faces(res.param, param, N);  // before the texels are fitted to it
   if (res.chosen != "downsized") {
     res.maps = fit_maps(mesh, param, maps, maps.size(), res.param, N, false, options.progress);
     report_progress(options.progress, "evaluate", 0.5);
@@ -216,6 +228,7 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
     if (res.map_psnr[0] < res.psnr_downsized && options.force_candidate.empty()) {  // the floor
       res.chosen = "downsized";
       res.param = param;
+      res.lifted_faces = lift_degenerate_faces(res.param, param, N);
     }
   }
   if (res.chosen == "downsized") {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "adaptex/adapt/shrink.h"
+#include "adaptex/paint/signal.h"
 
 namespace adaptex::shrink_detail {
 
@@ -19,6 +20,25 @@ void for_each_texel_centre(const Vec2& a, const Vec2& b, const Vec2& c, int widt
 /// under a wrapping (repeat) lookup.
 Parameterization shifted_layout(const Parameterization& param, const UvIslands& islands);
 
+/// The surface samples of the measure (paint/asset_eval.h: sample_surface() with a seed) and every
+/// map's original colour at each, drawn once and shared by every PSNR the shrink computes.
+class SampleSet {
+ public:
+  /// \pre param consistent with mesh, maps not empty. \p samples >= 1.
+  SampleSet(const TriMesh& mesh, const Parameterization& param, const std::vector<ShrinkMap>& maps,
+            long long samples, std::uint64_t seed);
+  /// Surface PSNR (dB) of \p image on \p param against map \p m: surface_psnr() with the set's
+  /// samples and seed when \p stride is 1; else over every stride-th sample (ranking).
+  double psnr(size_t m, const Parameterization& param, const ImageRGBA8& image, int stride = 1) const;
+  const std::vector<SurfacePoint>& points() const { return points_; }
+  /// Map \p m's original colour (RGB in [0,1]) at every sample.
+  const std::vector<Vec3>& reference(size_t m) const { return reference_[m]; }
+
+ private:
+  std::vector<SurfacePoint> points_;
+  std::vector<std::vector<Vec3>> reference_;  ///< Per map: the original's colour at every sample.
+};
+
 /// UV footprint of every island (texel centres covered by any of its faces at resolution², wrapped),
 /// in square UV units; overlapping charts count once.
 std::vector<double> island_areas(const Parameterization& layout, const std::vector<int>& face_island,
@@ -31,10 +51,12 @@ struct ErrorCurves {
   std::vector<std::vector<double>> error;   ///< I x L: mean error of island i at spacing l.
   std::vector<double> weight;               ///< I: share of the surface samples in island i.
 };
-/// \p layout: the shifted input layout; \p face_island: island of every face.
-ErrorCurves island_error_curves(const TriMesh& mesh, const Parameterization& layout,
+/// Measured on every \p stride-th sample of \p set (the input layout's samples), at the levels whose
+/// spacing lies within [h_min / 2, 2 h_max] (the others copy the nearest measured level: the budget
+/// reads only [h_min, h_max]). \p face_island: island of every face.
+ErrorCurves island_error_curves(const SampleSet& set, size_t stride, const Parameterization& layout,
                                 const std::vector<int>& face_island, int num_islands,
-                                const std::vector<ShrinkMap>& maps, long long samples, std::uint64_t seed);
+                                const std::vector<ShrinkMap>& maps, double h_min, double h_max);
 
 /// Error of island \p i at spacing \p h (log-log interpolation between the curve's levels; constant
 /// beyond them, 0 below the finest).
@@ -64,6 +86,15 @@ std::vector<IslandPlacement> pack_islands(const Parameterization& layout, const 
                                           int num_islands, const std::vector<double>& scales, int size,
                                           int gutter, bool rotate, double fill_hint, double* fill);
 
+/// A UV face is degenerate when its area is below this many square texels (as the evaluation counts).
+constexpr double kDegenerateTexelArea = 1e-6;
+
+/// Gives every degenerate face of \p out (a layout of \p input's faces, texels of 1 / \p size) an
+/// area of about 1e-3 square texels in its input orientation (its chart's where the input has none):
+/// one corner moves off the line of the other two, a shared wedge only where the other faces keep
+/// their orientation and area, else a new wedge of the face's own. \return faces lifted.
+int lift_degenerate_faces(Parameterization& out, const Parameterization& input, int size);
+
 /// \p layout with every wedge placed by its island's placement (UVs in [0,1]²).
 Parameterization apply_placements(const Parameterization& layout, const std::vector<int>& face_island,
                                   const std::vector<IslandPlacement>& placements, int size);
@@ -75,8 +106,5 @@ std::vector<ImageRGBA8> fit_maps(const TriMesh& mesh, const Parameterization& sr
                                  const std::vector<ShrinkMap>& maps, size_t count, const Parameterization& dst_param,
                                  int size, bool draft, const ProgressCallback& progress = {});
 
-/// Surface PSNR (dB, paint/asset_eval.h) of \p image on \p param against \p original on \p ref_param.
-double layout_psnr(const TriMesh& mesh, const Parameterization& ref_param, const ImageRGBA8& original,
-                   const Parameterization& param, const ImageRGBA8& image, long long samples, std::uint64_t seed);
 
 }  // namespace adaptex::shrink_detail

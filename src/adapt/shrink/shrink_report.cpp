@@ -48,6 +48,8 @@ nlohmann::ordered_json shrink_report_json(const ShrinkResult& r, const std::vect
   j["islands"] = r.islands;
   j["faces_before"] = r.faces_before;
   j["faces_after"] = r.faces_after;
+  j["face_growth"] = r.faces_before ? static_cast<double>(r.faces_after) / r.faces_before - 1.0 : 0.0;
+  j["lifted_faces"] = r.lifted_faces;
   j["before"] = stats_json(r.before);
   j["after"] = stats_json(r.after);
   j["flipped"] = r.after.flipped;
