@@ -10,6 +10,6 @@ find_package(CLI11 REQUIRED)
 find_package(Threads REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)
-# FFTW3 (DCT Poisson solve of the density-flow warp, src/adapt/density_flow.cpp).
+# FFTW3 (DCT Poisson solve of the density-flow warp, src/adapt/density_flow/density_flow.cpp).
 pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3)
 

@@ -1,11 +1,12 @@
 #pragma once
 /// \file ray_caster.h
-/// CPU picking for adaptex-studio: Embree 3 ray casting against the mesh (closest hit = the visible
-/// surface under the cursor), with the hit's face, barycentric coordinates and facing.
+/// CPU picking for adaptex-studio: ray casting against the mesh (paint/ray_scene.h; closest hit = the
+/// visible surface under the cursor), with the hit's face, barycentric coordinates and facing.
 #include <memory>
 #include <optional>
 
 #include "adaptex/core/mesh.h"
+#include "adaptex/paint/ray_scene.h"
 #include "camera.h"
 
 namespace adaptex::studio {
@@ -20,12 +21,11 @@ struct Hit {
   bool front_facing = true;    ///< The ray sees the outside of the surface.
 };
 
-/// Builds an Embree scene once per mesh; intersect() is thread-safe.
+/// Builds the ray scene once per mesh; intersect() is thread-safe.
 class RayCaster {
  public:
   /// \pre mesh stays alive and unchanged while the caster is used.
   explicit RayCaster(const TriMesh& mesh);
-  ~RayCaster();
   RayCaster(const RayCaster&) = delete;
   RayCaster& operator=(const RayCaster&) = delete;
 
@@ -35,8 +35,7 @@ class RayCaster {
   int orientation() const { return orientation_; }
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  RayScene scene_;
   const TriMesh& mesh_;
   int orientation_ = 1;
 };

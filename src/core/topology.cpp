@@ -77,17 +77,19 @@ EdgeConnectivity build_edges(const TriMesh& mesh) {
   return ec;
 }
 
-VertexFaces build_vertex_faces(const TriMesh& mesh) {
+VertexFaces build_vertex_faces(const TriMesh& mesh) { return build_vertex_faces(mesh.faces, mesh.num_vertices()); }
+
+VertexFaces build_vertex_faces(const std::vector<Face>& faces, int num_vertices) {
   VertexFaces vf;
-  const int nv = mesh.num_vertices();
+  const int nv = num_vertices;
   vf.offsets.assign(nv + 1, 0);
-  for (const Face& t : mesh.faces)
+  for (const Face& t : faces)
     for (int v : t) ++vf.offsets[v + 1];
   for (int v = 0; v < nv; ++v) vf.offsets[v + 1] += vf.offsets[v];
   vf.faces.resize(vf.offsets[nv]);
   std::vector<int> fill(vf.offsets.begin(), vf.offsets.end() - 1);
-  for (int f = 0; f < mesh.num_faces(); ++f)
-    for (int v : mesh.faces[f]) vf.faces[fill[v]++] = f;
+  for (int f = 0; f < static_cast<int>(faces.size()); ++f)
+    for (int v : faces[f]) vf.faces[fill[v]++] = f;
   return vf;
 }
 

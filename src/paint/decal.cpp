@@ -1,9 +1,8 @@
 /// \file decal.cpp
-/// Decal projection (thesis Figs. 4.6, 4.7): pinhole camera, bilinear image sampling, Embree 3
-/// occlusion rays for visibility. Definitions: docs/decals.md.
+/// Decal projection (thesis Figs. 4.6, 4.7): pinhole camera, bilinear image sampling, occlusion rays
+/// (ray_scene.h) for visibility. Definitions: docs/decals.md.
 #include "adaptex/paint/decal.h"
 
-#include <embree3/rtcore.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -12,6 +11,7 @@
 #include <numbers>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/paint/ray_scene.h"
 
 namespace adaptex {
 
@@ -88,86 +88,27 @@ Eigen::Vector4d sample_decal_image(const ImageRGBA8& image, double u, double v) 
 namespace {
 
 /// The visibility ray eye -> p: t = 1 at p, stopped a relative epsilon short of it.
-RTCRay make_ray(const Vec3& eye, const Vec3& p) {
-  RTCRay ray;
-  const Vec3 d = p - eye;
-  ray.org_x = static_cast<float>(eye.x());
-  ray.org_y = static_cast<float>(eye.y());
-  ray.org_z = static_cast<float>(eye.z());
-  ray.dir_x = static_cast<float>(d.x());
-  ray.dir_y = static_cast<float>(d.y());
-  ray.dir_z = static_cast<float>(d.z());
-  ray.tnear = 0.0f;
-  ray.tfar = static_cast<float>(1.0 - kDecalRayEpsilon);
-  ray.time = 0.0f;
-  ray.mask = 0xFFFFFFFFu;
-  ray.id = 0;
-  ray.flags = 0;
-  return ray;
+RayScene::Ray make_ray(const Vec3& eye, const Vec3& p) {
+  return {eye, p - eye, 0.0f, static_cast<float>(1.0 - kDecalRayEpsilon)};
 }
 
 }  // namespace
 
 struct DecalProjector::Impl {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-
-  ~Impl() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
-
-  void check(const char* what) const {
-    const RTCError err = rtcGetDeviceError(device);
-    if (err != RTC_ERROR_NONE)
-      throw Error(std::string("decal: Embree failed in ") + what + " (error " +
-                  std::to_string(static_cast<int>(err)) + ")");
-  }
-
-  bool occluded(const Vec3& eye, const Vec3& p) const {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
-    RTCRay ray = make_ray(eye, p);
-    rtcOccluded1(scene, &ctx, &ray);
-    return ray.tfar == -std::numeric_limits<float>::infinity();
-  }
+  RayScene scene;
 };
 
-DecalProjector::DecalProjector(const TriMesh& mesh) : impl_(std::make_unique<Impl>()) {
+DecalProjector::DecalProjector(const TriMesh& mesh) {
   if (mesh.faces.empty()) throw InvalidInputError("decal: the mesh has no faces");
-  Impl& m = *impl_;
-  m.device = rtcNewDevice(nullptr);
-  if (!m.device) throw Error("decal: cannot create the Embree device");
-  m.scene = rtcNewScene(m.device);
-  // Robust traversal: rays through shared edges/vertices cannot slip between two triangles.
-  rtcSetSceneFlags(m.scene, RTC_SCENE_FLAG_ROBUST);
-  rtcSetSceneBuildQuality(m.scene, RTC_BUILD_QUALITY_HIGH);
-  RTCGeometry geom = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* verts = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
-  auto* tris = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.faces.size()));
-  if (!verts || !tris) {
-    rtcReleaseGeometry(geom);
-    m.check("rtcSetNewGeometryBuffer");
-    throw Error("decal: Embree could not allocate the mesh buffers");
-  }
-  for (size_t v = 0; v < mesh.positions.size(); ++v)
-    for (int k = 0; k < 3; ++k) verts[3 * v + k] = static_cast<float>(mesh.positions[v][k]);
-  for (size_t f = 0; f < mesh.faces.size(); ++f)
-    for (int k = 0; k < 3; ++k) tris[3 * f + k] = static_cast<unsigned>(mesh.faces[f][k]);
-  rtcCommitGeometry(geom);
-  rtcAttachGeometry(m.scene, geom);
-  rtcReleaseGeometry(geom);
-  rtcCommitScene(m.scene);
-  m.check("rtcCommitScene");
+  // High build quality: a stroke casts a ray per texel, far more rays than the BVH has triangles.
+  impl_ = std::make_unique<Impl>(Impl{RayScene(mesh, {.single_thread = false, .high_quality = true}, "decal")});
 }
 
 DecalProjector::~DecalProjector() = default;
 DecalProjector::DecalProjector(DecalProjector&&) noexcept = default;
 DecalProjector& DecalProjector::operator=(DecalProjector&&) noexcept = default;
 
-bool DecalProjector::visible(const Vec3& eye, const Vec3& p) const { return !impl_->occluded(eye, p); }
+bool DecalProjector::visible(const Vec3& eye, const Vec3& p) const { return !impl_->scene.occluded(make_ray(eye, p)); }
 
 namespace {
 
@@ -212,13 +153,13 @@ Eigen::Vector4d DecalProjector::evaluate(const Stroke& decal, const Vec3& p, int
 
 namespace {
 
-/// Evaluates points [begin, end) of a batch: frustum + image first, then one Embree ray stream
-/// (rtcOccluded1M, coherent: neighbouring texels give neighbouring rays) for the candidates.
+/// Evaluates points [begin, end) of a batch: frustum + image first, then one ray stream (coherent:
+/// neighbouring texels give neighbouring rays) for the candidates.
 /// \p point(k) / \p face(k) give the inputs, \p store(k, value) the output (zero is pre-stored).
 template <class PointFn, class FaceFn, class StoreFn>
-void evaluate_block(const PreparedDecal& d, RTCScene scene, size_t begin, size_t end, PointFn point,
+void evaluate_block(const PreparedDecal& d, const RayScene& scene, size_t begin, size_t end, PointFn point,
                     FaceFn face, StoreFn store) {
-  std::vector<RTCRay> rays;
+  std::vector<RayScene::Ray> rays;
   std::vector<size_t> which;
   rays.reserve(end - begin);
   which.reserve(end - begin);
@@ -231,13 +172,10 @@ void evaluate_block(const PreparedDecal& d, RTCScene scene, size_t begin, size_t
     which.push_back(k);
   }
   if (rays.empty()) return;
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  rtcOccluded1M(scene, &ctx, rays.data(), static_cast<unsigned>(rays.size()), sizeof(RTCRay));
+  std::vector<char> blocked(rays.size());
+  scene.occluded(rays, blocked);
   for (size_t m = 0; m < rays.size(); ++m)
-    if (rays[m].tfar == -std::numeric_limits<float>::infinity())
-      store(which[m], Eigen::Vector4d::Zero());
+    if (blocked[m]) store(which[m], Eigen::Vector4d::Zero());
 }
 
 }  // namespace

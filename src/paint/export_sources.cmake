@@ -1,4 +1,5 @@
 # Decals and export (owned by the paint-export helper).
 target_sources(adaptex_paint PRIVATE
   decal.cpp
+  ray_scene.cpp  # the Embree scene of a mesh: decal visibility, the studio's picking
   export.cpp)

@@ -4,11 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <vector>
 #include <random>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/paint/decal.h"
+#include "adaptex/paint/ray_scene.h"
 
 using namespace adaptex;
 
@@ -268,4 +272,36 @@ TEST(Decal, InvalidCamerasAreRejectedWithOneLine) {
   EXPECT_THROW(decal_frame(d), InvalidInputError);
   d.target = Vec3(0, 0, std::nan(""));
   EXPECT_THROW(decal_frame(d), InvalidInputError);
+}
+
+TEST_F(TwoPlanes, RaySceneClosestHitOcclusionAndStreamAgree) {
+  const RayScene scene(mesh, {}, "test");
+  // Down -z through (0.31, 0.67): the front plane (z = 0) is hit first, at the face containing it.
+  const RayScene::Ray down{Vec3(0.31, 0.67, 3), Vec3(0, 0, -1), 0.0f, std::numeric_limits<float>::infinity()};
+  const std::optional<RayScene::Hit> hit = scene.intersect(down);
+  ASSERT_TRUE(hit.has_value());
+  EXPECT_EQ(hit->face, face_at(mesh, 0.31, 0.67, 0.0));
+  const Face& f = mesh.faces[hit->face];
+  const Vec3 p = (1.0 - hit->u - hit->v) * mesh.positions[f[0]] + double(hit->u) * mesh.positions[f[1]] +
+                 double(hit->v) * mesh.positions[f[2]];
+  EXPECT_NEAR((p - Vec3(0.31, 0.67, 0)).norm(), 0.0, 1e-5);
+  // Outside the front plane only the back plane is hit; beside both, nothing.
+  const std::optional<RayScene::Hit> back =
+      scene.intersect({Vec3(1.62, 1.31, 3), Vec3(0, 0, -1), 0.0f, std::numeric_limits<float>::infinity()});
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->face, face_at(mesh, 1.62, 1.31, -1.0));
+  EXPECT_FALSE(scene.intersect({Vec3(5, 5, 3), Vec3(0, 0, -1), 0.0f, 10.0f}).has_value());
+  // Segments: stopped above the front plane (free), through it (blocked), beside it to the back plane.
+  const std::vector<RayScene::Ray> rays = {{Vec3(0.31, 0.67, 3), Vec3(0, 0, -1), 0.0f, 2.5f},
+                                           {Vec3(0.31, 0.67, 3), Vec3(0, 0, -1), 0.0f, 3.5f},
+                                           {Vec3(1.62, 1.31, 3), Vec3(0, 0, -1), 0.0f, 3.5f},
+                                           {Vec3(1.62, 1.31, 3), Vec3(0, 0, -1), 0.0f, 4.5f}};
+  std::vector<char> blocked(rays.size(), 7);
+  scene.occluded(rays, blocked);
+  EXPECT_EQ(blocked, (std::vector<char>{0, 1, 0, 1}));
+  for (size_t k = 0; k < rays.size(); ++k) EXPECT_EQ(scene.occluded(rays[k]), blocked[k] != 0) << k;
+  // A mesh without faces is an empty scene.
+  const RayScene empty(TriMesh{}, {}, "test");
+  EXPECT_FALSE(empty.intersect(down).has_value());
+  EXPECT_FALSE(empty.occluded(rays[1]));
 }

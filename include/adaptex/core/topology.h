@@ -77,6 +77,10 @@ struct VertexFaces {
   std::vector<int> faces;    ///< Incident face ids, vertex by vertex.
 };
 VertexFaces build_vertex_faces(const TriMesh& mesh);
+/// The same for a triangle list over \p num_vertices indices (e.g. a layout's UV faces over its
+/// wedges): faces in increasing order per vertex, a face listed once per corner at the vertex.
+/// \pre every index of \p faces is >= 0 and < num_vertices
+VertexFaces build_vertex_faces(const std::vector<Face>& faces, int num_vertices);
 
 /// Face fans around vertices: the corners (f, k) of a vertex that are connected through edges shared
 /// by two or more faces form one fan. A vertex of a manifold mesh has exactly one fan (a disk or a

@@ -2,7 +2,7 @@
 /// \file union_find.h
 /// Disjoint sets over the integers [0, n) (Tarjan 1975) with path halving. The one union-find of
 /// adaptex: vertex fans and face components (core/topology.cpp), corner groups of the repair
-/// (io/mesh_validate.cpp), OBJ charts (io/obj_io.cpp).
+/// (io/mesh_validate.cpp), OBJ charts (io/obj_io.cpp), the cut graph and wedges of param/cut.cpp.
 #include <algorithm>
 #include <numeric>
 #include <vector>
@@ -20,11 +20,14 @@ class UnionFind {
     while (parent_[x] != x) x = parent_[x] = parent_[parent_[x]];
     return x;
   }
-  /// Merges the sets of \p a and \p b. \pre 0 <= a, b < n
-  void unite(int a, int b) {
+  /// Merges the sets of \p a and \p b. \return false if they were one set already.
+  /// \pre 0 <= a, b < n
+  bool unite(int a, int b) {
     a = find(a);
     b = find(b);
-    if (a != b) parent_[std::max(a, b)] = std::min(a, b);
+    if (a == b) return false;
+    parent_[std::max(a, b)] = std::min(a, b);
+    return true;
   }
   /// Number of elements n.
   int size() const { return static_cast<int>(parent_.size()); }
