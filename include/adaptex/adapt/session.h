@@ -51,6 +51,9 @@ enum class ReparamSchedule {
   EachStroke,  ///< After every stroke (as the interactive app does).
   End,         ///< Once, in finish().
 };
+/// "end", "each-stroke" (alias "each_stroke").
+template <>
+std::span<const EnumName<ReparamSchedule>> enum_names<ReparamSchedule>();
 
 /// Largest PaintSessionOptions::safeguard_samples: the samples and their cached signal take ~100 bytes
 /// each (1 GB here).

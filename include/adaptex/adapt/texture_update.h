@@ -7,6 +7,7 @@
 ///   without stroke history; it blurs a little every time.
 /// - replay: a new Painter re-paints the stroke history exactly on the new parameterization
 ///   (no accumulated blur). The default whenever a history exists.
+#include "adaptex/core/enum_names.h"
 #include "adaptex/core/image.h"
 #include "adaptex/core/progress.h"
 #include "adaptex/core/mesh.h"
@@ -22,6 +23,9 @@ enum class TextureUpdate {
   Replay,    ///< Re-paint the stroke history (exact). Default when a history exists.
   Resample,  ///< Sample the old texture through the old UVs of the same surface point.
 };
+/// "replay", "resample".
+template <>
+std::span<const EnumName<TextureUpdate>> enum_names<TextureUpdate>();
 
 /// Resamples \p old_texture (drawn with \p old_param) onto \p new_map (texel map of the new
 /// parameterization, same faces). Texels outside the new charts get \p outside, then seam padding of

@@ -228,4 +228,12 @@ Painter& PaintSession::painter() { return *impl_->painter; }
 
 double PaintSession::estimate_error() { return std::max(0.0, impl_->current_error()); }
 
+template <>
+std::span<const EnumName<ReparamSchedule>> enum_names<ReparamSchedule>() {
+  static constexpr EnumName<ReparamSchedule> names[] = {{ReparamSchedule::End, "end"},
+                                                        {ReparamSchedule::EachStroke, "each-stroke"},
+                                                        {ReparamSchedule::EachStroke, "each_stroke", true}};
+  return names;
+}
+
 }  // namespace adaptex
