@@ -439,7 +439,7 @@ void define_module(py::module_& m) {
         py::kw_only(), py::arg("progress") = py::none(), py::arg("size") = py::none(), py::arg("padding") = py::none(),
         "reparam(V, F, UV, FT, texture, *, progress=None, size=None, padding=None, **options) -> dict(V, F, UV, FT, "
         "texture, report): as `adaptex reparam`, a size x size texture (default: the input's size). By default "
-        "(mode='shrink') the shrink below; mode='density-flow' / 'two-stage' / 'single' re-parameterize by the "
+        "(mode='shrink') the shrink below; the other modes (adapt_methods(), none excepted) re-parameterize by the "
         "texture's signal and resample it, with AdaptOptions fields as keywords (refine=False keeps the mesh).");
   m.def("shrink", &py_shrink, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("FT"), py::arg("maps"),
         py::kw_only(), py::arg("progress") = py::none(), py::arg("size") = 256,
