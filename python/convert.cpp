@@ -186,6 +186,33 @@ py::object json_to_python(const nlohmann::json& value) {
   return py::module_::import("json").attr("loads")(value.dump());
 }
 
+namespace {
+
+py::object to_python(const nlohmann::ordered_json& v) {
+  switch (v.type()) {
+    case nlohmann::ordered_json::value_t::object: {
+      py::dict d;
+      for (const auto& [key, value] : v.items()) d[py::str(key)] = to_python(value);
+      return d;
+    }
+    case nlohmann::ordered_json::value_t::array: {
+      py::list l;
+      for (const auto& value : v) l.append(to_python(value));
+      return l;
+    }
+    case nlohmann::ordered_json::value_t::boolean: return py::bool_(v.get<bool>());
+    case nlohmann::ordered_json::value_t::number_integer: return py::int_(v.get<std::int64_t>());
+    case nlohmann::ordered_json::value_t::number_unsigned: return py::int_(v.get<std::uint64_t>());
+    case nlohmann::ordered_json::value_t::number_float: return py::float_(v.get<double>());
+    case nlohmann::ordered_json::value_t::string: return py::str(v.get<std::string>());
+    default: return py::none();
+  }
+}
+
+}  // namespace
+
+py::dict report_dict(const nlohmann::ordered_json& report) { return to_python(report).cast<py::dict>(); }
+
 void warn_all(const std::vector<std::string>& lines) {
   for (const std::string& w : lines)
     if (PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1) != 0) throw py::error_already_set();

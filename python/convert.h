@@ -46,6 +46,9 @@ py::array_t<double> uv_array(const Parameterization& param);    ///< #W x 2 floa
 py::array_t<std::uint8_t> image_array(const ImageRGBA8& image); ///< H x W x 4 uint8
 /// A JSON value as Python objects (dict, list, float, ...).
 py::object json_to_python(const nlohmann::json& value);
+/// A report of report_json.h as a dict in its key order; numbers stay numbers (inf and nan too,
+/// where JSON text would write null).
+py::dict report_dict(const nlohmann::ordered_json& report);
 /// Python warnings (UserWarning) for \p lines.
 void warn_all(const std::vector<std::string>& lines);
 

@@ -13,6 +13,8 @@
 
 #include "adaptex/adapt/adapt.h"
 #include "adaptex/adapt/adapt_report.h"
+#include "adaptex/adapt/method.h"
+#include "adaptex/adapt/report_json.h"
 #include "adaptex/adapt/shrink.h"
 #include "adaptex/adapt/shrink_report.h"
 #include "adaptex/adapt/session.h"
@@ -28,6 +30,7 @@
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
 #include "convert.h"
+#include "module.h"
 #include "options.h"
 
 namespace adaptex::python {
@@ -88,23 +91,7 @@ class Progress {
 };
 
 py::dict unwrap_report_dict(const UnwrapReport& r, const Parameterization& p) {
-  py::dict d;
-  d["components"] = r.num_components;
-  d["charts"] = r.num_charts;
-  d["genus"] = r.genus;
-  d["boundary_loops"] = r.boundary_loops;
-  d["augmentations"] = r.augmentations;
-  d["cut_length"] = r.cut_length;
-  d["floater_l2"] = r.floater_l2;
-  d["floater_linf"] = r.floater_linf;
-  d["final_l2"] = r.final_l2;
-  d["final_linf"] = r.final_linf;
-  d["coverage"] = r.coverage;
-  d["effective_texel_share"] = r.effective_texel_share;
-  d["yoshizawa_iterations"] = r.yoshizawa_iterations;
-  d["time"] = py::dict(py::arg("cut") = r.time_cut, py::arg("floater") = r.time_floater,
-                       py::arg("yoshizawa") = r.time_yoshizawa, py::arg("augment") = r.time_augment,
-                       py::arg("pack") = r.time_pack, py::arg("total") = r.time_total);
+  py::dict d = report_dict(unwrap_report_json(r));
   d["face_chart"] = py::array_t<int>(static_cast<py::ssize_t>(p.face_chart.size()), p.face_chart.data());
   return d;
 }
@@ -157,14 +144,7 @@ py::tuple py_validate_mesh(py::handle V, py::handle F, bool repair) {
   ReadReport rep;
   const TriMesh out = validate_mesh(std::move(mesh), "validate_mesh", ro, &rep);
   warn_all(rep.warnings);
-  py::dict d;
-  d["dropped_degenerate_faces"] = rep.dropped_degenerate_faces;
-  d["dropped_unreferenced_vertices"] = rep.dropped_unreferenced_vertices;
-  d["dropped_duplicate_faces"] = rep.dropped_duplicate_faces;
-  d["split_nonmanifold_vertices"] = rep.split_nonmanifold_vertices;
-  d["split_pinched_vertices"] = rep.split_pinched_vertices;
-  d["flipped_faces"] = rep.flipped_faces;
-  return py::make_tuple(vertices_array(out), faces_array(out.faces), d);
+  return py::make_tuple(vertices_array(out), faces_array(out.faces), report_dict(read_report_json(rep)));
 }
 
 py::tuple py_read_textured_obj(py::handle path) {
@@ -314,7 +294,12 @@ py::dict py_reparam(py::handle V, py::handle F, py::handle UV, py::handle FT, py
   }
   AdaptOptions options;
   set_options(options, kwargs, "reparam");
-  if (options.mode == AdaptMode::None) throw InvalidInputError("reparam: mode must be density-flow, two-stage or single");
+  if (options.mode == AdaptMode::None) {
+    std::vector<std::string> names{"shrink"};
+    for (const AdaptMethodInfo* m : adapt_methods())
+      if (m->make) names.push_back(m->name);
+    throw InvalidInputError("reparam: mode must be " + or_list(names));
+  }
   if (size && (*size < 1 || *size > kMaxTextureSize))
     throw InvalidInputError("reparam: size must be in [1, " + std::to_string(kMaxTextureSize) + "]");
   const int pad = padding.value_or(PainterOptions{}.padding);
@@ -352,8 +337,7 @@ py::dict py_evaluate(py::handle V, py::handle F, py::handle UV, py::handle FT, p
   Progress p(std::move(progress));
   options.progress = p.callback();
   const EvalResult r = p.run([&] { return evaluate_texture(mesh, param, tex, file, options); });
-  return py::dict(py::arg("mse") = r.mse, py::arg("psnr") = r.psnr, py::arg("samples") = r.samples,
-                  py::arg("seed") = r.seed);
+  return report_dict(eval_result_json(r));
 }
 
 py::dict py_stretch(py::handle V, py::handle F, py::handle UV, py::handle FT) {
@@ -361,10 +345,9 @@ py::dict py_stretch(py::handle V, py::handle F, py::handle UV, py::handle FT) {
   const Parameterization param = param_from_arrays(mesh, UV, FT, "stretch");
   const StretchStats s = measure_stretch(mesh, param);
   const std::vector<double> face = face_l2_stretch(mesh, param);
-  return py::dict(py::arg("l2") = s.l2, py::arg("linf") = s.linf, py::arg("area_distortion") = s.area_distortion,
-                  py::arg("angle_distortion") = s.angle_distortion, py::arg("flipped") = s.flipped,
-                  py::arg("degenerate") = s.degenerate,
-                  py::arg("face_l2") = py::array_t<double>(static_cast<py::ssize_t>(face.size()), face.data()));
+  py::dict d = report_dict(stretch_json(s));
+  d["face_l2"] = py::array_t<double>(static_cast<py::ssize_t>(face.size()), face.data());
+  return d;
 }
 
 /// adaptex's exception hierarchy (core/errors.h) as Python classes: bad input is a ValueError, a file
@@ -408,13 +391,15 @@ void register_errors(py::module_& m) {
   });
 }
 
+py::dict py_adapt_methods() {
+  py::dict d;
+  for (const AdaptMethodInfo* m : adapt_methods()) d[py::str(m->name)] = py::str(m->description);
+  return d;
+}
+
 }  // namespace
 
-}  // namespace adaptex::python
-
-PYBIND11_MODULE(_adaptex, m) {
-  using namespace adaptex::python;
-  namespace py = pybind11;
+void define_module(py::module_& m) {
   m.doc() = "adaptex: signal-adaptive texture parameterization (docs/python.md)";
   register_errors(m);
   m.def("read_mesh", &py_read_mesh, py::arg("path"), py::kw_only(), py::arg("repair") = false,
@@ -454,7 +439,7 @@ PYBIND11_MODULE(_adaptex, m) {
         py::kw_only(), py::arg("progress") = py::none(), py::arg("size") = py::none(), py::arg("padding") = py::none(),
         "reparam(V, F, UV, FT, texture, *, progress=None, size=None, padding=None, **options) -> dict(V, F, UV, FT, "
         "texture, report): as `adaptex reparam`, a size x size texture (default: the input's size). By default "
-        "(mode='shrink') the shrink below; mode='density-flow' / 'two-stage' / 'single' re-parameterize by the "
+        "(mode='shrink') the shrink below; the other modes (adapt_methods(), none excepted) re-parameterize by the "
         "texture's signal and resample it, with AdaptOptions fields as keywords (refine=False keeps the mesh).");
   m.def("shrink", &py_shrink, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("FT"), py::arg("maps"),
         py::kw_only(), py::arg("progress") = py::none(), py::arg("size") = 256,
@@ -472,4 +457,8 @@ PYBIND11_MODULE(_adaptex, m) {
   m.def("option_defaults", &option_defaults,
         "option_defaults() -> {function: {keyword: default}}: the library's defaults of every option keyword.");
   m.def("_option_choices", &option_choices, "{function: {keyword: [names]}}: the names each enum keyword accepts.");
+  m.def("adapt_methods", &py_adapt_methods,
+        "adapt_methods() -> {name: description}: the registered adaptation methods (the `mode` keyword), none first.");
 }
+
+}  // namespace adaptex::python

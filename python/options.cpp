@@ -72,6 +72,15 @@ Field<Opt> enum_member(const char* name, E Opt::*m, std::vector<std::pair<std::s
   return {name, set, get, choices};
 }
 
+/// An enum keyword named by the enum's table (core/enum_names.h; aliases are not offered).
+template <class Opt, class E>
+Field<Opt> enum_member(const char* name, E Opt::*m) {
+  std::vector<std::pair<std::string, E>> names;
+  for (const EnumName<E>& n : enum_names<E>())
+    if (!n.alias) names.emplace_back(n.name, n.value);
+  return enum_member(name, m, std::move(names));
+}
+
 /// The fields of \p Inner reached through the member \p m of \p Outer (PaintSessionOptions::adapt).
 template <class Outer, class Inner>
 std::vector<Field<Outer>> nested(const std::vector<Field<Inner>>& inner, Inner Outer::*m) {
@@ -85,8 +94,7 @@ std::vector<Field<Outer>> nested(const std::vector<Field<Inner>>& inner, Inner O
 const std::vector<Field<UnwrapOptions>>& unwrap_fields() {
   using O = UnwrapOptions;
   static const std::vector<Field<O>> fields = {
-      enum_member("weights", &O::weights,
-                  {{"mean-value", EmbeddingWeights::MeanValue}, {"shape-preserving", EmbeddingWeights::ShapePreserving}}),
+      enum_member("weights", &O::weights),
       member("mean_value_max_faces", &O::mean_value_max_faces),
       member("yoshizawa_eta", &O::yoshizawa_eta),
       member("yoshizawa_max_iterations", &O::yoshizawa_max_iterations),
@@ -96,7 +104,7 @@ const std::vector<Field<UnwrapOptions>>& unwrap_fields() {
       member("augment_time_budget", &O::augment_time_budget),
       member("augment_min_improvement", &O::augment_min_improvement),
       member("chart_padding", &O::chart_padding),
-      enum_member("charts", &O::charts, {{"auto", ChartMode::Auto}, {"single", ChartMode::Single}}),
+      enum_member("charts", &O::charts),
       member("min_texel_share", &O::min_texel_share),
       member("max_charts", &O::max_charts),
       member("single_probe_l2", &O::single_probe_l2),
@@ -145,9 +153,10 @@ const std::vector<Field<WarpRefineOptions>>& refine_fields() {
 }
 
 /// The keywords of AdaptOptions are flat (the names of the nested structs' fields).
-const std::vector<Field<AdaptOptions>>& adapt_fields() {
+/// Built per call: `mode` offers the methods registered so far (adapt/method.h).
+std::vector<Field<AdaptOptions>> adapt_fields() {
   using O = AdaptOptions;
-  static const std::vector<Field<O>> fields = [] {
+  return [] {
     std::vector<std::pair<std::string, AdaptMode>> modes;
     for (AdaptMode m : adapt_modes()) modes.emplace_back(to_string(m), m);
     std::vector<Field<O>> f = {enum_member("mode", &O::mode, modes)};
@@ -157,17 +166,16 @@ const std::vector<Field<AdaptOptions>>& adapt_fields() {
     for (auto& r : nested(refine_fields(), &O::refine)) f.push_back(std::move(r));
     return f;
   }();
-  return fields;
 }
 
-const std::vector<Field<PaintSessionOptions>>& session_fields() {
+std::vector<Field<PaintSessionOptions>> session_fields() {
   using O = PaintSessionOptions;
-  static const std::vector<Field<O>> fields = [] {
+  return [] {
     std::vector<Field<O>> f = {
         member("texture_size", &O::texture_size),
         member("padding", &O::padding),
-        enum_member("schedule", &O::schedule, {{"end", ReparamSchedule::End}, {"each-stroke", ReparamSchedule::EachStroke}}),
-        enum_member("update", &O::update, {{"replay", TextureUpdate::Replay}, {"resample", TextureUpdate::Resample}}),
+        enum_member("schedule", &O::schedule),
+        enum_member("update", &O::update),
         member("safeguard", &O::safeguard),
         member("safeguard_samples", &O::safeguard_samples),
         member("safeguard_seed", &O::safeguard_seed),
@@ -179,7 +187,6 @@ const std::vector<Field<PaintSessionOptions>>& session_fields() {
     for (auto& a : nested(adapt_fields(), &O::adapt)) f.push_back(std::move(a));
     return f;
   }();
-  return fields;
 }
 
 const std::vector<Field<PainterOptions>>& painter_fields() {

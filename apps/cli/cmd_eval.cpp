@@ -6,6 +6,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "adaptex/adapt/report_json.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
@@ -36,10 +37,8 @@ void run_eval(const EvalArgs& a, const Context& ctx) {
   const EvalResult r = evaluate_texture(tm.mesh, tm.param, texture, strokes, opt);
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   nlohmann::json j;
-  j["mse"] = r.mse;
-  j["psnr"] = r.psnr;
-  j["samples"] = r.samples;
-  j["seed"] = r.seed;
+  const nlohmann::ordered_json result = eval_result_json(r);
+  for (const auto& [key, value] : result.items()) j[key] = nlohmann::json(value);
   j["texture"] = {texture.width, texture.height};
   j["strokes"] = strokes.strokes.size();
   j["dabs"] = strokes.num_dabs();

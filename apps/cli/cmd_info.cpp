@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "adaptex/adapt/report_json.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/topology.h"
@@ -71,13 +72,8 @@ void run_info(const InfoOptions& opt, const Context& ctx) {
     j["surface_area"] = area;
     j["signed_volume"] = volume;
     j["orientation"] = orientation;
-    j["dropped_degenerate_faces"] = report.dropped_degenerate_faces;
-    j["dropped_unreferenced_vertices"] = report.dropped_unreferenced_vertices;
-    j["dropped_duplicate_faces"] = report.dropped_duplicate_faces;
-    j["split_nonmanifold_vertices"] = report.split_nonmanifold_vertices;
-    j["split_pinched_vertices"] = report.split_pinched_vertices;
-    j["flipped_faces"] = report.flipped_faces;
-    j["welded_vertices"] = report.welded_vertices;
+    const nlohmann::ordered_json read = read_report_json(report);
+    for (const auto& [key, value] : read.items()) j[key] = nlohmann::json(value);
     j["warnings"] = report.warnings;
     std::cout << j.dump(2) << "\n";
     return;

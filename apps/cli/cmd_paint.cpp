@@ -48,14 +48,16 @@ void validate(PaintCommand& c, const Context& ctx) {
       throw InvalidInputError("--min-gain must be a finite number of dB >= 0");
     a.min_gain = c.min_gain;
   }
-  if (a.mode == "two-stage" && a.grid.size() == 1)
+  const AdaptMode mode = parse_adapt_mode(a.mode);
+  if (mode == AdaptMode::TwoStage && a.grid.size() == 1)
     throw InvalidInputError("--grid: two-stage needs two sizes (coarse,fine), e.g. 16,256");
-  if (a.mode == "single" && a.grid.size() == 2)
+  if (mode == AdaptMode::Single && a.grid.size() == 2)
     throw InvalidInputError("--grid: single-stage needs one size, e.g. 256");
-  if (a.mode == "none" && (!a.grid.empty() || a.alpha || a.beta || !a.debug_maps.empty()))
+  if (mode == AdaptMode::None && (!a.grid.empty() || a.alpha || a.beta || !a.debug_maps.empty()))
     ctx.warn("--grid/--alpha/--beta/--debug-maps have no effect with --adapt none");
-  if (a.mode == "density-flow" && !a.grid.empty()) ctx.warn("--grid has no effect with --adapt density-flow");
-  if (c.min_gain_given && (a.reparam != "each-stroke" || a.mode != "density-flow" || a.update != "replay"))
+  if (mode == AdaptMode::DensityFlow && !a.grid.empty()) ctx.warn("--grid has no effect with --adapt density-flow");
+  if (c.min_gain_given && (parse_reparam_schedule(a.reparam) != ReparamSchedule::EachStroke ||
+                           mode != AdaptMode::DensityFlow || parse_texture_update(a.update) != TextureUpdate::Replay))
     ctx.warn("--min-gain has an effect only with --reparam each-stroke, --adapt density-flow and --update replay");
   // Let the session validate the combination now, before any work is done.
   (void)make_session_options(c.run.size, c.run.padding, a.mode, a.grid, a.alpha.value_or(-1.0),
@@ -120,12 +122,8 @@ void add_paint_command(CLI::App& app, Context& ctx) {
       ->capture_default_str();
   sub->add_option("--name", cmd->name, "Base name of the output files (default: the mesh file's stem)");
   sub->add_flag("--repair", cmd->repair, "Split non-manifold vertices / drop duplicate faces on reading");
-  std::vector<std::string> modes;
-  for (AdaptMode m : adapt_modes()) modes.push_back(to_string(m));
-  sub->add_option("--adapt", cmd->run.adapt.mode,
-                  "Signal-adaptive re-parameterization: density-flow (error-model density + flow map) | "
-                  "two-stage | single (thesis relaxation) | none")
-      ->check(CLI::IsMember(modes))
+  sub->add_option("--adapt", cmd->run.adapt.mode, "Signal-adaptive re-parameterization: " + adapt_methods_help())
+      ->check(CLI::IsMember(adapt_method_names()))
       ->capture_default_str();
   sub->add_flag("--no-refine", cmd->no_refine,
                 "Keep the input's vertices (density-flow refines triangles too large for the warp)");
@@ -136,7 +134,7 @@ void add_paint_command(CLI::App& app, Context& ctx) {
   sub->add_option("--beta", cmd->beta, "L_s^2 weight of the signal stretch")
       ->each([cmd](const std::string&) { cmd->beta_given = true; });
   sub->add_option("--reparam", cmd->run.adapt.reparam, "When to re-parameterize: each-stroke | end")
-      ->check(CLI::IsMember({"each-stroke", "end"}))
+      ->check(CLI::IsMember(enum_choices<ReparamSchedule>()))
       ->capture_default_str();
   sub->add_option("--min-gain", cmd->min_gain,
                   "each-stroke: re-parameterize only when the error model predicts at least this PSNR gain "
@@ -144,7 +142,7 @@ void add_paint_command(CLI::App& app, Context& ctx) {
                       std::to_string(PaintSessionOptions{}.min_gain_db).substr(0, 4) + ")")
       ->each([cmd](const std::string&) { cmd->min_gain_given = true; });
   sub->add_option("--update", cmd->run.adapt.update, "Texture update after re-parameterizing: replay | resample")
-      ->check(CLI::IsMember({"replay", "resample"}))
+      ->check(CLI::IsMember(enum_choices<TextureUpdate>()))
       ->capture_default_str();
   sub->add_option("--debug-maps", cmd->run.adapt.debug_maps,
                   "Write the importance / stretch / L_s^2 / grid pictures to this directory");

@@ -55,7 +55,7 @@ AdaptOptions reparam_options(const ReparamArgs& a) {
     opt.mode = AdaptMode::None;
   }
   if (opt.mode == AdaptMode::None)
-    throw InvalidInputError("--adapt must be shrink, density-flow, two-stage or single (got '" + a.mode + "')");
+    throw InvalidInputError("--adapt must be shrink, " + or_list(adapt_method_names(false)) + " (got '" + a.mode + "')");
   opt.refine.enabled = !a.no_refine;
   // density-flow's refinement keeps its own face budget unless the user bounds the growth.
   if (a.max_face_growth_given) opt.refine.max_face_factor = 1.0 + a.max_face_growth;
@@ -196,8 +196,8 @@ void add_reparam_command(CLI::App& app, Context& ctx) {
   sub->add_option("texture", a->texture, "Its texture image (PNG, ...)")->required()->check(CLI::ExistingFile);
   sub->add_option("-o,--output", a->outdir, "Output directory")->required();
   sub->add_option("--adapt", a->mode,
-                  "shrink (keep the artist's charts, repack them by the texture's detail) | density-flow | "
-                  "two-stage | single")
+                  "shrink (keep the artist's charts, repack them by the texture's detail) | " +
+                      adapt_methods_help(false))
       ->capture_default_str();
   sub->add_flag("--no-refine", a->no_refine,
                 "Keep the input's vertices (density-flow refines triangles too large for the warp)");

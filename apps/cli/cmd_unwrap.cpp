@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "adaptex/adapt/report_json.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
@@ -30,7 +31,7 @@ struct UnwrapArgs {
   int max_augmentations = UnwrapOptions{}.max_augmentations;
   int yoshizawa_iterations = UnwrapOptions{}.yoshizawa_max_iterations;
   bool mean_value = false;
-  std::string charts = "auto";
+  std::string charts = enum_name(UnwrapOptions{}.charts);
 };
 
 using Clock = std::chrono::steady_clock;
@@ -53,7 +54,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
   opt.max_augmentations = a.max_augmentations;
   opt.yoshizawa_max_iterations = a.yoshizawa_iterations;
   if (a.mean_value) opt.weights = EmbeddingWeights::MeanValue;
-  opt.charts = a.charts == "single" ? ChartMode::Single : ChartMode::Auto;
+  opt.charts = parse_enum<ChartMode>(a.charts, "chart mode");
   std::set<std::string, std::less<>> seen;
   opt.progress = [&](std::string_view phase, double) {
     if (seen.find(phase) == seen.end()) {
@@ -80,43 +81,29 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
   }
   const double time_write = seconds_since(t0);
   if (!a.report.empty()) {
+    // The unwrap's own report (report_json.h) with the file, the mesh and the layout's figures
+    // placed among its keys, and the times of reading and writing around the unwrap's own.
     nlohmann::ordered_json j;
     j["input"] = a.input;
     j["format"] = rr.format;
     j["vertices"] = mesh.num_vertices();
     j["faces"] = mesh.num_faces();
-    j["components"] = r.num_components;
-    j["genus"] = r.genus;
-    j["boundary_loops"] = r.boundary_loops;
-    j["component_topology"] = component_topology_json(analyze_topology(mesh));
-    j["charts"] = r.num_charts;
-    j["wedges"] = res.param.num_wedges();
-    j["cut_length"] = r.cut_length;
-    j["augmentations"] = r.augmentations;
-    j["yoshizawa_iterations"] = r.yoshizawa_iterations;
-    j["floater_l2"] = r.floater_l2;
-    j["floater_linf"] = r.floater_linf;
-    j["final_l2"] = r.final_l2;
-    j["final_linf"] = r.final_linf;
-    j["coverage"] = r.coverage;
-    j["effective_texel_share"] = r.effective_texel_share;
-    j["area_distortion"] = stats.area_distortion;
-    j["angle_distortion"] = stats.angle_distortion;
-    j["flipped"] = stats.flipped;
-    j["degenerate"] = stats.degenerate;
-    j["repair"] = {{"dropped_degenerate_faces", rr.dropped_degenerate_faces},
-                   {"dropped_unreferenced_vertices", rr.dropped_unreferenced_vertices},
-                   {"dropped_duplicate_faces", rr.dropped_duplicate_faces},
-                   {"split_nonmanifold_vertices", rr.split_nonmanifold_vertices},
-                   {"split_pinched_vertices", rr.split_pinched_vertices},
-                   {"flipped_faces", rr.flipped_faces},
-                   {"welded_vertices", rr.welded_vertices}};
-    j["time"] = {{"read", time_read},         {"cut", r.time_cut},
-                 {"segment", r.time_segment},
-                 {"floater", r.time_floater}, {"yoshizawa", r.time_yoshizawa},
-                 {"augment", r.time_augment}, {"pack", r.time_pack},
-                 {"unwrap", r.time_total},    {"write", time_write},
-                 {"total", seconds_since(t_start)}};
+    const nlohmann::ordered_json report = unwrap_report_json(r);
+    for (const auto& [key, value] : report.items()) {
+      if (key == "time") continue;
+      j[key] = value;
+      if (key == "boundary_loops") j["component_topology"] = component_topology_json(analyze_topology(mesh));
+      if (key == "charts") j["wedges"] = res.param.num_wedges();
+    }
+    const nlohmann::ordered_json stretch = stretch_json(stats);
+    for (const auto& [key, value] : stretch.items())
+      if (key != "l2" && key != "linf") j[key] = value;  // the unwrap's final_l2 / final_linf stand for them
+    j["repair"] = read_report_json(rr);
+    nlohmann::ordered_json& time = j["time"];
+    time["read"] = time_read;
+    for (const auto& [key, value] : report["time"].items()) time[key == "total" ? "unwrap" : key] = value;
+    time["write"] = time_write;
+    time["total"] = seconds_since(t_start);
     write_text(out, a.report, j.dump(2) + "\n");
   }
   out.commit();
@@ -163,7 +150,7 @@ void add_unwrap_command(CLI::App& app, Context& ctx) {
                   "single: one chart per connected component; auto: segment into several charts "
                   "only when one chart per component has an effective texel share (coverage / "
                   "L2^2) below 0.5 (docs/charts.md)")
-      ->check(CLI::IsMember({"single", "auto"}))
+      ->check(CLI::IsMember(enum_choices<ChartMode>()))
       ->capture_default_str();
   sub->callback([args, &ctx] { run_unwrap(*args, ctx); });
 }

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "adaptex/adapt/report_json.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
@@ -60,8 +61,8 @@ struct AdaptSettings {
   bool refine = AdaptOptions{}.refine.enabled;  ///< false: --no-refine (keep the input's vertices)
   std::vector<int> grid;             ///< --grid: 1 (single) or 2 (coarse, fine) grid sizes; empty = default
   std::optional<double> alpha, beta; ///< --alpha / --beta L_s^2 weights; unset = the adaptive defaults
-  std::string reparam = "end";       ///< each-stroke | end
-  std::string update = "replay";     ///< replay | resample
+  std::string reparam = enum_name(PaintSessionOptions{}.schedule);  ///< each-stroke | end
+  std::string update = enum_name(PaintSessionOptions{}.update);      ///< replay | resample
   /// --min-gain DB: each-stroke mode re-parameterizes only for at least this predicted gain
   /// (PaintSessionOptions::min_gain_db); unset = the library's default.
   std::optional<double> min_gain;
@@ -184,6 +185,13 @@ inline nlohmann::json paint_report(const TriMesh& mesh, const StrokeFile& stroke
   put("png", files.png);
   put("glb", files.glb);
   const UnwrapReport& u = run.unwrap;
+  // The unwrap's figures, a part of its report (report_json.h) under the same names.
+  const nlohmann::ordered_json unwrap = unwrap_report_json(u);
+  json unwrap_json = json::object();
+  for (const char* key : {"floater_l2", "final_l2", "final_linf", "cut_length", "augmentations", "yoshizawa_iterations"})
+    unwrap_json[key] = json(unwrap.at(key));
+  for (const char* key : {"cut", "floater", "yoshizawa", "augment", "pack"})
+    unwrap_json["times_s"][key] = json(unwrap.at("time").at(key));
   return json{
       {"mesh", {{"vertices", mesh.num_vertices()},
                 {"faces", mesh.num_faces()},
@@ -209,17 +217,7 @@ inline nlohmann::json paint_report(const TriMesh& mesh, const StrokeFile& stroke
                  {"min_gain_db", options.adapt.min_gain.value_or(PaintSessionOptions{}.min_gain_db)},
                  {"surface_cache_samples", run.surface_cache_samples},
                  {"reparameterizations", run.adapt_reports}}},
-      {"unwrap", {{"floater_l2", u.floater_l2},
-                  {"final_l2", u.final_l2},
-                  {"final_linf", u.final_linf},
-                  {"cut_length", u.cut_length},
-                  {"augmentations", u.augmentations},
-                  {"yoshizawa_iterations", u.yoshizawa_iterations},
-                  {"times_s", {{"cut", u.time_cut},
-                               {"floater", u.time_floater},
-                               {"yoshizawa", u.time_yoshizawa},
-                               {"augment", u.time_augment},
-                               {"pack", u.time_pack}}}}},
+      {"unwrap", unwrap_json},
       {"files", files_json}};
 }
 

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "adaptex/adapt/method.h"
+#include "adaptex/core/enum_names.h"
 #include "adaptex/core/errors.h"
 
 namespace adaptex::cli {
@@ -41,15 +43,23 @@ void set_grid(AdaptOptions& o, const std::vector<int>& grid) {
 }
 
 ReparamSchedule parse_reparam_schedule(const std::string& name) {
-  if (name == "each-stroke" || name == "each_stroke") return ReparamSchedule::EachStroke;
-  if (name == "end") return ReparamSchedule::End;
-  throw InvalidInputError("unknown reparam schedule '" + name + "' (expected each-stroke or end)");
+  return parse_enum<ReparamSchedule>(name, "reparam schedule");
 }
 
-TextureUpdate parse_texture_update(const std::string& name) {
-  if (name == "replay") return TextureUpdate::Replay;
-  if (name == "resample") return TextureUpdate::Resample;
-  throw InvalidInputError("unknown texture update '" + name + "' (expected replay or resample)");
+TextureUpdate parse_texture_update(const std::string& name) { return parse_enum<TextureUpdate>(name, "texture update"); }
+
+std::vector<std::string> adapt_method_names(bool with_none) {
+  std::vector<std::string> out;
+  for (const AdaptMethodInfo* m : adapt_methods())
+    if (with_none || m->make) out.push_back(m->name);
+  return out;
+}
+
+std::string adapt_methods_help(bool with_none) {
+  std::string out;
+  for (const AdaptMethodInfo* m : adapt_methods())
+    if (with_none || m->make) out += (out.empty() ? "" : " | ") + m->name + " (" + m->description + ")";
+  return out;
 }
 
 PaintSessionOptions make_session_options(int size, int padding, const std::string& mode,

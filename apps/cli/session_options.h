@@ -24,6 +24,11 @@ ReparamSchedule parse_reparam_schedule(const std::string& name);
 /// Parses "replay" / "resample". \throw InvalidInputError any other string
 TextureUpdate parse_texture_update(const std::string& name);
 
+/// The names of the registered adaptation methods (adapt/method.h), `none` first unless left out.
+std::vector<std::string> adapt_method_names(bool with_none = true);
+/// "NAME (description) | ..." of the registered methods, for the help of `--adapt`.
+std::string adapt_methods_help(bool with_none = true);
+
 /// Session options from the command-line strings of `adaptex paint`:
 /// mode as parse_adapt_mode ("none" | "single" | "two-stage" | "density-flow"); grid {} (defaults),
 /// {FINE} or {COARSE, FINE}, each in [1, 4096]; alpha/beta < 0 = default, must be finite;

@@ -7,6 +7,9 @@
 #include <functional>
 #include <future>
 
+#include <nlohmann/json.hpp>
+
+#include "adaptex/adapt/report_json.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
@@ -102,17 +105,12 @@ std::vector<Vec3> refined_normals(const TriMesh& input, const TriMesh& refined, 
   return out;
 }
 
+/// The phases of the report's "time_ms" (report_json.h) that took time, in the pipeline's order.
 std::vector<std::pair<std::string, double>> phase_times(const AdaptReport& rep) {
-  std::vector<std::pair<std::string, double>> all = {
-      {"importance", rep.time_importance}, {"stretch", rep.time_stretch_map}, {"ls2", rep.time_ls2},
-      {"coarse", rep.time_coarse},         {"fine", rep.time_fine},           {"density", rep.time_density},
-      {"flow", rep.time_flow},             {"polish", rep.time_polish},       {"refine", rep.time_refine},
-      {"remap", rep.time_remap},
-      {"texel map", rep.time_texel_map},   {"texture", rep.time_texture_update},
-      {"safeguard", rep.time_safeguard}};
   std::vector<std::pair<std::string, double>> out;
-  for (const auto& [name, s] : all)
-    if (s > 0) out.emplace_back(name, s * 1e3);
+  const nlohmann::ordered_json report = adapt_report_json(rep);
+  for (const auto& [name, ms] : report.at("time_ms").items())
+    if (name != "total" && ms.get<double>() > 0) out.emplace_back(name, ms.get<double>());
   return out;
 }
 }  // namespace

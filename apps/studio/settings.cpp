@@ -44,7 +44,7 @@ json session_to_json(const PaintSessionOptions& o) {
           {"refine", a.refine.enabled},
           {"texture_size", o.texture_size},
           {"padding", o.padding},
-          {"reparam", o.schedule == ReparamSchedule::EachStroke ? "each-stroke" : "end"}};
+          {"reparam", enum_name(o.schedule)}};
 }
 
 /// Missing keys keep the library's defaults; bad names and sizes are errors (InvalidInputError).
@@ -62,8 +62,10 @@ PaintSessionOptions session_from_json(const json& j) {
   o.padding = clamped_int(j, "padding", o.padding, 0, 256);
   if (j.contains("reparam")) {
     const std::string r = j["reparam"].get<std::string>();
-    if (r != "each-stroke" && r != "end") throw InvalidInputError("adapt.reparam must be each-stroke or end, got " + r);
-    o.schedule = r == "end" ? ReparamSchedule::End : ReparamSchedule::EachStroke;
+    const std::vector<std::string> names = enum_choices<ReparamSchedule>();
+    if (std::find(names.begin(), names.end(), r) == names.end())
+      throw InvalidInputError("adapt.reparam must be " + or_list(names) + ", got " + r);
+    o.schedule = parse_enum<ReparamSchedule>(r, "reparam schedule");
   }
   return o;
 }

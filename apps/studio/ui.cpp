@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "adaptex/adapt/adapt.h"
+#include "adaptex/adapt/method.h"
 #include <cmath>
 
 #include "adaptex/paint/export.h"
@@ -476,9 +477,9 @@ void StudioUi::adapt_panel(App& app) {
     a.mode = modes[size_t(m)];
     changed = true;
   }
-  tooltip("How the texture layout follows your paint. density-flow (default): gives painted detail more "
-          "texels, as many as its edges need, and never folds. two-stage / single: the thesis' grid "
-          "relaxation. none: the layout never changes.");
+  std::string methods = "How the texture layout follows your paint (the registered methods):";
+  for (const AdaptMethodInfo* info : adapt_methods()) methods += "\n" + info->name + ": " + info->description;
+  tooltip(methods.c_str());
   bool each = o.schedule == ReparamSchedule::EachStroke;
   if (ImGui::Checkbox("After every stroke", &each)) {
     o.schedule = each ? ReparamSchedule::EachStroke : ReparamSchedule::End;

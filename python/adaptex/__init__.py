@@ -28,6 +28,7 @@ from ._adaptex import (  # noqa: F401
 )
 from ._functions import (  # noqa: F401
     adapt,
+    adapt_methods,
     evaluate,
     option_defaults,
     paint,

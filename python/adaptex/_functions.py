@@ -117,7 +117,7 @@ def validate_mesh(V, F, *, repair=False):
     report : dict
         What was changed: ``dropped_degenerate_faces``, ``dropped_unreferenced_vertices``,
         ``dropped_duplicate_faces``, ``split_nonmanifold_vertices``, ``split_pinched_vertices``,
-        ``flipped_faces``.
+        ``flipped_faces``, ``welded_vertices`` (the keys of ``adaptex unwrap --report``'s ``repair``).
 
     Raises
     ------
@@ -228,10 +228,11 @@ def unwrap(V, F, *, progress=None, texture_size=None, padding=None, **options):
     UV : (#W, 2) ndarray of float64
     FT : (#F, 3) ndarray of int32
     report : dict
-        ``components``, ``charts``, ``genus``, ``boundary_loops``, ``augmentations``,
-        ``cut_length``, ``floater_l2``, ``floater_linf``, ``final_l2``, ``final_linf``,
-        ``coverage``, ``effective_texel_share``, ``yoshizawa_iterations``, ``time`` (seconds per
-        phase) and ``face_chart`` (#F).
+        ``components``, ``genus``, ``boundary_loops``, ``charts``, ``cut_length``,
+        ``augmentations``, ``yoshizawa_iterations``, ``floater_l2``, ``floater_linf``,
+        ``final_l2``, ``final_linf``, ``coverage``, ``effective_texel_share``, ``time`` (seconds
+        per phase: cut, segment, floater, yoshizawa, augment, pack, total; the names of
+        ``adaptex unwrap --report``) and ``face_chart`` (#F).
 
     Raises
     ------
@@ -411,6 +412,19 @@ def option_defaults():
         ``evaluate``.
     """
     return _adaptex.option_defaults()
+
+
+def adapt_methods():
+    """The registered adaptation methods: the names the ``mode`` keyword of :func:`adapt` and
+    :func:`reparam` accepts (``reparam`` also takes ``"shrink"``), read from the library's registry.
+
+    Returns
+    -------
+    dict
+        ``{name: one-line description}``, ``"none"`` first, then the built-in methods, then those
+        registered later.
+    """
+    return _adaptex.adapt_methods()
 
 
 def _fill(fn):

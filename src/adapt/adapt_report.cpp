@@ -6,8 +6,8 @@
 
 namespace adaptex {
 
-void to_json(nlohmann::json& j, const AdaptReport& r) {
-  j = nlohmann::json{{"mode", to_string(r.mode)},
+nlohmann::ordered_json adapt_report_json(const AdaptReport& r) {
+  nlohmann::ordered_json j{{"mode", to_string(r.mode)},
                      {"accepted", r.accepted},
                      {"skipped", r.skipped},
                      {"damping", r.damping},
@@ -53,7 +53,10 @@ void to_json(nlohmann::json& j, const AdaptReport& r) {
     j["mse_before"] = r.error_before;
     j["mse_after"] = r.error_after;
   }
+  return j;
 }
+
+void to_json(nlohmann::json& j, const AdaptReport& report) { j = nlohmann::json(adapt_report_json(report)); }
 
 nlohmann::json adapt_reports_json(const std::vector<AdaptReport>& reports) {
   nlohmann::json arr = nlohmann::json::array();

@@ -320,4 +320,42 @@ size_t untangle_turned_cells(GridWarp& g, const std::vector<char>& convex, int* 
   return bad.size();
 }
 
+void gaussian_blur(std::vector<double>& f, int n, double sigma) {
+  if (sigma <= 0) return;
+  const int rad = std::max(1, static_cast<int>(std::ceil(3 * sigma)));
+  std::vector<double> k(2 * rad + 1);
+  for (int d = -rad; d <= rad; ++d) k[d + rad] = std::exp(-0.5 * d * d / (sigma * sigma));
+  double w = 0;
+  for (double x : k) w += x;
+  // Source index of every tap position i + d, reflected at the sides (-1 -> 0, n -> n - 1, ...).
+  std::vector<int> src(n + 2 * rad);
+  for (int a = -rad; a < n + rad; ++a) {
+    const int r = a < 0 ? -a - 1 : a >= n ? 2 * n - a - 1 : a;
+    src[a + rad] = std::clamp(r, 0, n - 1);
+  }
+  std::vector<double> tmp(f.size());
+  // Rows, then columns as whole-row sums (contiguous), both in tap order.
+  // The row pass reflects the row into a padded copy, then sums tap by tap over the whole row (the
+  // same sums in the same order as tap by tap per texel, but contiguous).
+  tbb::parallel_for(0, n, [&](int j) {
+    const double* row = f.data() + static_cast<size_t>(j) * n;
+    std::vector<double> padded(src.size()), acc(n, 0.0);
+    for (size_t a = 0; a < src.size(); ++a) padded[a] = row[src[a]];
+    for (int d = 0; d <= 2 * rad; ++d) {
+      const double kd = k[d], *in = padded.data() + d;
+      for (int i = 0; i < n; ++i) acc[i] += kd * in[i];
+    }
+    for (int i = 0; i < n; ++i) tmp[static_cast<size_t>(j) * n + i] = acc[i] / w;
+  });
+  tbb::parallel_for(0, n, [&](int i) {
+    double* out = f.data() + static_cast<size_t>(i) * n;
+    std::fill(out, out + n, 0.0);
+    for (int d = 0; d <= 2 * rad; ++d) {
+      const double* row = tmp.data() + static_cast<size_t>(src[i + d]) * n;
+      for (int j = 0; j < n; ++j) out[j] += k[d] * row[j];
+    }
+    for (int j = 0; j < n; ++j) out[j] /= w;
+  });
+}
+
 }  // namespace adaptex

@@ -88,4 +88,11 @@ Painter replay_texture(const TriMesh& mesh, const Parameterization& new_param, c
   return p;
 }
 
+template <>
+std::span<const EnumName<TextureUpdate>> enum_names<TextureUpdate>() {
+  static constexpr EnumName<TextureUpdate> names[] = {{TextureUpdate::Replay, "replay"},
+                                                      {TextureUpdate::Resample, "resample"}};
+  return names;
+}
+
 }  // namespace adaptex

@@ -711,4 +711,11 @@ void TutteSolver::solve_assembled(const Eigen::MatrixX2d& rhs, Eigen::MatrixX2d&
                       " unknowns): no backend produced a finite solution (non-finite weights?)");
 }
 
+template <>
+std::span<const EnumName<EmbeddingWeights>> enum_names<EmbeddingWeights>() {
+  static constexpr EnumName<EmbeddingWeights> names[] = {{EmbeddingWeights::MeanValue, "mean-value"},
+                                                         {EmbeddingWeights::ShapePreserving, "shape-preserving"}};
+  return names;
+}
+
 }  // namespace adaptex

@@ -1099,4 +1099,10 @@ UnwrapOptions unwrap_options_for_texture(int texture_size, int padding, UnwrapOp
   return base;
 }
 
+template <>
+std::span<const EnumName<ChartMode>> enum_names<ChartMode>() {
+  static constexpr EnumName<ChartMode> names[] = {{ChartMode::Auto, "auto"}, {ChartMode::Single, "single"}};
+  return names;
+}
+
 }  // namespace adaptex

@@ -15,27 +15,14 @@
 #include "adaptex/paint/generate.h"
 #include "adaptex/paint/painter.h"
 #include "adaptex/param/unwrap.h"
+#include "identity_method.h"
 
 namespace adaptex {
 namespace {
 
-/// The identity warp of the square; counts its solvers and their cycles.
-class IdentityMethod final : public AdaptMethod {
- public:
-  IdentityMethod() { ++made; }
-  void compute(const WarpInput&, AdaptResult& result) override {
-    ++computed;
-    std::vector<GridWarp> lattices;
-    lattices.push_back(GridWarp::uniform(8));
-    result.warp = std::make_shared<const LatticeWarp>(std::move(lattices));
-  }
-  static inline int made = 0, computed = 0;
-};
+using test::IdentityMethod;
 
-const bool registered = [] {
-  register_adapt_method({"identity", "test: the identity warp", [] { return std::make_unique<IdentityMethod>(); }});
-  return true;
-}();
+const bool registered = test::register_identity_method();
 
 double largest_move(const Parameterization& a, const Parameterization& b) {
   double d = 0;

@@ -106,3 +106,11 @@ def test_ctrl_c_interrupts_a_long_call_without_a_callback():
             child.communicate()
     assert "interrupted" in out and "finished" not in out, (out, err[-2000:])
     assert child.returncode == 0, err[-2000:]
+
+
+def test_adapt_methods_come_from_the_registry():
+    methods = adaptex.adapt_methods()
+    assert list(methods)[:4] == ["none", "single", "two-stage", "density-flow"]
+    assert all(isinstance(d, str) and d for d in methods.values())
+    assert adaptex._adaptex._option_choices()["adapt"]["mode"] == list(methods)
+    assert adaptex._adaptex._option_choices()["reparam"]["mode"] == ["shrink"] + list(methods)

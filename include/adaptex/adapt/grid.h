@@ -60,4 +60,9 @@ int untangle_lattice(GridWarp& g);
 /// Smooths the cells a motion turned (convex in \p convex, not now). \return those left (\p turned: before)
 /// \pre convex.size() == g.n * g.n
 size_t untangle_turned_cells(GridWarp& g, const std::vector<char>& convex, int* turned = nullptr);
+
+/// Gaussian blur of an n x n cell raster \p f (row-major), in place: separable, radius
+/// max(1, ceil(3 sigma)) cells, sides reflected; sigma <= 0 leaves \p f unchanged. Parallel over rows,
+/// the same result with or without threads. \pre f.size() == n * n, n >= 1
+void gaussian_blur(std::vector<double>& f, int n, double sigma);
 }  // namespace adaptex

@@ -29,6 +29,9 @@ enum class ReparamSchedule {
   EachStroke,  ///< After every stroke (as the interactive app does).
   End,         ///< Once, in finish().
 };
+/// "end", "each-stroke" (alias "each_stroke").
+template <>
+std::span<const EnumName<ReparamSchedule>> enum_names<ReparamSchedule>();
 
 inline constexpr int kMaxSafeguardSamples = 10'000'000;          ///< ~100 bytes each (1 GB).
 inline constexpr long long kMaxSurfaceCacheSamples = 50'000'000;  ///< Surface cache samples (400 MB).

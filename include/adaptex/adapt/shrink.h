@@ -50,9 +50,7 @@ struct ShrinkOptions {
   /// Largest ratio between an island's texel spacing and the uniform layout's, either way (default 4).
   double max_scale_ratio = 4.0;
   // Packing.
-  /// Texels of dilation around each island (2 = the gap between two islands; default 1). The budget
-  /// candidate is also packed without one, and the better of the two by measured PSNR is kept.
-  int gutter = 1;
+  int gutter = 1;  ///< Texels of dilation around each island (2 = the gap between two islands; default 1).
   bool rotate = true;  ///< Islands may turn by multiples of 90° (orientation is kept; default on).
   // Warp.
   /// Also try the density-flow warp of the whole layout (adapt.h, without refinement) when no charts

@@ -1,6 +1,7 @@
 #pragma once
 /// \file texture_update.h
 /// Texture update after a re-parameterization (thesis §3.7.3): exact replay of the history, or resample.
+#include "adaptex/core/enum_names.h"
 #include "adaptex/core/image.h"
 #include "adaptex/core/progress.h"
 #include "adaptex/core/mesh.h"
@@ -16,6 +17,9 @@ enum class TextureUpdate {
   Replay,    ///< Re-paint the stroke history (exact). Default when a history exists.
   Resample,  ///< Sample the old texture through the old UVs of the same surface point.
 };
+/// "replay", "resample".
+template <>
+std::span<const EnumName<TextureUpdate>> enum_names<TextureUpdate>();
 
 /// Resamples \p old_texture (drawn with \p old_param) onto \p new_map; \p outside elsewhere, then padding.
 /// \pre same faces \throw InvalidInputError empty texture/map, or a face \p old_param lacks

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "adaptex/core/enum_names.h"
 #include "adaptex/core/mesh.h"
 
 namespace adaptex {
@@ -18,6 +19,9 @@ enum class EmbeddingWeights {
   ShapePreserving,  ///< Floater 1997 shape-preserving weights (the thesis' choice).
   MeanValue,        ///< Floater 2003 mean-value coordinates.
 };
+/// "mean-value", "shape-preserving".
+template <>
+std::span<const EnumName<EmbeddingWeights>> enum_names<EmbeddingWeights>();
 
 /// Strictly positive convex weights λ_vw (each interior row sums to 1), in CSR form by vertex.
 /// Boundary vertices have empty rows.

@@ -24,6 +24,9 @@ enum class ChartMode {
   /// from probe_first_charts on are tried first.
   Auto,
 };
+/// "auto", "single".
+template <>
+std::span<const EnumName<ChartMode>> enum_names<ChartMode>();
 
 /// Settings of unwrap().
 struct UnwrapOptions {

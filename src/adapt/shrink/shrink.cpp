@@ -72,11 +72,10 @@ struct Context {
   }
 };
 
-Built repacked(const Context& cx, const std::string& name, const std::vector<double>& scales, double fill_hint,
-               int gutter) {
+Built repacked(const Context& cx, const std::string& name, const std::vector<double>& scales, double fill_hint) {
   double fill = 0;
   const std::vector<IslandPlacement> pl = pack_islands(cx.layout, cx.face_island, cx.islands, scales, cx.opt.size,
-                                                       gutter, cx.opt.rotate, fill_hint, &fill);
+                                                       cx.opt.gutter, cx.opt.rotate, fill_hint, &fill);
   if (pl.empty()) {
     Built b;
     b.info.name = name;
@@ -103,7 +102,7 @@ Built budgeted(const Context& cx, const Built& uniform, const std::vector<double
   for (double a : area) budget += a * uniform.lambda * uniform.lambda;
   report_progress(o.progress, "pack", 0.5);
   std::vector<double> scales = allocate_island_scales(curves, area, budget, o.size, o.max_scale_ratio);
-  Built bud = repacked(cx, "budget", scales, uniform.info.fill, o.gutter);
+  Built bud = repacked(cx, "budget", scales, uniform.info.fill);
   // The error model's gain of the chosen budget layout over the uniform repack.
   const auto finish = [&](const std::vector<double>& chosen) {
     double e_uni = 0, e_bud = 0;
@@ -115,21 +114,11 @@ Built budgeted(const Context& cx, const Built& uniform, const std::vector<double
     return std::move(bud);
   };
   if (!bud.info.valid) return bud;
-  // The same scales packed without a gutter: more area for every island, against texels that the
-  // bilinear lookups of two islands share (the fit and the measure decide).
-  int gutter = o.gutter;
-  if (o.gutter > 0) {
-    Built tight = repacked(cx, "budget", scales, bud.info.fill, 0);
-    if (tight.info.valid && tight.info.psnr > bud.info.psnr) {
-      bud = std::move(tight);
-      gutter = 0;
-    }
-  }
   // Allocated again for the area the packing reached, unless it reached about the area it was given.
   if (std::abs(bud.lambda - 1.0) < 0.02) return finish(scales);
   std::vector<double> scales2 = allocate_island_scales(curves, area, budget * bud.lambda * bud.lambda, o.size,
                                                        o.max_scale_ratio);
-  Built bud2 = repacked(cx, "budget", scales2, bud.info.fill, gutter);
+  Built bud2 = repacked(cx, "budget", scales2, bud.info.fill);
   if (bud2.info.valid && bud2.info.psnr > bud.info.psnr) {
     bud = std::move(bud2);
     scales = scales2;
@@ -200,7 +189,7 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
   report_progress(options.progress, "pack", 0);
   if (!isl.tiling) {
     const std::vector<double> area = island_areas(cx.layout, cx.face_island, cx.islands, R);
-    Built uni = repacked(cx, "repacked", std::vector<double>(cx.islands, 1.0), 0.75, options.gutter);
+    Built uni = repacked(cx, "repacked", std::vector<double>(cx.islands, 1.0), 0.75);
     if (options.budget && uni.info.valid) {
       report_progress(options.progress, "error model", 0);
       cands.push_back(budgeted(cx, uni, area, &res.predicted_gain_db));
