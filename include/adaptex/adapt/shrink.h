@@ -1,12 +1,7 @@
 #pragma once
 /// \file shrink.h
-/// Atlas-preserving shrink of a textured asset: the artist's charts stay charts (seams kept), charts
-/// that share texels (mirrors, overlaps) are grouped into islands that move together, every island
-/// gets a texel budget from the error model of the texture itself, and the islands are repacked into
-/// the target square with a gutter; the texels of every map are then fitted to the original on the new
-/// layout. Candidates (plain downsizing, the artist's layout with fitted texels, uniform repack,
-/// budgeted repack) are measured against the original by surface PSNR and the best is kept, so the
-/// result is never worse than plain downsizing. Method and measurements: docs/shrink.md.
+/// Atlas-preserving shrink of a textured asset: islands of texel-sharing charts get an error-model
+/// budget, are repacked with a gutter, and every map is fitted to the original (docs/shrink.md).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -40,8 +35,7 @@ struct ShrinkMap {
 struct ShrinkOptions {
   int size = 256;  ///< Output width = height in texels, in [8, kMaxTextureSize] (default 256).
   // Islands.
-  /// Two charts whose texel coverage overlaps in at least this share of the smaller one's texels (and
-  /// at least one texel) share texels: they move together (default 0.02).
+  /// Texel overlap (share of the smaller chart's) above which two charts move together (default 0.02).
   double overlap_share = 0.02;
   // Budget.
   bool budget = true;  ///< Per-island texel budget from the error model; false: one scale for all (default on).
@@ -53,8 +47,7 @@ struct ShrinkOptions {
   int gutter = 1;  ///< Texels of dilation around each island (2 = the gap between two islands; default 1).
   bool rotate = true;  ///< Islands may turn by multiples of 90° (orientation is kept; default on).
   // Warp.
-  /// Also try the density-flow warp of the whole layout (adapt.h, without refinement) when no charts
-  /// share texels (default on).
+  /// Also try the density-flow warp of the layout when no charts share texels (default on).
   bool warp = true;
   // Topology.
   /// Largest share of faces a layout may add to the input's (default 0.10); 0 keeps the input's faces
