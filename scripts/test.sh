@@ -15,8 +15,10 @@ echo "== tests done at ${SECONDS} s =="
 if [ "$sanitize" = 1 ]; then
   echo "== again under AddressSanitizer + UndefinedBehaviorSanitizer =="
   # -O1 -g1 (line tables only): ASan's recommended level, half the compile time of -O2 -g, and
-  # stack traces still name files and lines.
-  BUILD_DIR=build-asan scripts/build.sh -DADAPTEX_WERROR=ON -DADAPTEX_SANITIZE=ON \
+  # stack traces still name files and lines. Warnings are errors in the build above; here they are
+  # only printed, as GCC 12's flow warnings change with the instrumentation (a -Wmaybe-uninitialized
+  # inside <regex> that no other build shows).
+  BUILD_DIR=build-asan scripts/build.sh -DADAPTEX_WERROR=OFF -DADAPTEX_SANITIZE=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
     -DADAPTEX_BUILD_BENCH=OFF
   ( cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
