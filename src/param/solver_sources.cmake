@@ -1,4 +1,4 @@
-# Solver part of adaptex_param (owner: param-solver): stretch metrics, Floater, Yoshizawa (§2.1.3, §2.2, §3.3).
+# Solver part of adaptex_param: stretch metrics, Floater, Yoshizawa (§2.1.3, §2.2, §3.3).
 target_sources(adaptex_param PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/stretch.cpp
   ${CMAKE_CURRENT_LIST_DIR}/floater.cpp

@@ -1,4 +1,4 @@
-# Surgery part of adaptex_param (owner: param-surgery): topological surgery (§3.2), chart packing,
+# Surgery part of adaptex_param: topological surgery (§3.2), chart packing,
 # the unwrap() pipeline.
 target_sources(adaptex_param PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/charts.cpp
