@@ -13,14 +13,7 @@
 #include <malloc.h>
 #endif
 
-// AddressSanitizer replaces malloc: glibc's settings and counters do not apply there.
-#if defined(__SANITIZE_ADDRESS__)
-#define ADAPTEX_TEST_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ADAPTEX_TEST_ASAN 1
-#endif
-#endif
+#include "../asan_detect.h"
 
 namespace adaptex {
 namespace {

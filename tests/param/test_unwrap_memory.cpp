@@ -11,15 +11,7 @@
 #include "adaptex/param/unwrap.h"
 #include "scan_fixtures.h"
 
-// AddressSanitizer's shadow memory and quarantine inflate the resident set: the bound is for
-// ordinary builds.
-#if defined(__SANITIZE_ADDRESS__)
-#define ADAPTEX_TEST_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define ADAPTEX_TEST_ASAN 1
-#endif
-#endif
+#include "../asan_detect.h"
 
 namespace adaptex {
 namespace {
