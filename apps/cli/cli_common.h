@@ -3,6 +3,7 @@
 /// Shared plumbing of the `adaptex` command-line tool: every subcommand lives in its own cmd_*.cpp
 /// and registers itself through an add_*_command() function called from main.cpp.
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -47,5 +48,15 @@ void add_strokes_command(CLI::App& app, Context& ctx);
 void add_reparam_command(CLI::App& app, Context& ctx);
 void add_shrink_command(CLI::App& app, Context& ctx);
 void add_demo_command(CLI::App& app, Context& ctx);
+
+/// Accepts a finite number >= 0 (CLI::NonNegativeNumber passes nan and inf, and its message prints
+/// DBL_MAX in full).
+inline const CLI::Validator kFiniteNonNegative(
+    [](std::string& v) -> std::string {
+      double x = 0;
+      if (!CLI::detail::lexical_cast(v, x) || !std::isfinite(x) || x < 0) return "must be a finite number >= 0";
+      return {};
+    },
+    "FINITE>=0");
 
 }  // namespace adaptex::cli

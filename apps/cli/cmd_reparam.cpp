@@ -204,7 +204,7 @@ void add_reparam_command(CLI::App& app, Context& ctx) {
   sub->add_option("--max-face-growth", a->max_face_growth,
                   "Largest share of faces refinement may add (0.1 = 10 %; shrink adds none; density-flow: "
                   "default its own budget)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::kFiniteNonNegative)
       ->each([a](const std::string&) { a->max_face_growth_given = true; });
   sub->add_option("--grid", a->grid, "Grid cells per side: FINE or COARSE,FINE (default 16,256)")
       ->each([a](const std::string&) { a->grid_given = true; });

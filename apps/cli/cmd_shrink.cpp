@@ -115,7 +115,7 @@ void add_shrink_command(CLI::App& app, Context& ctx) {
                   "Output this candidate (downsized, artist, repacked, budget, warped) instead of the best");
   sub->add_option("--max-face-growth", a->max_face_growth,
                   "Largest share of faces the new layout may add (0.1 = 10 %; the shrink adds none)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::kFiniteNonNegative)
       ->capture_default_str();
   sub->add_flag("--no-refine", a->no_refine, "Keep the input's faces exactly (--max-face-growth 0)");
   sub->add_option("--name", a->name, "Base name of the output files (default: the mesh file's stem)");

@@ -336,11 +336,14 @@ TEST(ShrinkCli, ReportsFacesAndBoundsTheirGrowth) {
   EXPECT_EQ(report["shrink"]["faces_after"], F);
   EXPECT_EQ(report["shrink"]["face_growth"], 0.0);
   EXPECT_EQ(read_textured_obj(dir.path / "s" / "m.obj").mesh.faces, a.mesh.faces);
-  // A negative bound: exit 2, one line, no output.
-  r = test::run_cli("shrink " + mesh + " --size 64 --max-face-growth -0.5 -o " + (dir.path / "bad").string());
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(dir.path / "bad"));
+  // A negative or non-finite bound: exit 2, one line naming the flag, no output.
+  for (const char* bad : {"-0.5", "nan", "inf"}) {
+    r = test::run_cli("shrink " + mesh + " --size 64 --max-face-growth " + bad + " -o " + (dir.path / "bad").string());
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("--max-face-growth"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.path / "bad")) << bad;
+  }
   // density-flow refines this coarse patch under fine detail; --max-face-growth 0.1 bounds it.
   r = test::run_cli("reparam " + mesh + " " + tex + " --adapt density-flow -o " + (dir.path / "free").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
