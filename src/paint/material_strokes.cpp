@@ -306,6 +306,8 @@ MaterialStrokeFile parse_material_strokes(const std::string& text, const std::st
     out.height_scale = get_number(*it, "height_scale", top);
     if (!(out.height_scale > 0)) top.fail("\"height_scale\" must be > 0 (got " + num(out.height_scale) + ")");
   }
+  if (!js.contains("layers") && js.contains("strokes"))
+    top.fail("missing required field \"layers\" (a version 2 file holds layers; a list of \"strokes\" is version 1)");
   const json& layers = require(js, "layers", top);
   if (!layers.is_array()) top.fail("\"layers\" must be an array (got " + describe(layers) + ")");
   for (size_t k = 0; k < layers.size(); ++k) out.layers.push_back(parse_layer(layers[k], k, name, base_dir, out.warnings));
