@@ -142,13 +142,17 @@ ImageRGBA8 image_from_array(py::handle texture, const char* fn, const char* name
   return img;
 }
 
-StrokeFile strokes_from_object(py::handle strokes, const char* fn) {
-  StrokeFile file;
+namespace {
+
+/// Reads \p strokes (a dict or a path) with \p from_text / \p from_path.
+template <class File, class FromText, class FromPath>
+File stroke_file_from_object(py::handle strokes, const char* fn, FromText from_text, FromPath from_path) {
+  File file;
   if (py::isinstance<py::dict>(strokes)) {
     const std::string text = py::str(py::module_::import("json").attr("dumps")(strokes));
-    file = parse_strokes(text, std::string(fn) + ": strokes", std::filesystem::current_path());
+    file = from_text(text, std::string(fn) + ": strokes", std::filesystem::current_path());
   } else if (py::isinstance<py::str>(strokes) || py::hasattr(strokes, "__fspath__")) {
-    file = read_strokes(std::filesystem::path(py::str(py::module_::import("os").attr("fspath")(strokes))));
+    file = from_path(std::filesystem::path(py::str(py::module_::import("os").attr("fspath")(strokes))));
   } else {
     throw InvalidInputError(std::string(fn) + ": strokes must be a path or a dict in the adaptex.strokes format "
                             "(docs/strokes.md), got " +
@@ -156,6 +160,18 @@ StrokeFile strokes_from_object(py::handle strokes, const char* fn) {
   }
   warn_all(file.warnings);
   return file;
+}
+
+}  // namespace
+
+StrokeFile strokes_from_object(py::handle strokes, const char* fn) {
+  return stroke_file_from_object<StrokeFile>(strokes, fn, parse_strokes,
+                                             [](const std::filesystem::path& p) { return read_strokes(p); });
+}
+
+MaterialStrokeFile material_strokes_from_object(py::handle strokes, const char* fn) {
+  return stroke_file_from_object<MaterialStrokeFile>(
+      strokes, fn, parse_material_strokes, [](const std::filesystem::path& p) { return read_material_strokes(p); });
 }
 
 namespace {

@@ -15,6 +15,7 @@
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
+#include "adaptex/paint/material_strokes.h"
 #include "adaptex/paint/strokes.h"
 
 namespace adaptex::python {
@@ -39,6 +40,8 @@ ImageRGBA8 image_from_array(py::handle texture, const char* fn, const char* name
 /// become Python UserWarnings.
 /// \throw InvalidInputError / IoError as read_strokes / parse_strokes, or another type
 StrokeFile strokes_from_object(py::handle strokes, const char* fn);
+/// The same for a file of version 1 or 2 (read_material_strokes / parse_material_strokes).
+MaterialStrokeFile material_strokes_from_object(py::handle strokes, const char* fn);
 
 py::array_t<double> vertices_array(const TriMesh& mesh);        ///< #V x 3 float64
 py::array_t<std::int32_t> faces_array(const std::vector<Face>& faces);  ///< #F x 3 int32

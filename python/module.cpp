@@ -25,6 +25,7 @@
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/eval.h"
+#include "adaptex/paint/material_signal.h"
 #include "adaptex/paint/painter.h"
 #include "adaptex/paint/texel_map.h"
 #include "adaptex/param/stretch.h"
@@ -340,6 +341,35 @@ py::dict py_evaluate(py::handle V, py::handle F, py::handle UV, py::handle FT, p
   return report_dict(eval_result_json(r));
 }
 
+/// Every channel of a stroke file (version 1 or 2) at surface points: #P x 7 float64.
+py::array_t<double> py_evaluate_material(py::handle V, py::handle F, py::handle strokes, py::handle faces,
+                                         py::handle bary) {
+  const TriMesh mesh = mesh_from_arrays(V, F, "evaluate_material");
+  const MaterialStrokeFile file = material_strokes_from_object(strokes, "evaluate_material");
+  const auto fa = py::array_t<long long, py::array::c_style | py::array::forcecast>::ensure(faces);
+  const auto ba = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(bary);
+  if (!fa || fa.ndim() != 1) throw InvalidInputError("evaluate_material: faces must be a 1-D integer array");
+  if (!ba || ba.ndim() != 2 || ba.shape(1) != 2 || ba.shape(0) != fa.shape(0))
+    throw InvalidInputError("evaluate_material: bary must be a #P x 2 array (b0, b1), #P = len(faces)");
+  std::vector<SurfacePoint> points(static_cast<size_t>(fa.shape(0)));
+  const auto f = fa.unchecked<1>();
+  const auto b = ba.unchecked<2>();
+  for (py::ssize_t k = 0; k < fa.shape(0); ++k) {
+    if (f(k) < 0 || f(k) >= mesh.num_faces())
+      throw InvalidInputError("evaluate_material: faces[" + std::to_string(k) + "] out of range");
+    points[static_cast<size_t>(k)] = SurfacePoint{static_cast<int>(f(k)), b(k, 0), b(k, 1)};
+  }
+  const std::vector<MaterialValue> values = [&] {
+    py::gil_scoped_release release;
+    return evaluate_material(mesh, file, points);
+  }();
+  py::array_t<double> out({static_cast<py::ssize_t>(values.size()), static_cast<py::ssize_t>(kMaterialComponents)});
+  auto o = out.mutable_unchecked<2>();
+  for (size_t k = 0; k < values.size(); ++k)
+    for (int c = 0; c < kMaterialComponents; ++c) o(static_cast<py::ssize_t>(k), c) = values[k][c];
+  return out;
+}
+
 py::dict py_stretch(py::handle V, py::handle F, py::handle UV, py::handle FT) {
   const TriMesh mesh = mesh_from_arrays(V, F, "stretch");
   const Parameterization param = param_from_arrays(mesh, UV, FT, "stretch");
@@ -452,6 +482,11 @@ void define_module(py::module_& m) {
         py::arg("strokes"), py::kw_only(), py::arg("progress") = py::none(),
         "evaluate(V, F, UV, FT, texture, strokes, *, progress=None, samples=, seed=) -> dict(mse, psnr, samples, "
         "seed): the texture against the exact stroke signal, as `adaptex eval`.");
+  m.def("evaluate_material", &py_evaluate_material, py::arg("V"), py::arg("F"), py::arg("strokes"), py::arg("faces"),
+        py::arg("bary"),
+        "evaluate_material(V, F, strokes, faces, bary) -> #P x 7 float64: every channel (r, g, b, alpha, roughness, "
+        "metallic, height) of a stroke file of version 1 or 2 (path or dict) at the points "
+        "b0 V[F[f,0]] + b1 V[F[f,1]] + (1 - b0 - b1) V[F[f,2]] (docs/strokes.md).");
   m.def("stretch", &py_stretch, py::arg("V"), py::arg("F"), py::arg("UV"), py::arg("FT"),
         "stretch(V, F, UV, FT) -> dict(l2, linf, area_distortion, angle_distortion, flipped, degenerate, face_l2 #F).");
   m.def("option_defaults", &option_defaults,

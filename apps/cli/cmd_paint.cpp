@@ -8,6 +8,8 @@
 #include "adaptex/core/errors.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/export.h"
+#include "adaptex/paint/material_paint.h"
+#include "adaptex/paint/material_strokes.h"
 #include "adaptex/paint/strokes.h"
 #include "cli_common.h"
 #include "paint_common.h"
@@ -68,6 +70,63 @@ void validate(PaintCommand& c, const Context& ctx) {
     check_export_name(c.name);
 }
 
+/// A layered material (stroke file version 2) painted on the unwrap's layout: base colour, roughness,
+/// metallic, height and the derived normal map, exported as a glTF metallic-roughness material and an
+/// OBJ/MTL with map_Kd, map_Pr, map_Pm, norm and bump (docs/export.md).
+void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStrokeFile& material,
+                        const ReadReport& rr, double time_read, const Context& ctx) {
+  Stopwatch total, sw;
+  if (c.run.adapt.mode != "none")
+    ctx.warn("--adapt " + c.run.adapt.mode + ": a layered material (stroke file version 2) is painted on the unwrap's "
+             "layout; its adaptation is not implemented yet");
+  const UnwrapResult ur = unwrap(mesh, paint_unwrap_options(c.run, phase_printer(ctx, "unwrap")));
+  const double time_unwrap = sw.lap();
+  ctx.info("paint: " + std::to_string(material.layers.size()) + " layers at " + std::to_string(c.run.size) + "x" +
+           std::to_string(c.run.size));
+  MaterialPaintOptions mo;
+  mo.size = c.run.size;
+  mo.padding = c.run.padding;
+  const MaterialTextures tex = paint_material(mesh, ur.param, material, mo);
+  const double time_paint = sw.lap();
+  AtomicOutput out;
+  ExportOptions obj;
+  obj.glb = false;
+  obj.maps = {{"roughness", tex.roughness}, {"metallic", tex.metallic}, {"normal", tex.normal}, {"bump", tex.height}};
+  ExportedFiles files = export_textured_mesh(out, c.outdir, c.name, mesh, ur.param, tex.base_color, obj);
+  ExportOptions glb;
+  glb.obj = false;
+  glb.maps = {{"metallic_roughness", tex.metallic_roughness}, {"normal", tex.normal}};
+  files.glb = export_textured_mesh(out, c.outdir, c.name, mesh, ur.param, tex.base_color, glb).glb;
+  const double time_export = sw.lap();
+  nlohmann::json layers = nlohmann::json::array();
+  size_t strokes = 0;
+  for (const MaterialLayer& l : material.layers) {
+    layers.push_back({{"name", l.name}, {"strokes", l.strokes.size()}, {"blend", blend_mode_name(l.blend)},
+                      {"mask", l.mask.has_value()}, {"visible", l.visible}, {"opacity", l.opacity}});
+    strokes += l.strokes.size();
+  }
+  const nlohmann::json report = {
+      {"command", "paint"},
+      {"input", {{"mesh", c.mesh.string()}, {"strokes", c.strokes.string()}, {"format", rr.format}, {"version", 2}}},
+      {"mesh", {{"vertices", mesh.num_vertices()}, {"faces", mesh.num_faces()}, {"charts", ur.param.num_charts}}},
+      {"texture", {{"width", c.run.size}, {"height", c.run.size}, {"padding", c.run.padding}}},
+      {"material", {{"layers", layers}, {"strokes", strokes}, {"dabs", material.num_dabs()},
+                    {"height_scale", tex.height_scale}}},
+      {"adapt", {{"mode", "none"}}},
+      {"files", {{"obj", files.obj.filename().string()}, {"mtl", files.mtl.filename().string()},
+                 {"png", files.png.filename().string()}, {"glb", files.glb.filename().string()},
+                 {"maps", {c.name + "_roughness.png", c.name + "_metallic.png", c.name + "_normal.png",
+                           c.name + "_bump.png"}}}},
+      {"times_s", {{"read", time_read}, {"unwrap", time_unwrap}, {"paint", time_paint}, {"export", time_export},
+                   {"total", time_read + total.lap()}}}};
+  write_text(out, c.outdir / "report.json", report.dump(2) + "\n");
+  out.commit();
+  std::cout << "wrote " << (c.outdir / c.name).string() << ".{obj,mtl,png,glb}, its roughness, metallic, normal and "
+            << "bump maps, and " << (c.outdir / "report.json").string() << " (" << c.run.size << "x" << c.run.size
+            << ", " << material.layers.size() << " layers, " << strokes << " strokes, unwrap " << time_unwrap
+            << " s, paint " << time_paint << " s)\n";
+}
+
 void run_paint(PaintCommand& c, const Context& ctx) {
   validate(c, ctx);
   Stopwatch total, sw;
@@ -76,6 +135,10 @@ void run_paint(PaintCommand& c, const Context& ctx) {
   ReadReport rr;
   const TriMesh mesh = read_mesh(c.mesh, ro, &rr);
   for (const std::string& w : rr.warnings) ctx.warn(w);
+  if (const MaterialStrokeFile material = read_material_strokes(c.strokes); material.source_version == 2) {
+    for (const std::string& w : material.warnings) ctx.warn(w);
+    return run_paint_material(c, mesh, material, rr, sw.lap(), ctx);
+  }
   const StrokeFile strokes = read_strokes(c.strokes);
   for (const std::string& w : strokes.warnings) ctx.warn(w);
   const double time_read = sw.lap();

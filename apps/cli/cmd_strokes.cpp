@@ -1,7 +1,9 @@
-// `adaptex strokes generate MESH --kind lines|blobs|mixed|dots [--seed S] [--count N] -o S.json`:
-// seeded, reproducible test stroke sets (paint/generate.h).
+// `adaptex strokes generate MESH --kind lines|blobs|mixed|dots|material [--seed S] [--count N] -o S.json`:
+// seeded, reproducible test stroke sets (paint/generate.h; material: a version 2 file,
+// paint/material_generate.h).
 // `adaptex strokes check S.json [-o OUT.json]`: strict validation of a stroke file (one line naming
 // the stroke index and field on error, exit 2); with -o writes it back normalized (defaults filled).
+// Both commands take version 1 and version 2 files (docs/strokes.md).
 #include <nlohmann/json.hpp>
 
 #include <iostream>
@@ -10,6 +12,8 @@
 #include "adaptex/core/errors.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/generate.h"
+#include "adaptex/paint/material_generate.h"
+#include "adaptex/paint/material_strokes.h"
 #include "adaptex/paint/strokes.h"
 #include "cli_common.h"
 
@@ -43,9 +47,46 @@ void print_summary(const std::string& file, const StrokeFile& s, const Generated
   std::cout << j.dump() << "\n";
 }
 
+/// Summary line of a version 2 file: layers, strokes and dabs.
+void print_summary(const std::string& file, const MaterialStrokeFile& s) {
+  size_t strokes = 0, decals = 0;
+  nlohmann::json layers = nlohmann::json::array();
+  for (const MaterialLayer& l : s.layers) {
+    strokes += l.strokes.size();
+    for (const MaterialStroke& st : l.strokes) decals += st.type == MaterialStroke::Type::Decal;
+    layers.push_back({{"name", l.name}, {"strokes", l.strokes.size()}, {"blend", blend_mode_name(l.blend)},
+                      {"mask", l.mask.has_value()}, {"visible", l.visible}});
+  }
+  nlohmann::json j;
+  j["file"] = file;
+  j["version"] = 2;
+  j["layers"] = layers;
+  j["strokes"] = strokes;
+  j["decals"] = decals;
+  j["dabs"] = s.num_dabs();
+  std::cout << j.dump() << "\n";
+}
+
+void run_generate_material(const GenerateArgs& a, const Context& ctx) {
+  if (a.count != -1) throw InvalidInputError("strokes generate: --count has no meaning with --kind material");
+  ReadReport report;
+  const TriMesh mesh = read_mesh(a.mesh, {}, &report);
+  for (const auto& w : report.warnings) ctx.warn(w);
+  const MaterialStrokeFile s = generate_material_strokes(mesh, a.seed);
+  AtomicOutput out;
+  write_material_strokes(out.add(a.output), s);
+  out.commit();
+  print_summary(a.output, s);
+}
+
 void run_generate(const GenerateArgs& a, const Context& ctx) {
+  if (a.kind == "material") return run_generate_material(a, ctx);
   GenerateOptions opt;
-  opt.kind = parse_stroke_kind(a.kind);
+  try {
+    opt.kind = parse_stroke_kind(a.kind);
+  } catch (const InvalidInputError&) {
+    throw InvalidInputError("unknown stroke kind \"" + a.kind + "\" (expected lines, blobs, mixed, dots or material)");
+  }
   opt.seed = a.seed;
   opt.count = a.count;
   if (opt.count < 1 && opt.count != -1)
@@ -62,6 +103,16 @@ void run_generate(const GenerateArgs& a, const Context& ctx) {
 }
 
 void run_check(const CheckArgs& a, const Context& ctx) {
+  const MaterialStrokeFile m = read_material_strokes(a.input);
+  if (m.source_version == 2) {
+    for (const auto& w : m.warnings) ctx.warn(w);
+    if (!a.output.empty()) {
+      AtomicOutput out;
+      write_material_strokes(out.add(a.output), m);
+      out.commit();
+    }
+    return print_summary(a.input, m);
+  }
   const StrokeFile s = read_strokes(a.input);
   for (const auto& w : s.warnings) ctx.warn(w);
   if (!a.output.empty()) {
@@ -83,10 +134,11 @@ void add_strokes_command(CLI::App& app, Context& ctx) {
       "generate",
       "Generate a seeded, reproducible stroke set on a mesh: lines (many thin hard strokes in one "
       "region), blobs (a few broad soft strokes), mixed (both), dots (150-400 tiny hard dots "
-      "sprinkled in a ball holding 10-20% of the surface: speckle, text-like). Sizes are fractions of "
-      "the bounding-box diagonal; dabs lie on the surface.");
+      "sprinkled in a ball holding 10-20% of the surface: speckle, text-like), material (a version 2 "
+      "file: three layers, one masked, painting base colour, roughness, metallic and height with pen "
+      "pressure). Sizes are fractions of the bounding-box diagonal; dabs lie on the surface.");
   gen->add_option("mesh", g->mesh, "Input mesh (any format read_mesh reads)")->required();
-  gen->add_option("--kind", g->kind, "lines | blobs | mixed | dots (default mixed)");
+  gen->add_option("--kind", g->kind, "lines | blobs | mixed | dots | material (default mixed)");
   gen->add_option("--seed", g->seed, "Random seed (default 1)");
   gen->add_option("--count", g->count,
                   "Number of strokes (default: 60 lines, 6 blobs, 48 mixed, 150-400 dots drawn from the seed)");
@@ -96,7 +148,7 @@ void add_strokes_command(CLI::App& app, Context& ctx) {
   auto c = std::make_shared<CheckArgs>();
   auto* chk = sub->add_subcommand(
       "check", "Validate a stroke file strictly and print a JSON summary; -o writes it normalized");
-  chk->add_option("file", c->input, "Stroke file (adaptex.strokes v1)")->required();
+  chk->add_option("file", c->input, "Stroke file (adaptex.strokes, version 1 or 2)")->required();
   chk->add_option("-o,--output", c->output, "Write the normalized file here (defaults filled in)");
   chk->callback([c, &ctx] { run_check(*c, ctx); });
 }

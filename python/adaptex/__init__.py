@@ -30,6 +30,7 @@ from ._functions import (  # noqa: F401
     adapt,
     adapt_methods,
     evaluate,
+    evaluate_material,
     option_defaults,
     paint,
     read_image,

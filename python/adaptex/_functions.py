@@ -402,6 +402,32 @@ def stretch(V, F, UV, FT):
     return _adaptex.stretch(V, F, UV, FT)
 
 
+def evaluate_material(V, F, strokes, faces, bary):
+    """Every channel of a stroke file, version 1 or 2 (layers, masks, blend modes, pressure), at
+    surface points: the exact painted material (docs/strokes.md, "Version 2").
+
+    Parameters
+    ----------
+{arrays}
+{strokes}
+    faces : (#P,) array_like of int
+        The face of each point.
+    bary : (#P, 2) array_like of float
+        Barycentric coordinates (b0, b1) of each point: the point is
+        ``b0 V[F[f, 0]] + b1 V[F[f, 1]] + (1 - b0 - b1) V[F[f, 2]]``.
+
+    Returns
+    -------
+    (#P, 7) ndarray of float64
+        Columns r, g, b (base colour), alpha, roughness, metallic, height, each in [0, 1].
+
+    Raises
+    ------
+{raises}
+    """
+    return _adaptex.evaluate_material(V, F, strokes, faces, bary)
+
+
 def option_defaults():
     """The library's default of every option keyword.
 
@@ -433,7 +459,8 @@ def _fill(fn):
                                    raises_long=_RAISES_LONG)
 
 
-for _fn in (validate_mesh, write_obj, write_image, unwrap, paint, adapt, reparam, shrink, evaluate, stretch):
+for _fn in (validate_mesh, write_obj, write_image, unwrap, paint, adapt, reparam, shrink, evaluate,
+            evaluate_material, stretch):
     _fill(_fn)
 for _fn in (unwrap, paint, adapt, reparam, evaluate):
     _with_options(_fn.__name__)(_fn)

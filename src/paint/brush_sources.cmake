@@ -13,3 +13,9 @@ target_sources(adaptex_paint PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/asset_eval.cpp       # surface PSNR of shrunk assets, box downsizing
   ${CMAKE_CURRENT_LIST_DIR}/point_transfer.cpp   # sample points carried to a refined mesh
   ${CMAKE_CURRENT_LIST_DIR}/surface_cache.cpp)
+# The stroke file version 2 (layered materials) and its exact evaluation at surface points.
+target_sources(adaptex_paint PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/material_strokes.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/material_signal.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/material_generate.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/material_paint.cpp)

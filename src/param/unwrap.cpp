@@ -693,9 +693,8 @@ size_t split_piece(const Component& piece, int k, const UnwrapOptions& options,
 /// a (λ² − λ) for a piece of area fraction a and L2 λ (its halves assumed at √λ); the coverage
 /// drops by the gutter along the new seam, about 2 · gap · side for a piece whose rectangle has
 /// side √(a λ) (in the unit square). Both are taken relative to a typical layout (L2² 1.4,
-/// coverage 0.75). A piece with degenerate or flipped UV triangles is always worth splitting.
+/// coverage 0.75). Pieces with degenerate or flipped UV triangles: see scan_pieces().
 bool split_pays(const PieceProbe& probe, double area_fraction, double gap, double min_l2) {
-  if (probe.bad > 0) return true;
   const double l2 = probe.l2;
   if (!(l2 > min_l2)) return false;
   const double gain = area_fraction * (l2 * l2 - l2) / 1.4;
@@ -710,7 +709,11 @@ bool split_pays(const PieceProbe& probe, double area_fraction, double gap, doubl
 /// The chart count thus follows the stretch and the texel budget: small pieces stay whole.
 std::vector<Component> scan_pieces(const std::vector<Component>& comps, const DiskParamOptions& dopt,
                                    double gutter, const UnwrapOptions& options) {
+  // Pieces with bad UV triangles are split down to this many faces (zero-area scan faces stay
+  // degenerate in any chart, so that rule needs a floor); a stretched piece is split whenever
+  // split_pays(): a few large, folded faces of a photogrammetry mesh can hold much of the area.
   constexpr int kMinSplitFaces = 16;
+  constexpr int kMinProbeFaces = 4;
   double total_area = 0;
   for (const Component& c : comps) total_area += c.area;
   std::vector<Component> done, queue;
@@ -719,7 +722,7 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
     if (f > options.scan_piece_faces)
       split_piece(c, static_cast<int>((f + options.scan_piece_faces - 1) / options.scan_piece_faces),
                   options, queue);
-    else if (f >= kMinSplitFaces)
+    else if (f >= kMinProbeFaces)
       queue.push_back(c);
     else
       done.push_back(c);
@@ -733,10 +736,13 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
     for (size_t i = 0; i < queue.size(); ++i) {
       const Component& p = queue[i];
       const PieceProbe& pr = probes[i];
+      const int faces = p.mesh.num_faces();
       const bool worth =
-          split_pays(pr, p.area / std::max(total_area, 1e-300), gap, options.scan_chart_l2);
+          (pr.bad > 0 && faces >= 2 * kMinSplitFaces) ||
+          (faces >= 2 * kMinProbeFaces &&
+           split_pays(pr, p.area / std::max(total_area, 1e-300), gap, options.scan_chart_l2));
       bool split = false;
-      if (worth && p.mesh.num_faces() >= 2 * kMinSplitFaces) {
+      if (worth) {
         const size_t n = split_piece(p, 2, options, next);
         split = n >= 2;
         if (!split) next.resize(next.size() - n);
@@ -962,25 +968,43 @@ void segment_until_good(const TriMesh& mesh, const std::vector<Component>& comps
   }
 }
 
+/// Builds the layout of \p pieces as a candidate and keeps it in \p result when its effective
+/// texel share is higher, or when \p result has no layout yet (the phase times add up either way).
+void keep_better_layout(const TriMesh& mesh, const std::vector<Component>& pieces,
+                        const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
+                        const UnwrapOptions& options, bool unfold, UnwrapResult& result) {
+  UnwrapReport& rep = result.report;
+  UnwrapResult candidate;
+  candidate.report = rep;
+  if (unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, candidate, unfold) &&
+      (candidate.report.effective_texel_share > rep.effective_texel_share ||
+       result.param.uv_faces.empty()))
+    result = std::move(candidate);
+  else
+    copy_phase_times(candidate.report, rep);
+}
+
+/// scan_pieces(), its time added to \p rep.time_segment.
+std::vector<Component> timed_scan_pieces(const std::vector<Component>& comps,
+                                         const DiskParamOptions& dopt, double gutter,
+                                         const UnwrapOptions& options, UnwrapReport& rep) {
+  const auto t0 = Clock::now();
+  std::vector<Component> pieces = scan_pieces(comps, dopt, gutter, options);
+  rep.time_segment += seconds_since(t0);
+  return pieces;
+}
+
 /// ChartMode::Auto on a mesh with more components than max_charts / 2: the charts of
 /// scan_pieces(), and on meshes of at most scan_single_max_faces faces also one chart per
 /// component; the layout with the higher effective texel share is kept.
 void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
                  const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
                  const UnwrapOptions& options, UnwrapResult& result) {
-  UnwrapReport& rep = result.report;
-  const auto t0 = Clock::now();
-  const std::vector<Component> pieces = scan_pieces(comps, dopt, gutter, options);
-  rep.time_segment += seconds_since(t0);
+  const std::vector<Component> pieces =
+      timed_scan_pieces(comps, dopt, gutter, options, result.report);
   unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, true);
   if (mesh.num_faces() > options.scan_single_max_faces) return;
-  UnwrapResult single;
-  single.report = rep;
-  unwrap_pieces(mesh, comps, dopt, gutter, t_start, options, single, true);
-  if (single.report.effective_texel_share > rep.effective_texel_share)
-    result = std::move(single);
-  else
-    copy_phase_times(single.report, rep);
+  keep_better_layout(mesh, comps, dopt, gutter, t_start, options, true, result);
 }
 
 }  // namespace
@@ -1072,17 +1096,15 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
                                           comps.size() > 1, probe ? options.single_probe_l2 : 0);
   if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share) {
     segment_until_good(mesh, comps, dopt, gutter, t_start, options, !single_built, result);
-    if (!single_built && rep.effective_texel_share < options.min_texel_share) {
-      // No segmentation reached the share: the single chart after all (never below it).
-      UnwrapResult single;
-      single.report = rep;
-      unwrap_pieces(mesh, comps, dopt, gutter, t_start, options, single, false);
-      if (single.report.effective_texel_share > rep.effective_texel_share ||
-          result.param.uv_faces.empty())
-        result = std::move(single);
-      else
-        copy_phase_times(single.report, rep);
-    }
+    // No segmentation reached the share: the single chart after all (never below it).
+    if (!single_built && rep.effective_texel_share < options.min_texel_share)
+      keep_better_layout(mesh, comps, dopt, gutter, t_start, options, false, result);
+    // Still below: the charts of the scan segmentation, split by each piece's own stretch rather
+    // than a count over the whole mesh (a large smooth part no longer draws the charts that rough
+    // parts need), built too and kept if better.
+    if (rep.effective_texel_share < options.min_texel_share)
+      keep_better_layout(mesh, timed_scan_pieces(comps, dopt, gutter, options, rep), dopt, gutter,
+                         t_start, options, true, result);
   }
   if (rep.num_charts > 1) rep.cut_length = seam_length(mesh, result.param);
   rep.time_total = seconds_since(t_start);

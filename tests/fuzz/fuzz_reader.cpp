@@ -1,7 +1,7 @@
 // libFuzzer target: one input format per build (ADAPTEX_FUZZ_EXTENSION and the ADAPTEX_FUZZ_* flags, see
 // CMakeLists.txt). The bytes go through the same code as the CLI after its file checks: the in-memory
 // entry points that the path-based readers call once they have read the file (read_mesh_from_memory
-// with the CLI's validation and repair, parse_strokes, read_image_from_memory for PNG, JPEG and TGA,
+// with the CLI's validation and repair, parse_strokes and parse_material_strokes, read_image_from_memory for PNG, JPEG and TGA,
 // parse_mtl for material files; fuzz_obj and fuzz_gltf also run read_textured_asset_from_memory). The studio's project
 // reader has no in-memory entry point, so fuzz_project writes each input to a file and calls
 // read_project. With ADAPTEX_FUZZ_VIA_FILE=1 in the environment every target does that (writes the
@@ -23,6 +23,7 @@
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/input_file.h"
 #include "adaptex/io/mesh_io.h"
+#include "adaptex/paint/material_strokes.h"
 #include "adaptex/paint/strokes.h"
 #if ADAPTEX_FUZZ_PROJECT
 #include "settings.h"
@@ -60,7 +61,11 @@ bool via_file() {
 
 void read_file(const std::filesystem::path& path) {
 #if ADAPTEX_FUZZ_STROKES
-  (void)adaptex::read_strokes(path);
+  try {
+    (void)adaptex::read_strokes(path);
+  } catch (const adaptex::Error&) {
+  }
+  (void)adaptex::read_material_strokes(path);  // version 2 (and 1) on the same bytes
 #elif ADAPTEX_FUZZ_PNG
   (void)adaptex::read_image(path);
 #elif ADAPTEX_FUZZ_MTL
@@ -74,7 +79,11 @@ void read_file(const std::filesystem::path& path) {
 
 void read_memory([[maybe_unused]] const std::string& bytes, [[maybe_unused]] const std::filesystem::path& path) {
 #if ADAPTEX_FUZZ_STROKES
-  (void)adaptex::parse_strokes(bytes, path.string(), path.parent_path());
+  try {
+    (void)adaptex::parse_strokes(bytes, path.string(), path.parent_path());
+  } catch (const adaptex::Error&) {
+  }
+  (void)adaptex::parse_material_strokes(bytes, path.string(), path.parent_path());
 #elif ADAPTEX_FUZZ_PNG
   (void)adaptex::read_image_from_memory(bytes, path.string());
 #elif ADAPTEX_FUZZ_MTL

@@ -6,3 +6,4 @@ adaptex_add_test(test_paint_texel_saving SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_
 adaptex_add_test(test_paint_brush SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_painter.cpp LIBS adaptex::paint)
 adaptex_add_test(test_paint_brush_cli SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_brush_cli.cpp
                  LIBS adaptex::paint adaptex::io nlohmann_json::nlohmann_json)
+adaptex_add_test(test_paint_material_strokes SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_material_strokes.cpp LIBS adaptex::paint)

@@ -2,3 +2,6 @@
 adaptex_add_test(test_decal SOURCES test_decal.cpp LIBS adaptex::adaptex)
 adaptex_add_test(test_export SOURCES test_export.cpp LIBS adaptex::adaptex TinyGLTF::TinyGLTF)
 adaptex_add_test(test_paint_cli SOURCES test_paint_cli.cpp LIBS adaptex::adaptex nlohmann_json::nlohmann_json)
+# A layered material (stroke file version 2) painted into PBR textures and exported.
+adaptex_add_test(test_material_paint SOURCES test_material_paint.cpp LIBS adaptex::adaptex TinyGLTF::TinyGLTF
+                 nlohmann_json::nlohmann_json)

@@ -11,6 +11,8 @@
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/generate.h"
+#include "adaptex/paint/material_signal.h"
+#include "adaptex/paint/material_strokes.h"
 #include "adaptex/paint/painter.h"
 #include "adaptex/paint/strokes.h"
 #include "brush_test_util.h"
@@ -45,7 +47,7 @@ TEST(BrushCli, BadStrokeFilesExit2WithOneLineAndNoOutput) {
   };
   const std::vector<Case> cases = {
       {wrap(one, R"("format": "other", "version": 1)"), "\"format\" must be \"adaptex.strokes\""},
-      {wrap(one, R"("format": "adaptex.strokes", "version": 3)"), "\"version\" must be 1 (got 3)"},
+      {wrap(one, R"("format": "adaptex.strokes", "version": 3)"), "\"version\" must be 1"},
       {wrap(ok + R"({"color": [1, 0, 0], "dabs": [[0, 0, 0]]})"), "stroke 1: missing required field \"radius\""},
       {wrap(ok + R"({"color": [1, 0, 0], "radius": 1e999, "dabs": [[0, 0, 0]]})"), "stroke 1: \"radius\" must be finite"},
       {wrap(ok + R"({"color": [1, 0, 0], "radius": "NaN", "dabs": [[0, 0, 0]]})"), "stroke 1: \"radius\" must be a finite number"},
@@ -188,7 +190,60 @@ TEST(BrushCli, GenerateIsReproducibleAndOnTheSurface) {
   const auto bad = run_cli("strokes generate " + q(tmp.path / "s.obj") + " --kind speckle -o " + q(tmp.path / "x.json"));
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
-  EXPECT_NE(bad.err.find("unknown stroke kind \"speckle\" (expected lines, blobs, mixed or dots)"), std::string::npos)
+  EXPECT_NE(bad.err.find("unknown stroke kind \"speckle\" (expected lines, blobs, mixed, dots or material)"), std::string::npos)
       << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path / "x.json"));
+}
+
+TEST(BrushCli, GenerateMaterialWritesAVersion2FileThatPaintsEveryChannel) {
+  TempDir tmp;
+  const TriMesh mesh = shapes::icosphere(3, 1.0);
+  write_obj(tmp.path / "s.obj", mesh, nullptr);
+  auto gen = [&](int seed, const std::string& name) {
+    const auto r = run_cli("strokes generate " + q(tmp.path / "s.obj") + " --kind material --seed " +
+                           std::to_string(seed) + " -o " + q(tmp.path / name));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+  };
+  const std::string summary = gen(2, "a.json");
+  gen(2, "b.json");
+  gen(3, "c.json");
+  EXPECT_EQ(slurp(tmp.path / "a.json"), slurp(tmp.path / "b.json"));
+  EXPECT_NE(slurp(tmp.path / "a.json"), slurp(tmp.path / "c.json"));
+  const auto js = nlohmann::json::parse(summary);
+  EXPECT_EQ(js["version"].get<int>(), 2);
+  EXPECT_EQ(js["layers"].size(), 3u);
+  const MaterialStrokeFile m = read_material_strokes(tmp.path / "a.json");
+  ASSERT_EQ(m.layers.size(), 3u);
+  int masked = 0, with_pressure = 0;
+  unsigned channels = 0;
+  for (const MaterialLayer& l : m.layers) {
+    masked += l.mask.has_value();
+    for (const MaterialStroke& s : l.strokes) {
+      channels |= s.channels;
+      with_pressure += !s.pressure.empty();
+    }
+  }
+  EXPECT_GE(masked, 1);
+  EXPECT_GT(with_pressure, 0);
+  const unsigned painted = channel_bit(Channel::BaseColor) | channel_bit(Channel::Roughness) |
+                           channel_bit(Channel::Metallic) | channel_bit(Channel::Height);
+  EXPECT_EQ(channels & painted, painted);
+  // Every channel varies over the surface (each carries detail for the error model).
+  std::vector<SurfacePoint> pts;
+  for (int f = 0; f < mesh.num_faces(); ++f) pts.push_back({f, 1.0 / 3, 1.0 / 3});
+  const std::vector<MaterialValue> v = evaluate_material(mesh, m, pts);
+  for (int c : {0, 4, 5, 6}) {
+    double lo = 1, hi = 0;
+    for (const MaterialValue& x : v) lo = std::min(lo, x[c]), hi = std::max(hi, x[c]);
+    EXPECT_GT(hi - lo, 0.1) << "component " << c;
+  }
+  // `strokes check` reads it and writes it back unchanged.
+  const auto chk = run_cli("strokes check " + q(tmp.path / "a.json") + " -o " + q(tmp.path / "n.json"));
+  ASSERT_EQ(chk.exit_code, 0) << chk.err;
+  EXPECT_EQ(slurp(tmp.path / "a.json"), slurp(tmp.path / "n.json"));
+  const auto bad = run_cli("strokes generate " + q(tmp.path / "s.obj") + " --kind material --count 5 -o " +
+                           q(tmp.path / "x.json"));
+  EXPECT_EQ(bad.exit_code, 2);
   EXPECT_FALSE(std::filesystem::exists(tmp.path / "x.json"));
 }

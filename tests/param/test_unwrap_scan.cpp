@@ -36,6 +36,44 @@ TEST(UnwrapScan, ManyComponentsHandlesAndHolesGetDiskChartsWithHighShare) {
   EXPECT_GE(r.report.effective_texel_share, 0.5);
 }
 
+TEST(UnwrapScan, SplitsLargeCoarseFragmentsOfFewFaces) {
+  // A photogrammetry scan keeps much of its area in few large, folded faces. Here one fragment of
+  // 32 such faces holds most of the area, beside 40 two-face squares and a fine flat patch.
+  // Two charts for that fragment cost the layout its share (0.42 when pieces of fewer than 32
+  // faces were never split); splitting it as long as the stretch pays for the seam gives 0.54.
+  std::vector<TriMesh> parts{test::crumpled_patch(4, 4, 4.0, 6.0, Vec3(0, 0, 0), 1),
+                             test::flat_patch(40, 4.0, Vec3(0, 6, 0))};
+  for (int k = 0; k < 40; ++k)
+    parts.push_back(test::flat_patch(1, 0.3, Vec3(6 + 0.5 * (k % 8), 0.5 * (k / 8), 0)));
+  const TriMesh mesh = shapes::disjoint_union(parts);
+  ASSERT_GT(analyze_topology(mesh).num_components, 32);  // the scan segmentation runs
+  UnwrapOptions opt;
+  opt.augment_time_budget = 1e9;
+  UnwrapResult r;
+  test::check_unwrap("coarse_fragments", mesh, opt, &r);
+  EXPECT_GT(r.report.num_charts, 42);  // the fragment was split
+  EXPECT_GE(r.report.effective_texel_share, 0.5);
+}
+
+TEST(UnwrapScan, FewComponentsThatNoChartCountServesGetStretchDrivenCharts) {
+  // Ten rough coarse fragments and a large flat patch: 11 components, below the scan path. No
+  // count of compact charts (4 ... 64 over the whole mesh) reaches the share (0.45 at best): the
+  // flat patch, most of the area, draws the charts the fragments need. The segmentation that
+  // splits each piece by its own stretch is then built too, and kept: 0.50.
+  std::vector<TriMesh> parts;
+  for (int k = 0; k < 10; ++k)
+    parts.push_back(
+        test::crumpled_patch(4, 3, 1.0, 3.0, Vec3(1.5 * (k % 5), 1.5 * (k / 5), 0), k + 1));
+  parts.push_back(test::flat_patch(40, 8.0, Vec3(0, 8, 0)));
+  const TriMesh mesh = shapes::disjoint_union(parts);
+  UnwrapOptions opt;
+  opt.augment_time_budget = 1e9;
+  UnwrapResult r;
+  test::check_unwrap("rough_fragments", mesh, opt, &r);
+  EXPECT_GT(r.report.time_segment, 0.0);
+  EXPECT_GE(r.report.effective_texel_share, 0.48);
+}
+
 TEST(UnwrapScan, ReportsEveryPhaseAndCancelsInEach) {
   const TriMesh mesh = test::scan_like_mesh(20000);
   std::set<std::string> phases;

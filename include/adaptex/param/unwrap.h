@@ -19,7 +19,8 @@ enum class ChartMode {
   Single,
   /// One chart per component when that layout reaches UnwrapOptions::min_texel_share; otherwise
   /// the components are segmented into 4, 6, 8, 12, 16, ... charts (up to max_charts) until a layout
-  /// reaches it, and the layout with the highest effective texel share is kept. On one component,
+  /// reaches it, and the layout with the highest effective texel share is kept; when none reaches
+  /// it, the charts of the scan segmentation (scan_* options) are built too. On one component,
   /// a single chart predicted to fail (UnwrapOptions::single_probe_l2) is skipped and the counts
   /// from probe_first_charts on are tried first.
   Auto,
@@ -119,8 +120,9 @@ struct UnwrapOptions {
   int scan_piece_faces = 50000;
   /// Scans: a piece whose cheap parameterization has an L2 stretch above this (at its best
   /// rectangle aspect) is split in two when the predicted gain in texel share (lower L2) exceeds
-  /// the predicted loss (the gutter along the new seam); a piece with degenerate or flipped UV
-  /// triangles is split regardless (docs/charts.md, "Scans"). >= 1.
+  /// the predicted loss (the gutter along the new seam), down to pieces of 8 faces; a piece of
+  /// 32 faces or more with degenerate or flipped UV triangles is split regardless
+  /// (docs/charts.md, "Scans"). >= 1.
   double scan_chart_l2 = 1.1;
   /// Scans: rounds of splitting (each round at most doubles the pieces). >= 0.
   int scan_max_rounds = 12;

@@ -1,0 +1,123 @@
+/// \file material_paint.cpp
+/// Channel textures of a layered material on one layout, and the normal map derived from its height.
+#include "adaptex/paint/material_paint.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
+#include "adaptex/paint/material_signal.h"
+#include "adaptex/paint/padding.h"
+
+namespace adaptex {
+
+namespace {
+
+std::uint8_t to_byte(double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
+
+/// ∂P/∂u and ∂P/∂v of face \p f (zero when its UV triangle is degenerate).
+void face_frame(const TriMesh& mesh, const Parameterization& param, int f, Vec3& pu, Vec3& pv) {
+  const Face& F = mesh.faces[f];
+  const Face& T = param.uv_faces[f];
+  const Vec3 e1 = mesh.positions[F[1]] - mesh.positions[F[0]], e2 = mesh.positions[F[2]] - mesh.positions[F[0]];
+  const Vec2 d1 = param.uv[T[1]] - param.uv[T[0]], d2 = param.uv[T[2]] - param.uv[T[0]];
+  const double det = d1.x() * d2.y() - d1.y() * d2.x();
+  if (!(std::abs(det) > 0)) {
+    pu = pv = Vec3::Zero();
+    return;
+  }
+  pu = (e1 * d2.y() - e2 * d1.y()) / det;
+  pv = (e2 * d1.x() - e1 * d2.x()) / det;
+}
+
+/// Derivative of the height along one texel axis at texel (i, j): central where both neighbours lie in
+/// a chart, one-sided where one does, 0 where none does. \p step is the neighbour offset (1 or W).
+double axis_derivative(const TexelMap& map, const std::vector<double>& h, int t, int i, int n, int step, double texel) {
+  const bool lo = i > 0 && map.face[t - step] >= 0, hi = i + 1 < n && map.face[t + step] >= 0;
+  if (lo && hi) return (h[t + step] - h[t - step]) / (2 * texel);
+  if (hi) return (h[t + step] - h[t]) / texel;
+  if (lo) return (h[t] - h[t - step]) / texel;
+  return 0;
+}
+
+void put_normal(ImageRGBA8& img, int t, const Vec3& n) {
+  for (int c = 0; c < 3; ++c) img.data[4 * t + c] = to_byte(0.5 * (n[c] + 1));
+  img.data[4 * t + 3] = 255;
+}
+
+}  // namespace
+
+ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                  const std::vector<double>& height) {
+  if (height.size() != static_cast<size_t>(map.width) * map.height)
+    throw InvalidInputError("normal_map_from_height: one height per texel expected");
+  ImageRGBA8 img(map.width, map.height);
+  for (int t = 0; t < map.width * map.height; ++t) put_normal(img, t, Vec3(0, 0, 1));
+  tbb::parallel_for(size_t(0), map.inside.size(), [&](size_t k) {
+    const int t = map.inside[k], i = t % map.width, j = t / map.width, f = map.face[t];
+    Vec3 pu, pv;
+    face_frame(mesh, param, f, pu, pv);
+    const Vec3 n = face_normal(mesh, f);
+    const Vec3 tangent = (pu - n * n.dot(pu));
+    if (!(tangent.norm() > 0) || !(pv.norm() > 0)) return;  // degenerate UV triangle: flat
+    const double hu = axis_derivative(map, height, t, i, map.width, 1, 1.0 / map.width);
+    const double hv = axis_derivative(map, height, t, j, map.height, map.width, 1.0 / map.height);
+    // Surface gradient: ∇H = [pu pv] G⁻¹ (hu, hv), G the metric of the face's UV map.
+    const double a = pu.dot(pu), b = pu.dot(pv), c = pv.dot(pv), det = a * c - b * b;
+    if (!(det > 0)) return;
+    const Vec3 grad = pu * ((c * hu - b * hv) / det) + pv * ((a * hv - b * hu) / det);
+    const Vec3 T = tangent.normalized();
+    const double sign = n.cross(T).dot(pv) < 0 ? -1.0 : 1.0;  // mirrored charts: the bitangent flips
+    const Vec3 B = sign * n.cross(T);
+    put_normal(img, t, Vec3(-grad.dot(T), -grad.dot(B), 1).normalized());
+  });
+  return img;
+}
+
+MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file,
+                                const MaterialPaintOptions& options) {
+  if (options.size < 1 || options.size > kMaxTextureSize)
+    throw InvalidInputError("paint_material: size must be in [1, " + std::to_string(kMaxTextureSize) + "]");
+  if (options.padding < 0) throw InvalidInputError("paint_material: padding must be >= 0");
+  if (param.uv_faces.size() != mesh.faces.size())
+    throw InvalidInputError("paint_material: the layout and the mesh have different face counts");
+  const int N = options.size;
+  const TexelMap map = build_texel_map(mesh, param, N, N);
+  std::vector<SurfacePoint> points(map.inside.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    const int t = map.inside[k];
+    points[k] = SurfacePoint{map.face[t], map.bary[t].x(), map.bary[t].y()};
+  }
+  const std::vector<MaterialValue> values = evaluate_material(mesh, file, points);
+  std::vector<MaterialValue> texel(static_cast<size_t>(N) * N, file.background);
+  for (size_t k = 0; k < points.size(); ++k) texel[map.inside[k]] = values[k];
+  const SeamPadding pad = build_seam_padding(map, options.padding);
+  for (int t : pad.padded) texel[t] = texel[pad.source[t]];
+
+  MaterialTextures out;
+  out.height_scale = file.height_scale > 0 ? file.height_scale : 0.01 * bounding_box(mesh).diagonal();
+  for (ImageRGBA8* img : {&out.base_color, &out.roughness, &out.metallic, &out.height, &out.metallic_roughness})
+    *img = ImageRGBA8(N, N);
+  std::vector<double> height(texel.size());
+  for (size_t t = 0; t < texel.size(); ++t) {
+    const MaterialValue& v = texel[t];
+    const std::uint8_t rgba[4] = {to_byte(v[0]), to_byte(v[1]), to_byte(v[2]), to_byte(v[3])};
+    std::copy(rgba, rgba + 4, &out.base_color.data[4 * t]);
+    const std::pair<ImageRGBA8*, double> greys[] = {{&out.roughness, v[4]}, {&out.metallic, v[5]}, {&out.height, v[6]}};
+    for (const auto& [img, g] : greys) {
+      std::fill_n(&img->data[4 * t], 3, to_byte(g));
+      img->data[4 * t + 3] = 255;
+    }
+    const std::uint8_t mr[4] = {255, to_byte(v[4]), to_byte(v[5]), 255};
+    std::copy(mr, mr + 4, &out.metallic_roughness.data[4 * t]);
+    height[t] = (v[6] - 0.5) * out.height_scale;
+  }
+  out.normal = normal_map_from_height(mesh, param, map, height);
+  apply_seam_padding(out.normal, pad);
+  return out;
+}
+
+}  // namespace adaptex
