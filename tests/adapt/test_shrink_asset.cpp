@@ -16,6 +16,7 @@
 #include "adaptex/io/asset_io.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
+#include "adaptex/paint/export.h"
 #include "test_support.h"
 
 namespace adaptex {
@@ -54,7 +55,7 @@ ImageRGBA8 stripes(int size, std::array<std::uint8_t, 3> a, std::array<std::uint
 
 std::string slurp(const std::filesystem::path& p) {
   std::ostringstream s;
-  s << std::ifstream(p).rdbuf();
+  s << std::ifstream(p, std::ios::binary).rdbuf();
   return s.str();
 }
 
@@ -199,6 +200,32 @@ TEST_F(TwoMaterials, ATilingChartIsBadInputAndWritesNothing) {
   EXPECT_NE(r.err.find("material 'skin'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("tiling"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+/// One material on every face: the files are those of the one-material shrink and export, byte for byte.
+TEST_F(TwoMaterials, OneMaterialOutputIsTheOneMaterialExport) {
+  std::fill(face_material.begin(), face_material.end(), 0);
+  write_obj(dir.path / "m.obj", mesh, param, "m.mtl", {"skin"}, face_material);
+  std::ofstream(dir.path / "m.mtl") << "newmtl skin\nmap_Kd a.png\nnorm a_n.png\n";
+  const auto out = dir.path / "out";
+  const auto r = test::run_cli("-q shrink " + (dir.path / "m.obj").string() + " --size 32 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const TexturedAsset in = read_textured_asset(dir.path / "m.obj");
+  ShrinkOptions so;
+  so.size = 32;
+  const std::vector<ShrinkMap> maps{{"base_color", in.materials[0].maps[0].image, MapKind::Color},
+                                    {"normal", in.materials[0].maps[1].image, MapKind::Normal}};
+  const ShrinkResult res = shrink_textured_mesh(in.mesh, in.param, maps, so);
+  ExportOptions eo;
+  eo.mtl_clamp = true;
+  eo.maps.push_back({"normal", res.maps[1]});
+  const auto ref = dir.path / "ref";
+  AtomicOutput o;
+  export_textured_mesh(o, ref, "m", in.mesh, res.param, res.maps[0], eo);
+  o.commit();
+  for (const char* f : {"m.obj", "m.mtl", "m.png", "m_normal.png", "m.glb"})
+    EXPECT_EQ(slurp(out / f), slurp(ref / f)) << f;
+  EXPECT_FALSE(std::filesystem::exists(out / "m_skin.png"));
 }
 
 TEST(ShrinkAsset, WrapsChartsOfOtherTilesAndKeepsStraddlingOnes) {
