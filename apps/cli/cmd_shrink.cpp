@@ -1,12 +1,14 @@
-// `adaptex shrink`: a textured asset (OBJ + MTL, glTF/GLB) with every map of its material made
-// smaller on a repacked copy of the artist's atlas (adapt/shrink.h). Writes NAME.obj/.mtl/.png
-// (+ NAME_SLOT.png per further map), NAME.glb and report.json into OUTDIR, all or nothing.
+// `adaptex shrink`: a textured asset (OBJ + MTL, glTF/GLB) with every map of every material made
+// smaller on a repacked copy of the artist's atlas (adapt/shrink_asset.h). Writes NAME.obj/.mtl,
+// the maps (NAME.png + NAME_SLOT.png for one material; NAME_MATERIAL[_SLOT].png for several), NAME.glb
+// and report.json into OUTDIR, all or nothing.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "adaptex/adapt/shrink.h"
+#include "adaptex/adapt/shrink_asset.h"
 #include "adaptex/adapt/shrink_report.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
@@ -14,6 +16,7 @@
 #include "adaptex/io/asset_io.h"
 #include "adaptex/paint/export.h"
 #include "cli_common.h"
+#include "shrink_output.h"
 #include "shrink_print.h"
 
 namespace adaptex::cli {
@@ -29,27 +32,31 @@ struct ShrinkArgs {
   bool no_refine = false;
 };
 
-/// The maps of the asset's one textured material, base colour first. \throw InvalidInputError
-std::vector<ShrinkMap> asset_maps(const TexturedAsset& asset, const std::string& file) {
-  const Material* textured = nullptr;
-  for (const Material& m : asset.materials)
-    if (!m.maps.empty()) {
-      if (textured)
-        throw InvalidInputError(file + ": several materials have texture maps ('" + textured->name + "', '" + m.name +
-                                "'); shrink supports one textured material");
-      textured = &m;
-    }
-  if (!textured) throw InvalidInputError(file + ": no material with a texture map");
-  std::vector<ShrinkMap> maps;
-  for (const TextureMap& t : textured->maps) {
-    const std::string slot = map_slot_name(t.slot);
-    ShrinkMap m{slot, t.image, map_kind_of_slot(slot)};
-    if (t.slot == MapSlot::BaseColor)
-      maps.insert(maps.begin(), std::move(m));
-    else
-      maps.push_back(std::move(m));
+/// One material on every face: the outputs of the one-material export (NAME.png, NAME_SLOT.png).
+bool one_material(const TexturedAsset& asset, const AssetShrinkResult& res) {
+  return res.groups.size() == 1 && res.groups[0].materials.size() == 1 &&
+         static_cast<int>(res.groups[0].faces.size()) == asset.mesh.num_faces();
+}
+
+/// "shrink: FILE: F faces, M map(s) WxH -> NxN" per group (the group's materials named when several).
+void print_plan(const Context& ctx, const ShrinkArgs& a, const TexturedAsset& asset, const AssetShrinkOptions& opt) {
+  const std::vector<MaterialGroupShrink> groups = material_groups(asset);
+  for (const MaterialGroupShrink& g : groups) {
+    const TextureMap* first = nullptr;
+    std::string names;
+    for (int m : g.materials) names += (names.empty() ? "" : "+") + asset.materials[m].name;
+    const auto faces = groups.size() == 1 && g.materials.size() == 1 ? asset.mesh.num_faces() : std::count_if(asset.face_material.begin(), asset.face_material.end(), [&](int m) {
+      return std::find(g.materials.begin(), g.materials.end(), m) != g.materials.end();
+    });
+    for (const GroupMapRef& r : g.refs)
+      if (r.map == 0) first = asset.materials[r.material].find(r.slot);
+    const ImageRGBA8& img = first->image;
+    const int n = shrink_output_size(opt, img);
+    ctx.info("shrink: " + a.mesh + ": " + (groups.size() > 1 ? "material " + names + ": " : "") +
+             std::to_string(faces) + " faces, " + std::to_string(g.slots.size()) + " map(s) " +
+             std::to_string(img.width) + "x" + std::to_string(img.height) + " -> " + std::to_string(n) + "x" +
+             std::to_string(n));
   }
-  return maps;
 }
 
 void run_shrink(const ShrinkArgs& a, const Context& ctx) {
@@ -62,41 +69,48 @@ void run_shrink(const ShrinkArgs& a, const Context& ctx) {
   AssetReadOptions ro;
   ro.mesh.repair = true;  // the shrink never needs a manifold mesh
   const TexturedAsset asset = read_textured_asset(a.mesh, ro);
-  const std::vector<ShrinkMap> maps = asset_maps(asset, a.mesh);
-  const ImageRGBA8& first = maps[0].image;
-  ShrinkOptions opt;
-  // --factor K: K times fewer texels (each side divided by sqrt(K)).
-  opt.size = a.size > 0 ? a.size
-                        : std::max(8, static_cast<int>(std::lround(std::max(first.width, first.height) / std::sqrt(a.factor))));
+  AssetShrinkOptions opt;
+  opt.size = a.size;
+  opt.factor = a.factor;
   opt.progress = shrink_progress(ctx, "shrink");
-  opt.force_candidate = a.candidate;
-  opt.max_face_growth = a.no_refine ? 0.0 : a.max_face_growth;
-  ctx.info("shrink: " + a.mesh + ": " + std::to_string(asset.mesh.num_faces()) + " faces, " +
-           std::to_string(maps.size()) + " map(s) " + std::to_string(first.width) + "x" + std::to_string(first.height) +
-           " -> " + std::to_string(opt.size) + "x" + std::to_string(opt.size));
-  const ShrinkResult res = shrink_textured_mesh(asset.mesh, asset.param, maps, opt);
+  opt.shrink.force_candidate = a.candidate;
+  opt.shrink.max_face_growth = a.no_refine ? 0.0 : a.max_face_growth;
+  print_plan(ctx, a, asset, opt);
+  const AssetShrinkResult res = shrink_textured_asset(asset, opt);
+  const bool one = one_material(asset, res);
   ExportOptions eo;
   eo.mtl_clamp = true;  // the layout ends at the square's border: no renderer may wrap
-  std::vector<std::string> slots;
-  for (size_t m = 0; m < maps.size(); ++m) {
-    slots.push_back(maps[m].slot);
-    if (m > 0) eo.maps.push_back({maps[m].slot, res.maps[m]});
-  }
   AtomicOutput out;
-  export_textured_mesh(out, a.outdir, name, asset.mesh, res.param, res.maps[0], eo);
+  const std::vector<std::string> names = output_material_names(asset);
+  std::vector<std::vector<std::pair<std::string, std::string>>> files(asset.materials.size());
+  if (one) {
+    const MaterialGroupShrink& g = res.groups[0];
+    files[g.materials[0]].emplace_back(g.slots[0], name + ".png");
+    for (size_t m = 1; m < g.slots.size(); ++m) {
+      eo.maps.push_back({g.slots[m], g.result.maps[m]});
+      files[g.materials[0]].emplace_back(g.slots[m], name + "_" + g.slots[m] + ".png");
+    }
+    export_textured_mesh(out, a.outdir, name, asset.mesh, res.param, g.result.maps[0], eo);
+  } else {
+    const ExportMaterials set = shrink_export_materials(asset, res, names, name);
+    files = material_files(asset, set);
+    export_textured_materials(out, a.outdir, name, asset.mesh, res.param, set, eo);
+  }
   nlohmann::ordered_json j;
   j["input"] = a.mesh;
   j["faces"] = asset.mesh.num_faces();
-  j["size"] = {opt.size, opt.size};
-  j["shrink"] = shrink_report_json(res, slots);
+  j["size"] = {res.groups[0].size, res.groups[0].size};
+  if (one) j["shrink"] = shrink_report_json(res.groups[0].result, res.groups[0].slots);
   j["psnr"] = res.psnr;
   j["psnr_downsized"] = res.psnr_downsized;
+  if (!one) j["psnr_weighting"] = "3-D area of each material group (mean of the groups' MSE, base colour)";
+  j["materials"] = materials_report(asset, res, names, files);
   j["time_total_ms"] = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   write_text(out, std::filesystem::path(a.outdir) / "report.json", j.dump(2) + "\n");
   out.commit();
-  print_shrink_summary(res, slots);
-  ctx.info("shrink: " + res.chosen + ", wrote " + (std::filesystem::path(a.outdir) / name).string() +
-           ".{obj,mtl,png,glb} and report.json");
+  print_asset_summary(asset, res, one);
+  ctx.info("shrink: " + (one ? res.groups[0].result.chosen + ", " : "") + "wrote " +
+           (std::filesystem::path(a.outdir) / name).string() + ".{obj,mtl,png,glb} and report.json");
 }
 
 }  // namespace

@@ -67,6 +67,7 @@ Project App::snapshot() const {
   p.brush = brush_;
   p.view = view_;
   p.session = session_;
+  p.unwrap = unwrap();
   p.camera = camera_;
   return p;
 }
@@ -148,7 +149,9 @@ void App::open_mesh(const std::string& path_in) {
   if (pending_.reload) pending_ = PendingLoad();  // another mesh replaces the running re-unwrap
   const std::string path = absolute_path(path_in);
   const Vec3 bg = pending_.background.value_or(history().background());
-  jobs_.start_load(path, session_, bg);
+  // A project or recovery file (pending_.unwrap set) keeps its own texture size.
+  const bool fresh = !pending_.unwrap.has_value() && !pending_.reload;
+  jobs_.start_load(path, session_, bg, LoadRequest{pending_.unwrap.value_or(unwrap_), fresh && size_from_texture_});
   if (path.rfind("builtin:", 0) != 0) note_folder(path);
   // A recovery file of this mesh or project (kept for later, or another one) is asked about first.
   store_.recovery().reoffer(path, pending_.project_path);
@@ -194,6 +197,7 @@ void App::apply_project(Project p, bool from_project, const std::filesystem::pat
   session_ = p.session;
   pending_ = PendingLoad{std::move(p.strokes.strokes), p.strokes.background, from_project, project_path, false,
                          p.camera};
+  pending_.unwrap = p.unwrap;
   open_mesh(p.mesh_path);
 }
 
@@ -354,7 +358,7 @@ std::vector<ScreenCircle> App::brush_cursors() const {
 bool App::adapt_wanted() const {
   if (!adapt_pending_ || !painting_.surface()) return false;
   // With nothing to adapt to, the layout is the initial one (paint_history keeps it).
-  const bool keeps_initial = session_.adapt.mode == AdaptMode::None || history().strokes().empty();
+  const bool keeps_initial = adapt_mode() == AdaptMode::None || history().strokes().empty();
   return !(keeps_initial && painting_.on_initial_layout());
 }
 
@@ -387,6 +391,7 @@ std::string App::status_line() const {
         s += " (refined to " + std::to_string(sf->mesh->num_faces()) + ")";
       s += ", " + std::to_string(sf->param->num_charts) + " charts, texture " + std::to_string(sf->size) + "^2";
     }
+    s += " | " + m.layout;
     s += " | " + std::to_string(history().strokes().size()) + " strokes, " + std::to_string(history().num_dabs()) +
          " dabs";
     if (unsaved()) s += " (unsaved)";
@@ -394,7 +399,7 @@ std::string App::status_line() const {
     s += "no model (drop a mesh file on the window or use Open)";
   }
   s += " | adapt ";
-  s += to_string(session_.adapt.mode);
+  s += on_artist_atlas() && session_.adapt.mode != AdaptMode::None ? "off on the atlas" : to_string(session_.adapt.mode);
   if (view_.fixed_layout) s += showing_fixed_layout() ? " | showing the FIXED layout (L)" : " | fixed layout: painting...";
   if (!last_cycle_.empty()) {
     s += " | last cycle:";
@@ -648,11 +653,33 @@ void App::clear_decal() {
 // ---- background jobs --------------------------------------------------------------------------
 
 void App::request_adapt() {
+  if (const std::string off = adaptation_off(); !off.empty()) return add_message(off, true);
   if (session_.adapt.mode == AdaptMode::None) return add_message("choose an adaptation mode first", true);
   adapt_pending_ = true;
 }
 
 void App::session_options_changed() { history_changed(); }
+
+AdaptMode App::adapt_mode() const { return on_artist_atlas() ? AdaptMode::None : session_.adapt.mode; }
+
+std::string App::adaptation_off() const {
+  if (!on_artist_atlas() || session_.adapt.mode == AdaptMode::None) return {};
+  const double shared = painting_.model()->shared_fraction;
+  std::string why = "adaptation is off on the artist's UV atlas: the re-parameterization repaints the strokes "
+                    "alone and would drop the artist's texture";
+  if (shared > 0) why += ", and it cannot keep the texels its overlapping charts share";
+  return why + " (File > Fresh unwrap adapts a fresh layout)";
+}
+
+void App::set_unwrap(bool unwrap) {
+  unwrap_ = unwrap;
+  const auto& m = painting_.model();
+  if (!m || m->unwrap_asked == unwrap || m->path.rfind("builtin:", 0) == 0 || jobs_.loading()) return;
+  // Reopens the model with the other layout; the strokes are 3-D and go onto it as they are.
+  pending_ = PendingLoad{{}, history().background(), !unsaved(), store_.project_path(), true};
+  pending_.relayout = true;
+  jobs_.start_load(m->path, session_, history().background(), LoadRequest{unwrap_, !unwrap_});
+}
 
 void App::request_compare() {
   if (const Surface* s = painting_.surface()) {
@@ -714,7 +741,7 @@ void App::maybe_start_rebuild() {
 }
 
 bool App::adapts_live() const {
-  return session_.schedule == ReparamSchedule::EachStroke && session_.adapt.mode != AdaptMode::None &&
+  return session_.schedule == ReparamSchedule::EachStroke && adapt_mode() != AdaptMode::None &&
          !history().strokes().empty();
 }
 
@@ -724,7 +751,7 @@ void App::maybe_unwrap_again() {
     return;
   // `adaptex paint --size N` unwraps with a gutter of so many texels of N: so does the studio.
   pending_ = PendingLoad{{}, history().background(), !unsaved(), store_.project_path(), true};
-  jobs_.start_load(m->path, session_, history().background());
+  jobs_.start_load(m->path, session_, history().background(), LoadRequest{m->unwrap_asked, false});
 }
 
 void App::finish_load(Job<LoadResult>& job) {
@@ -736,6 +763,7 @@ void App::finish_load(Job<LoadResult>& job) {
     std::vector<Stroke> strokes = pending.reload ? history().strokes() : std::move(pending.strokes);
     const Vec3 bg = pending.reload ? history().background() : pending.background.value_or(history().background());
     const auto model = r.model;
+    if (model->base) session_.texture_size = model->unwrap_size;  // it may have brought its texture's size
     painting_.set_model(model, std::move(r.surface), std::move(strokes), bg);
     // Strokes from a project are saved; replayed or recovered ones are not.
     const bool saved = pending.from_project || (history().strokes().empty() && !pending.recovered);
@@ -744,6 +772,7 @@ void App::finish_load(Job<LoadResult>& job) {
     maps_.reset();
     comparison_.reset();
     history_changed();
+    if (pending.relayout) return add_message("reopened on the " + model->layout, false);
     if (pending.reload)
       return add_message("unwrapped again for a " + std::to_string(model->unwrap_size) + "^2 texture", false);
     // From the front (+Z, the glTF and Stanford convention), whatever the last model's view was.
@@ -761,7 +790,8 @@ void App::finish_load(Job<LoadResult>& job) {
     store_.add_recent(model->path);
     char buf[64];
     std::snprintf(buf, sizeof buf, " in %.2f s", r.seconds);
-    add_message("loaded " + model->path + buf, false);
+    add_message("loaded " + model->path + buf + ", painting on its " + model->layout, false);
+    if (const std::string off = adaptation_off(); !off.empty()) add_message(off, false);
   } catch (const std::exception& e) {
     const bool cancelled = dynamic_cast<const CancelledError*>(&e) != nullptr;
     add_message(cancelled ? "loading cancelled" : e.what(), !cancelled);

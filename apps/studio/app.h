@@ -175,6 +175,17 @@ class App {
   const std::optional<Stencil>& stencil() const { return stencil_; }
   /// Opacity the P key and the Project button project the stencil with.
   double& decal_opacity() { return decal_opacity_; }
+  /// Opening a model that has its own UV atlas and base-colour texture: false (default) paints on
+  /// them, true unwraps it afresh (`--unwrap`, *File → Fresh unwrap*). Changing it reopens the open
+  /// model with the other layout, keeping the strokes.
+  void set_unwrap(bool unwrap);
+  bool unwrap() const { return has_model() ? painting_.model()->unwrap_asked : unwrap_; }
+  /// A model opened on its own atlas gets its texture's size (default true; false after `--texture-size`).
+  void set_texture_size_from_model(bool on) { size_from_texture_ = on; }
+  /// The model is painted on its artist's atlas and texture (no adaptation then: adaptation_off()).
+  bool on_artist_atlas() const { return has_model() && painting_.model()->base != nullptr; }
+  /// Why adaptation is off although a method is chosen (empty: it is not).
+  std::string adaptation_off() const;
   /// Re-parameterizes now (with schedule each-stroke it also runs after every change).
   void request_adapt();
   /// The UI changed session_options(): re-parameterize for them (schedule each-stroke).
@@ -278,6 +289,8 @@ class App {
     bool reload = false;  ///< The same model unwrapped again for another texture size (history kept).
     std::optional<Camera> camera;  ///< The project's view (else the model is framed).
     bool recovered = false;        ///< Strokes from a recovery file: unsaved, even when none.
+    bool relayout = false;         ///< A reload for another layout (set_unwrap()), not a texture size.
+    std::optional<bool> unwrap;    ///< The project's layout (else App::unwrap_).
   };
 
   void add_message(std::string text, bool error);
@@ -287,6 +300,8 @@ class App {
   void apply_project(Project p, bool from_project, const std::filesystem::path& project_path);
   void history_changed();
   bool adapt_wanted() const;
+  /// The adaptation method in effect: the session's, None on an artist's atlas (adaptation_off()).
+  AdaptMode adapt_mode() const;
   /// Adaptation runs in the live each-stroke session (schedule each-stroke, a method, strokes).
   bool adapts_live() const;
   void finish_live();
@@ -337,6 +352,7 @@ class App {
   ProjectStore store_;
 
   PendingLoad pending_;
+  bool unwrap_ = false, size_from_texture_ = true;
   bool adapt_pending_ = false;  // the layout is not yet the one of the history and options
   std::vector<std::pair<std::string, double>> last_cycle_;
   std::shared_ptr<const AdaptMaps> maps_;

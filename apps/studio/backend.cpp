@@ -3,6 +3,7 @@
 #include "backend.h"
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <functional>
 #include <future>
@@ -14,11 +15,13 @@
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
+#include "adaptex/io/asset_io.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/export.h"
 #include "adaptex/paint/painter.h"
+#include "adaptex/paint/texel_map.h"
 #include "adaptex/param/unwrap.h"
 
 namespace adaptex::studio {
@@ -49,10 +52,60 @@ struct Canvas::Impl {
 };
 
 Canvas::Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
-               int padding)
+               int padding, const ImageRGBA8* base)
     : impl_(std::make_unique<Impl>()) {
   impl_->own = std::make_unique<Painter>(mesh, param, PainterOptions{width, height, padding}, background);
   impl_->painter = impl_->own.get();
+  if (!base || base->width <= 0 || base->height <= 0) return;
+  const TexelMap& map = impl_->own->texel_map();
+  std::vector<Vec3f> colours(map.inside.size());
+  for (size_t k = 0; k < colours.size(); ++k) {
+    const int t = map.inside[k];
+    colours[k] = sample_bilinear(*base, ((t % width) + 0.5) / width, ((t / width) + 0.5) / height).cast<float>();
+  }
+  impl_->own->fill_colours(colours);
+}
+
+std::optional<ArtistAtlas> read_artist_atlas(const std::string& path, std::string& why) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext != ".obj" && ext != ".gltf" && ext != ".glb") {
+    why = "no UV atlas in " + (ext.empty() ? std::string("this file") : ext + " files");
+    return std::nullopt;
+  }
+  TexturedAsset asset;
+  try {
+    asset = read_textured_asset(path);
+  } catch (const Error& e) {
+    why = e.what();
+    return std::nullopt;
+  }
+  // One base-colour image for the whole atlas (the studio paints one texture).
+  const TextureMap* map = nullptr;
+  for (const Material& m : asset.materials) {
+    const TextureMap* t = m.find(MapSlot::BaseColor);
+    if (!t || t->image.width <= 0) continue;
+    if (map && t->path != map->path) {
+      why = "its materials use several base-colour textures (" + map->path.filename().string() + ", " +
+            t->path.filename().string() + ")";
+      return std::nullopt;
+    }
+    map = t;
+  }
+  if (!map) {
+    why = "it has no base-colour texture";
+    return std::nullopt;
+  }
+  ArtistAtlas a;
+  a.texture = map->image;
+  a.texture_path = map->path.string();
+  a.mesh = std::move(asset.mesh);
+  a.param = std::move(asset.param);
+  a.shared_fraction = asset.uv.shared_fraction;
+  a.mirrored_charts = asset.uv.mirrored_charts;
+  a.degenerate_uv_faces = asset.uv.degenerate_uv_faces;
+  a.straddling_charts = asset.uv.straddling_charts;
+  return a;
 }
 Canvas::Canvas(std::unique_ptr<PaintSession> session) : impl_(std::make_unique<Impl>()) {
   impl_->session = std::move(session);

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -40,14 +41,32 @@ std::vector<Vec3> smooth_normals(const TriMesh& mesh);
 /// \throw CancelledError when \p progress returns false
 Parameterization unwrap_mesh(const TriMesh& mesh, int texture_size, int padding, const ProgressCallback& progress);
 
+/// A model's own UV atlas with its base-colour texture (the artist's work the studio paints on).
+struct ArtistAtlas {
+  TriMesh mesh;            ///< As read_textured_asset() reads it (vertex order may differ from load_mesh()).
+  Parameterization param;  ///< The artist's atlas (whole charts outside [0,1]^2 moved into it).
+  ImageRGBA8 texture;      ///< The base-colour map (v = 0 first).
+  std::string texture_path;
+  double shared_fraction = 0;  ///< Covered texels that two or more UV triangles share (UvReport).
+  int mirrored_charts = 0, degenerate_uv_faces = 0, straddling_charts = 0;
+};
+
+/// The atlas and base-colour texture of \p path (OBJ + MTL, glTF / GLB), or nullopt with the reason in
+/// \p why (not such a file, no UVs, no base-colour texture, several of them, an unreadable map). Never
+/// throws for the file's content: the caller then reads the mesh alone (load_mesh()), which reports a
+/// corrupt mesh. \throw CancelledError never; std::bad_alloc only
+std::optional<ArtistAtlas> read_artist_atlas(const std::string& path, std::string& why);
+
 /// A paintable texture on one parameterization (an adaptex::Painter, or the painter of the
 /// PaintSession that produced an adapted parameterization).
 class Canvas {
  public:
   /// \p padding: seam padding in texels (PaintSessionOptions::padding of the session).
   /// \pre mesh and param outlive the canvas and do not change
+  /// \p base: the artist's texture the chart texels start from (sampled bilinearly at every texel
+  /// centre: an exact copy at its own size), null: \p background.
   Canvas(const TriMesh& mesh, const Parameterization& param, int width, int height, const Vec3& background,
-         int padding);
+         int padding, const ImageRGBA8* base = nullptr);
   /// A copy of \p source (the painter of a session) on equal copies \p mesh, \p param of its mesh and
   /// parameterization: it paints on exactly as \p source would. \throw InvalidInputError they differ
   Canvas(const TriMesh& mesh, const Parameterization& param, const Painter& source);

@@ -122,7 +122,7 @@ struct CommandLine {
   std::string recover;  // yes | no | ask; empty: ask, no for scripted runs
   int exit_after = -1, texture_size = 0, orbit_frames = 0;
   bool hide_ui = false, no_vsync = false, no_recovery = false, wireframe = false, no_refine = false;
-  bool checker = false, fixed_layout = false;
+  bool checker = false, fixed_layout = false, unwrap = false;
   double yaw = 0, pitch = 0;
   int width = 1280, height = 800;
 };
@@ -163,6 +163,9 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
   cli.add_option("--adapt", c.adapt_mode, "Re-parameterization after each stroke (as adaptex paint --adapt)")
       ->check(CLI::IsMember(modes))
       ->capture_default_str();
+  cli.add_flag("--unwrap", c.unwrap,
+               "Unwrap the model afresh even when it has its own UV atlas and base-colour texture (default: paint "
+               "on them)");
   cli.add_flag("--no-refine", c.no_refine, "Keep the input's vertices (density-flow refines large triangles)");
   cli.add_option("--yaw", c.yaw, "Initial camera yaw (degrees)");
   cli.add_option("--pitch", c.pitch, "Initial camera pitch (degrees)");
@@ -317,6 +320,8 @@ int configure(App& app, const CommandLine& c) {
   app.view().checker = c.checker;
   PaintSessionOptions& o = app.session_options();
   if (c.texture_size > 0) o.texture_size = std::clamp(c.texture_size, 16, adaptex::kMaxTextureSize);
+  app.set_texture_size_from_model(c.texture_size <= 0);
+  app.set_unwrap(c.unwrap);
   o.adapt.mode = parse_adapt_mode(c.adapt_mode);
   if (c.no_refine) o.adapt.refine.enabled = false;
   if (!c.project.empty()) app.open_project(c.project);

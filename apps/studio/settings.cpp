@@ -93,6 +93,7 @@ void write_project(const std::filesystem::path& path, const Project& p) {
                 {"pixel_radius", b.pixel_radius}};
   j["view"] = {{"wireframe", p.view.wireframe}, {"background", v3(p.view.background)}};
   j["adapt"] = session_to_json(p.session);
+  j["layout"] = p.unwrap ? "unwrap" : "atlas";
   if (p.camera)
     j["camera"] = {{"target", v3(p.camera->target)}, {"distance", p.camera->distance}, {"yaw", p.camera->yaw},
                    {"pitch", p.camera->pitch},       {"fov_y", p.camera->fov_y_degrees}};
@@ -122,6 +123,10 @@ Project read_project(const std::filesystem::path& path) {
     Project p;
     p.mesh_path = j.at("mesh").get<std::string>();
     p.project_file = j.value("project", std::string());
+    const std::string layout = j.value("layout", std::string("unwrap"));
+    if (layout != "unwrap" && layout != "atlas")
+      throw InvalidInputError(path.string() + ": \"layout\" must be \"atlas\" or \"unwrap\", got \"" + layout + "\"");
+    p.unwrap = layout == "unwrap";
     p.strokes = strokes_from_json(j.at("strokes"), path.string(), path.parent_path());
     if (j.contains("brush")) {
       const json& b = j["brush"];

@@ -63,6 +63,9 @@ struct Project {
   BrushSettings brush;
   ViewSettings view;
   PaintSessionOptions session = studio_session_options();  ///< Texture size and adaptation.
+  /// `"layout": "unwrap"`: the model was unwrapped afresh; `"atlas"`: painted on its own UV atlas and
+  /// texture when it has them. Projects written before the key existed were unwrapped: true.
+  bool unwrap = false;
   std::optional<Camera> camera;
   /// Recovery files only: the project file the strokes belong to (empty: never saved as a project).
   std::string project_file;

@@ -25,6 +25,13 @@ struct Model {
   std::shared_ptr<const TriMesh> mesh;
   std::shared_ptr<const Parameterization> initial;
   int unwrap_size = 0, unwrap_padding = 0;  ///< Texture size and padding the initial layout is for.
+  /// The artist's base-colour texture when *initial is the model's own UV atlas (the canvas starts
+  /// from it); null when the model was unwrapped.
+  std::shared_ptr<const ImageRGBA8> base;
+  /// Which layout it is, for the status line: "artist's UV atlas", "fresh unwrap" (+ why).
+  std::string layout;
+  bool unwrap_asked = false;   ///< Opened with LoadRequest::unwrap (a project's "layout": "unwrap").
+  double shared_fraction = 0;  ///< The atlas's texels shared by overlapping charts (0 when unwrapped).
   BoundingBox box;
   std::shared_ptr<const RayCaster> caster;  ///< Picking on *mesh.
 };

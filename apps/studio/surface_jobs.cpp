@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 #include "settings.h"
 
 namespace adaptex::studio {
@@ -20,21 +21,44 @@ std::unique_ptr<Job<R>> take_if_ready(std::unique_ptr<Job<R>>& job) {
   return nullptr;
 }
 
+/// The model's mesh and initial layout: its own atlas and texture when it has them and \p request
+/// does not ask for an unwrap, else a fresh unwrap for the options' texture size.
+void read_layout(Model& model, const PaintSessionOptions& options, LoadRequest request, int& size, Job<LoadResult>& job) {
+  std::string why = "asked for";
+  model.unwrap_asked = request.unwrap;
+  std::optional<ArtistAtlas> atlas;
+  if (!request.unwrap && model.path.rfind("builtin:", 0) != 0) atlas = read_artist_atlas(model.path, why);
+  if (atlas) {
+    if (request.size_from_texture)
+      size = std::clamp(std::max(atlas->texture.width, atlas->texture.height), 16, kMaxTextureSize);
+    model.mesh = std::make_shared<const TriMesh>(std::move(atlas->mesh));
+    model.initial = std::make_shared<const Parameterization>(std::move(atlas->param));
+    model.base = std::make_shared<const ImageRGBA8>(std::move(atlas->texture));
+    model.shared_fraction = atlas->shared_fraction;
+    model.layout = "artist's UV atlas";
+    return;
+  }
+  model.mesh = std::make_shared<const TriMesh>(load_mesh(model.path));
+  if (!job.progress("unwrap", 0.0)) throw CancelledError();
+  model.initial = std::make_shared<const Parameterization>(
+      unwrap_mesh(*model.mesh, size, options.padding,
+                  [&job](std::string_view phase, double f) { return job.progress(phase, f); }));
+  model.layout = model.path.rfind("builtin:", 0) == 0 ? "fresh unwrap" : "fresh unwrap (" + why + ")";
+}
+
 LoadResult load_model(const std::string& path, const PaintSessionOptions& options, const Vec3& background,
-                      Job<LoadResult>& job) {
+                      LoadRequest request, Job<LoadResult>& job) {
   const auto t0 = Clock::now();
   job.progress("read", 0.0);
   auto model = std::make_shared<Model>();
   model->path = path;
-  auto mesh = std::make_shared<TriMesh>(load_mesh(path));
-  model->mesh = mesh;
-  model->box = bounding_box(*mesh);
+  int size = options.texture_size;
+  read_layout(*model, options, request, size, job);
+  const TriMesh& mesh = *model->mesh;
+  model->box = bounding_box(mesh);
   if (!job.progress("index", 0.0)) throw CancelledError();
-  model->caster = std::make_shared<RayCaster>(*mesh);
-  model->initial = std::make_shared<Parameterization>(
-      unwrap_mesh(*mesh, options.texture_size, options.padding,
-                  [&job](std::string_view phase, double f) { return job.progress(phase, f); }));
-  model->unwrap_size = options.texture_size;
+  model->caster = std::make_shared<RayCaster>(mesh);
+  model->unwrap_size = size;
   model->unwrap_padding = options.padding;
   if (!job.progress("texture", 0.0)) throw CancelledError();
   LoadResult r;
@@ -43,9 +67,9 @@ LoadResult load_model(const std::string& path, const PaintSessionOptions& option
   r.surface->mesh = model->mesh;
   r.surface->caster = model->caster;
   r.surface->param = model->initial;
-  r.surface->size = options.texture_size;
-  r.surface->canvas = std::make_unique<Canvas>(*mesh, *model->initial, options.texture_size, options.texture_size,
-                                               background, options.padding);
+  r.surface->size = size;
+  r.surface->canvas =
+      std::make_unique<Canvas>(mesh, *model->initial, size, size, background, options.padding, model->base.get());
   r.model = std::move(model);
   r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return r;
@@ -112,11 +136,13 @@ void SurfaceJobs::reap() {
                  retired_.end());
 }
 
-void SurfaceJobs::start_load(const std::string& path, const PaintSessionOptions& options, const Vec3& background) {
+void SurfaceJobs::start_load(const std::string& path, const PaintSessionOptions& options, const Vec3& background,
+                             LoadRequest request) {
   if (load_) retire(std::move(load_));
   loading_path_ = path;
-  load_ = std::make_unique<Job<LoadResult>>(
-      [path, options, background](Job<LoadResult>& job) { return load_model(path, options, background, job); });
+  load_ = std::make_unique<Job<LoadResult>>([path, options, background, request](Job<LoadResult>& job) {
+    return load_model(path, options, background, request, job);
+  });
 }
 
 void SurfaceJobs::cancel_load() {
@@ -138,7 +164,7 @@ void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation
   rebuild_ = std::make_unique<Job<RebuildResult>>(
       [model, mesh, caster, normals, param, generation, history = std::move(history), options, adapt](Job<RebuildResult>& job) {
         RebuildResult r;
-        if (adapt) {
+        if (adapt && !model->base) {  // (an artist's texture is never adapted: App::effective_session())
           r = adapt_surface(model, history, options, job);
         } else {
           r.surface = std::make_unique<Surface>();
@@ -150,7 +176,8 @@ void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation
           s->caster = caster;
           s->param = param;
           s->canvas = std::make_unique<Canvas>(*mesh, *param, options.texture_size, options.texture_size,
-                                               history.background, options.padding);
+                                               history.background, options.padding,
+                                               param == model->initial ? model->base.get() : nullptr);
           for (size_t i = 0; i < history.strokes.size(); ++i) {
             if (!job.progress("replay", double(i) / history.strokes.size())) throw CancelledError();
             s->canvas->paint_stroke(history.strokes[i]);
@@ -212,7 +239,8 @@ void SurfaceJobs::start_compare(const Surface& current, StrokeFile history) {
         c.adaptive_param = adaptive;
         // The initial layout's own seam padding (the adaptive canvas uses the session's, the same
         // once the layout is unwrapped for the current options).
-        Canvas fixed(*model->mesh, *model->initial, size, size, history.background, model->unwrap_padding);
+        Canvas fixed(*model->mesh, *model->initial, size, size, history.background, model->unwrap_padding,
+                     model->base.get());
         for (const Stroke& s : history.strokes) fixed.paint_stroke(s);
         c.fixed_texture = fixed.texture();
         c.adaptive_texture = *tex;

@@ -19,6 +19,15 @@
 
 namespace adaptex::studio {
 
+/// How a model is opened.
+struct LoadRequest {
+  /// A fresh unwrap even when the model has its own UV atlas and base-colour texture.
+  bool unwrap = false;
+  /// Keeping the atlas: the texture size becomes the artist texture's (its larger side), not the
+  /// options' (a model opened afresh; a project or a new texture size keeps the options').
+  bool size_from_texture = false;
+};
+
 /// A loaded model with its first (unpainted) surface.
 struct LoadResult {
   std::shared_ptr<const Model> model;
@@ -31,7 +40,8 @@ class SurfaceJobs {
   ~SurfaceJobs();
 
   /// Starts loading \p path (replaces a running load). \p options: texture size and padding.
-  void start_load(const std::string& path, const PaintSessionOptions& options, const Vec3& background);
+  void start_load(const std::string& path, const PaintSessionOptions& options, const Vec3& background,
+                  LoadRequest request);
   void cancel_load();
   bool loading() const { return load_ != nullptr; }
   const std::string& loading_path() const { return loading_path_; }

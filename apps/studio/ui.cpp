@@ -193,6 +193,11 @@ float StudioUi::menu_bar(App& app) {
       ImGui::EndMenu();
     }
     if (ImGui::MenuItem("Open project...")) choose(app, FileKind::OpenProject);
+    if (ImGui::MenuItem("Fresh unwrap", nullptr, app.unwrap())) app.set_unwrap(!app.unwrap());
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("On: models are unwrapped afresh (the layout adapts to the paint).\n"
+                        "Off: a model with its own UV atlas and base-colour texture is painted on them.\n"
+                        "Changing it reopens the model, keeping the strokes.");
     if (ImGui::MenuItem("Save", "Ctrl+S")) save(app);
     if (ImGui::MenuItem("Save As...")) choose(app, FileKind::SaveProject);
     if (ImGui::MenuItem("Export OBJ...")) choose(app, FileKind::ExportObjFolder);
@@ -466,6 +471,7 @@ void StudioUi::adapt_panel(App& app) {
   PaintSessionOptions& o = app.session_options();
   AdaptOptions& a = o.adapt;
   bool changed = false;
+  if (const std::string off = app.adaptation_off(); !off.empty()) ImGui::TextWrapped("%s.", off.c_str());
   std::vector<const char*> names;
   const auto& modes = adaptex::adapt_modes();
   int m = 0;

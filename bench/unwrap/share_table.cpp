@@ -4,7 +4,7 @@
 // covers on average ("chart fill" = coverage / rect fill), flipped and overlapping triangles,
 // UVs outside [0,1]², and wall / CPU seconds. See docs/benchmarks.md.
 //
-//   bench_share_table [--single] [--detail] [--hash] [--speculative S] [--no-probe] [--normal-weight W] [--max-charts K] [--chart-padding P] [--augment-time-budget S] NAME...
+//   bench_share_table [--single] [--detail] [--hash] [--repair] [--speculative S] [--no-probe] [--normal-weight W] [--max-charts K] [--chart-padding P] [--augment-time-budget S] NAME...
 //
 // NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
 // code: genusG (genus_surface(G)), sphereS,T (sphere(S, T)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
@@ -19,6 +19,8 @@
 // --hash: after each row, a 64-bit FNV-1a hash of the layout (every UV's bits and every face's
 // wedges): equal hashes before and after a speed change show that the layout did not change.
 // --speculative S: UnwrapOptions::speculative_attempts (chart counts built at the same time).
+// --repair: read mesh files as `unwrap --repair` does (split non-manifold vertices, drop duplicate
+// faces): real scans.
 // --augment-time-budget S: UnwrapOptions::augment_time_budget (wall seconds; a large value keeps
 // the layouts independent of the machine's load).
 #include <algorithm>
@@ -43,10 +45,13 @@ namespace {
 
 using namespace adaptex;
 
+bool g_repair = false;
+
 TriMesh make_mesh(const std::string& name) {
   if (!std::filesystem::exists(name))  // a file of that name wins over a code-built mesh's name
     if (std::optional<TriMesh> m = bench::code_built_mesh(name)) return std::move(*m);
   ReadOptions ro;
+  ro.repair = g_repair;
   return read_mesh(name, ro);
 }
 
@@ -164,6 +169,7 @@ int main(int argc, char** argv) {
     if (std::strcmp(argv[i], "--single") == 0) single = true;
     else if (std::strcmp(argv[i], "--detail") == 0) g_detail = true;
     else if (std::strcmp(argv[i], "--hash") == 0) g_hash = true;
+    else if (std::strcmp(argv[i], "--repair") == 0) g_repair = true;
     else if (std::strcmp(argv[i], "--speculative") == 0 && i + 1 < argc)
       g_options.speculative_attempts = std::stoi(argv[++i]);
     else if (std::strcmp(argv[i], "--no-probe") == 0) g_options.single_probe_l2 = 0;

@@ -222,10 +222,11 @@ void append_int(std::string& out, long x) {
   out.append(buf, res.ptr);
 }
 
-}  // namespace
-
-void write_obj(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization* param,
-               const std::optional<std::string>& mtllib, const std::string& material) {
+/// write_obj() of both forms: face f uses materials[face_material[f]] (all materials[0] when
+/// face_material is empty); a `usemtl` starts every run of faces of one material.
+void write_obj_materials(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization* param,
+                         const std::optional<std::string>& mtllib, const std::vector<std::string>& materials,
+                         const std::vector<int>& face_material) {
   const std::string name = path.string();
   if (param && param->uv_faces.size() != mesh.faces.size())
     throw InvalidInputError(name + ": write_obj: the parameterization has " + std::to_string(param->uv_faces.size()) +
@@ -252,8 +253,16 @@ void write_obj(const std::filesystem::path& path, const TriMesh& mesh, const Par
       append_number(out, t.y());
       out += '\n';
     }
-  if (mtllib) out += "usemtl " + material + "\n";
+  if (!face_material.empty() && face_material.size() != mesh.faces.size())
+    throw InvalidInputError(name + ": write_obj: " + std::to_string(face_material.size()) + " face materials for " +
+                            std::to_string(mesh.faces.size()) + " faces");
+  int current = -1;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const int m = face_material.empty() ? 0 : face_material[f];
+    if (m < 0 || m >= static_cast<int>(materials.size()))
+      throw InvalidInputError(name + ": write_obj: face " + std::to_string(f) + " has no material");
+    if (mtllib && m != current) out += "usemtl " + materials[m] + "\n";
+    current = m;
     out += 'f';
     for (int k = 0; k < 3; ++k) {
       out += ' ';
@@ -270,6 +279,19 @@ void write_obj(const std::filesystem::path& path, const TriMesh& mesh, const Par
   file.write(out.data(), static_cast<std::streamsize>(out.size()));
   file.close();
   if (!file) throw OutputError(name + ": write failed (disk full?)");
+}
+
+}  // namespace
+
+void write_obj(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization* param,
+               const std::optional<std::string>& mtllib, const std::string& material) {
+  write_obj_materials(path, mesh, param, mtllib, {material}, {});
+}
+
+void write_obj(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization& param,
+               const std::string& mtllib, const std::vector<std::string>& materials,
+               const std::vector<int>& face_material) {
+  write_obj_materials(path, mesh, &param, mtllib, materials, face_material);
 }
 
 }  // namespace adaptex

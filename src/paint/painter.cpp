@@ -74,6 +74,9 @@ struct Painter::Impl {
   std::vector<std::uint32_t> slot_ij; // slot -> i | j << 16
   std::vector<int> slot_texel;        // slot -> j*W+i
   std::vector<int> texel_slot;        // j*W+i -> slot, -1 outside the charts
+  // Shared texels (TexelMap::aliases): the index holds their other surface points too, and
+  // point_slot maps an index point to its texel's slot. Empty (the identity) without aliases.
+  std::vector<int> point_slot;
   std::vector<std::array<float, 3>> colour, base;
   std::vector<float> alpha; // coverage of the open stroke, 0 elsewhere
   std::vector<int> touched; // slots with alpha > 0
@@ -110,31 +113,53 @@ struct Painter::Impl {
   Impl(const Impl &o, const TriMesh &m, const Parameterization &p)
       : mesh(m), param(p), options(o.options), background(o.background), map(o.map),
         grid(std::make_unique<detail::TexelGrid>(*o.grid)), padding(o.padding), slot_ij(o.slot_ij),
-        slot_texel(o.slot_texel), texel_slot(o.texel_slot), colour(o.colour), base(o.base), alpha(o.alpha),
+        slot_texel(o.slot_texel), texel_slot(o.texel_slot), point_slot(o.point_slot), colour(o.colour), base(o.base), alpha(o.alpha),
         tex(o.tex), dirty(o.dirty), painted(o.painted), updates(o.updates) {}
 
-  /// The texel points' spatial index and the slot <-> texel tables.
+  /// The texel points' spatial index and the slot <-> texel tables. Slots are the texels in the
+  /// index's order; a shared texel's other points (aliases) map to its slot through point_slot.
   void build_index() {
-    std::vector<Vec3f> pts(map.inside.size());
-    for (size_t k = 0; k < pts.size(); ++k)
+    const size_t n = map.inside.size();
+    std::vector<Vec3f> pts(n + map.aliases.size());
+    for (size_t k = 0; k < n; ++k)
       pts[k] = map.position[map.inside[k]];
+    for (size_t a = 0; a < map.aliases.size(); ++a)
+      pts[n + a] = map.aliases[a].position;
     const double area = surface_area(mesh);
     const double spacing =
-        pts.empty() ? 1.0 : std::sqrt(std::max(area, 1e-300) / pts.size());
+        pts.empty() ? 1.0 : std::sqrt(std::max(area, 1e-300) / n);
     grid = std::make_unique<detail::TexelGrid>(pts, spacing);
-    const size_t n = pts.size();
     slot_ij.resize(n);
     slot_texel.resize(n);
+    texel_slot.assign(map.face.size(), -1);
     const int W = options.width;
-    for (size_t s = 0; s < n; ++s) {
-      const int t = map.inside[grid->order()[s]];
+    size_t s = 0;
+    for (size_t g = 0; g < pts.size(); ++g) {
+      const int k = grid->order()[g];
+      if (static_cast<size_t>(k) >= n)
+        continue;
+      const int t = map.inside[k];
       slot_texel[s] = t;
       slot_ij[s] = static_cast<std::uint32_t>(t % W) |
                    static_cast<std::uint32_t>(t / W) << 16;
+      texel_slot[t] = static_cast<int>(s++);
     }
-    texel_slot.assign(map.face.size(), -1);
-    for (size_t s = 0; s < n; ++s)
-      texel_slot[slot_texel[s]] = static_cast<int>(s);
+    point_slot.clear();
+    if (map.aliases.empty())
+      return;
+    point_slot.resize(pts.size());
+    for (size_t g = 0; g < pts.size(); ++g) {
+      const size_t k = static_cast<size_t>(grid->order()[g]);
+      point_slot[g] = texel_slot[k < n ? map.inside[k] : map.aliases[k - n].texel];
+    }
+  }
+
+  /// Calls fn(slot, squared distance) for every texel point within \p r of \p c (a shared texel
+  /// once per point of it that is).
+  template <class Fn> void for_each_in_ball(const Vec3 &c, double r, Fn &&fn) const {
+    if (point_slot.empty())
+      return grid->for_each_in_ball(c, r, fn);
+    grid->for_each_in_ball(c, r, [&](int g, float d2) { fn(point_slot[static_cast<size_t>(g)], d2); });
   }
 
   void reset_colours() {
@@ -164,7 +189,7 @@ struct Painter::Impl {
     Rect rect;
     const float inv_r = 1.0f / radius;
     long long n = 0;
-    grid->for_each_in_ball(c, radius, [&](int s, float d2) {
+    for_each_in_ball(c, radius, [&](int s, float d2) {
       ++n;
       const float w = opacity * falloff_f(std::sqrt(d2) * inv_r, hardness);
       float &a = alpha[s];
@@ -207,7 +232,7 @@ struct Painter::Impl {
           auto &mine = first_touch.local();
           long long n = 0;
           for (size_t d = r.begin(); d < r.end(); ++d)
-            grid->for_each_in_ball(s.dabs[d], radius, [&](int slot, float d2) {
+            for_each_in_ball(s.dabs[d], radius, [&](int slot, float d2) {
               ++n;
               const float w =
                   opacity * falloff_f(std::sqrt(d2) * inv_r, hardness);

@@ -87,6 +87,7 @@ TexelMap build_texel_map(const TriMesh& mesh, const Parameterization& param, int
     for (int t = j0 / kTileRows; t <= j1 / kTileRows; ++t) bins[t].push_back(f);
   }
 
+  std::vector<std::vector<TexelAlias>> tile_aliases(tiles);  // each tile owns its rows: no race
   tbb::parallel_for(tbb::blocked_range<int>(0, tiles), [&](const tbb::blocked_range<int>& r) {
     for (int tile = r.begin(); tile < r.end(); ++tile) {
       const int tj0 = tile * kTileRows, tj1 = std::min(height - 1, tj0 + kTileRows - 1);
@@ -131,6 +132,8 @@ TexelMap build_texel_map(const TriMesh& mesh, const Parameterization& param, int
             }
             const double b0 = 1 - b1 - b2;
             const size_t idx = static_cast<size_t>(j) * width + i;
+            if (map.face[idx] >= 0)  // a shared texel: the earlier triangle stays reachable
+              tile_aliases[tile].push_back({static_cast<int>(idx), map.face[idx], map.bary[idx], map.position[idx]});
             map.face[idx] = f;
             map.bary[idx] = Eigen::Vector2f(static_cast<float>(b0), static_cast<float>(b1));
             map.position[idx] = (b0 * p0 + b1 * p1 + b2 * p2).cast<float>();
@@ -140,6 +143,10 @@ TexelMap build_texel_map(const TriMesh& mesh, const Parameterization& param, int
     }
   });
 
+  for (auto& list : tile_aliases) {
+    std::stable_sort(list.begin(), list.end(), [](const TexelAlias& a, const TexelAlias& b) { return a.texel < b.texel; });
+    map.aliases.insert(map.aliases.end(), list.begin(), list.end());
+  }
   size_t count = 0;
   for (size_t k = 0; k < n; ++k) count += map.face[k] >= 0;
   map.inside.reserve(count);

@@ -82,6 +82,99 @@ TEST(TexelMap, SharedEdgesThroughCentresAreCoveredExactlyOnce) {
   }
 }
 
+namespace {
+/// Two unit squares apart in z = 0 (x in [0,1] and [2,3]) on one chart of the unit square: the left
+/// one with uv = (x, y), the right one mirrored (u = 3 - x), so every texel is shared. Plus a
+/// degenerate UV triangle and one reaching outside [0,1]^2 (both must be harmless).
+std::pair<TriMesh, Parameterization> mirrored_twins() {
+  TriMesh mesh;
+  Parameterization p;
+  auto square = [&](double x0, bool mirror) {
+    const int v = mesh.num_vertices();
+    for (Vec2 c : {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)}) {
+      mesh.positions.push_back(Vec3(x0 + c.x(), c.y(), 0));
+      p.uv.push_back(Vec2(mirror ? 1 - c.x() : c.x(), c.y()));
+      p.wedge_vertex.push_back(v + int(p.wedge_vertex.size()) - v);
+    }
+    for (Face f : {Face{v, v + 1, v + 2}, Face{v, v + 2, v + 3}}) {
+      mesh.faces.push_back(f);
+      p.uv_faces.push_back(f);
+      p.face_chart.push_back(mirror ? 1 : 0);
+    }
+  };
+  square(0, false);
+  square(2, true);
+  // A sliver below: one face with all three UVs equal, one reaching past u = 1.
+  const int v = mesh.num_vertices();
+  for (Vec3 q : {Vec3(0, -2, 0), Vec3(1, -2, 0), Vec3(1, -1, 0), Vec3(0, -1, 0)}) mesh.positions.push_back(q);
+  for (Vec2 t : {Vec2(0.5, 0.5), Vec2(0.5, 0.5), Vec2(0.5, 0.5), Vec2(1.3, 0.2)}) p.uv.push_back(t);
+  for (int k = 0; k < 4; ++k) p.wedge_vertex.push_back(v + k);
+  mesh.faces.push_back({v, v + 1, v + 2});
+  p.uv_faces.push_back({v, v + 1, v + 2});
+  mesh.faces.push_back({v, v + 2, v + 3});
+  p.uv_faces.push_back({v, v + 2, v + 3});
+  p.face_chart.push_back(2);
+  p.face_chart.push_back(2);
+  p.num_charts = 3;
+  for (size_t w = 0; w < p.wedge_vertex.size(); ++w) p.wedge_vertex[w] = int(w);
+  return {mesh, p};
+}
+
+/// RGB of texel (i, j), 0..255.
+Vec3 texel_rgb(const ImageRGBA8& tex, int i, int j) {
+  const auto* px = tex.texel(i, j);
+  return Vec3(px[0], px[1], px[2]);
+}
+}  // namespace
+
+TEST(TexelMap, OverlappingChartsListTheirSharedTexelsAsAliases) {
+  const auto [mesh, param] = mirrored_twins();
+  const TexelMap map = build_texel_map(mesh, param, 16, 16);
+  ASSERT_EQ(map.inside.size(), 256u);
+  // Every texel: the later (mirrored, right) square owns it, the left one is its alias at the same
+  // UV point; the sliver's faces add aliases where they cover centres too.
+  int left = 0;
+  for (const TexelAlias& a : map.aliases) {
+    ASSERT_GE(a.texel, 0);
+    ASSERT_LT(a.texel, 256);
+    if (a.face > 1) continue;
+    ++left;
+    const int i = a.texel % 16, j = a.texel / 16;
+    EXPECT_NEAR(a.position.x(), (i + 0.5) / 16, 1e-6);  // uv = (x, y) on the left square
+    EXPECT_NEAR(a.position.y(), (j + 0.5) / 16, 1e-6);
+    EXPECT_NEAR(map.position[a.texel].x(), 3 - (i + 0.5) / 16, 1e-5);  // mirrored on the right one
+  }
+  EXPECT_EQ(left, 256);
+  EXPECT_TRUE(std::is_sorted(map.aliases.begin(), map.aliases.end(),
+                             [](const TexelAlias& a, const TexelAlias& b) { return a.texel < b.texel; }));
+  EXPECT_TRUE(build_texel_map(shapes::plane(4), planar_param(shapes::plane(4)), 16, 16).aliases.empty());
+}
+
+TEST(Painter, PaintingEitherSideOfASharedTexelPaintsIt) {
+  const auto [mesh, param] = mirrored_twins();
+  const Vec3 red(1, 0, 0), blue(0, 0, 1);
+  for (bool interactive : {false, true}) {
+    Painter painter(mesh, param, {32, 32, 2});
+    // Left square at uv (0.25, 0.5) (an alias point); the right square at x = 2.25: uv (0.75, 0.5).
+    const Stroke left = make_stroke(red, 0.06, 1.0, 1.0, segment({0.25, 0.45}, {0.25, 0.55}, 0.005));
+    const Stroke right = make_stroke(blue, 0.06, 1.0, 1.0, segment({2.25, 0.45}, {2.25, 0.55}, 0.005));
+    for (const Stroke& s : {left, right}) {
+      if (!interactive) {
+        painter.paint_stroke(s);
+        continue;
+      }
+      painter.begin_stroke(s);
+      for (const Vec3& d : s.dabs) painter.add_dab(d);
+      painter.end_stroke();
+    }
+    const ImageRGBA8& tex = painter.texture();
+    EXPECT_EQ(texel_rgb(tex, 8, 16), Vec3(255, 0, 0)) << interactive;   // uv (0.265, 0.515)
+    EXPECT_EQ(texel_rgb(tex, 23, 16), Vec3(0, 0, 255)) << interactive;  // uv (0.734, 0.515)
+    EXPECT_EQ(texel_rgb(tex, 16, 16), Vec3(255, 255, 255)) << interactive;  // between: untouched
+    EXPECT_EQ(texel_rgb(tex, 8, 4), Vec3(255, 255, 255)) << interactive;
+  }
+}
+
 TEST(Painter, TexelsEqualTheContractAtTheirCentres) {
   const TriMesh mesh = shapes::plane(8);
   const Parameterization param = planar_param(mesh);

@@ -1005,3 +1005,201 @@ TEST_F(StudioGui, TheViewKeepsDrawingWhileTheDesktopFileDialogIsOpen) {
 }
 
 }  // namespace
+
+// ---- a model with its own UV atlas and texture --------------------------------------------------
+
+/// Three unit squares in a row facing +Z: on the left (x in [-1.5,-0.5]) a chart of its own, as a fan
+/// with one degenerate UV triangle; in the middle and on the right two squares on one chart, the right
+/// one mirrored (its texels shared with the middle one, which the file lists first). The 128^2
+/// texture: yellow where u < 0.25, green elsewhere in the shared chart, blue in the other one, grey
+/// outside. Written as DIR/twins.obj + twins.mtl + twins.png.
+struct AtlasModel {
+  adaptex::ImageRGBA8 texture;
+  std::vector<std::array<adaptex::Vec2, 3>> face_uvs;  ///< Per face, its corners' UVs as written.
+};
+
+AtlasModel write_atlas_model(const fs::path& dir) {
+  AtlasModel m;
+  const int n = 128;
+  m.texture = adaptex::ImageRGBA8(n, n, {128, 128, 128, 255});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double u = (i + 0.5) / n, v = (j + 0.5) / n;
+      std::array<std::uint8_t, 3> c{128, 128, 128};
+      if (v > 0.03 && v < 0.97 && u > 0.03 && u < 0.47) c = u < 0.25 ? std::array<std::uint8_t, 3>{230, 200, 30}
+                                                                    : std::array<std::uint8_t, 3>{30, 160, 60};
+      if (v > 0.03 && v < 0.97 && u > 0.53 && u < 0.97) c = {40, 60, 200};
+      std::uint8_t* px = m.texture.texel(i, j);
+      px[0] = c[0], px[1] = c[1], px[2] = c[2];
+    }
+  adaptex::write_png(dir / "twins.png", m.texture);
+  std::ofstream(dir / "twins.mtl") << "newmtl paint\nKd 1 1 1\nmap_Kd twins.png\n";
+  std::ofstream obj(dir / "twins.obj");
+  obj << "mtllib twins.mtl\nusemtl paint\n";
+  int v = 0, t = 0;
+  const double left[3] = {-0.5, 0.5, -1.5};  // file order: shared chart, its mirror, the other chart
+  auto uv_of = [&](int square, double x, double y) {
+    const double lx = x - left[square], vv = 0.05 + 0.9 * (y + 0.5);
+    if (square == 0) return adaptex::Vec2(0.05 + 0.4 * lx, vv);
+    if (square == 1) return adaptex::Vec2(0.45 - 0.4 * lx, vv);  // mirrored onto square 0's texels
+    return adaptex::Vec2(0.55 + 0.4 * lx, vv);
+  };
+  for (int s = 0; s < 3; ++s) {
+    const double x0 = left[s];
+    const std::vector<adaptex::Vec2> corners = {{x0, -0.5}, {x0 + 1, -0.5}, {x0 + 1, 0.5}, {x0, 0.5}, {x0 + 0.5, 0}};
+    for (const auto& c : corners) obj << "v " << c.x() << " " << c.y() << " 0\n";
+    std::vector<adaptex::Vec2> uvs;
+    for (const auto& c : corners) uvs.push_back(uv_of(s, c.x(), c.y()));
+    if (s == 2) uvs.push_back(uvs[4]), uvs.push_back(uvs[4]);  // the degenerate triangle's corners
+    for (const auto& q : uvs) obj << "vt " << q.x() << " " << q.y() << "\n";
+    // A fan of four triangles around the centre (corner 4), counter-clockwise seen from +Z.
+    for (int k = 0; k < 4; ++k) {
+      int a = k, b = (k + 1) % 4, ta = a, tb = b;
+      if (s == 2 && k == 3) ta = 5, tb = 6;  // all three UVs at the centre: degenerate
+      obj << "f " << v + 5 << "/" << t + 5 << " " << v + a + 1 << "/" << t + ta + 1 << " " << v + b + 1 << "/"
+          << t + tb + 1 << "\n";
+      m.face_uvs.push_back({uvs[4], uvs[size_t(ta)], uvs[size_t(tb)]});
+    }
+    v += 5;
+    t += int(uvs.size());
+  }
+  return m;
+}
+
+/// True where \p shot differs from the background (taken at the right edge of row \p y0).
+bool on_model(const adaptex::ImageRGBA8& shot, int x, int y, int y0) {
+  const auto bg = mean_rgb(shot, shot.width - 3, shot.width - 3, y0, y0);
+  const auto c = mean_rgb(shot, x, x, y, y);
+  return std::abs(c[0] - bg[0]) + std::abs(c[1] - bg[1]) + std::abs(c[2] - bg[2]) > 40;
+}
+
+/// The columns the three-square model spans on row \p y (its left end may lie under the panel: found
+/// from its right end and its height, a third of its width).
+std::pair<int, int> model_span(const adaptex::ImageRGBA8& shot, int y) {
+  int x1 = shot.width - 1;
+  while (x1 > 0 && !on_model(shot, x1, y, y)) --x1;
+  int top = y, bottom = y;
+  while (top > 0 && on_model(shot, x1 - 10, top - 1, y)) --top;
+  while (bottom < shot.height - 1 && on_model(shot, x1 - 10, bottom + 1, y)) ++bottom;
+  return {x1 - 3 * (bottom - top + 1), x1};
+}
+
+enum class Hue { Yellow, Green, Blue, Red, Other };
+Hue hue(const std::array<double, 3>& c) {
+  const double r = c[0], g = c[1], b = c[2];
+  if (r > 1.6 * g && r > 1.6 * b) return Hue::Red;
+  if (r > 2 * b && g > 2 * b && r > 0.8 * g) return Hue::Yellow;
+  if (g > 1.5 * r && g > 1.5 * b) return Hue::Green;
+  if (b > 1.5 * r && b > 1.5 * g) return Hue::Blue;
+  return Hue::Other;
+}
+std::string hue_name(Hue h) {
+  const char* names[] = {"yellow", "green", "blue", "red", "other"};
+  return names[int(h)];
+}
+
+TEST_F(StudioGui, ATexturedModelOpensOnItsAtlasAndAStrokeIsSavedReopenedAndExportedOnIt) {
+  const AtlasModel model = write_atlas_model(dir.path);
+  const fs::path obj = dir.path / "twins.obj", cfg = dir.path / "cfg", log1 = dir.path / "app1.log",
+                 log2 = dir.path / "app2.log", log3 = dir.path / "app3.log", before = dir.path / "before.png",
+                 after = dir.path / "after.png", exp = dir.path / "export", project = dir.path / "twins.adaptex";
+  const std::vector<std::string> common = {"--window", "1000x600", "--config-dir", cfg.string(), "--no-recovery"};
+  auto args = [&](std::vector<std::string> a) {
+    a.insert(a.begin(), ADAPTEX_STUDIO_PATH);
+    a.insert(a.end(), common.begin(), common.end());
+    return a;
+  };
+
+  // 1. Opened, it shows its own texture on its own layout: blue, yellow | green, green | yellow (the
+  //    mirrored square).
+  pid_t app = spawn(args({obj.string(), "--exit-after-frames", "3", "--screenshot", before.string()}), x->env(), log1);
+  ASSERT_GT(app, 0);
+  ASSERT_EQ(wait_exit(app, 120s), 0) << slurp(log1);
+  EXPECT_NE(slurp(log1).find("painting on its artist's UV atlas"), std::string::npos) << slurp(log1);
+  const adaptex::ImageRGBA8 s1 = adaptex::read_image(before);
+  const int cy = 300;
+  const auto [x0, x1] = model_span(s1, cy);
+  ASSERT_GT(x1 - x0, 300);
+  ASSERT_GT(x0 + (x1 - x0) / 6, 320) << "the model is under the panel";
+  const double w = x1 - x0;
+  auto at = [&](const adaptex::ImageRGBA8& s, double fx, int y) {
+    const int px = int(x0 + fx * w);
+    return mean_rgb(s, px - 2, px + 2, y - 2, y + 2);
+  };
+  const std::vector<std::pair<double, Hue>> pattern = {
+      {2.5 / 12, Hue::Blue}, {5.0 / 12, Hue::Yellow}, {7.0 / 12, Hue::Green}, {9.0 / 12, Hue::Green},
+      {11.0 / 12, Hue::Yellow}};
+  for (const auto& [fx, h] : pattern) EXPECT_EQ(hue_name(hue(at(s1, fx, cy))), hue_name(h)) << fx;
+
+  // 2. A vertical red stroke on the middle square's yellow part; quit, Save.
+  app = spawn(args({obj.string()}), x->env(), log2);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_ready(log2)) << slurp(log2);
+  const int sx = int(x0 + 5 * w / 12);
+  std::ostringstream drag;
+  drag << "mousemove " << sx << " " << cy - 50 << " sleep 0.3 mousedown 1 sleep 0.2";
+  for (int y = cy - 45; y <= cy + 50; y += 5) drag << " mousemove " << sx << " " << y << " sleep 0.05";
+  drag << " sleep 0.2 mouseup 1 sleep 0.5 mousemove 950 80 sleep 0.3";
+  ASSERT_EQ(xdo(*x, drag.str()), 0);
+  ASSERT_EQ(xdo(*x, kHoldCtrlQ), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log2, kAsking) == 1; }, 30s)) << slurp(log2);
+  ASSERT_EQ(xdo(*x, "key s"), 0);
+  const int rc = wait_exit(app, 60s);
+  if (rc < 0) kill(app, SIGKILL), wait_exit(app, 5s);
+  ASSERT_EQ(rc, 0) << slurp(log2);
+  const nlohmann::json saved = read_json(project);
+  ASSERT_TRUE(saved.is_object()) << slurp(log2);
+  EXPECT_EQ(saved["layout"], "atlas");
+  EXPECT_EQ(saved["adapt"]["texture_size"], 128);  // the texture's own size
+  ASSERT_EQ(project_strokes(project).size(), 1u);
+
+  // 3. Reopened from the project: the stroke on the middle square and, through the shared texels, on
+  //    its mirror image on the right; the rest of the pattern as it was. Exported as OBJ.
+  app = spawn(args({project.string(), "--exit-after-frames", "3", "--screenshot", after.string(), "--export-obj",
+                    exp.string()}),
+              x->env(), log3);
+  ASSERT_GT(app, 0);
+  ASSERT_EQ(wait_exit(app, 120s), 0) << slurp(log3);
+  const adaptex::ImageRGBA8 s2 = adaptex::read_image(after);
+  EXPECT_EQ(hue_name(hue(at(s2, 5.0 / 12, cy))), hue_name(Hue::Red));
+  EXPECT_EQ(hue_name(hue(at(s2, 11.0 / 12, cy))), hue_name(Hue::Red));  // the mirrored square
+  for (double fx : {7.0 / 12, 9.0 / 12}) EXPECT_EQ(hue_name(hue(at(s2, fx, cy))), hue_name(Hue::Green)) << fx;
+  EXPECT_EQ(hue_name(hue(at(s2, 2.5 / 12, cy))), hue_name(Hue::Blue));
+  EXPECT_EQ(hue_name(hue(at(s2, 4.25 / 12, cy))), hue_name(Hue::Yellow));  // beside the stroke
+
+  // The exported UVs are the input's, corner by corner; the exported texture is the input's outside
+  // the stroke (u = 0.15 on the shared chart) and red on it.
+  fs::path out_obj;
+  for (const auto& e : fs::directory_iterator(exp))
+    if (e.path().extension() == ".obj") out_obj = e.path();
+  ASSERT_FALSE(out_obj.empty()) << slurp(log3);
+  const adaptex::TexturedMesh tm = adaptex::read_textured_obj(out_obj);
+  ASSERT_EQ(size_t(tm.mesh.num_faces()), model.face_uvs.size());
+  double uv_error = 0;
+  for (size_t f = 0; f < model.face_uvs.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      uv_error = std::max(uv_error, (tm.param.uv[size_t(tm.param.uv_faces[f][k])] - model.face_uvs[f][size_t(k)]).norm());
+  EXPECT_LT(uv_error, 1e-5);
+  fs::path out_png = out_obj;
+  out_png.replace_extension(".png");
+  const adaptex::ImageRGBA8 tex = adaptex::read_image(out_png);
+  ASSERT_EQ(tex.width, 128);
+  int same = 0, differ = 0, red = 0;
+  for (int j = 6; j < 122; ++j)
+    for (int i = 6; i < 122; ++i) {
+      // The gutter between the charts, and the part of the third chart that only its degenerate
+      // triangle would cover (no texel stands for it).
+      if (i > 58 && i < 98) continue;
+      const double u = (i + 0.5) / 128;
+      const std::uint8_t *a = tex.texel(i, j), *b = model.texture.texel(i, j);
+      const bool equal = std::abs(a[0] - b[0]) <= 1 && std::abs(a[1] - b[1]) <= 1 && std::abs(a[2] - b[2]) <= 1;
+      if (std::abs(u - 0.15) > 0.08) {
+        same += equal, differ += !equal;
+      } else {
+        red += a[0] > 180 && a[1] < 80 && a[2] < 80;
+      }
+    }
+  EXPECT_EQ(differ, 0) << same;
+  EXPECT_GT(same, 5000);
+  EXPECT_GT(red, 100);
+}

@@ -93,4 +93,12 @@ void write_obj(const std::filesystem::path& path, const TriMesh& mesh, const Par
                const std::optional<std::string>& mtllib = std::nullopt,
                const std::string& material = "adaptex_paint");
 
+/// write_obj() of a mesh with several materials: face f uses materials[face_material[f]], a `usemtl`
+/// starts every run of faces of one material, faces keep their order.
+/// \pre face_material.size() == F, every entry a valid index into materials
+/// \throw InvalidInputError inconsistent input; OutputError
+void write_obj(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization& param,
+               const std::string& mtllib, const std::vector<std::string>& materials,
+               const std::vector<int>& face_material);
+
 }  // namespace adaptex

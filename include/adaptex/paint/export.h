@@ -3,7 +3,9 @@
 /// Export of a painted mesh to the formats artists use: Wavefront OBJ + MTL + PNG
 /// and a binary glTF 2.0 (.glb) with the PNG embedded as baseColorTexture. Conventions (OBJ v = 0
 /// bottom, glTF v flipped, one glTF vertex per wedge) are described in docs/export.md.
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,6 +65,46 @@ ExportedFiles export_textured_mesh(AtomicOutput& out, const std::filesystem::pat
                                    const std::string& name, const TriMesh& mesh,
                                    const Parameterization& param, const ImageRGBA8& texture,
                                    const ExportOptions& options = {});
+
+/// An image of export_textured_materials(): the file DIR/file and an image embedded in the .glb.
+struct ExportImage {
+  std::string file;  ///< File name, e.g. "NAME_skin.png" (check_export_name()-clean, unique).
+  ImageRGBA8 image;
+};
+
+/// A map of an exported material: its slot ("base_color", or an ExportMap slot) and its image.
+struct ExportMaterialMap {
+  std::string slot;
+  int image = -1;  ///< Index into ExportMaterials::images (materials may share an image).
+};
+
+/// A material of export_textured_materials(), with its factors (the input's; glTF defaults when unset).
+struct ExportMaterial {
+  std::string name;                              ///< MTL / glTF name (check_export_name()-clean, unique).
+  std::vector<ExportMaterialMap> maps;           ///< None: an untextured material (its factors only).
+  std::array<double, 4> base_color{1, 1, 1, 1};  ///< Linear RGBA factor (MTL Kd and d; glTF baseColorFactor).
+  std::array<double, 3> emissive{0, 0, 0};       ///< MTL Ke; glTF emissiveFactor (1 when a map is given and this is 0).
+  std::optional<double> metallic;                ///< MTL Pm; glTF metallicFactor (unset: 1 with a metallic map, else 0).
+  std::optional<double> roughness;               ///< MTL Pr; glTF roughnessFactor (unset: 1).
+};
+
+/// The materials of a mesh with several of them.
+struct ExportMaterials {
+  std::vector<ExportImage> images;
+  std::vector<ExportMaterial> materials;
+  std::vector<int> face_material;  ///< F: index into materials.
+};
+
+/// Registers and writes DIR/NAME.obj (one `usemtl` per run of faces of one material, faces in input
+/// order), DIR/NAME.mtl (one `newmtl` per material with its factors and every map, `-clamp on` when
+/// options.mtl_clamp), every image of \p set as DIR/FILE, and DIR/NAME.glb (one primitive per material
+/// that has faces, one glTF material per material, every image embedded once, one sampler of
+/// options.wrap) through \p out, as export_textured_mesh() (options.material and options.maps unused).
+/// \pre param.uv_faces.size() == mesh.faces.size() == set.face_material.size()
+/// \throw InvalidInputError bad name, empty image, bad index or inconsistent input; OutputError
+ExportedFiles export_textured_materials(AtomicOutput& out, const std::filesystem::path& dir, const std::string& name,
+                                        const TriMesh& mesh, const Parameterization& param,
+                                        const ExportMaterials& set, const ExportOptions& options = {});
 
 /// Encodes a glTF 2.0 binary (.glb) with tinygltf: one mesh, one triangle primitive with POSITION
 /// (float32, with min/max), optional NORMAL, TEXCOORD_0 = (u, 1 - v) and uint32 indices; one glTF
