@@ -118,15 +118,15 @@ void run_shrink(const ShrinkArgs& a, const Context& ctx) {
 void add_shrink_command(CLI::App& app, Context& ctx) {
   auto a = std::make_shared<ShrinkArgs>();
   auto* sub = app.add_subcommand(
-      "shrink", "Make every map of a textured asset smaller on a repacked copy of its own atlas (docs/shrink.md)");
+      "shrink", "Make every map of every material of a textured asset smaller on a repacked copy of its own atlas (docs/shrink.md)");
   sub->add_option("mesh", a->mesh, "OBJ (+ MTL) or glTF/GLB with texture coordinates and texture maps")
       ->required()
       ->check(CLI::ExistingFile);
   sub->add_option("-o,--output", a->outdir, "Output directory")->required();
-  sub->add_option("--size", a->size, "Output width = height of every map")->check(CLI::Range(8, adaptex::kMaxTextureSize));
-  sub->add_option("--factor", a->factor, "Or: K times fewer texels than the base colour map (each side / sqrt(K))");
+  sub->add_option("--size", a->size, "Output width = height of every map of every material")->check(CLI::Range(8, adaptex::kMaxTextureSize));
+  sub->add_option("--factor", a->factor, "Or: K times fewer texels than each material's base colour map (each side / sqrt(K))");
   sub->add_option("--candidate", a->candidate,
-                  "Output this candidate (downsized, artist, repacked, budget, warped) instead of the best");
+                  "Output this candidate (downsized, artist, repacked, budget, island_warp, warped) instead of the best");
   sub->add_option("--max-face-growth", a->max_face_growth,
                   "Largest share of faces the new layout may add (0.1 = 10 %; the shrink adds none)")
       ->check(cli::kFiniteNonNegative)

@@ -25,7 +25,18 @@ struct GenerateArgs {
   std::string mesh, kind = "mixed", output;
   std::uint64_t seed = 1;
   int count = -1;
+  bool repair = false;
 };
+
+/// The mesh of \p a, read as `paint --repair` reads it when --repair is given (scans).
+TriMesh read_generate_mesh(const GenerateArgs& a, const Context& ctx) {
+  ReadOptions ro;
+  ro.repair = a.repair;
+  ReadReport report;
+  TriMesh mesh = read_mesh(a.mesh, ro, &report);
+  for (const auto& w : report.warnings) ctx.warn(w);
+  return mesh;
+}
 
 struct CheckArgs {
   std::string input, output;
@@ -69,9 +80,7 @@ void print_summary(const std::string& file, const MaterialStrokeFile& s) {
 
 void run_generate_material(const GenerateArgs& a, const Context& ctx) {
   if (a.count != -1) throw InvalidInputError("strokes generate: --count has no meaning with --kind material");
-  ReadReport report;
-  const TriMesh mesh = read_mesh(a.mesh, {}, &report);
-  for (const auto& w : report.warnings) ctx.warn(w);
+  const TriMesh mesh = read_generate_mesh(a, ctx);
   const MaterialStrokeFile s = generate_material_strokes(mesh, a.seed);
   AtomicOutput out;
   write_material_strokes(out.add(a.output), s);
@@ -91,9 +100,7 @@ void run_generate(const GenerateArgs& a, const Context& ctx) {
   opt.count = a.count;
   if (opt.count < 1 && opt.count != -1)
     throw InvalidInputError("strokes generate: --count must be >= 1 (got " + std::to_string(a.count) + ")");
-  ReadReport report;
-  const TriMesh mesh = read_mesh(a.mesh, {}, &report);
-  for (const auto& w : report.warnings) ctx.warn(w);
+  const TriMesh mesh = read_generate_mesh(a, ctx);
   GeneratedRegion region;
   const StrokeFile s = generate_strokes(mesh, opt, &region);
   AtomicOutput out;
@@ -143,6 +150,8 @@ void add_strokes_command(CLI::App& app, Context& ctx) {
   gen->add_option("--count", g->count,
                   "Number of strokes (default: 60 lines, 6 blobs, 48 mixed, 150-400 dots drawn from the seed)");
   gen->add_option("-o,--output", g->output, "Output stroke file (.json)")->required();
+  gen->add_flag("--repair", g->repair,
+                "Split non-manifold vertices / drop duplicate faces on reading (as paint --repair)");
   gen->callback([g, &ctx] { run_generate(*g, ctx); });
 
   auto c = std::make_shared<CheckArgs>();

@@ -179,6 +179,7 @@ TEST(Shrink, BudgetMovesTexelsToTheDetailedIsland) {
   opt.size = 64;
   opt.error_samples = 20000;
   opt.eval_samples = 40000;
+  opt.island_warp = false;  // the rigid budget alone
   const ShrinkResult r = shrink_textured_mesh(a.mesh, a.param, {{"base_color", tex, MapKind::Color}}, opt);
   auto uv_area = [&](int f0) {
     double s = 0;
@@ -190,6 +191,105 @@ TEST(Shrink, BudgetMovesTexelsToTheDetailedIsland) {
   EXPECT_GT(r.psnr, r.psnr_downsized + 1.0);
   const double p_down = psnr(a.mesh, a.param, tex, a.param, box_downsize(tex, 64, 64));
   EXPECT_GT(psnr(a.mesh, a.param, tex, r.param, r.maps[0]), p_down + 1.0);
+}
+
+/// Share of the UV area of faces [f0, f0 + count) that faces whose input UV centroid lies in
+/// [lo, hi]² hold, on \p p.
+double corner_share(const Parameterization& input, const Parameterization& p, int f0, int count, double lo, double hi) {
+  double in = 0, all = 0;
+  for (int f = f0; f < f0 + count; ++f) {
+    const Face& t = input.uv_faces[f];
+    const Vec2 c = (input.uv[t[0]] + input.uv[t[1]] + input.uv[t[2]]) / 3.0;
+    const double area = std::abs(uv_signed_area(p, f));
+    all += area;
+    if (c.x() > lo && c.x() < hi && c.y() > lo && c.y() < hi) in += area;
+  }
+  return in / all;
+}
+
+double candidate_psnr(const ShrinkResult& r, const std::string& name) {
+  for (const ShrinkCandidate& c : r.candidates)
+    if (c.name == name && c.valid) return c.psnr;
+  return -1;
+}
+
+ShrinkOptions island_warp_options() {
+  ShrinkOptions opt;
+  opt.size = 64;
+  opt.error_samples = 20000;
+  opt.eval_samples = 40000;
+  opt.force_candidate = "island_warp";
+  return opt;
+}
+
+TEST(Shrink, IslandWarpGivesTheDetailedCornerMoreArea) {
+  // One chart, fine waves in its corner [0.1, 0.34]² of the square (9 % of its area), a ramp elsewhere.
+  Asset a;
+  const int f0 = a.patch(0, 0, 0, 1, 1, 10, Vec2(0.1, 0.1), 0.8, 0.8);
+  const ImageRGBA8 tex = texture(256, 0.1, 0.34, 0.1, 0.34);
+  const ShrinkResult r = shrink_textured_mesh(a.mesh, a.param, {{"base_color", tex, MapKind::Color}},
+                                              island_warp_options());
+  ASSERT_EQ(r.chosen, "island_warp");
+  const double before = corner_share(a.param, a.param, f0, 200, 0.1, 0.34);
+  EXPECT_NEAR(before, 0.09, 1e-9);
+  EXPECT_GT(corner_share(a.param, r.param, f0, 200, 0.1, 0.34), 2.0 * before);
+  EXPECT_EQ(r.after.flipped, 0);
+  EXPECT_EQ(r.after.degenerate, 0);
+  // The warp pays: the warped island beats the same island moved rigidly.
+  EXPECT_GT(candidate_psnr(r, "island_warp"), candidate_psnr(r, "budget") + 0.5);
+}
+
+TEST(Shrink, IslandWarpKeepsMirroredTexelsShared) {
+  // Two halves mirrored onto the same texels [0.05, 0.45]², detail in the corner [0.05, 0.17]² of them.
+  Asset a;
+  const int left = a.patch(0, 0, 0, 1, 1, 10, Vec2(0.05, 0.05), 0.4, 0.4);
+  const int right = a.patch(1.2, 0, 0, 1, 1, 10, Vec2(0.45, 0.05), -0.4, 0.4);
+  const ImageRGBA8 tex = texture(256, 0.05, 0.17, 0.05, 0.17);
+  const ShrinkResult r = shrink_textured_mesh(a.mesh, a.param, {{"base_color", tex, MapKind::Color}},
+                                              island_warp_options());
+  ASSERT_EQ(r.chosen, "island_warp");
+  EXPECT_EQ(r.islands, 1);
+  // Every wedge of the left half still has its mirrored partner's UV: the texels stay shared.
+  for (int k = 0; k < 11 * 11; ++k) {
+    const int i = k % 11, j = k / 11, kr = j * 11 + (10 - i);
+    EXPECT_NEAR((r.param.uv[a.param.uv_faces[left][0] + k] - r.param.uv[a.param.uv_faces[right][0] + kr]).norm(),
+                0.0, 1e-12)
+        << k;
+  }
+  // Not the identity: the corner got area; no face flipped (the right half stays mirrored) or degenerated.
+  EXPECT_GT(corner_share(a.param, r.param, left, 200, 0.05, 0.17), 1.5 * corner_share(a.param, a.param, left, 200, 0.05, 0.17));
+  int flipped = 0;
+  for (int f = 0; f < a.mesh.num_faces(); ++f) {
+    const double a0 = uv_signed_area(a.param, f), a1 = uv_signed_area(r.param, f);
+    flipped += (a0 > 0) != (a1 > 0);
+  }
+  EXPECT_EQ(flipped, 0);
+  EXPECT_LT(uv_signed_area(r.param, right + 5), 0.0);
+  EXPECT_EQ(r.after.degenerate, 0);
+  EXPECT_GT(r.after.shared_fraction, 0.9);
+}
+
+TEST(Shrink, IslandWarpIsTheIdentityWithoutDetail) {
+  // A flat colour: no error anywhere, so the warped layout is exactly the rigid layout it warps (the
+  // budget's or the uniform repack's, whichever ranked higher).
+  Asset a;
+  a.patch(0, 0, 0, 1, 1, 6, Vec2(0.1, 0.1), 0.3, 0.5);
+  a.patch(2, 0, 0, 1, 1, 6, Vec2(0.6, 0.1), 0.3, 0.3);
+  const ImageRGBA8 flat(128, 128, {90, 140, 200, 255});
+  ShrinkOptions opt = island_warp_options();
+  const ShrinkResult warped = shrink_textured_mesh(a.mesh, a.param, {{"base_color", flat, MapKind::Color}}, opt);
+  ASSERT_EQ(warped.chosen, "island_warp");
+  double nearest = 1e300;
+  for (const std::string rigid : {"budget", "repacked"}) {
+    opt.force_candidate = rigid;
+    const ShrinkResult r = shrink_textured_mesh(a.mesh, a.param, {{"base_color", flat, MapKind::Color}}, opt);
+    ASSERT_EQ(r.chosen, rigid);
+    ASSERT_EQ(r.param.uv.size(), warped.param.uv.size());
+    double d = 0;
+    for (size_t w = 0; w < r.param.uv.size(); ++w) d = std::max(d, (warped.param.uv[w] - r.param.uv[w]).norm());
+    nearest = std::min(nearest, d);
+  }
+  EXPECT_LT(nearest, 1e-12);
 }
 
 TEST(Shrink, EveryMapFollowsTheLayout) {
@@ -231,7 +331,7 @@ TEST(Shrink, NoDegenerateOutputFaceWhateverTheCandidate) {
   };
   ASSERT_GE(degenerate(a.param, 64), 2);
   const ImageRGBA8 tex = texture(128, 0.0, 0.5, 0.0, 1.0);
-  for (const std::string candidate : {"", "downsized", "artist", "repacked", "budget"}) {
+  for (const std::string candidate : {"", "downsized", "artist", "repacked", "budget", "island_warp"}) {
     ShrinkOptions opt;
     opt.size = 64;
     opt.error_samples = 10000;

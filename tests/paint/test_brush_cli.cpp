@@ -195,6 +195,21 @@ TEST(BrushCli, GenerateIsReproducibleAndOnTheSurface) {
   EXPECT_FALSE(std::filesystem::exists(tmp.path / "x.json"));
 }
 
+TEST(BrushCli, GenerateRepairsAScanAsPaintDoes) {
+  // Scans need `paint --repair`; generating their strokes must not fail where painting works.
+  TempDir tmp;
+  write_obj(tmp.path / "fan.obj", shapes::nonmanifold_fan(), nullptr);
+  const auto bad = run_cli("strokes generate " + q(tmp.path / "fan.obj") + " --count 3 -o " + q(tmp.path / "a.json"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+  EXPECT_NE(bad.err.find("--repair"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path / "a.json"));
+  const auto ok = run_cli("-q strokes generate " + q(tmp.path / "fan.obj") + " --repair --count 3 -o " +
+                          q(tmp.path / "b.json"));
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_EQ(read_strokes(tmp.path / "b.json").strokes.size(), 3u);
+}
+
 TEST(BrushCli, GenerateMaterialWritesAVersion2FileThatPaintsEveryChannel) {
   TempDir tmp;
   const TriMesh mesh = shapes::icosphere(3, 1.0);

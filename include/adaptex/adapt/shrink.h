@@ -47,6 +47,10 @@ struct ShrinkOptions {
   int gutter = 1;  ///< Texels of dilation around each island (2 = the gap between two islands; default 1).
   bool rotate = true;  ///< Islands may turn by multiples of 90° (orientation is kept; default on).
   // Warp.
+  /// Also try the budget layout with every island warped inside itself towards its detail (default on).
+  bool island_warp = true;
+  /// Island warp: largest texel density ratio along each axis of an island (>= 1; default 4).
+  double island_warp_ratio = 4.0;
   /// Also try the density-flow warp of the layout when no charts share texels (default on).
   bool warp = true;
   // Topology.
@@ -57,7 +61,7 @@ struct ShrinkOptions {
   // Candidates.
   long long eval_samples = 200000;  ///< Surface samples of the PSNR that picks the candidate (default 200k).
   std::uint64_t seed = 7;  ///< Seed of the surface samples (default 7).
-  /// Output this candidate ("downsized", "artist", "repacked", "budget") when it is valid, whatever
+  /// Output this candidate ("downsized", "artist", "repacked", "budget", "island_warp", "warped") when it is valid, whatever
   /// its PSNR (experiments; default "": the best).
   std::string force_candidate;
   ProgressCallback progress;  ///< Phases "islands", "error model", "pack", "texels", "evaluate".
@@ -65,7 +69,7 @@ struct ShrinkOptions {
 
 /// One candidate layout and its measured quality.
 struct ShrinkCandidate {
-  std::string name;  ///< "downsized", "artist", "repacked", "budget", "warped".
+  std::string name;  ///< "downsized", "artist", "repacked", "budget", "island_warp", "warped".
   /// Surface PSNR of the first map against the original (dB), with draft-fitted texels on a quarter of
   /// the evaluation's samples: what ranks the candidates.
   double psnr = 0;

@@ -90,6 +90,8 @@ ErrorCurves island_error_curves(const SampleSet& set, size_t stride, const Param
     for (int l = 0; l < l_lo; ++l) err[k * kLevels + l] = err[k * kLevels + l_lo];
     for (int l = l_hi + 1; l < kLevels; ++l) err[k * kLevels + l] = err[k * kLevels + l_hi];
   }
+  curves.stride = stride;
+  curves.sample_error.assign(err.begin(), err.end());
   std::vector<long> count(num_islands, 0);
   for (size_t k = 0; k < K; ++k) {
     const int i = face_island[point(k).face];
@@ -105,16 +107,26 @@ ErrorCurves island_error_curves(const SampleSet& set, size_t stride, const Param
   return curves;
 }
 
-double island_error(const ErrorCurves& curves, int i, double h) {
-  const std::vector<double>& e = curves.error[i];
-  const std::vector<double>& s = curves.spacing;
-  if (h <= s.front()) return e.front() * h / s.front();
-  if (h >= s.back()) return e.back();
+namespace {
+/// Log-log interpolation of the level errors \p e (kLevels of them) at spacing \p h.
+template <class T>
+double level_error(const T* e, const std::vector<double>& s, double h) {
+  if (h <= s.front()) return e[0] * h / s.front();
+  if (h >= s.back()) return e[kLevels - 1];
   const double t = std::log2(h / s.front()) * 2.0;
   const int l = std::min(static_cast<int>(t), kLevels - 2);
   const double f = t - l;
   constexpr double kTiny = 1e-12;
   return std::exp((1 - f) * std::log(e[l] + kTiny) + f * std::log(e[l + 1] + kTiny)) - kTiny;
+}
+}  // namespace
+
+double island_error(const ErrorCurves& curves, int i, double h) {
+  return level_error(curves.error[i].data(), curves.spacing, h);
+}
+
+double sample_error(const ErrorCurves& curves, size_t k, double h) {
+  return level_error(curves.sample_error.data() + k * kLevels, curves.spacing, h);
 }
 
 std::vector<double> allocate_island_scales(const ErrorCurves& curves, const std::vector<double>& area,

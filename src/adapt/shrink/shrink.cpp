@@ -34,9 +34,10 @@ void check_inputs(const TriMesh& mesh, const Parameterization& param, const std:
     if (!std::isfinite(p.x()) || !std::isfinite(p.y())) throw InvalidInputError("shrink: a texture coordinate is not finite");
   if (!(opt.overlap_share >= 0) || !(opt.max_scale_ratio >= 1) || opt.gutter < 0 || opt.gutter > 16 ||
       opt.error_samples < 1000 || opt.eval_samples < 1000 || !(opt.max_face_growth >= 0) ||
+      !(opt.island_warp_ratio >= 1) || !std::isfinite(opt.island_warp_ratio) ||
       !std::isfinite(opt.max_face_growth))
     throw InvalidInputError(
-        "shrink: bad options (overlap_share >= 0, max_scale_ratio >= 1, gutter in [0,16], samples >= 1000, "
+        "shrink: bad options (overlap_share >= 0, max_scale_ratio >= 1, island_warp_ratio >= 1, gutter in [0,16], samples >= 1000, "
         "max_face_growth >= 0)");
 }
 
@@ -46,6 +47,7 @@ struct Built {
   Parameterization param;
   ImageRGBA8 first;
   double lambda = 0;  ///< Repacked: the common factor the packing reached (scales · λ).
+  double fill_hint = 0;  ///< Repacked: the fill its packing started from.
 };
 
 /// Everything the candidates share.
@@ -72,9 +74,11 @@ struct Context {
   }
 };
 
-Built repacked(const Context& cx, const std::string& name, const std::vector<double>& scales, double fill_hint) {
+/// The islands of \p layout (the shifted input layout, or a warp of it) packed at \p scales, fitted.
+Built repacked(const Context& cx, const std::string& name, const std::vector<double>& scales, double fill_hint,
+               const Parameterization& layout) {
   double fill = 0;
-  const std::vector<IslandPlacement> pl = pack_islands(cx.layout, cx.face_island, cx.islands, scales, cx.opt.size,
+  const std::vector<IslandPlacement> pl = pack_islands(layout, cx.face_island, cx.islands, scales, cx.opt.size,
                                                        cx.opt.gutter, cx.opt.rotate, fill_hint, &fill);
   if (pl.empty()) {
     Built b;
@@ -82,27 +86,31 @@ Built repacked(const Context& cx, const std::string& name, const std::vector<dou
     b.info.valid = false;
     return b;
   }
-  Built b = cx.fitted(name, apply_placements(cx.layout, cx.face_island, pl, cx.opt.size));
+  Built b = cx.fitted(name, apply_placements(layout, cx.face_island, pl, cx.opt.size));
   b.lambda = pl[0].sigma / (cx.opt.size * scales[0]);
+  b.fill_hint = fill_hint;
   b.info.fill = fill;
   return b;
 }
 
 /// The budgeted candidate: island scales from the error model for the area the uniform packing
-/// reached (\p uniform), packed, then allocated again for the area that packing reached.
-Built budgeted(const Context& cx, const Built& uniform, const std::vector<double>& area, double* predicted_gain) {
+/// reached (\p uniform), packed, then allocated again for the area that packing reached. \p curves
+/// and \p chosen receive the error model and the candidate's scales.
+Built budgeted(const Context& cx, const Built& uniform, const std::vector<double>& area, double* predicted_gain,
+               ErrorCurves* curves_out, std::vector<double>* chosen_scales) {
   const ShrinkOptions& o = cx.opt;
   // The spacings the two allocations below can read: the uniform one's, times the packing's factor
   // (within the ratio either way), within max_scale_ratio.
   const double h_uniform = 1.0 / (o.size * uniform.lambda);
   const size_t stride = static_cast<size_t>(std::max(1LL, o.eval_samples / o.error_samples));
-  const ErrorCurves curves = island_error_curves(cx.samples, stride, cx.param, cx.face_island, cx.islands, cx.maps,
+  ErrorCurves& curves = *curves_out;
+  curves = island_error_curves(cx.samples, stride, cx.param, cx.face_island, cx.islands, cx.maps,
                                                  h_uniform / (2 * o.max_scale_ratio), h_uniform * 2 * o.max_scale_ratio);
   double budget = 0;
   for (double a : area) budget += a * uniform.lambda * uniform.lambda;
   report_progress(o.progress, "pack", 0.5);
   std::vector<double> scales = allocate_island_scales(curves, area, budget, o.size, o.max_scale_ratio);
-  Built bud = repacked(cx, "budget", scales, uniform.info.fill);
+  Built bud = repacked(cx, "budget", scales, uniform.info.fill, cx.layout);
   // The error model's gain of the chosen budget layout over the uniform repack.
   const auto finish = [&](const std::vector<double>& chosen) {
     double e_uni = 0, e_bud = 0;
@@ -111,6 +119,7 @@ Built budgeted(const Context& cx, const Built& uniform, const std::vector<double
       e_bud += curves.weight[i] * island_error(curves, i, 1.0 / (o.size * chosen[i] * bud.lambda));
     }
     if (e_uni > 0 && e_bud > 0) *predicted_gain = 10 * std::log10(e_uni / e_bud);
+    *chosen_scales = chosen;
     return std::move(bud);
   };
   if (!bud.info.valid) return bud;
@@ -118,12 +127,26 @@ Built budgeted(const Context& cx, const Built& uniform, const std::vector<double
   if (std::abs(bud.lambda - 1.0) < 0.02) return finish(scales);
   std::vector<double> scales2 = allocate_island_scales(curves, area, budget * bud.lambda * bud.lambda, o.size,
                                                        o.max_scale_ratio);
-  Built bud2 = repacked(cx, "budget", scales2, bud.info.fill);
+  Built bud2 = repacked(cx, "budget", scales2, bud.info.fill, cx.layout);
   if (bud2.info.valid && bud2.info.psnr > bud.info.psnr) {
     bud = std::move(bud2);
     scales = scales2;
   }
   return finish(scales);
+}
+
+/// The budgeted islands, each warped inside itself towards its detail (warp_islands), packed at the
+/// budget's scales. Valid only if no face flips.
+Built island_warped(const Context& cx, const Built& budget, const ErrorCurves& curves,
+                    const std::vector<double>& scales) {
+  std::vector<double> texels(scales.size()), blend;
+  for (size_t i = 0; i < scales.size(); ++i) texels[i] = cx.opt.size * scales[i] * budget.lambda;
+  const Parameterization layout = warp_islands(cx.samples, curves, cx.layout, cx.face_island, cx.islands, texels,
+                                               cx.opt.island_warp_ratio, &blend);
+  Built b = repacked(cx, "island_warp", scales, budget.fill_hint, layout);
+  if (b.info.valid && layout_stats(cx.mesh, cx.param, b.param, cx.param.face_chart, cx.opt.size).flipped > 0)
+    b.info.valid = false;
+  return b;
 }
 
 /// The density-flow warp of the whole layout (adapt.h, no refinement: the input's faces), for layouts
@@ -189,10 +212,18 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
   report_progress(options.progress, "pack", 0);
   if (!isl.tiling) {
     const std::vector<double> area = island_areas(cx.layout, cx.face_island, cx.islands, R);
-    Built uni = repacked(cx, "repacked", std::vector<double>(cx.islands, 1.0), 0.75);
+    Built uni = repacked(cx, "repacked", std::vector<double>(cx.islands, 1.0), 0.75, cx.layout);
     if (options.budget && uni.info.valid) {
       report_progress(options.progress, "error model", 0);
-      cands.push_back(budgeted(cx, uni, area, &res.predicted_gain_db));
+      ErrorCurves curves;
+      std::vector<double> scales;
+      cands.push_back(budgeted(cx, uni, area, &res.predicted_gain_db, &curves, &scales));
+      if (options.island_warp && cands.back().info.valid) {  // warp the better of the two rigid layouts
+        report_progress(options.progress, "warp", 0);
+        const bool from_uniform = uni.info.psnr > cands.back().info.psnr;
+        if (from_uniform) scales.assign(cx.islands, 1.0);
+        cands.push_back(island_warped(cx, from_uniform ? uni : cands.back(), curves, scales));
+      }
     }
     cands.push_back(std::move(uni));
   }

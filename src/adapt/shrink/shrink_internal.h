@@ -50,6 +50,8 @@ struct ErrorCurves {
   std::vector<double> spacing;              ///< L texel spacings h_l (UV units of the input layout), increasing.
   std::vector<std::vector<double>> error;   ///< I x L: mean error of island i at spacing l.
   std::vector<double> weight;               ///< I: share of the surface samples in island i.
+  size_t stride = 1;                        ///< The samples measured: every stride-th of the set.
+  std::vector<float> sample_error;          ///< K x L: weighted error of measured sample k at spacing l.
 };
 /// Measured on every \p stride-th sample of \p set (the input layout's samples), at the levels whose
 /// spacing lies within [h_min / 2, 2 h_max] (the others copy the nearest measured level: the budget
@@ -61,6 +63,22 @@ ErrorCurves island_error_curves(const SampleSet& set, size_t stride, const Param
 /// Error of island \p i at spacing \p h (log-log interpolation between the curve's levels; constant
 /// beyond them, 0 below the finest).
 double island_error(const ErrorCurves& curves, int i, double h);
+
+/// Error of measured sample \p k (the set's sample k · curves.stride) at spacing \p h, interpolated
+/// as island_error().
+double sample_error(const ErrorCurves& curves, size_t k, double h);
+
+/// Warps every island inside itself: the density-equalizing map (density_flow.h) of a square lattice
+/// over the island's bounding box in \p layout whose cells get area ∝ (error / covered area)^(2/3) (the
+/// error model's samples at the island's output spacing; at most \p max_ratio² between cells), damped
+/// towards identity per island until no face flips or keeps under 5 % of its area. A function of the
+/// UV position, so shared texels stay shared and mirrors stay mirrors; an island without error stays.
+/// \p texels[i]: output texels per UV unit of island i (lattice cells of about 2 texels, 4 ... 64 a side).
+/// \p blend receives each island's damping in [0, 1] (1: the full warp).
+/// \pre curves measured on \p set; \p layout is the set's layout shifted (shifted_layout()); max_ratio >= 1.
+Parameterization warp_islands(const SampleSet& set, const ErrorCurves& curves, const Parameterization& layout,
+                              const std::vector<int>& face_island, int num_islands,
+                              const std::vector<double>& texels, double max_ratio, std::vector<double>* blend);
 
 /// Relative island scales (s_i: new UV size / input UV size, up to one common factor) minimising
 /// Σ weight_i · e_i(1 / (size · s_i)) under Σ area_i · s_i² = budget (equal marginal gain), with
