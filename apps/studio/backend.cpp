@@ -294,7 +294,12 @@ void export_obj(const std::filesystem::path& dir, const std::string& name, const
 
 void export_glb(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization& param,
                 const ImageRGBA8& texture) {
-  const std::vector<unsigned char> bytes = encode_glb(mesh, param, texture);
+  // An artist's atlas may keep charts across the border of [0,1]^2 (as OBJ renderers repeat the
+  // texture): the sampler then repeats too, so the file reads back and looks as the model did.
+  ExportOptions opt;
+  if (std::any_of(param.uv.begin(), param.uv.end(), [](const Vec2& t) { return t.minCoeff() < 0 || t.maxCoeff() > 1; }))
+    opt.wrap = TextureAddress::Repeat;
+  const std::vector<unsigned char> bytes = encode_glb(mesh, param, texture, opt);
   AtomicOutput out;
   const auto tmp = out.add(path);
   {

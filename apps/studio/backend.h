@@ -160,7 +160,8 @@ void save_strokes(const std::filesystem::path& path, const StrokeFile& file);
 /// Writes OBJ + MTL + PNG into \p dir as NAME.obj/.mtl/.png, atomically. \throw OutputError
 void export_obj(const std::filesystem::path& dir, const std::string& name, const TriMesh& mesh,
                 const Parameterization& param, const ImageRGBA8& texture);
-/// Writes a binary glTF with the texture embedded, atomically. \throw OutputError
+/// Writes a binary glTF with the texture embedded, atomically; its sampler clamps, or repeats when
+/// a UV lies outside [0,1]^2 (an artist's atlas with charts across its border). \throw OutputError
 void export_glb(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization& param,
                 const ImageRGBA8& texture);
 /// Writes a PNG atomically. \throw OutputError

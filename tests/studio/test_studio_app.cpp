@@ -15,6 +15,7 @@
 
 #include "adaptex/core/limits.h"
 #include "adaptex/core/shapes.h"
+#include "adaptex/io/asset_io.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/input_file.h"
 #include "adaptex/io/mesh_io.h"
@@ -292,6 +293,132 @@ TEST(StudioApp, ProjectSaveLoadRoundTrip) {
   EXPECT_EQ(g.app->camera().yaw, h.app->camera().yaw);
   EXPECT_EQ(g.app->camera().pitch, h.app->camera().pitch);
   EXPECT_EQ(g.app->camera().fov_y_degrees, h.app->camera().fov_y_degrees);
+}
+
+/// DIR/atlas.obj + .mtl + .png: two unit squares in z = 0 (x in [0,1] and [2,3]) on one chart, the
+/// second mirrored onto the first's texels; a third square (x in [4,5]) on a chart in the tile u in
+/// [1,2] (wrapped); a fourth (x in [6,7]) on a chart across the border v = 1 (straddling); a sliver
+/// face with a degenerate UV triangle. The 64^2 texture: every texel a
+/// different colour (r = 4i, g = 4j).
+std::filesystem::path write_atlas_obj(const std::filesystem::path& dir) {
+  ImageRGBA8 tex(64, 64, {0, 0, 0, 255});
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 64; ++i) {
+      tex.texel(i, j)[0] = std::uint8_t(4 * i);
+      tex.texel(i, j)[1] = std::uint8_t(4 * j);
+      tex.texel(i, j)[2] = 100;
+    }
+  write_png(dir / "atlas.png", tex);
+  std::ofstream(dir / "atlas.mtl") << "newmtl m\nmap_Kd atlas.png\n";
+  std::ofstream o(dir / "atlas.obj");
+  o << "mtllib atlas.mtl\nusemtl m\n";
+  const double xs[4] = {0, 2, 4, 6};
+  for (double x : xs) o << "v " << x << " 0 0\nv " << x + 1 << " 0 0\nv " << x + 1 << " 1 0\nv " << x << " 1 0\n";
+  o << "v 0 -1 0\nv 1 -1 0\nv 0.5 -0.5 0\n";  // 17-19
+  o << "vt 0.05 0.05\nvt 0.45 0.05\nvt 0.45 0.95\nvt 0.05 0.95\n";  // 1-4: the shared chart
+  o << "vt 0.45 0.05\nvt 0.05 0.05\nvt 0.05 0.95\nvt 0.45 0.95\n";  // 5-8: its mirror image
+  o << "vt 1.55 0.05\nvt 1.95 0.05\nvt 1.95 0.95\nvt 1.55 0.95\n";  // 9-12: in the next tile
+  o << "vt 0.6 0.96\nvt 0.9 0.96\nvt 0.9 1.1\nvt 0.6 1.1\n";      // 13-16: across v = 1
+  o << "vt 0.7 0.5\n";                                                 // 17: the degenerate triangle
+  for (int s = 0; s < 4; ++s) {
+    const int v = 4 * s + 1;
+    o << "f " << v << "/" << v << " " << v + 1 << "/" << v + 1 << " " << v + 2 << "/" << v + 2 << "\n";
+    o << "f " << v << "/" << v << " " << v + 2 << "/" << v + 2 << " " << v + 3 << "/" << v + 3 << "\n";
+  }
+  o << "f 17/17 18/17 19/17\n";
+  return dir / "atlas.obj";
+}
+
+TEST(StudioAtlas, AModelWithItsOwnAtlasIsPaintedOnItAndKeepsItThroughSaveExportAndUnwrap) {
+  TempDir dir;
+  const auto obj = write_atlas_obj(dir.path);
+  const TexturedAsset input = read_textured_asset(obj);
+  Harness h({}, 256, obj.string(), AdaptMode::DensityFlow);
+  App& app = *h.app;
+  ASSERT_TRUE(app.on_artist_atlas());
+  EXPECT_GT(std::max_element(app.param()->uv.begin(), app.param()->uv.end(),
+                              [](const Vec2& a, const Vec2& b) { return a.y() < b.y(); })
+                ->y(),
+            1.05);  // the straddling chart keeps its UVs
+  EXPECT_EQ(app.session_options().texture_size, 64);  // the texture's own size
+  EXPECT_NE(app.status_line().find("artist's UV atlas"), std::string::npos) << app.status_line();
+  EXPECT_NE(app.status_line().find("adapt off on the atlas"), std::string::npos);
+  EXPECT_NE(app.adaptation_off().find("overlapping charts"), std::string::npos);
+  EXPECT_EQ(app.param()->uv, input.param.uv);
+  EXPECT_EQ(app.param()->uv_faces, input.param.uv_faces);
+  const ImageRGBA8 original = read_image(dir.path / "atlas.png");
+  // Every chart texel is the artist's (the wrapped chart's included).
+  Painter probe(*app.mesh(), *app.param(), PainterOptions{64, 64, 0});
+  const std::vector<int>& inside = probe.texel_map().inside;
+  ASSERT_GT(inside.size(), 1000u);
+  auto same_at = [&](const ImageRGBA8& a, int t) {
+    return std::equal(a.data.begin() + 4 * t, a.data.begin() + 4 * t + 3, original.data.begin() + 4 * t);
+  };
+  for (int t : inside) ASSERT_TRUE(same_at(*app.texture(), t)) << t;
+
+  // A stroke on the first square (x = 0.25, u = 0.15), then no adaptation: the layout stays.
+  Stroke st;
+  st.color = Vec3(1, 0, 0);
+  st.radius = 0.1;
+  st.hardness = 1;
+  st.dabs = {Vec3(0.25, 0.4, 0), Vec3(0.25, 0.5, 0), Vec3(0.25, 0.6, 0)};
+  app.add_stroke(st);
+  ASSERT_TRUE(app.wait_idle(60));
+  EXPECT_EQ(app.param()->uv, input.param.uv);
+  EXPECT_EQ(app.live_adaptation(), nullptr);
+  const std::uint8_t* red = app.texture()->texel(9, 32);  // uv (0.148, 0.508)
+  EXPECT_EQ(red[0], 255);
+  EXPECT_EQ(red[1], 0);
+  int kept = 0;
+  for (int t : inside)
+    if (std::abs((t % 64 + 0.5) / 64 - 0.15) > 0.06) kept += same_at(*app.texture(), t) ? 1 : -100000;
+  EXPECT_GT(kept, 900);
+
+  // Export GLB: the same UVs, corner by corner, and the painted texture.
+  const auto glb = dir.path / "out.glb";
+  app.export_glb(glb);
+  const TexturedAsset out = read_textured_asset(glb);
+  ASSERT_EQ(out.mesh.num_faces(), input.mesh.num_faces());
+  double err = 0;
+  for (int f = 0; f < out.mesh.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k)
+      err = std::max(err, (out.param.uv[size_t(out.param.uv_faces[f][k])] -
+                           input.param.uv[size_t(input.param.uv_faces[f][k])]).norm());
+  EXPECT_LT(err, 1e-6);
+  const TextureMap* base = out.materials.at(0).find(MapSlot::BaseColor);
+  ASSERT_NE(base, nullptr);
+  for (int t : inside)
+    ASSERT_TRUE(std::equal(base->image.data.begin() + 4 * t, base->image.data.begin() + 4 * t + 3,
+                           app.texture()->data.begin() + 4 * t)) << t;
+
+  // Save, reopen: the same layout and texture.
+  const auto project = dir.path / "atlas.adaptex";
+  ASSERT_TRUE(app.save_project(project));
+  Harness g({}, 256, "");
+  g.app->open_project(project);
+  ASSERT_TRUE(g.app->wait_idle(120));
+  ASSERT_TRUE(g.app->on_artist_atlas());
+  EXPECT_EQ(g.app->param()->uv, input.param.uv);
+  EXPECT_EQ(max_abs_diff(*g.app->texture(), *app.texture()), 0);
+
+  // A fresh unwrap keeps the stroke; a project without "layout" (written before it existed) opens
+  // unwrapped, as it was painted.
+  app.set_unwrap(true);
+  ASSERT_TRUE(app.wait_idle(120));
+  EXPECT_FALSE(app.on_artist_atlas());
+  EXPECT_EQ(app.history().strokes().size(), 1u);
+  EXPECT_NE(app.status_line().find("fresh unwrap"), std::string::npos) << app.status_line();
+  std::string text = read_input_file(project);
+  const auto at = text.find("\"layout\"");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, text.find(',', at) - at + 1, "");
+  std::ofstream(dir.path / "old.adaptex") << text;
+  Harness old({}, 256, "");
+  old.app->open_project(dir.path / "old.adaptex");
+  ASSERT_TRUE(old.app->wait_idle(120));
+  ASSERT_TRUE(old.app->has_model());
+  EXPECT_FALSE(old.app->on_artist_atlas());
+  EXPECT_EQ(old.app->history().strokes().size(), 1u);
 }
 
 TEST(StudioApp, AutosaveIsOfferedAsRecoveryNextTime) {
