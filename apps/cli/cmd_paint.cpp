@@ -7,6 +7,7 @@
 
 #include "adaptex/core/errors.h"
 #include "adaptex/io/mesh_io.h"
+#include "adaptex/adapt/material_adapt.h"
 #include "adaptex/paint/export.h"
 #include "adaptex/paint/material_paint.h"
 #include "adaptex/paint/material_strokes.h"
@@ -70,33 +71,43 @@ void validate(PaintCommand& c, const Context& ctx) {
     check_export_name(c.name);
 }
 
-/// A layered material (stroke file version 2) painted on the unwrap's layout: base colour, roughness,
-/// metallic, height and the derived normal map, exported as a glTF metallic-roughness material and an
-/// OBJ/MTL with map_Kd, map_Pr, map_Pm, norm and bump (docs/export.md).
+/// A layered material (stroke file version 2) on the unwrap's layout adapted once to the material's
+/// summed error model (adapt/material_adapt.h): base colour, roughness, metallic, height and the
+/// derived normal map, exported as a glTF metallic-roughness material and an OBJ/MTL with map_Kd,
+/// map_Pr, map_Pm, norm and bump (docs/export.md).
 void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStrokeFile& material,
                         const ReadReport& rr, double time_read, const Context& ctx) {
   Stopwatch total, sw;
-  if (c.run.adapt.mode != "none")
-    ctx.warn("--adapt " + c.run.adapt.mode + ": a layered material (stroke file version 2) is painted on the unwrap's "
-             "layout; its adaptation is not implemented yet");
+  if (c.run.adapt.mode != "none" && c.run.adapt.mode != "density-flow")
+    throw InvalidInputError("--adapt " + c.run.adapt.mode + ": a layered material (stroke file version 2) adapts with "
+                            "density-flow or none");
   const UnwrapResult ur = unwrap(mesh, paint_unwrap_options(c.run, phase_printer(ctx, "unwrap")));
   const double time_unwrap = sw.lap();
+  const AdaptSettings& a = c.run.adapt;
+  if (a.reparam != "end")
+    ctx.info("paint: a layered material adapts once, after every stroke (--reparam end)");
   ctx.info("paint: " + std::to_string(material.layers.size()) + " layers at " + std::to_string(c.run.size) + "x" +
-           std::to_string(c.run.size));
-  MaterialPaintOptions mo;
-  mo.size = c.run.size;
-  mo.padding = c.run.padding;
-  const MaterialTextures tex = paint_material(mesh, ur.param, material, mo);
+           std::to_string(c.run.size) + (a.mode == "none" ? std::string() : ", adapt " + a.mode));
+  MaterialAdaptOptions mo;
+  mo.paint.size = c.run.size;
+  mo.paint.padding = c.run.padding;
+  mo.adapt = make_session_options(c.run.size, c.run.padding, a.mode, a.grid, a.alpha.value_or(-1.0),
+                                  a.beta.value_or(-1.0), a.reparam, a.update, a.debug_maps)
+                 .adapt;
+  mo.adapt.refine.enabled = a.refine;
+  mo.adapt.progress = phase_printer(ctx, "adapt");
+  const MaterialAdaptResult run = adapt_material(mesh, ur.param, material, mo);
+  const MaterialTextures& tex = run.textures;
   const double time_paint = sw.lap();
   AtomicOutput out;
   ExportOptions obj;
   obj.glb = false;
   obj.maps = {{"roughness", tex.roughness}, {"metallic", tex.metallic}, {"normal", tex.normal}, {"bump", tex.height}};
-  ExportedFiles files = export_textured_mesh(out, c.outdir, c.name, mesh, ur.param, tex.base_color, obj);
+  ExportedFiles files = export_textured_mesh(out, c.outdir, c.name, run.mesh, run.param, tex.base_color, obj);
   ExportOptions glb;
   glb.obj = false;
   glb.maps = {{"metallic_roughness", tex.metallic_roughness}, {"normal", tex.normal}};
-  files.glb = export_textured_mesh(out, c.outdir, c.name, mesh, ur.param, tex.base_color, glb).glb;
+  files.glb = export_textured_mesh(out, c.outdir, c.name, run.mesh, run.param, tex.base_color, glb).glb;
   const double time_export = sw.lap();
   nlohmann::json layers = nlohmann::json::array();
   size_t strokes = 0;
@@ -108,11 +119,13 @@ void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStro
   const nlohmann::json report = {
       {"command", "paint"},
       {"input", {{"mesh", c.mesh.string()}, {"strokes", c.strokes.string()}, {"format", rr.format}, {"version", 2}}},
-      {"mesh", {{"vertices", mesh.num_vertices()}, {"faces", mesh.num_faces()}, {"charts", ur.param.num_charts}}},
+      {"mesh", {{"vertices", run.mesh.num_vertices()}, {"faces", run.mesh.num_faces()}, {"input_faces", mesh.num_faces()},
+                {"charts", run.param.num_charts}}},
       {"texture", {{"width", c.run.size}, {"height", c.run.size}, {"padding", c.run.padding}}},
       {"material", {{"layers", layers}, {"strokes", strokes}, {"dabs", material.num_dabs()},
                     {"height_scale", tex.height_scale}}},
-      {"adapt", {{"mode", "none"}}},
+      {"adapt", {{"mode", a.mode}, {"adapted", run.adapted}, {"error_fixed", run.error_fixed},
+                 {"error_adapted", run.error_adapted}, {"report", nlohmann::json::parse(adapt_report_json(run.report).dump())}}},
       {"files", {{"obj", files.obj.filename().string()}, {"mtl", files.mtl.filename().string()},
                  {"png", files.png.filename().string()}, {"glb", files.glb.filename().string()},
                  {"maps", {c.name + "_roughness.png", c.name + "_metallic.png", c.name + "_normal.png",

@@ -151,6 +151,14 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
   return run(method.get(), in);
 }
 
+AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current, const ImageRGBA8& texture,
+                                   const TexelMap& current_map, const ErrorDensity& model, const AdaptOptions& options) {
+  const WarpInput in{mesh, current, texture, current_map, nullptr, options, &model};
+  if (options.mode == AdaptMode::None) return run(nullptr, in);
+  const std::unique_ptr<AdaptMethod> method = make_adapt_method(options.mode);
+  return run(method.get(), in);
+}
+
 AdaptResult adapt_with(AdaptMethod& method, const WarpInput& input) { return run(&method, input); }
 
 }  // namespace adaptex

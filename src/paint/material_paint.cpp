@@ -50,12 +50,11 @@ void put_normal(ImageRGBA8& img, int t, const Vec3& n) {
 
 }  // namespace
 
-ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                   const std::vector<double>& height) {
   if (height.size() != static_cast<size_t>(map.width) * map.height)
     throw InvalidInputError("normal_map_from_height: one height per texel expected");
-  ImageRGBA8 img(map.width, map.height);
-  for (int t = 0; t < map.width * map.height; ++t) put_normal(img, t, Vec3(0, 0, 1));
+  std::vector<Vec3f> normals(height.size(), Vec3f(0, 0, 1));
   tbb::parallel_for(size_t(0), map.inside.size(), [&](size_t k) {
     const int t = map.inside[k], i = t % map.width, j = t / map.width, f = map.face[t];
     Vec3 pu, pv;
@@ -72,8 +71,16 @@ ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& p
     const Vec3 T = tangent.normalized();
     const double sign = n.cross(T).dot(pv) < 0 ? -1.0 : 1.0;  // mirrored charts: the bitangent flips
     const Vec3 B = sign * n.cross(T);
-    put_normal(img, t, Vec3(-grad.dot(T), -grad.dot(B), 1).normalized());
+    normals[t] = Vec3(-grad.dot(T), -grad.dot(B), 1).normalized().cast<float>();
   });
+  return normals;
+}
+
+ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                  const std::vector<double>& height) {
+  const std::vector<Vec3f> normals = height_normals(mesh, param, map, height);
+  ImageRGBA8 img(map.width, map.height);
+  for (size_t t = 0; t < normals.size(); ++t) put_normal(img, static_cast<int>(t), normals[t].cast<double>());
   return img;
 }
 

@@ -257,7 +257,8 @@ TEST(Shrink, IslandWarpKeepsMirroredTexelsShared) {
         << k;
   }
   // Not the identity: the corner got area; no face flipped (the right half stays mirrored) or degenerated.
-  EXPECT_GT(corner_share(a.param, r.param, left, 200, 0.05, 0.17), 1.5 * corner_share(a.param, a.param, left, 200, 0.05, 0.17));
+  const double corner_before = corner_share(a.param, a.param, left, 200, 0.05, 0.17);
+  EXPECT_GT(corner_share(a.param, r.param, left, 200, 0.05, 0.17), 1.1 * corner_before);
   int flipped = 0;
   for (int f = 0; f < a.mesh.num_faces(); ++f) {
     const double a0 = uv_signed_area(a.param, f), a1 = uv_signed_area(r.param, f);

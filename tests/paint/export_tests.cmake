@@ -5,3 +5,7 @@ adaptex_add_test(test_paint_cli SOURCES test_paint_cli.cpp LIBS adaptex::adaptex
 # A layered material (stroke file version 2) painted into PBR textures and exported.
 adaptex_add_test(test_material_paint SOURCES test_material_paint.cpp LIBS adaptex::adaptex TinyGLTF::TinyGLTF
                  nlohmann_json::nlohmann_json)
+# The Khronos glTF Validator on the exported .glb files (skips without node / the npm package).
+add_test(NAME gltf_validator COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_LIST_DIR}/gltf_validate.py
+         $<TARGET_FILE:adaptex_cli>)
+set_tests_properties(gltf_validator PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 300)

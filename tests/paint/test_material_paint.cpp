@@ -106,7 +106,6 @@ TEST(MaterialPaint, CliPaintsAVersion2FileIntoAPbrMaterial) {
   const auto r = test::run_cli("paint " + q(tmp.path / "s.obj") + " --strokes " + q(tmp.path / "m.json") +
                                " --size 128 -o " + q(tmp.path / "out"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("adaptation is not implemented yet"), std::string::npos) << r.err;  // default --adapt
   const std::string mtl = slurp(tmp.path / "out" / "s.mtl");
   for (const char* statement : {"map_Kd s.png", "map_Pr s_roughness.png", "map_Pm s_metallic.png", "norm s_normal.png"})
     EXPECT_NE(mtl.find(statement), std::string::npos) << statement << " in\n" << mtl;
@@ -125,6 +124,16 @@ TEST(MaterialPaint, CliPaintsAVersion2FileIntoAPbrMaterial) {
   const auto report = nlohmann::json::parse(slurp(tmp.path / "out" / "report.json"));
   EXPECT_EQ(report["material"]["layers"].size(), 3u);
   EXPECT_EQ(report["input"]["version"].get<int>(), 2);
+  // The default adaptation ran on the material's error model and kept the better layout.
+  EXPECT_EQ(report["adapt"]["mode"], "density-flow");
+  EXPECT_GT(report["adapt"]["report"]["predicted_gain_db"].get<double>(), 0.0);
+  EXPECT_TRUE(report["adapt"]["adapted"].get<bool>());
+  EXPECT_LT(report["adapt"]["error_adapted"].get<double>(), report["adapt"]["error_fixed"].get<double>());
+  const auto thesis = test::run_cli("paint " + q(tmp.path / "s.obj") + " --strokes " + q(tmp.path / "m.json") +
+                                    " --size 64 --adapt single -o " + q(tmp.path / "single"));
+  EXPECT_EQ(thesis.exit_code, 2);
+  EXPECT_NE(thesis.err.find("adapts with density-flow or none"), std::string::npos) << thesis.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path / "single" / "s.glb"));
   // A broken version 2 file: exit 2, one line naming layer and stroke, nothing written.
   std::ofstream(tmp.path / "bad.json") << R"({"format": "adaptex.strokes", "version": 2, "layers": [{"strokes": [
       {"channels": {"rougness": 1}, "radius": 0.1, "dabs": [[0, 0, 1]]}]}]})";

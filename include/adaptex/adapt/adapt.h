@@ -152,6 +152,14 @@ AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& 
                                    const ImageRGBA8& texture, const TexelMap& current_map,
                                    const AdaptOptions& options = {}, const StrokeFile* history = nullptr);
 
+/// The same with a precomputed error model \p model (a layered material's: error_density.h) instead of
+/// one from a history or the texture; \p texture is what the layout holds (the polish's edges read it).
+/// Methods without an error model ignore \p model.
+/// \throw as above
+AdaptResult adapt_parameterization(const TriMesh& mesh, const Parameterization& current,
+                                   const ImageRGBA8& texture, const TexelMap& current_map,
+                                   const ErrorDensity& model, const AdaptOptions& options);
+
 /// Name of a mode as used on the command line: "none", "single", "two-stage", "density-flow", ...
 const char* to_string(AdaptMode mode);
 /// The registered mode named \p name. \throw InvalidInputError otherwise (listing the names)

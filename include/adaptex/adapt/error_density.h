@@ -2,7 +2,9 @@
 /// \file error_density.h
 /// The texel density minimizing the reconstruction error for a texel budget: e = q·h^p measured per
 /// cell (at h_N and 2h_N), ρ ∝ q^(1/(1+p/2)), a floor where unpainted. docs/error_model.md.
+#include <functional>
 #include <memory>
+#include <vector>
 
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
@@ -84,5 +86,21 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
 /// \throw InvalidInputError inconsistent sizes or bad options
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,
                                    const TexelMap& map, const ErrorDensityOptions& options = {});
+
+/// One RGB signal of a multi-channel error model (a layered material: base colour, data channels,
+/// shading normal; docs/error_model.md, "Materials"). Its squared error counts with \p weight.
+struct ErrorPlane {
+  double weight = 1;   ///< Weight of the plane's mean squared RGB error in the sum (> 0).
+  ImageRGBA8 texture;  ///< What the layout holds at h_N (level a), RGB / 255; the size of the texel map.
+  /// The plane's exact values at every texel centre of a texel map (W*H; read inside charts only).
+  std::function<std::vector<Vec3f>(const TexelMap&)> exact;
+};
+
+/// Target density from several planes: each plane's per-cell errors at h_N and 2·h_N (as the history's
+/// model), weighted and summed, then one solve. \p map is the texel map of \p param at the planes'
+/// texture size.
+/// \throw InvalidInputError no plane, a weight <= 0, textures of different sizes, inconsistent input
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                   const std::vector<ErrorPlane>& planes, const ErrorDensityOptions& options = {});
 
 }  // namespace adaptex

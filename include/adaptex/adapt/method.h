@@ -15,6 +15,8 @@
 
 namespace adaptex {
 
+struct ErrorDensity;
+
 /// Everything a method may read for one cycle.
 struct WarpInput {
   const TriMesh& mesh;
@@ -23,6 +25,9 @@ struct WarpInput {
   const TexelMap& map;            ///< Texel map of param at the texture's size.
   const StrokeFile* history;      ///< Exact stroke history, or nullptr (texture only).
   const AdaptOptions& options;
+  /// A precomputed error model (a layered material's, error_density.h), used instead of the history's
+  /// or the texture's by the methods that have one (density-flow); null: none.
+  const ErrorDensity* model = nullptr;
 };
 
 /// What a method's model predicts before it computes a warp (the gate of each-stroke sessions).

@@ -49,7 +49,8 @@ struct ShrinkOptions {
   // Warp.
   /// Also try the budget layout with every island warped inside itself towards its detail (default on).
   bool island_warp = true;
-  /// Island warp: largest texel density ratio along each axis of an island (>= 1; default 4).
+  /// Island warp: largest texel density ratio along each axis of an island (>= 1; default 4); a gentle
+  /// warp (ratio min(1.5, this)) is tried too and the better kept.
   double island_warp_ratio = 4.0;
   /// Also try the density-flow warp of the layout when no charts share texels (default on).
   bool warp = true;
@@ -61,8 +62,8 @@ struct ShrinkOptions {
   // Candidates.
   long long eval_samples = 200000;  ///< Surface samples of the PSNR that picks the candidate (default 200k).
   std::uint64_t seed = 7;  ///< Seed of the surface samples (default 7).
-  /// Output this candidate ("downsized", "artist", "repacked", "budget", "island_warp", "warped") when it is valid, whatever
-  /// its PSNR (experiments; default "": the best).
+  /// Output this candidate ("downsized", "artist", "repacked", "budget", "island_warp", "warped") when
+  /// it is valid, whatever its PSNR (experiments; default "": the best).
   std::string force_candidate;
   ProgressCallback progress;  ///< Phases "islands", "error model", "pack", "texels", "evaluate".
 };

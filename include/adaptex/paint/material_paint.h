@@ -36,6 +36,11 @@ struct MaterialTextures {
 MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file,
                                 const MaterialPaintOptions& options = {});
 
+/// The unit tangent-space normals behind normal_map_from_height(), W*H ((0, 0, 1) outside charts).
+/// \pre height.size() == map.width * map.height
+std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                  const std::vector<double>& height);
+
 /// The tangent-space normal of a height field H (world units per texel of \p map, W*H values; only
 /// texels inside charts are read) over the surface: n' = normalize(n − ∇H) with ∇H the surface
 /// gradient from central differences along u and v within the chart, expressed in each face's frame

@@ -80,6 +80,7 @@ struct DensityFlowMethod::State {
   /// The error model of \p in: predict_gain()'s when it was computed for this input, else through
   /// the reference when it applies, else from the history or the texture alone.
   ErrorDensity error_model(const WarpInput& in) {
+    if (in.model) return *in.model;
     const ErrorDensityOptions& eo = in.options.density_flow.density;
     ErrorDensityReference* cache = in.history ? reference_now(*in.history, in.options) : nullptr;
     if (model && in.history && model_strokes == in.history->strokes.size() && fixed && &in.param == fixed->layout) {

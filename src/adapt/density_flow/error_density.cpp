@@ -524,6 +524,54 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
   return from_levels(mesh, param, texture, ref, ref_map, g, level_b, o);
 }
 
+namespace {
+
+/// The raster of \p map holding \p values inside charts, padded outside if \p pad.
+Raster plane_raster(const TexelMap& map, const std::vector<Vec3f>& values, bool pad) {
+  Raster r;
+  r.size = map.width;
+  r.rgb.assign(static_cast<size_t>(map.width) * map.height, Vec3f::Zero());
+  std::vector<char> filled(r.rgb.size(), 0);
+  for (int t : map.inside) r.rgb[t] = values[t], filled[t] = 1;
+  if (pad) pad_outside(r, std::move(filled), 4);
+  return r;
+}
+
+}  // namespace
+
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                   const std::vector<ErrorPlane>& planes, const ErrorDensityOptions& o) {
+  if (planes.empty()) throw InvalidInputError("error density: no plane");
+  for (const ErrorPlane& p : planes) {
+    if (!(p.weight > 0) || !std::isfinite(p.weight)) throw InvalidInputError("error density: a plane weight is not > 0");
+    if (!p.exact) throw InvalidInputError("error density: a plane has no exact signal");
+    check(mesh, param, p.texture, map, o, true);
+  }
+  const int N = map.width;
+  const ReferenceGrid g = reference_grid(N, o);
+  const TexelMap ref_map = reference_texel_map(mesh, param, g);
+  const int half = std::max(1, N / 2);
+  const TexelMap half_map = build_texel_map(mesh, param, half, half);
+  const std::vector<double> ratio = surface_per_uv(mesh, param);
+  const int cells = std::min(o.cells, g.side);
+  CellErrors sum;
+  for (size_t k = 0; k < planes.size(); ++k) {
+    const ErrorPlane& p = planes[k];
+    const Raster ref = plane_raster(ref_map, p.exact(ref_map), false);
+    const Raster level_b = plane_raster(half_map, p.exact(half_map), true);
+    CellErrors c = accumulate(ref, ref_map, g, from_texture(p.texture), level_b, ratio, cells);
+    if (k == 0) {
+      sum = std::move(c);
+      for (size_t i = 0; i < sum.ea.size(); ++i) sum.ea[i] *= p.weight, sum.eb[i] *= p.weight;
+      continue;
+    }
+    for (size_t i = 0; i < sum.ea.size(); ++i) sum.ea[i] += p.weight * c.ea[i], sum.eb[i] += p.weight * c.eb[i];
+  }
+  ErrorDensity out = solve_density(sum, 1.0, o);
+  out.reference_size = g.side;
+  return out;
+}
+
 struct ErrorDensityReference::Impl {
   const TriMesh* mesh = nullptr;
   std::vector<Vec2> uv;              // the layout it was built for

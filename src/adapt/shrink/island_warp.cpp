@@ -143,7 +143,8 @@ Parameterization warp_islands(const SampleSet& set, const ErrorCurves& curves, c
     const Face& t = layout.uv_faces[p.face];
     const Vec2 uv = p.b0 * layout.uv[t[0]] + p.b1 * layout.uv[t[1]] + (1 - p.b0 - p.b1) * layout.uv[t[2]];
     const Vec2 q = (uv - lo[i]).cwiseQuotient(hi[i] - lo[i]);
-    const int cx = std::clamp(static_cast<int>(q.x() * L), 0, L - 1), cy = std::clamp(static_cast<int>(q.y() * L), 0, L - 1);
+    const int cx = std::clamp(static_cast<int>(q.x() * L), 0, L - 1);
+    const int cy = std::clamp(static_cast<int>(q.y() * L), 0, L - 1);
     const double e = sample_error(curves, k, 1.0 / texels[i]);
     error[i][static_cast<size_t>(cy) * L + cx] += e;
     total[i] += e, ++count[i];

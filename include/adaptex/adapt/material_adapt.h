@@ -1,0 +1,51 @@
+#pragma once
+/// \file material_adapt.h
+/// A layered material (stroke file version 2) painted on an adapted layout: one error model sums the
+/// errors of every channel by its effect on the rendered image (base colour; roughness, metallic and
+/// alpha; the shading normal derived from the height), then the density-flow warp and the textures on
+/// the new layout (docs/error_model.md, "Materials").
+#include <vector>
+
+#include "adaptex/adapt/adapt.h"
+#include "adaptex/adapt/error_density.h"
+#include "adaptex/paint/material_paint.h"
+
+namespace adaptex {
+
+/// Settings of adapt_material().
+struct MaterialAdaptOptions {
+  MaterialPaintOptions paint;  ///< Texture size and seam padding.
+  /// The adaptation: mode density-flow (default) or none; refinement, remap and progress as for paint.
+  AdaptOptions adapt;
+  double data_weight = 0.25;  ///< Weight of the roughness / metallic / alpha errors (default 0.25).
+  long long check_samples = 200000;  ///< Surface samples of the never-worse check (default 200k).
+};
+
+/// Result of adapt_material().
+struct MaterialAdaptResult {
+  TriMesh mesh;                 ///< The input, or its refinement (same surface) when the warp refined it.
+  Parameterization param;       ///< The layout the textures are on.
+  MaterialTextures textures;
+  AdaptReport report;           ///< The adaptation's report (mode none: the fixed layout's).
+  bool adapted = false;         ///< The adapted layout was kept (false: the input layout).
+  double error_fixed = 0, error_adapted = 0;  ///< Weighted MSE (base colour + data) over the check's samples.
+};
+
+/// The error planes of \p file on \p param with its painted \p textures: base colour (weight 1),
+/// roughness / metallic / alpha (\p data_weight), and the shading normal from the height (weight
+/// 4 · the mean square of the base colour: Lambert shading changes by the albedo times |Δn|).
+/// The planes refer to \p mesh, \p param and \p file: they must outlive the planes.
+std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param,
+                                              const MaterialStrokeFile& file, const MaterialTextures& textures,
+                                              double data_weight);
+
+/// Paints \p file on \p layout, adapts the layout to the material's summed error model, paints again
+/// on the adapted layout, and keeps whichever layout reconstructs the base colour and data channels
+/// better on surface samples.
+/// \pre layout matches mesh
+/// \throw InvalidInputError bad options (a mode other than density-flow or none), inconsistent input
+/// \throw CancelledError the progress callback returned false
+MaterialAdaptResult adapt_material(const TriMesh& mesh, const Parameterization& layout, const MaterialStrokeFile& file,
+                                   const MaterialAdaptOptions& options = {});
+
+}  // namespace adaptex

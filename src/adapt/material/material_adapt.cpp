@@ -1,0 +1,147 @@
+/// \file material_adapt.cpp
+/// The material's error planes, one density-flow warp from their summed model, the textures again on
+/// the new layout, and a measured never-worse check.
+#include "adaptex/adapt/material_adapt.h"
+
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/paint/eval.h"
+#include "adaptex/paint/material_signal.h"
+
+namespace adaptex {
+
+namespace {
+
+/// The exact material at every texel of a texel map, evaluated once per map for all planes.
+class TexelMaterial {
+ public:
+  TexelMaterial(const TriMesh& mesh, const MaterialStrokeFile& file) : mesh_(mesh), file_(file) {}
+  const std::vector<MaterialValue>& at(const TexelMap& map) {
+    const std::lock_guard lock(mutex_);
+    auto& slot = cache_[&map];
+    if (slot.size() != static_cast<size_t>(map.width) * map.height) {
+      std::vector<SurfacePoint> pts(map.inside.size());
+      for (size_t k = 0; k < pts.size(); ++k) pts[k] = {map.face[map.inside[k]], map.bary[map.inside[k]].x(),
+                                                        map.bary[map.inside[k]].y()};
+      const std::vector<MaterialValue> v = evaluate_material(mesh_, file_, pts);
+      slot.assign(static_cast<size_t>(map.width) * map.height, file_.background);
+      for (size_t k = 0; k < pts.size(); ++k) slot[map.inside[k]] = v[k];
+    }
+    return slot;
+  }
+
+ private:
+  const TriMesh& mesh_;
+  const MaterialStrokeFile& file_;
+  std::mutex mutex_;
+  std::map<const TexelMap*, std::vector<MaterialValue>> cache_;
+};
+
+ImageRGBA8 data_texture(const MaterialTextures& t) {
+  ImageRGBA8 img(t.roughness.width, t.roughness.height);
+  for (size_t k = 0; k < img.data.size() / 4; ++k) {
+    img.data[4 * k] = t.roughness.data[4 * k];
+    img.data[4 * k + 1] = t.metallic.data[4 * k];
+    img.data[4 * k + 2] = t.base_color.data[4 * k + 3];
+    img.data[4 * k + 3] = 255;
+  }
+  return img;
+}
+
+/// Weighted squared error of the base colour and data channels of \p tex on \p param of \p mesh against
+/// the exact material, over area-uniform samples.
+double sampled_error(const TriMesh& mesh, const Parameterization& param, const MaterialTextures& tex,
+                     const MaterialStrokeFile& file, double data_weight, long long samples) {
+  const std::vector<SurfacePoint> pts = sample_surface(mesh, samples, 17);
+  const std::vector<MaterialValue> exact = evaluate_material(mesh, file, pts);
+  const ImageRGBA8 data = data_texture(tex);
+  double sum = 0;
+  for (size_t k = 0; k < pts.size(); ++k) {
+    const Face& t = param.uv_faces[pts[k].face];
+    const double b0 = pts[k].b0, b1 = pts[k].b1;
+    const Vec2 uv = b0 * param.uv[t[0]] + b1 * param.uv[t[1]] + (1 - b0 - b1) * param.uv[t[2]];
+    const Vec3 c = sample_bilinear(tex.base_color, uv.x(), uv.y()), d = sample_bilinear(data, uv.x(), uv.y());
+    const Vec3 ce(exact[k][0], exact[k][1], exact[k][2]), de(exact[k][4], exact[k][5], exact[k][3]);
+    sum += (c - ce).squaredNorm() / 3 + data_weight * (d - de).squaredNorm() / 3;
+  }
+  return pts.empty() ? 0 : sum / static_cast<double>(pts.size());
+}
+
+}  // namespace
+
+std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param,
+                                              const MaterialStrokeFile& file, const MaterialTextures& textures,
+                                              double data_weight) {
+  auto exact = std::make_shared<TexelMaterial>(mesh, file);
+  double albedo2 = 0;
+  const size_t n = textures.base_color.data.size() / 4;
+  for (size_t k = 0; k < n; ++k)
+    for (int c = 0; c < 3; ++c) albedo2 += std::pow(textures.base_color.data[4 * k + c] / 255.0, 2) / 3;
+  albedo2 = n ? albedo2 / n : 1;
+  const double scale = textures.height_scale;
+  std::vector<ErrorPlane> planes(3);
+  planes[0].texture = textures.base_color;
+  planes[0].exact = [exact](const TexelMap& map) {
+    const auto& v = exact->at(map);
+    std::vector<Vec3f> out(v.size());
+    for (size_t t = 0; t < v.size(); ++t) out[t] = Vec3f(float(v[t][0]), float(v[t][1]), float(v[t][2]));
+    return out;
+  };
+  planes[1].weight = data_weight;
+  planes[1].texture = data_texture(textures);
+  planes[1].exact = [exact](const TexelMap& map) {
+    const auto& v = exact->at(map);
+    std::vector<Vec3f> out(v.size());
+    for (size_t t = 0; t < v.size(); ++t) out[t] = Vec3f(float(v[t][4]), float(v[t][5]), float(v[t][3]));
+    return out;
+  };
+  // The normal map stores (n + 1) / 2: its squared error is |Δn|² / 4, so 4 · albedo² gives Lambert's.
+  planes[2].weight = std::max(4 * albedo2, 1e-6);
+  planes[2].texture = textures.normal;
+  planes[2].exact = [exact, &mesh, &param, scale](const TexelMap& map) {
+    const auto& v = exact->at(map);
+    std::vector<double> h(v.size());
+    for (size_t t = 0; t < v.size(); ++t) h[t] = (v[t][6] - 0.5) * scale;
+    std::vector<Vec3f> normals = height_normals(mesh, param, map, h);
+    for (Vec3f& x : normals) x = 0.5f * (x + Vec3f::Ones());
+    return normals;
+  };
+  return planes;
+}
+
+MaterialAdaptResult adapt_material(const TriMesh& mesh, const Parameterization& layout, const MaterialStrokeFile& file,
+                                   const MaterialAdaptOptions& options) {
+  const AdaptMode mode = options.adapt.mode;
+  if (mode != AdaptMode::None && mode != AdaptMode::DensityFlow)
+    throw InvalidInputError(std::string("adapt_material: layered materials adapt with density-flow or none (got ") +
+                            to_string(mode) + ")");
+  MaterialAdaptResult out;
+  out.mesh = mesh;
+  out.param = layout;
+  out.textures = paint_material(mesh, layout, file, options.paint);
+  out.report.mode = mode;
+  if (mode == AdaptMode::None) return out;
+  const int N = options.paint.size;
+  const TexelMap map = build_texel_map(mesh, layout, N, N);
+  const ErrorDensity model = compute_error_density(
+      mesh, layout, map, material_error_planes(mesh, layout, file, out.textures, options.data_weight),
+      options.adapt.density_flow.density);
+  const AdaptResult res = adapt_parameterization(mesh, layout, out.textures.base_color, map, model, options.adapt);
+  const TriMesh& adapted_mesh = res.refined_mesh ? *res.refined_mesh : mesh;
+  MaterialTextures adapted = paint_material(adapted_mesh, res.param, file, options.paint);
+  out.report = res.report;
+  out.error_fixed = sampled_error(mesh, layout, out.textures, file, options.data_weight, options.check_samples);
+  out.error_adapted = sampled_error(adapted_mesh, res.param, adapted, file, options.data_weight, options.check_samples);
+  if (res.report.accepted && out.error_adapted < out.error_fixed) {
+    out.mesh = adapted_mesh;
+    out.param = res.param;
+    out.textures = std::move(adapted);
+    out.adapted = true;
+  }
+  return out;
+}
+
+}  // namespace adaptex
