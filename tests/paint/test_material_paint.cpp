@@ -93,7 +93,8 @@ TEST(MaterialPaint, NormalMapFollowsTheHeightGradientInTangentSpace) {
   const TexelMap map = build_texel_map(mesh, half, 32, 32);
   std::vector<double> h(32 * 32);
   for (int t = 0; t < 32 * 32; ++t) h[t] = 0.3 * ((t % 32) + 0.5) / 32;
-  const std::uint8_t* p = normal_map_from_height(mesh, half, map, h).texel(8, 8);
+  const ImageRGBA8 img = normal_map_from_height(mesh, half, map, h);
+  const std::uint8_t* p = img.texel(8, 8);
   EXPECT_LT((Vec3(p[0], p[1], p[2]) / 127.5 - Vec3::Ones() - gentle).norm(), 0.02);
 }
 
