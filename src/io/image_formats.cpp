@@ -73,6 +73,24 @@ std::size_t skip_scan_data(const std::string& bytes, std::size_t at) {
   return std::string::npos;
 }
 
+
+/// The Huffman tables of a DHT segment [begin, end): each a class/id byte, 16 code counts and as many
+/// symbols as the counts sum to, at most 256 (stb_image builds its code table in 257 entries: a larger
+/// sum wrote past it, a fuzz_jpeg finding).
+void check_huffman_tables(const std::string& bytes, std::size_t begin, std::size_t end, const std::string& corrupt) {
+  std::size_t p = begin;
+  while (p < end) {
+    if (p + 17 > end) throw IoError(corrupt + "truncated Huffman table (DHT) at byte " + std::to_string(p));
+    std::size_t codes = 0;
+    for (int k = 1; k <= 16; ++k) codes += static_cast<unsigned char>(bytes[p + k]);
+    if (codes > 256)
+      throw IoError(corrupt + "a Huffman table (DHT) at byte " + std::to_string(p) + " with " + std::to_string(codes) +
+                    " codes (at most 256)");
+    p += 17 + codes;
+  }
+  if (p != end) throw IoError(corrupt + "a Huffman table (DHT) runs past its segment");
+}
+
 ImageHeader check_jpeg(const std::string& bytes, const std::string& name) {
   const std::string corrupt = name + ": corrupt JPEG: ";
   ImageHeader header{"JPEG", 0, 0};
@@ -106,6 +124,7 @@ ImageHeader check_jpeg(const std::string& bytes, const std::string& name) {
       if (be16(bytes, at + 5) == 0) throw IoError(corrupt + "height 0 (a DNL marker) is not supported");
       header = checked_size("JPEG", be16(bytes, at + 7), be16(bytes, at + 5), name);
     }
+    if (m == 0xC4) check_huffman_tables(bytes, at + 4, at + 2 + length, corrupt);
     at += 2 + length;
     if (m == 0xDA) {  // SOS: entropy-coded data follows
       if (!frame) throw IoError(corrupt + "a scan before the frame header (SOF)");
