@@ -101,7 +101,7 @@ struct Painter::Impl {
                               std::to_string(o.padding) + ")");
     if (!bg.allFinite() || bg.minCoeff() < 0 || bg.maxCoeff() > 1)
       throw InvalidInputError("painter: background colour must be in [0, 1]");
-    map = build_texel_map(m, p, o.width, o.height);
+    map = build_texel_map(m, p, o.width, o.height, true);
     // The spatial index and the seam padding both depend on the texel map only: side by side (each
     // is serial in part; 1024² Painter setup, bench_paint).
     tbb::parallel_invoke([&] { build_index(); },

@@ -46,7 +46,8 @@ inline bool owns(const P2& a, const P2& b) {
 
 }  // namespace
 
-TexelMap build_texel_map(const TriMesh& mesh, const Parameterization& param, int width, int height) {
+TexelMap build_texel_map(const TriMesh& mesh, const Parameterization& param, int width, int height,
+                         bool with_aliases) {
   if (width <= 0 || height <= 0)
     throw InvalidInputError("texel map: size must be positive (got " + std::to_string(width) + "x" +
                             std::to_string(height) + ")");
@@ -132,7 +133,7 @@ TexelMap build_texel_map(const TriMesh& mesh, const Parameterization& param, int
             }
             const double b0 = 1 - b1 - b2;
             const size_t idx = static_cast<size_t>(j) * width + i;
-            if (map.face[idx] >= 0)  // a shared texel: the earlier triangle stays reachable
+            if (with_aliases && map.face[idx] >= 0)  // a shared texel: the earlier triangle stays reachable
               tile_aliases[tile].push_back({static_cast<int>(idx), map.face[idx], map.bary[idx], map.position[idx]});
             map.face[idx] = f;
             map.bary[idx] = Eigen::Vector2f(static_cast<float>(b0), static_cast<float>(b1));

@@ -129,7 +129,7 @@ Vec3 texel_rgb(const ImageRGBA8& tex, int i, int j) {
 
 TEST(TexelMap, OverlappingChartsListTheirSharedTexelsAsAliases) {
   const auto [mesh, param] = mirrored_twins();
-  const TexelMap map = build_texel_map(mesh, param, 16, 16);
+  const TexelMap map = build_texel_map(mesh, param, 16, 16, true);
   ASSERT_EQ(map.inside.size(), 256u);
   // Every texel: the later (mirrored, right) square owns it, the left one is its alias at the same
   // UV point; the sliver's faces add aliases where they cover centres too.
@@ -147,7 +147,10 @@ TEST(TexelMap, OverlappingChartsListTheirSharedTexelsAsAliases) {
   EXPECT_EQ(left, 256);
   EXPECT_TRUE(std::is_sorted(map.aliases.begin(), map.aliases.end(),
                              [](const TexelAlias& a, const TexelAlias& b) { return a.texel < b.texel; }));
-  EXPECT_TRUE(build_texel_map(shapes::plane(4), planar_param(shapes::plane(4)), 16, 16).aliases.empty());
+  EXPECT_TRUE(build_texel_map(shapes::plane(4), planar_param(shapes::plane(4)), 16, 16, true).aliases.empty());
+  const TexelMap plain = build_texel_map(mesh, param, 16, 16);  // not asked for: none, same texels
+  EXPECT_TRUE(plain.aliases.empty());
+  EXPECT_EQ(plain.face, map.face);
 }
 
 TEST(Painter, PaintingEitherSideOfASharedTexelPaintsIt) {

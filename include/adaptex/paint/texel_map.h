@@ -25,7 +25,8 @@ struct TexelMap {
   std::vector<Eigen::Vector2f> bary;  ///< W*H: barycentric (b0, b1) on that face (b2 = 1-b0-b1).
   std::vector<Vec3f> position;  ///< W*H: 3-D point at the texel centre (undefined where face = -1).
   std::vector<int> inside;      ///< Indices (j*W+i) of the texels with face >= 0, row by row.
-  /// Every further triangle over a texel of `inside` (shared texels), row by row; empty without overlap.
+  /// Every further triangle over a texel of `inside` (shared texels), row by row; empty without
+  /// overlap, and unless build_texel_map() was asked for them.
   std::vector<TexelAlias> aliases;
 
   int index(int i, int j) const { return j * width + i; }
@@ -33,7 +34,9 @@ struct TexelMap {
 
 /// Rasterizes \p param at width x height (texel centres at ((i+0.5)/W, (j+0.5)/H), v = 0 bottom).
 /// Where UV triangles overlap, the last one in face order is the texel's `face`; the others are
-/// listed in `aliases`. Parallel over rows. \pre width, height > 0
-TexelMap build_texel_map(const TriMesh& mesh, const Parameterization& param, int width, int height);
+/// listed in `aliases` when \p with_aliases (the painter; other readers of a texel need one point
+/// of it and skip the list). Parallel over rows. \pre width, height > 0
+TexelMap build_texel_map(const TriMesh& mesh, const Parameterization& param, int width, int height,
+                         bool with_aliases = false);
 
 }  // namespace adaptex
