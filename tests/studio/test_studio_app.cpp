@@ -421,6 +421,45 @@ TEST(StudioAtlas, AModelWithItsOwnAtlasIsPaintedOnItAndKeepsItThroughSaveExportA
   EXPECT_EQ(old.app->history().strokes().size(), 1u);
 }
 
+TEST(StudioAtlas, AProjectWhoseTextureIsGoneOpensUnwrappedSayingWhyAndKeepsItsStrokesAndLayout) {
+  TempDir dir;
+  const auto obj = write_atlas_obj(dir.path);
+  Harness h({}, 256, obj.string());
+  ASSERT_TRUE(h.app->on_artist_atlas());
+  Stroke st;
+  st.color = Vec3(1, 0, 0);
+  st.radius = 0.1;
+  st.dabs = {Vec3(0.25, 0.4, 0), Vec3(0.25, 0.6, 0)};
+  h.app->add_stroke(st);
+  ASSERT_TRUE(h.app->wait_idle(60));
+  const auto project = dir.path / "p.adaptex";
+  ASSERT_TRUE(h.app->save_project(project));
+
+  // The texture is re-read from the model's files, not stored in the project.
+  const auto png = dir.path / "atlas.png", aside = dir.path / "aside.png";
+  std::filesystem::rename(png, aside);
+  Harness g({}, 256, "");
+  g.app->open_project(project);
+  ASSERT_TRUE(g.app->wait_idle(120));
+  ASSERT_TRUE(g.app->has_model());
+  EXPECT_FALSE(g.app->on_artist_atlas());
+  EXPECT_EQ(g.app->history().strokes().size(), 1u);
+  const auto said = std::find_if(g.app->messages().begin(), g.app->messages().end(),
+                                 [](const Message& m) { return m.text.find("atlas.png") != std::string::npos; });
+  ASSERT_NE(said, g.app->messages().end());
+  EXPECT_NE(said->text.find("fresh unwrap"), std::string::npos) << said->text;
+  // Saved again meanwhile, the project still asks for the atlas: back with the texture, it opens on it.
+  ASSERT_TRUE(g.app->save_project(project));
+  EXPECT_NE(read_input_file(project).find("\"layout\": \"atlas\""), std::string::npos);
+  std::filesystem::rename(aside, png);
+  Harness back({}, 256, "");
+  back.app->open_project(project);
+  ASSERT_TRUE(back.app->wait_idle(120));
+  EXPECT_TRUE(back.app->on_artist_atlas());
+  EXPECT_EQ(back.app->history().strokes().size(), 1u);
+  EXPECT_EQ(max_abs_diff(*back.app->texture(), *h.app->texture()), 0);
+}
+
 TEST(StudioApp, AutosaveIsOfferedAsRecoveryNextTime) {
   TempDir dir;
   AppOptions opt;
