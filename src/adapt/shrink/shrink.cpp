@@ -190,15 +190,25 @@ MapKind map_kind_of_slot(const std::string& slot) {
   return MapKind::Color;
 }
 
-ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& param,
+ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& input,
                                   const std::vector<ShrinkMap>& maps, const ShrinkOptions& options) {
   const auto t_start = std::chrono::steady_clock::now();
-  check_inputs(mesh, param, maps, options);
+  check_inputs(mesh, input, maps, options);
   const int N = options.size;
   const int R = std::clamp(maps[0].image.width, 64, 2048);
   report_progress(options.progress, "islands", 0);
-  const UvIslands isl = find_uv_islands(param, R, options.overlap_share);
-  Context cx{mesh,   param, maps, options, shifted_layout(param, isl), {}, isl.num_islands,
+  const UvIslands isl = find_uv_islands(input, R, options.overlap_share);
+  // Charts in another UV tile move by their integer offset into [0,1]²: the texels a repeating lookup
+  // read, now read by the clamped output too. The input itself when no chart moves.
+  const bool moved = std::any_of(isl.chart_shift.begin(), isl.chart_shift.end(),
+                                 [](const Vec2& s) { return s != Vec2::Zero(); });
+  Parameterization unit;
+  if (moved) {
+    unit = input;
+    unit.uv = shifted_layout(input, isl).uv;
+  }
+  const Parameterization& param = moved ? unit : input;
+  Context cx{mesh,   param, maps, options, shifted_layout(input, isl), {}, isl.num_islands,
              SampleSet(mesh, param, maps, options.eval_samples, options.seed)};
   cx.face_island.resize(mesh.faces.size());
   for (size_t f = 0; f < mesh.faces.size(); ++f) cx.face_island[f] = isl.chart_island[isl.face_chart[f]];
