@@ -377,6 +377,14 @@ TEST(Shrink, RejectsBadInput) {
   nan.param.uv[0].x() = std::nan("");
   EXPECT_THROW(shrink_textured_mesh(nan.mesh, nan.param, {{"c", tex, MapKind::Color}}), InvalidInputError);
   EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", ImageRGBA8(), MapKind::Color}}), InvalidInputError);
+  for (const char* bad : {"best", "Budget"}) {
+    opt.size = 32;
+    opt.force_candidate = bad;
+    EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", tex, MapKind::Color}}, opt), InvalidInputError) << bad;
+  }
+  opt.force_candidate = "";
+  opt.island_warp_ratio = 0.5;
+  EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", tex, MapKind::Color}}, opt), InvalidInputError);
 }
 
 TEST(Shrink, ProgressCanCancel) {

@@ -114,6 +114,17 @@ struct TwoMaterials : ::testing::Test {
     write_png(dir.path / "a_n.png", ImageRGBA8(64, 64, {128, 128, 255, 255}));
     write_png(dir.path / "b.png", stripes(64, {20, 40, 230}, {240, 240, 240}));
   }
+  /// `shrink m.obj --size 32 FLAGS` fails with exit 2 and one error line holding every one of \p needles,
+  /// and writes nothing.
+  void expect_bad_input(const std::string& flags, const std::vector<std::string>& needles) {
+    const auto out = dir.path / "out";
+    const auto r = test::run_cli("-q shrink " + (dir.path / "m.obj").string() + " --size 32 " + flags + " -o " +
+                                 out.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    for (const std::string& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << n << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
 };
 
 TEST_F(TwoMaterials, EachMaterialKeepsItsMapsAndFaces) {
@@ -182,24 +193,17 @@ TEST_F(TwoMaterials, MaterialsSharingAnImageAreShrunkTogether) {
 
 TEST_F(TwoMaterials, AMissingMapIsBadInputAndWritesNothing) {
   write_files("gone.png");
-  const auto out = dir.path / "out";
-  const auto r = test::run_cli("shrink " + (dir.path / "m.obj").string() + " --size 32 -o " + out.string());
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find("gone.png"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(out));
+  expect_bad_input("", {"gone.png"});
 }
 
 TEST_F(TwoMaterials, ATilingChartIsBadInputAndWritesNothing) {
   for (int w = 0; w < 25; ++w) param.uv[w].x() *= 3;  // skin's chart spans u 0.3 .. 2.7
   write_files("a.png");
-  const auto out = dir.path / "out";
-  const auto r = test::run_cli("-q shrink " + (dir.path / "m.obj").string() + " --size 32 -o " + out.string());
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find("material 'skin'"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("tiling"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(out));
+  expect_bad_input("", {"material 'skin'", "tiling"});
+}
+
+TEST_F(TwoMaterials, AnUnknownCandidateIsBadInputAndWritesNothing) {
+  expect_bad_input("--candidate best", {"unknown candidate 'best'"});
 }
 
 /// One material on every face: the files are those of the one-material shrink and export, byte for byte.

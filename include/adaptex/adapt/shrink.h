@@ -114,7 +114,8 @@ struct ShrinkResult {
 /// that brings its centre into [0,1)², so that even the artist's layout ("downsized", "artist") reads
 /// the same texels clamped. A chart wider than one tile keeps crossing the border.
 /// \pre param matches mesh (param.uv_faces.size() == mesh.faces.size()); at least one map
-/// \throw InvalidInputError empty maps, non-finite UVs, size out of range, inconsistent layout
+/// \throw InvalidInputError empty maps, non-finite UVs, size out of range, inconsistent layout, an
+/// unknown options.force_candidate
 /// \throw CancelledError options.progress returned false
 ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& param,
                                   const std::vector<ShrinkMap>& maps, const ShrinkOptions& options = {});

@@ -39,6 +39,10 @@ void check_inputs(const TriMesh& mesh, const Parameterization& param, const std:
     throw InvalidInputError(
         "shrink: bad options (overlap_share >= 0, max_scale_ratio >= 1, island_warp_ratio >= 1, gutter in [0,16], "
         "samples >= 1000, max_face_growth >= 0)");
+  const auto& names = {"", "downsized", "artist", "repacked", "budget", "island_warp", "warped"};
+  if (std::find(names.begin(), names.end(), opt.force_candidate) == names.end())
+    throw InvalidInputError("shrink: unknown candidate '" + opt.force_candidate +
+                            "' (downsized, artist, repacked, budget, island_warp, warped)");
 }
 
 /// A candidate layout with its first map.
