@@ -237,6 +237,7 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& i
   if (!isl.tiling) {
     const std::vector<double> area = island_areas(cx.layout, cx.face_island, cx.islands, R);
     Built uni = repacked(cx, "repacked", std::vector<double>(cx.islands, 1.0), 0.75, cx.layout);
+    bool uni_added = false;
     if (options.budget && uni.info.valid) {
       report_progress(options.progress, "error model", 0);
       ErrorCurves curves;
@@ -246,10 +247,13 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& i
         report_progress(options.progress, "warp", 0);
         const bool from_uniform = uni.info.psnr > cands.back().info.psnr;
         if (from_uniform) scales.assign(cx.islands, 1.0);
-        cands.push_back(island_warped(cx, from_uniform ? uni : cands.back(), curves, scales));
+        Built iw = island_warped(cx, from_uniform ? uni : cands.back(), curves, scales);
+        cands.push_back(std::move(uni));
+        uni_added = true;
+        cands.push_back(std::move(iw));  // after the rigid layouts: a warp that changes nothing ties, and loses
       }
     }
-    cands.push_back(std::move(uni));
+    if (!uni_added) cands.push_back(std::move(uni));
   }
   if (options.warp && isl.num_islands == isl.num_charts) {
     report_progress(options.progress, "warp", 0);
