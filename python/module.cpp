@@ -357,6 +357,8 @@ py::array_t<double> py_evaluate_material(py::handle V, py::handle F, py::handle 
   for (py::ssize_t k = 0; k < fa.shape(0); ++k) {
     if (f(k) < 0 || f(k) >= mesh.num_faces())
       throw InvalidInputError("evaluate_material: faces[" + std::to_string(k) + "] out of range");
+    if (!std::isfinite(b(k, 0)) || !std::isfinite(b(k, 1)))
+      throw InvalidInputError("evaluate_material: bary[" + std::to_string(k) + "] is not finite");
     points[static_cast<size_t>(k)] = SurfacePoint{static_cast<int>(f(k)), b(k, 0), b(k, 1)};
   }
   const std::vector<MaterialValue> values = [&] {

@@ -148,11 +148,12 @@ void run_paint(PaintCommand& c, const Context& ctx) {
   ReadReport rr;
   const TriMesh mesh = read_mesh(c.mesh, ro, &rr);
   for (const std::string& w : rr.warnings) ctx.warn(w);
-  if (const MaterialStrokeFile material = read_material_strokes(c.strokes); material.source_version == 2) {
-    for (const std::string& w : material.warnings) ctx.warn(w);
-    return run_paint_material(c, mesh, material, rr, sw.lap(), ctx);
+  AnyStrokeFile any = read_any_strokes(c.strokes);
+  if (const MaterialStrokeFile* material = std::get_if<MaterialStrokeFile>(&any)) {
+    for (const std::string& w : material->warnings) ctx.warn(w);
+    return run_paint_material(c, mesh, *material, rr, sw.lap(), ctx);
   }
-  const StrokeFile strokes = read_strokes(c.strokes);
+  const StrokeFile strokes = std::get<StrokeFile>(std::move(any));
   for (const std::string& w : strokes.warnings) ctx.warn(w);
   const double time_read = sw.lap();
   ctx.info("read: " + c.mesh.filename().string() + " (" + std::to_string(mesh.num_vertices()) +

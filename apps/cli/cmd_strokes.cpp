@@ -110,17 +110,17 @@ void run_generate(const GenerateArgs& a, const Context& ctx) {
 }
 
 void run_check(const CheckArgs& a, const Context& ctx) {
-  const MaterialStrokeFile m = read_material_strokes(a.input);
-  if (m.source_version == 2) {
-    for (const auto& w : m.warnings) ctx.warn(w);
+  AnyStrokeFile any = read_any_strokes(a.input);
+  if (const MaterialStrokeFile* m = std::get_if<MaterialStrokeFile>(&any)) {
+    for (const auto& w : m->warnings) ctx.warn(w);
     if (!a.output.empty()) {
       AtomicOutput out;
-      write_material_strokes(out.add(a.output), m);
+      write_material_strokes(out.add(a.output), *m);
       out.commit();
     }
-    return print_summary(a.input, m);
+    return print_summary(a.input, *m);
   }
-  const StrokeFile s = read_strokes(a.input);
+  const StrokeFile& s = std::get<StrokeFile>(any);
   for (const auto& w : s.warnings) ctx.warn(w);
   if (!a.output.empty()) {
     AtomicOutput out;

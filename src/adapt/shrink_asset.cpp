@@ -5,30 +5,24 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numeric>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
+#include "adaptex/core/union_find.h"
 
 namespace adaptex {
 
 namespace {
 
-int find_root(std::vector<int>& parent, int x) {
-  while (parent[x] != x) x = parent[x] = parent[parent[x]];
-  return x;
-}
-
 /// Charts of \p param: faces connected through shared wedges, numbered in order of their first face.
 std::vector<int> wedge_charts(const Parameterization& param, int* count) {
-  std::vector<int> parent(param.num_wedges());
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind wedges(param.num_wedges());
   for (const Face& t : param.uv_faces)
-    for (int k = 1; k < 3; ++k) parent[find_root(parent, t[k])] = find_root(parent, t[0]);
+    for (int k = 1; k < 3; ++k) wedges.unite(t[0], t[k]);
   std::vector<int> id(param.num_wedges(), -1), chart(param.uv_faces.size());
   int n = 0;
   for (size_t f = 0; f < param.uv_faces.size(); ++f) {
-    int& c = id[find_root(parent, param.uv_faces[f][0])];
+    int& c = id[wedges.find(param.uv_faces[f][0])];
     if (c < 0) c = n++;
     chart[f] = c;
   }
@@ -151,19 +145,18 @@ int shrink_output_size(const AssetShrinkOptions& o, const ImageRGBA8& first) {
 
 std::vector<MaterialGroupShrink> material_groups(const TexturedAsset& asset) {
   const int M = static_cast<int>(asset.materials.size());
-  std::vector<int> parent(M);
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind shared(M);
   std::map<std::string, int> image_owner;
   for (int m = 0; m < M; ++m)
     for (const TextureMap& t : asset.materials[m].maps) {
       const auto [it, fresh] = image_owner.try_emplace(t.path.lexically_normal().string(), m);
-      if (!fresh) parent[find_root(parent, m)] = find_root(parent, it->second);
+      if (!fresh) shared.unite(m, it->second);
     }
   std::vector<MaterialGroupShrink> groups;
   std::vector<int> group_of_root(M, -1);
   for (int m = 0; m < M; ++m) {
     if (asset.materials[m].maps.empty()) continue;
-    int& g = group_of_root[find_root(parent, m)];
+    int& g = group_of_root[shared.find(m)];
     if (g < 0) {
       g = static_cast<int>(groups.size());
       groups.emplace_back();

@@ -76,7 +76,7 @@ std::size_t skip_scan_data(const std::string& bytes, std::size_t at) {
 
 /// The Huffman tables of a DHT segment [begin, end): each a class/id byte, 16 code counts and as many
 /// symbols as the counts sum to, at most 256 (stb_image builds its code table in 257 entries: a larger
-/// sum wrote past it, a fuzz_jpeg finding).
+/// sum writes past it, found by fuzz_jpeg under UBSan).
 void check_huffman_tables(const std::string& bytes, std::size_t begin, std::size_t end, const std::string& corrupt) {
   std::size_t p = begin;
   while (p < end) {

@@ -226,4 +226,7 @@ inline const json& stroke_file_version(const json& js, const Where& top) {
 Stroke parse_v1_stroke(const json& js, const Where& w, const std::filesystem::path& base_dir,
                        std::vector<std::string>& warnings);
 
+/// A version 1 stroke file from its parsed JSON (parse_strokes() without the parse).
+StrokeFile strokes_from_json(const json& js, const std::string& name, const std::filesystem::path& base_dir);
+
 }  // namespace adaptex::detail

@@ -124,13 +124,18 @@ double fill_or_dab_coverage(const MaterialStroke& s, const DabGrid* grid, const 
   return s.type == MaterialStroke::Type::Fill ? s.opacity : grid->coverage(p);
 }
 
+/// The value a mask stroke paints: its own, or the mask's start value for an eraser.
+double mask_stroke_value(const LayerMask& mask, const MaterialStroke& s) {
+  return s.type == MaterialStroke::Type::Erase ? mask.value : s.mask_value;
+}
+
 void paint_mask(const LayerMask& mask, const std::vector<Vec3>& pos, std::vector<double>& M) {
   M.assign(pos.size(), mask.value);
   for (const MaterialStroke& s : mask.strokes) {
     std::unique_ptr<DabGrid> grid = s.type == MaterialStroke::Type::Fill ? nullptr : std::make_unique<DabGrid>(s);
     tbb::parallel_for(size_t(0), pos.size(), [&](size_t k) {
       const double alpha = fill_or_dab_coverage(s, grid.get(), pos[k]);
-      M[k] = M[k] * (1 - alpha) + s.mask_value * alpha;
+      M[k] = M[k] * (1 - alpha) + mask_stroke_value(mask, s) * alpha;
     });
   }
 }
@@ -209,7 +214,7 @@ MaterialValue evaluate_material_reference(const MaterialStrokeFile& file, const 
     if (layer.mask)
       for (const MaterialStroke& s : layer.mask->strokes) {
         const double alpha = s.type == MaterialStroke::Type::Fill ? s.opacity : material_stroke_coverage(s, p);
-        M = M * (1 - alpha) + s.mask_value * alpha;
+        M = M * (1 - alpha) + mask_stroke_value(*layer.mask, s) * alpha;
       }
     // The layer as premultiplied values P = L a, composited over nothing.
     MaterialValue P{};

@@ -173,8 +173,6 @@ LayerMask parse_mask(const json& js, const std::string& prefix, const std::files
   if (auto it = js.find("value"); it != js.end()) mask.value = get_in_range(*it, "mask.value", 0, 1, w);
   if (auto it = js.find("strokes"); it != js.end())
     mask.strokes = parse_stroke_list(*it, true, prefix + "mask: ", w, base_dir, warnings);
-  for (MaterialStroke& s : mask.strokes)
-    if (s.type == MaterialStroke::Type::Erase) s.mask_value = mask.value;  // an eraser restores the start value
   return mask;
 }
 
@@ -291,14 +289,11 @@ MaterialStrokeFile material_from_v1(const StrokeFile& v1) {
   return out;
 }
 
-MaterialStrokeFile parse_material_strokes(const std::string& text, const std::string& name,
-                                          const std::filesystem::path& base_dir) {
+namespace {
+
+/// A version 2 file from its parsed JSON.
+MaterialStrokeFile material_from_json(const json& js, const std::string& name, const std::filesystem::path& base_dir) {
   const Where top{name + ": "};
-  const json js = parse_stroke_json(text, name);
-  const json& version = stroke_file_version(js, top);
-  const long long v = version.is_number_integer() ? version.get<long long>() : 0;
-  if (v == 1) return material_from_v1(parse_strokes(text, name, base_dir));
-  if (v != 2) top.fail("\"version\" must be 1 or 2 (got " + describe(version) + ")");
   MaterialStrokeFile out;
   warn_unknown(js, {"format", "version", "background", "height_scale", "layers"}, top, out.warnings);
   if (auto it = js.find("background"); it != js.end()) out.background = parse_background(*it, top);
@@ -312,6 +307,29 @@ MaterialStrokeFile parse_material_strokes(const std::string& text, const std::st
   if (!layers.is_array()) top.fail("\"layers\" must be an array (got " + describe(layers) + ")");
   for (size_t k = 0; k < layers.size(); ++k) out.layers.push_back(parse_layer(layers[k], k, name, base_dir, out.warnings));
   return out;
+}
+
+}  // namespace
+
+AnyStrokeFile parse_any_strokes(const std::string& text, const std::string& name, const std::filesystem::path& base_dir) {
+  const json js = parse_stroke_json(text, name);
+  const Where top{name + ": "};
+  const json& version = stroke_file_version(js, top);
+  const long long v = version.is_number_integer() ? version.get<long long>() : 0;
+  if (v == 1) return strokes_from_json(js, name, base_dir);
+  if (v != 2) top.fail("\"version\" must be 1 or 2 (got " + describe(version) + ")");
+  return material_from_json(js, name, base_dir);
+}
+
+AnyStrokeFile read_any_strokes(const std::filesystem::path& path) {
+  return parse_any_strokes(read_input_file(path), path.string(), path.parent_path());
+}
+
+MaterialStrokeFile parse_material_strokes(const std::string& text, const std::string& name,
+                                          const std::filesystem::path& base_dir) {
+  AnyStrokeFile any = parse_any_strokes(text, name, base_dir);
+  if (const StrokeFile* v1 = std::get_if<StrokeFile>(&any)) return material_from_v1(*v1);
+  return std::get<MaterialStrokeFile>(std::move(any));
 }
 
 MaterialStrokeFile read_material_strokes(const std::filesystem::path& path) {

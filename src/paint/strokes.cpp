@@ -117,8 +117,11 @@ void validate_stroke(const Stroke& s, const std::string& where) {
 
 StrokeFile parse_strokes(const std::string& text, const std::string& name,
                          const std::filesystem::path& base_dir) {
+  return detail::strokes_from_json(parse_stroke_json(text, name), name, base_dir);
+}
+
+StrokeFile detail::strokes_from_json(const json& js, const std::string& name, const std::filesystem::path& base_dir) {
   const Where top{name + ": "};
-  const json js = parse_stroke_json(text, name);
   StrokeFile out;
   const json& version = stroke_file_version(js, top);
   if (!version.is_number_integer() || version.get<long long>() != 1)

@@ -46,8 +46,8 @@ ErrorDensity model_of(const TriMesh& mesh, const Parameterization& param, const 
   const MaterialTextures tex = paint_material(mesh, param, file, po);
   ErrorDensityOptions eo;
   eo.cells = 32;
-  return compute_error_density(mesh, param, build_texel_map(mesh, param, 128, 128),
-                               material_error_planes(mesh, param, file, tex, 0.25), eo);
+  const TexelMap map = build_texel_map(mesh, param, 128, 128);
+  return compute_error_density(mesh, param, map, material_error_planes(mesh, param, map, file, tex, 0.25), eo);
 }
 
 TEST(MaterialAdapt, DetailInAnyChannelDrawsTexels) {

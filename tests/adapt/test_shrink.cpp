@@ -353,11 +353,15 @@ TEST(Shrink, NoDegenerateOutputFaceWhateverTheCandidate) {
     ASSERT_EQ(static_cast<int>(r.param.uv_faces.size()), F);
     for (int f = 0; f < F; ++f)
       for (int k = 0; k < 3; ++k) EXPECT_EQ(r.param.wedge_vertex[r.param.uv_faces[f][k]], a.mesh.faces[f][k]);
-    // Lifted faces stay tiny (well under a texel), where they were.
+    // Lifted faces stay tiny (well under a texel), where they were. The island warp, a nonlinear map,
+    // opens a face collapsed onto a line (not onto a point) a little: under a tenth of its chart's mean face.
+    double mean = 0;
+    for (int f = plain; f < plain + 32; ++f) mean += std::abs(uv_signed_area(r.param, f)) * 64 * 64 / 32;
+    const double most = r.chosen == "island_warp" ? 0.1 * mean : 0.05;
     for (int f = 0; f < F; ++f)
       EXPECT_TRUE(std::abs(uv_signed_area(a.param, f)) * 64 * 64 >= 1e-6 ||
-                  std::abs(uv_signed_area(r.param, f)) * 64 * 64 < 0.05)
-          << candidate << " " << f;
+                  std::abs(uv_signed_area(r.param, f)) * 64 * 64 < most)
+          << candidate << " " << f << ": " << std::abs(uv_signed_area(r.param, f)) * 64 * 64 << " texels";
   }
 }
 
@@ -373,6 +377,14 @@ TEST(Shrink, RejectsBadInput) {
   nan.param.uv[0].x() = std::nan("");
   EXPECT_THROW(shrink_textured_mesh(nan.mesh, nan.param, {{"c", tex, MapKind::Color}}), InvalidInputError);
   EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", ImageRGBA8(), MapKind::Color}}), InvalidInputError);
+  for (const char* bad : {"best", "Budget"}) {
+    opt.size = 32;
+    opt.force_candidate = bad;
+    EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", tex, MapKind::Color}}, opt), InvalidInputError) << bad;
+  }
+  opt.force_candidate = "";
+  opt.island_warp_ratio = 0.5;
+  EXPECT_THROW(shrink_textured_mesh(a.mesh, a.param, {{"c", tex, MapKind::Color}}, opt), InvalidInputError);
 }
 
 TEST(Shrink, ProgressCanCancel) {

@@ -114,6 +114,17 @@ struct TwoMaterials : ::testing::Test {
     write_png(dir.path / "a_n.png", ImageRGBA8(64, 64, {128, 128, 255, 255}));
     write_png(dir.path / "b.png", stripes(64, {20, 40, 230}, {240, 240, 240}));
   }
+  /// `shrink m.obj --size 32 FLAGS` fails with exit 2 and one error line holding every one of \p needles,
+  /// and writes nothing.
+  void expect_bad_input(const std::string& flags, const std::vector<std::string>& needles) {
+    const auto out = dir.path / "out";
+    const auto r = test::run_cli("-q shrink " + (dir.path / "m.obj").string() + " --size 32 " + flags + " -o " +
+                                 out.string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    for (const std::string& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << n << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
 };
 
 TEST_F(TwoMaterials, EachMaterialKeepsItsMapsAndFaces) {
@@ -182,24 +193,17 @@ TEST_F(TwoMaterials, MaterialsSharingAnImageAreShrunkTogether) {
 
 TEST_F(TwoMaterials, AMissingMapIsBadInputAndWritesNothing) {
   write_files("gone.png");
-  const auto out = dir.path / "out";
-  const auto r = test::run_cli("shrink " + (dir.path / "m.obj").string() + " --size 32 -o " + out.string());
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find("gone.png"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(out));
+  expect_bad_input("", {"gone.png"});
 }
 
 TEST_F(TwoMaterials, ATilingChartIsBadInputAndWritesNothing) {
   for (int w = 0; w < 25; ++w) param.uv[w].x() *= 3;  // skin's chart spans u 0.3 .. 2.7
   write_files("a.png");
-  const auto out = dir.path / "out";
-  const auto r = test::run_cli("-q shrink " + (dir.path / "m.obj").string() + " --size 32 -o " + out.string());
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  EXPECT_NE(r.err.find("material 'skin'"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("tiling"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(out));
+  expect_bad_input("", {"material 'skin'", "tiling"});
+}
+
+TEST_F(TwoMaterials, AnUnknownCandidateIsBadInputAndWritesNothing) {
+  expect_bad_input("--candidate best", {"unknown candidate 'best'"});
 }
 
 /// One material on every face: the files are those of the one-material shrink and export, byte for byte.
@@ -244,6 +248,25 @@ TEST(ShrinkAsset, WrapsChartsOfOtherTilesAndKeepsStraddlingOnes) {
   EXPECT_THROW(wrap_charts_into_unit_square(param, 1e-3, "test"), InvalidInputError);
 }
 
+/// Largest colour difference, at the UV centroid of every face, between \p in_map read with repeat
+/// wrapping on \p in and \p out_map read clamped on \p out (whose UVs must lie in [0,1]).
+double worst_wrapped_read(const Parameterization& in, const ImageRGBA8& in_map, const Parameterization& out,
+                          const ImageRGBA8& out_map) {
+  double worst = 0;
+  for (size_t f = 0; f < in.uv_faces.size(); ++f) {
+    Vec2 a = Vec2::Zero(), b = Vec2::Zero();
+    for (int k = 0; k < 3; ++k) {
+      a += in.uv[in.uv_faces[f][k]] / 3.0;
+      b += out.uv[out.uv_faces[f][k]] / 3.0;
+    }
+    EXPECT_GE(b.minCoeff(), 0.0);
+    EXPECT_LE(b.maxCoeff(), 1.0);
+    const Vec3 wrapped = sample_bilinear(in_map, a.x() - std::floor(a.x()), a.y() - std::floor(a.y()));
+    worst = std::max(worst, (wrapped - sample_bilinear(out_map, b.x(), b.y())).norm());
+  }
+  return worst;
+}
+
 /// The artist's layout written as it is ("downsized" at the input size) for a chart in the tile
 /// [1,2] x [0,1]: the clamped output must show what the input showed under repeat wrapping.
 TEST(ShrinkAsset, ArtistLayoutInAnotherTileReadsTheSameTexelsClamped) {
@@ -262,19 +285,26 @@ TEST(ShrinkAsset, ArtistLayoutInAnotherTileReadsTheSameTexelsClamped) {
   ASSERT_EQ(r.groups.size(), 1u);
   EXPECT_EQ(r.groups[0].result.chosen, "downsized");
   EXPECT_EQ(r.groups[0].wrapped_charts, 1);
-  double worst = 0;
-  for (int f = 0; f < a.mesh.num_faces(); ++f) {
-    Vec2 in = Vec2::Zero(), out = Vec2::Zero();
-    for (int k = 0; k < 3; ++k) {
-      in += a.param.uv[a.param.uv_faces[f][k]] / 3.0;
-      out += r.param.uv[r.param.uv_faces[f][k]] / 3.0;
-    }
-    EXPECT_GE(out.x(), 0.0);
-    EXPECT_LE(out.x(), 1.0);
-    const Vec3 wrapped = sample_bilinear(m.maps[0].image, in.x() - std::floor(in.x()), in.y());
-    worst = std::max(worst, (wrapped - sample_bilinear(r.groups[0].result.maps[0], out.x(), out.y())).norm());
-  }
-  EXPECT_LT(worst, 1e-6);
+  EXPECT_LT(worst_wrapped_read(a.param, m.maps[0].image, r.param, r.groups[0].result.maps[0]), 1e-6);
+  EXPECT_GT(r.psnr, 60.0);
+}
+
+/// The same through shrink_textured_mesh() itself (what the Python module and the Blender add-on call),
+/// for a chart in the tile [-1,0] x [1,2] and one inside [0,1]².
+TEST(ShrinkAsset, ShrinkMovesChartsOfOtherTilesItself) {
+  TriMesh mesh;
+  Parameterization param;
+  patch(mesh, param, 0, 6, Vec2(-0.9, 1.1), 0.45);
+  patch(mesh, param, 2, 6, Vec2(0.5, 0.1), 0.45);
+  const ImageRGBA8 tex = stripes(64, {200, 20, 20}, {20, 20, 200});
+  ShrinkOptions o;
+  o.size = 64;
+  o.force_candidate = "downsized";
+  o.eval_samples = o.error_samples = 4000;
+  const ShrinkResult r = shrink_textured_mesh(mesh, param, {{"base_color", tex, MapKind::Color}}, o);
+  EXPECT_EQ(r.chosen, "downsized");
+  EXPECT_LT(worst_wrapped_read(param, tex, r.param, r.maps[0]), 1e-6);
+  for (int w = 49; w < param.num_wedges(); ++w) EXPECT_EQ(r.param.uv[w], param.uv[w]) << w;  // kept
   EXPECT_GT(r.psnr, 60.0);
 }
 

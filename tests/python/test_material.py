@@ -177,3 +177,5 @@ def test_bad_documents_raise_one_clear_error(sphere):
         adaptex.evaluate_material(V, F, doc, [0], [[0.3, 0.3]])
     with pytest.raises(adaptex.InvalidInputError, match="faces\\[0\\] out of range"):
         adaptex.evaluate_material(V, F, every_mode_document(), [len(F)], [[0.3, 0.3]])
+    with pytest.raises(adaptex.InvalidInputError, match="bary\\[0\\] is not finite"):
+        adaptex.evaluate_material(V, F, every_mode_document(), [0], [[float("nan"), 0.3]])

@@ -31,11 +31,13 @@ struct MaterialAdaptResult {
   double error_fixed = 0, error_adapted = 0;  ///< Weighted MSE (base colour + data) over the check's samples.
 };
 
-/// The error planes of \p file on \p param with its painted \p textures: base colour (weight 1),
-/// roughness / metallic / alpha (\p data_weight), and the shading normal from the height (weight
-/// 4 · the mean square of the base colour: Lambert shading changes by the albedo times |Δn|).
+/// The error planes of \p file on \p param with its painted \p textures (\p map: the texel map of
+/// \p param at their size): base colour (weight 1), roughness / metallic / alpha (\p data_weight), and
+/// the shading normal from the height (weight 4 · the mean square of the base colour over the chart
+/// texels: Lambert shading changes by the albedo times |Δn|).
 /// The planes refer to \p mesh, \p param and \p file: they must outlive the planes.
-std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param,
+/// \throw InvalidInputError map and textures of different sizes
+std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                               const MaterialStrokeFile& file, const MaterialTextures& textures,
                                               double data_weight);
 

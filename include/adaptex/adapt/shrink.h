@@ -110,9 +110,12 @@ struct ShrinkResult {
 };
 
 /// Shrinks \p maps (all on layout \p param of \p mesh) to options.size² texels each on a new layout.
-/// UVs outside [0,1] are read with wrapping (repeat); the output's UVs lie in [0,1]².
+/// UVs outside [0,1] are read with wrapping (repeat): every chart first moves by the integer tile offset
+/// that brings its centre into [0,1)², so that even the artist's layout ("downsized", "artist") reads
+/// the same texels clamped. A chart wider than one tile keeps crossing the border.
 /// \pre param matches mesh (param.uv_faces.size() == mesh.faces.size()); at least one map
-/// \throw InvalidInputError empty maps, non-finite UVs, size out of range, inconsistent layout
+/// \throw InvalidInputError empty maps, non-finite UVs, size out of range, inconsistent layout, an
+/// unknown options.force_candidate
 /// \throw CancelledError options.progress returned false
 ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& param,
                                   const std::vector<ShrinkMap>& maps, const ShrinkOptions& options = {});

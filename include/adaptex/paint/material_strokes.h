@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
 #include "adaptex/core/types.h"
@@ -58,7 +59,7 @@ struct MaterialStroke {
   Type type = Type::Brush;
   unsigned channels = 0;      ///< Channel bits painted (or erased) by the stroke; unused in masks.
   MaterialValue value{};      ///< Values of the painted channels (other components unused).
-  double mask_value = 1;      ///< Mask strokes only: the value painted into the mask, in [0,1].
+  double mask_value = 1;      ///< Mask brush / fill only: the value painted into the mask, in [0,1].
   double radius = 0.01;       ///< Brush and erase: world units, > 0.
   double hardness = 0.5;      ///< Brush and erase: in [0,1].
   double opacity = 1;         ///< In [0,1].
@@ -72,7 +73,7 @@ struct MaterialStroke {
 /// A layer's mask: a scalar M in [0,1] that starts at `value` and is painted by its strokes.
 struct LayerMask {
   double value = 1;
-  std::vector<MaterialStroke> strokes;  ///< Brush, fill or erase strokes using mask_value.
+  std::vector<MaterialStroke> strokes;  ///< Brush and fill paint mask_value; erase paints `value` back.
 };
 
 /// One layer of the material.
@@ -108,6 +109,14 @@ MaterialStrokeFile material_from_v1(const StrokeFile& v1);
 /// \throw IoError not JSON; InvalidInputError any content error
 MaterialStrokeFile parse_material_strokes(const std::string& json, const std::string& name,
                                           const std::filesystem::path& base_dir);
+/// A stroke file as read: version 1 (StrokeFile) or version 2 (MaterialStrokeFile).
+using AnyStrokeFile = std::variant<StrokeFile, MaterialStrokeFile>;
+/// Parses a file of either version once, keeping a version 1 file as read_strokes() gives it (for the
+/// commands that paint version 1 exactly as before). \throw as parse_material_strokes()
+AnyStrokeFile parse_any_strokes(const std::string& json, const std::string& name, const std::filesystem::path& base_dir);
+/// Reads and parses \p path (decal images relative to its folder). \throw as read_material_strokes()
+AnyStrokeFile read_any_strokes(const std::filesystem::path& path);
+
 /// Reads and parses \p path (decal images relative to its folder).
 /// \throw IoError unreadable file or not JSON; InvalidInputError any content error
 MaterialStrokeFile read_material_strokes(const std::filesystem::path& path);

@@ -72,28 +72,29 @@ double sampled_error(const TriMesh& mesh, const Parameterization& param, const M
 
 }  // namespace
 
-std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param,
+std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                               const MaterialStrokeFile& file, const MaterialTextures& textures,
                                               double data_weight) {
+  if (map.width != textures.base_color.width || map.height != textures.base_color.height)
+    throw InvalidInputError("material_error_planes: the texel map and the textures differ in size");
   auto exact = std::make_shared<TexelMaterial>(mesh, file);
-  double albedo2 = 0;
-  const size_t n = textures.base_color.data.size() / 4;
-  for (size_t k = 0; k < n; ++k)
-    for (int c = 0; c < 3; ++c) albedo2 += std::pow(textures.base_color.data[4 * k + c] / 255.0, 2) / 3;
-  albedo2 = n ? albedo2 / n : 1;
+  double albedo2 = 0;  // mean square of the base colour over the chart texels
+  for (int t : map.inside)
+    for (int c = 0; c < 3; ++c) albedo2 += std::pow(textures.base_color.data[4 * t + c] / 255.0, 2) / 3;
+  albedo2 = map.inside.empty() ? 1 : albedo2 / static_cast<double>(map.inside.size());
   const double scale = textures.height_scale;
   std::vector<ErrorPlane> planes(3);
   planes[0].texture = textures.base_color;
-  planes[0].exact = [exact](const TexelMap& map) {
-    const auto& v = exact->at(map);
+  planes[0].exact = [exact](const TexelMap& at) {
+    const auto& v = exact->at(at);
     std::vector<Vec3f> out(v.size());
     for (size_t t = 0; t < v.size(); ++t) out[t] = Vec3f(float(v[t][0]), float(v[t][1]), float(v[t][2]));
     return out;
   };
   planes[1].weight = data_weight;
   planes[1].texture = data_texture(textures);
-  planes[1].exact = [exact](const TexelMap& map) {
-    const auto& v = exact->at(map);
+  planes[1].exact = [exact](const TexelMap& at) {
+    const auto& v = exact->at(at);
     std::vector<Vec3f> out(v.size());
     for (size_t t = 0; t < v.size(); ++t) out[t] = Vec3f(float(v[t][4]), float(v[t][5]), float(v[t][3]));
     return out;
@@ -101,11 +102,11 @@ std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Paramet
   // The normal map stores (n + 1) / 2: its squared error is |Δn|² / 4, so 4 · albedo² gives Lambert's.
   planes[2].weight = std::max(4 * albedo2, 1e-6);
   planes[2].texture = textures.normal;
-  planes[2].exact = [exact, &mesh, &param, scale](const TexelMap& map) {
-    const auto& v = exact->at(map);
+  planes[2].exact = [exact, &mesh, &param, scale](const TexelMap& at) {
+    const auto& v = exact->at(at);
     std::vector<double> h(v.size());
     for (size_t t = 0; t < v.size(); ++t) h[t] = (v[t][6] - 0.5) * scale;
-    std::vector<Vec3f> normals = height_normals(mesh, param, map, h);
+    std::vector<Vec3f> normals = height_normals(mesh, param, at, h);
     for (Vec3f& x : normals) x = 0.5f * (x + Vec3f::Ones());
     return normals;
   };
@@ -127,7 +128,7 @@ MaterialAdaptResult adapt_material(const TriMesh& mesh, const Parameterization& 
   const int N = options.paint.size;
   const TexelMap map = build_texel_map(mesh, layout, N, N);
   const ErrorDensity model = compute_error_density(
-      mesh, layout, map, material_error_planes(mesh, layout, file, out.textures, options.data_weight),
+      mesh, layout, map, material_error_planes(mesh, layout, map, file, out.textures, options.data_weight),
       options.adapt.density_flow.density);
   const AdaptResult res = adapt_parameterization(mesh, layout, out.textures.base_color, map, model, options.adapt);
   const TriMesh& adapted_mesh = res.refined_mesh ? *res.refined_mesh : mesh;

@@ -39,6 +39,10 @@ void check_inputs(const TriMesh& mesh, const Parameterization& param, const std:
     throw InvalidInputError(
         "shrink: bad options (overlap_share >= 0, max_scale_ratio >= 1, island_warp_ratio >= 1, gutter in [0,16], "
         "samples >= 1000, max_face_growth >= 0)");
+  const auto& names = {"", "downsized", "artist", "repacked", "budget", "island_warp", "warped"};
+  if (std::find(names.begin(), names.end(), opt.force_candidate) == names.end())
+    throw InvalidInputError("shrink: unknown candidate '" + opt.force_candidate +
+                            "' (downsized, artist, repacked, budget, island_warp, warped)");
 }
 
 /// A candidate layout with its first map.
@@ -190,15 +194,25 @@ MapKind map_kind_of_slot(const std::string& slot) {
   return MapKind::Color;
 }
 
-ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& param,
+ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& input,
                                   const std::vector<ShrinkMap>& maps, const ShrinkOptions& options) {
   const auto t_start = std::chrono::steady_clock::now();
-  check_inputs(mesh, param, maps, options);
+  check_inputs(mesh, input, maps, options);
   const int N = options.size;
   const int R = std::clamp(maps[0].image.width, 64, 2048);
   report_progress(options.progress, "islands", 0);
-  const UvIslands isl = find_uv_islands(param, R, options.overlap_share);
-  Context cx{mesh,   param, maps, options, shifted_layout(param, isl), {}, isl.num_islands,
+  const UvIslands isl = find_uv_islands(input, R, options.overlap_share);
+  // Charts in another UV tile move by their integer offset into [0,1]²: the texels a repeating lookup
+  // read, now read by the clamped output too. The input itself when no chart moves.
+  const bool moved = std::any_of(isl.chart_shift.begin(), isl.chart_shift.end(),
+                                 [](const Vec2& s) { return s != Vec2::Zero(); });
+  Parameterization unit;
+  if (moved) {
+    unit = input;
+    unit.uv = shifted_layout(input, isl).uv;
+  }
+  const Parameterization& param = moved ? unit : input;
+  Context cx{mesh,   param, maps, options, shifted_layout(input, isl), {}, isl.num_islands,
              SampleSet(mesh, param, maps, options.eval_samples, options.seed)};
   cx.face_island.resize(mesh.faces.size());
   for (size_t f = 0; f < mesh.faces.size(); ++f) cx.face_island[f] = isl.chart_island[isl.face_chart[f]];
@@ -223,6 +237,7 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
   if (!isl.tiling) {
     const std::vector<double> area = island_areas(cx.layout, cx.face_island, cx.islands, R);
     Built uni = repacked(cx, "repacked", std::vector<double>(cx.islands, 1.0), 0.75, cx.layout);
+    bool uni_added = false;
     if (options.budget && uni.info.valid) {
       report_progress(options.progress, "error model", 0);
       ErrorCurves curves;
@@ -232,10 +247,13 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& p
         report_progress(options.progress, "warp", 0);
         const bool from_uniform = uni.info.psnr > cands.back().info.psnr;
         if (from_uniform) scales.assign(cx.islands, 1.0);
-        cands.push_back(island_warped(cx, from_uniform ? uni : cands.back(), curves, scales));
+        Built iw = island_warped(cx, from_uniform ? uni : cands.back(), curves, scales);
+        cands.push_back(std::move(uni));
+        uni_added = true;
+        cands.push_back(std::move(iw));  // after the rigid layouts: a warp that changes nothing ties, and loses
       }
     }
-    cands.push_back(std::move(uni));
+    if (!uni_added) cands.push_back(std::move(uni));
   }
   if (options.warp && isl.num_islands == isl.num_charts) {
     report_progress(options.progress, "warp", 0);
