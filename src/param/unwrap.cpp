@@ -707,13 +707,14 @@ bool split_pays(const PieceProbe& probe, double area_fraction, double gap, doubl
 /// round after round, every piece whose cheap parameterization (probe_piece()) has degenerate or
 /// flipped triangles, or an L2 stretch above scan_chart_l2 where split_pays(), is split in two.
 /// The chart count thus follows the stretch and the texel budget: small pieces stay whole.
+/// \p min_probe_faces: pieces of fewer faces are never split (a stretched piece is split down to
+/// twice that).
 std::vector<Component> scan_pieces(const std::vector<Component>& comps, const DiskParamOptions& dopt,
-                                   double gutter, const UnwrapOptions& options) {
+                                   double gutter, const UnwrapOptions& options, int min_probe_faces) {
   // Pieces with bad UV triangles are split down to this many faces (zero-area scan faces stay
   // degenerate in any chart, so that rule needs a floor); a stretched piece is split whenever
   // split_pays(): a few large, folded faces of a photogrammetry mesh can hold much of the area.
   constexpr int kMinSplitFaces = 16;
-  constexpr int kMinProbeFaces = 4;
   double total_area = 0;
   for (const Component& c : comps) total_area += c.area;
   std::vector<Component> done, queue;
@@ -722,7 +723,7 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
     if (f > options.scan_piece_faces)
       split_piece(c, static_cast<int>((f + options.scan_piece_faces - 1) / options.scan_piece_faces),
                   options, queue);
-    else if (f >= kMinProbeFaces)
+    else if (f >= min_probe_faces)
       queue.push_back(c);
     else
       done.push_back(c);
@@ -739,7 +740,7 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
       const int faces = p.mesh.num_faces();
       const bool worth =
           (pr.bad > 0 && faces >= 2 * kMinSplitFaces) ||
-          (faces >= 2 * kMinProbeFaces &&
+          (faces >= 2 * min_probe_faces &&
            split_pays(pr, p.area / std::max(total_area, 1e-300), gap, options.scan_chart_l2));
       bool split = false;
       if (worth) {
@@ -984,12 +985,17 @@ void keep_better_layout(const TriMesh& mesh, const std::vector<Component>& piece
     copy_phase_times(candidate.report, rep);
 }
 
+/// Pieces of a few large folded faces are split down to 8 faces when split_pays() says so; its
+/// estimate is rough for so few faces, so small meshes also try the split down to 32 faces.
+constexpr int kFineProbeFaces = 4, kCoarseProbeFaces = 16;
+
 /// scan_pieces(), its time added to \p rep.time_segment.
 std::vector<Component> timed_scan_pieces(const std::vector<Component>& comps,
                                          const DiskParamOptions& dopt, double gutter,
-                                         const UnwrapOptions& options, UnwrapReport& rep) {
+                                         const UnwrapOptions& options, UnwrapReport& rep,
+                                         int min_probe_faces = kFineProbeFaces) {
   const auto t0 = Clock::now();
-  std::vector<Component> pieces = scan_pieces(comps, dopt, gutter, options);
+  std::vector<Component> pieces = scan_pieces(comps, dopt, gutter, options, min_probe_faces);
   rep.time_segment += seconds_since(t0);
   return pieces;
 }
@@ -1004,6 +1010,10 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
       timed_scan_pieces(comps, dopt, gutter, options, result.report);
   unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, true);
   if (mesh.num_faces() > options.scan_single_max_faces) return;
+  const std::vector<Component> coarse =
+      timed_scan_pieces(comps, dopt, gutter, options, result.report, kCoarseProbeFaces);
+  if (coarse.size() != pieces.size())
+    keep_better_layout(mesh, coarse, dopt, gutter, t_start, options, true, result);
   keep_better_layout(mesh, comps, dopt, gutter, t_start, options, true, result);
 }
 
