@@ -437,6 +437,17 @@ TEST_F(StudioGui, SigkilledSessionIsRecoveredFromTheAutosave) {
 // frame, which a loaded machine makes slow (seen with four GUI tests in parallel beside a build).
 constexpr const char* kHoldCtrlQ = "keydown ctrl+q sleep 0.3 keyup ctrl+q";
 
+/// Ctrl+Q, then \p key once \p log holds the quit prompt \p asked times: the app's exit code, -2 when
+/// the prompt never came or a key was not sent, -1 when the app did not exit (it is killed then).
+int quit_answering(const Xvfb& x, pid_t app, const fs::path& log, int asked, const char* key) {
+  if (xdo(x, kHoldCtrlQ) != 0 || !wait_for([&] { return count_in(log, kAsking) == asked; }, 30s) ||
+      xdo(x, key) != 0)
+    return -2;
+  const int rc = wait_exit(app, 60s);
+  if (rc < 0) kill(app, SIGKILL), wait_exit(app, 5s);
+  return rc;
+}
+
 TEST_F(StudioGui, QuittingWithUnsavedStrokesAsksAndCancelKeepsTheAppRunning) {
   const fs::path log = dir.path / "app.log", rec = dir.path / "rec", hist = dir.path / "h.json";
   const pid_t app = spawn({ADAPTEX_STUDIO_PATH, "builtin:sphere", "--window", "800x600", "--texture-size", "256",
@@ -472,12 +483,7 @@ TEST_F(StudioGui, QuittingWithUnsavedStrokesAsksAndCancelKeepsTheAppRunning) {
   EXPECT_TRUE(running(app));
 
   // Discard (D) quits, and only then is the recovery file removed.
-  ASSERT_EQ(xdo(*x, kHoldCtrlQ), 0);
-  ASSERT_TRUE(wait_for([&] { return count_in(log, kAsking) == 3; }, 30s)) << slurp(log);
-  ASSERT_EQ(xdo(*x, "key d"), 0);
-  const int rc = wait_exit(app, 60s);
-  if (rc < 0) kill(app, SIGKILL), wait_exit(app, 5s);
-  ASSERT_EQ(rc, 0) << slurp(log);
+  ASSERT_EQ(quit_answering(*x, app, log, 3, "key d"), 0) << slurp(log);
   EXPECT_FALSE(fs::exists(rec / "recovery.json"));
   std::ifstream hin(hist);
   EXPECT_EQ(nlohmann::json::parse(hin)["strokes"].size(), 1u);  // the stroke was there until the end
@@ -1141,12 +1147,7 @@ TEST_F(StudioGui, ATexturedModelOpensOnItsAtlasAndAStrokeIsSavedReopenedAndExpor
   for (int y = cy - 45; y <= cy + 50; y += 5) drag << " mousemove " << sx << " " << y << " sleep 0.05";
   drag << " sleep 0.2 mouseup 1 sleep 0.5 mousemove 950 80 sleep 0.3";
   ASSERT_EQ(xdo(*x, drag.str()), 0);
-  ASSERT_EQ(xdo(*x, kHoldCtrlQ), 0);
-  ASSERT_TRUE(wait_for([&] { return count_in(log2, kAsking) == 1; }, 30s)) << slurp(log2);
-  ASSERT_EQ(xdo(*x, "key s"), 0);
-  const int rc = wait_exit(app, 60s);
-  if (rc < 0) kill(app, SIGKILL), wait_exit(app, 5s);
-  ASSERT_EQ(rc, 0) << slurp(log2);
+  ASSERT_EQ(quit_answering(*x, app, log2, 1, "key s"), 0) << slurp(log2);
   const nlohmann::json saved = read_json(project);
   ASSERT_TRUE(saved.is_object()) << slurp(log2);
   EXPECT_EQ(saved["layout"], "atlas");
