@@ -11,27 +11,13 @@
 #include "adaptex/core/limits.h"
 #include "adaptex/paint/material_signal.h"
 #include "adaptex/paint/padding.h"
+#include "adaptex/paint/tangent_frame.h"
 
 namespace adaptex {
 
 namespace {
 
 std::uint8_t to_byte(double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
-
-/// ∂P/∂u and ∂P/∂v of face \p f (zero when its UV triangle is degenerate).
-void face_frame(const TriMesh& mesh, const Parameterization& param, int f, Vec3& pu, Vec3& pv) {
-  const Face& F = mesh.faces[f];
-  const Face& T = param.uv_faces[f];
-  const Vec3 e1 = mesh.positions[F[1]] - mesh.positions[F[0]], e2 = mesh.positions[F[2]] - mesh.positions[F[0]];
-  const Vec2 d1 = param.uv[T[1]] - param.uv[T[0]], d2 = param.uv[T[2]] - param.uv[T[0]];
-  const double det = d1.x() * d2.y() - d1.y() * d2.x();
-  if (!(std::abs(det) > 0)) {
-    pu = pv = Vec3::Zero();
-    return;
-  }
-  pu = (e1 * d2.y() - e2 * d1.y()) / det;
-  pv = (e2 * d1.x() - e1 * d2.x()) / det;
-}
 
 /// Derivative of the height along one texel axis at texel (i, j): central where both neighbours lie in
 /// a chart, one-sided where one does, 0 where none does. \p step is the neighbour offset (1 or W).
@@ -55,23 +41,22 @@ std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& p
   if (height.size() != static_cast<size_t>(map.width) * map.height)
     throw InvalidInputError("normal_map_from_height: one height per texel expected");
   std::vector<Vec3f> normals(height.size(), Vec3f(0, 0, 1));
+  const std::vector<Vec3> vn = vertex_normals(mesh);
+  const std::vector<Eigen::Vector4d> tangents = wedge_tangents(mesh, param, vn);
   tbb::parallel_for(size_t(0), map.inside.size(), [&](size_t k) {
     const int t = map.inside[k], i = t % map.width, j = t / map.width, f = map.face[t];
     Vec3 pu, pv;
-    face_frame(mesh, param, f, pu, pv);
-    const Vec3 n = face_normal(mesh, f);
-    const Vec3 tangent = (pu - n * n.dot(pu));
-    if (!(tangent.norm() > 0) || !(pv.norm() > 0)) return;  // degenerate UV triangle: flat
+    face_uv_gradients(mesh, param, f, pu, pv);
+    if (!(pu.norm() > 0) || !(pv.norm() > 0)) return;  // degenerate UV triangle: flat
     const double hu = axis_derivative(map, height, t, i, map.width, 1, 1.0 / map.width);
     const double hv = axis_derivative(map, height, t, j, map.height, map.width, 1.0 / map.height);
     // Surface gradient: ∇H = [pu pv] G⁻¹ (hu, hv), G the metric of the face's UV map.
     const double a = pu.dot(pu), b = pu.dot(pv), c = pv.dot(pv), det = a * c - b * b;
     if (!(det > 0)) return;
     const Vec3 grad = pu * ((c * hu - b * hv) / det) + pv * ((a * hv - b * hu) / det);
-    const Vec3 T = tangent.normalized();
-    const double sign = n.cross(T).dot(pv) < 0 ? -1.0 : 1.0;  // mirrored charts: the bitangent flips
-    const Vec3 B = sign * n.cross(T);
-    normals[t] = Vec3(-grad.dot(T), -grad.dot(B), 1).normalized().cast<float>();
+    // n' = normalize(n − ∇H) in the frame a renderer interpolates from the exported NORMAL and TANGENT.
+    const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, f, map.bary[t].x(), map.bary[t].y());
+    normals[t] = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized().cast<float>();
   });
   return normals;
 }

@@ -43,8 +43,9 @@ std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& p
 
 /// The tangent-space normal of a height field H (world units per texel of \p map, W*H values; only
 /// texels inside charts are read) over the surface: n' = normalize(n − ∇H) with ∇H the surface
-/// gradient from central differences along u and v within the chart, expressed in each face's frame
-/// (tangent along ∂P/∂u, bitangent ±n × tangent with the sign of the chart's orientation).
+/// gradient from central differences along u and v within the chart, expressed in the frame a renderer
+/// interpolates at the texel from the vertex normals and MikkTSpace tangents that the .glb carries
+/// (paint/tangent_frame.h: tangent along ∂P/∂u, bitangent w · n × tangent, w = ±1 the chart's handedness).
 /// Texels outside every chart hold the flat normal (0, 0, 1).
 /// \pre height.size() == map.width * map.height
 ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
