@@ -166,6 +166,7 @@ void App::new_scene() {
   store_.mark_clean(history().version(), {});
   last_cycle_.clear();
   maps_.reset();
+  atlas_state_.clear();
   comparison_.reset();
   adapt_pending_ = false;
 }
@@ -399,7 +400,8 @@ std::string App::status_line() const {
     s += "no model (drop a mesh file on the window or use Open)";
   }
   s += " | adapt ";
-  s += on_artist_atlas() && session_.adapt.mode != AdaptMode::None ? "off on the atlas" : to_string(session_.adapt.mode);
+  s += on_artist_atlas() && session_.adapt.mode != AdaptMode::None ? "the atlas" : to_string(session_.adapt.mode);
+  if (on_artist_atlas() && !atlas_state_.empty()) s += " (" + atlas_state_ + ")";
   if (view_.fixed_layout) s += showing_fixed_layout() ? " | showing the FIXED layout (L)" : " | fixed layout: painting...";
   if (!last_cycle_.empty()) {
     s += " | last cycle:";
@@ -653,22 +655,20 @@ void App::clear_decal() {
 // ---- background jobs --------------------------------------------------------------------------
 
 void App::request_adapt() {
-  if (const std::string off = adaptation_off(); !off.empty()) return add_message(off, true);
   if (session_.adapt.mode == AdaptMode::None) return add_message("choose an adaptation mode first", true);
   adapt_pending_ = true;
 }
 
 void App::session_options_changed() { history_changed(); }
 
-AdaptMode App::adapt_mode() const { return on_artist_atlas() ? AdaptMode::None : session_.adapt.mode; }
+AdaptMode App::adapt_mode() const { return session_.adapt.mode; }
 
-std::string App::adaptation_off() const {
+std::string App::atlas_adaptation() const {
   if (!on_artist_atlas() || session_.adapt.mode == AdaptMode::None) return {};
-  const double shared = painting_.model()->shared_fraction;
-  std::string why = "adaptation is off on the artist's UV atlas: the re-parameterization repaints the strokes "
-                    "alone and would drop the artist's texture";
-  if (shared > 0) why += ", and it cannot keep the texels its overlapping charts share";
-  return why + " (File > Fresh unwrap adapts a fresh layout)";
+  std::string what = "on the artist's UV atlas, adaptation keeps its charts, seams and mirror images";
+  if (painting_.model()->shared_fraction > 0) what += ", and the texels its overlapping charts share";
+  return what + ", and moves texels to the painted detail only where that reconstructs the painting better "
+                "(adaptex shrink; the mode's own settings do not apply; File > Fresh unwrap adapts a fresh layout)";
 }
 
 void App::set_unwrap(bool unwrap) {
@@ -741,7 +741,7 @@ void App::maybe_start_rebuild() {
 }
 
 bool App::adapts_live() const {
-  return session_.schedule == ReparamSchedule::EachStroke && adapt_mode() != AdaptMode::None &&
+  return session_.schedule == ReparamSchedule::EachStroke && adapt_mode() != AdaptMode::None && !on_artist_atlas() &&
          !history().strokes().empty();
 }
 
@@ -770,6 +770,7 @@ void App::finish_load(Job<LoadResult>& job) {
     store_.mark_clean(saved ? history().version() : ~0ull, pending.project_path);
     last_cycle_.clear();
     maps_.reset();
+    atlas_state_.clear();
     comparison_.reset();
     history_changed();
     if (pending.relayout) return add_message("reopened on the " + model->layout, false);
@@ -791,7 +792,7 @@ void App::finish_load(Job<LoadResult>& job) {
     char buf[64];
     std::snprintf(buf, sizeof buf, " in %.2f s", r.seconds);
     add_message("loaded " + model->path + buf + ", painting on its " + model->layout, false);
-    if (const std::string off = adaptation_off(); !off.empty()) add_message(off, false);
+    if (const std::string note = atlas_adaptation(); !note.empty()) add_message(note, false);
   } catch (const std::exception& e) {
     const bool cancelled = dynamic_cast<const CancelledError*>(&e) != nullptr;
     add_message(cancelled ? "loading cancelled" : e.what(), !cancelled);
@@ -807,9 +808,14 @@ void App::finish_rebuild(Job<RebuildResult>& job) {
     RebuildResult r = job.take();
     auto maps = std::move(r.maps);
     auto phases = std::move(r.phase_ms);
+    const std::string note = std::move(r.note);
     if (painting_.accept_rebuilt(std::move(r.surface), session_.texture_size) && maps) {
       last_cycle_ = std::move(phases);
       maps_ = std::move(maps);
+      if (!note.empty()) {
+        atlas_state_ = maps_->accepted ? "adapted" : "kept as it was";
+        add_message(note, false);
+      }
     }
   } catch (const CancelledError&) {
   } catch (const std::exception& e) {
