@@ -69,20 +69,79 @@ ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& p
   return img;
 }
 
-MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file,
-                                const MaterialPaintOptions& options) {
+namespace {
+
+void check_paint_options(const TriMesh& mesh, const Parameterization& param, const MaterialPaintOptions& options) {
   if (options.size < 1 || options.size > kMaxTextureSize)
     throw InvalidInputError("paint_material: size must be in [1, " + std::to_string(kMaxTextureSize) + "]");
   if (options.padding < 0) throw InvalidInputError("paint_material: padding must be >= 0");
   if (param.uv_faces.size() != mesh.faces.size())
     throw InvalidInputError("paint_material: the layout and the mesh have different face counts");
-  const int N = options.size;
-  const TexelMap map = build_texel_map(mesh, param, N, N);
+}
+
+/// The surface points of the texel centres inside charts (map.inside order).
+std::vector<SurfacePoint> texel_points(const TexelMap& map) {
   std::vector<SurfacePoint> points(map.inside.size());
   for (size_t k = 0; k < points.size(); ++k) {
     const int t = map.inside[k];
     points[k] = SurfacePoint{map.face[t], map.bary[t].x(), map.bary[t].y()};
   }
+  return points;
+}
+
+/// The channels layer \p l paints: those its brush and fill strokes name, base colour for a decal.
+unsigned painted_channels(const MaterialLayer& l) {
+  unsigned bits = 0;
+  for (const MaterialStroke& s : l.strokes) {
+    if (s.type == MaterialStroke::Type::Brush || s.type == MaterialStroke::Type::Fill) bits |= s.channels;
+    if (s.type == MaterialStroke::Type::Decal) bits |= channel_bit(Channel::BaseColor);
+  }
+  return bits;
+}
+
+}  // namespace
+
+std::vector<LayerTextures> paint_material_layers(const TriMesh& mesh, const Parameterization& param,
+                                                 const MaterialStrokeFile& file, const MaterialPaintOptions& options) {
+  check_paint_options(mesh, param, options);
+  const int N = options.size;
+  const TexelMap map = build_texel_map(mesh, param, N, N);
+  const std::vector<SurfacePoint> points = texel_points(map);
+  const SeamPadding pad = build_seam_padding(map, options.padding);
+  std::vector<LayerTextures> out(file.layers.size());
+  for (size_t l = 0; l < file.layers.size(); ++l) {
+    const MaterialLayerSamples st = evaluate_layer(mesh, file, static_cast<int>(l), points);
+    const unsigned bits = painted_channels(file.layers[l]);
+    for (int c = 0; c < kNumChannels; ++c) {
+      const auto ch = static_cast<Channel>(c);
+      if (!(bits & channel_bit(ch))) continue;
+      ImageRGBA8 img(N, N);
+      const int o = channel_offset(ch), n = channel_components(ch);
+      for (size_t k = 0; k < points.size(); ++k) {
+        std::uint8_t* p = &img.data[4 * static_cast<size_t>(map.inside[k])];
+        for (int j = 0; j < 3; ++j) p[j] = to_byte(st.value[k][o + std::min(j, n - 1)]);
+        p[3] = to_byte(st.cover[k][c]);
+      }
+      apply_seam_padding(img, pad);
+      out[l].channels.emplace_back(ch, std::move(img));
+    }
+    if (file.layers[l].mask) {
+      ImageRGBA8 img(N, N, {0, 0, 0, 255});
+      for (size_t k = 0; k < points.size(); ++k)
+        std::fill_n(&img.data[4 * static_cast<size_t>(map.inside[k])], 3, to_byte(st.mask[k]));
+      apply_seam_padding(img, pad);
+      out[l].mask = std::move(img);
+    }
+  }
+  return out;
+}
+
+MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file,
+                                const MaterialPaintOptions& options) {
+  check_paint_options(mesh, param, options);
+  const int N = options.size;
+  const TexelMap map = build_texel_map(mesh, param, N, N);
+  const std::vector<SurfacePoint> points = texel_points(map);
   const std::vector<MaterialValue> values = evaluate_material(mesh, file, points);
   std::vector<MaterialValue> texel(static_cast<size_t>(N) * N, file.background);
   for (size_t k = 0; k < points.size(); ++k) texel[map.inside[k]] = values[k];

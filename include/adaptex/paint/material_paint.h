@@ -3,6 +3,10 @@
 /// A layered material (stroke file version 2) painted into the textures of one layout: every channel
 /// point-sampled at the texel centres (as the version 1 painter does), the glTF packings, and the
 /// tangent-space normal map derived from the height (docs/strokes.md, "The derived normal").
+#include <optional>
+#include <utility>
+#include <vector>
+
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
@@ -35,6 +39,24 @@ struct MaterialTextures {
 /// \throw InvalidInputError size or padding out of range, inconsistent layout, a decal breaking the rules
 MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file,
                                 const MaterialPaintOptions& options = {});
+
+/// One layer of a material as pictures on the layout (docs/export.md, "Layers as separate PNGs"),
+/// all size x size, row 0 at v = 0.
+struct LayerTextures {
+  /// Each channel the layer paints (a brush or fill stroke names it; decals paint base colour), in
+  /// Channel order: RGB = the layer's value L_c (grey for one-component channels), A = its coverage a_c.
+  std::vector<std::pair<Channel, ImageRGBA8>> channels;
+  std::optional<ImageRGBA8> mask;  ///< The mask M as grey (A = 255); only for a layer with a mask.
+};
+
+/// Paints every layer of \p file alone (MaterialLayerSamples) into textures on \p param, texel by
+/// texel as paint_material() (chart texels exact at their centres, padded texels copy their nearest
+/// chart texel, the rest transparent black / mask 0). Compositing them over the background with each
+/// layer's visibility, opacity and blend mode gives paint_material()'s textures (up to 8-bit rounding).
+/// \pre param matches mesh
+/// \throw as paint_material()
+std::vector<LayerTextures> paint_material_layers(const TriMesh& mesh, const Parameterization& param,
+                                                 const MaterialStrokeFile& file, const MaterialPaintOptions& options = {});
 
 /// The unit tangent-space normals behind normal_map_from_height(), W*H ((0, 0, 1) outside charts).
 /// \pre height.size() == map.width * map.height
