@@ -131,7 +131,9 @@ RebuildResult adapt_atlas_surface(const std::shared_ptr<const Model>& model, con
       s.param = a.param;
       s.base = a.base;
     }
-    r.note = atlas_note(a);
+    char took[32];
+    std::snprintf(took, sizeof took, " (%.1f s)", ms_since(t0) / 1000);
+    r.note = atlas_note(a) + took;
     auto maps = std::make_shared<AdaptMaps>();
     maps->accepted = a.param != nullptr;
     r.maps = std::move(maps);
@@ -319,7 +321,9 @@ std::unique_ptr<Job<Comparison>> SurfaceJobs::finished_compare() { return take_i
 
 std::optional<std::pair<std::string, double>> SurfaceJobs::progress() const {
   if (load_) return std::make_pair("Loading " + loading_path_ + ": " + load_->phase(), load_->fraction());
-  if (rebuild_) return std::make_pair("Updating texture: " + rebuild_->phase(), rebuild_->fraction());
+  if (rebuild_)
+    return std::make_pair((rebuild_adapting_ ? "Adapting: " : "Updating texture: ") + rebuild_->phase(),
+                          rebuild_->fraction());
   if (live_)
     if (auto p = live_->progress()) return std::make_pair("Adapting: " + p->first, p->second);
   return std::nullopt;

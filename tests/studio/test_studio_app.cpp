@@ -556,6 +556,37 @@ TEST(StudioAtlas, AdaptingTheArtistsAtlasKeepsSharedTexelsSharedFlipsNothingAndR
   EXPECT_EQ(max_abs_diff(*app.texture(), adapted_texture), 0);
 }
 
+TEST(StudioAtlas, AnAtlasThatNoNewLayoutBeatsIsKeptAndTheUserIsTold) {
+  TempDir dir;
+  const auto obj = write_atlas_obj(dir.path);
+  {  // Texel-sized noise: any resampling of it loses more than a new layout could win.
+    ImageRGBA8 tex(64, 64, {0, 0, 0, 255});
+    std::uint32_t h = 12345;
+    for (size_t k = 0; k < tex.data.size(); ++k)
+      if (k % 4 != 3) h = h * 1664525u + 1013904223u, tex.data[k] = std::uint8_t(h >> 24);
+    write_png(dir.path / "atlas.png", tex);
+  }
+  Stroke st;  // a broad, soft stroke: no detail finer than the texels
+  st.color = Vec3(0.9, 0.5, 0.1);
+  st.radius = 0.4;
+  st.hardness = 0;
+  st.opacity = 0.5;
+  st.dabs = {Vec3(0.3, 0.5, 0), Vec3(0.7, 0.5, 0)};
+  Harness fixed({}, 256, obj.string());
+  fixed.app->add_stroke(st);
+  ASSERT_TRUE(fixed.app->wait_idle(60));
+  Harness h({}, 256, obj.string(), AdaptMode::DensityFlow);
+  h.app->add_stroke(st);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  EXPECT_EQ(h.app->param()->uv, fixed.app->param()->uv);
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), *fixed.app->texture()), 0);
+  const auto said = std::find_if(h.app->messages().begin(), h.app->messages().end(), [](const Message& m) {
+    return m.text.find("kept the artist's atlas") != std::string::npos;
+  });
+  EXPECT_NE(said, h.app->messages().end());
+  EXPECT_NE(h.app->status_line().find("adapt the atlas (kept as it was)"), std::string::npos) << h.app->status_line();
+}
+
 TEST(StudioAtlas, AProjectWhoseTextureIsGoneOpensUnwrappedSayingWhyAndKeepsItsStrokesAndLayout) {
   TempDir dir;
   const auto obj = write_atlas_obj(dir.path);
