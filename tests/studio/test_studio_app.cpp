@@ -464,7 +464,10 @@ TEST(StudioAtlas, AdaptingTheArtistsAtlasKeepsSharedTexelsSharedFlipsNothingAndR
   const Parameterization atlas = *fixed.app->param();
   const ImageRGBA8 before = *fixed.app->texture();
 
-  Harness h({}, 256, obj.string(), AdaptMode::DensityFlow);
+  AppOptions with_recovery;
+  with_recovery.recovery_dir = dir.path / "recovery";
+  std::filesystem::create_directories(with_recovery.recovery_dir);
+  Harness h(with_recovery, 256, obj.string(), AdaptMode::DensityFlow);
   App& app = *h.app;
   ASSERT_TRUE(app.on_artist_atlas());
   EXPECT_NE(app.atlas_adaptation().find("overlapping charts"), std::string::npos);
@@ -554,6 +557,16 @@ TEST(StudioAtlas, AdaptingTheArtistsAtlasKeepsSharedTexelsSharedFlipsNothingAndR
   ASSERT_TRUE(app.wait_idle(300));
   EXPECT_EQ(app.param()->uv, adapted.uv);
   EXPECT_EQ(max_abs_diff(*app.texture(), adapted_texture), 0);
+  // Left unsaved (undo and redo), then recovered: adapted again to the same layout.
+  ASSERT_TRUE(app.unsaved());
+  h.app.reset();
+  Harness r(with_recovery, 256, "");
+  ASSERT_TRUE(r.app->recovery_offer());
+  r.app->accept_recovery();
+  ASSERT_TRUE(r.app->wait_idle(300));
+  ASSERT_TRUE(r.app->on_artist_atlas());
+  EXPECT_EQ(r.app->param()->uv, adapted.uv);
+  EXPECT_EQ(max_abs_diff(*r.app->texture(), adapted_texture), 0);
 }
 
 TEST(StudioAtlas, AnAtlasThatNoNewLayoutBeatsIsKeptAndTheUserIsTold) {
