@@ -103,7 +103,8 @@ nlohmann::json write_layer_pngs(AtomicOutput& out, const PaintCommand& c, const 
 /// A layered material (stroke file version 2) on the unwrap's layout adapted once to the material's
 /// summed error model (adapt/material_adapt.h): base colour, roughness, metallic, height and the
 /// derived normal map, exported as a glTF metallic-roughness material and an OBJ/MTL with map_Kd,
-/// map_Pr, map_Pm, norm and bump (docs/export.md).
+/// map_Pr, map_Pm and norm; the height map is written beside them, named in the MTL by a comment only
+/// (Blender's OBJ importer reads `bump` as a normal map; docs/export.md).
 void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStrokeFile& material,
                         const ReadReport& rr, double time_read, const Context& ctx) {
   Stopwatch total, sw;
@@ -131,7 +132,7 @@ void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStro
   AtomicOutput out;
   ExportOptions obj;
   obj.glb = false;
-  obj.maps = {{"roughness", tex.roughness}, {"metallic", tex.metallic}, {"normal", tex.normal}, {"bump", tex.height}};
+  obj.maps = {{"roughness", tex.roughness}, {"metallic", tex.metallic}, {"normal", tex.normal}, {"height", tex.height}};
   ExportedFiles files = export_textured_mesh(out, c.outdir, c.name, run.mesh, run.param, tex.base_color, obj);
   ExportOptions glb;
   glb.obj = false;
@@ -159,14 +160,14 @@ void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStro
       {"files", {{"obj", files.obj.filename().string()}, {"mtl", files.mtl.filename().string()},
                  {"png", files.png.filename().string()}, {"glb", files.glb.filename().string()},
                  {"maps", {c.name + "_roughness.png", c.name + "_metallic.png", c.name + "_normal.png",
-                           c.name + "_bump.png"}}}},
+                           c.name + "_height.png"}}}},
       {"times_s", {{"read", time_read}, {"unwrap", time_unwrap}, {"paint", time_paint}, {"export", time_export},
                    {"total", time_read + total.lap()}}}};
   if (c.layers) report["files"]["layers"] = layer_files;
   write_text(out, c.outdir / "report.json", report.dump(2) + "\n");
   out.commit();
   std::cout << "wrote " << (c.outdir / c.name).string() << ".{obj,mtl,png,glb}, its roughness, metallic, normal and "
-            << "bump maps, " << (c.layers ? std::to_string(layer_files.size()) + " layers as PNGs, " : std::string())
+            << "height maps, " << (c.layers ? std::to_string(layer_files.size()) + " layers as PNGs, " : std::string())
             << "and " << (c.outdir / "report.json").string() << " (" << c.run.size << "x" << c.run.size
             << ", " << material.layers.size() << " layers, " << strokes << " strokes, unwrap " << time_unwrap
             << " s, paint " << time_paint << " s)\n";
