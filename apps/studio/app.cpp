@@ -68,6 +68,11 @@ Project App::snapshot() const {
   p.view = view_;
   p.session = session_;
   p.unwrap = unwrap();
+  // Adapted on request (not after every stroke): to which strokes, so that reopening adapts to them.
+  if (jobs_.loading() && !pending_.reload)
+    p.adapted_strokes = pending_.adapted_strokes;
+  else if (session_.schedule != ReparamSchedule::EachStroke && !painting_.on_initial_layout() && adapted_for_)
+    p.adapted_strokes = std::min(*adapted_for_, p.strokes.strokes.size());  // undone strokes are gone
   p.camera = camera_;
   return p;
 }
@@ -199,6 +204,7 @@ void App::apply_project(Project p, bool from_project, const std::filesystem::pat
   pending_ = PendingLoad{std::move(p.strokes.strokes), p.strokes.background, from_project, project_path, false,
                          p.camera};
   pending_.unwrap = p.unwrap;
+  pending_.adapted_strokes = p.adapted_strokes;
   open_mesh(p.mesh_path);
 }
 
@@ -657,6 +663,7 @@ void App::clear_decal() {
 void App::request_adapt() {
   if (session_.adapt.mode == AdaptMode::None) return add_message("choose an adaptation mode first", true);
   adapt_pending_ = true;
+  adapt_prefix_.reset();
 }
 
 void App::session_options_changed() { history_changed(); }
@@ -713,7 +720,9 @@ void App::upload_view() {
 void App::start_rebuild(bool adapt) {
   if (jobs_.rebuild_adapting() && !adapt) adapt_pending_ = true;  // the cancelled adaptation runs later
   if (adapt) adapt_pending_ = false;
-  jobs_.start_rebuild(*painting_.surface(), history().generation(), history().to_file(), session_, adapt);
+  StrokeFile file = history().to_file();
+  if (adapt && adapt_prefix_) file.strokes.resize(std::min(file.strokes.size(), *std::exchange(adapt_prefix_, {})));
+  jobs_.start_rebuild(*painting_.surface(), history().generation(), std::move(file), session_, adapt);
 }
 
 void App::maybe_start_rebuild() {
@@ -772,7 +781,14 @@ void App::finish_load(Job<LoadResult>& job) {
     maps_.reset();
     atlas_state_.clear();
     comparison_.reset();
+    adapted_for_.reset();
+    adapt_prefix_.reset();
     history_changed();
+    // A project adapted on request: adapted again to the same strokes (the rest painted on top).
+    if (pending.adapted_strokes && session_.schedule != ReparamSchedule::EachStroke && !pending.reload) {
+      adapt_prefix_ = pending.adapted_strokes;
+      adapt_pending_ = true;
+    }
     if (pending.relayout) return add_message("reopened on the " + model->layout, false);
     if (pending.reload)
       return add_message("unwrapped again for a " + std::to_string(model->unwrap_size) + "^2 texture", false);
@@ -809,7 +825,9 @@ void App::finish_rebuild(Job<RebuildResult>& job) {
     auto maps = std::move(r.maps);
     auto phases = std::move(r.phase_ms);
     const std::string note = std::move(r.note);
+    const size_t painted = r.surface->painted;
     if (painting_.accept_rebuilt(std::move(r.surface), session_.texture_size) && maps) {
+      adapted_for_ = painting_.on_initial_layout() ? std::nullopt : std::optional<size_t>(painted);
       last_cycle_ = std::move(phases);
       maps_ = std::move(maps);
       if (!note.empty()) {

@@ -292,6 +292,7 @@ class App {
     bool recovered = false;        ///< Strokes from a recovery file: unsaved, even when none.
     bool relayout = false;         ///< A reload for another layout (set_unwrap()), not a texture size.
     std::optional<bool> unwrap;    ///< The project's layout (else App::unwrap_).
+    std::optional<size_t> adapted_strokes;  ///< Project::adapted_strokes.
   };
 
   void add_message(std::string text, bool error);
@@ -355,6 +356,8 @@ class App {
   PendingLoad pending_;
   bool unwrap_ = false, size_from_texture_ = true;
   bool adapt_pending_ = false;  // the layout is not yet the one of the history and options
+  std::optional<size_t> adapted_for_;   // strokes the adapted layout was made for (null: not adapted)
+  std::optional<size_t> adapt_prefix_;  // the next adaptation is for the first so many strokes only
   std::vector<std::pair<std::string, double>> last_cycle_;
   std::shared_ptr<const AdaptMaps> maps_;
   std::string atlas_state_;  // what the last adaptation of the artist's atlas did (status line)

@@ -464,7 +464,10 @@ TEST(StudioAtlas, AdaptingTheArtistsAtlasKeepsSharedTexelsSharedFlipsNothingAndR
   const Parameterization atlas = *fixed.app->param();
   const ImageRGBA8 before = *fixed.app->texture();
 
-  Harness h({}, 256, obj.string(), AdaptMode::DensityFlow);
+  AppOptions with_recovery;
+  with_recovery.recovery_dir = dir.path / "recovery";
+  std::filesystem::create_directories(with_recovery.recovery_dir);
+  Harness h(with_recovery, 256, obj.string(), AdaptMode::DensityFlow);
   App& app = *h.app;
   ASSERT_TRUE(app.on_artist_atlas());
   EXPECT_NE(app.atlas_adaptation().find("overlapping charts"), std::string::npos);
@@ -554,6 +557,64 @@ TEST(StudioAtlas, AdaptingTheArtistsAtlasKeepsSharedTexelsSharedFlipsNothingAndR
   ASSERT_TRUE(app.wait_idle(300));
   EXPECT_EQ(app.param()->uv, adapted.uv);
   EXPECT_EQ(max_abs_diff(*app.texture(), adapted_texture), 0);
+  // Left unsaved (undo and redo), then recovered: adapted again to the same layout.
+  ASSERT_TRUE(app.unsaved());
+  h.app.reset();
+  Harness r(with_recovery, 256, "");
+  ASSERT_TRUE(r.app->recovery_offer());
+  r.app->accept_recovery();
+  ASSERT_TRUE(r.app->wait_idle(300));
+  ASSERT_TRUE(r.app->on_artist_atlas());
+  EXPECT_EQ(r.app->param()->uv, adapted.uv);
+  EXPECT_EQ(max_abs_diff(*r.app->texture(), adapted_texture), 0);
+}
+
+TEST(StudioAtlas, AnAtlasAdaptedOnRequestReopensAdaptedToTheSameStrokes) {
+  TempDir dir;
+  const auto obj = write_atlas_obj(dir.path, 128, 0.5);
+  Harness h({}, 256, "", AdaptMode::DensityFlow);
+  App& app = *h.app;
+  app.session_options().schedule = ReparamSchedule::End;  // adapts only when asked
+  app.open_mesh(obj.string());
+  ASSERT_TRUE(app.wait_idle(60));
+  Stroke st;
+  st.color = Vec3(1, 0, 0);
+  st.radius = 0.02;
+  st.hardness = 1;
+  for (int d = 0; d <= 40; ++d) st.dabs.push_back(Vec3(0.1 + 0.02 * d, 0.5, 0));
+  app.add_stroke(st);
+  ASSERT_TRUE(app.wait_idle(60));
+  const Parameterization atlas = *app.param();
+  app.request_adapt();
+  ASSERT_TRUE(app.wait_idle(300));
+  const Parameterization adapted = *app.param();
+  ASSERT_NE(adapted.uv, atlas.uv);
+  st.color = Vec3(0, 0, 1);  // painted on the adapted layout, not adapted to
+  for (Vec3& d : st.dabs) d.y() = 0.3;
+  app.add_stroke(st);
+  ASSERT_TRUE(app.wait_idle(60));
+  EXPECT_EQ(app.param()->uv, adapted.uv);
+  const auto project = dir.path / "p.adaptex";
+  ASSERT_TRUE(app.save_project(project));
+  EXPECT_EQ(read_project(project).adapted_strokes, std::optional<size_t>(1));
+  Harness g({}, 256, "");
+  g.app->open_project(project);
+  ASSERT_TRUE(g.app->wait_idle(300));
+  EXPECT_EQ(g.app->history().strokes().size(), 2u);
+  EXPECT_EQ(g.app->param()->uv, adapted.uv);
+  EXPECT_EQ(max_abs_diff(*g.app->texture(), *app.texture()), 0);
+  // A count beyond the strokes is refused with one line naming the file.
+  std::string text = read_input_file(project);
+  const auto at = text.find("\"adapted_strokes\": 1");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 20, "\"adapted_strokes\": 3");
+  std::ofstream(dir.path / "bad.adaptex") << text;
+  try {
+    read_project(dir.path / "bad.adaptex");
+    ADD_FAILURE() << "read";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.adaptex: \"adapted_strokes\""), std::string::npos) << e.what();
+  }
 }
 
 TEST(StudioAtlas, AnAtlasThatNoNewLayoutBeatsIsKeptAndTheUserIsTold) {
