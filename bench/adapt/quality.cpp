@@ -4,9 +4,11 @@
 // adaptive mode at N (a PaintSession, end mode, replay). Each mode's *texel saving factor* is the
 // texture area none needs to reach the mode's PSNR, interpolated linearly in log2 N
 // (paint/texel_saving.h). One markdown row per case, printed as soon as the case is done, then a
-// summary per stroke kind and mode.
+// summary per stroke kind and mode. The channel cases (--kinds roughness-scratches,height-engravings,
+// material) paint a version 2 file with every channel on the fixed layout and adapt_material() at N,
+// judged by the weighted PSNR of every channel (paint/material_eval.h), with a per-channel table last.
 //
-//   adaptex_adapt_quality [--meshes a.obj,spot,...] [--kinds lines,dots,mixed,blobs] [--sizes 128,256,512]
+//   adaptex_adapt_quality [--meshes a.obj,spot,...] [--kinds lines,dots,mixed,blobs,roughness-scratches,...] [--sizes 128,256,512]
 //                         [--modes two-stage,single,...[:no-refine]] [--samples K] [--eval-seed E]
 //                         [--count N] [--seed S]
 //                         [--grid C,F] [--alpha A] [--beta B] [--schedule end|each-stroke]
@@ -314,8 +316,15 @@ Args parse_args(int argc, char** argv) {
   if (a.charts != "single" && a.charts != "auto") throw std::invalid_argument("--charts: single or auto");
   for (int n : a.sizes)
     if (n < 8 || n > 4096) throw std::invalid_argument("--sizes: each N must be in [8, 4096] (4N is painted too)");
-  for (const auto& k : a.kinds)
-    if (!is_material_kind(k)) (void)parse_stroke_kind(k);
+  for (const auto& k : a.kinds) {
+    if (is_material_kind(k)) continue;
+    try {
+      (void)parse_stroke_kind(k);
+    } catch (const std::exception&) {
+      throw std::invalid_argument("--kinds: unknown kind \"" + k + "\" (expected lines, blobs, mixed, dots, "
+                                  "roughness-scratches, height-engravings or material)");
+    }
+  }
   for (const auto& m : a.modes) (void)session_options(a, m, a.sizes.front());  // fail early on bad names
   a.meshes = resolve_meshes(a.meshes);
   return a;
@@ -370,13 +379,26 @@ double psnr_none(std::map<int, double>& cache, int size, const TriMesh& mesh, co
   return cache[size] = evaluate_texture(mesh, param, p.texture(), strokes, eo).psnr;
 }
 
-/// One line of the per-channel table of the channel cases.
-std::string channel_row(const std::string& head, const std::string& layout, const MaterialError& e) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "| %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |", head.c_str(), layout.c_str(),
-                psnr_from_mse(e.base_color), psnr_from_mse(e.roughness), psnr_from_mse(e.metallic),
-                psnr_from_mse(e.alpha), psnr_from_mse(e.normal), psnr_from_mse(e.weighted));
-  return buf;
+/// One line of the per-channel table of the channel cases; with \p none (the fixed layout at N, 2N,
+/// 4N) each channel's PSNR is followed by its own texel saving factor.
+std::string channel_row(const std::string& head, const std::string& layout, const MaterialError& e,
+                        const std::vector<MaterialError>& none = {}) {
+  using Field = double MaterialError::*;
+  std::string row = "| " + head + " | " + layout + " |";
+  for (Field f : {&MaterialError::base_color, &MaterialError::roughness, &MaterialError::metallic, &MaterialError::alpha,
+                  &MaterialError::normal, &MaterialError::weighted}) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " %.2f", psnr_from_mse(e.*f));
+    row += buf;
+    if (none.size() == 3) {
+      const std::array<double, 3> curve{psnr_from_mse(none[0].*f), psnr_from_mse(none[1].*f), psnr_from_mse(none[2].*f)};
+      const double target = psnr_from_mse(e.*f);
+      if (std::isfinite(target) && std::isfinite(curve[0]) && std::isfinite(curve[1]) && std::isfinite(curve[2]))
+        row += " (" + factor_cell(texel_saving_factor(target, curve)) + ")";
+    }
+    row += " |";
+  }
+  return row;
 }
 
 /// Every channel of a material painted on the fixed layout at \p size, judged, cached per size.
@@ -502,7 +524,8 @@ void run_material_kind(const Args& a, const std::string& kind, const std::string
       for (const auto& m : a.modes) {
         MaterialError e;
         c.modes.push_back(run_material_mode(a, m, mesh, layout(n), file, n, none, eo, e));
-        rows.push_back(channel_row(name + " | " + kind + " | " + std::to_string(n), m.label + " N", e));
+        rows.push_back(channel_row(name + " | " + kind + " | " + std::to_string(n), m.label + " N", e,
+                                   {none_cache.at(n), none_cache.at(2 * n), none_cache.at(4 * n)}));
       }
     } catch (const std::exception& e) {
       report_failure(name + " " + kind + " " + std::to_string(n), e);
@@ -614,7 +637,7 @@ int main(int argc, char** argv) {
   print_summary(a, cases);
   if (!channel_rows.empty()) {
     std::printf("\nChannel cases, PSNR dB per channel (normal: the shading normal from the height; weighted: the "
-                "error model's sum, the one ×area uses):\n\n| mesh | kind | N | layout | base colour | roughness | "
+                "error model's sum, the one ×area uses; (×f): that channel's own texel saving):\n\n| mesh | kind | N | layout | base colour | roughness | "
                 "metallic | alpha | normal | weighted |\n|---|---|---:|---|---:|---:|---:|---:|---:|---:|\n");
     for (const auto& row : channel_rows) std::printf("%s\n", row.c_str());
   }
