@@ -79,10 +79,9 @@ void filter_faces(TriMesh& mesh, const std::vector<char>& keep, std::vector<int>
 /// Corners of a vertex are grouped through the edges they share with a neighbouring face; at an edge
 /// with more than two faces only one pair (opposite orientation preferred) stays connected, the other
 /// faces are detached there. Every group after the first becomes a new vertex (same position).
-/// Returns the number of vertices added.
-int split_nonmanifold(TriMesh& mesh, std::vector<int>& vertex_source) {
+/// \p ec: build_edges(mesh) of the mesh before the split. Returns the number of vertices added.
+int split_nonmanifold(TriMesh& mesh, const EdgeConnectivity& ec, std::vector<int>& vertex_source) {
   const int nf = mesh.num_faces();
-  const EdgeConnectivity ec = build_edges(mesh);
   UnionFind corners(3 * nf);
   auto corner_of = [&](int f, int v) {
     const Face& t = mesh.faces[f];
@@ -151,6 +150,39 @@ int detach_excess_faces(TriMesh& mesh, std::vector<int>& vertex_source) {
       v = mesh.num_vertices() - 1;
       ++added;
     }
+  }
+  return added;
+}
+
+/// Whether every edge of \p mesh has at most two faces and every vertex one fan: the same test as
+/// analyze_topology(mesh).is_manifold() without the components, loops and orientation.
+bool is_manifold(const TriMesh& mesh, const EdgeConnectivity& ec) {
+  for (const auto& fs : ec.edge_faces)
+    if (fs.size() > 2) return false;
+  const VertexFans fans = build_vertex_fans(mesh, ec);
+  std::vector<char> has_fan(mesh.positions.size(), 0);
+  for (int v : fans.fan_vertex) {
+    if (has_fan[v]) return false;
+    has_fan[v] = 1;
+  }
+  return true;
+}
+
+/// The non-manifold repair of validate_tracked(): rounds of split_nonmanifold(), then
+/// detach_excess_faces() if still needed. Returns the number of vertices added.
+int repair_nonmanifold(TriMesh& mesh, std::vector<int>& vertex_source) {
+  int added = 0;
+  EdgeConnectivity ec = build_edges(mesh);
+  bool manifold = false;  // the caller found the input non-manifold
+  for (int round = 0; round < 4 && !manifold; ++round) {
+    added += split_nonmanifold(mesh, ec, vertex_source);
+    ec = EdgeConnectivity();  // free the old edges before building the new ones (peak memory)
+    ec = build_edges(mesh);
+    manifold = is_manifold(mesh, ec);
+  }
+  if (!manifold) {
+    added += detach_excess_faces(mesh, vertex_source);
+    added += split_nonmanifold(mesh, build_edges(mesh), vertex_source);
   }
   return added;
 }
@@ -323,16 +355,8 @@ TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOption
     topo = analyze_topology(mesh);
   }
   if (!topo.is_manifold() && options.repair) {
-    int added = 0;
-    for (int round = 0; round < 4 && !topo.is_manifold(); ++round) {
-      added += split_nonmanifold(mesh, vertex_source);
-      topo = analyze_topology(mesh);
-    }
-    if (!topo.is_manifold()) {
-      added += detach_excess_faces(mesh, vertex_source);
-      added += split_nonmanifold(mesh, vertex_source);
-      topo = analyze_topology(mesh);
-    }
+    const int added = repair_nonmanifold(mesh, vertex_source);
+    topo = analyze_topology(mesh);
     report.split_nonmanifold_vertices += added;
     warn(report, name + ": repair split " + plural(added, "vertex", "vertices") +
                      " to make the mesh manifold (non-manifold edges and vertices)");
