@@ -668,6 +668,13 @@ void App::request_adapt() {
 
 void App::session_options_changed() { history_changed(); }
 
+void App::cancel_adaptation() {
+  if (!jobs_.rebuild_adapting()) return;
+  jobs_.cancel_rebuild();
+  adapt_pending_ = false;
+  add_message("adaptation cancelled: the layout stays until the next stroke (or Re-parameterize now)", false);
+}
+
 AdaptMode App::adapt_mode() const { return session_.adapt.mode; }
 
 std::string App::atlas_adaptation() const {

@@ -189,6 +189,11 @@ class App {
   std::string atlas_adaptation() const;
   /// Re-parameterizes now (with schedule each-stroke it also runs after every change).
   void request_adapt();
+  /// A re-parameterization runs in the background (the status line's Cancel stops it).
+  bool adapting() const { return jobs_.rebuild_adapting(); }
+  /// Stops the running re-parameterization; the layout stays as it is until the next change of the
+  /// history or options, or request_adapt().
+  void cancel_adaptation();
   /// The UI changed session_options(): re-parameterize for them (schedule each-stroke).
   void session_options_changed();
 

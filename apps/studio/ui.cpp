@@ -799,6 +799,10 @@ void StudioUi::status_bar(App& app) {
     s += " | " + pr->first + buf;
   }
   ImGui::TextUnformatted(s.c_str());
+  if (app.adapting()) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Cancel")) app.cancel_adaptation();
+  }
   ImGui::End();
 }
 

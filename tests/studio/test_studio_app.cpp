@@ -569,7 +569,7 @@ TEST(StudioAtlas, AdaptingTheArtistsAtlasKeepsSharedTexelsSharedFlipsNothingAndR
   EXPECT_EQ(max_abs_diff(*r.app->texture(), adapted_texture), 0);
 }
 
-TEST(StudioAtlas, AnAtlasAdaptedOnRequestReopensAdaptedToTheSameStrokes) {
+TEST(StudioAtlas, AnAtlasAdaptedOnRequestReopensAdaptedToTheSameStrokesAndAnAdaptationCanBeCancelled) {
   TempDir dir;
   const auto obj = write_atlas_obj(dir.path, 128, 0.5);
   Harness h({}, 256, "", AdaptMode::DensityFlow);
@@ -603,6 +603,15 @@ TEST(StudioAtlas, AnAtlasAdaptedOnRequestReopensAdaptedToTheSameStrokes) {
   EXPECT_EQ(g.app->history().strokes().size(), 2u);
   EXPECT_EQ(g.app->param()->uv, adapted.uv);
   EXPECT_EQ(max_abs_diff(*g.app->texture(), *app.texture()), 0);
+  // A running adaptation can be cancelled: the layout stays, and it does not start again by itself.
+  g.app->request_adapt();
+  g.app->begin_frame();
+  ASSERT_TRUE(g.app->adapting());
+  g.app->cancel_adaptation();
+  EXPECT_FALSE(g.app->adapting());
+  ASSERT_TRUE(g.app->wait_idle(60));
+  EXPECT_EQ(g.app->param()->uv, adapted.uv);
+  EXPECT_NE(g.app->messages().back().text.find("adaptation cancelled"), std::string::npos);
   // A count beyond the strokes is refused with one line naming the file.
   std::string text = read_input_file(project);
   const auto at = text.find("\"adapted_strokes\": 1");
