@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/adapt/material_adapt.h"
 #include "adaptex/paint/export.h"
@@ -31,6 +32,7 @@ struct PaintCommand {
   double min_gain = std::nan("");
   bool grid_given = false, alpha_given = false, beta_given = false;  // the option was on the command line
   bool min_gain_given = false;
+  bool layers = false;  // --layers: every layer of a version 2 file as PNGs besides the material
 };
 
 /// Checks every option before any work is done (so a bad option never costs an unwrap).
@@ -71,10 +73,38 @@ void validate(PaintCommand& c, const Context& ctx) {
     check_export_name(c.name);
 }
 
+/// Every layer of \p material alone on the final layout, as NAME_layerI_CHANNEL.png (RGB = the layer's
+/// value, A = its coverage) and NAME_layerI_mask.png (I from 1, bottom layer first); returns their
+/// names per layer with its name, visibility, opacity and blend mode (docs/export.md).
+nlohmann::json write_layer_pngs(AtomicOutput& out, const PaintCommand& c, const MaterialAdaptResult& run,
+                                const MaterialStrokeFile& material, const MaterialPaintOptions& paint) {
+  const std::vector<LayerTextures> layers = paint_material_layers(run.mesh, run.param, material, paint);
+  nlohmann::json files = nlohmann::json::array();
+  for (size_t l = 0; l < layers.size(); ++l) {
+    const MaterialLayer& ml = material.layers[l];
+    const std::string stem = c.name + "_layer" + std::to_string(l + 1) + "_";
+    nlohmann::json channels = nlohmann::json::object();
+    for (const auto& [ch, img] : layers[l].channels) {
+      const std::string file = stem + channel_name(ch) + ".png";
+      write_png(out.add(c.outdir / file), img);
+      channels[channel_name(ch)] = file;
+    }
+    nlohmann::json entry = {{"name", ml.name}, {"visible", ml.visible}, {"opacity", ml.opacity},
+                            {"blend", blend_mode_name(ml.blend)}, {"channels", channels}, {"mask", nullptr}};
+    if (layers[l].mask) {
+      write_png(out.add(c.outdir / (stem + "mask.png")), *layers[l].mask);
+      entry["mask"] = stem + "mask.png";
+    }
+    files.push_back(entry);
+  }
+  return files;
+}
+
 /// A layered material (stroke file version 2) on the unwrap's layout adapted once to the material's
 /// summed error model (adapt/material_adapt.h): base colour, roughness, metallic, height and the
 /// derived normal map, exported as a glTF metallic-roughness material and an OBJ/MTL with map_Kd,
-/// map_Pr, map_Pm, norm and bump (docs/export.md).
+/// map_Pr, map_Pm and norm; the height map is written beside them, named in the MTL by a comment only
+/// (Blender's OBJ importer reads `bump` as a normal map; docs/export.md).
 void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStrokeFile& material,
                         const ReadReport& rr, double time_read, const Context& ctx) {
   Stopwatch total, sw;
@@ -102,12 +132,13 @@ void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStro
   AtomicOutput out;
   ExportOptions obj;
   obj.glb = false;
-  obj.maps = {{"roughness", tex.roughness}, {"metallic", tex.metallic}, {"normal", tex.normal}, {"bump", tex.height}};
+  obj.maps = {{"roughness", tex.roughness}, {"metallic", tex.metallic}, {"normal", tex.normal}, {"height", tex.height}};
   ExportedFiles files = export_textured_mesh(out, c.outdir, c.name, run.mesh, run.param, tex.base_color, obj);
   ExportOptions glb;
   glb.obj = false;
   glb.maps = {{"metallic_roughness", tex.metallic_roughness}, {"normal", tex.normal}};
   files.glb = export_textured_mesh(out, c.outdir, c.name, run.mesh, run.param, tex.base_color, glb).glb;
+  const nlohmann::json layer_files = c.layers ? write_layer_pngs(out, c, run, material, mo.paint) : nlohmann::json();
   const double time_export = sw.lap();
   nlohmann::json layers = nlohmann::json::array();
   size_t strokes = 0;
@@ -116,7 +147,7 @@ void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStro
                       {"mask", l.mask.has_value()}, {"visible", l.visible}, {"opacity", l.opacity}});
     strokes += l.strokes.size();
   }
-  const nlohmann::json report = {
+  nlohmann::json report = {
       {"command", "paint"},
       {"input", {{"mesh", c.mesh.string()}, {"strokes", c.strokes.string()}, {"format", rr.format}, {"version", 2}}},
       {"mesh", {{"vertices", run.mesh.num_vertices()}, {"faces", run.mesh.num_faces()}, {"input_faces", mesh.num_faces()},
@@ -129,13 +160,15 @@ void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStro
       {"files", {{"obj", files.obj.filename().string()}, {"mtl", files.mtl.filename().string()},
                  {"png", files.png.filename().string()}, {"glb", files.glb.filename().string()},
                  {"maps", {c.name + "_roughness.png", c.name + "_metallic.png", c.name + "_normal.png",
-                           c.name + "_bump.png"}}}},
+                           c.name + "_height.png"}}}},
       {"times_s", {{"read", time_read}, {"unwrap", time_unwrap}, {"paint", time_paint}, {"export", time_export},
                    {"total", time_read + total.lap()}}}};
+  if (c.layers) report["files"]["layers"] = layer_files;
   write_text(out, c.outdir / "report.json", report.dump(2) + "\n");
   out.commit();
   std::cout << "wrote " << (c.outdir / c.name).string() << ".{obj,mtl,png,glb}, its roughness, metallic, normal and "
-            << "bump maps, and " << (c.outdir / "report.json").string() << " (" << c.run.size << "x" << c.run.size
+            << "height maps, " << (c.layers ? std::to_string(layer_files.size()) + " layers as PNGs, " : std::string())
+            << "and " << (c.outdir / "report.json").string() << " (" << c.run.size << "x" << c.run.size
             << ", " << material.layers.size() << " layers, " << strokes << " strokes, unwrap " << time_unwrap
             << " s, paint " << time_paint << " s)\n";
 }
@@ -153,6 +186,9 @@ void run_paint(PaintCommand& c, const Context& ctx) {
     for (const std::string& w : material->warnings) ctx.warn(w);
     return run_paint_material(c, mesh, *material, rr, sw.lap(), ctx);
   }
+  if (c.layers)
+    throw InvalidInputError(c.strokes.string() + ": --layers needs a stroke file of version 2 (a version 1 file is one "
+                            "base-colour layer: NAME.png is that layer)");
   const StrokeFile strokes = std::get<StrokeFile>(std::move(any));
   for (const std::string& w : strokes.warnings) ctx.warn(w);
   const double time_read = sw.lap();
@@ -198,6 +234,9 @@ void add_paint_command(CLI::App& app, Context& ctx) {
       ->check(CLI::Range(0, 256))
       ->capture_default_str();
   sub->add_option("--name", cmd->name, "Base name of the output files (default: the mesh file's stem)");
+  sub->add_flag("--layers", cmd->layers,
+                "Stroke file version 2: also write every layer alone as PNGs (NAME_layerI_CHANNEL.png, "
+                "NAME_layerI_mask.png)");
   sub->add_flag("--repair", cmd->repair, "Split non-manifold vertices / drop duplicate faces on reading");
   sub->add_option("--adapt", cmd->run.adapt.mode, "Signal-adaptive re-parameterization: " + adapt_methods_help())
       ->check(CLI::IsMember(adapt_method_names()))

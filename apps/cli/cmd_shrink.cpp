@@ -39,8 +39,20 @@ bool one_material(const TexturedAsset& asset, const AssetShrinkResult& res) {
 }
 
 /// "shrink: FILE: F faces, M map(s) WxH -> NxN" per group (the group's materials named when several).
+/// A --size above a group's base colour map is warned of; above every group's, it is an error.
+/// \throw InvalidInputError when --size would enlarge every map.
 void print_plan(const Context& ctx, const ShrinkArgs& a, const TexturedAsset& asset, const AssetShrinkOptions& opt) {
   const std::vector<MaterialGroupShrink> groups = material_groups(asset);
+  int largest = 0;
+  for (const MaterialGroupShrink& g : groups)
+    for (const GroupMapRef& r : g.refs)
+      if (r.map == 0) {
+        const ImageRGBA8& img = asset.materials[r.material].find(r.slot)->image;
+        largest = std::max({largest, img.width, img.height});
+      }
+  if (a.size > largest)
+    throw InvalidInputError(a.mesh + ": --size " + std::to_string(a.size) + " is larger than every base colour map (the largest is " +
+                            std::to_string(largest) + " texels wide): shrink only makes maps smaller (reparam --size can enlarge)");
   for (const MaterialGroupShrink& g : groups) {
     const TextureMap* first = nullptr;
     std::string names;
@@ -52,6 +64,9 @@ void print_plan(const Context& ctx, const ShrinkArgs& a, const TexturedAsset& as
       if (r.map == 0) first = asset.materials[r.material].find(r.slot);
     const ImageRGBA8& img = first->image;
     const int n = shrink_output_size(opt, img);
+    if (n > std::max(img.width, img.height))
+      ctx.warn(a.mesh + ": " + (groups.size() > 1 ? "material " + names + ": " : "") + "--size " + std::to_string(n) +
+               " enlarges its " + std::to_string(img.width) + "x" + std::to_string(img.height) + " maps (more texels, no more detail)");
     ctx.info("shrink: " + a.mesh + ": " + (groups.size() > 1 ? "material " + names + ": " : "") +
              std::to_string(faces) + " faces, " + std::to_string(g.slots.size()) + " map(s) " +
              std::to_string(img.width) + "x" + std::to_string(img.height) + " -> " + std::to_string(n) + "x" +

@@ -68,6 +68,11 @@ Project App::snapshot() const {
   p.view = view_;
   p.session = session_;
   p.unwrap = unwrap();
+  // Adapted on request (not after every stroke): to which strokes, so that reopening adapts to them.
+  if (jobs_.loading() && !pending_.reload)
+    p.adapted_strokes = pending_.adapted_strokes;
+  else if (session_.schedule != ReparamSchedule::EachStroke && !painting_.on_initial_layout() && adapted_for_)
+    p.adapted_strokes = std::min(*adapted_for_, p.strokes.strokes.size());  // undone strokes are gone
   p.camera = camera_;
   return p;
 }
@@ -166,6 +171,7 @@ void App::new_scene() {
   store_.mark_clean(history().version(), {});
   last_cycle_.clear();
   maps_.reset();
+  atlas_state_.clear();
   comparison_.reset();
   adapt_pending_ = false;
 }
@@ -198,6 +204,7 @@ void App::apply_project(Project p, bool from_project, const std::filesystem::pat
   pending_ = PendingLoad{std::move(p.strokes.strokes), p.strokes.background, from_project, project_path, false,
                          p.camera};
   pending_.unwrap = p.unwrap;
+  pending_.adapted_strokes = p.adapted_strokes;
   open_mesh(p.mesh_path);
 }
 
@@ -399,7 +406,8 @@ std::string App::status_line() const {
     s += "no model (drop a mesh file on the window or use Open)";
   }
   s += " | adapt ";
-  s += on_artist_atlas() && session_.adapt.mode != AdaptMode::None ? "off on the atlas" : to_string(session_.adapt.mode);
+  s += on_artist_atlas() && session_.adapt.mode != AdaptMode::None ? "the atlas" : to_string(session_.adapt.mode);
+  if (on_artist_atlas() && !atlas_state_.empty()) s += " (" + atlas_state_ + ")";
   if (view_.fixed_layout) s += showing_fixed_layout() ? " | showing the FIXED layout (L)" : " | fixed layout: painting...";
   if (!last_cycle_.empty()) {
     s += " | last cycle:";
@@ -653,22 +661,28 @@ void App::clear_decal() {
 // ---- background jobs --------------------------------------------------------------------------
 
 void App::request_adapt() {
-  if (const std::string off = adaptation_off(); !off.empty()) return add_message(off, true);
   if (session_.adapt.mode == AdaptMode::None) return add_message("choose an adaptation mode first", true);
   adapt_pending_ = true;
+  adapt_prefix_.reset();
 }
 
 void App::session_options_changed() { history_changed(); }
 
-AdaptMode App::adapt_mode() const { return on_artist_atlas() ? AdaptMode::None : session_.adapt.mode; }
+void App::cancel_adaptation() {
+  if (!jobs_.rebuild_adapting()) return;
+  jobs_.cancel_rebuild();
+  adapt_pending_ = false;
+  add_message("adaptation cancelled: the layout stays until the next stroke (or Re-parameterize now)", false);
+}
 
-std::string App::adaptation_off() const {
+AdaptMode App::adapt_mode() const { return session_.adapt.mode; }
+
+std::string App::atlas_adaptation() const {
   if (!on_artist_atlas() || session_.adapt.mode == AdaptMode::None) return {};
-  const double shared = painting_.model()->shared_fraction;
-  std::string why = "adaptation is off on the artist's UV atlas: the re-parameterization repaints the strokes "
-                    "alone and would drop the artist's texture";
-  if (shared > 0) why += ", and it cannot keep the texels its overlapping charts share";
-  return why + " (File > Fresh unwrap adapts a fresh layout)";
+  std::string what = "on the artist's UV atlas, adaptation keeps its charts, seams and mirror images";
+  if (painting_.model()->shared_fraction > 0) what += ", and the texels its overlapping charts share";
+  return what + ", and moves texels to the painted detail only where that reconstructs the painting better "
+                "(adaptex shrink; the mode's own settings do not apply; File > Fresh unwrap adapts a fresh layout)";
 }
 
 void App::set_unwrap(bool unwrap) {
@@ -713,7 +727,9 @@ void App::upload_view() {
 void App::start_rebuild(bool adapt) {
   if (jobs_.rebuild_adapting() && !adapt) adapt_pending_ = true;  // the cancelled adaptation runs later
   if (adapt) adapt_pending_ = false;
-  jobs_.start_rebuild(*painting_.surface(), history().generation(), history().to_file(), session_, adapt);
+  StrokeFile file = history().to_file();
+  if (adapt && adapt_prefix_) file.strokes.resize(std::min(file.strokes.size(), *std::exchange(adapt_prefix_, {})));
+  jobs_.start_rebuild(*painting_.surface(), history().generation(), std::move(file), session_, adapt);
 }
 
 void App::maybe_start_rebuild() {
@@ -741,7 +757,7 @@ void App::maybe_start_rebuild() {
 }
 
 bool App::adapts_live() const {
-  return session_.schedule == ReparamSchedule::EachStroke && adapt_mode() != AdaptMode::None &&
+  return session_.schedule == ReparamSchedule::EachStroke && adapt_mode() != AdaptMode::None && !on_artist_atlas() &&
          !history().strokes().empty();
 }
 
@@ -770,8 +786,16 @@ void App::finish_load(Job<LoadResult>& job) {
     store_.mark_clean(saved ? history().version() : ~0ull, pending.project_path);
     last_cycle_.clear();
     maps_.reset();
+    atlas_state_.clear();
     comparison_.reset();
+    adapted_for_.reset();
+    adapt_prefix_.reset();
     history_changed();
+    // A project adapted on request: adapted again to the same strokes (the rest painted on top).
+    if (pending.adapted_strokes && session_.schedule != ReparamSchedule::EachStroke && !pending.reload) {
+      adapt_prefix_ = pending.adapted_strokes;
+      adapt_pending_ = true;
+    }
     if (pending.relayout) return add_message("reopened on the " + model->layout, false);
     if (pending.reload)
       return add_message("unwrapped again for a " + std::to_string(model->unwrap_size) + "^2 texture", false);
@@ -791,7 +815,7 @@ void App::finish_load(Job<LoadResult>& job) {
     char buf[64];
     std::snprintf(buf, sizeof buf, " in %.2f s", r.seconds);
     add_message("loaded " + model->path + buf + ", painting on its " + model->layout, false);
-    if (const std::string off = adaptation_off(); !off.empty()) add_message(off, false);
+    if (const std::string note = atlas_adaptation(); !note.empty()) add_message(note, false);
   } catch (const std::exception& e) {
     const bool cancelled = dynamic_cast<const CancelledError*>(&e) != nullptr;
     add_message(cancelled ? "loading cancelled" : e.what(), !cancelled);
@@ -807,9 +831,16 @@ void App::finish_rebuild(Job<RebuildResult>& job) {
     RebuildResult r = job.take();
     auto maps = std::move(r.maps);
     auto phases = std::move(r.phase_ms);
+    const std::string note = std::move(r.note);
+    const size_t painted = r.surface->painted;
     if (painting_.accept_rebuilt(std::move(r.surface), session_.texture_size) && maps) {
+      adapted_for_ = painting_.on_initial_layout() ? std::nullopt : std::optional<size_t>(painted);
       last_cycle_ = std::move(phases);
       maps_ = std::move(maps);
+      if (!note.empty()) {
+        atlas_state_ = maps_->accepted ? "adapted" : "kept as it was";
+        add_message(note, false);
+      }
     }
   } catch (const CancelledError&) {
   } catch (const std::exception& e) {

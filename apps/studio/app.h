@@ -182,12 +182,18 @@ class App {
   bool unwrap() const { return has_model() ? painting_.model()->unwrap_asked : unwrap_; }
   /// A model opened on its own atlas gets its texture's size (default true; false after `--texture-size`).
   void set_texture_size_from_model(bool on) { size_from_texture_ = on; }
-  /// The model is painted on its artist's atlas and texture (no adaptation then: adaptation_off()).
+  /// The model is painted on its artist's atlas and texture (adaptation then keeps the atlas's
+  /// charts and shared texels: atlas_adaptation()).
   bool on_artist_atlas() const { return has_model() && painting_.model()->base != nullptr; }
-  /// Why adaptation is off although a method is chosen (empty: it is not).
-  std::string adaptation_off() const;
+  /// How adaptation works on the artist's atlas, when it is on (empty: not on an atlas, or no method).
+  std::string atlas_adaptation() const;
   /// Re-parameterizes now (with schedule each-stroke it also runs after every change).
   void request_adapt();
+  /// A re-parameterization runs in the background (the status line's Cancel stops it).
+  bool adapting() const { return jobs_.rebuild_adapting(); }
+  /// Stops the running re-parameterization; the layout stays as it is until the next change of the
+  /// history or options, or request_adapt().
+  void cancel_adaptation();
   /// The UI changed session_options(): re-parameterize for them (schedule each-stroke).
   void session_options_changed();
 
@@ -291,6 +297,7 @@ class App {
     bool recovered = false;        ///< Strokes from a recovery file: unsaved, even when none.
     bool relayout = false;         ///< A reload for another layout (set_unwrap()), not a texture size.
     std::optional<bool> unwrap;    ///< The project's layout (else App::unwrap_).
+    std::optional<size_t> adapted_strokes;  ///< Project::adapted_strokes.
   };
 
   void add_message(std::string text, bool error);
@@ -300,7 +307,7 @@ class App {
   void apply_project(Project p, bool from_project, const std::filesystem::path& project_path);
   void history_changed();
   bool adapt_wanted() const;
-  /// The adaptation method in effect: the session's, None on an artist's atlas (adaptation_off()).
+  /// The adaptation method in effect (on an artist's atlas, any method but None adapts the atlas).
   AdaptMode adapt_mode() const;
   /// Adaptation runs in the live each-stroke session (schedule each-stroke, a method, strokes).
   bool adapts_live() const;
@@ -354,8 +361,11 @@ class App {
   PendingLoad pending_;
   bool unwrap_ = false, size_from_texture_ = true;
   bool adapt_pending_ = false;  // the layout is not yet the one of the history and options
+  std::optional<size_t> adapted_for_;   // strokes the adapted layout was made for (null: not adapted)
+  std::optional<size_t> adapt_prefix_;  // the next adaptation is for the first so many strokes only
   std::vector<std::pair<std::string, double>> last_cycle_;
   std::shared_ptr<const AdaptMaps> maps_;
+  std::string atlas_state_;  // what the last adaptation of the artist's atlas did (status line)
   std::shared_ptr<const Comparison> comparison_;
   std::uint64_t compare_version_ = ~0ull;  // history version the last comparison was started for
   std::shared_ptr<const Comparison> shown_fixed_;  // the comparison whose fixed layout the renderer holds

@@ -12,8 +12,10 @@
 
 #include "adaptex/adapt/report_json.h"
 #include "adaptex/adapt/session.h"
+#include "adaptex/adapt/shrink.h"
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/asset_io.h"
 #include "adaptex/io/image_io.h"
@@ -107,6 +109,39 @@ std::optional<ArtistAtlas> read_artist_atlas(const std::string& path, std::strin
   a.straddling_charts = asset.uv.straddling_charts;
   return a;
 }
+AtlasAdaptation adapt_artist_atlas(const TriMesh& mesh, const Parameterization& atlas, const ImageRGBA8& base,
+                                   const StrokeFile& history, int size, int padding, const ProgressCallback& progress) {
+  // The reference: the painting on the atlas at twice the size, so that the strokes' detail finer
+  // than the atlas's texels counts (at the same size the atlas would reproduce itself exactly).
+  const int ref = std::min(2 * size, kMaxTextureSize);
+  Canvas reference(mesh, atlas, ref, ref, history.background, 2 * padding, &base);
+  for (size_t i = 0; i < history.strokes.size(); ++i) {
+    report_progress(progress, "reference", double(i) / double(history.strokes.size()));
+    reference.paint_stroke(history.strokes[i]);
+  }
+  std::vector<ShrinkMap> maps(2);
+  maps[0].slot = "painted";
+  maps[0].image = reference.texture();
+  maps[1].slot = "baseColor";
+  maps[1].image = base;
+  ShrinkOptions opt;
+  opt.size = size;
+  opt.progress = progress;
+  ShrinkResult r = shrink_textured_mesh(mesh, atlas, maps, opt);
+  AtlasAdaptation a;
+  a.chosen = r.chosen;
+  a.psnr = r.psnr;
+  a.psnr_before = r.psnr_downsized;
+  a.reference_size = ref;
+  a.flipped = r.after.flipped;
+  a.shared_before = r.before.shared_surface;
+  a.shared_after = r.after.shared_surface;
+  if (r.chosen == "downsized" || r.chosen == "artist") return a;  // the atlas is kept as it is
+  a.param = std::make_shared<const Parameterization>(std::move(r.param));
+  a.base = std::make_shared<const ImageRGBA8>(std::move(r.maps[1]));
+  return a;
+}
+
 Canvas::Canvas(std::unique_ptr<PaintSession> session) : impl_(std::make_unique<Impl>()) {
   impl_->session = std::move(session);
   impl_->painter = &impl_->session->painter();

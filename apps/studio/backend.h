@@ -57,6 +57,30 @@ struct ArtistAtlas {
 /// corrupt mesh. \throw CancelledError never; std::bad_alloc only
 std::optional<ArtistAtlas> read_artist_atlas(const std::string& path, std::string& why);
 
+/// An artist's atlas adapted to the painting on it (adapt_artist_atlas()).
+struct AtlasAdaptation {
+  /// The new layout of the model's faces, or null: the artist's atlas is kept (the library's
+  /// ranking found no layout better than it, nor than plain downsizing).
+  std::shared_ptr<const Parameterization> param;
+  std::shared_ptr<const ImageRGBA8> base;  ///< The artist's texture fitted onto *param (size²), else null.
+  std::string chosen;        ///< The library's chosen candidate ("island_warp", "budget", "artist", ...).
+  double psnr = 0;           ///< Surface PSNR of the chosen layout against the reference painting (dB).
+  double psnr_before = 0;    ///< Same, the artist's atlas (the better of its fitted and downsized texels).
+  int reference_size = 0;    ///< Side of the reference painting (texels).
+  int flipped = 0;           ///< Faces of the new layout whose orientation differs from the atlas's.
+  double shared_before = 0, shared_after = 0;  ///< Surface share whose texels other charts share too.
+};
+
+/// Adapts the artist's atlas \p atlas of \p mesh to its painting, keeping its charts, seams and shared
+/// texels (adaptex::shrink_textured_mesh, docs/shrink.md): the reference is the painting at twice
+/// \p size on the atlas (\p base, the artist's texture, bilinearly, then \p history's strokes); the
+/// shrink fits it and \p base onto a \p size² layout. The strokes are not in the returned base: they
+/// are replayed onto the new layout. The result is a function of its arguments (no state).
+/// \pre atlas is a parameterization of mesh; 16 <= size <= kMaxTextureSize
+/// \throw CancelledError when \p progress returns false; InvalidInputError bad input
+AtlasAdaptation adapt_artist_atlas(const TriMesh& mesh, const Parameterization& atlas, const ImageRGBA8& base,
+                                   const StrokeFile& history, int size, int padding, const ProgressCallback& progress);
+
 /// A paintable texture on one parameterization (an adaptex::Painter, or the painter of the
 /// PaintSession that produced an adapted parameterization).
 class Canvas {

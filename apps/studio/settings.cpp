@@ -94,6 +94,7 @@ void write_project(const std::filesystem::path& path, const Project& p) {
   j["view"] = {{"wireframe", p.view.wireframe}, {"background", v3(p.view.background)}};
   j["adapt"] = session_to_json(p.session);
   j["layout"] = p.unwrap ? "unwrap" : "atlas";
+  if (p.adapted_strokes) j["adapted_strokes"] = *p.adapted_strokes;
   if (p.camera)
     j["camera"] = {{"target", v3(p.camera->target)}, {"distance", p.camera->distance}, {"yaw", p.camera->yaw},
                    {"pitch", p.camera->pitch},       {"fov_y", p.camera->fov_y_degrees}};
@@ -128,6 +129,13 @@ Project read_project(const std::filesystem::path& path) {
       throw InvalidInputError(path.string() + ": \"layout\" must be \"atlas\" or \"unwrap\", got \"" + layout + "\"");
     p.unwrap = layout == "unwrap";
     p.strokes = strokes_from_json(j.at("strokes"), path.string(), path.parent_path());
+    if (j.contains("adapted_strokes")) {
+      const json& a = j["adapted_strokes"];
+      if (!a.is_number_unsigned() || a.get<size_t>() > p.strokes.strokes.size())
+        throw InvalidInputError(path.string() + ": \"adapted_strokes\" must be a count of strokes, at most " +
+                                std::to_string(p.strokes.strokes.size()));
+      p.adapted_strokes = a.get<size_t>();
+    }
     if (j.contains("brush")) {
       const json& b = j["brush"];
       p.brush.tool = Tool(clamped_int(b, "tool", 0, 0, 2));

@@ -67,6 +67,10 @@ struct Project {
   /// texture when it has them. Projects written before the key existed were unwrapped: true.
   bool unwrap = false;
   std::optional<Camera> camera;
+  /// `"adapted_strokes": N`: the layout was adapted (*Re-parameterize now*, without the each-stroke
+  /// schedule) to the first N strokes, the rest painted on it; reopening adapts to them again. Absent
+  /// (older projects, the each-stroke schedule, which adapts to the whole history): not adapted.
+  std::optional<size_t> adapted_strokes;
   /// Recovery files only: the project file the strokes belong to (empty: never saved as a project).
   std::string project_file;
 };

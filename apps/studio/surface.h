@@ -45,6 +45,9 @@ struct Surface {
   /// Shading normals of a refined mesh (backend.h SessionOutcome::normals); null: smooth_normals(*mesh).
   std::shared_ptr<const std::vector<Vec3>> normals;
   std::shared_ptr<const Parameterization> param;
+  /// The texture under the strokes on *param: the artist's (model->base) on the atlas, the artist's
+  /// fitted onto an adapted atlas; null: the paper colour.
+  std::shared_ptr<const ImageRGBA8> base;
   std::uint64_t generation = 0;  ///< History generation the canvas was built for.
   size_t painted = 0;            ///< History strokes painted into the canvas.
   int size = 0;                  ///< Texture width = height.
@@ -73,6 +76,7 @@ struct RebuildResult {
   std::unique_ptr<Surface> surface;
   std::vector<std::pair<std::string, double>> phase_ms;
   std::shared_ptr<const AdaptMaps> maps;  ///< Set when the job re-parameterized.
+  std::string note;  ///< What an adaptation of the artist's atlas did, for the status line (else empty).
 };
 
 /// The surface of a painting session's outcome on \p model (its mesh or a refinement; the model's own

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
@@ -67,6 +68,7 @@ LoadResult load_model(const std::string& path, const PaintSessionOptions& option
   r.surface->mesh = model->mesh;
   r.surface->caster = model->caster;
   r.surface->param = model->initial;
+  r.surface->base = model->base;
   r.surface->size = size;
   r.surface->canvas =
       std::make_unique<Canvas>(mesh, *model->initial, size, size, background, options.padding, model->base.get());
@@ -87,6 +89,65 @@ RebuildResult adapt_surface(const std::shared_ptr<const Model>& model, const Str
   r.phase_ms.emplace_back("total", ms_since(t0));
   return r;
 }
+
+/// What adapt_artist_atlas() did, in one line.
+std::string atlas_note(const AtlasAdaptation& a) {
+  char buf[320];
+  if (!a.param) {
+    std::snprintf(buf, sizeof buf,
+                  "kept the artist's atlas: no new layout reconstructs the painting better (%.2f dB against "
+                  "the painting at %d^2)",
+                  a.psnr, a.reference_size);
+  } else {
+    std::snprintf(buf, sizeof buf,
+                  "adapted the artist's atlas (%s): %.2f dB -> %.2f dB against the painting at %d^2; %d flipped "
+                  "faces; texels shared on %.0f %% of the surface (%.0f %% before)",
+                  a.chosen.c_str(), a.psnr_before, a.psnr, a.reference_size, a.flipped, 100 * a.shared_after,
+                  100 * a.shared_before);
+  }
+  return buf;
+}
+
+/// The artist's atlas adapted to \p history (adapt_artist_atlas(), from the model's own atlas: the
+/// layout is a function of the history), with the history replayed on it; the atlas itself when the
+/// library keeps it or there is nothing painted.
+RebuildResult adapt_atlas_surface(const std::shared_ptr<const Model>& model, const StrokeFile& history,
+                                  const PaintSessionOptions& options, Job<RebuildResult>& job) {
+  const auto t0 = Clock::now();
+  RebuildResult r;
+  r.surface = std::make_unique<Surface>();
+  Surface& s = *r.surface;
+  s.model = model;
+  s.mesh = model->mesh;
+  s.caster = model->caster;
+  s.param = model->initial;
+  s.base = model->base;
+  const int n = options.texture_size;
+  if (!history.strokes.empty()) {
+    const AtlasAdaptation a =
+        adapt_artist_atlas(*model->mesh, *model->initial, *model->base, history, n, options.padding,
+                           [&job](std::string_view ph, double f) { return job.progress(ph, f); });
+    if (a.param) {
+      s.param = a.param;
+      s.base = a.base;
+    }
+    char took[32];
+    std::snprintf(took, sizeof took, " (%.1f s)", ms_since(t0) / 1000);
+    r.note = atlas_note(a) + took;
+    auto maps = std::make_shared<AdaptMaps>();
+    maps->accepted = a.param != nullptr;
+    r.maps = std::move(maps);
+    r.phase_ms.emplace_back("atlas", ms_since(t0));
+  }
+  const auto t1 = Clock::now();
+  s.canvas = std::make_unique<Canvas>(*s.mesh, *s.param, n, n, history.background, options.padding, s.base.get());
+  for (size_t i = 0; i < history.strokes.size(); ++i) {
+    if (!job.progress("replay", double(i) / double(history.strokes.size()))) throw CancelledError();
+    s.canvas->paint_stroke(history.strokes[i]);
+  }
+  r.phase_ms.emplace_back("replay", ms_since(t1));
+  return r;
+}
 }  // namespace
 
 RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, SessionOutcome o,
@@ -102,6 +163,7 @@ RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, Se
   const bool initial = !o.adapted || (o.mesh == model->mesh && o.param->uv == model->initial->uv &&
                                       o.param->uv_faces == model->initial->uv_faces);
   s.param = initial ? model->initial : o.param;
+  if (initial) s.base = model->base;
   s.canvas = std::move(o.canvas);
   r.phase_ms = std::move(o.phase_ms);
   if (o.adapted) {
@@ -161,10 +223,14 @@ void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation
   auto caster = current.caster;
   auto normals = current.normals;
   auto param = current.param;
+  auto base = current.base;
   rebuild_ = std::make_unique<Job<RebuildResult>>(
-      [model, mesh, caster, normals, param, generation, history = std::move(history), options, adapt](Job<RebuildResult>& job) {
+      [model, mesh, caster, normals, param, base, generation, history = std::move(history), options,
+       adapt](Job<RebuildResult>& job) {
         RebuildResult r;
-        if (adapt && !model->base) {  // (an artist's texture is never adapted: App::effective_session())
+        if (adapt && model->base) {  // the artist's atlas: its charts and shared texels are kept
+          r = adapt_atlas_surface(model, history, options, job);
+        } else if (adapt) {
           r = adapt_surface(model, history, options, job);
         } else {
           r.surface = std::make_unique<Surface>();
@@ -175,9 +241,9 @@ void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation
           s->normals = normals;
           s->caster = caster;
           s->param = param;
+          s->base = base;
           s->canvas = std::make_unique<Canvas>(*mesh, *param, options.texture_size, options.texture_size,
-                                               history.background, options.padding,
-                                               param == model->initial ? model->base.get() : nullptr);
+                                               history.background, options.padding, base.get());
           for (size_t i = 0; i < history.strokes.size(); ++i) {
             if (!job.progress("replay", double(i) / history.strokes.size())) throw CancelledError();
             s->canvas->paint_stroke(history.strokes[i]);
@@ -255,7 +321,9 @@ std::unique_ptr<Job<Comparison>> SurfaceJobs::finished_compare() { return take_i
 
 std::optional<std::pair<std::string, double>> SurfaceJobs::progress() const {
   if (load_) return std::make_pair("Loading " + loading_path_ + ": " + load_->phase(), load_->fraction());
-  if (rebuild_) return std::make_pair("Updating texture: " + rebuild_->phase(), rebuild_->fraction());
+  if (rebuild_)
+    return std::make_pair((rebuild_adapting_ ? "Adapting: " : "Updating texture: ") + rebuild_->phase(),
+                          rebuild_->fraction());
   if (live_)
     if (auto p = live_->progress()) return std::make_pair("Adapting: " + p->first, p->second);
   return std::nullopt;

@@ -54,6 +54,10 @@ class SurfaceJobs {
   void start_rebuild(const Surface& current, std::uint64_t generation, StrokeFile history,
                      const PaintSessionOptions& options, bool adapt);
   bool rebuilding() const { return rebuild_ != nullptr; }
+  /// Cancels the running rebuild (retired: never waited for).
+  void cancel_rebuild() {
+    if (rebuild_) retire(std::move(rebuild_));
+  }
   bool rebuild_adapting() const { return rebuild_ && rebuild_adapting_; }
   std::uint64_t rebuild_generation() const { return rebuild_generation_; }
   std::unique_ptr<Job<RebuildResult>> finished_rebuild();

@@ -471,7 +471,7 @@ void StudioUi::adapt_panel(App& app) {
   PaintSessionOptions& o = app.session_options();
   AdaptOptions& a = o.adapt;
   bool changed = false;
-  if (const std::string off = app.adaptation_off(); !off.empty()) ImGui::TextWrapped("%s.", off.c_str());
+  if (const std::string note = app.atlas_adaptation(); !note.empty()) ImGui::TextWrapped("%s.", note.c_str());
   std::vector<const char*> names;
   const auto& modes = adaptex::adapt_modes();
   int m = 0;
@@ -799,6 +799,10 @@ void StudioUi::status_bar(App& app) {
     s += " | " + pr->first + buf;
   }
   ImGui::TextUnformatted(s.c_str());
+  if (app.adapting()) {
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Cancel")) app.cancel_adaptation();
+  }
   ImGui::End();
 }
 

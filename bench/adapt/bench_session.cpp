@@ -49,6 +49,7 @@
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/generate.h"
 #include "adaptex/param/unwrap.h"
+#include "../common/height_field.h"
 #include "../common/session_history.h"
 
 using namespace adaptex;
@@ -145,17 +146,11 @@ struct Scene {
   Parameterization param;
 };
 
-// n x n quad height field (2 n^2 faces, n = 224: 100,352) with uv = xy: one chart filling the square.
+// The 224 x 224 height field (100,352 faces; bench/common/height_field.h).
 Scene plane_scene() {
   Scene s;
   s.name = "plane100k";
-  s.mesh = shapes::plane(224);
-  for (Vec3& p : s.mesh.positions) p.z() = 0.25 * std::sin(3.0 * p.x()) * std::cos(2.0 * p.y());
-  for (const Vec3& p : s.mesh.positions) s.param.uv.push_back(Vec2(p.x(), p.y()));
-  s.param.uv_faces = s.mesh.faces;
-  for (int k = 0; k < s.mesh.num_vertices(); ++k) s.param.wedge_vertex.push_back(k);
-  s.param.face_chart.assign(s.mesh.faces.size(), 0);
-  s.param.num_charts = 1;
+  bench::height_field(224, s.mesh, s.param);
   return s;
 }
 

@@ -27,6 +27,7 @@
 #include "adaptex/core/shapes.h"
 #include "adaptex/paint/generate.h"
 #include "adaptex/paint/texel_map.h"
+#include "../common/height_field.h"
 
 using namespace adaptex;
 
@@ -43,14 +44,7 @@ const Scene& scene(int faces) {
   auto& s = cache[faces];
   if (!s) {
     s = std::make_unique<Scene>();
-    const int n = static_cast<int>(std::lround(std::sqrt(faces / 2.0)));
-    s->mesh = shapes::plane(n);
-    for (Vec3& p : s->mesh.positions) p.z() = 0.25 * std::sin(3.0 * p.x()) * std::cos(2.0 * p.y());
-    for (const Vec3& p : s->mesh.positions) s->param.uv.push_back(Vec2(p.x(), p.y()));
-    s->param.uv_faces = s->mesh.faces;
-    for (int k = 0; k < s->mesh.num_vertices(); ++k) s->param.wedge_vertex.push_back(k);
-    s->param.face_chart.assign(s->mesh.faces.size(), 0);
-    s->param.num_charts = 1;
+    bench::height_field(static_cast<int>(std::lround(std::sqrt(faces / 2.0))), s->mesh, s->param);
   }
   return *s;
 }

@@ -4,9 +4,11 @@
 // adaptive mode at N (a PaintSession, end mode, replay). Each mode's *texel saving factor* is the
 // texture area none needs to reach the mode's PSNR, interpolated linearly in log2 N
 // (paint/texel_saving.h). One markdown row per case, printed as soon as the case is done, then a
-// summary per stroke kind and mode.
+// summary per stroke kind and mode. The channel cases (--kinds roughness-scratches,height-engravings,
+// material) paint a version 2 file with every channel on the fixed layout and adapt_material() at N,
+// judged by the weighted PSNR of every channel (paint/material_eval.h), with a per-channel table last.
 //
-//   adaptex_adapt_quality [--meshes a.obj,spot,...] [--kinds lines,dots,mixed,blobs] [--sizes 128,256,512]
+//   adaptex_adapt_quality [--meshes a.obj,spot,...] [--kinds lines,dots,mixed,blobs,roughness-scratches,...] [--sizes 128,256,512]
 //                         [--modes two-stage,single,...[:no-refine]] [--samples K] [--eval-seed E]
 //                         [--count N] [--seed S]
 //                         [--grid C,F] [--alpha A] [--beta B] [--schedule end|each-stroke]
@@ -31,6 +33,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -45,6 +48,9 @@
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/generate.h"
+#include "adaptex/adapt/material_adapt.h"
+#include "adaptex/paint/material_eval.h"
+#include "adaptex/paint/material_generate.h"
 #include "adaptex/paint/texel_saving.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
@@ -209,6 +215,18 @@ int whole(const std::string& flag, const std::string& v, int lo, int hi) {
   return static_cast<int>(x);
 }
 
+/// The channel cases (docs/quality.md, "Channel cases"): stroke files of version 2.
+bool is_material_kind(const std::string& kind) {
+  return kind == "roughness-scratches" || kind == "height-engravings" || kind == "material";
+}
+
+/// The generated version 2 file of a channel case \p kind.
+MaterialStrokeFile material_case(const std::string& kind, const TriMesh& mesh, std::uint64_t seed) {
+  if (kind == "roughness-scratches") return generate_material_detail(mesh, MaterialDetail::RoughnessScratches, seed);
+  if (kind == "height-engravings") return generate_material_detail(mesh, MaterialDetail::HeightEngravings, seed);
+  return generate_material_strokes(mesh, seed);
+}
+
 Args parse_args(int argc, char** argv) {
   Args a;
   bool no_refine = false;
@@ -298,7 +316,15 @@ Args parse_args(int argc, char** argv) {
   if (a.charts != "single" && a.charts != "auto") throw std::invalid_argument("--charts: single or auto");
   for (int n : a.sizes)
     if (n < 8 || n > 4096) throw std::invalid_argument("--sizes: each N must be in [8, 4096] (4N is painted too)");
-  for (const auto& k : a.kinds) (void)parse_stroke_kind(k);
+  for (const auto& k : a.kinds) {
+    if (is_material_kind(k)) continue;
+    try {
+      (void)parse_stroke_kind(k);
+    } catch (const std::exception&) {
+      throw std::invalid_argument("--kinds: unknown kind \"" + k + "\" (expected lines, blobs, mixed, dots, "
+                                  "roughness-scratches, height-engravings or material)");
+    }
+  }
   for (const auto& m : a.modes) (void)session_options(a, m, a.sizes.front());  // fail early on bad names
   a.meshes = resolve_meshes(a.meshes);
   return a;
@@ -353,6 +379,64 @@ double psnr_none(std::map<int, double>& cache, int size, const TriMesh& mesh, co
   return cache[size] = evaluate_texture(mesh, param, p.texture(), strokes, eo).psnr;
 }
 
+/// One line of the per-channel table of the channel cases; with \p none (the fixed layout at N, 2N,
+/// 4N) each channel's PSNR is followed by its own texel saving factor.
+std::string channel_row(const std::string& head, const std::string& layout, const MaterialError& e,
+                        const std::vector<MaterialError>& none = {}) {
+  using Field = double MaterialError::*;
+  std::string row = "| " + head + " | " + layout + " |";
+  for (Field f : {&MaterialError::base_color, &MaterialError::roughness, &MaterialError::metallic, &MaterialError::alpha,
+                  &MaterialError::normal, &MaterialError::weighted}) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, " %.2f", psnr_from_mse(e.*f));
+    row += buf;
+    if (none.size() == 3) {
+      const std::array<double, 3> curve{psnr_from_mse(none[0].*f), psnr_from_mse(none[1].*f), psnr_from_mse(none[2].*f)};
+      const double target = psnr_from_mse(e.*f);
+      if (std::isfinite(target) && std::isfinite(curve[0]) && std::isfinite(curve[1]) && std::isfinite(curve[2]))
+        row += " (" + factor_cell(texel_saving_factor(target, curve)) + ")";
+    }
+    row += " |";
+  }
+  return row;
+}
+
+/// Every channel of a material painted on the fixed layout at \p size, judged, cached per size.
+const MaterialError& material_none(std::map<int, MaterialError>& cache, int size, const TriMesh& mesh,
+                                   const Parameterization& param, const MaterialStrokeFile& file,
+                                   const MaterialEvalOptions& eo) {
+  if (auto it = cache.find(size); it != cache.end()) return it->second;
+  MaterialPaintOptions po;
+  po.size = size;
+  po.padding = PaintSessionOptions{}.padding;
+  return cache[size] = evaluate_material_textures(mesh, param, paint_material(mesh, param, file, po), file, eo);
+}
+
+/// adapt_material() at N with mode \p m's adaptation settings, every channel judged.
+ModeResult run_material_mode(const Args& a, const ModeSpec& m, const TriMesh& mesh, const Parameterization& param,
+                             const MaterialStrokeFile& file, int n, const std::array<double, 3>& none,
+                             const MaterialEvalOptions& eo, MaterialError& error) {
+  ModeResult r;
+  const auto t0 = std::chrono::steady_clock::now();
+  MaterialAdaptOptions mo;
+  mo.paint.size = n;
+  mo.paint.padding = PaintSessionOptions{}.padding;
+  mo.adapt = session_options(a, m, n).adapt;
+  const MaterialAdaptResult run = adapt_material(mesh, param, file, mo);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  error = evaluate_material_textures(run.mesh, run.param, run.textures, file, eo);
+  r.psnr = psnr_from_mse(error.weighted);
+  r.saving = texel_saving_factor(r.psnr, none);
+  const StretchStats st = measure_stretch(run.mesh, run.param);
+  r.flipped = st.flipped;
+  r.degenerate = st.degenerate;
+  r.overlaps = count_overlapping_triangles(run.param);
+  r.faces = run.mesh.num_faces();
+  r.accepted = run.adapted;
+  r.reparams = 1;
+  return r;
+}
+
 struct CaseRecord {
   std::string kind;
   double none_n = 0;
@@ -401,6 +485,58 @@ void print_summary(const Args& a, const std::vector<CaseRecord>& cases) {
   std::fflush(stdout);
 }
 
+/// One markdown row of a case: none at N, 2N, 4N, then each mode.
+void print_case_row(const std::string& name, int faces, const std::string& kind, int n, const std::array<double, 3>& none,
+                    const CaseRecord& c) {
+  std::printf("| %s | %d | %s | %d | %.2f | %.2f | %.2f |", name.c_str(), faces, kind.c_str(), n, none[0], none[1],
+              none[2]);
+  for (const ModeResult& r : c.modes)
+    std::printf(" %.2f | %s | %d/%d/%ld | %d/%d | %d | %.1f |", r.psnr, factor_cell(r.saving).c_str(), r.flipped,
+                r.degenerate, r.overlaps, r.accepted, r.reparams, r.faces, r.seconds);
+  std::printf("\n");
+  std::fflush(stdout);
+}
+
+using LayoutOf = std::function<const Parameterization&(int)>;
+using FailureReport = std::function<void(const std::string&, const std::exception&)>;
+
+/// A channel case on one mesh at every size: the weighted PSNR of every channel (MaterialError)
+/// of the fixed layout at N, 2N, 4N and of adapt_material() at N; per-channel rows to \p channel_rows.
+void run_material_kind(const Args& a, const std::string& kind, const std::string& name, int faces, const TriMesh& mesh,
+                       const std::vector<int>& sizes, const LayoutOf& layout, std::vector<CaseRecord>& cases,
+                       std::vector<std::string>& channel_rows, const FailureReport& report_failure) {
+  const MaterialStrokeFile file = material_case(kind, mesh, a.seed);
+  MaterialEvalOptions eo;
+  eo.samples = a.samples;
+  eo.seed = a.eval_seed;
+  std::map<int, MaterialError> none_cache;
+  for (int n : sizes) {
+    CaseRecord c{kind, 0, {}};
+    std::array<double, 3> none{};
+    std::vector<std::string> rows;
+    try {
+      for (int j = 0; j < 3; ++j) {
+        const MaterialError& e = material_none(none_cache, n << j, mesh, layout(n << j), file, eo);
+        none[j] = psnr_from_mse(e.weighted);
+        rows.push_back(channel_row(name + " | " + kind + " | " + std::to_string(n), "none " + std::to_string(1 << j) + "N", e));
+      }
+      c.none_n = none[0];
+      for (const auto& m : a.modes) {
+        MaterialError e;
+        c.modes.push_back(run_material_mode(a, m, mesh, layout(n), file, n, none, eo, e));
+        rows.push_back(channel_row(name + " | " + kind + " | " + std::to_string(n), m.label + " N", e,
+                                   {none_cache.at(n), none_cache.at(2 * n), none_cache.at(4 * n)}));
+      }
+    } catch (const std::exception& e) {
+      report_failure(name + " " + kind + " " + std::to_string(n), e);
+      continue;
+    }
+    print_case_row(name, faces, kind, n, none, c);
+    channel_rows.insert(channel_rows.end(), rows.begin(), rows.end());
+    cases.push_back(std::move(c));
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -438,6 +574,7 @@ int main(int argc, char** argv) {
   std::sort(sizes.begin(), sizes.end());
   print_header(a);
   std::vector<CaseRecord> cases;
+  std::vector<std::string> channel_rows;
   int failed = 0;
   // A case (or a mesh's unwrap) that throws is reported on stderr and skipped; the others still run.
   auto report_failure = [&failed](const std::string& what, const std::exception& e) {
@@ -469,6 +606,10 @@ int main(int argc, char** argv) {
       continue;
     }
     for (const auto& kind : a.kinds) {
+      if (is_material_kind(kind)) {
+        run_material_kind(a, kind, name, faces, mesh, sizes, layout, cases, channel_rows, report_failure);
+        continue;
+      }
       GenerateOptions go;
       go.kind = parse_stroke_kind(kind);
       go.count = a.count;
@@ -488,18 +629,18 @@ int main(int argc, char** argv) {
           report_failure(name + " " + kind + " " + std::to_string(n), e);
           continue;
         }
-        std::printf("| %s | %d | %s | %d | %.2f | %.2f | %.2f |", name.c_str(), faces, kind.c_str(), n, none[0],
-                    none[1], none[2]);
-        for (const ModeResult& r : c.modes)
-          std::printf(" %.2f | %s | %d/%d/%ld | %d/%d | %d | %.1f |", r.psnr, factor_cell(r.saving).c_str(), r.flipped,
-                      r.degenerate, r.overlaps, r.accepted, r.reparams, r.faces, r.seconds);
-        std::printf("\n");
-        std::fflush(stdout);
+        print_case_row(name, faces, kind, n, none, c);
         cases.push_back(std::move(c));
       }
     }
   }
   print_summary(a, cases);
+  if (!channel_rows.empty()) {
+    std::printf("\nChannel cases, PSNR dB per channel (normal: the shading normal from the height; weighted: the "
+                "error model's sum, the one ×area uses; (×f): that channel's own texel saving):\n\n| mesh | kind | N | layout | base colour | roughness | "
+                "metallic | alpha | normal | weighted |\n|---|---|---:|---|---:|---:|---:|---:|---:|---:|\n");
+    for (const auto& row : channel_rows) std::printf("%s\n", row.c_str());
+  }
   if (failed > 0) std::fprintf(stderr, "adaptex_adapt_quality: %d case(s) failed (above)\n", failed);
   return failed > 0 ? 1 : 0;
 }

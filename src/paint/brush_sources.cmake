@@ -18,4 +18,5 @@ target_sources(adaptex_paint PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/material_strokes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/material_signal.cpp
   ${CMAKE_CURRENT_LIST_DIR}/material_generate.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/material_paint.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/material_paint.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/material_eval.cpp)

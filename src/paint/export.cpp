@@ -16,6 +16,7 @@
 #include "adaptex/core/errors.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
+#include "adaptex/paint/tangent_frame.h"
 
 namespace adaptex {
 
@@ -83,21 +84,6 @@ int add_accessor(tinygltf::Model& model, int view, int component, int type, size
   return static_cast<int>(model.accessors.size()) - 1;
 }
 
-/// Area-weighted vertex normals (per original vertex, so smooth across UV seams); unit length.
-std::vector<Vec3> vertex_normals(const TriMesh& mesh) {
-  std::vector<Vec3> n(mesh.positions.size(), Vec3::Zero());
-  for (const Face& f : mesh.faces) {
-    const Vec3 a = (mesh.positions[f[1]] - mesh.positions[f[0]])
-                       .cross(mesh.positions[f[2]] - mesh.positions[f[0]]);
-    for (int v : f) n[v] += a;
-  }
-  for (Vec3& v : n) {
-    const double len = v.norm();
-    v = len > 0 && std::isfinite(len) ? Vec3(v / len) : Vec3(0, 0, 1);
-  }
-  return n;
-}
-
 }  // namespace
 
 void check_export_name(const std::string& name) {
@@ -126,8 +112,9 @@ struct GlbBuilder {
   std::vector<unsigned char> buf;
   std::map<std::string, int> attributes;  // POSITION, NORMAL, TEXCOORD_0: shared by every primitive
 
-  /// One glTF vertex per wedge: POSITION (with min/max), NORMAL (options.normals), TEXCOORD_0 = (u, 1 - v).
-  void geometry(const TriMesh& mesh, const Parameterization& param, bool normals) {
+  /// One glTF vertex per wedge: POSITION (with min/max), NORMAL (when \p normals), TANGENT (when \p normals
+  /// and \p tangents: MikkTSpace, w = handedness; the frame normal maps are baked in), TEXCOORD_0 = (u, 1 - v).
+  void geometry(const TriMesh& mesh, const Parameterization& param, bool normals, bool tangents) {
     const int nw = param.num_wedges();
     std::vector<float> pos(3 * static_cast<size_t>(nw)), uv(2 * static_cast<size_t>(nw));
     std::vector<double> pmin(3, std::numeric_limits<double>::infinity()),
@@ -164,6 +151,18 @@ struct GlbBuilder {
       const int v_nrm =
           add_buffer_view(model, buf, nrm.data(), nrm.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
       attributes["NORMAL"] = add_accessor(model, v_nrm, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nw);
+      if (tangents) {
+        const std::vector<Eigen::Vector4d> wt = wedge_tangents(mesh, param, vn);
+        std::vector<float> tan(4 * static_cast<size_t>(nw));
+        for (int w = 0; w < nw; ++w) {
+          const Eigen::Vector3f t = wt[w].head<3>().cast<float>().normalized();  // unit in float too
+          for (int k = 0; k < 3; ++k) tan[4 * w + k] = t[k];
+          tan[4 * w + 3] = static_cast<float>(wt[w].w());
+        }
+        const int v_tan =
+            add_buffer_view(model, buf, tan.data(), tan.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+        attributes["TANGENT"] = add_accessor(model, v_tan, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, nw);
+      }
     }
     const int v_uv = add_buffer_view(model, buf, uv.data(), uv.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
     attributes["TEXCOORD_0"] = add_accessor(model, v_uv, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, nw);
@@ -262,7 +261,9 @@ std::vector<unsigned char> encode_glb_png(const TriMesh& mesh, const Parameteriz
                                           const ExportOptions& options,
                                           const std::vector<std::vector<unsigned char>>& extra_png) {
   GlbBuilder b;
-  b.geometry(mesh, param, options.normals);
+  const bool normal_map = std::any_of(options.maps.begin(), options.maps.end(),
+                                      [](const ExportMap& m) { return m.slot == "normal"; });
+  b.geometry(mesh, param, options.normals, normal_map);
   tinygltf::Primitive prim = b.primitive(param, nullptr, 0);
   b.sampler(options.wrap);
   b.texture(options.material + "_texture", png);
@@ -430,7 +431,10 @@ std::vector<unsigned char> encode_glb_materials(const TriMesh& mesh, const Param
                                                 const std::vector<std::vector<unsigned char>>& png,
                                                 const ExportOptions& options) {
   GlbBuilder b;
-  b.geometry(mesh, param, options.normals);
+  bool normal_map = false;
+  for (const ExportMaterial& m : set.materials)
+    for (const ExportMaterialMap& map : m.maps) normal_map = normal_map || map.slot == "normal";
+  b.geometry(mesh, param, options.normals, normal_map);
   std::vector<std::vector<int>> faces(set.materials.size());
   for (size_t f = 0; f < mesh.faces.size(); ++f) faces[set.face_material[f]].push_back(static_cast<int>(f));
   std::vector<tinygltf::Primitive> prims;

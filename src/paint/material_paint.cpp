@@ -11,27 +11,13 @@
 #include "adaptex/core/limits.h"
 #include "adaptex/paint/material_signal.h"
 #include "adaptex/paint/padding.h"
+#include "adaptex/paint/tangent_frame.h"
 
 namespace adaptex {
 
 namespace {
 
 std::uint8_t to_byte(double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
-
-/// ∂P/∂u and ∂P/∂v of face \p f (zero when its UV triangle is degenerate).
-void face_frame(const TriMesh& mesh, const Parameterization& param, int f, Vec3& pu, Vec3& pv) {
-  const Face& F = mesh.faces[f];
-  const Face& T = param.uv_faces[f];
-  const Vec3 e1 = mesh.positions[F[1]] - mesh.positions[F[0]], e2 = mesh.positions[F[2]] - mesh.positions[F[0]];
-  const Vec2 d1 = param.uv[T[1]] - param.uv[T[0]], d2 = param.uv[T[2]] - param.uv[T[0]];
-  const double det = d1.x() * d2.y() - d1.y() * d2.x();
-  if (!(std::abs(det) > 0)) {
-    pu = pv = Vec3::Zero();
-    return;
-  }
-  pu = (e1 * d2.y() - e2 * d1.y()) / det;
-  pv = (e2 * d1.x() - e1 * d2.x()) / det;
-}
 
 /// Derivative of the height along one texel axis at texel (i, j): central where both neighbours lie in
 /// a chart, one-sided where one does, 0 where none does. \p step is the neighbour offset (1 or W).
@@ -55,23 +41,22 @@ std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& p
   if (height.size() != static_cast<size_t>(map.width) * map.height)
     throw InvalidInputError("normal_map_from_height: one height per texel expected");
   std::vector<Vec3f> normals(height.size(), Vec3f(0, 0, 1));
+  const std::vector<Vec3> vn = vertex_normals(mesh);
+  const std::vector<Eigen::Vector4d> tangents = wedge_tangents(mesh, param, vn);
   tbb::parallel_for(size_t(0), map.inside.size(), [&](size_t k) {
     const int t = map.inside[k], i = t % map.width, j = t / map.width, f = map.face[t];
     Vec3 pu, pv;
-    face_frame(mesh, param, f, pu, pv);
-    const Vec3 n = face_normal(mesh, f);
-    const Vec3 tangent = (pu - n * n.dot(pu));
-    if (!(tangent.norm() > 0) || !(pv.norm() > 0)) return;  // degenerate UV triangle: flat
+    face_uv_gradients(mesh, param, f, pu, pv);
+    if (!(pu.norm() > 0) || !(pv.norm() > 0)) return;  // degenerate UV triangle: flat
     const double hu = axis_derivative(map, height, t, i, map.width, 1, 1.0 / map.width);
     const double hv = axis_derivative(map, height, t, j, map.height, map.width, 1.0 / map.height);
     // Surface gradient: ∇H = [pu pv] G⁻¹ (hu, hv), G the metric of the face's UV map.
     const double a = pu.dot(pu), b = pu.dot(pv), c = pv.dot(pv), det = a * c - b * b;
     if (!(det > 0)) return;
     const Vec3 grad = pu * ((c * hu - b * hv) / det) + pv * ((a * hv - b * hu) / det);
-    const Vec3 T = tangent.normalized();
-    const double sign = n.cross(T).dot(pv) < 0 ? -1.0 : 1.0;  // mirrored charts: the bitangent flips
-    const Vec3 B = sign * n.cross(T);
-    normals[t] = Vec3(-grad.dot(T), -grad.dot(B), 1).normalized().cast<float>();
+    // n' = normalize(n − ∇H) in the frame a renderer interpolates from the exported NORMAL and TANGENT.
+    const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, f, map.bary[t].x(), map.bary[t].y());
+    normals[t] = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized().cast<float>();
   });
   return normals;
 }
@@ -84,20 +69,79 @@ ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& p
   return img;
 }
 
-MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file,
-                                const MaterialPaintOptions& options) {
+namespace {
+
+void check_paint_options(const TriMesh& mesh, const Parameterization& param, const MaterialPaintOptions& options) {
   if (options.size < 1 || options.size > kMaxTextureSize)
     throw InvalidInputError("paint_material: size must be in [1, " + std::to_string(kMaxTextureSize) + "]");
   if (options.padding < 0) throw InvalidInputError("paint_material: padding must be >= 0");
   if (param.uv_faces.size() != mesh.faces.size())
     throw InvalidInputError("paint_material: the layout and the mesh have different face counts");
-  const int N = options.size;
-  const TexelMap map = build_texel_map(mesh, param, N, N);
+}
+
+/// The surface points of the texel centres inside charts (map.inside order).
+std::vector<SurfacePoint> texel_points(const TexelMap& map) {
   std::vector<SurfacePoint> points(map.inside.size());
   for (size_t k = 0; k < points.size(); ++k) {
     const int t = map.inside[k];
     points[k] = SurfacePoint{map.face[t], map.bary[t].x(), map.bary[t].y()};
   }
+  return points;
+}
+
+/// The channels layer \p l paints: those its brush and fill strokes name, base colour for a decal.
+unsigned painted_channels(const MaterialLayer& l) {
+  unsigned bits = 0;
+  for (const MaterialStroke& s : l.strokes) {
+    if (s.type == MaterialStroke::Type::Brush || s.type == MaterialStroke::Type::Fill) bits |= s.channels;
+    if (s.type == MaterialStroke::Type::Decal) bits |= channel_bit(Channel::BaseColor);
+  }
+  return bits;
+}
+
+}  // namespace
+
+std::vector<LayerTextures> paint_material_layers(const TriMesh& mesh, const Parameterization& param,
+                                                 const MaterialStrokeFile& file, const MaterialPaintOptions& options) {
+  check_paint_options(mesh, param, options);
+  const int N = options.size;
+  const TexelMap map = build_texel_map(mesh, param, N, N);
+  const std::vector<SurfacePoint> points = texel_points(map);
+  const SeamPadding pad = build_seam_padding(map, options.padding);
+  std::vector<LayerTextures> out(file.layers.size());
+  for (size_t l = 0; l < file.layers.size(); ++l) {
+    const MaterialLayerSamples st = evaluate_layer(mesh, file, static_cast<int>(l), points);
+    const unsigned bits = painted_channels(file.layers[l]);
+    for (int c = 0; c < kNumChannels; ++c) {
+      const auto ch = static_cast<Channel>(c);
+      if (!(bits & channel_bit(ch))) continue;
+      ImageRGBA8 img(N, N);
+      const int o = channel_offset(ch), n = channel_components(ch);
+      for (size_t k = 0; k < points.size(); ++k) {
+        std::uint8_t* p = &img.data[4 * static_cast<size_t>(map.inside[k])];
+        for (int j = 0; j < 3; ++j) p[j] = to_byte(st.value[k][o + std::min(j, n - 1)]);
+        p[3] = to_byte(st.cover[k][c]);
+      }
+      apply_seam_padding(img, pad);
+      out[l].channels.emplace_back(ch, std::move(img));
+    }
+    if (file.layers[l].mask) {
+      ImageRGBA8 img(N, N, {0, 0, 0, 255});
+      for (size_t k = 0; k < points.size(); ++k)
+        std::fill_n(&img.data[4 * static_cast<size_t>(map.inside[k])], 3, to_byte(st.mask[k]));
+      apply_seam_padding(img, pad);
+      out[l].mask = std::move(img);
+    }
+  }
+  return out;
+}
+
+MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file,
+                                const MaterialPaintOptions& options) {
+  check_paint_options(mesh, param, options);
+  const int N = options.size;
+  const TexelMap map = build_texel_map(mesh, param, N, N);
+  const std::vector<SurfacePoint> points = texel_points(map);
   const std::vector<MaterialValue> values = evaluate_material(mesh, file, points);
   std::vector<MaterialValue> texel(static_cast<size_t>(N) * N, file.background);
   for (size_t k = 0; k < points.size(); ++k) texel[map.inside[k]] = values[k];

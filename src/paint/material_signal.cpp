@@ -80,11 +80,7 @@ class DabGrid {
 };
 
 /// State of one layer at the points: value L (7 per point), coverage a (5 per point), mask M.
-struct LayerState {
-  std::vector<MaterialValue> value;
-  std::vector<std::array<double, kNumChannels>> cover;
-  std::vector<double> mask;
-};
+using LayerState = MaterialLayerSamples;
 
 /// Applies a paint (value v with coverage alpha) or an erase to the layer at one point.
 void apply_stroke(const MaterialStroke& s, double alpha, const double* rgb, MaterialValue& L,
@@ -184,8 +180,10 @@ double material_stroke_coverage(const MaterialStroke& s, const Vec3& p) {
   return alpha;
 }
 
-std::vector<MaterialValue> evaluate_material(const TriMesh& mesh, const MaterialStrokeFile& file,
-                                             const std::vector<SurfacePoint>& points) {
+namespace {
+
+/// The 3-D positions of \p points. \throw InvalidInputError a face out of range
+std::vector<Vec3> point_positions(const TriMesh& mesh, const std::vector<SurfacePoint>& points) {
   std::vector<Vec3> pos(points.size());
   for (size_t k = 0; k < points.size(); ++k) {
     const SurfacePoint& sp = points[k];
@@ -195,6 +193,26 @@ std::vector<MaterialValue> evaluate_material(const TriMesh& mesh, const Material
     const auto& f = mesh.faces[sp.face];
     pos[k] = sp.b0 * mesh.positions[f[0]] + sp.b1 * mesh.positions[f[1]] + (1 - sp.b0 - sp.b1) * mesh.positions[f[2]];
   }
+  return pos;
+}
+
+}  // namespace
+
+MaterialLayerSamples evaluate_layer(const TriMesh& mesh, const MaterialStrokeFile& file, int layer,
+                                    const std::vector<SurfacePoint>& points) {
+  if (layer < 0 || layer >= static_cast<int>(file.layers.size()))
+    throw InvalidInputError("evaluate_layer: layer " + std::to_string(layer) + " of " +
+                            std::to_string(file.layers.size()));
+  const std::vector<Vec3> pos = point_positions(mesh, points);
+  const std::unique_ptr<DecalProjector> decals = has_decal(file) ? std::make_unique<DecalProjector>(mesh) : nullptr;
+  MaterialLayerSamples st;
+  paint_layer(file.layers[layer], pos, points, decals.get(), st);
+  return st;
+}
+
+std::vector<MaterialValue> evaluate_material(const TriMesh& mesh, const MaterialStrokeFile& file,
+                                             const std::vector<SurfacePoint>& points) {
+  const std::vector<Vec3> pos = point_positions(mesh, points);
   const std::unique_ptr<DecalProjector> decals = has_decal(file) ? std::make_unique<DecalProjector>(mesh) : nullptr;
   std::vector<MaterialValue> R(points.size(), file.background);
   LayerState st;

@@ -486,6 +486,16 @@ TEST(ShrinkCli, WritesEveryMapAndTheReportOrNothing) {
   r = test::run_cli("shrink " + (dir.path / "m.obj").string() + " -o " + bad.string());  // no size
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_FALSE(std::filesystem::exists(bad));
+  // A --size above every base colour map would enlarge, not shrink: exit 2, one line, no output.
+  std::ofstream(dir.path / "m.mtl") << "newmtl skin\nmap_Kd m.png\n";
+  r = test::run_cli("shrink " + (dir.path / "m.obj").string() + " --size 256 -o " + bad.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("--size 256 is larger than every base colour map"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(bad));
+  r = test::run_cli("shrink " + (dir.path / "m.obj").string() + " --size 128 -o " + bad.string());  // equal: a re-layout
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("enlarges"), std::string::npos) << r.err;
 }
 
 TEST(ShrinkCli, ReportsFacesAndBoundsTheirGrowth) {

@@ -7,3 +7,4 @@ adaptex_add_test(test_paint_brush SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_painter
 adaptex_add_test(test_paint_brush_cli SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_brush_cli.cpp
                  LIBS adaptex::paint adaptex::io nlohmann_json::nlohmann_json)
 adaptex_add_test(test_paint_material_strokes SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_material_strokes.cpp LIBS adaptex::paint)
+adaptex_add_test(test_paint_material_eval SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_material_eval.cpp LIBS adaptex::paint)

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "adaptex/core/shapes.h"
+#include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/material_paint.h"
 #include "adaptex/paint/material_signal.h"
@@ -35,14 +36,16 @@ MaterialStrokeFile two_layers() {
                                 "m.json", ".");
 }
 
-TEST(MaterialPaint, TexelsHoldTheExactMaterialAtTheirCentres) {
+/// two_layers() painted at 64² (padding 2) on a 10 x 10 plane whose chart is shrunk to [0.05, 0.95]².
+struct PlaneMaterial : ::testing::Test {
   const TriMesh mesh = shapes::plane(10);
   const Parameterization param = test::planar_param(mesh, 0.9, 0.05);
   const MaterialStrokeFile file = two_layers();
-  MaterialPaintOptions o;
-  o.size = 64;
-  o.padding = 2;
+  const MaterialPaintOptions o = {64, 2};
   const MaterialTextures tex = paint_material(mesh, param, file, o);
+};
+
+TEST_F(PlaneMaterial, TexelsHoldTheExactMaterialAtTheirCentres) {
   const TexelMap map = build_texel_map(mesh, param, 64, 64);
   std::vector<SurfacePoint> pts;
   for (int t : map.inside) pts.push_back({map.face[t], map.bary[t].x(), map.bary[t].y()});
@@ -64,6 +67,48 @@ TEST(MaterialPaint, TexelsHoldTheExactMaterialAtTheirCentres) {
   // Texels far outside the charts hold the background (metallic 0 there, roughness 0.5).
   EXPECT_EQ(tex.metallic.data[0], 0);
   EXPECT_EQ(tex.roughness.data[0], byte(0.5));
+}
+
+TEST_F(PlaneMaterial, LayersAloneCompositeToTheMaterial) {
+  const std::vector<LayerTextures> layers = paint_material_layers(mesh, param, file, o);
+  ASSERT_EQ(layers.size(), 2u);
+  auto names = [](const LayerTextures& l) {
+    std::string out;
+    for (const auto& [ch, img] : l.channels) out += std::string(channel_name(ch)) + " ";
+    return out;
+  };
+  EXPECT_EQ(names(layers[0]), "base_color roughness height ");
+  EXPECT_EQ(names(layers[1]), "base_color metallic ");
+  EXPECT_FALSE(layers[0].mask.has_value());
+  ASSERT_TRUE(layers[1].mask.has_value());
+  // Composite the layer pictures (8-bit) over the background as docs/strokes.md says: the material's
+  // textures, up to rounding. Channels a layer does not list add nothing.
+  const TexelMap map = build_texel_map(mesh, param, 64, 64);
+  int covered = 0, bare = 0;
+  for (int t : map.inside) {
+    MaterialValue R = file.background;
+    for (size_t l = 0; l < layers.size(); ++l) {
+      const double M = layers[l].mask ? layers[l].mask->data[4 * t] / 255.0 : 1.0;
+      for (const auto& [ch, img] : layers[l].channels) {
+        const std::uint8_t* p = &img.data[4 * t];
+        const double k = p[3] / 255.0 * M * file.layers[l].opacity;
+        for (int j = 0; j < channel_components(ch); ++j) {
+          const int c = channel_offset(ch) + j;
+          R[c] = R[c] * (1 - k) + blend_component(file.layers[l].blend, R[c], p[j] / 255.0) * k;
+        }
+      }
+    }
+    const std::uint8_t* base = &tex.base_color.data[4 * t];
+    for (int j = 0; j < 3; ++j) ASSERT_NEAR(R[j] * 255, base[j], 2.0) << "texel " << t;
+    ASSERT_NEAR(R[4] * 255, tex.roughness.data[4 * t], 2.0);
+    ASSERT_NEAR(R[5] * 255, tex.metallic.data[4 * t], 2.0);
+    ASSERT_NEAR(R[6] * 255, tex.height.data[4 * t], 2.0);
+    const std::uint8_t a = layers[0].channels[0].second.data[4 * t + 3];
+    covered += a == 255;
+    bare += a == 0;
+  }
+  EXPECT_GT(covered, 0);  // the brush covers some texels fully and leaves others transparent
+  EXPECT_GT(bare, 0);
 }
 
 /// The normal map of H = slope * u on the unit plane, with the layout \p param.
@@ -110,7 +155,10 @@ TEST(MaterialPaint, CliPaintsAVersion2FileIntoAPbrMaterial) {
   const std::string mtl = slurp(tmp.path / "out" / "s.mtl");
   for (const char* statement : {"map_Kd s.png", "map_Pr s_roughness.png", "map_Pm s_metallic.png", "norm s_normal.png"})
     EXPECT_NE(mtl.find(statement), std::string::npos) << statement << " in\n" << mtl;
-  for (const char* f : {"s.obj", "s.png", "s_roughness.png", "s_metallic.png", "s_normal.png", "s_bump.png", "s.glb"})
+  // The height map is named by a comment only: Blender's OBJ importer reads `bump` as a normal map.
+  EXPECT_NE(mtl.find("# height: s_height.png"), std::string::npos) << mtl;
+  EXPECT_EQ(mtl.find("bump"), std::string::npos) << mtl;
+  for (const char* f : {"s.obj", "s.png", "s_roughness.png", "s_metallic.png", "s_normal.png", "s_height.png", "s.glb"})
     EXPECT_TRUE(std::filesystem::exists(tmp.path / "out" / f)) << f;
   tinygltf::Model model;
   tinygltf::TinyGLTF loader;
@@ -135,6 +183,27 @@ TEST(MaterialPaint, CliPaintsAVersion2FileIntoAPbrMaterial) {
   EXPECT_EQ(thesis.exit_code, 2);
   EXPECT_NE(thesis.err.find("adapts with density-flow or none"), std::string::npos) << thesis.err;
   EXPECT_FALSE(std::filesystem::exists(tmp.path / "single" / "s.glb"));
+  // --layers: every layer alone, as report.json lists them; a version 1 file has none to write.
+  const auto lay = test::run_cli("-q paint " + q(tmp.path / "s.obj") + " --strokes " + q(tmp.path / "m.json") +
+                                 " --size 64 --adapt none --layers -o " + q(tmp.path / "layers"));
+  ASSERT_EQ(lay.exit_code, 0) << lay.err;
+  const auto lrep = nlohmann::json::parse(slurp(tmp.path / "layers" / "report.json"));
+  const auto& lfiles = lrep["files"]["layers"];
+  ASSERT_EQ(lfiles.size(), 3u);
+  EXPECT_EQ(lfiles[1]["mask"], "s_layer2_mask.png");  // the generated "Metal" layer is masked
+  EXPECT_TRUE(lfiles[0]["mask"].is_null());
+  EXPECT_EQ(lfiles[2]["channels"]["height"], "s_layer3_height.png");
+  for (const auto& l : lfiles)
+    for (const auto& [ch, f] : l["channels"].items())
+      EXPECT_EQ(read_image(tmp.path / "layers" / f.get<std::string>()).width, 64) << f;
+  EXPECT_EQ(read_image(tmp.path / "layers" / "s_layer2_mask.png").width, 64);
+  EXPECT_FALSE(report["files"].contains("layers"));  // only with --layers
+  std::ofstream(tmp.path / "v1.json") << R"({"format": "adaptex.strokes", "version": 1, "strokes": []})";
+  const auto v1 = test::run_cli("paint " + q(tmp.path / "s.obj") + " --strokes " + q(tmp.path / "v1.json") +
+                                " --size 64 --layers -o " + q(tmp.path / "v1_out"));
+  EXPECT_EQ(v1.exit_code, 2);
+  EXPECT_NE(v1.err.find("v1.json: --layers needs a stroke file of version 2"), std::string::npos) << v1.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path / "v1_out"));
   // A broken version 2 file: exit 2, one line naming layer and stroke, nothing written.
   std::ofstream(tmp.path / "bad.json") << R"({"format": "adaptex.strokes", "version": 2, "layers": [{"strokes": [
       {"channels": {"rougness": 1}, "radius": 0.1, "dabs": [[0, 0, 1]]}]}]})";

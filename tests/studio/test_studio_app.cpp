@@ -19,6 +19,7 @@
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/input_file.h"
 #include "adaptex/io/mesh_io.h"
+#include "adaptex/paint/asset_eval.h"
 #include "adaptex/paint/painter.h"
 #include "app.h"
 #include "file_browser.h"
@@ -298,14 +299,15 @@ TEST(StudioApp, ProjectSaveLoadRoundTrip) {
 /// DIR/atlas.obj + .mtl + .png: two unit squares in z = 0 (x in [0,1] and [2,3]) on one chart, the
 /// second mirrored onto the first's texels; a third square (x in [4,5]) on a chart in the tile u in
 /// [1,2] (wrapped); a fourth (x in [6,7]) on a chart across the border v = 1 (straddling); a sliver
-/// face with a degenerate UV triangle. The 64^2 texture: every texel a
-/// different colour (r = 4i, g = 4j).
-std::filesystem::path write_atlas_obj(const std::filesystem::path& dir) {
-  ImageRGBA8 tex(64, 64, {0, 0, 0, 255});
-  for (int j = 0; j < 64; ++j)
-    for (int i = 0; i < 64; ++i) {
-      tex.texel(i, j)[0] = std::uint8_t(4 * i);
-      tex.texel(i, j)[1] = std::uint8_t(4 * j);
+/// face with a degenerate UV triangle. The \p size^2 texture (64 by default): every texel a
+/// different colour (r = 4i, g = 4j at 64^2). \p uv_scale < 1 scales every UV towards the origin (an
+/// atlas that wastes most of the square; the charts then lie inside [0,1]^2).
+std::filesystem::path write_atlas_obj(const std::filesystem::path& dir, int size = 64, double uv_scale = 1) {
+  ImageRGBA8 tex(size, size, {0, 0, 0, 255});
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      tex.texel(i, j)[0] = std::uint8_t(256 * i / size);
+      tex.texel(i, j)[1] = std::uint8_t(256 * j / size);
       tex.texel(i, j)[2] = 100;
     }
   write_png(dir / "atlas.png", tex);
@@ -315,11 +317,12 @@ std::filesystem::path write_atlas_obj(const std::filesystem::path& dir) {
   const double xs[4] = {0, 2, 4, 6};
   for (double x : xs) o << "v " << x << " 0 0\nv " << x + 1 << " 0 0\nv " << x + 1 << " 1 0\nv " << x << " 1 0\n";
   o << "v 0 -1 0\nv 1 -1 0\nv 0.5 -0.5 0\n";  // 17-19
-  o << "vt 0.05 0.05\nvt 0.45 0.05\nvt 0.45 0.95\nvt 0.05 0.95\n";  // 1-4: the shared chart
-  o << "vt 0.45 0.05\nvt 0.05 0.05\nvt 0.05 0.95\nvt 0.45 0.95\n";  // 5-8: its mirror image
-  o << "vt 1.55 0.05\nvt 1.95 0.05\nvt 1.95 0.95\nvt 1.55 0.95\n";  // 9-12: in the next tile
-  o << "vt 0.6 0.96\nvt 0.9 0.96\nvt 0.9 1.1\nvt 0.6 1.1\n";      // 13-16: across v = 1
-  o << "vt 0.7 0.5\n";                                                 // 17: the degenerate triangle
+  const double uvs[17][2] = {{0.05, 0.05}, {0.45, 0.05}, {0.45, 0.95}, {0.05, 0.95},  // 1-4: the shared chart
+                             {0.45, 0.05}, {0.05, 0.05}, {0.05, 0.95}, {0.45, 0.95},  // 5-8: its mirror image
+                             {1.55, 0.05}, {1.95, 0.05}, {1.95, 0.95}, {1.55, 0.95},  // 9-12: in the next tile
+                             {0.6, 0.96},  {0.9, 0.96},  {0.9, 1.1},   {0.6, 1.1},    // 13-16: across v = 1
+                             {0.7, 0.5}};                                             // 17: degenerate triangle
+  for (const auto& t : uvs) o << "vt " << t[0] * uv_scale << " " << t[1] * uv_scale << "\n";
   for (int s = 0; s < 4; ++s) {
     const int v = 4 * s + 1;
     o << "f " << v << "/" << v << " " << v + 1 << "/" << v + 1 << " " << v + 2 << "/" << v + 2 << "\n";
@@ -333,7 +336,7 @@ TEST(StudioAtlas, AModelWithItsOwnAtlasIsPaintedOnItAndKeepsItThroughSaveExportA
   TempDir dir;
   const auto obj = write_atlas_obj(dir.path);
   const TexturedAsset input = read_textured_asset(obj);
-  Harness h({}, 256, obj.string(), AdaptMode::DensityFlow);
+  Harness h({}, 256, obj.string());  // no adaptation (StudioAtlas.AdaptingKeeps... adapts it)
   App& app = *h.app;
   ASSERT_TRUE(app.on_artist_atlas());
   EXPECT_GT(std::max_element(app.param()->uv.begin(), app.param()->uv.end(),
@@ -342,8 +345,7 @@ TEST(StudioAtlas, AModelWithItsOwnAtlasIsPaintedOnItAndKeepsItThroughSaveExportA
             1.05);  // the straddling chart keeps its UVs
   EXPECT_EQ(app.session_options().texture_size, 64);  // the texture's own size
   EXPECT_NE(app.status_line().find("artist's UV atlas"), std::string::npos) << app.status_line();
-  EXPECT_NE(app.status_line().find("adapt off on the atlas"), std::string::npos);
-  EXPECT_NE(app.adaptation_off().find("overlapping charts"), std::string::npos);
+  EXPECT_TRUE(app.atlas_adaptation().empty());
   EXPECT_EQ(app.param()->uv, input.param.uv);
   EXPECT_EQ(app.param()->uv_faces, input.param.uv_faces);
   const ImageRGBA8 original = read_image(dir.path / "atlas.png");
@@ -419,6 +421,240 @@ TEST(StudioAtlas, AModelWithItsOwnAtlasIsPaintedOnItAndKeepsItThroughSaveExportA
   ASSERT_TRUE(old.app->has_model());
   EXPECT_FALSE(old.app->on_artist_atlas());
   EXPECT_EQ(old.app->history().strokes().size(), 1u);
+}
+
+/// Surface PSNR of \p texture on \p param against \p reference on \p ref_param, over the first
+/// \p faces faces of \p mesh.
+double psnr_against(const TriMesh& mesh, const Parameterization& ref_param, const ImageRGBA8& reference,
+                    const Parameterization& param, const ImageRGBA8& texture, int faces) {
+  TriMesh m = mesh;
+  m.faces.resize(size_t(faces));
+  auto first = [faces](Parameterization p) {
+    p.uv_faces.resize(size_t(faces));
+    p.face_chart.resize(size_t(faces));
+    return p;
+  };
+  return surface_psnr(m, first(ref_param), reference, m, first(param), texture).psnr;
+}
+
+TEST(StudioAtlas, AdaptingTheArtistsAtlasKeepsSharedTexelsSharedFlipsNothingAndReconstructsBetter) {
+  TempDir dir;
+  const int n = 128;
+  const auto obj = write_atlas_obj(dir.path, n, 0.5);  // charts on a quarter of the square
+  {  // Detail in the texture too: a checker of 16 texels over the gradient.
+    ImageRGBA8 tex = read_image(dir.path / "atlas.png");
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) tex.texel(i, j)[2] = (i / 16 + j / 16) % 2 ? 200 : 60;
+    write_png(dir.path / "atlas.png", tex);
+  }
+  const TexturedAsset input = read_textured_asset(obj);
+  std::vector<Stroke> strokes;
+  for (int k = 0; k < 5; ++k) {  // thin lines on the shared square, finer than its texels
+    Stroke st;
+    st.color = Vec3(k % 2, 0.2 * k, 1 - k % 2);
+    st.radius = 0.02;
+    st.hardness = 1;
+    for (int d = 0; d <= 60; ++d) st.dabs.push_back(Vec3(0.1 + 0.8 * d / 60.0, 0.1 + 0.18 * k, 0));
+    strokes.push_back(st);
+  }
+  // Before: painted on the atlas as it is.
+  Harness fixed({}, 256, obj.string());
+  for (const Stroke& st : strokes) fixed.app->add_stroke(st);
+  ASSERT_TRUE(fixed.app->wait_idle(60));
+  const Parameterization atlas = *fixed.app->param();
+  const ImageRGBA8 before = *fixed.app->texture();
+
+  AppOptions with_recovery;
+  with_recovery.recovery_dir = dir.path / "recovery";
+  std::filesystem::create_directories(with_recovery.recovery_dir);
+  Harness h(with_recovery, 256, obj.string(), AdaptMode::DensityFlow);
+  App& app = *h.app;
+  ASSERT_TRUE(app.on_artist_atlas());
+  EXPECT_NE(app.atlas_adaptation().find("overlapping charts"), std::string::npos);
+  for (const Stroke& st : strokes) app.add_stroke(st);
+  ASSERT_TRUE(app.wait_idle(300));
+  const Parameterization adapted = *app.param();
+  ASSERT_NE(adapted.uv, atlas.uv) << "the atlas was kept";
+  ASSERT_EQ(app.mesh()->num_faces(), input.mesh.num_faces());  // no face added
+  const auto said = std::find_if(app.messages().begin(), app.messages().end(), [](const Message& m) {
+    return m.text.find("adapted the artist's atlas") != std::string::npos;
+  });
+  ASSERT_NE(said, app.messages().end());
+  EXPECT_NE(app.status_line().find("adapt the atlas (adapted)"), std::string::npos) << app.status_line();
+
+  // Shared texels stay shared: corners that had one UV (the mirrored squares' shared chart) still do.
+  const int F = app.mesh()->num_faces();
+  int pairs = 0;
+  for (int f = 0; f < F - 1; ++f)  // not the degenerate face (last): the library gives it an area
+    for (int g = 0; g < F - 1; ++g)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          const Vec2 p = atlas.uv[size_t(atlas.uv_faces[f][a])], q = atlas.uv[size_t(atlas.uv_faces[g][b])];
+          if ((f == g && a == b) || (p - q).norm() > 1e-12) continue;
+          ++pairs;
+          EXPECT_LT((adapted.uv[size_t(adapted.uv_faces[f][a])] - adapted.uv[size_t(adapted.uv_faces[g][b])]).norm(),
+                    1e-9) << f << " " << g;
+        }
+  EXPECT_GE(pairs, 12);  // the two mirrored squares' corners, at least
+  // No flips: every face with a UV area keeps its orientation (mirrored ones stay mirrored).
+  auto signed_area = [](const Parameterization& p, int f) {
+    const Vec2 a = p.uv[size_t(p.uv_faces[f][0])], b = p.uv[size_t(p.uv_faces[f][1])], c = p.uv[size_t(p.uv_faces[f][2])];
+    return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  };
+  int oriented = 0;
+  for (int f = 0; f < F; ++f) {
+    if (std::abs(signed_area(atlas, f)) < 1e-9) continue;
+    ++oriented;
+    EXPECT_GT(signed_area(atlas, f) * signed_area(adapted, f), 0) << "face " << f << " flipped";
+  }
+  EXPECT_GE(oriented, 8);
+  // Better: closer to the painting at 4x the size on the atlas than the atlas's own texture was (on
+  // the faces with a UV area: the degenerate face shows one texel's colour, which a fit shares).
+  const int m = 4 * n;
+  Painter fine(*app.mesh(), atlas, PainterOptions{m, m, 4}, app.history().background());
+  {
+    const ImageRGBA8 base = read_image(dir.path / "atlas.png");
+    std::vector<Vec3f> colours(fine.texel_map().inside.size());
+    for (size_t k = 0; k < colours.size(); ++k) {
+      const int t = fine.texel_map().inside[k];
+      colours[k] = sample_bilinear(base, (t % m + 0.5) / m, (t / m + 0.5) / m).cast<float>();
+    }
+    fine.fill_colours(colours);
+  }
+  for (const Stroke& st : strokes) fine.paint_stroke(st);
+  const double psnr_before = psnr_against(*app.mesh(), atlas, fine.texture(), atlas, before, F - 1);
+  const double psnr_after = psnr_against(*app.mesh(), atlas, fine.texture(), adapted, *app.texture(), F - 1);
+  EXPECT_GT(psnr_after, psnr_before + 0.5) << psnr_before << " -> " << psnr_after;
+
+  const ImageRGBA8 adapted_texture = *app.texture();
+  // Save, reopen: the same layout and texture (the layout is a function of the history).
+  const auto project = dir.path / "adapted.adaptex";
+  ASSERT_TRUE(app.save_project(project));
+  {
+    Harness g({}, 256, "");
+    g.app->open_project(project);
+    ASSERT_TRUE(g.app->wait_idle(300));
+    ASSERT_TRUE(g.app->on_artist_atlas());
+    EXPECT_EQ(g.app->param()->uv, adapted.uv);
+    EXPECT_EQ(max_abs_diff(*g.app->texture(), adapted_texture), 0);
+  }
+  // Export GLB: the adapted UVs, corner by corner.
+  const auto glb = dir.path / "adapted.glb";
+  app.export_glb(glb);
+  const TexturedAsset out = read_textured_asset(glb);
+  ASSERT_EQ(out.mesh.num_faces(), F);
+  double err = 0;
+  for (int f = 0; f < F; ++f)
+    for (int k = 0; k < 3; ++k)
+      err = std::max(err, (out.param.uv[size_t(out.param.uv_faces[f][k])] - adapted.uv[size_t(adapted.uv_faces[f][k])]).norm());
+  EXPECT_LT(err, 1e-6);
+  // Undo every stroke: back on the atlas as it was, with the artist's texture.
+  for (size_t k = 0; k < strokes.size(); ++k) app.undo();
+  ASSERT_TRUE(app.wait_idle(300));
+  EXPECT_EQ(app.param()->uv, atlas.uv);
+  // Redo: adapted again, to the same layout.
+  for (size_t k = 0; k < strokes.size(); ++k) app.redo();
+  ASSERT_TRUE(app.wait_idle(300));
+  EXPECT_EQ(app.param()->uv, adapted.uv);
+  EXPECT_EQ(max_abs_diff(*app.texture(), adapted_texture), 0);
+  // Left unsaved (undo and redo), then recovered: adapted again to the same layout.
+  ASSERT_TRUE(app.unsaved());
+  h.app.reset();
+  Harness r(with_recovery, 256, "");
+  ASSERT_TRUE(r.app->recovery_offer());
+  r.app->accept_recovery();
+  ASSERT_TRUE(r.app->wait_idle(300));
+  ASSERT_TRUE(r.app->on_artist_atlas());
+  EXPECT_EQ(r.app->param()->uv, adapted.uv);
+  EXPECT_EQ(max_abs_diff(*r.app->texture(), adapted_texture), 0);
+}
+
+TEST(StudioAtlas, AnAtlasAdaptedOnRequestReopensAdaptedToTheSameStrokesAndAnAdaptationCanBeCancelled) {
+  TempDir dir;
+  const auto obj = write_atlas_obj(dir.path, 128, 0.5);
+  Harness h({}, 256, "", AdaptMode::DensityFlow);
+  App& app = *h.app;
+  app.session_options().schedule = ReparamSchedule::End;  // adapts only when asked
+  app.open_mesh(obj.string());
+  ASSERT_TRUE(app.wait_idle(60));
+  Stroke st;
+  st.color = Vec3(1, 0, 0);
+  st.radius = 0.02;
+  st.hardness = 1;
+  for (int d = 0; d <= 40; ++d) st.dabs.push_back(Vec3(0.1 + 0.02 * d, 0.5, 0));
+  app.add_stroke(st);
+  ASSERT_TRUE(app.wait_idle(60));
+  const Parameterization atlas = *app.param();
+  app.request_adapt();
+  ASSERT_TRUE(app.wait_idle(300));
+  const Parameterization adapted = *app.param();
+  ASSERT_NE(adapted.uv, atlas.uv);
+  st.color = Vec3(0, 0, 1);  // painted on the adapted layout, not adapted to
+  for (Vec3& d : st.dabs) d.y() = 0.3;
+  app.add_stroke(st);
+  ASSERT_TRUE(app.wait_idle(60));
+  EXPECT_EQ(app.param()->uv, adapted.uv);
+  const auto project = dir.path / "p.adaptex";
+  ASSERT_TRUE(app.save_project(project));
+  EXPECT_EQ(read_project(project).adapted_strokes, std::optional<size_t>(1));
+  Harness g({}, 256, "");
+  g.app->open_project(project);
+  ASSERT_TRUE(g.app->wait_idle(300));
+  EXPECT_EQ(g.app->history().strokes().size(), 2u);
+  EXPECT_EQ(g.app->param()->uv, adapted.uv);
+  EXPECT_EQ(max_abs_diff(*g.app->texture(), *app.texture()), 0);
+  // A running adaptation can be cancelled: the layout stays, and it does not start again by itself.
+  g.app->request_adapt();
+  g.app->begin_frame();
+  ASSERT_TRUE(g.app->adapting());
+  g.app->cancel_adaptation();
+  EXPECT_FALSE(g.app->adapting());
+  ASSERT_TRUE(g.app->wait_idle(60));
+  EXPECT_EQ(g.app->param()->uv, adapted.uv);
+  EXPECT_NE(g.app->messages().back().text.find("adaptation cancelled"), std::string::npos);
+  // A count beyond the strokes is refused with one line naming the file.
+  std::string text = read_input_file(project);
+  const auto at = text.find("\"adapted_strokes\": 1");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 20, "\"adapted_strokes\": 3");
+  std::ofstream(dir.path / "bad.adaptex") << text;
+  try {
+    read_project(dir.path / "bad.adaptex");
+    ADD_FAILURE() << "read";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.adaptex: \"adapted_strokes\""), std::string::npos) << e.what();
+  }
+}
+
+TEST(StudioAtlas, AnAtlasThatNoNewLayoutBeatsIsKeptAndTheUserIsTold) {
+  TempDir dir;
+  const auto obj = write_atlas_obj(dir.path);
+  {  // Texel-sized noise: any resampling of it loses more than a new layout could win.
+    ImageRGBA8 tex(64, 64, {0, 0, 0, 255});
+    std::uint32_t h = 12345;
+    for (size_t k = 0; k < tex.data.size(); ++k)
+      if (k % 4 != 3) h = h * 1664525u + 1013904223u, tex.data[k] = std::uint8_t(h >> 24);
+    write_png(dir.path / "atlas.png", tex);
+  }
+  Stroke st;  // a broad, soft stroke: no detail finer than the texels
+  st.color = Vec3(0.9, 0.5, 0.1);
+  st.radius = 0.4;
+  st.hardness = 0;
+  st.opacity = 0.5;
+  st.dabs = {Vec3(0.3, 0.5, 0), Vec3(0.7, 0.5, 0)};
+  Harness fixed({}, 256, obj.string());
+  fixed.app->add_stroke(st);
+  ASSERT_TRUE(fixed.app->wait_idle(60));
+  Harness h({}, 256, obj.string(), AdaptMode::DensityFlow);
+  h.app->add_stroke(st);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  EXPECT_EQ(h.app->param()->uv, fixed.app->param()->uv);
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), *fixed.app->texture()), 0);
+  const auto said = std::find_if(h.app->messages().begin(), h.app->messages().end(), [](const Message& m) {
+    return m.text.find("kept the artist's atlas") != std::string::npos;
+  });
+  EXPECT_NE(said, h.app->messages().end());
+  EXPECT_NE(h.app->status_line().find("adapt the atlas (kept as it was)"), std::string::npos) << h.app->status_line();
 }
 
 TEST(StudioAtlas, AProjectWhoseTextureIsGoneOpensUnwrappedSayingWhyAndKeepsItsStrokesAndLayout) {

@@ -1118,7 +1118,8 @@ TEST_F(StudioGui, ATexturedModelOpensOnItsAtlasAndAStrokeIsSavedReopenedAndExpor
 
   // 1. Opened, it shows its own texture on its own layout: blue, yellow | green, green | yellow (the
   //    mirrored square).
-  pid_t app = spawn(args({obj.string(), "--exit-after-frames", "3", "--screenshot", before.string()}), x->env(), log1);
+  pid_t app = spawn(args({obj.string(), "--adapt", "none", "--exit-after-frames", "3", "--screenshot", before.string()}),
+                    x->env(), log1);
   ASSERT_GT(app, 0);
   ASSERT_EQ(wait_exit(app, 120s), 0) << slurp(log1);
   EXPECT_NE(slurp(log1).find("painting on its artist's UV atlas"), std::string::npos) << slurp(log1);
@@ -1138,7 +1139,7 @@ TEST_F(StudioGui, ATexturedModelOpensOnItsAtlasAndAStrokeIsSavedReopenedAndExpor
   for (const auto& [fx, h] : pattern) EXPECT_EQ(hue_name(hue(at(s1, fx, cy))), hue_name(h)) << fx;
 
   // 2. A vertical red stroke on the middle square's yellow part; quit, Save.
-  app = spawn(args({obj.string()}), x->env(), log2);
+  app = spawn(args({obj.string(), "--adapt", "none"}), x->env(), log2);
   ASSERT_GT(app, 0);
   ASSERT_TRUE(wait_ready(log2)) << slurp(log2);
   const int sx = int(x0 + 5 * w / 12);
@@ -1203,4 +1204,53 @@ TEST_F(StudioGui, ATexturedModelOpensOnItsAtlasAndAStrokeIsSavedReopenedAndExpor
   EXPECT_EQ(differ, 0) << same;
   EXPECT_GT(same, 5000);
   EXPECT_GT(red, 100);
+
+  // 4. With adaptation (the default schedule: after every stroke), the same stroke painted by hand
+  //    adapts the atlas in the background; quit, Save.
+  const fs::path log4 = dir.path / "app4.log", log5 = dir.path / "app5.log", adapted = dir.path / "adapted.png",
+                 exp2 = dir.path / "export2", project2 = dir.path / "adapted.adaptex";
+  app = spawn(args({obj.string(), "--adapt", "density-flow"}), x->env(), log4);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_ready(log4)) << slurp(log4);
+  ASSERT_EQ(xdo(*x, drag.str()), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(log4, "adapted the artist's atlas") >= 1; }, 300s)) << slurp(log4);
+  fs::remove(project);  // Save writes the suggested path
+  ASSERT_EQ(quit_answering(*x, app, log4, 1, "key s"), 0) << slurp(log4);
+  ASSERT_EQ(project_strokes(project).size(), 1u) << slurp(log4);
+  fs::rename(project, project2);
+
+  // 5. Reopened: adapted again to the same layout; the stroke on both mirror images; exported: the
+  //    UVs changed, and corners that shared a UV still do.
+  app = spawn(args({project2.string(), "--exit-after-frames", "3", "--screenshot", adapted.string(), "--export-obj",
+                    exp2.string()}),
+              x->env(), log5);
+  ASSERT_GT(app, 0);
+  ASSERT_EQ(wait_exit(app, 300s), 0) << slurp(log5);
+  EXPECT_EQ(count_in(log5, "adapted the artist's atlas"), 1) << slurp(log5);
+  const adaptex::ImageRGBA8 s3 = adaptex::read_image(adapted);
+  EXPECT_EQ(hue_name(hue(at(s3, 5.0 / 12, cy))), hue_name(Hue::Red));
+  EXPECT_EQ(hue_name(hue(at(s3, 11.0 / 12, cy))), hue_name(Hue::Red));  // the mirrored square
+  EXPECT_EQ(hue_name(hue(at(s3, 2.5 / 12, cy))), hue_name(Hue::Blue));
+  fs::path obj2;
+  for (const auto& e : fs::directory_iterator(exp2))
+    if (e.path().extension() == ".obj") obj2 = e.path();
+  ASSERT_FALSE(obj2.empty()) << slurp(log5);
+  const adaptex::TexturedMesh tm2 = adaptex::read_textured_obj(obj2);
+  ASSERT_EQ(size_t(tm2.mesh.num_faces()), model.face_uvs.size());
+  auto uv2 = [&](size_t f, int k) { return tm2.param.uv[size_t(tm2.param.uv_faces[f][k])]; };
+  double moved = 0;
+  int shared = 0;
+  for (size_t f = 0; f < model.face_uvs.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      moved = std::max(moved, (uv2(f, k) - model.face_uvs[f][size_t(k)]).norm());
+      if (f >= 11) continue;  // not the degenerate triangle (the last), which the library gives an area
+      for (size_t g = 0; g < 11; ++g)
+        for (int l = 0; l < 3; ++l)
+          if ((f != g || k != l) && (model.face_uvs[f][size_t(k)] - model.face_uvs[g][size_t(l)]).norm() < 1e-9) {
+            ++shared;
+            EXPECT_LT((uv2(f, k) - uv2(g, l)).norm(), 1e-5) << f << " " << g;
+          }
+    }
+  EXPECT_GT(moved, 1e-3);
+  EXPECT_GE(shared, 16);  // the shared chart's corners, on both squares
 }

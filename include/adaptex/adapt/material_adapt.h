@@ -28,7 +28,8 @@ struct MaterialAdaptResult {
   MaterialTextures textures;
   AdaptReport report;           ///< The adaptation's report (mode none: the fixed layout's).
   bool adapted = false;         ///< The adapted layout was kept (false: the input layout).
-  double error_fixed = 0, error_adapted = 0;  ///< Weighted MSE (base colour + data) over the check's samples.
+  /// Weighted MSE of every channel (MaterialError::weighted, the normal included) over the check's samples.
+  double error_fixed = 0, error_adapted = 0;
 };
 
 /// The error planes of \p file on \p param with its painted \p textures (\p map: the texel map of
@@ -42,8 +43,8 @@ std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Paramet
                                               double data_weight);
 
 /// Paints \p file on \p layout, adapts the layout to the material's summed error model, paints again
-/// on the adapted layout, and keeps whichever layout reconstructs the base colour and data channels
-/// better on surface samples.
+/// on the adapted layout, and keeps whichever layout reconstructs every channel better on surface
+/// samples (evaluate_material_textures(): the height through its shading normal, the model's weights).
 /// \pre layout matches mesh
 /// \throw InvalidInputError bad options (a mode other than density-flow or none), inconsistent input
 /// \throw CancelledError the progress callback returned false

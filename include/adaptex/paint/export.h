@@ -107,7 +107,8 @@ ExportedFiles export_textured_materials(AtomicOutput& out, const std::filesystem
                                         const ExportMaterials& set, const ExportOptions& options = {});
 
 /// Encodes a glTF 2.0 binary (.glb) with tinygltf: one mesh, one triangle primitive with POSITION
-/// (float32, with min/max), optional NORMAL, TEXCOORD_0 = (u, 1 - v) and uint32 indices; one glTF
+/// (float32, with min/max), optional NORMAL, TANGENT when NORMAL is written and a map has slot "normal"
+/// (MikkTSpace per wedge, w = handedness: paint/tangent_frame.h), TEXCOORD_0 = (u, 1 - v) and uint32 indices; one glTF
 /// vertex per wedge (glTF has per-vertex UVs only); a material whose pbrMetallicRoughness
 /// baseColorTexture is the PNG of \p texture embedded in a bufferView (sampler: linear magnification,
 /// trilinear minification, wrap mode options.wrap: clamp-to-edge by default).

@@ -23,4 +23,20 @@ namespace adaptex {
 /// \throw InvalidInputError no face of positive area
 MaterialStrokeFile generate_material_strokes(const TriMesh& mesh, std::uint64_t seed = 1);
 
+/// The single-channel detail cases of the quality study (docs/quality.md, "Channel cases").
+enum class MaterialDetail {
+  RoughnessScratches,  ///< Only roughness has detail: thin strokes of roughness 0.05-0.2.
+  HeightEngravings,    ///< Only height has detail: thin strokes engraving height 0.2-0.35.
+};
+
+/// Two layers over a background, d and height_scale as generate_material_strokes():
+/// - "Base" (normal): a fill of a flat muted colour and roughness 0.55-0.8 (no detail);
+/// - "Scratches" (normal, opacity 1): the 40 thin hard lines of the material's scratch layer, with
+///   its pen pressure, every one painting only the channel of \p detail; engravings have hardness 0
+///   (a groove whose slope spans the radius), scratches keep the lines' hardness 0.8-1.
+/// The same mesh, detail and seed give the same file, bit for bit.
+/// \pre mesh has faces of positive area
+/// \throw InvalidInputError no face of positive area
+MaterialStrokeFile generate_material_detail(const TriMesh& mesh, MaterialDetail detail, std::uint64_t seed = 1);
+
 }  // namespace adaptex

@@ -3,6 +3,10 @@
 /// A layered material (stroke file version 2) painted into the textures of one layout: every channel
 /// point-sampled at the texel centres (as the version 1 painter does), the glTF packings, and the
 /// tangent-space normal map derived from the height (docs/strokes.md, "The derived normal").
+#include <optional>
+#include <utility>
+#include <vector>
+
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
@@ -36,6 +40,24 @@ struct MaterialTextures {
 MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file,
                                 const MaterialPaintOptions& options = {});
 
+/// One layer of a material as pictures on the layout (docs/export.md, "Layers as separate PNGs"),
+/// all size x size, row 0 at v = 0.
+struct LayerTextures {
+  /// Each channel the layer paints (a brush or fill stroke names it; decals paint base colour), in
+  /// Channel order: RGB = the layer's value L_c (grey for one-component channels), A = its coverage a_c.
+  std::vector<std::pair<Channel, ImageRGBA8>> channels;
+  std::optional<ImageRGBA8> mask;  ///< The mask M as grey (A = 255); only for a layer with a mask.
+};
+
+/// Paints every layer of \p file alone (MaterialLayerSamples) into textures on \p param, texel by
+/// texel as paint_material() (chart texels exact at their centres, padded texels copy their nearest
+/// chart texel, the rest transparent black / mask 0). Compositing them over the background with each
+/// layer's visibility, opacity and blend mode gives paint_material()'s textures (up to 8-bit rounding).
+/// \pre param matches mesh
+/// \throw as paint_material()
+std::vector<LayerTextures> paint_material_layers(const TriMesh& mesh, const Parameterization& param,
+                                                 const MaterialStrokeFile& file, const MaterialPaintOptions& options = {});
+
 /// The unit tangent-space normals behind normal_map_from_height(), W*H ((0, 0, 1) outside charts).
 /// \pre height.size() == map.width * map.height
 std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
@@ -43,8 +65,9 @@ std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& p
 
 /// The tangent-space normal of a height field H (world units per texel of \p map, W*H values; only
 /// texels inside charts are read) over the surface: n' = normalize(n − ∇H) with ∇H the surface
-/// gradient from central differences along u and v within the chart, expressed in each face's frame
-/// (tangent along ∂P/∂u, bitangent ±n × tangent with the sign of the chart's orientation).
+/// gradient from central differences along u and v within the chart, expressed in the frame a renderer
+/// interpolates at the texel from the vertex normals and MikkTSpace tangents that the .glb carries
+/// (paint/tangent_frame.h: tangent along ∂P/∂u, bitangent w · n × tangent, w = ±1 the chart's handedness).
 /// Texels outside every chart hold the flat normal (0, 0, 1).
 /// \pre height.size() == map.width * map.height
 ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,

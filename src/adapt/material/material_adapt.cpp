@@ -8,7 +8,7 @@
 #include <mutex>
 
 #include "adaptex/core/errors.h"
-#include "adaptex/paint/eval.h"
+#include "adaptex/paint/material_eval.h"
 #include "adaptex/paint/material_signal.h"
 
 namespace adaptex {
@@ -51,23 +51,14 @@ ImageRGBA8 data_texture(const MaterialTextures& t) {
   return img;
 }
 
-/// Weighted squared error of the base colour and data channels of \p tex on \p param of \p mesh against
-/// the exact material, over area-uniform samples.
+/// The weighted error of every channel (the height through its normal) of \p tex on \p param.
 double sampled_error(const TriMesh& mesh, const Parameterization& param, const MaterialTextures& tex,
                      const MaterialStrokeFile& file, double data_weight, long long samples) {
-  const std::vector<SurfacePoint> pts = sample_surface(mesh, samples, 17);
-  const std::vector<MaterialValue> exact = evaluate_material(mesh, file, pts);
-  const ImageRGBA8 data = data_texture(tex);
-  double sum = 0;
-  for (size_t k = 0; k < pts.size(); ++k) {
-    const Face& t = param.uv_faces[pts[k].face];
-    const double b0 = pts[k].b0, b1 = pts[k].b1;
-    const Vec2 uv = b0 * param.uv[t[0]] + b1 * param.uv[t[1]] + (1 - b0 - b1) * param.uv[t[2]];
-    const Vec3 c = sample_bilinear(tex.base_color, uv.x(), uv.y()), d = sample_bilinear(data, uv.x(), uv.y());
-    const Vec3 ce(exact[k][0], exact[k][1], exact[k][2]), de(exact[k][4], exact[k][5], exact[k][3]);
-    sum += (c - ce).squaredNorm() / 3 + data_weight * (d - de).squaredNorm() / 3;
-  }
-  return pts.empty() ? 0 : sum / static_cast<double>(pts.size());
+  MaterialEvalOptions eo;
+  eo.samples = samples;
+  eo.seed = 17;
+  eo.data_weight = data_weight;
+  return evaluate_material_textures(mesh, param, tex, file, eo).weighted;
 }
 
 }  // namespace

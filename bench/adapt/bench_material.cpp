@@ -1,0 +1,217 @@
+// Four painted channels against one (docs/benchmarks.md, "Material cycle"): the cost of adapting a
+// layout to a layered material (adapt/material_adapt.h) when every stroke paints base colour,
+// roughness, metallic and height, against the same strokes painting base colour only, and against
+// today's single-channel each-stroke cycle of a version 1 session (adapt/session.h).
+//
+// The history: the first K strokes of bench/common/session_history.h (`mixed`, seed 1) on the mesh.
+//   BM_SessionCycle/K/W        PaintSession (each-stroke, v1): K − 1 strokes painted without adaptation
+//                              (untimed), then stroke K and one reparameterize() (timed), as
+//                              adaptex_bench_session's rows.
+//   BM_MaterialCycle/C/K/W     adapt_material() on the K strokes as one layer of a version 2 file,
+//                              painting C channels (1: base colour = material_from_v1(); 4: also
+//                              roughness, metallic and height, values varying per stroke): paint every
+//                              channel on the unwrap's layout, the summed error model, the density-flow
+//                              warp, paint again on the new layout, the never-worse check.
+//   BM_MaterialPaint/C/K/W     paint_material() alone (the part of BM_MaterialCycle that runs twice).
+//   BM_MaterialDensity/C/K/W   the material's summed error model alone (part of BM_MaterialCycle).
+// The library has no per-channel each-stroke session: adapt_material() is the whole material cycle it
+// has, and it paints every dab exactly (no surface cache, no replay), twice.
+//
+// Mesh: ADAPTEX_BENCH_MESH (a stem of ADAPTEX_SHARED_DIR/meshes or a path; default spot), unwrapped
+// with the defaults; when absent, a message and the code-built fallback (a 20k-face curved height
+// field, uv = xy). Each benchmark: one iteration per repetition (manual time, setup excluded);
+// quote the median of the repetitions.
+//   adaptex_bench_material --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "../common/height_field.h"
+#include "../common/session_history.h"
+#include "adaptex/adapt/material_adapt.h"
+#include "adaptex/adapt/session.h"
+#include "adaptex/core/allocator.h"
+#include "adaptex/io/mesh_io.h"
+#include "adaptex/paint/texel_map.h"
+#include "adaptex/param/unwrap.h"
+
+using namespace adaptex;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Scene {
+  std::string name;
+  TriMesh mesh;
+  Parameterization param;
+  StrokeFile history;  ///< The longest history any benchmark asked for.
+};
+
+/// The 20k-face height field (bench/common/height_field.h): the fallback when the shared mesh is absent.
+void fallback_scene(Scene& s) {
+  s.name = "plane20k";
+  bench::height_field(100, s.mesh, s.param);
+}
+
+/// The benchmark's mesh (read, unwrapped and given a history once) with at least \p strokes strokes.
+const Scene& scene(int strokes) {
+  static std::unique_ptr<Scene> s;
+  if (!s) {
+    s = std::make_unique<Scene>();
+    const char* env = std::getenv("ADAPTEX_BENCH_MESH");
+    const std::string name = env && *env ? env : "spot";
+    fs::path path = name;
+    const fs::path dir = fs::path(ADAPTEX_SHARED_DIR) / "meshes";
+    if (!fs::exists(path) && fs::is_directory(dir))
+      for (const auto& e : fs::directory_iterator(dir))
+        if (e.path().stem() == name || e.path().filename() == name) path = e.path();
+    if (fs::exists(path)) {
+      s->name = path.stem().string();
+      s->mesh = read_mesh(path);
+      s->param = unwrap(s->mesh).param;
+    } else {
+      std::fprintf(stderr, "adaptex_bench_material: mesh %s not found (nor in %s): the code-built fallback instead\n",
+                   name.c_str(), dir.string().c_str());
+      fallback_scene(*s);
+    }
+  }
+  if (static_cast<int>(s->history.strokes.size()) < strokes) s->history = bench::session_history(s->mesh, strokes, 1);
+  return *s;
+}
+
+/// The first \p k strokes of \p history as one layer painting \p channels (1 or 4) channels.
+MaterialStrokeFile material_history(const StrokeFile& history, int k, int channels) {
+  StrokeFile first = history;
+  first.strokes.resize(k);
+  MaterialStrokeFile file = material_from_v1(first);
+  if (channels == 1) return file;
+  const unsigned more =
+      channel_bit(Channel::Roughness) | channel_bit(Channel::Metallic) | channel_bit(Channel::Height);
+  int i = 0;
+  for (MaterialStroke& s : file.layers[0].strokes) {
+    s.channels |= more;
+    s.value[channel_offset(Channel::Roughness)] = 0.15 + 0.7 * std::fmod(0.618034 * i, 1.0);
+    s.value[channel_offset(Channel::Metallic)] = i % 3 == 0 ? 1.0 : 0.0;
+    s.value[channel_offset(Channel::Height)] = i % 2 == 0 ? 0.25 : 0.7;
+    ++i;
+  }
+  return file;
+}
+
+void set_counters(benchmark::State& state, const Scene& sc, const std::map<std::string, double>& acc, int iters) {
+  for (const auto& [k, v] : acc) state.counters[k] = v / std::max(1, iters);
+  state.counters["faces"] = sc.mesh.num_faces();
+  state.SetLabel(sc.name);
+}
+
+void BM_SessionCycle(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0)), W = static_cast<int>(state.range(1));
+  const Scene& sc = scene(k);
+  std::map<std::string, double> acc;
+  int iters = 0;
+  for (auto _ : state) {
+    PaintSessionOptions o;
+    o.texture_size = W;
+    o.schedule = ReparamSchedule::EachStroke;
+    o.adapt.mode = AdaptMode::None;  // paint only; reparameterize() uses the default method
+    PaintSession session(sc.mesh, sc.param, o, sc.history.background);
+    for (int i = 0; i + 1 < k; ++i) session.add_stroke(sc.history.strokes[i]);
+    const auto t0 = std::chrono::steady_clock::now();
+    session.add_stroke(sc.history.strokes[k - 1]);
+    const AdaptReport& r = session.reparameterize();
+    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    acc["density_ms"] += 1e3 * r.time_density;
+    acc["flow_ms"] += 1e3 * (r.time_flow + r.time_polish);
+    acc["texture_ms"] += 1e3 * r.time_texture_update;
+    acc["safeguard_ms"] += 1e3 * r.time_safeguard;
+    ++iters;
+  }
+  set_counters(state, sc, acc, iters);
+}
+
+void BM_MaterialCycle(benchmark::State& state) {
+  const int channels = static_cast<int>(state.range(0)), k = static_cast<int>(state.range(1));
+  const int W = static_cast<int>(state.range(2));
+  const Scene& sc = scene(k);
+  const MaterialStrokeFile file = material_history(sc.history, k, channels);
+  MaterialAdaptOptions o;
+  o.paint.size = W;
+  std::map<std::string, double> acc;
+  int iters = 0;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const MaterialAdaptResult r = adapt_material(sc.mesh, sc.param, file, o);
+    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    benchmark::DoNotOptimize(r.textures.normal.data.data());
+    acc["density_ms"] += 1e3 * r.report.time_density;
+    acc["flow_ms"] += 1e3 * (r.report.time_flow + r.report.time_polish);
+    acc["adapted"] += r.adapted;
+    ++iters;
+  }
+  set_counters(state, sc, acc, iters);
+}
+
+/// paint_material() alone on the unwrap's layout: the part of BM_MaterialCycle that runs twice.
+void BM_MaterialPaint(benchmark::State& state) {
+  const int channels = static_cast<int>(state.range(0)), k = static_cast<int>(state.range(1));
+  const Scene& sc = scene(k);
+  const MaterialStrokeFile file = material_history(sc.history, k, channels);
+  MaterialPaintOptions o;
+  o.size = static_cast<int>(state.range(2));
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const MaterialTextures t = paint_material(sc.mesh, sc.param, file, o);
+    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    benchmark::DoNotOptimize(t.normal.data.data());
+  }
+  set_counters(state, sc, {}, 1);
+}
+
+/// The material's error model alone (material_error_planes() + compute_error_density() on the
+/// unwrap's layout, its textures painted untimed): the part of BM_MaterialCycle that sums the channels.
+void BM_MaterialDensity(benchmark::State& state) {
+  const int channels = static_cast<int>(state.range(0)), k = static_cast<int>(state.range(1));
+  const int W = static_cast<int>(state.range(2));
+  const Scene& sc = scene(k);
+  const MaterialStrokeFile file = material_history(sc.history, k, channels);
+  MaterialPaintOptions po;
+  po.size = W;
+  const MaterialTextures tex = paint_material(sc.mesh, sc.param, file, po);
+  const TexelMap map = build_texel_map(sc.mesh, sc.param, W, W);
+  const MaterialAdaptOptions mo;
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const ErrorDensity d = compute_error_density(sc.mesh, sc.param, map,
+                                                 material_error_planes(sc.mesh, sc.param, map, file, tex, mo.data_weight),
+                                                 mo.adapt.density_flow.density);
+    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    benchmark::DoNotOptimize(&d);
+  }
+  set_counters(state, sc, {}, 1);
+}
+
+}  // namespace
+
+BENCHMARK(BM_SessionCycle)->Args({40, 1024})->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+void material_args(benchmark::internal::Benchmark* b) {
+  b->Args({1, 40, 1024})->Args({4, 40, 1024})->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+}
+BENCHMARK(BM_MaterialCycle)->Apply(material_args);
+BENCHMARK(BM_MaterialPaint)->Apply(material_args);
+BENCHMARK(BM_MaterialDensity)->Apply(material_args);
+
+int main(int argc, char** argv) {
+  // As the adaptex programs run (core/allocator.h); ADAPTEX_DEFAULT_MALLOC=1 measures glibc's defaults.
+  adaptex::keep_freed_memory_in_process_unless_disabled();
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

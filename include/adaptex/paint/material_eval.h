@@ -1,0 +1,51 @@
+#pragma once
+/// \file material_eval.h
+/// How well a material's textures on a layout reconstruct the exact material (docs/quality.md,
+/// "Channel cases"): every channel judged over area-uniform surface samples, the height through the
+/// shading normal it derives, combined with the error model's weights (docs/error_model.md §13).
+#include <cstdint>
+
+#include "adaptex/core/mesh.h"
+#include "adaptex/core/parameterization.h"
+#include "adaptex/paint/material_paint.h"
+
+namespace adaptex {
+
+/// Settings of evaluate_material_textures().
+struct MaterialEvalOptions {
+  long long samples = 200000;  ///< Surface samples K, area-uniform (default 200k).
+  std::uint64_t seed = 1;      ///< Seed of the samples (sample_surface(); default 1).
+  double data_weight = 0.25;   ///< Weight of roughness, metallic and alpha (default 0.25, as the error model).
+  /// Step of the exact height's finite differences, as a fraction of the bounding-box diagonal
+  /// (default 2e-5: far below a texel at 4096², above double rounding).
+  double gradient_step = 2e-5;
+};
+
+/// Per-channel MSEs of a material's textures (values in [0,1]; mean over samples and components).
+struct MaterialError {
+  double base_color = 0;  ///< Bilinear base colour map vs the exact RGB (mean of 3 components).
+  double alpha = 0, roughness = 0, metallic = 0;  ///< Bilinear channel maps vs the exact values.
+  /// Shading normal: the bilinear normal map's (n + 1) / 2 vs that of the exact normal
+  /// normalize(n − ∇H) (∇H the surface gradient of the exact height times the height scale), both
+  /// in the layout's tangent frame (mean of 3 components).
+  double normal = 0;
+  double normal_weight = 0;  ///< 4 · mean square of the exact base colour (Lambert: albedo · |Δn|).
+  /// base_color + data_weight · (alpha + roughness + metallic) / 3 + normal_weight · normal: the
+  /// error model's sum of planes (data plane (roughness, metallic, alpha) is one 3-vector there).
+  double weighted = 0;
+};
+
+/// PSNR in dB of an MSE of values in [0,1] (infinity for 0).
+double psnr_from_mse(double mse);
+
+/// Judges every channel of \p textures on \p param of \p mesh against the exact material of \p file
+/// (evaluate_material()) at options.samples area-uniform surface points: uv interpolated from the
+/// face's corner UVs, then sample_bilinear (as evaluate_texture() for version 1).
+/// The height scale is textures.height_scale (the one the normal map was derived with).
+/// \pre param matches mesh, textures of one size
+/// \throw InvalidInputError param not matching the mesh, samples < 1, empty textures, bad options
+MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
+                                         const MaterialTextures& textures, const MaterialStrokeFile& file,
+                                         const MaterialEvalOptions& options = {});
+
+}  // namespace adaptex

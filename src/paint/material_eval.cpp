@@ -1,0 +1,128 @@
+/// \file material_eval.cpp
+/// Every channel of a material's textures against the exact material on surface samples; the
+/// height judged through its shading normal, from central differences of the exact height.
+#include "adaptex/paint/material_eval.h"
+
+#include <cmath>
+#include <limits>
+
+#include <tbb/parallel_for.h>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/core/image.h"
+#include "adaptex/paint/eval.h"
+#include "adaptex/paint/material_signal.h"
+#include "adaptex/paint/tangent_frame.h"
+
+namespace adaptex {
+
+namespace {
+
+/// The barycentric offset (d0, d1) of a 3-D step \p delta in the plane of face \p f.
+Vec2 barycentric_step(const TriMesh& mesh, int f, const Vec3& delta) {
+  const auto& t = mesh.faces[f];
+  const Vec3 e1 = mesh.positions[t[1]] - mesh.positions[t[0]], e2 = mesh.positions[t[2]] - mesh.positions[t[0]];
+  const double a = e1.dot(e1), b = e1.dot(e2), c = e2.dot(e2), det = a * c - b * b;
+  if (!(det > 0)) return Vec2::Zero();
+  const double r1 = delta.dot(e1), r2 = delta.dot(e2);
+  const double d1 = (c * r1 - b * r2) / det, d2 = (a * r2 - b * r1) / det;  // delta = d1 e1 + d2 e2
+  return Vec2(-d1 - d2, d1);
+}
+
+/// Two orthonormal directions in the plane of face \p f (zero for a degenerate face).
+std::array<Vec3, 2> face_directions(const TriMesh& mesh, int f) {
+  const auto& t = mesh.faces[f];
+  const Vec3 e1 = mesh.positions[t[1]] - mesh.positions[t[0]], e2 = mesh.positions[t[2]] - mesh.positions[t[0]];
+  const Vec3 n = e1.cross(e2);
+  if (!(n.norm() > 0) || !(e1.norm() > 0)) return {Vec3::Zero(), Vec3::Zero()};
+  const Vec3 u = e1.normalized();
+  return {u, n.normalized().cross(u)};
+}
+
+/// Bilinear sample of the A channel at (u, v), as sample_bilinear() samples RGB.
+double sample_bilinear_alpha(const ImageRGBA8& img, double u, double v) {
+  const BilinearTap x = bilinear_tap(img.width, u), y = bilinear_tap(img.height, v);
+  auto at = [&img](int i, int j) { return img.data[4 * (static_cast<size_t>(j) * img.width + i) + 3] / 255.0; };
+  return (1 - y.f) * ((1 - x.f) * at(x.i0, y.i0) + x.f * at(x.i1, y.i0)) +
+         y.f * ((1 - x.f) * at(x.i0, y.i1) + x.f * at(x.i1, y.i1));
+}
+
+void check_inputs(const TriMesh& mesh, const Parameterization& param, const MaterialTextures& tex,
+                  const MaterialEvalOptions& o) {
+  if (param.uv_faces.size() != mesh.faces.size())
+    throw InvalidInputError("evaluate_material_textures: the layout and the mesh have different face counts");
+  if (o.samples < 1) throw InvalidInputError("evaluate_material_textures: samples must be >= 1");
+  if (!(o.gradient_step > 0) || !(o.data_weight >= 0) || !std::isfinite(o.data_weight))
+    throw InvalidInputError("evaluate_material_textures: gradient_step must be > 0 and data_weight >= 0");
+  for (const ImageRGBA8* img : {&tex.base_color, &tex.roughness, &tex.metallic, &tex.normal})
+    if (img->width < 1 || img->height < 1 || img->width != tex.base_color.width || img->height != tex.base_color.height)
+      throw InvalidInputError("evaluate_material_textures: the textures must be non-empty and of one size");
+}
+
+}  // namespace
+
+double psnr_from_mse(double mse) {
+  return mse > 0 ? 10 * std::log10(1 / mse) : std::numeric_limits<double>::infinity();
+}
+
+MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
+                                         const MaterialTextures& textures, const MaterialStrokeFile& file,
+                                         const MaterialEvalOptions& options) {
+  check_inputs(mesh, param, textures, options);
+  const std::vector<SurfacePoint> pts = sample_surface(mesh, options.samples, options.seed);
+  const size_t K = pts.size();
+  // Each sample and its four steps of +-eps along two directions of its face: the exact height's gradient.
+  const double eps = options.gradient_step * bounding_box(mesh).diagonal();
+  std::vector<SurfacePoint> probe(5 * K);
+  std::vector<std::array<Vec3, 2>> dirs(K);
+  tbb::parallel_for(size_t(0), K, [&](size_t k) {
+    const SurfacePoint& p = pts[k];
+    dirs[k] = face_directions(mesh, p.face);
+    probe[5 * k] = p;
+    for (int a = 0; a < 2; ++a)
+      for (int s = 0; s < 2; ++s) {
+        const Vec2 d = barycentric_step(mesh, p.face, (s ? -eps : eps) * dirs[k][a]);
+        probe[5 * k + 1 + 2 * a + s] = SurfacePoint{p.face, p.b0 + d.x(), p.b1 + d.y()};
+      }
+  });
+  const std::vector<MaterialValue> exact = evaluate_material(mesh, file, probe);
+  const std::vector<Vec3> vn = vertex_normals(mesh);
+  const std::vector<Eigen::Vector4d> tangents = wedge_tangents(mesh, param, vn);
+  const double scale = textures.height_scale;
+  // Per sample: squared errors of base colour, alpha, roughness, metallic, normal; and the albedo².
+  std::vector<std::array<double, 6>> err(K);
+  tbb::parallel_for(size_t(0), K, [&](size_t k) {
+    const SurfacePoint& p = pts[k];
+    const Face& t = param.uv_faces[p.face];
+    const Vec2 uv = p.b0 * param.uv[t[0]] + p.b1 * param.uv[t[1]] + (1 - p.b0 - p.b1) * param.uv[t[2]];
+    const MaterialValue& e = exact[5 * k];
+    const Vec3 c = sample_bilinear(textures.base_color, uv.x(), uv.y());
+    const Vec3 ce(e[0], e[1], e[2]);
+    const double a = sample_bilinear_alpha(textures.base_color, uv.x(), uv.y());
+    const double r = sample_bilinear(textures.roughness, uv.x(), uv.y()).x();
+    const double m = sample_bilinear(textures.metallic, uv.x(), uv.y()).x();
+    const Vec3 grad = scale * ((exact[5 * k + 1][6] - exact[5 * k + 2][6]) / (2 * eps) * dirs[k][0] +
+                               (exact[5 * k + 3][6] - exact[5 * k + 4][6]) / (2 * eps) * dirs[k][1]);
+    const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, p.face, p.b0, p.b1);
+    const Vec3 n_exact = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized();
+    const Vec3 n_tex = sample_bilinear(textures.normal, uv.x(), uv.y());
+    err[k] = {(c - ce).squaredNorm() / 3,     std::pow(a - e[3], 2), std::pow(r - e[4], 2), std::pow(m - e[5], 2),
+              (n_tex - 0.5 * (n_exact + Vec3::Ones())).squaredNorm() / 3, ce.squaredNorm() / 3};
+  });
+  std::array<double, 6> sum{};
+  for (const auto& x : err)  // fixed order: deterministic
+    for (int j = 0; j < 6; ++j) sum[j] += x[j];
+  for (double& s : sum) s /= static_cast<double>(K);
+  MaterialError out;
+  out.base_color = sum[0];
+  out.alpha = sum[1];
+  out.roughness = sum[2];
+  out.metallic = sum[3];
+  out.normal = sum[4];
+  out.normal_weight = std::max(4 * sum[5], 1e-6);
+  out.weighted = out.base_color + options.data_weight * (out.alpha + out.roughness + out.metallic) / 3 +
+                 out.normal_weight * out.normal;
+  return out;
+}
+
+}  // namespace adaptex
