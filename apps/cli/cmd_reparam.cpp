@@ -214,7 +214,7 @@ void add_reparam_command(CLI::App& app, Context& ctx) {
       ->check(CLI::Range(1, adaptex::kMaxTextureSize));
   sub->add_option("--padding", a->padding, "Seam padding in texels")->check(CLI::Range(0, 64))->capture_default_str();
   sub->add_option("--candidate", a->candidate,
-                  "shrink: output this candidate (downsized, artist, repacked, budget, island_warp, warped) instead of the best");
+                  "shrink: output this candidate (downsized, artist, repacked, budget, island_warp, warped, warped_islands) instead of the best");
   sub->add_option("--name", a->name, "Base name of the output files (default: the mesh file's stem)");
   sub->add_option("--debug-maps", a->debug_maps,
                   "Also write importance / stretch / L_s^2 / grid PNGs here (shrink: the layouts before and after)");

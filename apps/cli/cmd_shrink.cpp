@@ -141,7 +141,7 @@ void add_shrink_command(CLI::App& app, Context& ctx) {
   sub->add_option("--size", a->size, "Output width = height of every map of every material")->check(CLI::Range(8, adaptex::kMaxTextureSize));
   sub->add_option("--factor", a->factor, "Or: K times fewer texels than each material's base colour map (each side / sqrt(K))");
   sub->add_option("--candidate", a->candidate,
-                  "Output this candidate (downsized, artist, repacked, budget, island_warp, warped) instead of the best");
+                  "Output this candidate (downsized, artist, repacked, budget, island_warp, warped, warped_islands) instead of the best");
   sub->add_option("--max-face-growth", a->max_face_growth,
                   "Largest share of faces the new layout may add (0.1 = 10 %; the shrink adds none)")
       ->check(cli::kFiniteNonNegative)

@@ -47,6 +47,14 @@ double sample_bilinear_alpha(const ImageRGBA8& img, double u, double v) {
          y.f * ((1 - x.f) * at(x.i0, y.i1) + x.f * at(x.i1, y.i1));
 }
 
+/// True when some stroke of \p file paints or erases height (else the height is flat everywhere).
+bool paints_height(const MaterialStrokeFile& file) {
+  for (const MaterialLayer& layer : file.layers)
+    for (const MaterialStroke& s : layer.strokes)
+      if (s.type != MaterialStroke::Type::Decal && (s.channels & channel_bit(Channel::Height))) return true;
+  return false;
+}
+
 void check_inputs(const TriMesh& mesh, const Parameterization& param, const MaterialTextures& tex,
                   const MaterialEvalOptions& o) {
   if (param.uv_faces.size() != mesh.faces.size())
@@ -71,19 +79,22 @@ MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameteriza
   check_inputs(mesh, param, textures, options);
   const std::vector<SurfacePoint> pts = sample_surface(mesh, options.samples, options.seed);
   const size_t K = pts.size();
-  // Each sample and its four steps of +-eps along two directions of its face: the exact height's gradient.
+  // Each sample, and where the height varies, two steps of eps along two directions of its face: the
+  // exact height's gradient by forward differences (eps is far below any texel: their O(eps) error is
+  // negligible, and they cost 3 evaluations per sample instead of central differences' 5).
+  const int P = paints_height(file) ? 3 : 1;
   const double eps = options.gradient_step * bounding_box(mesh).diagonal();
-  std::vector<SurfacePoint> probe(5 * K);
-  std::vector<std::array<Vec3, 2>> dirs(K);
+  std::vector<SurfacePoint> probe(P * K);
+  std::vector<std::array<Vec3, 2>> dirs(K, {Vec3::Zero(), Vec3::Zero()});
   tbb::parallel_for(size_t(0), K, [&](size_t k) {
     const SurfacePoint& p = pts[k];
+    probe[P * k] = p;
+    if (P == 1) return;
     dirs[k] = face_directions(mesh, p.face);
-    probe[5 * k] = p;
-    for (int a = 0; a < 2; ++a)
-      for (int s = 0; s < 2; ++s) {
-        const Vec2 d = barycentric_step(mesh, p.face, (s ? -eps : eps) * dirs[k][a]);
-        probe[5 * k + 1 + 2 * a + s] = SurfacePoint{p.face, p.b0 + d.x(), p.b1 + d.y()};
-      }
+    for (int a = 0; a < 2; ++a) {
+      const Vec2 d = barycentric_step(mesh, p.face, eps * dirs[k][a]);
+      probe[P * k + 1 + a] = SurfacePoint{p.face, p.b0 + d.x(), p.b1 + d.y()};
+    }
   });
   const std::vector<MaterialValue> exact = evaluate_material(mesh, file, probe);
   const std::vector<Vec3> vn = vertex_normals(mesh);
@@ -95,14 +106,15 @@ MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameteriza
     const SurfacePoint& p = pts[k];
     const Face& t = param.uv_faces[p.face];
     const Vec2 uv = p.b0 * param.uv[t[0]] + p.b1 * param.uv[t[1]] + (1 - p.b0 - p.b1) * param.uv[t[2]];
-    const MaterialValue& e = exact[5 * k];
+    const MaterialValue& e = exact[P * k];
     const Vec3 c = sample_bilinear(textures.base_color, uv.x(), uv.y());
     const Vec3 ce(e[0], e[1], e[2]);
     const double a = sample_bilinear_alpha(textures.base_color, uv.x(), uv.y());
     const double r = sample_bilinear(textures.roughness, uv.x(), uv.y()).x();
     const double m = sample_bilinear(textures.metallic, uv.x(), uv.y()).x();
-    const Vec3 grad = scale * ((exact[5 * k + 1][6] - exact[5 * k + 2][6]) / (2 * eps) * dirs[k][0] +
-                               (exact[5 * k + 3][6] - exact[5 * k + 4][6]) / (2 * eps) * dirs[k][1]);
+    const Vec3 grad = P == 1 ? Vec3::Zero().eval()
+                             : Vec3(scale * ((exact[P * k + 1][6] - e[6]) / eps * dirs[k][0] +
+                                             (exact[P * k + 2][6] - e[6]) / eps * dirs[k][1]));
     const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, p.face, p.b0, p.b1);
     const Vec3 n_exact = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized();
     const Vec3 n_tex = sample_bilinear(textures.normal, uv.x(), uv.y());

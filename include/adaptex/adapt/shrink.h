@@ -52,7 +52,11 @@ struct ShrinkOptions {
   /// Island warp: largest texel density ratio along each axis of an island (>= 1; default 4); a gentle
   /// warp (ratio min(1.5, this)) is tried too and the better kept.
   double island_warp_ratio = 4.0;
-  /// Also try the density-flow warp of the layout when no charts share texels (default on).
+  /// Island warp: also try cells' areas from their own measured error curves (equal marginal gain, as
+  /// the island budget) besides area ∝ (error / area)^(2/3), the edge law; the better is kept (default on).
+  bool island_warp_measured = true;
+  /// Also try the density-flow warp of the layout when no charts share texels (default on); with
+  /// island_warp, that warp refined by every island warped in place too ("warped_islands").
   bool warp = true;
   // Topology.
   /// Largest share of faces a layout may add to the input's (default 0.10); 0 keeps the input's faces
@@ -62,15 +66,15 @@ struct ShrinkOptions {
   // Candidates.
   long long eval_samples = 200000;  ///< Surface samples of the PSNR that picks the candidate (default 200k).
   std::uint64_t seed = 7;  ///< Seed of the surface samples (default 7).
-  /// Output this candidate ("downsized", "artist", "repacked", "budget", "island_warp", "warped") when
-  /// it is valid, whatever its PSNR (experiments; default "": the best).
+  /// Output this candidate ("downsized", "artist", "repacked", "budget", "island_warp", "warped",
+  /// "warped_islands") when it is valid, whatever its PSNR (experiments; default "": the best).
   std::string force_candidate;
   ProgressCallback progress;  ///< Phases "islands", "error model", "pack", "texels", "evaluate".
 };
 
 /// One candidate layout and its measured quality.
 struct ShrinkCandidate {
-  std::string name;  ///< "downsized", "artist", "repacked", "budget", "island_warp", "warped".
+  std::string name;  ///< "downsized", "artist", "repacked", "budget", "island_warp", "warped", "warped_islands".
   /// Surface PSNR of the first map against the original (dB), with draft-fitted texels on a quarter of
   /// the evaluation's samples: what ranks the candidates.
   double psnr = 0;

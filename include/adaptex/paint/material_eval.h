@@ -16,8 +16,9 @@ struct MaterialEvalOptions {
   long long samples = 200000;  ///< Surface samples K, area-uniform (default 200k).
   std::uint64_t seed = 1;      ///< Seed of the samples (sample_surface(); default 1).
   double data_weight = 0.25;   ///< Weight of roughness, metallic and alpha (default 0.25, as the error model).
-  /// Step of the exact height's finite differences, as a fraction of the bounding-box diagonal
-  /// (default 2e-5: far below a texel at 4096², above double rounding).
+  /// Step of the exact height's forward differences, as a fraction of the bounding-box diagonal
+  /// (default 2e-5: far below a texel at 4096², above double rounding). Not used when no stroke
+  /// paints height (the exact normal is then the surface's).
   double gradient_step = 2e-5;
 };
 

@@ -130,7 +130,7 @@ double sample_error(const ErrorCurves& curves, size_t k, double h) {
 }
 
 std::vector<double> allocate_island_scales(const ErrorCurves& curves, const std::vector<double>& area,
-                                           double budget, int size, double max_ratio) {
+                                           double budget, double size, double max_ratio) {
   const int I = static_cast<int>(area.size());
   double total_area = 0;
   for (double a : area) total_area += a;
@@ -138,9 +138,17 @@ std::vector<double> allocate_island_scales(const ErrorCurves& curves, const std:
   if (!(total_area > 0) || I == 0) return std::vector<double>(I, s_uniform);
   constexpr int kStepsPerOctave = 8;
   const int T = std::max(0, static_cast<int>(std::lround(kStepsPerOctave * std::log2(std::max(1.0, max_ratio)))));
-  auto scale = [&](int t) { return s_uniform * std::pow(2.0, static_cast<double>(t) / kStepsPerOctave); };
+  // Scales and every island's weighted error at each step, computed once (the hulls read them often).
+  const int steps = 2 * T + 1;
+  std::vector<double> scales(steps), errors(static_cast<size_t>(I) * steps);
+  for (int t = -T; t <= T; ++t) scales[t + T] = s_uniform * std::pow(2.0, static_cast<double>(t) / kStepsPerOctave);
+  for (int i = 0; i < I; ++i)
+    for (int t = -T; t <= T; ++t)
+      errors[static_cast<size_t>(i) * steps + t + T] =
+          curves.weight[i] * island_error(curves, i, 1.0 / (size * scales[t + T]));
+  auto scale = [&](int t) { return scales[t + T]; };
   auto cost = [&](int i, int t) { return area[i] * scale(t) * scale(t); };
-  auto err = [&](int i, int t) { return curves.weight[i] * island_error(curves, i, 1.0 / (size * scale(t))); };
+  auto err = [&](int i, int t) { return errors[static_cast<size_t>(i) * steps + t + T]; };
   // Per island, the lower convex hull of (cost, error) over the levels: greedy steps along the hulls
   // give every unit of area where it removes the most error, even across flat stretches of e_i.
   std::vector<std::vector<int>> hull(I);

@@ -46,12 +46,43 @@ IslandParts island_parts(const Parameterization& layout, const std::vector<int>&
   return p;
 }
 
+/// Target area density of every cell of an L x L lattice (covered cells; 0 elsewhere).
+/// Power law: area ∝ (error / covered area)^kExponent from the error \p sum[c · levels + at] at the
+/// island's spacing. Measured curves: the allocation of allocate_island_scales() with the cells as
+/// islands (each cell's mean error at every spacing, covered area kept), scale² per cell.
+std::vector<double> cell_density(const std::vector<double>& sum, const std::vector<double>& count,
+                                 const std::vector<double>& cover, const ErrorCurves& curves, size_t at,
+                                 double texels, double ratio, bool measured) {
+  const size_t C = cover.size(), levels = curves.spacing.size();
+  std::vector<double> rho(C, 0.0);
+  if (!measured) {
+    for (size_t c = 0; c < C; ++c)
+      if (cover[c] > 0) rho[c] = std::pow(sum[c * levels + at] / cover[c], kExponent);
+    return rho;
+  }
+  ErrorCurves cells;
+  cells.spacing = curves.spacing;
+  cells.error.assign(C, std::vector<double>(levels, 0.0));
+  cells.weight.assign(C, 0.0);
+  double n = 0, budget = 0;
+  for (size_t c = 0; c < C; ++c) n += count[c], budget += cover[c];
+  for (size_t c = 0; c < C; ++c) {
+    if (!(count[c] > 0)) continue;
+    cells.weight[c] = count[c] / n;
+    for (size_t l = 0; l < levels; ++l) {
+      cells.error[c][l] = sum[c * levels + l] / count[c];
+      if (l > 0) cells.error[c][l] = std::max(cells.error[c][l], cells.error[c][l - 1]);
+    }
+  }
+  const std::vector<double> s = allocate_island_scales(cells, cover, budget, texels, ratio);
+  for (size_t c = 0; c < C; ++c)
+    if (cover[c] > 0) rho[c] = s[c] * s[c];
+  return rho;
+}
+
 /// The 2-D density-equalizing warp (density_flow.h) of an L x L lattice whose cells should get area
-/// ∝ (error / covered area)^kExponent, uncovered cells the least, clamped to ratio² between cells.
-GridWarp lattice_warp(const std::vector<double>& error, const std::vector<double>& cover, int L, double ratio) {
-  std::vector<double> rho(error.size(), 0.0);
-  for (size_t c = 0; c < rho.size(); ++c)
-    if (cover[c] > 0) rho[c] = std::pow(error[c] / cover[c], kExponent);
+/// ∝ \p rho (blurred), uncovered cells the least, clamped to ratio² between cells.
+GridWarp lattice_warp(std::vector<double> rho, int L, double ratio) {
   gaussian_blur(rho, L, 1.0);
   const double top = *std::max_element(rho.begin(), rho.end());
   if (!(top > 0)) return GridWarp::uniform(1);
@@ -115,7 +146,8 @@ double damped_warp(const Parameterization& layout, const std::vector<int>& faces
 
 Parameterization warp_islands(const SampleSet& set, const ErrorCurves& curves, const Parameterization& layout,
                               const std::vector<int>& face_island, int num_islands,
-                              const std::vector<double>& texels, double max_ratio, std::vector<double>* blend) {
+                              const std::vector<double>& texels, const std::vector<double>& face_texels,
+                              double max_ratio, bool measured, std::vector<double>* blend) {
   Parameterization out = layout;
   blend->assign(num_islands, 0.0);
   const IslandParts parts = island_parts(layout, face_island, num_islands);
@@ -124,36 +156,46 @@ Parameterization warp_islands(const SampleSet& set, const ErrorCurves& curves, c
     for (int w : parts.wedges[i]) lo[i] = lo[i].cwiseMin(layout.uv[w]), hi[i] = hi[i].cwiseMax(layout.uv[w]);
   // Per island, a square lattice over its bounding box (cells of about kTexelsPerCell output texels).
   std::vector<int> cells(num_islands, 0);
-  std::vector<std::vector<double>> error(num_islands);
+  const size_t levels = curves.spacing.size();
+  std::vector<std::vector<double>> sum(num_islands), count(num_islands);  // per cell (x levels) / samples
   std::vector<double> total(num_islands, 0.0);
-  std::vector<long> count(num_islands, 0);
+  std::vector<long> samples(num_islands, 0);
   for (int i = 0; i < num_islands; ++i) {
     const Vec2 ext = hi[i] - lo[i];
     if (parts.wedges[i].empty() || !(ext.x() > 0) || !(ext.y() > 0)) continue;
     cells[i] = std::clamp(static_cast<int>(std::lround(ext.maxCoeff() * texels[i] / kTexelsPerCell)), kMinCells,
                           kMaxCells);
-    error[i].assign(static_cast<size_t>(cells[i]) * cells[i], 0.0);
+    sum[i].assign(static_cast<size_t>(cells[i]) * cells[i] * levels, 0.0);
+    count[i].assign(static_cast<size_t>(cells[i]) * cells[i], 0.0);
   }
-  // Error of every measured sample at its island's output spacing, into its lattice cell.
-  const size_t K = curves.sample_error.size() / std::max<size_t>(1, curves.spacing.size());
+  // Error of every measured sample at every spacing (the island's own in slot `at` for the power
+  // law: levels are replaced by the interpolated value there), into its lattice cell.
+  const size_t at = 0;
+  const size_t K = curves.sample_error.size() / std::max<size_t>(1, levels);
   for (size_t k = 0; k < K; ++k) {
     const SurfacePoint& p = set.points()[k * curves.stride];
     const int i = face_island[p.face], L = cells[i];
-    if (error[i].empty()) continue;
+    if (count[i].empty()) continue;
     const Face& t = layout.uv_faces[p.face];
     const Vec2 uv = p.b0 * layout.uv[t[0]] + p.b1 * layout.uv[t[1]] + (1 - p.b0 - p.b1) * layout.uv[t[2]];
     const Vec2 q = (uv - lo[i]).cwiseQuotient(hi[i] - lo[i]);
     const int cx = std::clamp(static_cast<int>(q.x() * L), 0, L - 1);
     const int cy = std::clamp(static_cast<int>(q.y() * L), 0, L - 1);
-    const double e = sample_error(curves, k, 1.0 / texels[i]);
-    error[i][static_cast<size_t>(cy) * L + cx] += e;
-    total[i] += e, ++count[i];
+    const size_t c = static_cast<size_t>(cy) * L + cx;
+    const double e = sample_error(curves, k, 1.0 / (face_texels.empty() ? texels[i] : face_texels[p.face]));
+    if (measured)
+      for (size_t l = 0; l < levels; ++l) sum[i][c * levels + l] += curves.sample_error[k * levels + l];
+    else
+      sum[i][c * levels + at] += e;
+    count[i][c] += 1;
+    total[i] += e, ++samples[i];
   }
   for (int i = 0; i < num_islands; ++i) {
-    if (error[i].empty() || !(total[i] > kNoDetail * static_cast<double>(count[i]))) continue;
+    if (count[i].empty() || !(total[i] > kNoDetail * static_cast<double>(samples[i]))) continue;
     const Vec2 ext = hi[i] - lo[i];
-    const GridWarp grid = lattice_warp(error[i], lattice_cover(layout, parts.faces[i], lo[i], ext, cells[i]),
-                                       cells[i], max_ratio);
+    const std::vector<double> cover = lattice_cover(layout, parts.faces[i], lo[i], ext, cells[i]);
+    const GridWarp grid = lattice_warp(
+        cell_density(sum[i], count[i], cover, curves, at, texels[i], max_ratio, measured), cells[i], max_ratio);
     const auto map = [&](const Vec2& p) {
       return Vec2(lo[i] + grid.apply_lattice((p - lo[i]).cwiseQuotient(ext)).cwiseProduct(ext));
     };

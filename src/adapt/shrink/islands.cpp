@@ -90,6 +90,17 @@ std::vector<double> island_areas(const Parameterization& layout, const std::vect
   return area;
 }
 
+long shared_island_texels(const Parameterization& layout, const std::vector<int>& face_island, int num_islands,
+                          int resolution) {
+  std::vector<unsigned char> hits(static_cast<size_t>(resolution) * resolution, 0);
+  long shared = 0;
+  chart_coverage(layout, face_island, num_islands, resolution, [&](int k, int) {
+    if (++hits[k] == 2) ++shared;
+    hits[k] = std::min<unsigned char>(hits[k], 2);
+  });
+  return shared;
+}
+
 }  // namespace shrink_detail
 
 using namespace shrink_detail;

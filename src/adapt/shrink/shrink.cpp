@@ -39,10 +39,11 @@ void check_inputs(const TriMesh& mesh, const Parameterization& param, const std:
     throw InvalidInputError(
         "shrink: bad options (overlap_share >= 0, max_scale_ratio >= 1, island_warp_ratio >= 1, gutter in [0,16], "
         "samples >= 1000, max_face_growth >= 0)");
-  const auto& names = {"", "downsized", "artist", "repacked", "budget", "island_warp", "warped"};
+  const auto& names = {"",         "downsized", "artist",      "repacked",
+                       "budget",   "island_warp", "warped", "warped_islands"};
   if (std::find(names.begin(), names.end(), opt.force_candidate) == names.end())
     throw InvalidInputError("shrink: unknown candidate '" + opt.force_candidate +
-                            "' (downsized, artist, repacked, budget, island_warp, warped)");
+                            "' (downsized, artist, repacked, budget, island_warp, warped, warped_islands)");
 }
 
 /// A candidate layout with its first map.
@@ -140,27 +141,81 @@ Built budgeted(const Context& cx, const Built& uniform, const std::vector<double
 }
 
 /// The budgeted islands, each warped inside itself towards its detail (warp_islands), packed at the
-/// budget's scales; the better (ranked) of the full-strength warp and a gentle one (density ratio
-/// kGentleWarpRatio): on smooth paint a strong squeeze costs more than the edge model predicts.
-/// Valid only if no face flips.
+/// budget's scales; the best (ranked) of the full-strength warp, a gentle one (density ratio
+/// kGentleWarpRatio: on smooth paint a strong squeeze costs more than the edge model predicts) and,
+/// with island_warp_measured, the full-strength warp whose cells' areas follow their own measured error
+/// curves. Valid only if no face flips.
 Built island_warped(const Context& cx, const Built& budget, const ErrorCurves& curves,
                     const std::vector<double>& scales) {
   constexpr double kGentleWarpRatio = 1.5;
   std::vector<double> texels(scales.size()), blend;
   for (size_t i = 0; i < scales.size(); ++i) texels[i] = cx.opt.size * scales[i] * budget.lambda;
+  struct Rung {
+    double ratio;
+    bool measured;
+  };
+  const double full = cx.opt.island_warp_ratio;
+  std::vector<Rung> rungs{{full, false}};
+  if (full > kGentleWarpRatio) rungs.push_back({kGentleWarpRatio, false});
+  if (cx.opt.island_warp_measured) {
+    rungs.push_back({full, true});
+    if (full > kGentleWarpRatio) rungs.push_back({kGentleWarpRatio, true});
+  }
   Built best;
   best.info.name = "island_warp";
   best.info.valid = false;
-  for (double ratio : {cx.opt.island_warp_ratio, std::min(kGentleWarpRatio, cx.opt.island_warp_ratio)}) {
+  for (const Rung& r : rungs) {
     const Parameterization layout =
-        warp_islands(cx.samples, curves, cx.layout, cx.face_island, cx.islands, texels, ratio, &blend);
+        warp_islands(cx.samples, curves, cx.layout, cx.face_island, cx.islands, texels, {}, r.ratio, r.measured, &blend);
     Built b = repacked(cx, "island_warp", scales, budget.fill_hint, layout);
     if (b.info.valid && layout_stats(cx.mesh, cx.param, b.param, cx.param.face_chart, cx.opt.size).flipped > 0)
       b.info.valid = false;
     if (b.info.valid && (!best.info.valid || b.info.psnr > best.info.psnr)) best = std::move(b);
-    if (ratio <= kGentleWarpRatio) break;
   }
   return best;
+}
+
+/// Output texels per input UV unit of every face of \p p (size² square): sqrt of its area against the
+/// input's; faces without input area take the size.
+std::vector<double> face_texels(const Context& cx, const Parameterization& p) {
+  std::vector<double> t(p.uv_faces.size(), cx.opt.size);
+  const auto area = [](const Parameterization& q, const Face& f) {
+    return std::abs((q.uv[f[1]] - q.uv[f[0]]).x() * (q.uv[f[2]] - q.uv[f[0]]).y() -
+                    (q.uv[f[1]] - q.uv[f[0]]).y() * (q.uv[f[2]] - q.uv[f[0]]).x());
+  };
+  const double tiny = 1e-6 / (static_cast<double>(cx.opt.size) * cx.opt.size);  // a degenerate face
+  for (size_t f = 0; f < t.size(); ++f) {
+    const double a_in = area(cx.param, cx.param.uv_faces[f]), a_out = area(p, p.uv_faces[f]);
+    if (a_in > tiny && a_out > tiny) t[f] = cx.opt.size * std::sqrt(a_out / a_in);
+  }
+  return t;
+}
+
+/// \p start (a layout of the output square, here the whole-layout warp) with every island warped in
+/// place, inside its own bounding box, towards its detail at its faces' own texel spacing, gently
+/// (density ratio kGentleWarpRatio: \p start is already adapted), halved towards \p start until no face
+/// flips and no more texels are covered by two islands than in \p start (else not a candidate).
+Built warped_in_place(const Context& cx, const std::string& name, const Parameterization& start,
+                      const ErrorCurves& curves) {
+  constexpr double kGentleWarpRatio = 1.5;
+  constexpr int kHalvings = 3;
+  const std::vector<double> texels(cx.islands, cx.opt.size), per_face = face_texels(cx, start);
+  const long shared = shared_island_texels(start, cx.face_island, cx.islands, cx.opt.size);
+  std::vector<double> blend;
+  const Parameterization full = warp_islands(cx.samples, curves, start, cx.face_island, cx.islands, texels, per_face,
+                                             std::min(kGentleWarpRatio, cx.opt.island_warp_ratio), false, &blend);
+  Parameterization p = full;
+  for (int k = 0; k <= kHalvings; ++k) {
+    const double t = std::ldexp(1.0, -k);
+    for (size_t w = 0; w < p.uv.size(); ++w) p.uv[w] = start.uv[w] + t * (full.uv[w] - start.uv[w]);
+    if (layout_stats(cx.mesh, cx.param, p, cx.param.face_chart, cx.opt.size).flipped == 0 &&
+        shared_island_texels(p, cx.face_island, cx.islands, cx.opt.size) <= shared)
+      return cx.fitted(name, std::move(p));
+  }
+  Built none;
+  none.info.name = name;
+  none.info.valid = false;
+  return none;
 }
 
 /// The density-flow warp of the whole layout (adapt.h, no refinement: the input's faces), for layouts
@@ -234,13 +289,13 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& i
   }
   cands.push_back(cx.fitted("artist", param));
   report_progress(options.progress, "pack", 0);
+  ErrorCurves curves;  // the error model, when a budget was made
   if (!isl.tiling) {
     const std::vector<double> area = island_areas(cx.layout, cx.face_island, cx.islands, R);
     Built uni = repacked(cx, "repacked", std::vector<double>(cx.islands, 1.0), 0.75, cx.layout);
     bool uni_added = false;
     if (options.budget && uni.info.valid) {
       report_progress(options.progress, "error model", 0);
-      ErrorCurves curves;
       std::vector<double> scales;
       cands.push_back(budgeted(cx, uni, area, &res.predicted_gain_db, &curves, &scales));
       if (options.island_warp && cands.back().info.valid) {  // warp the better of the two rigid layouts
@@ -259,6 +314,8 @@ ShrinkResult shrink_textured_mesh(const TriMesh& mesh, const Parameterization& i
     report_progress(options.progress, "warp", 0);
     cands.push_back(warped(cx, layout_stats(mesh, param, param, isl.face_chart, N)));
   }
+  if (options.island_warp && !curves.spacing.empty() && cands.back().info.name == "warped" && cands.back().info.valid)
+    cands.push_back(warped_in_place(cx, "warped_islands", cands.back().param, curves));
   // The best valid candidate by measured PSNR (downsizing is always valid: the floor).
   size_t best = 0;
   for (size_t c = 0; c < cands.size(); ++c) {

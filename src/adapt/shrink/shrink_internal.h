@@ -44,6 +44,10 @@ class SampleSet {
 std::vector<double> island_areas(const Parameterization& layout, const std::vector<int>& face_island,
                                  int num_islands, int resolution);
 
+/// Texels (centres at resolution², wrapped) covered by faces of two or more islands.
+long shared_island_texels(const Parameterization& layout, const std::vector<int>& face_island, int num_islands,
+                          int resolution);
+
 /// Per island: the mean squared reconstruction error of every map (weighted by kind) over surface
 /// samples, as a function of the texel spacing h of a box-downsized, bilinearly reconstructed copy.
 struct ErrorCurves {
@@ -78,13 +82,14 @@ double sample_error(const ErrorCurves& curves, size_t k, double h);
 /// \pre curves measured on \p set; \p layout is the set's layout shifted (shifted_layout()); max_ratio >= 1.
 Parameterization warp_islands(const SampleSet& set, const ErrorCurves& curves, const Parameterization& layout,
                               const std::vector<int>& face_island, int num_islands,
-                              const std::vector<double>& texels, double max_ratio, std::vector<double>* blend);
+                              const std::vector<double>& texels, const std::vector<double>& face_texels,
+                              double max_ratio, bool measured, std::vector<double>* blend);
 
 /// Relative island scales (s_i: new UV size / input UV size, up to one common factor) minimising
 /// Σ weight_i · e_i(1 / (size · s_i)) under Σ area_i · s_i² = budget (equal marginal gain), with
 /// s_i within [1/ratio, ratio] of the uniform scale sqrt(budget / Σ area_i).
 std::vector<double> allocate_island_scales(const ErrorCurves& curves, const std::vector<double>& area,
-                                           double budget, int size, double max_ratio);
+                                           double budget, double size, double max_ratio);
 
 /// Placement of one island: its texel coordinates in the output are rotate_k(sigma · uv) + offset
 /// (uv in the shifted input layout), where rotate_k turns by k · 90° counter-clockwise; divided by
