@@ -180,6 +180,7 @@ int repair_nonmanifold(TriMesh& mesh, std::vector<int>& vertex_source) {
     ec = build_edges(mesh);
     manifold = is_manifold(mesh, ec);
   }
+  ec = EdgeConnectivity();
   if (!manifold) {
     added += detach_excess_faces(mesh, vertex_source);
     added += split_nonmanifold(mesh, build_edges(mesh), vertex_source);
