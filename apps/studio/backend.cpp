@@ -23,6 +23,7 @@
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/export.h"
 #include "adaptex/paint/painter.h"
+#include "adaptex/paint/tangent_frame.h"
 #include "adaptex/paint/texel_map.h"
 #include "adaptex/param/unwrap.h"
 
@@ -158,22 +159,11 @@ std::array<int, 4> Canvas::add_dab(const Vec3& c) { return impl_->painter->add_d
 void Canvas::end_stroke() { impl_->painter->end_stroke(); }
 const ImageRGBA8& Canvas::texture() { return impl_->painter->texture(); }
 
-std::vector<Vec3> smooth_normals(const TriMesh& mesh) {
-  std::vector<Vec3> vn(mesh.positions.size(), Vec3::Zero());
-  for (const Face& f : mesh.faces) {
-    const Vec3 n = (mesh.positions[f[1]] - mesh.positions[f[0]]).cross(mesh.positions[f[2]] - mesh.positions[f[0]]);
-    for (int v : f) vn[size_t(v)] += n;
-  }
-  for (Vec3& n : vn)
-    if (n.norm() > 0) n.normalize();
-  return vn;
-}
-
 namespace {
 /// The input's smooth normals at the vertices of its refinement (parent_face: input face of every
 /// refined face), interpolated with the vertex's barycentric coordinates in that face.
 std::vector<Vec3> refined_normals(const TriMesh& input, const TriMesh& refined, const FaceData<int>& parent_face) {
-  const std::vector<Vec3> vn = smooth_normals(input);
+  const std::vector<Vec3> vn = vertex_normals(input);
   std::vector<Vec3> out(refined.positions.size(), Vec3::Zero());
   std::vector<char> done(refined.positions.size(), 0);
   for (size_t c = 0; c < refined.faces.size(); ++c) {

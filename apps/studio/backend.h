@@ -32,10 +32,6 @@ namespace adaptex::studio {
 /// \throw IoError, InvalidInputError, TopologyError (one-line messages naming the file)
 TriMesh load_mesh(const std::string& path);
 
-/// Smooth vertex normals of \p mesh (area-weighted face normals), size V, unit length (zero for an
-/// isolated vertex).
-std::vector<Vec3> smooth_normals(const TriMesh& mesh);
-
 /// Initial parameterization (adaptex::unwrap) for a \p texture_size² texture with \p padding texels of
 /// seam padding: adaptex::unwrap_options_for_texture(), as `adaptex paint --size N --padding P`.
 /// \throw CancelledError when \p progress returns false

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "adaptex/paint/tangent_frame.h"
+
 #include "backend.h"
 
 namespace adaptex::studio {
@@ -121,7 +123,7 @@ GlRenderer::~GlRenderer() {
 void GlRenderer::set_mesh(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>* normals) {
   Impl& I = *impl_;
   // One vertex per wedge: position, normal, uv.
-  const std::vector<Vec3> own = normals ? std::vector<Vec3>() : smooth_normals(mesh);
+  const std::vector<Vec3> own = normals ? std::vector<Vec3>() : vertex_normals(mesh);
   const std::vector<Vec3>& vn = normals ? *normals : own;
   std::vector<float> vb(size_t(param.num_wedges()) * 8);
   for (int w = 0; w < param.num_wedges(); ++w) {

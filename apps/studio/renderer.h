@@ -31,7 +31,7 @@ class Renderer {
  public:
   virtual ~Renderer() = default;
   /// Uploads the geometry (one vertex per UV wedge, triangles = param.uv_faces) with the vertex
-  /// normals \p normals (size V), or smooth_normals(mesh) when null.
+  /// normals \p normals (size V), or vertex_normals(mesh) (paint/tangent_frame.h) when null.
   virtual void set_mesh(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>* normals) = 0;
   /// Uploads the whole texture.
   virtual void set_texture(const ImageRGBA8& tex) = 0;

@@ -42,7 +42,7 @@ struct Surface {
   std::shared_ptr<const Model> model;
   std::shared_ptr<const TriMesh> mesh;
   std::shared_ptr<const RayCaster> caster;
-  /// Shading normals of a refined mesh (backend.h SessionOutcome::normals); null: smooth_normals(*mesh).
+  /// Shading normals of a refined mesh (backend.h SessionOutcome::normals); null: vertex_normals(*mesh).
   std::shared_ptr<const std::vector<Vec3>> normals;
   std::shared_ptr<const Parameterization> param;
   /// The texture under the strokes on *param: the artist's (model->base) on the atlas, the artist's

@@ -123,7 +123,7 @@ SurfacePsnr surface_psnr(const TriMesh& ref_mesh, const Parameterization& ref_pa
   res.samples = options.samples;
   res.seed = options.seed;
   res.mse = total / static_cast<double>(err_d.size());
-  res.psnr = res.mse < 1e-20 ? 200.0 : 10.0 * std::log10(1.0 / res.mse);
+  res.psnr = psnr_from_mse(res.mse);
   if (options.keep_sample_errors) {
     res.sample_errors.assign(err_d.begin(), err_d.end());
     res.points = ref_pts;

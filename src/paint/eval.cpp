@@ -94,7 +94,7 @@ EvalResult evaluate_texture(const TriMesh& mesh, const Parameterization& param, 
   res.samples = options.samples;
   res.seed = options.seed;
   res.mse = total / (3.0 * static_cast<double>(pts.size()));
-  res.psnr = res.mse < 1e-20 ? 200.0 : 10.0 * std::log10(1.0 / res.mse);
+  res.psnr = psnr_from_mse(res.mse);
   return res;
 }
 
@@ -108,5 +108,7 @@ double reconstruction_mse(const Parameterization& param, const ImageRGBA8& textu
   const double total = squared_error_sum(param, texture, points, [&](size_t k) { return exact[k]; });
   return total / (3.0 * static_cast<double>(points.size()));
 }
+
+double psnr_from_mse(double mse) { return mse < 1e-20 ? 200.0 : 10.0 * std::log10(1.0 / mse); }
 
 }  // namespace adaptex

@@ -1,10 +1,9 @@
 /// \file material_eval.cpp
 /// Every channel of a material's textures against the exact material on surface samples; the
-/// height judged through its shading normal, from central differences of the exact height.
+/// height judged through its shading normal, from forward differences of the exact height.
 #include "adaptex/paint/material_eval.h"
 
 #include <cmath>
-#include <limits>
 
 #include <tbb/parallel_for.h>
 
@@ -68,10 +67,6 @@ void check_inputs(const TriMesh& mesh, const Parameterization& param, const Mate
 }
 
 }  // namespace
-
-double psnr_from_mse(double mse) {
-  return mse > 0 ? 10 * std::log10(1 / mse) : std::numeric_limits<double>::infinity();
-}
 
 MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
                                          const MaterialTextures& textures, const MaterialStrokeFile& file,

@@ -34,6 +34,9 @@ struct EvalResult {
   std::uint64_t seed = 0;
 };
 
+/// PSNR in dB of an MSE of values in [0,1]: 10 log10(1 / mse), 200 when mse < 1e-20 (exact).
+double psnr_from_mse(double mse);
+
 /// K points uniformly distributed by surface area (face chosen with probability area/total, then a
 /// uniform point in the face). Sample k depends only on (seed, k): reproducible and parallel.
 /// \pre mesh has at least one face of positive area. \throw InvalidInputError otherwise

@@ -7,6 +7,7 @@
 
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
+#include "adaptex/paint/eval.h"  // psnr_from_mse()
 #include "adaptex/paint/material_paint.h"
 
 namespace adaptex {
@@ -35,9 +36,6 @@ struct MaterialError {
   /// error model's sum of planes (data plane (roughness, metallic, alpha) is one 3-vector there).
   double weighted = 0;
 };
-
-/// PSNR in dB of an MSE of values in [0,1] (infinity for 0).
-double psnr_from_mse(double mse);
 
 /// Judges every channel of \p textures on \p param of \p mesh against the exact material of \p file
 /// (evaluate_material()) at options.samples area-uniform surface points: uv interpolated from the

@@ -64,7 +64,7 @@ double SampleSet::psnr(size_t m, const Parameterization& param, const ImageRGBA8
   double total = 0;
   for (double e : err) total += e;  // fixed order: the same sum whatever the thread count
   const double mse = total / static_cast<double>(std::max<size_t>(K, 1));
-  return mse < 1e-20 ? 200.0 : 10.0 * std::log10(1.0 / mse);
+  return psnr_from_mse(mse);
 }
 
 }  // namespace adaptex::shrink_detail
