@@ -76,16 +76,29 @@ std::size_t skip_scan_data(const std::string& bytes, std::size_t at) {
 
 /// The Huffman tables of a DHT segment [begin, end): each a class/id byte, 16 code counts and as many
 /// symbols as the counts sum to, at most 256 (stb_image builds its code table in 257 entries: a larger
-/// sum writes past it, found by fuzz_jpeg under UBSan).
+/// sum writes past it, found by fuzz_jpeg under UBSan). A 256th code of at most 9 bits is refused too:
+/// stb's 9-bit lookup table marks "no short code" with index 255, so it would decode that code as
+/// another symbol of another length (its assertion fired under fuzz_jpeg). Real tables hold at most
+/// 162 symbols.
 void check_huffman_tables(const std::string& bytes, std::size_t begin, std::size_t end, const std::string& corrupt) {
+  constexpr int kStbFastBits = 9;
   std::size_t p = begin;
   while (p < end) {
     if (p + 17 > end) throw IoError(corrupt + "truncated Huffman table (DHT) at byte " + std::to_string(p));
     std::size_t codes = 0;
-    for (int k = 1; k <= 16; ++k) codes += static_cast<unsigned char>(bytes[p + k]);
+    int longest = 0;
+    for (int k = 1; k <= 16; ++k) {
+      const unsigned count = static_cast<unsigned char>(bytes[p + k]);
+      codes += count;
+      if (count > 0) longest = k;
+    }
     if (codes > 256)
       throw IoError(corrupt + "a Huffman table (DHT) at byte " + std::to_string(p) + " with " + std::to_string(codes) +
                     " codes (at most 256)");
+    if (codes == 256 && longest <= kStbFastBits)
+      throw IoError(corrupt + "a Huffman table (DHT) at byte " + std::to_string(p) +
+                    " whose 256th code has only " + std::to_string(longest) + " bits (the decoder needs more than " +
+                    std::to_string(kStbFastBits) + ")");
     p += 17 + codes;
   }
   if (p != end) throw IoError(corrupt + "a Huffman table (DHT) runs past its segment");

@@ -90,5 +90,37 @@ TEST(ImageIo, Errors) {
   EXPECT_THROW(write_png(dir.path / "no" / "dir" / "x.png", gradient(2, 2)), OutputError);
 }
 
+// rgb8x8.jpg with one more (unused) DC table, id 3, of 256 codes: 255 of 8 bits and one of \p last_bits.
+std::string jpeg_with_256_code_table(int last_bits) {
+  std::ifstream in(std::filesystem::path(ADAPTEX_SOURCE_DIR) / "tests/fuzz/seeds/jpeg/rgb8x8.jpg", std::ios::binary);
+  const std::string jpeg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t length = 2 + 17 + 256;
+  std::string dht = {'\xFF', '\xC4', static_cast<char>(length >> 8), static_cast<char>(length & 0xFF), '\x03'};
+  std::string counts(16, '\0');
+  counts[7] = static_cast<char>(255);
+  counts[last_bits - 1] = 1;
+  dht += counts;
+  for (int s = 0; s < 256; ++s) dht += static_cast<char>(s);
+  return jpeg.substr(0, 2) + dht + jpeg.substr(2);
+}
+
+TEST(ImageIo, RefusesHuffmanTablesTheDecoderMisreads) {
+  // stb_image marks "no code of at most 9 bits" with symbol index 255 in its lookup table: a 256th
+  // code that short is decoded as another symbol (its assertion fired under fuzz_jpeg).
+  try {
+    read_image_from_memory(jpeg_with_256_code_table(9), "short.jpg");
+    FAIL();
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("short.jpg: corrupt JPEG: a Huffman table (DHT)"), std::string::npos)
+        << e.what();
+  }
+  // The same table with a 10-bit 256th code is read, and the image decodes as before.
+  const auto ok = read_image_from_memory(jpeg_with_256_code_table(10), "long.jpg");
+  const auto reference =
+      read_image(std::filesystem::path(ADAPTEX_SOURCE_DIR) / "tests/fuzz/seeds/jpeg/rgb8x8.jpg");
+  EXPECT_EQ(ok.width, 8);
+  EXPECT_EQ(ok.data, reference.data);
+}
+
 }  // namespace
 }  // namespace adaptex
