@@ -303,6 +303,7 @@ double texture_psnr(const TriMesh& mesh, const Parameterization& param, const Im
 }
 
 StrokeFile load_strokes(const std::filesystem::path& path) { return read_strokes(path); }
+AnyStrokeFile load_any_strokes(const std::filesystem::path& path) { return read_any_strokes(path); }
 
 void save_strokes(const std::filesystem::path& path, const StrokeFile& file) {
   AtomicOutput out;

@@ -203,6 +203,8 @@ double texture_psnr(const TriMesh& mesh, const Parameterization& param, const Im
 
 /// Reads a stroke file (strict, adaptex::read_strokes). \throw IoError, InvalidInputError
 StrokeFile load_strokes(const std::filesystem::path& path);
+/// Reads a stroke file of version 1 or 2 (adaptex::read_any_strokes). \throw IoError, InvalidInputError
+AnyStrokeFile load_any_strokes(const std::filesystem::path& path);
 /// Writes a stroke file atomically (adaptex::write_strokes). \throw OutputError
 void save_strokes(const std::filesystem::path& path, const StrokeFile& file);
 /// Writes OBJ + MTL + PNG into \p dir as NAME.obj/.mtl/.png, atomically. \throw OutputError

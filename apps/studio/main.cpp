@@ -134,7 +134,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
                  "Mesh file to open (OBJ, OFF, PLY, STL, glTF), builtin:trefoil|sphere|torus|plane, or a project "
                  "(.adaptex, or a project .json)");
   cli.add_option("--project", c.project, "Open a project file (.adaptex or .json)");
-  cli.add_option("--replay", c.replay, "Replay a stroke file onto the mesh");
+  cli.add_option("--replay", c.replay, "Replay a stroke file onto the mesh (version 2: open it as the layered material)");
   cli.add_option("--screenshot", c.screenshot, "Write a PNG of the window on the last scripted frame");
   cli.add_option("--exit-after-frames", c.exit_after,
                  "Quit after K frames once the model is loaded and the texture is up to date");
@@ -329,7 +329,11 @@ int configure(App& app, const CommandLine& c) {
   app.recover_at_start();
   if (c.replay.empty()) return 0;
   try {
-    app.replay(load_strokes(c.replay));
+    AnyStrokeFile any = load_any_strokes(c.replay);  // version 2: opened as the layered document
+    if (const StrokeFile* v1 = std::get_if<StrokeFile>(&any))
+      app.replay(*v1);
+    else
+      app.open_material(std::get<MaterialStrokeFile>(std::move(any)));
   } catch (const std::exception& e) {
     std::cerr << "adaptex-studio: " << e.what() << "\n";
     return 2;

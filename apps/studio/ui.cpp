@@ -7,6 +7,7 @@
 #include <imgui_stdlib.h>
 
 #include <algorithm>
+#include <functional>
 #include <iostream>
 #include <vector>
 
@@ -227,6 +228,7 @@ float StudioUi::menu_bar(App& app) {
     ImGui::MenuItem("Texel-density checker", "C", &app.view().checker);
     if (ImGui::MenuItem("Fixed layout", "L", app.view().fixed_layout)) app.toggle_fixed_layout();
     ImGui::MenuItem("Inspect panel", nullptr, &show_inspect_);
+    ImGui::MenuItem("Layers and channels", nullptr, &show_material_);
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Help")) {
@@ -434,6 +436,10 @@ void StudioUi::brush_panel(App& app) {
   ImGui::SameLine();
   ImGui::RadioButton("Pick (I)", &tool, 2);
   b.tool = Tool(tool);
+  ImGui::Checkbox("Layers and channels", &show_material_);
+  tooltip("The Material window: the layers (add, delete, reorder, hide, opacity, blend mode) and the "
+          "channels the brush paints (base colour, roughness, metallic, height)");
+  trace("Layers and channels");
   float c[3] = {float(b.color.x()), float(b.color.y()), float(b.color.z())};
   if (ImGui::ColorEdit3("Colour", c)) b.color = Vec3(c[0], c[1], c[2]);
   float h = float(b.hardness), o = float(b.opacity), s = float(b.spacing);
@@ -472,11 +478,14 @@ void StudioUi::trace(const char* id) {
 }
 
 void StudioUi::material_window(App& app, float top) {
-  if (!app.has_model()) return;
+  if (app.layered() && !shown_layered_) show_material_ = true;  // opens when the document becomes layered
+  shown_layered_ = app.layered();
+  if (!app.has_model() || !show_material_) return;
   const float w = kMaterialWidth;
   ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - w, top), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(w, 0), ImGuiCond_Always);
-  ImGui::Begin("Material", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  ImGui::Begin("Material", &show_material_,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   ImGui::PushItemWidth(-ImGui::CalcTextSize("Roughness ").x);
   if (ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen)) layers_panel(app);
   if (ImGui::CollapsingHeader("Brush channels", ImGuiTreeNodeFlags_DefaultOpen)) channels_panel(app);
@@ -490,52 +499,57 @@ void StudioUi::layers_panel(App& app) {
   if (!app.material()) single.layers.push_back(MaterialLayer{"Layer 1", true, 1, BlendMode::Normal, {}, {}});
   const MaterialStrokeFile& file = app.material() ? app.material()->file() : single;
   const int n = int(file.layers.size()), active = app.material() ? app.material()->active() : n - 1;
+  // The edit waits until the panel is drawn: it replaces the document that `file` refers to.
+  std::function<void(MaterialDocument&)> edit;
   for (int i = n - 1; i >= 0; --i) {  // the top layer first, as painting programs list them
     const MaterialLayer& l = file.layers[size_t(i)];
     ImGui::PushID(i);
     bool visible = l.visible;
     if (ImGui::Checkbox("##visible", &visible))
-      app.edit_material([&](MaterialDocument& d) { d.set_visible(i, visible); });
+      edit = [i, visible](MaterialDocument& d) { d.set_visible(i, visible); };
     tooltip("Show or hide the layer");
     trace(("layer " + std::to_string(i + 1) + " visible").c_str());
     ImGui::SameLine();
     char label[160];
-    std::snprintf(label, sizeof label, "%s  (%s, %.0f %%, %zu strokes)", l.name.c_str(), blend_mode_name(l.blend),
+    std::snprintf(label, sizeof label, "%s  (%s, %.0f %%, strokes: %zu)", l.name.c_str(), blend_mode_name(l.blend),
                   100 * l.opacity, app.material() ? l.strokes.size() : app.history().strokes().size());
     if (ImGui::Selectable(label, i == active) && i != active)
-      app.edit_material([&](MaterialDocument& d) { d.set_active(i); });
+      edit = [i](MaterialDocument& d) { d.set_active(i); };
     trace(("layer " + std::to_string(i + 1)).c_str());
     ImGui::PopID();
   }
-  if (ImGui::Button("Add layer")) app.edit_material([](MaterialDocument& d) { d.add_layer(""); });
+  if (ImGui::Button("Add layer")) edit = [](MaterialDocument& d) { d.add_layer(""); };
   trace("Add layer");
   ImGui::SameLine();
   ImGui::BeginDisabled(n < 2);
-  if (ImGui::Button("Delete")) app.edit_material([&](MaterialDocument& d) { d.delete_layer(active); });
+  if (ImGui::Button("Delete")) edit = [active](MaterialDocument& d) { d.delete_layer(active); };
   ImGui::EndDisabled();
   ImGui::SameLine();
   ImGui::BeginDisabled(active >= n - 1);
-  if (ImGui::ArrowButton("##up", ImGuiDir_Up)) app.edit_material([&](MaterialDocument& d) { d.move_layer(active, active + 1); });
+  if (ImGui::ArrowButton("##up", ImGuiDir_Up)) edit = [active](MaterialDocument& d) { d.move_layer(active, active + 1); };
   ImGui::EndDisabled();
   tooltip("Move the layer up");
   ImGui::SameLine();
   ImGui::BeginDisabled(active <= 0);
   if (ImGui::ArrowButton("##down", ImGuiDir_Down))
-    app.edit_material([&](MaterialDocument& d) { d.move_layer(active, active - 1); });
+    edit = [active](MaterialDocument& d) { d.move_layer(active, active - 1); };
   ImGui::EndDisabled();
   tooltip("Move the layer down");
   const MaterialLayer& l = file.layers[size_t(active)];
   float opacity = float(l.opacity);
   // A drag is one undo step: every frame after the first continues it.
   if (ImGui::SliderFloat("Opacity##layer", &opacity, 0.f, 1.f, "%.2f"))
-    app.edit_material([&](MaterialDocument& d) { d.set_opacity(active, double(opacity), !ImGui::IsItemActivated()); });
+    edit = [active, opacity, merge = !ImGui::IsItemActivated()](MaterialDocument& d) {
+      d.set_opacity(active, double(opacity), merge);
+    };
   int blend = int(l.blend);
   const char* modes[] = {"normal", "multiply", "screen", "overlay", "add", "subtract"};
   static_assert(int(BlendMode::Subtract) == 5, "one name per blend mode");
   if (ImGui::Combo("Blend", &blend, modes, 6))
-    app.edit_material([&](MaterialDocument& d) { d.set_blend(active, BlendMode(blend)); });
+    edit = [active, blend](MaterialDocument& d) { d.set_blend(active, BlendMode(blend)); };
   if (!app.layered())
     ImGui::TextDisabled("One base-colour layer: Add layer or another\nchannel makes it a layered material.");
+  if (edit) app.edit_material(edit);
 }
 
 void StudioUi::channels_panel(App& app) {

@@ -97,6 +97,7 @@ class StudioUi {
   std::uint64_t inspect_key_ = ~0ull;  // what the uploaded inspect image shows
   int inspect_frames_ = 0;
   void* inspect_tex_ = nullptr;
+  bool show_material_ = false, shown_layered_ = false;  // the Material window; the document was layered
   bool trace_ = std::getenv("ADAPTEX_STUDIO_UI_TRACE") != nullptr;
   std::map<std::string, std::pair<int, int>> traced_;
   void* compare_tex_[2] = {nullptr, nullptr};

@@ -1254,3 +1254,114 @@ TEST_F(StudioGui, ATexturedModelOpensOnItsAtlasAndAStrokeIsSavedReopenedAndExpor
   EXPECT_GT(moved, 1e-3);
   EXPECT_GE(shared, 16);  // the shared chart's corners, on both squares
 }
+
+// ---- a layered material, painted by hand ------------------------------------------------------
+
+namespace {
+
+/// The centre of widget \p id as the app last traced it (ADAPTEX_STUDIO_UI_TRACE=1), if it has.
+std::optional<std::pair<int, int>> widget(const fs::path& log, const std::string& id) {
+  const std::string text = slurp(log), needle = "adaptex-studio: ui " + id + " at ";
+  const size_t at = text.rfind(needle);
+  if (at == std::string::npos) return std::nullopt;
+  std::istringstream in(text.substr(at + needle.size()));
+  int x = 0, y = 0;
+  if (!(in >> x >> y)) return std::nullopt;
+  return std::make_pair(x, y);
+}
+
+/// Clicks widget \p id where it is now (held across frames, as keys are).
+bool click_widget(const Xvfb& x, const fs::path& log, const std::string& id) {
+  std::optional<std::pair<int, int>> w;
+  if (!wait_for([&] { return (w = widget(log, id)).has_value(); }, 30s)) return false;
+  std::ostringstream cmd;
+  // Long enough that a slow frame (llvmpipe, a composite running) sees the press and the release apart.
+  cmd << "mousemove " << w->first << " " << w->second << " sleep 0.6 mousedown 1 sleep 1.0 mouseup 1 sleep 0.8";
+  return xdo(x, cmd.str()) == 0;
+}
+
+std::string read_file_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPaintWrites) {
+  const fs::path mesh = dir.path / "ball.obj", log = dir.path / "app.log", log2 = dir.path / "app2.log",
+                 hist = dir.path / "ball_strokes.json", project = dir.path / "ball.adaptex", glb = dir.path / "ball.glb",
+                 shot = dir.path / "reopened.png", exp = dir.path / "export", cli = dir.path / "cli";
+  adaptex::write_obj(mesh, adaptex::shapes::sphere(32, 16, 1.0), nullptr);
+  std::vector<std::string> env = x->env();
+  env.push_back("ADAPTEX_STUDIO_UI_TRACE=1");
+  const std::vector<std::string> common = {"--window", "1000x650", "--texture-size", "256", "--config-dir",
+                                           (dir.path / "cfg").string(), "--no-recovery"};
+  std::vector<std::string> args = {ADAPTEX_STUDIO_PATH, mesh.string(), "--history-out", hist.string()};
+  args.insert(args.end(), common.begin(), common.end());
+  pid_t app = spawn(args, env, log);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_ready(log)) << slurp(log);
+  // 1. Base colour (the default red brush) on layer 1: a horizontal drag across the ball.
+  ASSERT_EQ(xdo(*x, paint_drag(330)), 0);
+  // 2. The Material window (Brush panel: Layers and channels); Add layer: layer 2, active. The brush
+  //    paints roughness only: a vertical drag.
+  ASSERT_TRUE(click_widget(*x, log, "Layers and channels"));
+  ASSERT_TRUE(click_widget(*x, log, "Add layer"));
+  ASSERT_TRUE(wait_for([&] { return widget(log, "layer 2 visible").has_value(); }, 30s)) << slurp(log);
+  std::this_thread::sleep_for(1s);  // the panel settles (its hint line goes)
+  ASSERT_TRUE(click_widget(*x, log, "Base colour"));
+  ASSERT_TRUE(click_widget(*x, log, "Roughness"));
+  std::ostringstream vertical;
+  vertical << "mousemove 520 240 sleep 0.3 mousedown 1 sleep 0.2";
+  for (int y = 250; y <= 420; y += 10) vertical << " mousemove 520 " << y << " sleep 0.05";
+  vertical << " sleep 0.2 mouseup 1 sleep 0.5";
+  ASSERT_EQ(xdo(*x, vertical.str()), 0);
+  // 3. Hide layer 2, then undo (the hide, not the stroke: checked in the saved file below).
+  ASSERT_TRUE(click_widget(*x, log, "layer 2 visible"));
+  ASSERT_EQ(xdo(*x, "mousemove 520 500 sleep 0.3 " + hold("ctrl+z") + " sleep 0.5"), 0);
+  // 4. Save As (the suggested ball.adaptex beside the mesh), Export GLB (ball.glb), quit.
+  // Clicked again if a slow frame lost the click (saving and exporting twice write the same files).
+  const auto click_until = [&](const std::string& id, const fs::path& file) {
+    for (int attempt = 0; attempt < 3; ++attempt)
+      if (click_widget(*x, log, id) && wait_for([&] { return fs::exists(file); }, 20s)) return true;
+    return false;
+  };
+  ASSERT_TRUE(click_until("Save As", project)) << slurp(log);
+  ASSERT_TRUE(click_until("Export GLB", glb)) << slurp(log);
+  ASSERT_EQ(terminate(app), 0) << slurp(log);
+
+  // The strokes, as a stroke file of version 2: base colour on layer 1, roughness on layer 2, shown.
+  const nlohmann::json h = read_json(hist);
+  ASSERT_TRUE(h.is_object()) << slurp(log);
+  EXPECT_EQ(h["version"], 2);
+  ASSERT_EQ(h["layers"].size(), 2u) << h.dump();
+  ASSERT_EQ(h["layers"][0]["strokes"].size(), 1u);
+  ASSERT_EQ(h["layers"][1]["strokes"].size(), 1u);
+  EXPECT_TRUE(h["layers"][0]["strokes"][0]["channels"].contains("base_color"));
+  EXPECT_EQ(h["layers"][1]["strokes"][0]["channels"], nlohmann::json({{"roughness", 0.2}}));
+  EXPECT_EQ(h["layers"][1]["visible"], true);
+  const nlohmann::json p = read_json(project);
+  EXPECT_EQ(p["version"], 2);
+  EXPECT_EQ(p["material"]["layers"], h["layers"]);
+
+  // 5. Reopened from the project: the same layers; exported as OBJ on exit.
+  args = {ADAPTEX_STUDIO_PATH, project.string(), "--exit-after-frames", "3", "--screenshot", shot.string(),
+          "--export-obj", exp.string()};
+  args.insert(args.end(), common.begin(), common.end());
+  app = spawn(args, env, log2);
+  ASSERT_GT(app, 0);
+  ASSERT_EQ(wait_exit(app, 300s), 0) << slurp(log2);
+  const adaptex::ImageRGBA8 s = adaptex::read_image(shot);
+  const auto red = mean_rgb(s, 420, 450, 326, 334), white = mean_rgb(s, 420, 450, 200, 210);
+  EXPECT_GT(red[0] - red[1], 80) << red[0] << " " << red[1];  // layer 1's base colour on the drag
+  EXPECT_LT(std::abs(white[0] - white[1]), 25) << white[0] << " " << white[1];  // unpainted above it
+
+  // 6. What `adaptex paint` writes for the saved stroke file: the same GLB and OBJ files, byte for byte.
+  const auto r = adaptex::test::run_cli("paint '" + mesh.string() + "' --strokes '" + hist.string() +
+                                        "' --size 256 -o '" + cli.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file_bytes(glb), read_file_bytes(cli / "ball.glb"));
+  for (const char* f : {"ball.obj", "ball.png", "ball_roughness.png", "ball_metallic.png", "ball_normal.png",
+                        "ball_height.png"})
+    EXPECT_EQ(read_file_bytes(exp / f), read_file_bytes(cli / f)) << f;
+}
