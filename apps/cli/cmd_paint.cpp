@@ -130,14 +130,7 @@ void run_paint_material(PaintCommand& c, const TriMesh& mesh, const MaterialStro
   const MaterialTextures& tex = run.textures;
   const double time_paint = sw.lap();
   AtomicOutput out;
-  ExportOptions obj;
-  obj.glb = false;
-  obj.maps = {{"roughness", tex.roughness}, {"metallic", tex.metallic}, {"normal", tex.normal}, {"height", tex.height}};
-  ExportedFiles files = export_textured_mesh(out, c.outdir, c.name, run.mesh, run.param, tex.base_color, obj);
-  ExportOptions glb;
-  glb.obj = false;
-  glb.maps = {{"metallic_roughness", tex.metallic_roughness}, {"normal", tex.normal}};
-  files.glb = export_textured_mesh(out, c.outdir, c.name, run.mesh, run.param, tex.base_color, glb).glb;
+  const ExportedFiles files = export_material_textures(out, c.outdir, c.name, run.mesh, run.param, tex);
   const nlohmann::json layer_files = c.layers ? write_layer_pngs(out, c, run, material, mo.paint) : nlohmann::json();
   const double time_export = sw.lap();
   nlohmann::json layers = nlohmann::json::array();

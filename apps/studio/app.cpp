@@ -47,7 +47,7 @@ void App::add_message(std::string text, bool error) {
 
 bool App::unsaved() const {
   if (jobs_.loading() && !pending_.from_project && !pending_.strokes.empty()) return true;
-  return store_.unsaved(history().version(), !history().strokes().empty());
+  return store_.unsaved(document_version(), !history().strokes().empty() || layered());
 }
 
 Project App::snapshot() const {
@@ -74,6 +74,13 @@ Project App::snapshot() const {
   else if (session_.schedule != ReparamSchedule::EachStroke && !painting_.on_initial_layout() && adapted_for_)
     p.adapted_strokes = std::min(*adapted_for_, p.strokes.strokes.size());  // undone strokes are gone
   p.camera = camera_;
+  if (jobs_.loading() && !pending_.reload) {
+    p.material = pending_.material;
+    p.active_layer = pending_.active_layer;
+  } else if (material_) {
+    p.material = material_->file();
+    p.active_layer = material_->active();
+  }
   return p;
 }
 
@@ -115,9 +122,12 @@ void App::request_open_file(const std::filesystem::path& p) {
     const auto j = nlohmann::json::parse(text, nullptr, false);
     if (j.is_object() && j.value("format", "") == "adaptex.studio-project") {
       request_open_project(p);
-    } else {
-      replay(parse_strokes(text, p.string(), p.parent_path()));
+    } else if (AnyStrokeFile any = parse_any_strokes(text, p.string(), p.parent_path()); any.index() == 0) {
+      replay(std::get<StrokeFile>(any));
       add_message("replaying " + p.string(), false);
+    } else {
+      open_material(std::get<MaterialStrokeFile>(std::move(any)));
+      add_message("opened the layered material " + p.string(), false);
     }
   } catch (const std::exception& e) {
     add_message(e.what(), true);
@@ -134,7 +144,7 @@ bool App::confirm_save(const std::filesystem::path& path) {
 
 void App::confirm_discard() {
   if (!confirm_) return;
-  store_.discard(history().version());
+  store_.discard(document_version());
   pending_ = PendingLoad();
   const Confirm c = *confirm_;
   confirm_.reset();
@@ -168,7 +178,9 @@ void App::new_scene() {
   jobs_.cancel_load();
   pending_ = PendingLoad();
   painting_.clear();
-  store_.mark_clean(history().version(), {});
+  material_.reset();
+  material_started_.clear();
+  store_.mark_clean(document_version(), {});
   last_cycle_.clear();
   maps_.reset();
   atlas_state_.clear();
@@ -177,6 +189,12 @@ void App::new_scene() {
 }
 
 void App::replay(const StrokeFile& file) {
+  if (material_) {  // onto the active layer
+    edit_material([&](MaterialDocument& d) {
+      for (MaterialStroke& m : material_from_v1(file).layers.front().strokes) d.add_stroke(std::move(m));
+    });
+    return;
+  }
   if (!has_model() || (jobs_.loading() && !pending_.reload)) {  // a re-unwrap keeps the live history
     pending_.strokes.insert(pending_.strokes.end(), file.strokes.begin(), file.strokes.end());
     pending_.background = file.background;
@@ -192,9 +210,7 @@ void App::replay(const StrokeFile& file) {
 void App::add_stroke(Stroke stroke) {
   if (!painting_.surface() || painting_.stroke_open()) throw Error("add_stroke: no model, or a stroke is open");
   validate_stroke(stroke, "added stroke");
-  painting_.push(std::move(stroke));
-  store_.autosave_soon();
-  history_changed();
+  record_stroke(std::move(stroke));
 }
 
 void App::apply_project(Project p, bool from_project, const std::filesystem::path& project_path) {
@@ -205,6 +221,8 @@ void App::apply_project(Project p, bool from_project, const std::filesystem::pat
                          p.camera};
   pending_.unwrap = p.unwrap;
   pending_.adapted_strokes = p.adapted_strokes;
+  pending_.material = std::move(p.material);
+  pending_.active_layer = p.active_layer;
   open_mesh(p.mesh_path);
 }
 
@@ -227,7 +245,7 @@ bool App::save_project(const std::filesystem::path& path) {
     return false;
   }
   const auto file = std::filesystem::absolute(path).lexically_normal();
-  if (!store_.save(file, snapshot(), history().version())) return false;
+  if (!store_.save(file, snapshot(), document_version())) return false;
   note_folder(file);
   if (waiting) {  // once loaded, they are what the file holds
     pending_.from_project = true;
@@ -372,6 +390,9 @@ bool App::adapt_wanted() const {
 bool App::idle() const {
   if (jobs_.busy() || !pending_.strokes.empty()) return false;
   if (!painting_.surface()) return true;
+  if (material_)
+    return material_started_ == material_key() && painting_.surface()->material &&
+           painting_.surface()->generation == material_->version();
   return painting_.in_sync() && !painting_.stale(session_.texture_size) && !adapt_wanted();
 }
 
@@ -399,8 +420,12 @@ std::string App::status_line() const {
       s += ", " + std::to_string(sf->param->num_charts) + " charts, texture " + std::to_string(sf->size) + "^2";
     }
     s += " | " + m.layout;
-    s += " | " + std::to_string(history().strokes().size()) + " strokes, " + std::to_string(history().num_dabs()) +
-         " dabs";
+    if (material_)
+      s += " | " + std::to_string(material_->num_layers()) + " layers, " + std::to_string(material_->num_strokes()) +
+           " strokes, " + std::to_string(material_->file().num_dabs()) + " dabs";
+    else
+      s += " | " + std::to_string(history().strokes().size()) + " strokes, " + std::to_string(history().num_dabs()) +
+           " dabs";
     if (unsaved()) s += " (unsaved)";
   } else {
     s += "no model (drop a mesh file on the window or use Open)";
@@ -545,11 +570,19 @@ Stroke App::brush_style() const {
   s.radius = world_radius();
   s.hardness = brush_.hardness;
   s.opacity = brush_.opacity;
+  // Layered: the canvas previews the base colour until the composite arrives (nothing for a hidden
+  // layer or a brush without base colour).
+  if (material_ && (!(brush_.channels & channel_bit(Channel::BaseColor)) ||
+                    !material_->file().layers[material_->active()].visible))
+    s.opacity = 0;
   return s;
 }
 
 void App::begin_paint() {
   if (!painting_.surface() || painting_.stroke_open()) return;
+  if (!material_ && brush_.channels != channel_bit(Channel::BaseColor) && !edit_material([](MaterialDocument&) {}))
+    return;  // another channel than base colour: the document becomes a layered material
+  if (brush_.channels == 0) return add_message("the brush paints no channel: choose one in the Brush panel", true);
   painting_.catch_up();  // paints redone strokes first, so canvas order == history order
   view_.fixed_layout = false;  // paint on (and look at) the adaptive layout
   const auto h = pick(input_.x(), input_.y());
@@ -583,6 +616,11 @@ void App::paint_dab_at(const Hit& h, const Ray& ray) {
 }
 
 void App::end_paint() {
+  if (material_) {
+    Stroke s = painting_.take_stroke();
+    if (!s.dabs.empty()) record_stroke(std::move(s));
+    return;
+  }
   if (!painting_.end_stroke()) return;
   store_.autosave_soon();
   history_changed();
@@ -608,15 +646,24 @@ void App::update_cursor() {
 }
 
 void App::undo() {
+  if (material_) {
+    if (!painting_.stroke_open() && material_->undo()) material_changed();
+    return;
+  }
   if (painting_.undo()) history_changed();
 }
 
 void App::redo() {
+  if (material_) {
+    if (!painting_.stroke_open() && material_->redo()) material_changed();
+    return;
+  }
   if (painting_.redo()) history_changed();
 }
 
 void App::set_background_colour(const Vec3& bg) {
   if (bg == history().background()) return;
+  if (material_) return add_message("a layered material keeps its background (paint a fill layer instead)", true);
   painting_.history().set_background(bg);
   history_changed();
 }
@@ -645,9 +692,7 @@ void App::project_decal(double opacity) {
   s.image_path = decal_path_;
   s.opacity = opacity;
   s.camera = stencil_ ? stencil_->decal_camera(camera_) : camera_.decal_camera();
-  painting_.push(std::move(s));
-  store_.autosave_soon();
-  history_changed();
+  record_stroke(std::move(s));
   add_message(stencil_ ? "projected the stencil" : "projected the decal from the view", false);
 }
 
@@ -696,6 +741,7 @@ void App::set_unwrap(bool unwrap) {
 }
 
 void App::request_compare() {
+  if (material_) return add_message("the fixed-vs-adaptive comparison is for a single base-colour layer", true);
   if (const Surface* s = painting_.surface()) {
     jobs_.start_compare(*s, history().to_file());
     compare_version_ = history().version();
@@ -703,6 +749,7 @@ void App::request_compare() {
 }
 
 void App::toggle_fixed_layout() {
+  if (material_) return add_message("the fixed layout view is for a single base-colour layer", true);
   view_.fixed_layout = !view_.fixed_layout;
   if (!view_.fixed_layout || !has_model()) return;
   if ((!comparison_ || compare_version_ != history().version()) && !jobs_.comparing()) request_compare();
@@ -733,7 +780,7 @@ void App::start_rebuild(bool adapt) {
 }
 
 void App::maybe_start_rebuild() {
-  if (!painting_.surface() || jobs_.loading()) return;
+  if (!painting_.surface() || jobs_.loading() || maybe_start_material()) return;
   if (jobs_.rebuilding()) {
     // A rebuild for an older history generation (undo / redo meanwhile) is abandoned, not awaited.
     if (jobs_.rebuild_generation() != history().generation()) start_rebuild(false);
@@ -758,7 +805,7 @@ void App::maybe_start_rebuild() {
 
 bool App::adapts_live() const {
   return session_.schedule == ReparamSchedule::EachStroke && adapt_mode() != AdaptMode::None && !on_artist_atlas() &&
-         !history().strokes().empty();
+         !history().strokes().empty() && !material_;
 }
 
 void App::maybe_unwrap_again() {
@@ -781,9 +828,18 @@ void App::finish_load(Job<LoadResult>& job) {
     const auto model = r.model;
     if (model->base) session_.texture_size = model->unwrap_size;  // it may have brought its texture's size
     painting_.set_model(model, std::move(r.surface), std::move(strokes), bg);
+    material_started_.clear();
+    if (!pending.reload) {
+      material_.reset();
+      if (pending.material) {
+        material_.emplace(std::move(*pending.material));
+        if (pending.active_layer >= 0 && pending.active_layer < material_->num_layers())
+          material_->set_active(pending.active_layer);
+      }
+    }
     // Strokes from a project are saved; replayed or recovered ones are not.
-    const bool saved = pending.from_project || (history().strokes().empty() && !pending.recovered);
-    store_.mark_clean(saved ? history().version() : ~0ull, pending.project_path);
+    const bool saved = pending.from_project || (history().strokes().empty() && !material_ && !pending.recovered);
+    store_.mark_clean(saved ? document_version() : ~0ull, pending.project_path);
     last_cycle_.clear();
     maps_.reset();
     atlas_state_.clear();
@@ -878,7 +934,7 @@ void App::poll_jobs() {
     }
   }
   if (auto job = jobs_.finished_load()) finish_load(*job);
-  if (auto job = jobs_.finished_rebuild()) finish_rebuild(*job);
+  if (auto job = jobs_.finished_rebuild()) material_ ? finish_material(*job) : finish_rebuild(*job);
   finish_live();
   maybe_unwrap_again();
   maybe_start_rebuild();
@@ -888,7 +944,7 @@ void App::poll_jobs() {
 
 void App::begin_frame() {
   poll_jobs();
-  store_.autosave_tick(history().version(), unsaved() && has_model(), !painting_.stroke_open(),
+  store_.autosave_tick(document_version(), unsaved() && has_model(), !painting_.stroke_open(),
                        [this] { return snapshot(); });
 }
 
@@ -931,6 +987,7 @@ void App::end_frame() {
 void App::screenshot(const std::filesystem::path& path) { pending_screenshot_ = path; }
 
 void App::save_history(const std::filesystem::path& path) {
+  if (material_) return save_material_strokes(path);
   try {
     save_strokes(path, history().to_file());
     add_message("saved the stroke history to " + path.string(), false);
@@ -959,6 +1016,13 @@ void App::export_obj(const std::filesystem::path& dir) {
   if (!texture()) return add_message("nothing to export", true);
   try {
     const std::string name = std::filesystem::path(mesh_path()).stem().string();
+    if (material_) {
+      const auto m = material_for_export();
+      export_material_obj(dir, name.empty() ? "model" : name, *m->mesh, *m->param, *m->textures);
+      add_message("exported the material as OBJ+MTL+PNG (base colour, roughness, metallic, normal, height) to " +
+                      dir.string(), false);
+      return note_folder(dir);
+    }
     studio::export_obj(dir, name.empty() ? "model" : name, *mesh(), *param(), *texture());
     add_message("exported OBJ+MTL+PNG to " + dir.string(), false);
     note_folder(dir);
@@ -971,6 +1035,12 @@ void App::export_obj(const std::filesystem::path& dir) {
 void App::export_glb(const std::filesystem::path& path) {
   if (!texture()) return add_message("nothing to export", true);
   try {
+    if (material_) {
+      const auto m = material_for_export();
+      export_material_glb(path, *m->mesh, *m->param, *m->textures);
+      add_message("exported the material (glTF metallic-roughness) to " + path.string(), false);
+      return note_folder(path);
+    }
     studio::export_glb(path, *mesh(), *param(), *texture());
     add_message("exported " + path.string(), false);
     note_folder(path);

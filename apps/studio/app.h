@@ -18,6 +18,7 @@
 #include <chrono>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -28,6 +29,7 @@
 #include "camera.h"
 #include "file_browser.h"
 #include "input.h"
+#include "material_doc.h"
 #include "painting.h"
 #include "renderer.h"
 #include "settings.h"
@@ -197,6 +199,29 @@ class App {
   /// The UI changed session_options(): re-parameterize for them (schedule each-stroke).
   void session_options_changed();
 
+  // ---- the layered material (material_doc.h, docs/studio.md "Layers and channels") ----
+  /// The document is a layered material. Until the first layer edit (or a brush painting another
+  /// channel than base colour) it is one base-colour layer: the stroke history (history()), painted
+  /// dab by dab and adapted live. Layered, every change composites the material in the background
+  /// (paint_material_history(): `adaptex paint` for the document as a version 2 file) while the open
+  /// stroke's base colour shows at once on the last composite.
+  bool layered() const { return material_.has_value(); }
+  /// The layered document (null: not layered).
+  const MaterialDocument* material() const { return material_ ? &*material_ : nullptr; }
+  /// The document as a stroke file of version 2 (a base-colour history: one layer, as version 1 reads).
+  MaterialStrokeFile material_file() const;
+  /// Makes the document layered (the history becomes "Layer 1") and applies \p edit to it; an edit
+  /// that throws changes nothing and is reported as an error message. \return success
+  bool edit_material(const std::function<void(MaterialDocument&)>& edit);
+  /// Opens a version 2 stroke file as the document (replacing it; its undo history is dropped).
+  void open_material(MaterialStrokeFile file);
+  /// The strokes as a stroke file of version 2 (write_material_strokes), atomically.
+  void save_material_strokes(const std::filesystem::path& path);
+  bool can_undo() const { return material_ ? material_->can_undo() : history().can_undo(); }
+  bool can_redo() const { return material_ ? material_->can_redo() : history().can_redo(); }
+  /// Version of the document: changes with every stroke, undo, redo and layer edit.
+  std::uint64_t document_version() const;
+
   // ---- recovery files left by sessions that did not end cleanly (recovery.h) ----
   /// Applies AppOptions::recover once the command line's files are opened: Yes recovers the newest
   /// recovery file, No leaves every one untouched (one line each on stderr), Ask leaves them to the UI.
@@ -298,6 +323,8 @@ class App {
     bool relayout = false;         ///< A reload for another layout (set_unwrap()), not a texture size.
     std::optional<bool> unwrap;    ///< The project's layout (else App::unwrap_).
     std::optional<size_t> adapted_strokes;  ///< Project::adapted_strokes.
+    std::optional<MaterialStrokeFile> material;  ///< Project::material.
+    int active_layer = 0;                        ///< Project::active_layer.
   };
 
   void add_message(std::string text, bool error);
@@ -345,6 +372,18 @@ class App {
   /// Uploads what the 3-D view shows: the painted surface, or the fixed layout (toggle_fixed_layout).
   void upload_view();
 
+  // layered material (app_material.cpp)
+  MaterialStroke material_brush_stroke(const Stroke& painted) const;
+  /// Records a finished stroke: on the history, or on the active layer when layered.
+  void record_stroke(Stroke s);
+  void material_changed();
+  /// Starts compositing the document when the canvas is not of its version and options. \return layered
+  bool maybe_start_material();
+  void finish_material(Job<RebuildResult>& job);
+  /// The document's textures for export (computed now when the canvas is not up to date).
+  std::shared_ptr<const MaterialOutcome> material_for_export();
+  std::string material_key() const;
+
   std::unique_ptr<Renderer> renderer_;
   AppOptions options_;
   std::deque<Message> messages_;  // before store_, which reports through add_message()
@@ -383,6 +422,8 @@ class App {
   bool open_dialog_requested_ = false;
   Stats stats_;
   Clock::time_point last_frame_end_ = Clock::now();
+  std::optional<MaterialDocument> material_;
+  std::string material_started_;  // material_key() of the last composite started (empty: none)
   bool quit_ = false;
 };
 

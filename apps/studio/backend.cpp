@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
 #include <fstream>
 #include <functional>
 #include <future>
 
 #include <nlohmann/json.hpp>
 
+#include "adaptex/adapt/material_adapt.h"
 #include "adaptex/adapt/report_json.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/adapt/shrink.h"
@@ -317,14 +319,8 @@ void export_obj(const std::filesystem::path& dir, const std::string& name, const
   out.commit();
 }
 
-void export_glb(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization& param,
-                const ImageRGBA8& texture) {
-  // An artist's atlas may keep charts across the border of [0,1]^2 (as OBJ renderers repeat the
-  // texture): the sampler then repeats too, so the file reads back and looks as the model did.
-  ExportOptions opt;
-  if (std::any_of(param.uv.begin(), param.uv.end(), [](const Vec2& t) { return t.minCoeff() < 0 || t.maxCoeff() > 1; }))
-    opt.wrap = TextureAddress::Repeat;
-  const std::vector<unsigned char> bytes = encode_glb(mesh, param, texture, opt);
+namespace {
+void write_glb_bytes(const std::filesystem::path& path, const std::vector<unsigned char>& bytes) {
   AtomicOutput out;
   const auto tmp = out.add(path);
   {
@@ -333,6 +329,51 @@ void export_glb(const std::filesystem::path& path, const TriMesh& mesh, const Pa
     if (!o) throw OutputError(path.string() + ": write failed");
   }
   out.commit();
+}
+}  // namespace
+
+MaterialOutcome paint_material_history(const std::shared_ptr<const TriMesh>& mesh, const Parameterization& initial,
+                                       const MaterialStrokeFile& file, const PaintSessionOptions& options,
+                                       const ProgressCallback& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  MaterialAdaptOptions mo;
+  mo.paint.size = options.texture_size;
+  mo.paint.padding = options.padding;
+  mo.adapt = options.adapt;
+  if (mo.adapt.mode != AdaptMode::DensityFlow) mo.adapt.mode = AdaptMode::None;
+  mo.adapt.progress = progress;
+  MaterialAdaptResult r = adapt_material(*mesh, initial, file, mo);
+  MaterialOutcome o;
+  o.adapted = r.adapted;
+  const bool same_mesh = r.mesh.faces == mesh->faces && r.mesh.positions == mesh->positions;
+  o.mesh = same_mesh ? mesh : std::make_shared<const TriMesh>(std::move(r.mesh));
+  o.param = std::make_shared<const Parameterization>(std::move(r.param));
+  o.textures = std::make_shared<const MaterialTextures>(std::move(r.textures));
+  o.phase_ms.emplace_back("material",
+                          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  return o;
+}
+
+void export_material_obj(const std::filesystem::path& dir, const std::string& name, const TriMesh& mesh,
+                         const Parameterization& param, const MaterialTextures& textures) {
+  AtomicOutput out;
+  export_material_textures(out, dir, name, mesh, param, textures, true, false);
+  out.commit();
+}
+
+void export_material_glb(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization& param,
+                         const MaterialTextures& textures) {
+  write_glb_bytes(path, encode_glb(mesh, param, textures.base_color, material_export_options(textures, true)));
+}
+
+void export_glb(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization& param,
+                const ImageRGBA8& texture) {
+  // An artist's atlas may keep charts across the border of [0,1]^2 (as OBJ renderers repeat the
+  // texture): the sampler then repeats too, so the file reads back and looks as the model did.
+  ExportOptions opt;
+  if (std::any_of(param.uv.begin(), param.uv.end(), [](const Vec2& t) { return t.minCoeff() < 0 || t.maxCoeff() > 1; }))
+    opt.wrap = TextureAddress::Repeat;
+  write_glb_bytes(path, encode_glb(mesh, param, texture, opt));
 }
 
 void save_png(const std::filesystem::path& path, const ImageRGBA8& img) {

@@ -17,6 +17,7 @@
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
 #include "adaptex/core/progress.h"
+#include "adaptex/paint/material_paint.h"
 #include "adaptex/paint/strokes.h"
 
 namespace adaptex {
@@ -168,6 +169,33 @@ class LiveSession {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// What paint_material_history() produced: the layout and the material's textures on it.
+struct MaterialOutcome {
+  std::shared_ptr<const TriMesh> mesh;  ///< The input mesh, or its refinement (same surface, more faces).
+  std::shared_ptr<const Parameterization> param;
+  std::shared_ptr<const MaterialTextures> textures;
+  bool adapted = false;  ///< The adapted layout was kept (false: \p initial).
+  std::vector<std::pair<std::string, double>> phase_ms;
+};
+
+/// Paints the layered material \p file on \p initial and adapts the layout once to its summed error
+/// model: exactly what `adaptex paint MESH --strokes FILE.json` does for a version 2 file
+/// (adaptex::adapt_material with options.texture_size, options.padding and options.adapt). A layered
+/// material adapts with density-flow or none: another method paints on \p initial (none).
+/// \pre initial is a parameterization of *mesh
+/// \throw CancelledError when \p progress returns false; InvalidInputError bad input
+MaterialOutcome paint_material_history(const std::shared_ptr<const TriMesh>& mesh, const Parameterization& initial,
+                                       const MaterialStrokeFile& file, const PaintSessionOptions& options,
+                                       const ProgressCallback& progress);
+/// Writes the material as `adaptex paint` does: DIR/NAME.obj/.mtl/.png and the roughness, metallic,
+/// normal and height maps, atomically. \throw OutputError, InvalidInputError a bad name
+void export_material_obj(const std::filesystem::path& dir, const std::string& name, const TriMesh& mesh,
+                         const Parameterization& param, const MaterialTextures& textures);
+/// Writes the material's glTF metallic-roughness .glb (the bytes `adaptex paint` writes), atomically.
+/// \throw OutputError
+void export_material_glb(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization& param,
+                         const MaterialTextures& textures);
 
 /// PSNR (dB) of \p texture on \p param against the exact signal of \p history (adaptex eval).
 double texture_psnr(const TriMesh& mesh, const Parameterization& param, const ImageRGBA8& texture,

@@ -3,6 +3,7 @@
 #include "painting.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace adaptex::studio {
 
@@ -39,16 +40,22 @@ bool Painting::accept_rebuilt(std::unique_ptr<Surface> s, int texture_size) {
   // Strokes finished while the job ran, then the open stroke: painted before the swap.
   const auto& strokes = history_.strokes();
   while (s->painted < strokes.size()) s->canvas->paint_stroke(strokes[s->painted++]);
-  if (stroke_open_) {
-    surface_->canvas->end_stroke();
-    s->canvas->begin_stroke(current_);
-    for (const Vec3& d : current_.dabs) s->canvas->add_dab(d);
-  }
+  swap_surface(std::move(s));
+  return true;
+}
+
+bool Painting::accept_material(std::unique_ptr<Surface> s, int texture_size) {
+  if (s->model != model_ || s->size != texture_size) return false;
   swap_surface(std::move(s));
   return true;
 }
 
 void Painting::swap_surface(std::unique_ptr<Surface> s) {
+  if (stroke_open_ && surface_) {  // the open stroke continues on the new canvas
+    surface_->canvas->end_stroke();
+    s->canvas->begin_stroke(current_);
+    for (const Vec3& d : current_.dabs) s->canvas->add_dab(d);
+  }
   const bool new_param = !surface_ || surface_->param != s->param;
   surface_ = std::move(s);
   ++serial_;
@@ -106,6 +113,13 @@ bool Painting::end_stroke() {
   current_ = Stroke();
   if (in_sync_before) surface_->painted = history_.strokes().size();
   return true;
+}
+
+Stroke Painting::take_stroke() {
+  if (!stroke_open_) return Stroke();
+  surface_->canvas->end_stroke();
+  stroke_open_ = false;
+  return std::exchange(current_, Stroke());
 }
 
 bool Painting::undo() { return !stroke_open_ && history_.undo(); }

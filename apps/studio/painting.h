@@ -49,6 +49,12 @@ class Painting {
   void add_dab(const Hit& h, const Ray& ray, int symmetry_axis);
   /// Closes the open stroke. \return true if it had dabs and was recorded in the history.
   bool end_stroke();
+  /// Closes the open stroke without recording it (a layered material records it in its document).
+  /// \return the stroke (no dabs: nothing was painted)
+  Stroke take_stroke();
+  /// Swaps in a layered material's surface \p s if it is for this model and \p texture_size (any
+  /// document version: s->generation); the open stroke is painted on it first. \return swapped
+  bool accept_material(std::unique_ptr<Surface> s, int texture_size);
   /// The last painted dab of the open stroke, if any.
   std::optional<Vec3> last_dab() const { return last_dab_; }
   /// Records a whole stroke (decal); painted by catch_up().

@@ -82,7 +82,7 @@ PaintSessionOptions studio_session_options() {
 void write_project(const std::filesystem::path& path, const Project& p) {
   json j;
   j["format"] = "adaptex.studio-project";
-  j["version"] = 1;
+  j["version"] = p.material ? 2 : 1;  // version 1 readers refuse a layered material, not drop it
   j["mesh"] = p.mesh_path;
   if (!p.project_file.empty()) j["project"] = p.project_file;
   j["strokes"] = strokes_to_json(p.strokes);
@@ -90,7 +90,16 @@ void write_project(const std::filesystem::path& path, const Project& p) {
   j["brush"] = {{"tool", int(b.tool)},       {"color", v3(b.color)},       {"radius", b.radius},
                 {"hardness", b.hardness},    {"opacity", b.opacity},       {"spacing", b.spacing},
                 {"symmetry_axis", b.symmetry_axis}, {"screen_space", b.screen_space},
-                {"pixel_radius", b.pixel_radius}};
+                {"pixel_radius", b.pixel_radius}, {"roughness", b.roughness}, {"metallic", b.metallic},
+                {"height", b.height}};
+  json channels = json::array();
+  for (int c = 0; c < kNumChannels; ++c)
+    if (b.channels & channel_bit(Channel(c))) channels.push_back(channel_name(Channel(c)));
+  j["brush"]["channels"] = channels;
+  if (p.material) {
+    j["material"] = json::parse(material_strokes_json(*p.material));
+    j["active_layer"] = p.active_layer;
+  }
   j["view"] = {{"wireframe", p.view.wireframe}, {"background", v3(p.view.background)}};
   j["adapt"] = session_to_json(p.session);
   j["layout"] = p.unwrap ? "unwrap" : "atlas";
@@ -118,8 +127,10 @@ Project read_project(const std::filesystem::path& path) {
   }
   if (!j.is_object() || !j.contains("format") || j["format"] != "adaptex.studio-project")
     throw InvalidInputError(path.string() + ": not an adaptex.studio-project file");
-  if (!j.contains("version") || j["version"] != 1)
+  if (!j.contains("version") || (j["version"] != 1 && j["version"] != 2))
     throw InvalidInputError(path.string() + ": unsupported project version");
+  if (j["version"] == 2 && !j.contains("material"))
+    throw InvalidInputError(path.string() + ": a project of version 2 needs \"material\"");
   try {
     Project p;
     p.mesh_path = j.at("mesh").get<std::string>();
@@ -129,6 +140,11 @@ Project read_project(const std::filesystem::path& path) {
       throw InvalidInputError(path.string() + ": \"layout\" must be \"atlas\" or \"unwrap\", got \"" + layout + "\"");
     p.unwrap = layout == "unwrap";
     p.strokes = strokes_from_json(j.at("strokes"), path.string(), path.parent_path());
+    if (j.contains("material")) {
+      p.material = parse_material_strokes(j["material"].dump(), path.string() + ": material", path.parent_path());
+      p.active_layer = clamped_int(j, "active_layer", int(p.material->layers.size()) - 1, 0,
+                                   std::max(0, int(p.material->layers.size()) - 1));
+    }
     if (j.contains("adapted_strokes")) {
       const json& a = j["adapted_strokes"];
       if (!a.is_number_unsigned() || a.get<size_t>() > p.strokes.strokes.size())
@@ -147,6 +163,20 @@ Project read_project(const std::filesystem::path& path) {
       p.brush.symmetry_axis = clamped_int(b, "symmetry_axis", -1, -1, 2);
       p.brush.screen_space = b.value("screen_space", p.brush.screen_space);
       p.brush.pixel_radius = b.value("pixel_radius", p.brush.pixel_radius);
+      p.brush.roughness = b.value("roughness", p.brush.roughness);
+      p.brush.metallic = b.value("metallic", p.brush.metallic);
+      p.brush.height = b.value("height", p.brush.height);
+      for (double v : {p.brush.roughness, p.brush.metallic, p.brush.height})
+        if (!(v >= 0 && v <= 1))
+          throw InvalidInputError(path.string() + ": brush: roughness, metallic and height must be in [0, 1]");
+      if (b.contains("channels")) {
+        p.brush.channels = 0;
+        for (const json& c : b.at("channels")) {
+          const auto ch = channel_from_name(c.get<std::string>());
+          if (!ch) throw InvalidInputError(path.string() + ": brush: unknown channel " + c.dump());
+          p.brush.channels |= channel_bit(*ch);
+        }
+      }
       if (!(p.brush.pixel_radius >= 1 && p.brush.pixel_radius <= 1000))
         throw InvalidInputError(path.string() + ": brush: pixel_radius must be in [1, 1000]");
       // The brush paints strokes: the stroke contract's rules (colour, hardness, opacity in [0, 1],

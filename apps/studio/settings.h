@@ -7,6 +7,7 @@
 #include <string>
 
 #include "adaptex/adapt/session.h"
+#include "adaptex/paint/material_strokes.h"
 #include "adaptex/paint/strokes.h"
 #include "camera.h"
 
@@ -35,6 +36,10 @@ struct BrushSettings {
   double opacity = 1.0;
   double spacing = 0.25;  ///< Dab spacing as a fraction of the radius.
   int symmetry_axis = -1; ///< -1 none, 0 = X, 1 = Y, 2 = Z (mirror plane through the box centre).
+  /// Channels a stroke paints (Channel bits; base colour only: the single-layer history). The values:
+  /// color, and these three (alpha is not painted by the studio's brush).
+  unsigned channels = channel_bit(Channel::BaseColor);
+  double roughness = 0.2, metallic = 1.0, height = 0.75;
 };
 
 struct ViewSettings {
@@ -71,6 +76,10 @@ struct Project {
   /// schedule) to the first N strokes, the rest painted on it; reopening adapts to them again. Absent
   /// (older projects, the each-stroke schedule, which adapts to the whole history): not adapted.
   std::optional<size_t> adapted_strokes;
+  /// `"material"` (project version 2): the layered material (a stroke file of version 2) with
+  /// `"active_layer"`; absent: the document is `strokes`, one base-colour layer.
+  std::optional<MaterialStrokeFile> material;
+  int active_layer = 0;
   /// Recovery files only: the project file the strokes belong to (empty: never saved as a project).
   std::string project_file;
 };

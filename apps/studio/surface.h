@@ -48,7 +48,10 @@ struct Surface {
   /// The texture under the strokes on *param: the artist's (model->base) on the atlas, the artist's
   /// fitted onto an adapted atlas; null: the paper colour.
   std::shared_ptr<const ImageRGBA8> base;
-  std::uint64_t generation = 0;  ///< History generation the canvas was built for.
+  /// A layered material's textures on *param (the canvas starts from their base colour); null: a
+  /// single base-colour history painted on the canvas.
+  std::shared_ptr<const MaterialTextures> material;
+  std::uint64_t generation = 0;  ///< History generation (material: document version) the canvas was built for.
   size_t painted = 0;            ///< History strokes painted into the canvas.
   int size = 0;                  ///< Texture width = height.
   std::unique_ptr<Canvas> canvas;  ///< Declared last: destroyed before param / mesh.

@@ -213,6 +213,33 @@ void SurfaceJobs::cancel_load() {
 
 std::unique_ptr<Job<LoadResult>> SurfaceJobs::finished_load() { return take_if_ready(load_); }
 
+void SurfaceJobs::start_material(const Surface& current, std::uint64_t version, MaterialStrokeFile file,
+                                 const PaintSessionOptions& options) {
+  if (rebuild_) retire(std::move(rebuild_));
+  rebuild_adapting_ = options.adapt.mode != AdaptMode::None;
+  rebuild_generation_ = version;
+  rebuild_ = std::make_unique<Job<RebuildResult>>(
+      [model = current.model, version, file = std::move(file), options](Job<RebuildResult>& job) {
+        MaterialOutcome o = paint_material_history(model->mesh, *model->initial, file, options,
+                                                   [&job](std::string_view ph, double f) { return job.progress(ph, f); });
+        RebuildResult r;
+        r.surface = std::make_unique<Surface>();
+        Surface& s = *r.surface;
+        s.model = model;
+        s.mesh = o.mesh;
+        s.caster = o.mesh == model->mesh ? model->caster : std::make_shared<const RayCaster>(*o.mesh);
+        s.param = o.adapted ? o.param : model->initial;
+        s.material = o.textures;
+        const MaterialValue& bg = file.background;
+        s.canvas = std::make_unique<Canvas>(*s.mesh, *s.param, options.texture_size, options.texture_size,
+                                            Vec3(bg[0], bg[1], bg[2]), options.padding, &o.textures->base_color);
+        s.generation = version;
+        s.size = options.texture_size;
+        r.phase_ms = std::move(o.phase_ms);
+        return r;
+      });
+}
+
 void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation, StrokeFile history,
                                 const PaintSessionOptions& options, bool adapt) {
   if (rebuild_) retire(std::move(rebuild_));

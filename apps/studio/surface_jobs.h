@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "adaptex/adapt/session.h"
+#include "adaptex/paint/material_strokes.h"
 #include "adaptex/paint/strokes.h"
 #include "jobs.h"
 #include "live_adaptation.h"
@@ -53,6 +54,11 @@ class SurfaceJobs {
   /// initial layout with \p options (the layout then depends on the history only).
   void start_rebuild(const Surface& current, std::uint64_t generation, StrokeFile history,
                      const PaintSessionOptions& options, bool adapt);
+  /// Starts painting the layered material \p file (document version \p version) in the rebuild slot,
+  /// replacing a running rebuild: paint_material_history() from the model's initial layout with
+  /// \p options (adapted unless options.adapt.mode is none); the canvas starts from its base colour.
+  void start_material(const Surface& current, std::uint64_t version, MaterialStrokeFile file,
+                      const PaintSessionOptions& options);
   bool rebuilding() const { return rebuild_ != nullptr; }
   /// Cancels the running rebuild (retired: never waited for).
   void cancel_rebuild() {

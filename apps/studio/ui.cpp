@@ -143,6 +143,7 @@ void StudioUi::draw(App& app) {
   if (app.view().show_ui) {
     const float menu_h = menu_bar(app);
     side_panel(app, menu_h);
+    material_window(app, menu_h);
     if (show_inspect_) inspect_window(app, menu_h);
     if (app.view().show_help) help_window(app);
     if (app.take_open_dialog_request()) choose(app, FileKind::OpenMesh);
@@ -209,8 +210,8 @@ float StudioUi::menu_bar(App& app) {
     ImGui::EndMenu();
   }
   if (ImGui::BeginMenu("Edit")) {
-    if (ImGui::MenuItem("Undo", "Ctrl+Z", false, app.history().can_undo())) app.undo();
-    if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, app.history().can_redo())) app.redo();
+    if (ImGui::MenuItem("Undo", "Ctrl+Z", false, app.can_undo())) app.undo();
+    if (ImGui::MenuItem("Redo", "Ctrl+Shift+Z", false, app.can_redo())) app.redo();
     ImGui::Separator();
     if (ImGui::MenuItem("Brush", "B", app.brush().tool == Tool::Brush)) app.brush().tool = Tool::Brush;
     if (ImGui::MenuItem("Eraser", "E", app.brush().tool == Tool::Eraser)) app.brush().tool = Tool::Eraser;
@@ -392,19 +393,21 @@ void StudioUi::file_panel(App& app) {
   follow_suggestion(glb_path_, suggested_glb_, app.suggested_path(FileKind::ExportGlb).string());
   if (path_row("##project", "project file (.adaptex)", project_path_, "Save As", Focus::ProjectPath))
     app.save_project(project_path_);
+  trace("Save As");
   if (ImGui::Button("Save (Ctrl+S)")) save(app);
   ImGui::SameLine();
   if (ImGui::Button("Open project")) app.request_open_project(project_path_);
   if (path_row("##obj", "export folder", export_dir_, "Export OBJ")) app.export_obj(export_dir_);
   if (path_row("##glb", "GLB file", glb_path_, "Export GLB")) app.export_glb(glb_path_);
+  trace("Export GLB");
   if (path_row("##png", "screenshot PNG", screenshot_path_, "Screenshot")) app.screenshot(screenshot_path_);
   if (path_row("##decal", "decal image (PNG)", decal_path_, "Load decal", Focus::DecalPath)) app.load_decal(decal_path_);
   if (app.decal_image()) stencil_controls(app);
-  ImGui::BeginDisabled(!app.history().can_undo());
+  ImGui::BeginDisabled(!app.can_undo());
   if (ImGui::Button("Undo")) app.undo();
   ImGui::EndDisabled();
   ImGui::SameLine();
-  ImGui::BeginDisabled(!app.history().can_redo());
+  ImGui::BeginDisabled(!app.can_redo());
   if (ImGui::Button("Redo")) app.redo();
   ImGui::EndDisabled();
 }
@@ -456,6 +459,107 @@ void StudioUi::brush_panel(App& app) {
   Vec3 bg = app.history().background();
   float pb[3] = {float(bg.x()), float(bg.y()), float(bg.z())};
   if (ImGui::ColorEdit3("Paper", pb, ImGuiColorEditFlags_NoInputs)) app.set_background_colour(Vec3(pb[0], pb[1], pb[2]));
+}
+
+void StudioUi::trace(const char* id) {
+  if (!trace_) return;
+  const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+  const std::pair<int, int> at{int(0.5f * (a.x + b.x)), int(0.5f * (a.y + b.y))};
+  auto [it, added] = traced_.emplace(id, at);
+  if (!added && it->second == at) return;
+  it->second = at;
+  std::cout << "adaptex-studio: ui " << id << " at " << at.first << " " << at.second << std::endl;
+}
+
+void StudioUi::material_window(App& app, float top) {
+  if (!app.has_model()) return;
+  const float w = kMaterialWidth;
+  ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - w, top), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(w, 0), ImGuiCond_Always);
+  ImGui::Begin("Material", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  ImGui::PushItemWidth(-ImGui::CalcTextSize("Roughness ").x);
+  if (ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen)) layers_panel(app);
+  if (ImGui::CollapsingHeader("Brush channels", ImGuiTreeNodeFlags_DefaultOpen)) channels_panel(app);
+  ImGui::PopItemWidth();
+  ImGui::End();
+}
+
+void StudioUi::layers_panel(App& app) {
+  // Until layered: the history is one base-colour layer (named as material_from_v1 names it).
+  MaterialStrokeFile single;
+  if (!app.material()) single.layers.push_back(MaterialLayer{"Layer 1", true, 1, BlendMode::Normal, {}, {}});
+  const MaterialStrokeFile& file = app.material() ? app.material()->file() : single;
+  const int n = int(file.layers.size()), active = app.material() ? app.material()->active() : n - 1;
+  for (int i = n - 1; i >= 0; --i) {  // the top layer first, as painting programs list them
+    const MaterialLayer& l = file.layers[size_t(i)];
+    ImGui::PushID(i);
+    bool visible = l.visible;
+    if (ImGui::Checkbox("##visible", &visible))
+      app.edit_material([&](MaterialDocument& d) { d.set_visible(i, visible); });
+    tooltip("Show or hide the layer");
+    trace(("layer " + std::to_string(i + 1) + " visible").c_str());
+    ImGui::SameLine();
+    char label[160];
+    std::snprintf(label, sizeof label, "%s  (%s, %.0f %%, %zu strokes)", l.name.c_str(), blend_mode_name(l.blend),
+                  100 * l.opacity, app.material() ? l.strokes.size() : app.history().strokes().size());
+    if (ImGui::Selectable(label, i == active) && i != active)
+      app.edit_material([&](MaterialDocument& d) { d.set_active(i); });
+    trace(("layer " + std::to_string(i + 1)).c_str());
+    ImGui::PopID();
+  }
+  if (ImGui::Button("Add layer")) app.edit_material([](MaterialDocument& d) { d.add_layer(""); });
+  trace("Add layer");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(n < 2);
+  if (ImGui::Button("Delete")) app.edit_material([&](MaterialDocument& d) { d.delete_layer(active); });
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  ImGui::BeginDisabled(active >= n - 1);
+  if (ImGui::ArrowButton("##up", ImGuiDir_Up)) app.edit_material([&](MaterialDocument& d) { d.move_layer(active, active + 1); });
+  ImGui::EndDisabled();
+  tooltip("Move the layer up");
+  ImGui::SameLine();
+  ImGui::BeginDisabled(active <= 0);
+  if (ImGui::ArrowButton("##down", ImGuiDir_Down))
+    app.edit_material([&](MaterialDocument& d) { d.move_layer(active, active - 1); });
+  ImGui::EndDisabled();
+  tooltip("Move the layer down");
+  const MaterialLayer& l = file.layers[size_t(active)];
+  float opacity = float(l.opacity);
+  // A drag is one undo step: every frame after the first continues it.
+  if (ImGui::SliderFloat("Opacity##layer", &opacity, 0.f, 1.f, "%.2f"))
+    app.edit_material([&](MaterialDocument& d) { d.set_opacity(active, double(opacity), !ImGui::IsItemActivated()); });
+  int blend = int(l.blend);
+  const char* modes[] = {"normal", "multiply", "screen", "overlay", "add", "subtract"};
+  static_assert(int(BlendMode::Subtract) == 5, "one name per blend mode");
+  if (ImGui::Combo("Blend", &blend, modes, 6))
+    app.edit_material([&](MaterialDocument& d) { d.set_blend(active, BlendMode(blend)); });
+  if (!app.layered())
+    ImGui::TextDisabled("One base-colour layer: Add layer or another\nchannel makes it a layered material.");
+}
+
+void StudioUi::channels_panel(App& app) {
+  BrushSettings& b = app.brush();
+  auto channel = [&](const char* label, Channel c) {
+    bool on = (b.channels & channel_bit(c)) != 0;
+    if (ImGui::Checkbox(label, &on)) b.channels = on ? b.channels | channel_bit(c) : b.channels & ~channel_bit(c);
+    trace(label);
+    ImGui::SameLine(ImGui::CalcTextSize("Base colour ").x + 40);
+  };
+  channel("Base colour", Channel::BaseColor);
+  float c[3] = {float(b.color.x()), float(b.color.y()), float(b.color.z())};
+  if (ImGui::ColorEdit3("##colour", c, ImGuiColorEditFlags_NoInputs)) b.color = Vec3(c[0], c[1], c[2]);
+  const std::pair<const char*, Channel> scalars[] = {
+      {"Roughness", Channel::Roughness}, {"Metallic", Channel::Metallic}, {"Height", Channel::Height}};
+  for (const auto& [label, ch] : scalars) {
+    channel(label, ch);
+    double& v = ch == Channel::Roughness ? b.roughness : ch == Channel::Metallic ? b.metallic : b.height;
+    float f = float(v);
+    ImGui::PushID(label);
+    if (ImGui::SliderFloat("##value", &f, 0.f, 1.f, "%.2f")) v = f;
+    ImGui::PopID();
+  }
+  if (b.channels == 0) ImGui::TextColored(ImVec4(1, 0.5f, 0.3f, 1), "The brush paints no channel");
 }
 
 void StudioUi::view_panel(App& app) {

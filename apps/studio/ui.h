@@ -6,7 +6,10 @@
 /// Every frame draws the ordinary windows first and then at most one modal, chosen by priority
 /// (which_modal): a question of the App, then a file dialog, then an error.
 #include <cstdint>
+#include <cstdlib>
+#include <map>
 #include <string>
+#include <utility>
 
 #include "adaptex/core/image.h"
 #include "app.h"
@@ -32,7 +35,7 @@ class StudioUi {
   enum class Focus { None, OpenPath, ProjectPath, DecalPath };
   /// Default width of the side panel: 30% of the window within these bounds (its right edge can be
   /// dragged wider, up to 60% of the window).
-  static constexpr float kMinPanelWidth = 300, kPanelWidth = 380;
+  static constexpr float kMinPanelWidth = 300, kPanelWidth = 380, kMaterialWidth = 290;
 
   /// File / Edit / View / Help. \return its height
   float menu_bar(App& app);
@@ -53,6 +56,13 @@ class StudioUi {
   void browser_window(App& app);
   void file_panel(App& app);
   void brush_panel(App& app);
+  /// The Material window (right of the view): the layer panel and the brush's channels.
+  void material_window(App& app, float top);
+  void layers_panel(App& app);
+  void channels_panel(App& app);
+  /// ADAPTEX_STUDIO_UI_TRACE=1: prints "ui: ID at X Y" (the last widget's centre) when it moves, so
+  /// that scripted tests click widgets where they are.
+  void trace(const char* id);
   void stencil_controls(App& app);
   void view_panel(App& app);
   void adapt_panel(App& app);
@@ -87,6 +97,8 @@ class StudioUi {
   std::uint64_t inspect_key_ = ~0ull;  // what the uploaded inspect image shows
   int inspect_frames_ = 0;
   void* inspect_tex_ = nullptr;
+  bool trace_ = std::getenv("ADAPTEX_STUDIO_UI_TRACE") != nullptr;
+  std::map<std::string, std::pair<int, int>> traced_;
   void* compare_tex_[2] = {nullptr, nullptr};
   ImageRGBA8 inspect_img_;
   size_t shown_messages_ = 0;

@@ -80,11 +80,18 @@ std::size_t skip_scan_data(const std::string& bytes, std::size_t at) {
 /// stb's 9-bit lookup table marks "no short code" with index 255, so it would decode that code as
 /// another symbol of another length (its assertion fired under fuzz_jpeg). Real tables hold at most
 /// 162 symbols.
-void check_huffman_tables(const std::string& bytes, std::size_t begin, std::size_t end, const std::string& corrupt) {
+/// Marks each table it holds in \p defined[class][id].
+void check_huffman_tables(const std::string& bytes, std::size_t begin, std::size_t end, const std::string& corrupt,
+                          bool (&defined)[2][4]) {
   constexpr int kStbFastBits = 9;
   std::size_t p = begin;
   while (p < end) {
     if (p + 17 > end) throw IoError(corrupt + "truncated Huffman table (DHT) at byte " + std::to_string(p));
+    const unsigned table_class = byte(bytes, p) >> 4, id = byte(bytes, p) & 15;
+    if (table_class > 1 || id > 3)
+      throw IoError(corrupt + "a Huffman table (DHT) at byte " + std::to_string(p) + " of class " +
+                    std::to_string(table_class) + " and id " + std::to_string(id) + " (class 0-1, id 0-3)");
+    defined[table_class][id] = true;
     std::size_t codes = 0;
     int longest = 0;
     for (int k = 1; k <= 16; ++k) {
@@ -104,10 +111,33 @@ void check_huffman_tables(const std::string& bytes, std::size_t begin, std::size
   if (p != end) throw IoError(corrupt + "a Huffman table (DHT) runs past its segment");
 }
 
+/// The scan header (SOS) whose segment starts at \p at: every Huffman table its decoding reads must be
+/// defined before it (stb_image does not check: it would decode with uninitialized tables, which
+/// fuzz_jpeg found as wild reads). A progressive DC scan reads DC tables only on its first pass, an
+/// AC scan AC tables only; a sequential scan reads both.
+void check_scan_tables(const std::string& bytes, std::size_t at, std::size_t length, bool progressive,
+                       const bool (&defined)[2][4], const std::string& corrupt) {
+  const unsigned components = length >= 3 ? byte(bytes, at + 4) : 0;
+  if (components < 1 || components > 4 || length != 6 + 2 * components)
+    throw IoError(corrupt + "a scan header (SOS) at byte " + std::to_string(at) + " of " + std::to_string(length) +
+                  " bytes for " + std::to_string(components) + " components");
+  const std::size_t tail = at + 5 + 2 * components;
+  const unsigned ss = byte(bytes, tail), ah = byte(bytes, tail + 2) >> 4;
+  const bool dc = !progressive || (ss == 0 && ah == 0), ac = !progressive || ss != 0;
+  for (unsigned c = 0; c < components; ++c) {
+    const unsigned tables = byte(bytes, at + 6 + 2 * c), td = tables >> 4, ta = tables & 15;
+    if ((dc && (td > 3 || !defined[0][td])) || (ac && (ta > 3 || !defined[1][ta])))
+      throw IoError(corrupt + "the scan at byte " + std::to_string(at) + " uses a Huffman table that no DHT defined (" +
+                    (dc ? "DC " + std::to_string(td) : std::string()) + (dc && ac ? ", " : "") +
+                    (ac ? "AC " + std::to_string(ta) : std::string()) + ")");
+  }
+}
+
 ImageHeader check_jpeg(const std::string& bytes, const std::string& name) {
   const std::string corrupt = name + ": corrupt JPEG: ";
   ImageHeader header{"JPEG", 0, 0};
-  bool frame = false, scan = false;
+  bool frame = false, scan = false, progressive = false;
+  bool huffman[2][4] = {};  // DC / AC tables defined so far
   std::uint64_t coded = 0;  // bytes of entropy-coded data
   std::size_t at = 2;
   while (true) {
@@ -134,10 +164,12 @@ ImageHeader check_jpeg(const std::string& bytes, const std::string& name) {
       if (length < 8) throw IoError(corrupt + "frame header of " + std::to_string(length) + " bytes");
       if (frame) throw IoError(corrupt + "more than one frame header (SOF)");
       frame = true;
+      progressive = m == 0xC2 || m == 0xC6 || m == 0xCA || m == 0xCE;
       if (be16(bytes, at + 5) == 0) throw IoError(corrupt + "height 0 (a DNL marker) is not supported");
       header = checked_size("JPEG", be16(bytes, at + 7), be16(bytes, at + 5), name);
     }
-    if (m == 0xC4) check_huffman_tables(bytes, at + 4, at + 2 + length, corrupt);
+    if (m == 0xC4) check_huffman_tables(bytes, at + 4, at + 2 + length, corrupt, huffman);
+    if (m == 0xDA && frame) check_scan_tables(bytes, at, length, progressive, huffman, corrupt);
     at += 2 + length;
     if (m == 0xDA) {  // SOS: entropy-coded data follows
       if (!frame) throw IoError(corrupt + "a scan before the frame header (SOF)");

@@ -525,4 +525,25 @@ ImageRGBA8 draw_uv_layout(const Parameterization& param, const ImageRGBA8* textu
   return img;
 }
 
+ExportOptions material_export_options(const MaterialTextures& tex, bool glb) {
+  ExportOptions o;
+  o.obj = !glb;
+  o.glb = glb;
+  if (glb)
+    o.maps = {{"metallic_roughness", tex.metallic_roughness}, {"normal", tex.normal}};
+  else
+    o.maps = {{"roughness", tex.roughness}, {"metallic", tex.metallic}, {"normal", tex.normal}, {"height", tex.height}};
+  return o;
+}
+
+ExportedFiles export_material_textures(AtomicOutput& out, const fs::path& dir, const std::string& name,
+                                       const TriMesh& mesh, const Parameterization& param,
+                                       const MaterialTextures& tex, bool obj, bool glb) {
+  ExportedFiles files;
+  if (obj) files = export_textured_mesh(out, dir, name, mesh, param, tex.base_color, material_export_options(tex, false));
+  if (glb)
+    files.glb = export_textured_mesh(out, dir, name, mesh, param, tex.base_color, material_export_options(tex, true)).glb;
+  return files;
+}
+
 }  // namespace adaptex

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <sstream>
 
 #include "adaptex/io/input_file.h"
 #include "json_fields.h"
@@ -418,9 +419,8 @@ void put_strokes(std::ostream& os, const std::vector<MaterialStroke>& strokes, b
 
 }  // namespace
 
-void write_material_strokes(const std::filesystem::path& path, const MaterialStrokeFile& file) {
-  std::ofstream os(path, std::ios::binary);
-  if (!os) throw OutputError(path.string() + ": cannot open for writing");
+namespace {
+void put_material_file(std::ostream& os, const MaterialStrokeFile& file) {
   os << "{\n  \"format\": \"adaptex.strokes\",\n  \"version\": 2,\n  \"background\": ";
   put_channels(os, kAllChannels, file.background);
   if (file.height_scale > 0) os << ",\n  \"height_scale\": " << num(file.height_scale);
@@ -439,6 +439,19 @@ void write_material_strokes(const std::filesystem::path& path, const MaterialStr
     os << '}';
   }
   os << (file.layers.empty() ? "]\n}\n" : "\n  ]\n}\n");
+}
+}  // namespace
+
+std::string material_strokes_json(const MaterialStrokeFile& file) {
+  std::ostringstream os;
+  put_material_file(os, file);
+  return os.str();
+}
+
+void write_material_strokes(const std::filesystem::path& path, const MaterialStrokeFile& file) {
+  std::ofstream os(path, std::ios::binary);
+  if (!os) throw OutputError(path.string() + ": cannot open for writing");
+  put_material_file(os, file);
   os.flush();
   if (!os) throw OutputError(path.string() + ": write error");
 }

@@ -104,9 +104,12 @@ TEST(ImageFormats, TruncatedTgaIsRejected) {
   expect_rejects(raw.substr(0, 12), "short.tga", "corrupt TGA: the 18-byte header is missing");
 }
 
-/// A baseline JPEG header claiming \p w x \p h, with a few bytes of scan data and an EOI.
-std::string forged_jpeg(int w, int h) {
+/// A baseline JPEG header claiming \p w x \p h, with a few bytes of scan data and an EOI; with
+/// \p tables, one-code DC 0 and AC 0 Huffman tables before the scan.
+std::string forged_jpeg(int w, int h, bool tables = true) {
   std::string j = "\xFF\xD8";
+  for (const char table : {'\x00', '\x10'})
+    if (tables) j += std::string("\xFF\xC4\x00\x14", 4) + table + '\x01' + std::string(15, '\0') + '\x00';
   j += std::string("\xFF\xC0\x00\x0B\x08", 5);
   j += static_cast<char>(h >> 8);
   j += static_cast<char>(h & 255);
@@ -124,6 +127,9 @@ TEST(ImageFormats, ForgedAndOversizedHeadersAreRejectedBeforeDecoding) {
                  "corrupt JPEG: forged size: 8000x8000 pixels cannot be coded in 16 bytes of scan data");
   expect_rejects(forged_jpeg(9000, 100), "huge.jpg", "JPEG of 9000x100 pixels is larger than the 8192x8192 limit");
   expect_rejects(forged_jpeg(0, 0) , "zero.jpg", "height 0");
+  // A scan whose Huffman tables were never defined (stb_image would decode with uninitialized ones).
+  expect_rejects(forged_jpeg(8, 8, false), "undefined.jpg",
+                 "corrupt JPEG: the scan at byte 15 uses a Huffman table that no DHT defined (DC 0, AC 0)");
   std::string tga = test::tga_bytes(two_halves(4, 4), false);
   tga[12] = static_cast<char>(0x40), tga[13] = static_cast<char>(0x1F);  // width 8000
   tga[14] = static_cast<char>(0x40), tga[15] = static_cast<char>(0x1F);  // height 8000

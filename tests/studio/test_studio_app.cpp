@@ -20,6 +20,7 @@
 #include "adaptex/io/input_file.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/asset_eval.h"
+#include "adaptex/paint/material_paint.h"
 #include "adaptex/paint/painter.h"
 #include "app.h"
 #include "file_browser.h"
@@ -1778,6 +1779,185 @@ TEST(StudioCamera, WheelZoomsTowardsThePointUnderTheCursor) {
   const Vec3 q = h.app->camera().project(p);
   EXPECT_NEAR(q.x(), 5, 1e-4);
   EXPECT_NEAR(q.y(), 5, 1e-4);
+}
+
+// ---- layered material -------------------------------------------------------------------------
+
+MaterialStroke roughness_stroke(double value, const Vec3& at) {
+  MaterialStroke m;
+  m.channels = channel_bit(Channel::Roughness);
+  m.value[channel_offset(Channel::Roughness)] = value;
+  m.radius = 0.2;
+  m.dabs = {at};
+  return m;
+}
+
+TEST(StudioMaterial, LayerEditsAndStrokesUndoAndRedoExactly) {
+  MaterialDocument d;
+  ASSERT_EQ(d.num_layers(), 1);
+  const std::string empty = material_strokes_json(d.file());
+  d.add_stroke(roughness_stroke(0.1, Vec3(1, 0, 0)));
+  d.add_layer("");
+  EXPECT_EQ(d.num_layers(), 2);
+  EXPECT_EQ(d.active(), 1);
+  EXPECT_EQ(d.file().layers[1].name, "Layer 2");
+  d.add_stroke(roughness_stroke(0.9, Vec3(0, 1, 0)));
+  d.set_blend(1, BlendMode::Multiply);
+  d.set_visible(1, false);
+  d.set_opacity(1, 0.7);
+  d.set_opacity(1, 0.5, true);  // a drag: one step
+  d.set_opacity(1, 0.4, true);
+  d.move_layer(1, 0);
+  const std::string full = material_strokes_json(d.file());
+  EXPECT_EQ(d.file().layers[0].name, "Layer 2");
+  EXPECT_EQ(d.file().layers[0].blend, BlendMode::Multiply);
+  EXPECT_FALSE(d.file().layers[0].visible);
+  EXPECT_EQ(d.file().layers[0].opacity, 0.4);
+  EXPECT_EQ(d.file().layers[1].strokes.size(), 1u);
+  // Bad edits change nothing.
+  EXPECT_THROW(d.set_opacity(0, 1.5), InvalidInputError);
+  EXPECT_THROW(d.delete_layer(7), InvalidInputError);
+  EXPECT_THROW(d.add_stroke(roughness_stroke(2.0, Vec3(0, 0, 1))), InvalidInputError);
+  EXPECT_EQ(material_strokes_json(d.file()), full);
+  int undone = 0;
+  while (d.undo()) ++undone;
+  EXPECT_EQ(undone, 7);  // 2 strokes, add, blend, visible, opacity (the drag continued it), move
+  EXPECT_EQ(material_strokes_json(d.file()), empty);
+  while (d.redo()) {
+  }
+  EXPECT_EQ(material_strokes_json(d.file()), full);
+  d.delete_layer(0);
+  EXPECT_EQ(d.num_layers(), 1);
+  EXPECT_THROW(d.delete_layer(0), InvalidInputError);  // the last layer stays
+}
+
+/// The base colour the studio shows is the library's composite of its document on its layout.
+void expect_view_is_the_composite(App& app) {
+  ASSERT_TRUE(app.wait_idle(300));
+  MaterialPaintOptions o;
+  o.size = app.session_options().texture_size;
+  o.padding = app.session_options().padding;
+  const MaterialTextures t = paint_material(*app.mesh(), *app.param(), app.material_file(), o);
+  EXPECT_EQ(max_abs_diff(*app.texture(), t.base_color), 0);
+}
+
+TEST(StudioMaterial, TheHistoryBecomesLayerOneAndTheBrushPaintsItsChannelsOnTheActiveLayer) {
+  Harness h({}, 128);
+  h.app->brush().radius = 0.3;
+  h.drag(150, 150, 250, 150);  // base colour, one layer: the history
+  ASSERT_TRUE(h.app->wait_idle(120));
+  EXPECT_FALSE(h.app->layered());
+  EXPECT_EQ(h.app->material_file().layers.size(), 1u);
+  ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) { d.add_layer(""); }));
+  ASSERT_TRUE(h.app->layered());
+  EXPECT_TRUE(h.app->history().strokes().empty());
+  const MaterialStrokeFile& f = h.app->material()->file();
+  ASSERT_EQ(f.layers.size(), 2u);
+  ASSERT_EQ(f.layers[0].strokes.size(), 1u);
+  EXPECT_EQ(f.layers[0].strokes[0].channels, channel_bit(Channel::BaseColor));
+  expect_view_is_the_composite(*h.app);
+  // Roughness only on layer 2: the view's base colour does not change.
+  const ImageRGBA8 before = *h.app->texture();
+  h.app->brush().channels = channel_bit(Channel::Roughness);
+  h.app->brush().roughness = 0.05;
+  h.drag(150, 120, 250, 180);
+  ASSERT_EQ(h.app->material()->file().layers[1].strokes.size(), 1u);
+  const MaterialStroke& r = h.app->material()->file().layers[1].strokes[0];
+  EXPECT_EQ(r.channels, channel_bit(Channel::Roughness));
+  EXPECT_EQ(r.value[channel_offset(Channel::Roughness)], 0.05);
+  expect_view_is_the_composite(*h.app);
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), before), 0);
+  // Blue multiplied on layer 2 darkens the view; hiding layer 2 shows layer 1 alone again.
+  h.app->brush().channels = channel_bit(Channel::BaseColor) | channel_bit(Channel::Roughness);
+  h.app->brush().color = Vec3(0.1, 0.2, 0.9);
+  ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) { d.set_blend(1, BlendMode::Multiply); }));
+  h.drag(140, 150, 260, 150);
+  expect_view_is_the_composite(*h.app);
+  EXPECT_GT(max_abs_diff(*h.app->texture(), before), 100);
+  ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) { d.set_visible(1, false); }));
+  expect_view_is_the_composite(*h.app);
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), before), 0);
+  h.app->undo();  // layer 2 visible again
+  expect_view_is_the_composite(*h.app);
+  EXPECT_GT(max_abs_diff(*h.app->texture(), before), 100);
+  EXPECT_TRUE(h.app->unsaved());
+}
+
+TEST(StudioMaterial, ProjectsAndRecoveryKeepTheLayersAndOldProjectsOpenAsOneLayer) {
+  TempDir dir;
+  AppOptions opt;
+  opt.recovery_dir = dir.path;
+  opt.autosave_delay = 0.1;
+  std::string saved;
+  {
+    Harness h(opt, 128);
+    h.app->brush().radius = 0.3;
+    h.drag(150, 150, 250, 150);
+    ASSERT_TRUE(h.app->wait_idle(120));
+    ASSERT_TRUE(h.app->save_project(dir.path / "v1.adaptex"));  // a single-layer project: version 1
+    h.app->brush().channels = channel_bit(Channel::Metallic);  // another channel: layered from here
+    h.drag(150, 120, 250, 180);
+    ASSERT_TRUE(h.app->layered());
+    ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) {
+      d.add_layer("Scratches");
+      d.set_opacity(1, 0.6);
+    }));
+    h.app->brush().channels = channel_bit(Channel::Height);
+    h.drag(160, 140, 240, 160);
+    ASSERT_TRUE(h.app->save_project(dir.path / "m.adaptex"));
+    EXPECT_FALSE(h.app->unsaved());
+    saved = material_strokes_json(h.app->material()->file());
+    h.app->brush().channels = channel_bit(Channel::BaseColor);
+    h.drag(150, 200, 250, 200);  // unsaved: goes to the recovery file
+    run_frames_until_exists(*h.app, dir.path / "recovery.json");
+    ASSERT_TRUE(std::filesystem::exists(dir.path / "recovery.json"));
+  }
+  {
+    Harness g({}, 128, "");
+    g.app->open_project(dir.path / "m.adaptex");
+    ASSERT_TRUE(g.app->wait_idle(120));
+    ASSERT_TRUE(g.app->layered());
+    EXPECT_EQ(material_strokes_json(g.app->material()->file()), saved);
+    EXPECT_EQ(g.app->material()->active(), 1);
+    EXPECT_EQ(g.app->brush().channels, channel_bit(Channel::Height));
+    EXPECT_FALSE(g.app->unsaved());
+    expect_view_is_the_composite(*g.app);
+    g.app->open_project(dir.path / "v1.adaptex");
+    ASSERT_TRUE(g.app->wait_idle(120));
+    EXPECT_FALSE(g.app->layered());
+    EXPECT_EQ(g.app->history().strokes().size(), 1u);
+    EXPECT_EQ(g.app->material_file().layers.size(), 1u);
+  }
+  Harness r(opt, 128, "");
+  ASSERT_TRUE(r.app->recovery_offer());
+  r.app->accept_recovery();
+  ASSERT_TRUE(r.app->wait_idle(120));
+  ASSERT_TRUE(r.app->layered());
+  EXPECT_EQ(r.app->material()->file().layers[1].strokes.size(), 2u);  // height, then the unsaved stroke
+  EXPECT_TRUE(r.app->unsaved());
+}
+
+TEST(StudioMaterial, ExportIsAdaptexPaintsForTheSavedVersion2File) {
+  TempDir dir;
+  const auto mesh_path = dir.path / "ball.obj";
+  write_obj(mesh_path, shapes::sphere(32, 16, 1.0), nullptr);
+  Harness h({}, 256, mesh_path.string(), studio_session_options().adapt.mode);
+  h.app->brush().radius = 0.05;
+  h.drag(150, 150, 250, 160);
+  ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) { d.add_layer(""); }));
+  h.app->brush().channels = channel_bit(Channel::Roughness) | channel_bit(Channel::Height);
+  h.drag(190, 90, 210, 210);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  h.app->save_history(dir.path / "m.json");
+  h.app->export_glb(dir.path / "studio.glb");
+  h.app->export_obj(dir.path / "studio");
+  const auto r = test::run_cli("paint '" + mesh_path.string() + "' --strokes '" + (dir.path / "m.json").string() +
+                               "' --size 256 -o '" + (dir.path / "cli").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_input_file(dir.path / "studio.glb"), read_input_file(dir.path / "cli" / "ball.glb"));
+  for (const char* f : {"ball.obj", "ball.png", "ball_roughness.png", "ball_metallic.png", "ball_normal.png",
+                        "ball_height.png"})
+    EXPECT_EQ(read_input_file(dir.path / "studio" / f), read_input_file(dir.path / "cli" / f)) << f;
 }
 
 }  // namespace

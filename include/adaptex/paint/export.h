@@ -13,6 +13,7 @@
 #include "adaptex/core/image.h"
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
+#include "adaptex/paint/material_paint.h"
 #include "adaptex/paint/texture_address.h"
 
 namespace adaptex {
@@ -115,6 +116,22 @@ ExportedFiles export_textured_materials(AtomicOutput& out, const std::filesystem
 /// \throw InvalidInputError inconsistent input; OutputError encoding failed
 std::vector<unsigned char> encode_glb(const TriMesh& mesh, const Parameterization& param,
                                       const ImageRGBA8& texture, const ExportOptions& options = {});
+
+/// Registers a painted layered material (paint_material()) on \p param through \p out, as
+/// `adaptex paint` writes it (docs/export.md): with \p obj DIR/NAME.obj/.mtl/.png (map_Kd) with
+/// NAME_roughness.png (map_Pr), NAME_metallic.png (map_Pm), NAME_normal.png (norm) and
+/// NAME_height.png; with \p glb DIR/NAME.glb, a glTF metallic-roughness material (baseColor,
+/// metallicRoughness packed, normal).
+/// \pre param.uv_faces.size() == mesh.faces.size(), textures of one size
+/// \throw as export_textured_mesh()
+/// The options export_material_textures() writes \p textures with: for the OBJ (\p glb false) the
+/// maps roughness, metallic, normal and height; for the .glb (\p glb true) metallic_roughness and
+/// normal (base colour: the texture argument, textures.base_color). encode_glb() with them gives the
+/// same .glb bytes.
+ExportOptions material_export_options(const MaterialTextures& textures, bool glb);
+ExportedFiles export_material_textures(AtomicOutput& out, const std::filesystem::path& dir, const std::string& name,
+                                       const TriMesh& mesh, const Parameterization& param,
+                                       const MaterialTextures& textures, bool obj = true, bool glb = true);
 
 /// Writes a one-material MTL file (`newmtl`, `Kd 1 1 1`, `map_Kd`; `map_Kd -clamp on` when \p clamp).
 /// Writes \p path directly.

@@ -120,6 +120,8 @@ AnyStrokeFile read_any_strokes(const std::filesystem::path& path);
 /// Reads and parses \p path (decal images relative to its folder).
 /// \throw IoError unreadable file or not JSON; InvalidInputError any content error
 MaterialStrokeFile read_material_strokes(const std::filesystem::path& path);
+/// \p file as the text write_material_strokes() writes (a version 2 stroke file).
+std::string material_strokes_json(const MaterialStrokeFile& file);
 /// Writes \p file as version 2 (shortest round-trip numbers; defaults written explicitly).
 /// \throw OutputError cannot write
 void write_material_strokes(const std::filesystem::path& path, const MaterialStrokeFile& file);

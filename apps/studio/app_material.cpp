@@ -1,0 +1,150 @@
+/// \file app_material.cpp
+/// The layered material of adaptex-studio (see app.h, "the layered material").
+#include <iostream>
+
+#include "adaptex/core/atomic_output.h"
+#include "adaptex/core/errors.h"
+#include "app.h"
+
+namespace adaptex::studio {
+
+std::uint64_t App::document_version() const {
+  // The history is emptied when the document becomes layered (a change of its version too).
+  return history().version() + (material_ ? material_->version() : 0);
+}
+
+MaterialStrokeFile App::material_file() const {
+  return material_ ? material_->file() : material_from_v1(history().to_file());
+}
+
+bool App::edit_material(const std::function<void(MaterialDocument&)>& edit) {
+  if (!has_model()) {
+    add_message("open a mesh first", true);
+    return false;
+  }
+  std::optional<MaterialDocument> doc = material_;
+  if (!doc) doc.emplace(material_file());
+  try {
+    edit(*doc);
+  } catch (const std::exception& e) {
+    add_message(e.what(), true);
+    return false;
+  }
+  if (!material_) {  // the history lives on as the first layer
+    if (painting_.stroke_open()) painting_.take_stroke();
+    jobs_.stop_live();
+    painting_.history().reset({}, history().background());
+    comparison_.reset();
+    view_.fixed_layout = false;
+  }
+  material_ = std::move(doc);
+  material_changed();
+  return true;
+}
+
+void App::open_material(MaterialStrokeFile file) {
+  if (!has_model() || (jobs_.loading() && !pending_.reload)) {  // for the model being loaded
+    pending_.material = std::move(file);
+    pending_.active_layer = int(pending_.material->layers.size()) - 1;
+    pending_.from_project = false;
+    return;
+  }
+  edit_material([&](MaterialDocument& d) { d = MaterialDocument(std::move(file)); });
+}
+
+void App::material_changed() {
+  store_.autosave_soon();
+  maybe_start_material();
+}
+
+std::string App::material_key() const {
+  return std::to_string(material_ ? material_->version() : 0) + " " + session_options_key(session_);
+}
+
+bool App::maybe_start_material() {
+  if (!material_) return false;
+  const Surface* s = painting_.surface();
+  if (!s || jobs_.loading()) return true;
+  // One composite at a time: edits made meanwhile are composited together when it ends.
+  if (jobs_.rebuilding() || material_started_ == material_key()) return true;
+  material_started_ = material_key();
+  jobs_.start_material(*s, material_->version(), material_->file(), session_);
+  return true;
+}
+
+void App::finish_material(Job<RebuildResult>& job) {
+  try {
+    RebuildResult r = job.take();
+    auto phases = std::move(r.phase_ms);
+    // An older version is shown too (closer than the last one); the next composite follows.
+    if (painting_.accept_material(std::move(r.surface), session_.texture_size)) last_cycle_ = std::move(phases);
+  } catch (const CancelledError&) {
+  } catch (const std::exception& e) {
+    add_message(e.what(), true);
+  }
+}
+
+MaterialStroke App::material_brush_stroke(const Stroke& painted) const {
+  MaterialStroke m;
+  m.type = brush_.tool == Tool::Eraser ? MaterialStroke::Type::Erase : MaterialStroke::Type::Brush;
+  m.channels = brush_.channels;
+  m.value[channel_offset(Channel::BaseColor) + 0] = brush_.color.x();
+  m.value[channel_offset(Channel::BaseColor) + 1] = brush_.color.y();
+  m.value[channel_offset(Channel::BaseColor) + 2] = brush_.color.z();
+  m.value[channel_offset(Channel::Alpha)] = 1;
+  m.value[channel_offset(Channel::Roughness)] = brush_.roughness;
+  m.value[channel_offset(Channel::Metallic)] = brush_.metallic;
+  m.value[channel_offset(Channel::Height)] = brush_.height;
+  m.radius = painted.radius;
+  m.hardness = painted.hardness;
+  m.opacity = brush_.opacity;
+  m.dabs = painted.dabs;
+  return m;
+}
+
+void App::record_stroke(Stroke s) {
+  if (!material_) {
+    painting_.push(std::move(s));
+    store_.autosave_soon();
+    return history_changed();
+  }
+  MaterialStroke m;
+  if (s.type == Stroke::Type::Decal) {
+    m.type = MaterialStroke::Type::Decal;
+    m.opacity = s.opacity;
+    m.decal = std::move(s);
+  } else {
+    m = material_brush_stroke(s);
+  }
+  edit_material([&](MaterialDocument& d) { d.add_stroke(std::move(m)); });
+}
+
+void App::save_material_strokes(const std::filesystem::path& path) {
+  try {
+    AtomicOutput out;
+    write_material_strokes(out.add(path), material_file());
+    out.commit();
+    add_message("saved the material strokes (version 2) to " + path.string(), false);
+    note_folder(path);
+  } catch (const std::exception& e) {
+    add_message(e.what(), true);
+  }
+}
+
+std::shared_ptr<const MaterialOutcome> App::material_for_export() {
+  const Surface* s = painting_.surface();
+  auto o = std::make_shared<MaterialOutcome>();
+  if (s && s->material && material_ && s->generation == material_->version() && !jobs_.rebuilding() &&
+      material_started_ == material_key()) {
+    o->mesh = s->mesh;
+    o->param = s->param;
+    o->textures = s->material;
+    return o;
+  }
+  add_message("compositing the material for the export (the view has not caught up yet)", false);
+  *o = paint_material_history(painting_.model()->mesh, *painting_.model()->initial, material_file(), session_,
+                              [](std::string_view, double) { return true; });
+  return o;
+}
+
+}  // namespace adaptex::studio
