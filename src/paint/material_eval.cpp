@@ -131,8 +131,11 @@ MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameteriza
     const Vec3 grad = P == 1 ? Vec3::Zero().eval()
                              : Vec3(scale * ((exact[P * k + 1][6] - e[6]) / eps * dirs[k][0] +
                                              (exact[P * k + 2][6] - e[6]) / eps * dirs[k][1]));
-    const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, p.face, p.b0, p.b1);
-    const Vec3 n_exact = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized();
+    Vec3 n_exact(0, 0, 1);  // a flat exact height: the surface's own normal, in any frame
+    if (!grad.isZero(0)) {
+      const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, p.face, p.b0, p.b1);
+      n_exact = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized();
+    }
     const Vec3 n_tex = sample_bilinear(textures.normal, uv.x(), uv.y());
     err[k] = {(c - ce).squaredNorm() / 3,     std::pow(a - e[3], 2), std::pow(r - e[4], 2), std::pow(m - e[5], 2),
               (n_tex - 0.5 * (n_exact + Vec3::Ones())).squaredNorm() / 3, ce.squaredNorm() / 3};

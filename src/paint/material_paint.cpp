@@ -54,11 +54,12 @@ void update_height_normals(const TriMesh& mesh, const Parameterization& param, c
     const int t = texels[k], i = t % map.width, j = t / map.width, f = map.face[t];
     normals[t] = Vec3f(0, 0, 1);
     if (f < 0) return;
+    const double hu = axis_derivative(map, height, t, i, map.width, 1, 1.0 / map.width);
+    const double hv = axis_derivative(map, height, t, j, map.height, map.width, 1.0 / map.height);
+    if (hu == 0 && hv == 0) return;  // flat height: the surface's own normal, in any frame
     Vec3 pu, pv;
     face_uv_gradients(mesh, param, f, pu, pv);
     if (!(pu.norm() > 0) || !(pv.norm() > 0)) return;  // degenerate UV triangle: flat
-    const double hu = axis_derivative(map, height, t, i, map.width, 1, 1.0 / map.width);
-    const double hv = axis_derivative(map, height, t, j, map.height, map.width, 1.0 / map.height);
     // Surface gradient: ∇H = [pu pv] G⁻¹ (hu, hv), G the metric of the face's UV map.
     const double a = pu.dot(pu), b = pu.dot(pv), c = pv.dot(pv), det = a * c - b * b;
     if (!(det > 0)) return;

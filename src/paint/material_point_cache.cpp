@@ -23,6 +23,18 @@ using namespace material_detail;
 namespace {
 
 /// One layer's state at the points, in single precision: L (7 per point), a (5), M (1, with a mask).
+/// v.assign(n, x), growing the storage by a quarter more than asked: the next points (a session's
+/// next candidate layout) are about as many, and fresh pages cost a page fault each.
+template <class V>
+void assign_with_slack(V& v, size_t n, const typename V::value_type& x) {
+  if (v.capacity() < n) {
+    V fresh;
+    fresh.reserve(n + n / 4);
+    v.swap(fresh);
+  }
+  v.assign(n, x);
+}
+
 struct LayerCache {
   std::vector<float> value, cover, mask;
   size_t strokes = 0, mask_strokes = 0;
@@ -60,7 +72,7 @@ struct MaterialPointCache::Impl {
   void reset(const TriMesh& m, std::vector<SurfacePoint> p) {
     mesh = &m;
     points = std::move(p);
-    pos.resize(points.size());
+    assign_with_slack(pos, points.size(), Vec3::Zero().eval());
     for (size_t k = 0; k < points.size(); ++k) {
       const SurfacePoint& sp = points[k];
       if (sp.face < 0 || sp.face >= m.num_faces())
@@ -69,7 +81,7 @@ struct MaterialPointCache::Impl {
       const auto& f = m.faces[sp.face];
       pos[k] = sp.b0 * m.positions[f[0]] + sp.b1 * m.positions[f[1]] + (1 - sp.b0 - sp.b1) * m.positions[f[2]];
     }
-    dirty.assign(points.size(), 0);
+    assign_with_slack(dirty, points.size(), char(0));
     double area = 0;
     for (int f = 0; f < m.num_faces(); ++f) area += face_area(m, f);
     spacing = points.empty() || !(area > 0) ? 1.0 : std::sqrt(area / static_cast<double>(points.size()));
@@ -93,7 +105,7 @@ struct MaterialPointCache::Impl {
       std::vector<Vec3f> p(pos.size());
       for (size_t k = 0; k < p.size(); ++k) p[k] = pos[k].cast<float>();
       grid = std::make_unique<detail::TexelGrid>(p, spacing);
-      alpha.assign(pos.size(), 0.0);
+      assign_with_slack(alpha, pos.size(), 0.0);
     }
     tbb::enumerable_thread_specific<std::vector<int>> touched;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, s.dabs.size(), 4), [&](const tbb::blocked_range<size_t>& rg) {
@@ -129,8 +141,8 @@ struct MaterialPointCache::Impl {
   void paint(LayerCache& lc, const MaterialStroke& s) {
     const size_t P = pos.size();
     if (lc.value.empty()) {
-      lc.value.assign(P * kMaterialComponents, 0.0f);
-      lc.cover.assign(P * kNumChannels, 0.0f);
+      assign_with_slack(lc.value, P * kMaterialComponents, 0.0f);
+      assign_with_slack(lc.cover, P * kNumChannels, 0.0f);
     }
     auto apply = [&](size_t k, double a_k, const double* rgb) {
       MaterialValue L;
@@ -175,6 +187,7 @@ MaterialPointCache::MaterialPointCache(const TriMesh& mesh, std::vector<SurfaceP
 
 void MaterialPointCache::reset(const TriMesh& mesh, std::vector<SurfacePoint> points, const MaterialStrokeFile& file) {
   impl_->reset(mesh, std::move(points));
+  if (impl_->layers.size() > file.layers.size()) impl_->layers.resize(file.layers.size());
   update(file);
 }
 
@@ -210,7 +223,7 @@ const std::vector<MaterialValue>& MaterialPointCache::values(const MaterialStrok
   if (look != m.look || m.layers.size() > file.layers.size()) m.all_dirty = true;
   if (!m.all_dirty && !m.any_dirty) return m.composite;
   m.look = std::move(look);
-  m.composite.resize(m.pos.size());
+  if (m.composite.size() != m.pos.size()) assign_with_slack(m.composite, m.pos.size(), file.background);
   const size_t layers = std::min(file.layers.size(), m.layers.size());
   const bool all = m.all_dirty;
   tbb::parallel_for(size_t(0), m.pos.size(), [&](size_t k) {
