@@ -1,4 +1,4 @@
-// Four painted channels against one (docs/benchmarks.md, "Material cycle"): the cost of adapting a
+// Four painted channels against one (docs/benchmarks.md, "Four channels against one"): the cost of adapting a
 // layout to a layered material (adapt/material_adapt.h) when every stroke paints base colour,
 // roughness, metallic and height, against the same strokes painting base colour only, and against
 // today's single-channel each-stroke cycle of a version 1 session (adapt/session.h).
@@ -14,14 +14,15 @@
 //                              warp, paint again on the new layout, the never-worse check.
 //   BM_MaterialPaint/C/K/W     paint_material() alone (the part of BM_MaterialCycle that runs twice).
 //   BM_MaterialDensity/C/K/W   the material's summed error model alone (part of BM_MaterialCycle).
-// The library has no per-channel each-stroke session: adapt_material() is the whole material cycle it
-// has, and it paints every dab exactly (no surface cache, no replay), twice.
+//   BM_MaterialSessionCycle/C/K/W  MaterialPaintSession (adapt/material_session.h), each-stroke: stroke K
+//                              and one cycle, the gain gate off (see the function).
 //
 // Mesh: ADAPTEX_BENCH_MESH (a stem of ADAPTEX_SHARED_DIR/meshes or a path; default spot), unwrapped
 // with the defaults; when absent, a message and the code-built fallback (a 20k-face curved height
 // field, uv = xy). Each benchmark: one iteration per repetition (manual time, setup excluded);
 // quote the median of the repetitions.
 //   adaptex_bench_material --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// The comparison: --benchmark_filter='SessionCycle' (the version 1 cycle and the material session's).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
