@@ -1,4 +1,4 @@
-// Four painted channels against one (docs/benchmarks.md, "Material cycle"): the cost of adapting a
+// Four painted channels against one (docs/benchmarks.md, "Four channels against one"): the cost of adapting a
 // layout to a layered material (adapt/material_adapt.h) when every stroke paints base colour,
 // roughness, metallic and height, against the same strokes painting base colour only, and against
 // today's single-channel each-stroke cycle of a version 1 session (adapt/session.h).
@@ -14,14 +14,15 @@
 //                              warp, paint again on the new layout, the never-worse check.
 //   BM_MaterialPaint/C/K/W     paint_material() alone (the part of BM_MaterialCycle that runs twice).
 //   BM_MaterialDensity/C/K/W   the material's summed error model alone (part of BM_MaterialCycle).
-// The library has no per-channel each-stroke session: adapt_material() is the whole material cycle it
-// has, and it paints every dab exactly (no surface cache, no replay), twice.
+//   BM_MaterialSessionCycle/C/K/W  MaterialPaintSession (adapt/material_session.h), each-stroke: stroke K
+//                              and one cycle, the gain gate off (see the function).
 //
 // Mesh: ADAPTEX_BENCH_MESH (a stem of ADAPTEX_SHARED_DIR/meshes or a path; default spot), unwrapped
 // with the defaults; when absent, a message and the code-built fallback (a 20k-face curved height
 // field, uv = xy). Each benchmark: one iteration per repetition (manual time, setup excluded);
 // quote the median of the repetitions.
 //   adaptex_bench_material --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+// The comparison: --benchmark_filter='SessionCycle' (the version 1 cycle and the material session's).
 #include <benchmark/benchmark.h>
 
 #include <chrono>
@@ -36,6 +37,7 @@
 #include "../common/height_field.h"
 #include "../common/session_history.h"
 #include "adaptex/adapt/material_adapt.h"
+#include "adaptex/adapt/material_session.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/allocator.h"
 #include "adaptex/io/mesh_io.h"
@@ -158,6 +160,39 @@ void BM_MaterialCycle(benchmark::State& state) {
   set_counters(state, sc, acc, iters);
 }
 
+/// MaterialPaintSession (adapt/material_session.h), each-stroke: the first K − 1 strokes in the file it
+/// starts from and two cycles on them (untimed: they build the caches, and leave the session as at
+/// stroke K of an each-stroke session, with a held and a spare layout), then stroke K added (timed):
+/// the stroke into the caches and one full cycle (the gain gate off, so every timed cycle computes).
+void BM_MaterialSessionCycle(benchmark::State& state) {
+  const int channels = static_cast<int>(state.range(0)), k = static_cast<int>(state.range(1));
+  const Scene& sc = scene(k);
+  const MaterialStrokeFile file = material_history(sc.history, k, channels);
+  MaterialStrokeFile start = file;
+  start.layers[0].strokes.pop_back();
+  MaterialSessionOptions o;
+  o.paint.size = static_cast<int>(state.range(2));
+  o.min_gain_db = 0;
+  std::map<std::string, double> acc;
+  int iters = 0;
+  for (auto _ : state) {
+    MaterialPaintSession session(sc.mesh, sc.param, start, o);
+    session.reparameterize();  // builds the caches
+    session.reparameterize();  // as at stroke K of a session: a held layout and a spare one
+    const auto t0 = std::chrono::steady_clock::now();
+    session.add_stroke(0, file.layers[0].strokes.back());
+    state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    const AdaptReport& r = session.reports().back();
+    acc["density_ms"] += 1e3 * r.time_density;
+    acc["flow_ms"] += 1e3 * (r.time_flow + r.time_polish);
+    acc["texture_ms"] += 1e3 * r.time_texture_update;
+    acc["check_ms"] += 1e3 * r.time_safeguard;
+    acc["adapted"] += session.adapted();
+    ++iters;
+  }
+  set_counters(state, sc, acc, iters);
+}
+
 /// paint_material() alone on the unwrap's layout: the part of BM_MaterialCycle that runs twice.
 void BM_MaterialPaint(benchmark::State& state) {
   const int channels = static_cast<int>(state.range(0)), k = static_cast<int>(state.range(1));
@@ -204,6 +239,7 @@ void material_args(benchmark::internal::Benchmark* b) {
   b->Args({1, 40, 1024})->Args({4, 40, 1024})->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
 }
 BENCHMARK(BM_MaterialCycle)->Apply(material_args);
+BENCHMARK(BM_MaterialSessionCycle)->Apply(material_args);
 BENCHMARK(BM_MaterialPaint)->Apply(material_args);
 BENCHMARK(BM_MaterialDensity)->Apply(material_args);
 

@@ -19,4 +19,5 @@ target_sources(adaptex_paint PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/material_signal.cpp
   ${CMAKE_CURRENT_LIST_DIR}/material_generate.cpp
   ${CMAKE_CURRENT_LIST_DIR}/material_paint.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/material_eval.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/material_eval.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/material_point_cache.cpp)  # incremental per-layer state at fixed points

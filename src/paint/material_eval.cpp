@@ -68,30 +68,51 @@ void check_inputs(const TriMesh& mesh, const Parameterization& param, const Mate
 
 }  // namespace
 
+MaterialEvalPoints material_eval_points(const TriMesh& mesh, bool with_height, const MaterialEvalOptions& options) {
+  if (options.samples < 1) throw InvalidInputError("evaluate_material_textures: samples must be >= 1");
+  if (!(options.gradient_step > 0)) throw InvalidInputError("evaluate_material_textures: gradient_step must be > 0");
+  MaterialEvalPoints out;
+  out.samples = sample_surface(mesh, options.samples, options.seed);
+  const size_t K = out.samples.size();
+  // Each sample, and where the height varies, two steps of eps along two directions of its face: the
+  // exact height's gradient by forward differences (eps is far below any texel: their O(eps) error is
+  // negligible, and they cost 3 evaluations per sample instead of central differences' 5).
+  const int P = out.per_sample = with_height ? 3 : 1;
+  const double eps = out.step = options.gradient_step * bounding_box(mesh).diagonal();
+  out.probes.resize(P * K);
+  out.directions.assign(K, {Vec3::Zero(), Vec3::Zero()});
+  tbb::parallel_for(size_t(0), K, [&](size_t k) {
+    const SurfacePoint& p = out.samples[k];
+    out.probes[P * k] = p;
+    if (P == 1) return;
+    out.directions[k] = face_directions(mesh, p.face);
+    for (int a = 0; a < 2; ++a) {
+      const Vec2 d = barycentric_step(mesh, p.face, eps * out.directions[k][a]);
+      out.probes[P * k + 1 + a] = SurfacePoint{p.face, p.b0 + d.x(), p.b1 + d.y()};
+    }
+  });
+  return out;
+}
+
 MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
                                          const MaterialTextures& textures, const MaterialStrokeFile& file,
                                          const MaterialEvalOptions& options) {
   check_inputs(mesh, param, textures, options);
-  const std::vector<SurfacePoint> pts = sample_surface(mesh, options.samples, options.seed);
+  const MaterialEvalPoints pts = material_eval_points(mesh, paints_height(file), options);
+  return evaluate_material_textures(mesh, param, textures, pts, evaluate_material(mesh, file, pts.probes), options);
+}
+
+MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
+                                         const MaterialTextures& textures, const MaterialEvalPoints& points,
+                                         const std::vector<MaterialValue>& exact, const MaterialEvalOptions& options) {
+  check_inputs(mesh, param, textures, options);
+  const std::vector<SurfacePoint>& pts = points.samples;
   const size_t K = pts.size();
-  // Each sample, and where the height varies, two steps of eps along two directions of its face: the
-  // exact height's gradient by forward differences (eps is far below any texel: their O(eps) error is
-  // negligible, and they cost 3 evaluations per sample instead of central differences' 5).
-  const int P = paints_height(file) ? 3 : 1;
-  const double eps = options.gradient_step * bounding_box(mesh).diagonal();
-  std::vector<SurfacePoint> probe(P * K);
-  std::vector<std::array<Vec3, 2>> dirs(K, {Vec3::Zero(), Vec3::Zero()});
-  tbb::parallel_for(size_t(0), K, [&](size_t k) {
-    const SurfacePoint& p = pts[k];
-    probe[P * k] = p;
-    if (P == 1) return;
-    dirs[k] = face_directions(mesh, p.face);
-    for (int a = 0; a < 2; ++a) {
-      const Vec2 d = barycentric_step(mesh, p.face, eps * dirs[k][a]);
-      probe[P * k + 1 + a] = SurfacePoint{p.face, p.b0 + d.x(), p.b1 + d.y()};
-    }
-  });
-  const std::vector<MaterialValue> exact = evaluate_material(mesh, file, probe);
+  const int P = points.per_sample;
+  if (exact.size() != P * K || points.directions.size() != K)
+    throw InvalidInputError("evaluate_material_textures: one exact value per probe point expected");
+  const double eps = points.step;
+  const auto& dirs = points.directions;
   const std::vector<Vec3> vn = vertex_normals(mesh);
   const std::vector<Eigen::Vector4d> tangents = wedge_tangents(mesh, param, vn);
   const double scale = textures.height_scale;
@@ -110,8 +131,11 @@ MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameteriza
     const Vec3 grad = P == 1 ? Vec3::Zero().eval()
                              : Vec3(scale * ((exact[P * k + 1][6] - e[6]) / eps * dirs[k][0] +
                                              (exact[P * k + 2][6] - e[6]) / eps * dirs[k][1]));
-    const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, p.face, p.b0, p.b1);
-    const Vec3 n_exact = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized();
+    Vec3 n_exact(0, 0, 1);  // a flat exact height: the surface's own normal, in any frame
+    if (!grad.isZero(0)) {
+      const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, p.face, p.b0, p.b1);
+      n_exact = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized();
+    }
     const Vec3 n_tex = sample_bilinear(textures.normal, uv.x(), uv.y());
     err[k] = {(c - ce).squaredNorm() / 3,     std::pow(a - e[3], 2), std::pow(r - e[4], 2), std::pow(m - e[5], 2),
               (n_tex - 0.5 * (n_exact + Vec3::Ones())).squaredNorm() / 3, ce.squaredNorm() / 3};

@@ -38,18 +38,28 @@ void put_normal(ImageRGBA8& img, int t, const Vec3& n) {
 
 std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                   const std::vector<double>& height) {
-  if (height.size() != static_cast<size_t>(map.width) * map.height)
-    throw InvalidInputError("normal_map_from_height: one height per texel expected");
   std::vector<Vec3f> normals(height.size(), Vec3f(0, 0, 1));
+  update_height_normals(mesh, param, map, height, map.inside, normals);
+  return normals;
+}
+
+void update_height_normals(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                           const std::vector<double>& height, const std::vector<int>& texels,
+                           std::vector<Vec3f>& normals) {
+  if (height.size() != static_cast<size_t>(map.width) * map.height || normals.size() != height.size())
+    throw InvalidInputError("normal_map_from_height: one height per texel expected");
   const std::vector<Vec3> vn = vertex_normals(mesh);
   const std::vector<Eigen::Vector4d> tangents = wedge_tangents(mesh, param, vn);
-  tbb::parallel_for(size_t(0), map.inside.size(), [&](size_t k) {
-    const int t = map.inside[k], i = t % map.width, j = t / map.width, f = map.face[t];
+  tbb::parallel_for(size_t(0), texels.size(), [&](size_t k) {
+    const int t = texels[k], i = t % map.width, j = t / map.width, f = map.face[t];
+    normals[t] = Vec3f(0, 0, 1);
+    if (f < 0) return;
+    const double hu = axis_derivative(map, height, t, i, map.width, 1, 1.0 / map.width);
+    const double hv = axis_derivative(map, height, t, j, map.height, map.width, 1.0 / map.height);
+    if (hu == 0 && hv == 0) return;  // flat height: the surface's own normal, in any frame
     Vec3 pu, pv;
     face_uv_gradients(mesh, param, f, pu, pv);
     if (!(pu.norm() > 0) || !(pv.norm() > 0)) return;  // degenerate UV triangle: flat
-    const double hu = axis_derivative(map, height, t, i, map.width, 1, 1.0 / map.width);
-    const double hv = axis_derivative(map, height, t, j, map.height, map.width, 1.0 / map.height);
     // Surface gradient: ∇H = [pu pv] G⁻¹ (hu, hv), G the metric of the face's UV map.
     const double a = pu.dot(pu), b = pu.dot(pv), c = pv.dot(pv), det = a * c - b * b;
     if (!(det > 0)) return;
@@ -58,7 +68,6 @@ std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& p
     const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, f, map.bary[t].x(), map.bary[t].y());
     normals[t] = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized().cast<float>();
   });
-  return normals;
 }
 
 ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
@@ -77,16 +86,6 @@ void check_paint_options(const TriMesh& mesh, const Parameterization& param, con
   if (options.padding < 0) throw InvalidInputError("paint_material: padding must be >= 0");
   if (param.uv_faces.size() != mesh.faces.size())
     throw InvalidInputError("paint_material: the layout and the mesh have different face counts");
-}
-
-/// The surface points of the texel centres inside charts (map.inside order).
-std::vector<SurfacePoint> texel_points(const TexelMap& map) {
-  std::vector<SurfacePoint> points(map.inside.size());
-  for (size_t k = 0; k < points.size(); ++k) {
-    const int t = map.inside[k];
-    points[k] = SurfacePoint{map.face[t], map.bary[t].x(), map.bary[t].y()};
-  }
-  return points;
 }
 
 /// The channels layer \p l paints: those its brush and fill strokes name, base colour for a decal.
@@ -136,36 +135,66 @@ std::vector<LayerTextures> paint_material_layers(const TriMesh& mesh, const Para
   return out;
 }
 
+std::vector<SurfacePoint> texel_points(const TexelMap& map) {
+  std::vector<SurfacePoint> points(map.inside.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    const int t = map.inside[k];
+    points[k] = SurfacePoint{map.face[t], map.bary[t].x(), map.bary[t].y()};
+  }
+  return points;
+}
+
+double material_height_scale(const TriMesh& mesh, const MaterialStrokeFile& file) {
+  return file.height_scale > 0 ? file.height_scale : 0.01 * bounding_box(mesh).diagonal();
+}
+
 MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file,
                                 const MaterialPaintOptions& options) {
   check_paint_options(mesh, param, options);
   const int N = options.size;
   const TexelMap map = build_texel_map(mesh, param, N, N);
-  const std::vector<SurfacePoint> points = texel_points(map);
-  const std::vector<MaterialValue> values = evaluate_material(mesh, file, points);
-  std::vector<MaterialValue> texel(static_cast<size_t>(N) * N, file.background);
-  for (size_t k = 0; k < points.size(); ++k) texel[map.inside[k]] = values[k];
-  const SeamPadding pad = build_seam_padding(map, options.padding);
-  for (int t : pad.padded) texel[t] = texel[pad.source[t]];
+  return material_textures_from_values(mesh, param, map, evaluate_material(mesh, file, texel_points(map)),
+                                       file.background, options.padding, material_height_scale(mesh, file));
+}
 
+void set_material_texel(MaterialTextures& tex, int t, const MaterialValue& v) {
+  const size_t o = 4 * static_cast<size_t>(t);
+  const std::uint8_t rgba[4] = {to_byte(v[0]), to_byte(v[1]), to_byte(v[2]), to_byte(v[3])};
+  std::copy(rgba, rgba + 4, &tex.base_color.data[o]);
+  const std::pair<ImageRGBA8*, double> greys[] = {{&tex.roughness, v[4]}, {&tex.metallic, v[5]}, {&tex.height, v[6]}};
+  for (const auto& [img, g] : greys) std::fill_n(&img->data[o], 3, to_byte(g));
+  const std::uint8_t mr[4] = {255, to_byte(v[4]), to_byte(v[5]), 255};
+  std::copy(mr, mr + 4, &tex.metallic_roughness.data[o]);
+}
+
+void set_normal_texel(ImageRGBA8& normal_map, int t, const Vec3f& n) { put_normal(normal_map, t, n.cast<double>()); }
+
+MaterialTextures material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                               const std::vector<MaterialValue>& values,
+                                               const MaterialValue& background, int padding, double height_scale) {
+  if (values.size() != map.inside.size())
+    throw InvalidInputError("material textures: one value per chart texel expected");
+  if (padding < 0) throw InvalidInputError("material textures: padding must be >= 0");
+  const int N = map.width;
   MaterialTextures out;
-  out.height_scale = file.height_scale > 0 ? file.height_scale : 0.01 * bounding_box(mesh).diagonal();
+  out.height_scale = height_scale;
+  const MaterialValue& bg = background;
+  const std::uint8_t bg_rgba[4] = {to_byte(bg[0]), to_byte(bg[1]), to_byte(bg[2]), to_byte(bg[3])};
+  out.base_color = ImageRGBA8(N, map.height, {bg_rgba[0], bg_rgba[1], bg_rgba[2], bg_rgba[3]});
+  const std::pair<ImageRGBA8*, double> grey_images[] = {{&out.roughness, bg[4]}, {&out.metallic, bg[5]}, {&out.height, bg[6]}};
+  for (const auto& [img, g] : grey_images) *img = ImageRGBA8(N, map.height, {to_byte(g), to_byte(g), to_byte(g), 255});
+  out.metallic_roughness = ImageRGBA8(N, map.height, {255, to_byte(bg[4]), to_byte(bg[5]), 255});
+  // Chart texels from their values; padded texels then copy their source texel's bytes (what copying
+  // the source's value would give); the normal map reads chart texels' heights only.
+  std::vector<double> height(static_cast<size_t>(N) * map.height, (bg[6] - 0.5) * height_scale);
+  tbb::parallel_for(size_t(0), values.size(), [&](size_t k) {
+    const int t = map.inside[k];
+    set_material_texel(out, t, values[k]);
+    height[t] = (values[k][6] - 0.5) * height_scale;
+  });
+  const SeamPadding pad = build_seam_padding(map, padding);
   for (ImageRGBA8* img : {&out.base_color, &out.roughness, &out.metallic, &out.height, &out.metallic_roughness})
-    *img = ImageRGBA8(N, N);
-  std::vector<double> height(texel.size());
-  for (size_t t = 0; t < texel.size(); ++t) {
-    const MaterialValue& v = texel[t];
-    const std::uint8_t rgba[4] = {to_byte(v[0]), to_byte(v[1]), to_byte(v[2]), to_byte(v[3])};
-    std::copy(rgba, rgba + 4, &out.base_color.data[4 * t]);
-    const std::pair<ImageRGBA8*, double> greys[] = {{&out.roughness, v[4]}, {&out.metallic, v[5]}, {&out.height, v[6]}};
-    for (const auto& [img, g] : greys) {
-      std::fill_n(&img->data[4 * t], 3, to_byte(g));
-      img->data[4 * t + 3] = 255;
-    }
-    const std::uint8_t mr[4] = {255, to_byte(v[4]), to_byte(v[5]), 255};
-    std::copy(mr, mr + 4, &out.metallic_roughness.data[4 * t]);
-    height[t] = (v[6] - 0.5) * out.height_scale;
-  }
+    apply_seam_padding(*img, pad);
   out.normal = normal_map_from_height(mesh, param, map, height);
   apply_seam_padding(out.normal, pad);
   return out;

@@ -126,11 +126,16 @@ std::optional<PolygonLayout> unfold_polygon(const TriMesh& disk) {
   const EdgeConnectivity ec = build_edges(disk);
   if (!is_triangulated_polygon(disk, ec)) return std::nullopt;
   std::vector<Vec2> uv = unfold_faces(disk, ec);
-  // Finite positions can still overflow (coordinates near 1e308): such a layout has no rectangle,
-  // and the hull's sort needs comparable (non-NaN) points.
-  if (uv.empty() || !std::all_of(uv.begin(), uv.end(), [](const Vec2& q) { return q.allFinite(); }))
-    return std::nullopt;
+  // Finite positions can still overflow (coordinates near 1e308): fit_to_rectangle() rejects them.
+  if (uv.empty()) return std::nullopt;
+  return fit_to_rectangle(disk, std::move(uv));
+}
 
+std::optional<PolygonLayout> fit_to_rectangle(const TriMesh& disk, std::vector<Vec2> uv) {
+  // The hull's sort needs comparable (non-NaN) points.
+  if (disk.faces.empty() || uv.size() != disk.positions.size() ||
+      !std::all_of(uv.begin(), uv.end(), [](const Vec2& q) { return q.allFinite(); }))
+    return std::nullopt;
   // Smallest bounding rectangle: one of its sides lies along an edge of the convex hull.
   const std::vector<Vec2> hull = convex_hull(uv);
   if (hull.size() < 3) return std::nullopt;

@@ -30,7 +30,9 @@
 #include "adaptex/param/charts.h"
 #include "adaptex/param/cut.h"
 #include "adaptex/param/disk_param.h"
+#include "adaptex/param/lscm.h"
 #include "adaptex/param/pack.h"
+#include "adaptex/param/planar.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unfold.h"
 #include "adaptex/param/yoshizawa.h"
@@ -147,15 +149,22 @@ bool better(const CutScore& a, const CutScore& b, double min_improvement) {
 
 /// What every chart of one unwrap() attempt shares: the options, the disk-parameterization
 /// settings, the augmentation budgets and the report being filled.
+/// Which layouts a piece may get besides its disk parameterization.
+enum class PieceLayouts {
+  Disk,    ///< the disk parameterization only
+  Unfold,  ///< also the isometric unfolding of a piece without interior vertices (unfold.h)
+  Free,    ///< also that, and a free-boundary (LSCM) layout (lscm.h; UnwrapOptions::scan_free_boundary)
+};
+
 struct ChartContext {
   const UnwrapOptions& options;
   DiskParamOptions dopt;
   long augment_faces_left = 0;
   Clock::time_point augment_deadline;
   UnwrapReport& rep;
-  /// A piece without interior vertices may be unfolded (unfold.h): whole components of a layout
-  /// of several components.
-  bool unfold_polygons;
+  /// Unfold: a piece without interior vertices may be unfolded (whole components of a layout of
+  /// several components); Free: the pieces of the scan segmentation may also get an LSCM layout.
+  PieceLayouts layouts;
   /// > 0: a chart whose first cheap parameterization (Floater + augment_yoshizawa_iterations
   /// Yoshizawa iterations, before any augmentation) has degenerate or flipped UV triangles or an
   /// L2 above this is abandoned there (Chart::abandoned; UnwrapOptions::single_probe_l2).
@@ -198,14 +207,10 @@ std::pair<double, double> best_aspect(const Chart& chart) {
   return {aspects[best], l2_at_aspect(disk, uv, aspects[best])};
 }
 
-/// Replaces \p chart by the isometric unfolding of its piece (unfold.h) when the piece is a
-/// triangulated polygon (every vertex on the boundary: the disk parameterization can only map
-/// them onto the square) and the unfolding's own texel share, UV fill of its rectangle / L2² at
-/// its aspect, is higher than the chart's at its best aspect (tiny_components(200): its 10-face
-/// strips go from L2 1.5 at fill 1 to L2 1 at fill 0.91, its slivers from L2 250 to 1; strips of
-/// two faces keep the square, L2 1.06 at fill 1 against fill 0.71).
-void use_unfolding_if_better(const Component& comp, Chart& chart) {
-  std::optional<PolygonLayout> u = unfold_polygon(comp.mesh);
+/// Replaces \p chart by \p u, a layout of its whole piece (no cut: an unfolding, a projection),
+/// when its own texel share, UV fill of its rectangle / L2² at its aspect, is higher than the
+/// chart's at its best aspect.
+void use_layout_if_better(const Component& comp, Chart& chart, std::optional<PolygonLayout> u) {
   if (!u) return;
   const double l2_u = l2_at_aspect(comp.mesh, u->uv, u->aspect);
   const double l2_c = best_aspect(chart).second;
@@ -230,6 +235,51 @@ void use_unfolding_if_better(const Component& comp, Chart& chart) {
   chart.aspect = u->aspect;
 }
 
+/// Replaces \p chart by the isometric unfolding of its piece (unfold.h) when the piece is a
+/// triangulated polygon (every vertex on the boundary: the disk parameterization can only map
+/// them onto the square) and the unfolding's own texel share, UV fill of its rectangle / L2² at
+/// its aspect, is higher than the chart's at its best aspect (tiny_components(200): its 10-face
+/// strips go from L2 1.5 at fill 1 to L2 1 at fill 0.91, its slivers from L2 250 to 1; strips of
+/// two faces keep the square, L2 1.06 at fill 1 against fill 0.71).
+void use_unfolding_if_better(const Component& comp, Chart& chart) {
+  use_layout_if_better(comp, chart, unfold_polygon(comp.mesh));
+}
+
+/// Replaces the layout of \p chart by a free-boundary conformal layout of its disk (lscm.h) when
+/// that is valid and its own texel share, UV fill of its rectangle / L2² at its aspect, is higher
+/// than the chart's at its best aspect (the cut, hence the disk and its wedges, stay).
+/// \p first: the cut and disk before the augmentation, tried too (LSCM of a disk may overlap
+/// where that of a shorter cut does not).
+void use_free_boundary_if_better(Chart& chart, CutState first) {
+  CutState& s = chart.state;
+  std::optional<PolygonLayout> u = lscm_layout(s.disk.disk);
+  double l2_u = u ? l2_at_aspect(s.disk.disk, u->uv, u->aspect) : 0.0;
+  if (std::optional<PolygonLayout> f = lscm_layout(first.disk.disk)) {
+    const double l2_f = l2_at_aspect(first.disk.disk, f->uv, f->aspect);
+    if (std::isfinite(l2_f) && (!u || f->fill / (l2_f * l2_f) > u->fill / (l2_u * l2_u))) {
+      const double l2_c = best_aspect(chart).second;
+      if (!(f->fill / (l2_f * l2_f) > chart.domain_area / (l2_c * l2_c))) return;
+      s.cut = std::move(first.cut);
+      s.disk = std::move(first.disk);
+      chart.augmentations = 0;
+      u = std::move(f);
+      l2_u = l2_f;
+    }
+  }
+  if (!u) return;
+  const double l2_c = best_aspect(chart).second;
+  if (!(std::isfinite(l2_u) && u->fill / (l2_u * l2_u) > chart.domain_area / (l2_c * l2_c))) return;
+  s.solve_state.reset();
+  const StretchStats st = measure_stretch(s.disk.disk, u->uv);
+  s.param.uv = std::move(u->uv);
+  s.param.floater_l2 = s.param.final_l2 = st.l2;
+  s.param.floater_linf = s.param.final_linf = st.linf;
+  s.param.flipped = s.param.degenerate = 0;
+  s.param.on_square = false;
+  chart.domain_area = u->fill;
+  chart.aspect = u->aspect;
+}
+
 /// Cuts one piece (a component, or a chart of a component) to a disk, augments the cut (GGH 2002
 /// §3.2) and parameterizes the disk (Floater + Yoshizawa). Progress fractions [frac0, frac1].
 Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double frac1) {
@@ -249,6 +299,8 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   cur.cut = disk ? std::vector<char>(ec.num_edges(), 0) : initial_cut(comp.mesh, ec, graph);
   cur.disk = slice_along_cut(comp.mesh, ec, cur.cut);
   rep.time_cut += seconds_since(t0);
+  CutState initial;  // the initial cut, for the free-boundary layout
+  if (ctx.layouts == PieceLayouts::Free) initial.cut = cur.cut, initial.disk = cur.disk;
 
   // Cut augmentation (GGH 2002 §3.2): add the shortest path from the vertex of highest stretch
   // to the cut while the L2 stretch improves; keep the best. As in the thesis, the candidates are
@@ -353,7 +405,6 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
     const CutScore s = score(cur);
     if (s.bad > 0 && augment_loop(s)) solve_full();
   }
-  chart.cut_length = cut_length(graph, cur.cut);
   chart.state = std::move(cur);
   double area2 = 0;
   for (const Face& t : chart.state.disk.disk.faces) {
@@ -362,7 +413,13 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
     area2 += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
   }
   chart.domain_area = area2 > 0 ? area2 : 1.0;
-  if (ctx.unfold_polygons) use_unfolding_if_better(comp, chart);
+  if (ctx.layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart);
+  if (ctx.layouts == PieceLayouts::Free) {
+    // A projection keeps the piece's own boundaries: only a disk may take it (charts are disks).
+    if (disk) use_layout_if_better(comp, chart, projection_layout(comp.mesh));
+    use_free_boundary_if_better(chart, std::move(initial));
+  }
+  chart.cut_length = cut_length(graph, chart.state.cut);
   return chart;
 }
 
@@ -550,7 +607,7 @@ void parallel_keep_first_error(int n, std::mutex& mutex, std::atomic<bool>& fail
 /// then starts the next chart count on the threads this attempt no longer needs).
 std::vector<Chart> build_charts(const std::vector<Component>& pieces, const DiskParamOptions& dopt,
                                 Clock::time_point t_start, const UnwrapOptions& options,
-                                UnwrapReport& rep, bool unfold, double give_up_l2 = 0,
+                                UnwrapReport& rep, PieceLayouts layouts, double give_up_l2 = 0,
                                 const std::function<void()>& on_last_started = {}) {
   const Clock::time_point deadline =
       t_start + std::chrono::duration_cast<Clock::duration>(
@@ -561,7 +618,7 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
     largest_use += (1L + options.max_augmentations) * augment_eval_cost(p.mesh.num_faces(), dopt, options);
   std::vector<Chart> charts(nc);
   if (nc < 2 || largest_use > options.augment_face_budget) {
-    ChartContext ctx{options, dopt, options.augment_face_budget, deadline, rep, unfold, give_up_l2};
+    ChartContext ctx{options, dopt, options.augment_face_budget, deadline, rep, layouts, give_up_l2};
     for (int c = 0; c < nc; ++c) {
       if (c == nc - 1 && on_last_started) on_last_started();
       charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
@@ -593,7 +650,7 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
   parallel_keep_first_error(nc, mutex, failed, [&](int i) {
     if (++started == nc && on_last_started) on_last_started();
     const int c = order[i];
-    ChartContext ctx{shared, dopt, largest_use, deadline, reps[c], unfold, give_up_l2};  // cannot run out
+    ChartContext ctx{shared, dopt, largest_use, deadline, reps[c], layouts, give_up_l2};  // cannot run out
     charts[c] = build_chart(pieces[c], ctx, static_cast<double>(c) / nc,
                             static_cast<double>(c + 1) / nc);
   });
@@ -612,10 +669,10 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
 /// leaves the layout of \p result alone (only its phase times grow), when a chart was abandoned.
 bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
                    const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
-                   const UnwrapOptions& options, UnwrapResult& result, bool unfold,
+                   const UnwrapOptions& options, UnwrapResult& result, PieceLayouts layouts,
                    double give_up_l2 = 0, const std::function<void()>& on_last_started = {}) {
   const std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report,
-                                                 unfold, give_up_l2, on_last_started);
+                                                 layouts, give_up_l2, on_last_started);
   for (const Chart& c : charts)
     if (c.abandoned) return false;
   const auto t0 = Clock::now();
@@ -654,6 +711,22 @@ PieceProbe probe_piece(const Component& piece, const DiskParamOptions& dopt,
   p.l2 = std::numeric_limits<double>::infinity();
   for (double l2 : l2_stretch_of_aspects(sd.disk, r.uv, aspects))
     if (std::isfinite(l2)) p.l2 = std::min(p.l2, l2);
+  // The free-boundary layout the chart may get instead (use_free_boundary_if_better()): when it is
+  // valid and has the higher share, its stretch is what a split would lower.
+  if (options.scan_free_boundary) {
+    double share = p.bad > 0 ? 0.0 : 1 / (p.l2 * p.l2);
+    auto consider = [&](const TriMesh& m, const std::optional<PolygonLayout>& u) {
+      if (!u) return;
+      const double l2_u = l2_at_aspect(m, u->uv, u->aspect);
+      if (std::isfinite(l2_u) && u->fill / (l2_u * l2_u) > share) {
+        share = u->fill / (l2_u * l2_u);
+        p.bad = 0;
+        p.l2 = l2_u;
+      }
+    };
+    if (disk) consider(piece.mesh, projection_layout(piece.mesh));
+    consider(sd.disk, lscm_layout(sd.disk));
+  }
   return p;
 }
 
@@ -702,6 +775,31 @@ bool split_pays(const PieceProbe& probe, double area_fraction, double gap, doubl
   return gain > loss;
 }
 
+/// Every component of at least 2 faces cut into its planar charts and the connected parts of the
+/// rest (planar_charts(), UnwrapOptions::scan_planar_angle); the area threshold is relative to the
+/// whole mesh.
+std::vector<Component> planar_pieces(const std::vector<Component>& comps, const UnwrapOptions& options) {
+  double total_area = 0;
+  for (const Component& c : comps) total_area += c.area;
+  std::vector<Component> out;
+  for (const Component& c : comps) {
+    if (c.mesh.num_faces() < 2 || !(c.area > 0)) {
+      out.push_back(c);
+      continue;
+    }
+    PlanarChartOptions po;
+    po.max_normal_angle = options.scan_planar_angle;
+    po.min_area_fraction = std::min(1.0, options.scan_planar_min_area * total_area / c.area);
+    const PlanarCharts pc = planar_charts(c.mesh, po);
+    if (pc.num_charts == 1) {
+      out.push_back(c);
+      continue;
+    }
+    append_pieces(c, pc.label, out);
+  }
+  return out;
+}
+
 /// Segmentation for scans (many components, handles, holes; docs/charts.md, "Scans"): components
 /// of more than scan_piece_faces faces are first split into pieces of about that many faces; then,
 /// round after round, every piece whose cheap parameterization (probe_piece()) has degenerate or
@@ -717,8 +815,10 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
   constexpr int kMinSplitFaces = 16;
   double total_area = 0;
   for (const Component& c : comps) total_area += c.area;
-  std::vector<Component> done, queue;
-  for (const Component& c : comps) {
+  std::vector<Component> done, queue, planar;
+  const std::vector<Component>& start =
+      options.scan_planar_angle > 0 ? (planar = planar_pieces(comps, options)) : comps;
+  for (const Component& c : start) {
     const long long f = c.mesh.num_faces();
     if (f > options.scan_piece_faces)
       split_piece(c, static_cast<int>((f + options.scan_piece_faces - 1) / options.scan_piece_faces),
@@ -908,7 +1008,7 @@ class CountPipeline {
       launch_ready();
     };
     try {
-      unwrap_pieces(mesh_, a.pieces, dopt_, gutter_, t_start_, o, a.result, false, 0,
+      unwrap_pieces(mesh_, a.pieces, dopt_, gutter_, t_start_, o, a.result, PieceLayouts::Disk, 0,
                     on_last_started);
     } catch (...) {
       a.error = std::current_exception();
@@ -973,11 +1073,11 @@ void segment_until_good(const TriMesh& mesh, const std::vector<Component>& comps
 /// texel share is higher, or when \p result has no layout yet (the phase times add up either way).
 void keep_better_layout(const TriMesh& mesh, const std::vector<Component>& pieces,
                         const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
-                        const UnwrapOptions& options, bool unfold, UnwrapResult& result) {
+                        const UnwrapOptions& options, PieceLayouts layouts, UnwrapResult& result) {
   UnwrapReport& rep = result.report;
   UnwrapResult candidate;
   candidate.report = rep;
-  if (unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, candidate, unfold) &&
+  if (unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, candidate, layouts) &&
       (candidate.report.effective_texel_share > rep.effective_texel_share ||
        result.param.uv_faces.empty()))
     result = std::move(candidate);
@@ -1001,20 +1101,32 @@ std::vector<Component> timed_scan_pieces(const std::vector<Component>& comps,
 }
 
 /// ChartMode::Auto on a mesh with more components than max_charts / 2: the charts of
-/// scan_pieces(), and on meshes of at most scan_single_max_faces faces also one chart per
-/// component; the layout with the higher effective texel share is kept.
+/// scan_pieces() with planar charts and free-boundary layouts (scan_planar_angle,
+/// scan_free_boundary), and, when either is on, also those of the top-down segmentation alone; on
+/// meshes of at most scan_single_max_faces faces also its split down to 32 faces and one chart per
+/// component. The layout with the highest effective texel share is kept (so no mesh gets a lower
+/// share than the top-down segmentation alone gives it).
 void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
                  const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
                  const UnwrapOptions& options, UnwrapResult& result) {
-  const std::vector<Component> pieces =
-      timed_scan_pieces(comps, dopt, gutter, options, result.report);
-  unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, true);
+  const PieceLayouts scan_layouts =
+      options.scan_free_boundary ? PieceLayouts::Free : PieceLayouts::Unfold;
+  std::vector<Component> pieces = timed_scan_pieces(comps, dopt, gutter, options, result.report);
+  unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, scan_layouts);
+  UnwrapOptions plain = options;
+  plain.scan_planar_angle = 0;
+  plain.scan_free_boundary = false;
+  const bool new_ways = options.scan_planar_angle > 0 || options.scan_free_boundary;
+  if (new_ways) {
+    pieces = timed_scan_pieces(comps, dopt, gutter, plain, result.report);
+    keep_better_layout(mesh, pieces, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result);
+  }
   if (mesh.num_faces() > options.scan_single_max_faces) return;
   const std::vector<Component> coarse =
-      timed_scan_pieces(comps, dopt, gutter, options, result.report, kCoarseProbeFaces);
+      timed_scan_pieces(comps, dopt, gutter, plain, result.report, kCoarseProbeFaces);
   if (coarse.size() != pieces.size())
-    keep_better_layout(mesh, coarse, dopt, gutter, t_start, options, true, result);
-  keep_better_layout(mesh, comps, dopt, gutter, t_start, options, true, result);
+    keep_better_layout(mesh, coarse, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result);
+  keep_better_layout(mesh, comps, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result);
 }
 
 }  // namespace
@@ -1041,6 +1153,10 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   if (options.scan_piece_faces < 64 || options.scan_max_rounds < 0 || !(options.scan_chart_l2 >= 1))
     throw InvalidInputError("unwrap: scan_piece_faces must be >= 64, scan_max_rounds >= 0 and "
                             "scan_chart_l2 >= 1");
+  if (!(options.scan_planar_angle >= 0 && options.scan_planar_angle < 90) ||
+      !(options.scan_planar_min_area >= 0 && options.scan_planar_min_area <= 1))
+    throw InvalidInputError("unwrap: scan_planar_angle must be in [0, 90) and scan_planar_min_area "
+                            "in [0, 1]");
   if (!(options.min_chart_side_of_gap >= 0 && options.min_chart_side_of_gap <= 4))
     throw InvalidInputError("unwrap: min_chart_side_of_gap " +
                             std::to_string(options.min_chart_side_of_gap) + " is outside [0, 4]");
@@ -1103,18 +1219,23 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
     return result;
   }
   const bool single_built = unwrap_pieces(mesh, comps, dopt, gutter, t_start, options, result,
-                                          comps.size() > 1, probe ? options.single_probe_l2 : 0);
+                                          comps.size() > 1 ? PieceLayouts::Unfold : PieceLayouts::Disk,
+                                          probe ? options.single_probe_l2 : 0);
   if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share) {
     segment_until_good(mesh, comps, dopt, gutter, t_start, options, !single_built, result);
     // No segmentation reached the share: the single chart after all (never below it).
     if (!single_built && rep.effective_texel_share < options.min_texel_share)
-      keep_better_layout(mesh, comps, dopt, gutter, t_start, options, false, result);
+      keep_better_layout(mesh, comps, dopt, gutter, t_start, options, PieceLayouts::Disk, result);
     // Still below: the charts of the scan segmentation, split by each piece's own stretch rather
     // than a count over the whole mesh (a large smooth part no longer draws the charts that rough
     // parts need), built too and kept if better.
+    // (The top-down segmentation alone: planar charts and free boundaries are for scans.)
+    UnwrapOptions plain = options;
+    plain.scan_planar_angle = 0;
+    plain.scan_free_boundary = false;
     if (rep.effective_texel_share < options.min_texel_share)
-      keep_better_layout(mesh, timed_scan_pieces(comps, dopt, gutter, options, rep), dopt, gutter,
-                         t_start, options, true, result);
+      keep_better_layout(mesh, timed_scan_pieces(comps, dopt, gutter, plain, rep), dopt, gutter,
+                         t_start, plain, PieceLayouts::Unfold, result);
   }
   if (rep.num_charts > 1) rep.cut_length = seam_length(mesh, result.param);
   rep.time_total = seconds_since(t_start);

@@ -103,4 +103,25 @@ struct ErrorPlane {
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                    const std::vector<ErrorPlane>& planes, const ErrorDensityOptions& options = {});
 
+/// The texel maps at which compute_error_density() reads the planes' exact values: the reference
+/// raster's (ErrorDensityOptions' reference grid) and the N/2 level's. Built once for a fixed layout,
+/// they let a session keep the planes' exact values at their points (MaterialPointCache).
+struct ErrorPlaneMaps {
+  int texture_size = 0;  ///< N.
+  TexelMap reference;    ///< The reference points' texel map.
+  TexelMap half;         ///< The texel map at N/2.
+};
+
+/// The plane maps of \p param at texture size \p texture_size.
+/// \throw InvalidInputError texture_size < 1, bad reference options
+ErrorPlaneMaps error_plane_maps(const TriMesh& mesh, const Parameterization& param, int texture_size,
+                                const ErrorDensityOptions& options = {});
+
+/// compute_error_density() of the planes with their maps built already (error_plane_maps() of the
+/// same layout, texture size and options); the same result.
+/// \throw InvalidInputError as above, or maps of another size
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                   const std::vector<ErrorPlane>& planes, const ErrorPlaneMaps& maps,
+                                   const ErrorDensityOptions& options = {});
+
 }  // namespace adaptex

@@ -4,6 +4,7 @@
 /// errors of every channel by its effect on the rendered image (base colour; roughness, metallic and
 /// alpha; the shading normal derived from the height), then the density-flow warp and the textures on
 /// the new layout (docs/error_model.md, "Materials").
+#include <functional>
 #include <vector>
 
 #include "adaptex/adapt/adapt.h"
@@ -40,6 +41,17 @@ struct MaterialAdaptResult {
 /// \throw InvalidInputError map and textures of different sizes
 std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                               const MaterialStrokeFile& file, const MaterialTextures& textures,
+                                              double data_weight);
+
+/// The exact material at the chart texels of a texel map, shape [map.inside.size()] (as
+/// evaluate_material() at texel_points(map)), owned by the source and valid until its next call.
+using MaterialTexelSource = std::function<const std::vector<MaterialValue>&(const TexelMap&)>;
+
+/// material_error_planes() with the exact material from \p exact (e.g. a session's point caches)
+/// instead of evaluating the file. \p exact must outlive the planes.
+/// \throw InvalidInputError map and textures of different sizes, no source
+std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                              const MaterialTextures& textures, MaterialTexelSource exact,
                                               double data_weight);
 
 /// Paints \p file on \p layout, adapts the layout to the material's summed error model, paints again

@@ -3,7 +3,9 @@
 /// How well a material's textures on a layout reconstruct the exact material (docs/quality.md,
 /// "Channel cases"): every channel judged over area-uniform surface samples, the height through the
 /// shading normal it derives, combined with the error model's weights (docs/error_model.md §13).
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
@@ -46,5 +48,27 @@ struct MaterialError {
 MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
                                          const MaterialTextures& textures, const MaterialStrokeFile& file,
                                          const MaterialEvalOptions& options = {});
+
+/// The points at which evaluate_material_textures() reads the exact material.
+struct MaterialEvalPoints {
+  std::vector<SurfacePoint> samples;  ///< K area-uniform samples.
+  /// P·K points: sample k at P·k, then (P = 3) its two probes a gradient step away along directions[k].
+  std::vector<SurfacePoint> probes;
+  std::vector<std::array<Vec3, 2>> directions;  ///< K unit directions in the sample's face (zero: P = 1).
+  int per_sample = 1;                           ///< P: 3 where some stroke paints height, else 1.
+  double step = 0;                              ///< The probes' distance (world units).
+};
+
+/// The samples and probes of \p options on \p mesh (\p with_height: with the probes of the height's
+/// gradient). \throw InvalidInputError samples < 1, gradient_step <= 0
+MaterialEvalPoints material_eval_points(const TriMesh& mesh, bool with_height, const MaterialEvalOptions& options = {});
+
+/// evaluate_material_textures() with the exact material at \p points.probes given (\p exact, shape
+/// [P·K]; e.g. from a MaterialPointCache). \p points.samples lie on \p mesh: a session moves them to
+/// a refined mesh (the same 3-D points, so the same exact values). options.samples and seed are not used.
+/// \throw InvalidInputError as above, or exact of another size
+MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
+                                         const MaterialTextures& textures, const MaterialEvalPoints& points,
+                                         const std::vector<MaterialValue>& exact, const MaterialEvalOptions& options = {});
 
 }  // namespace adaptex

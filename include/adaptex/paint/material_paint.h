@@ -11,6 +11,7 @@
 #include "adaptex/core/mesh.h"
 #include "adaptex/core/parameterization.h"
 #include "adaptex/paint/material_strokes.h"
+#include "adaptex/paint/signal.h"
 #include "adaptex/paint/texel_map.h"
 
 namespace adaptex {
@@ -40,6 +41,28 @@ struct MaterialTextures {
 MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file,
                                 const MaterialPaintOptions& options = {});
 
+/// The textures of a layout from the material at its chart texels: paint_material() after the
+/// evaluation (padding, 8-bit channels, the glTF packing, the normal map derived with \p height_scale).
+/// \p map is the layout's texel map (its size is the textures'); \p values one per map.inside texel
+/// (as evaluate_material() at texel_points(map)); texels outside charts and padding hold \p background.
+/// \throw InvalidInputError values.size() != map.inside.size(), padding < 0
+MaterialTextures material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                               const std::vector<MaterialValue>& values,
+                                               const MaterialValue& background, int padding, double height_scale);
+
+/// Writes the material \p v into texel \p t (row-major index) of the 8-bit channel textures of \p tex
+/// (base colour and alpha, roughness, metallic, height, the metallic-roughness packing; not the normal
+/// map), as paint_material() does. \pre t inside the textures
+void set_material_texel(MaterialTextures& tex, int t, const MaterialValue& v);
+/// Writes the unit normal \p n into texel \p t of a normal map, as normal_map_from_height() does.
+void set_normal_texel(ImageRGBA8& normal_map, int t, const Vec3f& n);
+
+/// The height scale of \p file on \p mesh: the file's, or 1 % of the bounding-box diagonal.
+double material_height_scale(const TriMesh& mesh, const MaterialStrokeFile& file);
+
+/// The surface points of the chart texels' centres of \p map, shape [map.inside.size()].
+std::vector<SurfacePoint> texel_points(const TexelMap& map);
+
 /// One layer of a material as pictures on the layout (docs/export.md, "Layers as separate PNGs"),
 /// all size x size, row 0 at v = 0.
 struct LayerTextures {
@@ -62,6 +85,13 @@ std::vector<LayerTextures> paint_material_layers(const TriMesh& mesh, const Para
 /// \pre height.size() == map.width * map.height
 std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                   const std::vector<double>& height);
+
+/// height_normals() at the texels \p texels only (row-major indices; a texel outside charts gets the
+/// flat normal): after the heights of some texels changed, these texels and their 4-neighbours.
+/// \pre height.size() == normals.size() == map.width * map.height
+void update_height_normals(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                           const std::vector<double>& height, const std::vector<int>& texels,
+                           std::vector<Vec3f>& normals);
 
 /// The tangent-space normal of a height field H (world units per texel of \p map, W*H values; only
 /// texels inside charts are read) over the surface: n' = normalize(n − ∇H) with ∇H the surface

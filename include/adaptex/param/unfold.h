@@ -40,4 +40,12 @@ struct PolygonLayout {
 /// \throw InvalidInputError a face index outside [0, V) or a position that is not finite
 std::optional<PolygonLayout> unfold_polygon(const TriMesh& disk);
 
+/// \p uv (a layout of \p disk, indexed like its positions) turned so that its bounding rectangle
+/// has the smallest area (one side along an edge of the convex hull) and scaled into [0,1]² by
+/// (1 / width, 1 / height); rejected when a UV triangle is flipped or degenerate or two overlap.
+/// Shared by unfold_polygon() and the free-boundary layout (lscm.h).
+/// \return the layout, or std::nullopt when \p uv has the wrong size, a coordinate that is not
+///         finite, no area, or a flipped, degenerate or overlapping triangle
+std::optional<PolygonLayout> fit_to_rectangle(const TriMesh& disk, std::vector<Vec2> uv);
+
 }  // namespace adaptex

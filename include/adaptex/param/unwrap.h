@@ -124,6 +124,17 @@ struct UnwrapOptions {
   /// 32 faces or more with degenerate or flipped UV triangles is split regardless
   /// (docs/charts.md, "Scans"). >= 1.
   double scan_chart_l2 = 1.1;
+  /// Scans: every chart of the scan segmentation also tries a free-boundary conformal layout
+  /// (LSCM, lscm.h) of its disk and keeps it when valid and its texel share (fill of its
+  /// rectangle / L2²) is higher; the probes that decide the splits do the same (docs/charts.md,
+  /// "Scans"). true (default); false: the disk parameterization (and unfolding) only.
+  bool scan_free_boundary = true;
+  /// Scans: components are first cut into planar charts (planar.h: faces whose normal is within
+  /// this many degrees of the chart's mean normal) and the connected parts of the rest, before the
+  /// top-down splitting (docs/charts.md, "Scans"). 20 (default); 0 disables it. In [0, 90).
+  double scan_planar_angle = 20.0;
+  /// Scans: planar charts of less than this fraction of the mesh's area are given back to the rest.
+  double scan_planar_min_area = 0.001;
   /// Scans: rounds of splitting (each round at most doubles the pieces). >= 0.
   int scan_max_rounds = 12;
   /// Scans: meshes of at most this many faces also build one chart per component, and the

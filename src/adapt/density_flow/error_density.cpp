@@ -13,6 +13,7 @@
 
 #include "adaptex/adapt/grid.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/paint/material_paint.h"  // texel_points()
 #include "adaptex/paint/signal.h"
 
 namespace adaptex {
@@ -91,16 +92,6 @@ void pad_outside(Raster& r, std::vector<char> filled, int rings) {
     if (next == filled) break;  // nothing was filled: the later rings would change nothing either
     filled.swap(next);
   }
-}
-
-/// The surface points of the texel centres of \p map inside charts, shape [map.inside.size()].
-std::vector<SurfacePoint> texel_points(const TexelMap& map) {
-  std::vector<SurfacePoint> pts(map.inside.size());
-  for (size_t k = 0; k < pts.size(); ++k) {
-    const int t = map.inside[k];
-    pts[k] = SurfacePoint{map.face[t], map.bary[t].x(), map.bary[t].y()};
-  }
-  return pts;
 }
 
 /// The raster of \p map holding \p c (the signal at texel_points(map)) inside charts, padded outside
@@ -539,8 +530,24 @@ Raster plane_raster(const TexelMap& map, const std::vector<Vec3f>& values, bool 
 
 }  // namespace
 
+ErrorPlaneMaps error_plane_maps(const TriMesh& mesh, const Parameterization& param, int texture_size,
+                                const ErrorDensityOptions& o) {
+  if (texture_size < 1) throw InvalidInputError("error density: texture size < 1");
+  if (o.reference_factor < 1 || o.max_reference < 1) throw InvalidInputError("error density: bad reference size");
+  const int half = std::max(1, texture_size / 2);
+  return ErrorPlaneMaps{texture_size, reference_texel_map(mesh, param, reference_grid(texture_size, o)),
+                        build_texel_map(mesh, param, half, half)};
+}
+
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                    const std::vector<ErrorPlane>& planes, const ErrorDensityOptions& o) {
+  if (planes.empty()) throw InvalidInputError("error density: no plane");
+  return compute_error_density(mesh, param, map, planes, error_plane_maps(mesh, param, map.width, o), o);
+}
+
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                   const std::vector<ErrorPlane>& planes, const ErrorPlaneMaps& maps,
+                                   const ErrorDensityOptions& o) {
   if (planes.empty()) throw InvalidInputError("error density: no plane");
   for (const ErrorPlane& p : planes) {
     if (!(p.weight > 0) || !std::isfinite(p.weight)) throw InvalidInputError("error density: a plane weight is not > 0");
@@ -549,9 +556,10 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
   }
   const int N = map.width;
   const ReferenceGrid g = reference_grid(N, o);
-  const TexelMap ref_map = reference_texel_map(mesh, param, g);
-  const int half = std::max(1, N / 2);
-  const TexelMap half_map = build_texel_map(mesh, param, half, half);
+  if (maps.texture_size != N || maps.reference.width != g.side || maps.half.width != std::max(1, N / 2))
+    throw InvalidInputError("error density: the plane maps are of another texture size or reference grid");
+  const TexelMap& ref_map = maps.reference;
+  const TexelMap& half_map = maps.half;
   const std::vector<double> ratio = surface_per_uv(mesh, param);
   const int cells = std::min(o.cells, g.side);
   CellErrors sum;

@@ -7,6 +7,8 @@
 #include <memory>
 #include <mutex>
 
+#include <tbb/parallel_for.h>
+
 #include "adaptex/core/errors.h"
 #include "adaptex/paint/material_eval.h"
 #include "adaptex/paint/material_signal.h"
@@ -15,22 +17,15 @@ namespace adaptex {
 
 namespace {
 
-/// The exact material at every texel of a texel map, evaluated once per map for all planes.
+/// The exact material at the chart texels of a texel map, evaluated once per map for all planes.
 class TexelMaterial {
  public:
   TexelMaterial(const TriMesh& mesh, const MaterialStrokeFile& file) : mesh_(mesh), file_(file) {}
   const std::vector<MaterialValue>& at(const TexelMap& map) {
     const std::lock_guard lock(mutex_);
-    auto& slot = cache_[&map];
-    if (slot.size() != static_cast<size_t>(map.width) * map.height) {
-      std::vector<SurfacePoint> pts(map.inside.size());
-      for (size_t k = 0; k < pts.size(); ++k) pts[k] = {map.face[map.inside[k]], map.bary[map.inside[k]].x(),
-                                                        map.bary[map.inside[k]].y()};
-      const std::vector<MaterialValue> v = evaluate_material(mesh_, file_, pts);
-      slot.assign(static_cast<size_t>(map.width) * map.height, file_.background);
-      for (size_t k = 0; k < pts.size(); ++k) slot[map.inside[k]] = v[k];
-    }
-    return slot;
+    auto [it, fresh] = cache_.try_emplace(&map);
+    if (fresh) it->second = evaluate_material(mesh_, file_, texel_points(map));
+    return it->second;
   }
 
  private:
@@ -39,6 +34,15 @@ class TexelMaterial {
   std::mutex mutex_;
   std::map<const TexelMap*, std::vector<MaterialValue>> cache_;
 };
+
+/// W*H values of \p map: f(value) at the chart texels (\p v in map.inside order), \p zero elsewhere.
+template <class T, class F>
+std::vector<T> on_texels(const TexelMap& map, const std::vector<MaterialValue>& v, const T& zero, F f) {
+  if (v.size() != map.inside.size()) throw Error("material_error_planes: the source gave another number of texels");
+  std::vector<T> out(static_cast<size_t>(map.width) * map.height, zero);
+  tbb::parallel_for(size_t(0), v.size(), [&](size_t k) { out[map.inside[k]] = f(v[k]); });
+  return out;
+}
 
 ImageRGBA8 data_texture(const MaterialTextures& t) {
   ImageRGBA8 img(t.roughness.width, t.roughness.height);
@@ -66,9 +70,18 @@ double sampled_error(const TriMesh& mesh, const Parameterization& param, const M
 std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                               const MaterialStrokeFile& file, const MaterialTextures& textures,
                                               double data_weight) {
+  auto exact = std::make_shared<TexelMaterial>(mesh, file);
+  return material_error_planes(mesh, param, map, textures, [exact](const TexelMap& at) -> const std::vector<MaterialValue>& {
+    return exact->at(at);
+  }, data_weight);
+}
+
+std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                              const MaterialTextures& textures, MaterialTexelSource exact,
+                                              double data_weight) {
   if (map.width != textures.base_color.width || map.height != textures.base_color.height)
     throw InvalidInputError("material_error_planes: the texel map and the textures differ in size");
-  auto exact = std::make_shared<TexelMaterial>(mesh, file);
+  if (!exact) throw InvalidInputError("material_error_planes: no exact source");
   double albedo2 = 0;  // mean square of the base colour over the chart texels
   for (int t : map.inside)
     for (int c = 0; c < 3; ++c) albedo2 += std::pow(textures.base_color.data[4 * t + c] / 255.0, 2) / 3;
@@ -77,26 +90,18 @@ std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Paramet
   std::vector<ErrorPlane> planes(3);
   planes[0].texture = textures.base_color;
   planes[0].exact = [exact](const TexelMap& at) {
-    const auto& v = exact->at(at);
-    std::vector<Vec3f> out(v.size());
-    for (size_t t = 0; t < v.size(); ++t) out[t] = Vec3f(float(v[t][0]), float(v[t][1]), float(v[t][2]));
-    return out;
+    return on_texels<Vec3f>(at, exact(at), Vec3f::Zero(), [](const MaterialValue& v) { return Vec3f(float(v[0]), float(v[1]), float(v[2])); });
   };
   planes[1].weight = data_weight;
   planes[1].texture = data_texture(textures);
   planes[1].exact = [exact](const TexelMap& at) {
-    const auto& v = exact->at(at);
-    std::vector<Vec3f> out(v.size());
-    for (size_t t = 0; t < v.size(); ++t) out[t] = Vec3f(float(v[t][4]), float(v[t][5]), float(v[t][3]));
-    return out;
+    return on_texels<Vec3f>(at, exact(at), Vec3f::Zero(), [](const MaterialValue& v) { return Vec3f(float(v[4]), float(v[5]), float(v[3])); });
   };
   // The normal map stores (n + 1) / 2: its squared error is |Δn|² / 4, so 4 · albedo² gives Lambert's.
   planes[2].weight = std::max(4 * albedo2, 1e-6);
   planes[2].texture = textures.normal;
   planes[2].exact = [exact, &mesh, &param, scale](const TexelMap& at) {
-    const auto& v = exact->at(at);
-    std::vector<double> h(v.size());
-    for (size_t t = 0; t < v.size(); ++t) h[t] = (v[t][6] - 0.5) * scale;
+    const std::vector<double> h = on_texels<double>(at, exact(at), 0.0, [scale](const MaterialValue& v) { return (v[6] - 0.5) * scale; });
     std::vector<Vec3f> normals = height_normals(mesh, param, at, h);
     for (Vec3f& x : normals) x = 0.5f * (x + Vec3f::Ones());
     return normals;

@@ -1,0 +1,334 @@
+/// \file material_session.cpp
+/// MaterialPaintSession (material_session.h): strokes into per-layer point caches, and the cycle:
+/// the summed error model from the caches, the gain gate, the warp, the history replayed onto the
+/// candidate layout, the never-worse check on cached exact values.
+#include "adaptex/adapt/material_session.h"
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "adaptex/adapt/error_density.h"
+#include "adaptex/core/errors.h"
+#include "adaptex/core/limits.h"
+#include "adaptex/core/timer.h"
+#include "adaptex/paint/material_eval.h"
+#include "adaptex/paint/material_point_cache.h"
+#include "adaptex/paint/padding.h"
+#include "adaptex/paint/point_transfer.h"
+
+namespace adaptex {
+
+namespace {
+
+bool in_unit(double v) { return v >= 0 && v <= 1; }
+
+/// The rules of docs/strokes.md for one stroke added to a session (the parser's, for a stroke built in code).
+void check_stroke(const MaterialStroke& s, const std::string& where) {
+  auto bad = [&](const std::string& what) { throw InvalidInputError(where + ": " + what); };
+  if (s.type == MaterialStroke::Type::Decal) return validate_stroke(s.decal, where);
+  if ((s.channels & ~kAllChannels) != 0) bad("unknown channel bits");
+  for (double v : s.value)
+    if (!in_unit(v)) bad("channel values must be in [0, 1]");
+  if (!in_unit(s.opacity) || !in_unit(s.mask_value)) bad("opacity and mask value must be in [0, 1]");
+  if (s.type == MaterialStroke::Type::Fill) return;
+  if (!(s.radius > 0) || !std::isfinite(s.radius)) bad("radius must be positive and finite");
+  if (!in_unit(s.hardness)) bad("hardness must be in [0, 1]");
+  if (s.dabs.empty()) bad("a brush or erase stroke needs dabs");
+  for (const Vec3& d : s.dabs)
+    if (!d.allFinite()) bad("dab positions must be finite");
+  if (!s.pressure.empty() && s.pressure.size() != s.dabs.size()) bad("one pressure per dab, or none");
+  for (double p : s.pressure)
+    if (!in_unit(p)) bad("pressures must be in [0, 1]");
+}
+
+/// A layout with its mesh, texel map and the history's material at its chart texels.
+struct Layout {
+  std::shared_ptr<const TriMesh> mesh;
+  Parameterization param;
+  FaceData<int> parent_face;  // refined mesh: input face of every face; empty: the input mesh
+  TexelMap map;
+  std::unique_ptr<MaterialPointCache> texels;
+  MaterialTextures textures;
+  long long painted = -1;     // texels->strokes() when `textures` were made
+  ImageF density;             // the model's density that made it (empty: the initial layout)
+  // The initial layout's textures are updated where strokes changed them: the material they show,
+  // the heights and normals of the chart texels (W*H), and the padding.
+  std::vector<MaterialValue> last;
+  std::vector<double> height;
+  std::vector<Vec3f> normals;
+  std::vector<char> mark;
+  SeamPadding pad;
+};
+
+}  // namespace
+
+struct MaterialPaintSession::Impl {
+  MaterialSessionOptions opt;
+  MaterialStrokeFile history;
+  double height_scale = 0;
+  Layout initial;
+  std::unique_ptr<Layout> held;   // the adapted layout held, or null: the initial
+  std::unique_ptr<Layout> spare;  // a former candidate, whose storage the next one reuses
+  std::optional<ErrorPlaneMaps> plane_maps;
+  std::unique_ptr<MaterialPointCache> reference, half;  // the model's exact values, at plane_maps' points
+  MaterialEvalPoints check_points;
+  std::unique_ptr<MaterialPointCache> check;            // the exact material at check_points.probes
+  std::vector<AdaptReport> reports;
+
+  MaterialEvalOptions eval_options() const {
+    MaterialEvalOptions eo;
+    eo.samples = opt.check_samples;
+    eo.seed = opt.check_seed;
+    eo.data_weight = opt.data_weight;
+    return eo;
+  }
+
+  Layout& current() { return held ? *held : initial; }
+  const Layout& current() const { return held ? *held : initial; }
+
+  void make_layout(Layout& l) {
+    const int N = opt.paint.size;
+    l.map = build_texel_map(*l.mesh, l.param, N, N);
+    if (l.texels)
+      l.texels->reset(*l.mesh, texel_points(l.map), history);
+    else
+      l.texels = std::make_unique<MaterialPointCache>(*l.mesh, texel_points(l.map), history);
+    l.painted = -1;
+  }
+
+  /// The textures of \p l with the whole history: made anew for a new layout, then (the initial
+  /// layout) updated where the composite changed.
+  const MaterialTextures& textures_of(Layout& l) {
+    l.texels->update(history);
+    if (l.painted == l.texels->strokes()) return l.textures;
+    const std::vector<MaterialValue>& v = l.texels->values(history);
+    if (l.painted >= 0 && !l.last.empty()) {
+      update_textures(l, v);
+    } else {
+      l.textures = material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding,
+                                                 height_scale);
+      if (&l == &initial) {  // kept for the updates
+        l.last = v;
+        l.pad = build_seam_padding(l.map, opt.paint.padding);
+        l.height.assign(static_cast<size_t>(l.map.width) * l.map.height, 0.0);
+        for (size_t k = 0; k < v.size(); ++k) l.height[l.map.inside[k]] = (v[k][6] - 0.5) * height_scale;
+        l.normals = height_normals(*l.mesh, l.param, l.map, l.height);
+        l.mark.assign(l.height.size(), 0);
+      }
+    }
+    l.painted = l.texels->strokes();
+    return l.textures;
+  }
+
+  /// The texels whose material changed since the last textures, their channels, and the normals of
+  /// them and their 4-neighbours (the height's differences read the neighbours); then the padding.
+  void update_textures(Layout& l, const std::vector<MaterialValue>& v) {
+    const TexelMap& map = l.map;
+    std::vector<int> changed;
+    for (size_t k = 0; k < v.size(); ++k)
+      if (v[k] != l.last[k]) changed.push_back(static_cast<int>(k));
+    std::vector<int> around;
+    const int W = map.width, H = map.height;
+    for (int k : changed) {
+      const int t = map.inside[k];
+      set_material_texel(l.textures, t, v[k]);
+      l.height[t] = (v[k][6] - 0.5) * height_scale;
+      l.last[k] = v[k];
+      const int i = t % W, j = t / W;
+      for (const auto& [di, dj] : {std::pair{0, 0}, {-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
+        if (i + di < 0 || i + di >= W || j + dj < 0 || j + dj >= H) continue;
+        const int u = t + di + dj * W;
+        if (map.face[u] >= 0 && !l.mark[u]) l.mark[u] = 1, around.push_back(u);
+      }
+    }
+    update_height_normals(*l.mesh, l.param, map, l.height, around, l.normals);
+    for (int u : around) set_normal_texel(l.textures.normal, u, l.normals[u]), l.mark[u] = 0;
+    for (ImageRGBA8* img : {&l.textures.base_color, &l.textures.roughness, &l.textures.metallic, &l.textures.height,
+                            &l.textures.metallic_roughness, &l.textures.normal})
+      apply_seam_padding(*img, l.pad);
+  }
+
+  /// The caches of the model and the check, built on first use, brought up to date.
+  void update_caches() {
+    const int N = opt.paint.size;
+    if (!plane_maps) {
+      plane_maps = error_plane_maps(*initial.mesh, initial.param, N, opt.adapt.density_flow.density);
+      reference = std::make_unique<MaterialPointCache>(*initial.mesh, texel_points(plane_maps->reference), history);
+      half = std::make_unique<MaterialPointCache>(*initial.mesh, texel_points(plane_maps->half), history);
+      check_points = material_eval_points(*initial.mesh, true, eval_options());
+      check = std::make_unique<MaterialPointCache>(*initial.mesh, check_points.probes, history);
+    }
+    for (MaterialPointCache* c : {reference.get(), half.get(), check.get()}) c->update(history);
+  }
+
+  /// The source of the planes' exact values: the reference and N/2 caches.
+  MaterialTexelSource exact_source() {
+    return [this](const TexelMap& at) -> const std::vector<MaterialValue>& {
+      if (&at == &plane_maps->reference) return reference->values(history);
+      if (&at == &plane_maps->half) return half->values(history);
+      throw Error("material session: the model asked for another texel map");
+    };
+  }
+
+  MaterialError judge(const Layout& l, const MaterialTextures& tex) {
+    MaterialEvalPoints pts;
+    const MaterialEvalPoints* use = &check_points;
+    if (!l.parent_face.empty()) {  // the same 3-D points on the refined mesh: the same exact values
+      pts.samples = transfer_points(check_points.samples, *initial.mesh, *l.mesh, l.parent_face);
+      pts.directions = check_points.directions;
+      pts.per_sample = check_points.per_sample;
+      pts.step = check_points.step;
+      use = &pts;
+    }
+    return evaluate_material_textures(*l.mesh, l.param, tex, *use, check->values(history), eval_options());
+  }
+
+  const AdaptReport& cycle(bool gated);
+  const AdaptReport& skip(AdaptReport rep, std::chrono::steady_clock::time_point t0);
+};
+
+const AdaptReport& MaterialPaintSession::Impl::skip(AdaptReport rep, std::chrono::steady_clock::time_point t0) {
+  rep.skipped = true;
+  rep.accepted = false;
+  rep.damping = 0;
+  rep.faces_before = rep.faces_after = current().mesh->num_faces();
+  rep.time_total = seconds_since(t0);
+  reports.push_back(rep);
+  return reports.back();
+}
+
+const AdaptReport& MaterialPaintSession::Impl::cycle(bool gated) {
+  const auto t_all = std::chrono::steady_clock::now();
+  auto t0 = t_all;
+  update_caches();
+  const MaterialTextures& base = textures_of(initial);
+  const ErrorDensity model = compute_error_density(
+      *initial.mesh, initial.param, initial.map,
+      material_error_planes(*initial.mesh, initial.param, initial.map, base, exact_source(), opt.data_weight),
+      *plane_maps, opt.adapt.density_flow.density);
+  AdaptReport gate;
+  gate.mode = opt.adapt.mode;
+  gate.signal_fraction = model.signal_fraction;
+  gate.predicted_gain_db = model.predicted_gain_db;
+  const double least = predicted_error(model, model.density);
+  const double at_held = held ? (held->density.data.empty() ? -1.0 : predicted_error(model, held->density))
+                              : predicted_error(model, ImageF{});
+  gate.gain_over_held_db = at_held > 0 && least > 0 ? 10 * std::log10(at_held / least) : 0.0;
+  gate.time_density = seconds_since(t0);
+  if (gated && opt.min_gain_db > 0 && at_held >= 0 && gate.gain_over_held_db < opt.min_gain_db) return skip(gate, t_all);
+
+  AdaptResult res = adapt_parameterization(*initial.mesh, initial.param, base.base_color, initial.map, model, opt.adapt);
+  AdaptReport& rep = res.report;
+  rep.time_density += gate.time_density;
+  rep.gain_over_held_db = gate.gain_over_held_db;
+  std::unique_ptr<Layout> cand = spare ? std::move(spare) : std::make_unique<Layout>();
+  cand->mesh = res.refined_mesh ? res.refined_mesh : initial.mesh;
+  cand->param = res.param;
+  cand->parent_face = res.refined_mesh ? res.parent_face : FaceData<int>{};
+  cand->density = res.report.damping == 1 ? res.density : ImageF{};
+  bool accept = rep.accepted;
+  if (accept) {
+    t0 = std::chrono::steady_clock::now();
+    make_layout(*cand);  // the history replayed onto the candidate layout
+    textures_of(*cand);
+    rep.time_texture_update = seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+    rep.error_before = judge(initial, base).weighted;
+    rep.error_after = judge(*cand, cand->textures).weighted;
+    rep.time_safeguard = seconds_since(t0);
+    accept = rep.error_after < rep.error_before * (1 - opt.check_margin);
+  }
+  if (accept) {
+    spare = std::move(held);
+    held = std::move(cand);
+  } else {
+    if (held) spare = std::move(held);
+    else spare = std::move(cand);
+    rep.accepted = false;
+    rep.damping = 0;
+    rep.faces_after = initial.mesh->num_faces();
+  }
+  rep.time_total = seconds_since(t_all);
+  reports.push_back(rep);
+  return reports.back();
+}
+
+MaterialPaintSession::MaterialPaintSession(TriMesh mesh, Parameterization initial, MaterialStrokeFile file,
+                                           const MaterialSessionOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  const AdaptMode mode = options.adapt.mode;
+  if (mode != AdaptMode::None && mode != AdaptMode::DensityFlow)
+    throw InvalidInputError(std::string("material session: layered materials adapt with density-flow or none (got ") +
+                            to_string(mode) + ")");
+  if (initial.uv_faces.size() != mesh.faces.size())
+    throw InvalidInputError("material session: the layout and the mesh have different face counts");
+  if (options.paint.size < 1 || options.paint.size > kMaxTextureSize || options.paint.padding < 0)
+    throw InvalidInputError("material session: texture size must be in [1, " + std::to_string(kMaxTextureSize) +
+                            "] and padding >= 0");
+  if (options.check_samples < 1 || options.check_samples > 10'000'000)
+    throw InvalidInputError("material session: check_samples must be in [1, 10000000]");
+  if (!(options.check_margin >= 0 && options.check_margin < 1) || !(options.min_gain_db >= 0) ||
+      !std::isfinite(options.min_gain_db) || !(options.data_weight >= 0) || !std::isfinite(options.data_weight))
+    throw InvalidInputError("material session: check_margin must be in [0, 1), min_gain_db and data_weight >= 0");
+  m.opt = options;
+  m.history = std::move(file);
+  m.initial.mesh = std::make_shared<const TriMesh>(std::move(mesh));
+  m.initial.param = std::move(initial);
+  m.height_scale = material_height_scale(*m.initial.mesh, m.history);
+  m.make_layout(m.initial);
+}
+
+MaterialPaintSession::~MaterialPaintSession() = default;
+
+void MaterialPaintSession::add_strokes(int layer, const std::vector<MaterialStroke>& strokes) {
+  Impl& m = *impl_;
+  if (layer < 0 || layer >= static_cast<int>(m.history.layers.size()))
+    throw InvalidInputError("material session: layer " + std::to_string(layer) + " of " +
+                            std::to_string(m.history.layers.size()));
+  for (size_t k = 0; k < strokes.size(); ++k)
+    check_stroke(strokes[k], "material session: layer " + std::to_string(layer) + ", stroke " + std::to_string(k));
+  if (strokes.empty()) return;
+  for (const MaterialStroke& s : strokes) m.history.layers[layer].strokes.push_back(s);
+  if (m.opt.adapt.mode != AdaptMode::None) m.cycle(true);
+}
+
+void MaterialPaintSession::add_stroke(int layer, const MaterialStroke& stroke, bool to_mask) {
+  Impl& m = *impl_;
+  if (!to_mask) return add_strokes(layer, {stroke});
+  if (layer < 0 || layer >= static_cast<int>(m.history.layers.size()) || !m.history.layers[layer].mask)
+    throw InvalidInputError("material session: layer " + std::to_string(layer) + " has no mask");
+  if (stroke.type == MaterialStroke::Type::Decal) throw InvalidInputError("material session: a mask takes no decal");
+  check_stroke(stroke, "material session: mask of layer " + std::to_string(layer));
+  m.history.layers[layer].mask->strokes.push_back(stroke);
+  if (m.opt.adapt.mode != AdaptMode::None) m.cycle(true);
+}
+
+const AdaptReport& MaterialPaintSession::reparameterize() {
+  if (impl_->opt.adapt.mode == AdaptMode::None)
+    throw InvalidInputError("material session: reparameterize() with adaptation mode none");
+  return impl_->cycle(false);
+}
+
+const TriMesh& MaterialPaintSession::mesh() const { return *impl_->current().mesh; }
+const Parameterization& MaterialPaintSession::param() const { return impl_->current().param; }
+const MaterialTextures& MaterialPaintSession::textures() { return impl_->textures_of(impl_->current()); }
+const MaterialStrokeFile& MaterialPaintSession::history() const { return impl_->history; }
+const std::vector<AdaptReport>& MaterialPaintSession::reports() const { return impl_->reports; }
+bool MaterialPaintSession::adapted() const { return impl_->held != nullptr; }
+
+MaterialError MaterialPaintSession::held_error() {
+  Impl& m = *impl_;
+  m.update_caches();
+  return m.judge(m.current(), m.textures_of(m.current()));
+}
+
+MaterialError MaterialPaintSession::initial_error() {
+  Impl& m = *impl_;
+  m.update_caches();
+  return m.judge(m.initial, m.textures_of(m.initial));
+}
+
+}  // namespace adaptex
