@@ -348,6 +348,8 @@ MaterialOutcome paint_material_history(const std::shared_ptr<const TriMesh>& mes
   o.adapted = r.adapted;
   const bool same_mesh = r.mesh.faces == mesh->faces && r.mesh.positions == mesh->positions;
   o.mesh = same_mesh ? mesh : std::make_shared<const TriMesh>(std::move(r.mesh));
+  if (!same_mesh && r.parent_face.size() == o.mesh->faces.size())
+    o.normals = refined_normals(*mesh, *o.mesh, r.parent_face);
   o.param = std::make_shared<const Parameterization>(std::move(r.param));
   o.textures = std::make_shared<const MaterialTextures>(std::move(r.textures));
   o.phase_ms.emplace_back("material",

@@ -175,6 +175,8 @@ struct MaterialOutcome {
   std::shared_ptr<const TriMesh> mesh;  ///< The input mesh, or its refinement (same surface, more faces).
   std::shared_ptr<const Parameterization> param;
   std::shared_ptr<const MaterialTextures> textures;
+  /// With a refinement: per vertex of *mesh, the input's smooth normals (as SessionOutcome::normals).
+  std::vector<Vec3> normals;
   bool adapted = false;  ///< The adapted layout was kept (false: \p initial).
   std::vector<std::pair<std::string, double>> phase_ms;
 };

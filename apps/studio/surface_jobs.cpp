@@ -228,6 +228,7 @@ void SurfaceJobs::start_material(const Surface& current, std::uint64_t version, 
         s.model = model;
         s.mesh = o.mesh;
         s.caster = o.mesh == model->mesh ? model->caster : std::make_shared<const RayCaster>(*o.mesh);
+        if (!o.normals.empty()) s.normals = std::make_shared<const std::vector<Vec3>>(std::move(o.normals));
         s.param = o.adapted ? o.param : model->initial;
         s.material = o.textures;
         const MaterialValue& bg = file.background;

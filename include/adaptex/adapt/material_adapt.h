@@ -25,6 +25,9 @@ struct MaterialAdaptOptions {
 /// Result of adapt_material().
 struct MaterialAdaptResult {
   TriMesh mesh;                 ///< The input, or its refinement (same surface) when the warp refined it.
+  /// With a refinement: the input face of every face of mesh (size F'), as AdaptResult::parent_face;
+  /// empty otherwise.
+  FaceData<int> parent_face;
   Parameterization param;       ///< The layout the textures are on.
   MaterialTextures textures;
   AdaptReport report;           ///< The adaptation's report (mode none: the fixed layout's).

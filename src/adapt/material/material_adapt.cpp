@@ -134,6 +134,7 @@ MaterialAdaptResult adapt_material(const TriMesh& mesh, const Parameterization& 
   out.error_adapted = sampled_error(adapted_mesh, res.param, adapted, file, options.data_weight, options.check_samples);
   if (res.report.accepted && out.error_adapted < out.error_fixed) {
     out.mesh = adapted_mesh;
+    if (res.refined_mesh) out.parent_face = res.parent_face;
     out.param = res.param;
     out.textures = std::move(adapted);
     out.adapted = true;
