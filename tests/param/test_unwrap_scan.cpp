@@ -111,12 +111,15 @@ TEST(UnwrapScan, SingleModeAndFewComponentsKeepTheirLayouts) {
 
 TEST(UnwrapScan, OptionsOutOfRangeAreOneClearError) {
   const TriMesh mesh = test::scan_like_mesh(20000);
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < 7; ++k) {
     UnwrapOptions o;
     if (k == 0) o.scan_piece_faces = 0;
     if (k == 1) o.scan_max_rounds = -1;
     if (k == 2) o.scan_chart_l2 = std::numeric_limits<double>::quiet_NaN();
     if (k == 3) o.min_chart_side_of_gap = 5;
+    if (k == 4) o.scan_planar_angle = 90;
+    if (k == 5) o.scan_planar_angle = std::numeric_limits<double>::quiet_NaN();
+    if (k == 6) o.scan_planar_min_area = 1.5;
     EXPECT_THROW(unwrap(mesh, o), InvalidInputError) << k;
   }
 }
