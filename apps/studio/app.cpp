@@ -580,8 +580,10 @@ Stroke App::brush_style() const {
 
 void App::begin_paint() {
   if (!painting_.surface() || painting_.stroke_open()) return;
-  if (!material_ && brush_.channels != channel_bit(Channel::BaseColor) && !edit_material([](MaterialDocument&) {}))
-    return;  // another channel than base colour: the document becomes a layered material
+  const bool pressure_curves = !brush_.radius_curve.points.empty() || !brush_.opacity_curve.points.empty();
+  if (!material_ && (brush_.channels != channel_bit(Channel::BaseColor) || pressure_curves) &&
+      !edit_material([](MaterialDocument&) {}))
+    return;  // another channel than base colour, or pressure curves: the document becomes a layered material
   if (brush_.channels == 0 && !painting_mask()) return add_message("the brush paints no channel: choose one in the Brush panel", true);
   painting_.catch_up();  // paints redone strokes first, so canvas order == history order
   view_.fixed_layout = false;  // paint on (and look at) the adaptive layout

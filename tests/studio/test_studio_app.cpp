@@ -2065,6 +2065,16 @@ TEST(StudioMaterial, PenPressureGoesIntoTheDabsAndTheCurvesIntoTheStroke) {
   const MaterialStrokeFile back = parse_material_strokes(text, "m.json", ".");
   EXPECT_EQ(back.layers[0].strokes[1].pressure, s.pressure);
   EXPECT_DOUBLE_EQ(back.layers[0].strokes[1].radius_curve(0.35), 0.2 + 0.35 / 0.5 * 0.4);
+  // Pressure curves need the layered document (a version 1 stroke has none): the first stroke with
+  // them makes the single base-colour layer a layered material.
+  Harness g({}, 128);
+  g.app->brush().radius = 0.3;
+  g.app->brush().opacity_curve.points = {Vec2(0, 0.5), Vec2(1, 1)};
+  g.app->set_pen_pressure(0.5);
+  g.drag(150, 150, 250, 150);
+  ASSERT_TRUE(g.app->layered());
+  ASSERT_EQ(g.app->material()->file().layers[0].strokes.size(), 1u);
+  EXPECT_EQ(g.app->material()->file().layers[0].strokes[0].opacity_curve.points.size(), 2u);
 }
 
 
