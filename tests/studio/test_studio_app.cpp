@@ -24,6 +24,7 @@
 #include "adaptex/paint/painter.h"
 #include "app.h"
 #include "brush_preset.h"
+#include "tablet.h"
 #include "file_browser.h"
 #include "live_adaptation.h"
 #include "test_support.h"
@@ -2157,6 +2158,28 @@ TEST(StudioMaterial, TheEyedropperPicksTheCompositedValuesOfTheCheckedChannels) 
   h.click(200, 150);
   EXPECT_NEAR(h.app->brush().metallic, 0.7, 1e-9);
   EXPECT_EQ(h.app->brush().color, Vec3(1, 1, 1));  // the white background
+}
+
+
+TEST(StudioTablet, PressureIsTheNormalisedValuatorAmongThePackedValues) {
+  // Valuators 0 (x), 1 (y) and 2 (pressure, range 0..65535) set; values packed in order.
+  unsigned char mask[2] = {0b00000111, 0};
+  const double values[] = {100, 200, 16383.75};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, values, 2, 0, 65535, 1), 0.25);
+  // Valuator 1 not set: the pressure is the second packed value.
+  mask[0] = 0b00000101;
+  const double packed[] = {100, 65535};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, packed, 2, 0, 65535, 1), 1.0);
+  // The pressure not in the event: unchanged; out of range: clamped; a valuator past the mask: unchanged.
+  mask[0] = 0b00000011;
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, values, 2, 0, 65535, 0.4), 0.4);
+  mask[0] = 0b00000100;
+  const double over[] = {70000};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, over, 2, 0, 65535, 0.4), 1.0);
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, over, 20, 0, 65535, 0.4), 0.4);
+  // A range of 1..2048 (some drivers): the minimum is pressure 0.
+  const double low[] = {1};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, low, 2, 1, 2048, 0.4), 0.0);
 }
 
 }  // namespace
