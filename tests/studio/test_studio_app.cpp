@@ -2182,5 +2182,34 @@ TEST(StudioTablet, PressureIsTheNormalisedValuatorAmongThePackedValues) {
   EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, low, 2, 1, 2048, 0.4), 0.0);
 }
 
+
+TEST(StudioBrushPreset, ProjectsKeepTheMaskValueAndThePressureCurves) {
+  TempDir dir;
+  Project p;
+  p.mesh_path = "builtin:sphere";
+  p.brush.mask_value = 0.3;
+  p.brush.on_mask = true;
+  p.brush.radius_curve.points = {Vec2(0, 0.1), Vec2(0.5, 0.4), Vec2(1, 1)};
+  write_project(dir.path / "p.adaptex", p);
+  const Project r = read_project(dir.path / "p.adaptex");
+  EXPECT_EQ(r.brush.mask_value, 0.3);
+  EXPECT_TRUE(r.brush.on_mask);
+  EXPECT_EQ(r.brush.radius_curve.points, p.brush.radius_curve.points);
+  EXPECT_TRUE(r.brush.opacity_curve.points.empty());
+  // A broken curve in a project: one line naming the file and the field.
+  std::string text = read_input_file(dir.path / "p.adaptex");
+  const size_t at = text.find("0.1", text.find("\"pressure\""));
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 3, "1.5");
+  std::ofstream(dir.path / "bad.adaptex") << text;
+  try {
+    (void)read_project(dir.path / "bad.adaptex");
+    ADD_FAILURE() << "a pressure factor of 1.5 was read";
+  } catch (const InvalidInputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (dir.path / "bad.adaptex").string() + ": brush: \"pressure.radius[0][1]\" must be in [0, 1] (got 1.5)");
+  }
+}
+
 }  // namespace
 }  // namespace adaptex::studio
