@@ -2211,5 +2211,42 @@ TEST(StudioBrushPreset, ProjectsKeepTheMaskValueAndThePressureCurves) {
   }
 }
 
+
+TEST(StudioMaterial, AStampPlacesTheDecalImageAtTheCursorAsTallAsTheBrush) {
+  TempDir dir;
+  Harness h({}, 128);
+  // A green disc on a transparent square: the image's alpha is the stamp's shape.
+  ImageRGBA8 img(32, 32, {0, 0, 0, 0});
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x)
+      if (std::hypot(x - 15.5, y - 15.5) < 14) {
+        std::uint8_t* t = img.texel(x, y);
+        t[0] = 20, t[1] = 200, t[2] = 40, t[3] = 255;
+      }
+  write_png(dir.path / "disc.png", img);
+  h.app->load_decal(dir.path / "disc.png");
+  ASSERT_TRUE(h.app->decal_image());
+  const Stencil stencil = *h.app->stencil();
+  h.app->brush().stamp = true;
+  h.app->brush().screen_space = true;
+  h.app->brush().pixel_radius = 20;  // a disc of radius 14/32 * 40 = 17.5 pixels
+  const ImageRGBA8 before = *h.app->texture();
+  h.click(150, 150);
+  ASSERT_TRUE(h.app->wait_idle(60));
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  EXPECT_EQ(h.app->history().strokes()[0].type, Stroke::Type::Decal);
+  EXPECT_EQ(h.app->stencil()->centre, stencil.centre);  // the stencil stays where it was
+  const auto colour_at = [&](double x, double y) {
+    const auto hit = h.app->pick(x, y);
+    EXPECT_TRUE(hit);
+    return hit ? h.app->sample_colour(*hit) : Vec3(-1, -1, -1);
+  };
+  EXPECT_LT((colour_at(150, 150) - Vec3(20, 200, 40) / 255.0).norm(), 0.05);  // the disc's centre
+  EXPECT_LT((colour_at(150, 162) - Vec3(20, 200, 40) / 255.0).norm(), 0.05);  // inside its radius
+  EXPECT_LT((colour_at(150, 185) - Vec3(1, 1, 1)).norm(), 0.05);              // past the brush: untouched
+  EXPECT_LT((colour_at(150 + 19, 150 + 19) - Vec3(1, 1, 1)).norm(), 0.05);    // the square's corner: alpha 0
+  EXPECT_GT(max_abs_diff(before, *h.app->texture()), 100);
+}
+
 }  // namespace
 }  // namespace adaptex::studio
