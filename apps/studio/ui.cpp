@@ -459,17 +459,22 @@ void StudioUi::brush_panel(App& app) {
   Vec3 bg = app.history().background();
   float pb[3] = {float(bg.x()), float(bg.y()), float(bg.z())};
   if (ImGui::ColorEdit3("Paper", pb, ImGuiColorEditFlags_NoInputs)) app.set_background_colour(Vec3(pb[0], pb[1], pb[2]));
+  // A section opened at the panel's bottom scrolls into view.
   const bool pressure = ImGui::TreeNode("Pen pressure");
+  const bool pressure_opened = ImGui::IsItemToggledOpen();
   tooltip("How a tablet pen's pressure scales the radius and the opacity of each dab (a mouse: pressure 1).");
   trace("Pen pressure");
   if (pressure) {
     pressure_panel(b, [this](const char* id) { trace(id); });
+    if (pressure_opened) ImGui::SetScrollHereY(1.0f);
     ImGui::TreePop();
   }
   const bool presets = ImGui::TreeNode("Presets");
+  const bool presets_opened = ImGui::IsItemToggledOpen();
   trace("Presets");
   if (presets) {
     preset_panel(app, preset_path_, [this](const char* id) { trace(id); });
+    if (presets_opened) ImGui::SetScrollHereY(1.0f);
     ImGui::TreePop();
   }
 }

@@ -1456,3 +1456,47 @@ TEST_F(StudioGui, MaskPaintingAndFillWithPressureSaveReopenAndExportAsAdaptexPai
   // 7. `adaptex paint` of the saved stroke file: the same GLB and OBJ files, byte for byte.
   b.expect_exports_are_adaptex_paints();
 }
+
+// The per-channel eyedropper and brush presets by hand: on a layered material the eyedropper (I)
+// picks the composited base colour and roughness of an unpainted point (white, 0.5) into the brush;
+// Save preset writes them; a broken preset is one error line and Load preset of a good one applies it.
+TEST_F(StudioGui, EyedropperPicksTheChannelsAndPresetsSaveAndLoadTheBrush) {
+  const BallSession b(dir.path, *x, {});
+  const fs::path preset = dir.path / "brush.json";
+  const pid_t app = b.start();
+  ASSERT_GT(app, 0) << slurp(b.log);
+  ASSERT_TRUE(click_widget(*x, b.log, "Layers and channels"));
+  ASSERT_TRUE(click_widget(*x, b.log, "Add layer"));
+  ASSERT_TRUE(wait_for([&] { return widget(b.log, "layer 2 visible").has_value(); }, 30s)) << slurp(b.log);
+  std::this_thread::sleep_for(1s);
+  ASSERT_TRUE(click_widget(*x, b.log, "Roughness"));  // picks base colour and roughness
+  // The eyedropper on the unpainted ball, then the brush again.
+  ASSERT_EQ(xdo(*x, "mousemove 500 330 sleep 0.3 " + hold("i") + " sleep 0.3 mousedown 1 sleep 0.3 mouseup 1 sleep 0.5 " +
+                        hold("b")),
+            0);
+  ASSERT_TRUE(click_widget(*x, b.log, "Presets"));
+  for (int attempt = 0; attempt < 3 && !fs::exists(preset); ++attempt)
+    if (click_widget(*x, b.log, "Save preset")) wait_for([&] { return fs::exists(preset); }, 20s);
+  ASSERT_TRUE(fs::exists(preset)) << slurp(b.log);
+  const nlohmann::json p = read_json(preset);
+  EXPECT_EQ(p["format"], "adaptex.brush-preset");
+  EXPECT_EQ(p["brush"]["channels"]["base_color"], nlohmann::json::parse("[1.0, 1.0, 1.0]")) << p.dump();
+  EXPECT_EQ(p["brush"]["channels"]["roughness"], 0.5) << p.dump();  // the background's roughness
+  // A broken preset: one error line naming the file and the field.
+  {
+    std::ofstream(preset) << R"({"format": "adaptex.brush-preset", "version": 1, "brush": {"opacity": 3}})";
+  }
+  ASSERT_TRUE(click_widget(*x, b.log, "Load preset"));
+  ASSERT_TRUE(wait_for([&] { return count_in(b.log, "brush: \"opacity\" must be in [0, 1] (got 3)") == 1; }, 20s))
+      << slurp(b.log);
+  ASSERT_EQ(xdo(*x, "sleep 0.5 " + hold("Escape") + " sleep 0.5"), 0);  // closes the error pop-up
+  {
+    std::ofstream(preset) << R"({"format": "adaptex.brush-preset", "version": 1, "brush": {"opacity": 0.25}})";
+  }
+  ASSERT_TRUE(click_widget(*x, b.log, "Load preset"));
+  ASSERT_TRUE(wait_for([&] { return count_in(b.log, "loaded the brush preset") == 1; }, 20s)) << slurp(b.log);
+  for (int attempt = 0; attempt < 3 && read_json(preset)["brush"].size() < 3; ++attempt)
+    if (click_widget(*x, b.log, "Save preset")) wait_for([&] { return read_json(preset)["brush"].size() >= 3; }, 20s);
+  EXPECT_EQ(read_json(preset)["brush"]["opacity"], 0.25) << slurp(b.log);
+  EXPECT_EQ(terminate(app), 0);
+}
