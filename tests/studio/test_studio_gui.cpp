@@ -1287,10 +1287,11 @@ std::string read_file_bytes(const fs::path& p) {
 
 }  // namespace
 
-TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPaintWrites) {
+TEST_F(StudioGui, PaintsBaseColourAndMetalOnTwoLayersShowsThemLitAndExportsWhatAdaptexPaintWrites) {
   const fs::path mesh = dir.path / "ball.obj", log = dir.path / "app.log", log2 = dir.path / "app2.log",
                  hist = dir.path / "ball_strokes.json", project = dir.path / "ball.adaptex", glb = dir.path / "ball.glb",
-                 shot = dir.path / "reopened.png", exp = dir.path / "export", cli = dir.path / "cli";
+                 shot = dir.path / "reopened.png", exp = dir.path / "export", cli = dir.path / "cli",
+                 lit = dir.path / "lit.png", log3 = dir.path / "app3.log";
   adaptex::write_obj(mesh, adaptex::shapes::sphere(32, 16, 1.0), nullptr);
   std::vector<std::string> env = x->env();
   env.push_back("ADAPTEX_STUDIO_UI_TRACE=1");
@@ -1311,6 +1312,7 @@ TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPa
   std::this_thread::sleep_for(1s);  // the panel settles (its hint line goes)
   ASSERT_TRUE(click_widget(*x, log, "Base colour"));
   ASSERT_TRUE(click_widget(*x, log, "Roughness"));
+  ASSERT_TRUE(click_widget(*x, log, "Metallic"));
   std::ostringstream vertical;
   vertical << "mousemove 520 240 sleep 0.3 mousedown 1 sleep 0.2";
   for (int y = 250; y <= 420; y += 10) vertical << " mousemove 520 " << y << " sleep 0.05";
@@ -1338,7 +1340,7 @@ TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPa
   ASSERT_EQ(h["layers"][0]["strokes"].size(), 1u);
   ASSERT_EQ(h["layers"][1]["strokes"].size(), 1u);
   EXPECT_TRUE(h["layers"][0]["strokes"][0]["channels"].contains("base_color"));
-  EXPECT_EQ(h["layers"][1]["strokes"][0]["channels"], nlohmann::json({{"roughness", 0.2}}));
+  EXPECT_EQ(h["layers"][1]["strokes"][0]["channels"], nlohmann::json({{"roughness", 0.2}, {"metallic", 1.0}}));
   EXPECT_EQ(h["layers"][1]["visible"], true);
   const nlohmann::json p = read_json(project);
   EXPECT_EQ(p["version"], 2);
@@ -1355,6 +1357,24 @@ TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPa
   const auto red = mean_rgb(s, 420, 450, 326, 334), white = mean_rgb(s, 420, 450, 200, 210);
   EXPECT_GT(red[0] - red[1], 80) << red[0] << " " << red[1];  // layer 1's base colour on the drag
   EXPECT_LT(std::abs(white[0] - white[1]), 25) << white[0] << " " << white[1];  // unpainted above it
+
+  // 5b. Reopened again, the lit preview toggled with V: the smooth metal stroke of layer 2 (invisible in
+  //     the base colour) now reflects the environment, unlike the white paper beside it.
+  args = {ADAPTEX_STUDIO_PATH, project.string(), "--screenshot", lit.string()};
+  args.insert(args.end(), common.begin(), common.end());
+  app = spawn(args, env, log3);
+  ASSERT_GT(app, 0);
+  ASSERT_TRUE(wait_ready(log3)) << slurp(log3);
+  ASSERT_EQ(xdo(*x, "mousemove 520 560 sleep 0.3 " + hold("v") + " sleep 0.5"), 0);
+  ASSERT_EQ(terminate(app), 0) << slurp(log3);
+  const adaptex::ImageRGBA8 l = adaptex::read_image(lit);
+  // How much a region changes from the base-colour view to the lit one (sum over RGB).
+  const auto change = [&](int x0, int x1, int y0, int y1) {
+    const auto a = mean_rgb(s, x0, x1, y0, y1), b = mean_rgb(l, x0, x1, y0, y1);
+    return std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
+  };
+  const double metal = change(512, 524, 365, 405), paper = change(440, 452, 365, 405);
+  EXPECT_GT(metal, paper + 100) << metal << " " << paper;  // the metal mirrors the darker ground
 
   // 6. What `adaptex paint` writes for the saved stroke file: the same GLB and OBJ files, byte for byte.
   const auto r = adaptex::test::run_cli("paint '" + mesh.string() + "' --strokes '" + hist.string() +
