@@ -379,8 +379,9 @@ MaterialLiveSession::MaterialLiveSession(std::shared_ptr<const TriMesh> mesh, co
   impl_ = std::make_unique<Impl>(std::move(mesh), initial, std::move(file), mo);
 }
 MaterialLiveSession::~MaterialLiveSession() = default;
-void MaterialLiveSession::add(int layer, const std::vector<MaterialStroke>& strokes) {
-  impl_->session.add_strokes(layer, strokes);
+void MaterialLiveSession::add(int layer, const std::vector<MaterialStroke>& strokes, bool mask) {
+  if (!mask) return impl_->session.add_strokes(layer, strokes);
+  for (const MaterialStroke& s : strokes) impl_->session.add_stroke(layer, s, true);
 }
 const MaterialStrokeFile& MaterialLiveSession::history() const { return impl_->session.history(); }
 

@@ -206,9 +206,10 @@ class MaterialLiveSession {
   MaterialLiveSession(const MaterialLiveSession&) = delete;
   MaterialLiveSession& operator=(const MaterialLiveSession&) = delete;
 
-  /// Appends \p strokes to layer \p layer, then one gated cycle (MaterialPaintSession::add_strokes).
+  /// Appends \p strokes to layer \p layer (its mask when \p mask), then one gated cycle
+  /// (MaterialPaintSession::add_strokes; a mask: one cycle per stroke, add_stroke()).
   /// \throw CancelledError (strokes recorded, layout unchanged); InvalidInputError a bad stroke or layer
-  void add(int layer, const std::vector<MaterialStroke>& strokes);
+  void add(int layer, const std::vector<MaterialStroke>& strokes, bool mask);
   const MaterialStrokeFile& history() const;
   /// The held layout and its textures (a copy); mesh, param and normals are shared with the last
   /// snapshot while the layout has not changed (the renderer then keeps its geometry).

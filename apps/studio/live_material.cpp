@@ -34,9 +34,10 @@ std::uint64_t LiveMaterial::generation() const {
   return fed_generation_;
 }
 
-void LiveMaterial::feed(int layer, MaterialStroke stroke, std::uint64_t generation) {
+void LiveMaterial::feed(MaterialFeed stroke) {
+  const std::uint64_t generation = stroke.generation;
   std::vector<MaterialFeed> one;
-  one.push_back(MaterialFeed{layer, std::move(stroke), generation});
+  one.push_back(std::move(stroke));
   push(std::move(one), [&] {
     fed_generation_ = generation;
     settled_ = false;
@@ -52,8 +53,9 @@ void LiveMaterial::add_batch(MaterialLiveSession& session, const std::vector<Mat
   for (size_t k = 0; k < batch.size();) {
     std::vector<MaterialStroke> run{batch[k].stroke};
     size_t e = k + 1;
-    for (; e < batch.size() && batch[e].layer == batch[k].layer; ++e) run.push_back(batch[e].stroke);
-    session.add(batch[k].layer, run);
+    for (; e < batch.size() && batch[e].layer == batch[k].layer && batch[e].mask == batch[k].mask; ++e)
+      run.push_back(batch[e].stroke);
+    session.add(batch[k].layer, run, batch[k].mask);
     k = e;
   }
 }

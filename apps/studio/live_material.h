@@ -22,9 +22,10 @@
 
 namespace adaptex::studio {
 
-/// A stroke appended to a layer of the document, making document generation \p generation.
+/// A stroke appended to a layer of the document (or to its mask), making document generation \p generation.
 struct MaterialFeed {
   int layer = 0;
+  bool mask = false;
   MaterialStroke stroke;
   std::uint64_t generation = 0;
 };
@@ -44,8 +45,8 @@ class LiveMaterial : public LiveWorker<MaterialFeed> {
   bool serves(const Model* model, const std::string& options_key) const;
   /// The document generation of the last stroke fed (the first: the constructor's).
   std::uint64_t generation() const;
-  /// UI: \p stroke was appended to layer \p layer, making document generation \p generation.
-  void feed(int layer, MaterialStroke stroke, std::uint64_t generation);
+  /// UI: a stroke was appended to the document.
+  void feed(MaterialFeed stroke);
   /// Every fed stroke is composited, the session settled and its last surface taken (surfaces:
   /// take_update(); surface->generation is the document generation shown, surface->settled whether
   /// it is paint_material_history()'s).
@@ -57,7 +58,7 @@ class LiveMaterial : public LiveWorker<MaterialFeed> {
 
  private:
   void run(std::shared_ptr<const Model> model, PaintSessionOptions options, MaterialStrokeFile file);
-  /// Adds \p batch to \p session, consecutive strokes of one layer in one cycle.
+  /// Adds \p batch to \p session, consecutive strokes of one layer (or mask) in one cycle.
   static void add_batch(MaterialLiveSession& session, const std::vector<MaterialFeed>& batch);
 
   const Model* model_;

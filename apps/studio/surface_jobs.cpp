@@ -333,10 +333,9 @@ bool SurfaceJobs::material_serves(const Model* model, const PaintSessionOptions&
   return material_ && material_->serves(model, session_options_key(options)) && material_->generation() == generation;
 }
 
-bool SurfaceJobs::feed_material(const Model* model, const PaintSessionOptions& options, int layer,
-                                MaterialStroke stroke, std::uint64_t generation) {
-  if (!material_serves(model, options, generation - 1)) return false;
-  material_->feed(layer, std::move(stroke), generation);
+bool SurfaceJobs::feed_material(const Model* model, const PaintSessionOptions& options, MaterialFeed stroke) {
+  if (!material_serves(model, options, stroke.generation - 1)) return false;
+  material_->feed(std::move(stroke));
   return true;
 }
 

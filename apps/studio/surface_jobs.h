@@ -84,10 +84,9 @@ class SurfaceJobs {
   /// \p generation) with \p options, replacing (retiring) the running one.
   void start_material(const std::shared_ptr<const Model>& model, std::uint64_t generation, MaterialStrokeFile file,
                       const PaintSessionOptions& options);
-  /// Feeds \p stroke, appended to layer \p layer of the document of generation \p generation - 1, to the
-  /// material session. \return false (nothing fed) when none serves \p model, \p options and that generation
-  bool feed_material(const Model* model, const PaintSessionOptions& options, int layer, MaterialStroke stroke,
-                     std::uint64_t generation);
+  /// Feeds \p stroke, appended to the document of generation stroke.generation - 1, to the material
+  /// session. \return false (nothing fed) when none serves \p model, \p options and that generation
+  bool feed_material(const Model* model, const PaintSessionOptions& options, MaterialFeed stroke);
   /// The material session serves \p model, \p options and document generation \p generation.
   bool material_serves(const Model* model, const PaintSessionOptions& options, std::uint64_t generation) const;
   void stop_material();
