@@ -586,6 +586,7 @@ void App::begin_paint() {
   if (!material_ && (brush_.channels != channel_bit(Channel::BaseColor) || pressure_curves) &&
       !edit_material([](MaterialDocument&) {}))
     return;  // another channel than base colour, or pressure curves: the document becomes a layered material
+  if (brush_.stamp && decal_image_ && brush_.tool == Tool::Brush) return stamp_decal();
   if (brush_.channels == 0 && !painting_mask()) return add_message("the brush paints no channel: choose one in the Brush panel", true);
   painting_.catch_up();  // paints redone strokes first, so canvas order == history order
   view_.fixed_layout = false;  // paint on (and look at) the adaptive layout
@@ -696,14 +697,29 @@ void App::load_decal(const std::filesystem::path& path) {
 
 void App::project_decal(double opacity) {
   if (!decal_image_ || !painting_.surface() || painting_.stroke_open()) return;
+  record_decal(stencil_ ? stencil_->decal_camera(camera_) : camera_.decal_camera(), opacity);
+  add_message(stencil_ ? "projected the stencil" : "projected the decal from the view", false);
+}
+
+void App::record_decal(const DecalCamera& camera, double opacity) {
   Stroke s;
   s.type = Stroke::Type::Decal;
   s.image = *decal_image_;
   s.image_path = decal_path_;
   s.opacity = opacity;
-  s.camera = stencil_ ? stencil_->decal_camera(camera_) : camera_.decal_camera();
+  s.camera = camera;
   record_stroke(std::move(s));
-  add_message(stencil_ ? "projected the stencil" : "projected the decal from the view", false);
+}
+
+void App::stamp_decal() {
+  const auto h = pick(input_.x(), input_.y());
+  if (!h) return;
+  // The stencil's projection, centred at the cursor and as tall as the brush's diameter there.
+  Stencil st = fit_stencil(camera_, double(decal_image_->width) / decal_image_->height);
+  if (stencil_) st.angle = stencil_->angle;
+  st.centre = Vec2(input_.x(), input_.y());
+  st.height = 2 * brush_screen_radius(brush_, camera_, h->point, diagonal());
+  record_decal(st.decal_camera(camera_), brush_.opacity);
 }
 
 void App::clear_decal() {

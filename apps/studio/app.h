@@ -371,6 +371,10 @@ class App {
   void paint_dab_at(const Hit& h, const Ray& ray);
   void end_paint();
   void eyedrop(double x, double y);
+  /// A decal stroke of the loaded image through \p camera (project_decal, stamp_decal).
+  void record_decal(const DecalCamera& camera, double opacity);
+  /// BrushSettings::stamp: the loaded image stamped at the cursor. \pre a decal image is loaded
+  void stamp_decal();
   void update_cursor();
   /// Model diagonal (1 without a model).
   double diagonal() const;

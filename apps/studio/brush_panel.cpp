@@ -90,6 +90,16 @@ void pressure_panel(BrushSettings& brush, const TraceWidget& trace) {
   curve_editor("Pressure -> opacity", brush.opacity_curve, trace);
 }
 
+void stamp_option(App& app, const TraceWidget& trace) {
+  ImGui::BeginDisabled(!app.decal_image());
+  ImGui::Checkbox("Stamp the decal image", &app.brush().stamp);
+  ImGui::EndDisabled();
+  tooltip("An alpha stamp: a click places the loaded decal image (Load decal; its alpha is the stamp's "
+          "shape) centred at the cursor, as tall as the brush's diameter, at the brush's opacity: a decal "
+          "stroke on the active layer's base colour.");
+  trace("Stamp the decal image");
+}
+
 void preset_panel(App& app, std::string& path, const TraceWidget& trace) {
   if (path.empty()) path = (app.last_folder() / "brush.json").string();
   char buf[1024];

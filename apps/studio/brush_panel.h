@@ -21,6 +21,9 @@ void mask_panel(App& app, const TraceWidget& trace);
 /// The brush's pressure curves for radius and opacity: three control points each (pressure 0, 0.5, 1).
 void pressure_panel(BrushSettings& brush, const TraceWidget& trace);
 
+/// "Stamp the decal image": a click stamps the loaded decal image at the cursor (BrushSettings::stamp).
+void stamp_option(App& app, const TraceWidget& trace);
+
 /// Save / load a brush preset at the path in \p path (edited in place; empty: `brush.json` in the
 /// last folder used).
 void preset_panel(App& app, std::string& path, const TraceWidget& trace);

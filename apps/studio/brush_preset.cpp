@@ -23,6 +23,16 @@ json curve_json(const PressureCurve& c) {
   return a;
 }
 
+/// The stroke contract's rules for the curves alone (a brush stroke with them and nothing else wrong).
+void check_curves(const BrushSettings& b, const std::string& where) {
+  MaterialStroke s;
+  s.channels = channel_bit(Channel::BaseColor);
+  s.dabs = {Vec3::Zero()};
+  s.radius_curve = b.radius_curve;
+  s.opacity_curve = b.opacity_curve;
+  validate_material_stroke(s, false, where.size() >= 2 ? where.substr(0, where.size() - 2) : where);
+}
+
 /// Reads one preset's fields with one-line errors ("NAME: brush: \"field\" ...").
 struct Reader {
   std::string where;
@@ -94,10 +104,7 @@ std::string brush_preset_json(const BrushSettings& b) {
     brush["radius_px"] = b.pixel_radius;
   else
     brush["radius"] = b.radius;
-  json pressure = json::object();
-  if (!b.radius_curve.points.empty()) pressure["radius"] = curve_json(b.radius_curve);
-  if (!b.opacity_curve.points.empty()) pressure["opacity"] = curve_json(b.opacity_curve);
-  if (!pressure.empty()) brush["pressure"] = pressure;
+  if (json pressure = pressure_curves_to_json(b); !pressure.empty()) brush["pressure"] = pressure;
   const json j = {{"format", kFormat}, {"version", 1}, {"brush", brush}};
   return j.dump(2) + "\n";
 }
@@ -149,18 +156,31 @@ BrushSettings parse_brush_preset(const std::string& text, const std::string& nam
       b.spacing = r.number(*it, k);
       if (!(b.spacing >= 0.02 && b.spacing <= 2)) r.fail("\"spacing\" must be in [0.02, 2] (of the radius)");
     } else if (k == "pressure") {
-      if (!it->is_object()) r.fail("\"pressure\" must be an object with \"radius\" and/or \"opacity\" curves");
-      b.radius_curve = b.opacity_curve = PressureCurve{};
-      for (auto c = it->begin(); c != it->end(); ++c) {
-        if (c.key() != "radius" && c.key() != "opacity") r.fail("\"pressure\" has an unknown curve \"" + c.key() + "\"");
-        (c.key() == "radius" ? b.radius_curve : b.opacity_curve) = r.curve(*c, "pressure." + c.key());
-      }
+      pressure_curves_from_json(*it, r.where, b);
     } else {
       r.fail("unknown field \"" + k + "\"");
     }
   }
   validate_brush(b, name);
   return b;
+}
+
+json pressure_curves_to_json(const BrushSettings& b) {
+  json pressure = json::object();
+  if (!b.radius_curve.points.empty()) pressure["radius"] = curve_json(b.radius_curve);
+  if (!b.opacity_curve.points.empty()) pressure["opacity"] = curve_json(b.opacity_curve);
+  return pressure;
+}
+
+void pressure_curves_from_json(const json& pressure, const std::string& where, BrushSettings& b) {
+  const Reader r{where};
+  if (!pressure.is_object()) r.fail("\"pressure\" must be an object with \"radius\" and/or \"opacity\" curves");
+  b.radius_curve = b.opacity_curve = PressureCurve{};
+  for (auto c = pressure.begin(); c != pressure.end(); ++c) {
+    if (c.key() != "radius" && c.key() != "opacity") r.fail("\"pressure\" has an unknown curve \"" + c.key() + "\"");
+    (c.key() == "radius" ? b.radius_curve : b.opacity_curve) = r.curve(*c, "pressure." + c.key());
+  }
+  check_curves(b, where);
 }
 
 BrushSettings read_brush_preset(const std::filesystem::path& path, const BrushSettings& base) {

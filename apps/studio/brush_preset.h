@@ -5,6 +5,7 @@
 /// "radius_px" | "radius", "hardness", "opacity", "spacing", "mask_value", "pressure": {...}}}.
 /// Reading is strict: one error line naming the file and the field; nothing of a bad file is used.
 #include <filesystem>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "settings.h"
@@ -22,5 +23,13 @@ void write_brush_preset(const std::filesystem::path& path, const BrushSettings& 
 BrushSettings parse_brush_preset(const std::string& text, const std::string& name, const BrushSettings& base);
 /// Reads \p path (parse_brush_preset). \throw IoError unreadable; as parse_brush_preset
 BrushSettings read_brush_preset(const std::filesystem::path& path, const BrushSettings& base);
+
+/// The brush's pressure curves as a "pressure" object ({"radius": [[p, f], ...], "opacity": [...]}; {}
+/// for none), as presets and projects write them.
+nlohmann::json pressure_curves_to_json(const BrushSettings& brush);
+/// Reads a "pressure" object into \p brush's curves (a curve left out: none). \p where prefixes the
+/// messages (e.g. "p.json: brush: "). \throw InvalidInputError wrong shape or type, or a curve
+/// breaking the stroke contract's rules (from pressure 0 to 1, increasing, factors in [0,1])
+void pressure_curves_from_json(const nlohmann::json& pressure, const std::string& where, BrushSettings& brush);
 
 }  // namespace adaptex::studio

@@ -1,7 +1,6 @@
 /// \file tablet.cpp
 #include "tablet.h"
 
-#include <algorithm>
 #include <cstdlib>
 #include <map>
 #include <vector>
@@ -80,11 +79,7 @@ struct TabletPressure::Impl {
       return;
     }
     const Range& r = it->second;
-    const unsigned char* mask = e.valuators.mask;
-    if (r.number >= e.valuators.mask_len * 8 || !XIMaskIsSet(mask, r.number)) return;  // unchanged
-    int slot = 0;  // values are packed: the index among the set bits
-    for (int b = 0; b < r.number; ++b) slot += XIMaskIsSet(mask, b) ? 1 : 0;
-    last = std::clamp((e.valuators.values[slot] - r.min) / (r.max - r.min), 0.0, 1.0);
+    last = valuator_pressure(e.valuators.mask, e.valuators.mask_len, e.valuators.values, r.number, r.min, r.max, last);
   }
 };
 

@@ -37,6 +37,19 @@ class TabletPressure {
   std::unique_ptr<Impl> impl_;
 };
 
+/// The pressure valuator \p number of an XInput2 event, normalised from [\p min, \p max] to [0,1]:
+/// the event lists the values of the valuators set in \p mask (\p mask_len bytes, bit k = valuator k)
+/// packed in order. \return the pressure, or \p previous when the event does not carry it (unchanged).
+inline double valuator_pressure(const unsigned char* mask, int mask_len, const double* values, int number, double min,
+                                double max, double previous) {
+  const auto set = [&](int k) { return (mask[k >> 3] & (1 << (k & 7))) != 0; };
+  if (number < 0 || number >= mask_len * 8 || !set(number) || !(max > min)) return previous;
+  int slot = 0;  // the index among the set bits
+  for (int k = 0; k < number; ++k) slot += set(k) ? 1 : 0;
+  const double p = (values[slot] - min) / (max - min);
+  return p < 0 ? 0 : p > 1 ? 1 : p;
+}
+
 /// The pressure from the test hook ADAPTEX_STUDIO_TEST_PRESSURE (a number in [0,1]: every dab is
 /// painted at it, as a pen held at that pressure would), or nothing. \throw none (a bad value: nothing)
 std::optional<double> test_pressure_from_env();

@@ -444,6 +444,7 @@ void StudioUi::brush_panel(App& app) {
   ImGui::SameLine();
   ImGui::RadioButton("Pick (I)", &tool, 2);
   b.tool = Tool(tool);
+  stamp_option(app, [this](const char* id) { trace(id); });
   ImGui::Checkbox("Layers and channels", &show_material_);
   tooltip("The Material window: the layers (add, delete, reorder, hide, opacity, blend mode) and the "
           "channels the brush paints (base colour, roughness, metallic, height)");

@@ -24,6 +24,7 @@
 #include "adaptex/paint/painter.h"
 #include "app.h"
 #include "brush_preset.h"
+#include "tablet.h"
 #include "file_browser.h"
 #include "live_adaptation.h"
 #include "test_support.h"
@@ -2209,6 +2210,94 @@ TEST(StudioMaterial, TheEyedropperPicksTheCompositedValuesOfTheCheckedChannels) 
   h.click(200, 150);
   EXPECT_NEAR(h.app->brush().metallic, 0.7, 1e-9);
   EXPECT_EQ(h.app->brush().color, Vec3(1, 1, 1));  // the white background
+}
+
+
+TEST(StudioTablet, PressureIsTheNormalisedValuatorAmongThePackedValues) {
+  // Valuators 0 (x), 1 (y) and 2 (pressure, range 0..65535) set; values packed in order.
+  unsigned char mask[2] = {0b00000111, 0};
+  const double values[] = {100, 200, 16383.75};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, values, 2, 0, 65535, 1), 0.25);
+  // Valuator 1 not set: the pressure is the second packed value.
+  mask[0] = 0b00000101;
+  const double packed[] = {100, 65535};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, packed, 2, 0, 65535, 1), 1.0);
+  // The pressure not in the event: unchanged; out of range: clamped; a valuator past the mask: unchanged.
+  mask[0] = 0b00000011;
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, values, 2, 0, 65535, 0.4), 0.4);
+  mask[0] = 0b00000100;
+  const double over[] = {70000};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, over, 2, 0, 65535, 0.4), 1.0);
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, over, 20, 0, 65535, 0.4), 0.4);
+  // A range of 1..2048 (some drivers): the minimum is pressure 0.
+  const double low[] = {1};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, low, 2, 1, 2048, 0.4), 0.0);
+}
+
+
+TEST(StudioBrushPreset, ProjectsKeepTheMaskValueAndThePressureCurves) {
+  TempDir dir;
+  Project p;
+  p.mesh_path = "builtin:sphere";
+  p.brush.mask_value = 0.3;
+  p.brush.on_mask = true;
+  p.brush.radius_curve.points = {Vec2(0, 0.1), Vec2(0.5, 0.4), Vec2(1, 1)};
+  write_project(dir.path / "p.adaptex", p);
+  const Project r = read_project(dir.path / "p.adaptex");
+  EXPECT_EQ(r.brush.mask_value, 0.3);
+  EXPECT_TRUE(r.brush.on_mask);
+  EXPECT_EQ(r.brush.radius_curve.points, p.brush.radius_curve.points);
+  EXPECT_TRUE(r.brush.opacity_curve.points.empty());
+  // A broken curve in a project: one line naming the file and the field.
+  std::string text = read_input_file(dir.path / "p.adaptex");
+  const size_t at = text.find("0.1", text.find("\"pressure\""));
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 3, "1.5");
+  std::ofstream(dir.path / "bad.adaptex") << text;
+  try {
+    (void)read_project(dir.path / "bad.adaptex");
+    ADD_FAILURE() << "a pressure factor of 1.5 was read";
+  } catch (const InvalidInputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (dir.path / "bad.adaptex").string() + ": brush: \"pressure.radius[0][1]\" must be in [0, 1] (got 1.5)");
+  }
+}
+
+
+TEST(StudioMaterial, AStampPlacesTheDecalImageAtTheCursorAsTallAsTheBrush) {
+  TempDir dir;
+  Harness h({}, 128);
+  // A green disc on a transparent square: the image's alpha is the stamp's shape.
+  ImageRGBA8 img(32, 32, {0, 0, 0, 0});
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x)
+      if (std::hypot(x - 15.5, y - 15.5) < 14) {
+        std::uint8_t* t = img.texel(x, y);
+        t[0] = 20, t[1] = 200, t[2] = 40, t[3] = 255;
+      }
+  write_png(dir.path / "disc.png", img);
+  h.app->load_decal(dir.path / "disc.png");
+  ASSERT_TRUE(h.app->decal_image());
+  const Stencil stencil = *h.app->stencil();
+  h.app->brush().stamp = true;
+  h.app->brush().screen_space = true;
+  h.app->brush().pixel_radius = 20;  // a disc of radius 14/32 * 40 = 17.5 pixels
+  const ImageRGBA8 before = *h.app->texture();
+  h.click(150, 150);
+  ASSERT_TRUE(h.app->wait_idle(60));
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  EXPECT_EQ(h.app->history().strokes()[0].type, Stroke::Type::Decal);
+  EXPECT_EQ(h.app->stencil()->centre, stencil.centre);  // the stencil stays where it was
+  const auto colour_at = [&](double x, double y) {
+    const auto hit = h.app->pick(x, y);
+    EXPECT_TRUE(hit);
+    return hit ? h.app->sample_colour(*hit) : Vec3(-1, -1, -1);
+  };
+  EXPECT_LT((colour_at(150, 150) - Vec3(20, 200, 40) / 255.0).norm(), 0.05);  // the disc's centre
+  EXPECT_LT((colour_at(150, 162) - Vec3(20, 200, 40) / 255.0).norm(), 0.05);  // inside its radius
+  EXPECT_LT((colour_at(150, 185) - Vec3(1, 1, 1)).norm(), 0.05);              // past the brush: untouched
+  EXPECT_LT((colour_at(150 + 19, 150 + 19) - Vec3(1, 1, 1)).norm(), 0.05);    // the square's corner: alpha 0
+  EXPECT_GT(max_abs_diff(before, *h.app->texture()), 100);
 }
 
 }  // namespace
