@@ -507,7 +507,8 @@ void StudioUi::material_window(App& app, float top) {
   ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - w, top), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(w, 0), ImGuiCond_Always);
   // Many layers scroll inside the window instead of running off the screen.
-  ImGui::SetNextWindowSizeConstraints(ImVec2(w, 0), ImVec2(w, std::max(120.f, float(app.camera().height) - top - 8)));
+  const float bottom = ImGui::GetFrameHeight() + 8;  // above the status line, as the side panel
+  ImGui::SetNextWindowSizeConstraints(ImVec2(w, 0), ImVec2(w, std::max(120.f, float(app.camera().height) - top - bottom)));
   ImGui::Begin("Material", &show_material_,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   pbr_checkbox(app.view());
