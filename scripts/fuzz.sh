@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs one libFuzzer target for SECONDS (default 60): scripts/fuzz.sh TARGET [SECONDS [LIBFUZZER OPTIONS...]]
 # (e.g. scripts/fuzz.sh off 100000 -runs=10000000: stops after 10 M executions).
-# TARGET: obj off ply stl gltf strokes png jpeg tga mtl project (or "all", SECONDS each).
+# TARGET: obj off ply stl gltf strokes png jpeg tga mtl project brush_preset (or "all", SECONDS each).
 # scripts/fuzz.sh smoke [SECONDS]: the test command's fuzz smoke (scripts/test.sh): builds every target
 # in one go, runs each for SECONDS (default 15) from its seeds only (a fresh corpus, not the one that
 # grows in $FUZZ_BUILD_DIR/corpus), prints one line per target, fails on the first finding.
@@ -14,7 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 target=${1:?usage: scripts/fuzz.sh TARGET [SECONDS] | scripts/fuzz.sh smoke [SECONDS]}
 build=${FUZZ_BUILD_DIR:-build-fuzz-clang}
-all=(obj off ply stl gltf strokes png jpeg tga mtl project)
+all=(obj off ply stl gltf strokes png jpeg tga mtl project brush_preset)
 # Every target of tests/fuzz/CMakeLists.txt must be in the list (smoke runs the list): a target added
 # there and not here fails here, not silently.
 for t in $(sed -n 's/^adaptex_fuzz_target(\([a-z0-9_]*\) .*/\1/p' tests/fuzz/CMakeLists.txt); do

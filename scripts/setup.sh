@@ -7,7 +7,7 @@ PACKAGES=(
   libassimp-dev libtinyobjloader-dev libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev
   libembree-dev libcgal-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri mesa-utils libgtk-3-dev
+  libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri mesa-utils libgtk-3-dev libxi-dev
   xvfb xdotool x11-utils libx11-dev
   python3-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib python3-venv python3-pip python3-build blender
 )

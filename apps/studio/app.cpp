@@ -572,7 +572,7 @@ Stroke App::brush_style() const {
   s.opacity = brush_.opacity;
   // Layered: the canvas previews the base colour until the composite arrives (nothing for a hidden
   // layer or a brush without base colour).
-  if (material_ && (!(brush_.channels & channel_bit(Channel::BaseColor)) ||
+  if (material_ && (!(brush_.channels & channel_bit(Channel::BaseColor)) || painting_mask() ||
                     !material_->file().layers[material_->active()].visible))
     s.opacity = 0;
   return s;
@@ -580,14 +580,18 @@ Stroke App::brush_style() const {
 
 void App::begin_paint() {
   if (!painting_.surface() || painting_.stroke_open()) return;
-  if (!material_ && brush_.channels != channel_bit(Channel::BaseColor) && !edit_material([](MaterialDocument&) {}))
-    return;  // another channel than base colour: the document becomes a layered material
-  if (brush_.channels == 0) return add_message("the brush paints no channel: choose one in the Brush panel", true);
+  const bool pressure_curves = !brush_.radius_curve.points.empty() || !brush_.opacity_curve.points.empty();
+  if (!material_ && (brush_.channels != channel_bit(Channel::BaseColor) || pressure_curves) &&
+      !edit_material([](MaterialDocument&) {}))
+    return;  // another channel than base colour, or pressure curves: the document becomes a layered material
+  if (brush_.stamp && decal_image_ && brush_.tool == Tool::Brush) return stamp_decal();
+  if (brush_.channels == 0 && !painting_mask()) return add_message("the brush paints no channel: choose one in the Brush panel", true);
   painting_.catch_up();  // paints redone strokes first, so canvas order == history order
   view_.fixed_layout = false;  // paint on (and look at) the adaptive layout
   const auto h = pick(input_.x(), input_.y());
   if (h) cursor_hit_ = h;  // a screen-space radius is taken at the depth of the first dab
   painting_.begin_stroke(brush_style());
+  stroke_pressure_.clear();
   if (h) paint_dab_at(*h, camera_.pixel_ray(input_.x(), input_.y()));
 }
 
@@ -608,6 +612,7 @@ void App::continue_paint(double x0, double y0, double x1, double y1) {
 void App::paint_dab_at(const Hit& h, const Ray& ray) {
   const auto t0 = Clock::now();
   painting_.add_dab(h, ray, brush_.symmetry_axis);
+  stroke_pressure_.resize(painting_.open_stroke().dabs.size(), pen_pressure_);  // a mirrored dab too
   stats_.dab_paint_ms.push_back(ms_since(t0));
   if (!first_pending_dab_) {
     first_pending_dab_ = t0;
@@ -627,7 +632,11 @@ void App::end_paint() {
 }
 
 void App::eyedrop(double x, double y) {
-  if (auto h = pick(x, y)) brush_.color = sample_colour(*h);
+  const auto h = pick(x, y);
+  if (h && material_)
+    pick_channels(*h);
+  else if (h)
+    brush_.color = sample_colour(*h);
 }
 
 void App::start_resize() {
@@ -686,14 +695,29 @@ void App::load_decal(const std::filesystem::path& path) {
 
 void App::project_decal(double opacity) {
   if (!decal_image_ || !painting_.surface() || painting_.stroke_open()) return;
+  record_decal(stencil_ ? stencil_->decal_camera(camera_) : camera_.decal_camera(), opacity);
+  add_message(stencil_ ? "projected the stencil" : "projected the decal from the view", false);
+}
+
+void App::record_decal(const DecalCamera& camera, double opacity) {
   Stroke s;
   s.type = Stroke::Type::Decal;
   s.image = *decal_image_;
   s.image_path = decal_path_;
   s.opacity = opacity;
-  s.camera = stencil_ ? stencil_->decal_camera(camera_) : camera_.decal_camera();
+  s.camera = camera;
   record_stroke(std::move(s));
-  add_message(stencil_ ? "projected the stencil" : "projected the decal from the view", false);
+}
+
+void App::stamp_decal() {
+  const auto h = pick(input_.x(), input_.y());
+  if (!h) return;
+  // The stencil's projection, centred at the cursor and as tall as the brush's diameter there.
+  Stencil st = fit_stencil(camera_, double(decal_image_->width) / decal_image_->height);
+  if (stencil_) st.angle = stencil_->angle;
+  st.centre = Vec2(input_.x(), input_.y());
+  st.height = 2 * brush_screen_radius(brush_, camera_, h->point, diagonal());
+  record_decal(st.decal_camera(camera_), brush_.opacity);
 }
 
 void App::clear_decal() {

@@ -15,6 +15,7 @@
 ///   1. input events (on_* handlers: camera, dabs painted at once)   2. begin_frame(): finished
 ///   background jobs are swapped in, autosave   3. UI (ImGui, outside App)   4. render()
 ///   5. end_frame(): scripted screenshot, statistics.
+#include <algorithm>
 #include <chrono>
 #include <deque>
 #include <filesystem>
@@ -217,6 +218,21 @@ class App {
   void open_material(MaterialStrokeFile file);
   /// The strokes as a stroke file of version 2 (write_material_strokes), atomically.
   void save_material_strokes(const std::filesystem::path& path);
+  /// Fills the active layer with the brush's channels and values (a fill stroke), or with \p mask its
+  /// mask with the brush's mask value. \return false (with a message) if it cannot.
+  bool fill_active(bool mask);
+  /// The eyedropper on a layered material: the composited values of the brush's checked channels (all
+  /// when none is checked) at \p h go into the brush (evaluated exactly, not read from the textures).
+  void pick_channels(const Hit& h);
+  /// Brush presets (brush_preset.h): save the brush's channels, values, radius, hardness, opacity,
+  /// spacing, mask value and pressure curves; load them into the brush (a bad file: one error message,
+  /// the brush unchanged). \return success
+  bool save_brush_preset(const std::filesystem::path& path);
+  bool load_brush_preset(const std::filesystem::path& path);
+  /// Brush strokes go to the active layer's mask (BrushSettings::on_mask and the layer has one).
+  bool painting_mask() const;
+  /// The pen pressure of the next dabs, in [0,1] (tablet.h; 1 for a mouse).
+  void set_pen_pressure(double p) { pen_pressure_ = std::clamp(p, 0.0, 1.0); }
   bool can_undo() const { return material_ ? material_->can_undo() : history().can_undo(); }
   bool can_redo() const { return material_ ? material_->can_redo() : history().can_redo(); }
   /// Version of the document: changes with every stroke, undo, redo and layer edit.
@@ -348,6 +364,10 @@ class App {
   void paint_dab_at(const Hit& h, const Ray& ray);
   void end_paint();
   void eyedrop(double x, double y);
+  /// A decal stroke of the loaded image through \p camera (project_decal, stamp_decal).
+  void record_decal(const DecalCamera& camera, double opacity);
+  /// BrushSettings::stamp: the loaded image stamped at the cursor. \pre a decal image is loaded
+  void stamp_decal();
   void update_cursor();
   /// Model diagonal (1 without a model).
   double diagonal() const;
@@ -423,6 +443,8 @@ class App {
   Stats stats_;
   Clock::time_point last_frame_end_ = Clock::now();
   std::optional<MaterialDocument> material_;
+  std::vector<double> stroke_pressure_;  // the open stroke's pressure per dab
+  double pen_pressure_ = 1;
   std::string material_started_;  // material_key() of the last composite started (empty: none)
   bool quit_ = false;
 };

@@ -1,10 +1,13 @@
 /// \file app_material.cpp
 /// The layered material of adaptex-studio (see app.h, "the layered material").
+#include <algorithm>
 #include <iostream>
 
 #include "adaptex/core/atomic_output.h"
 #include "adaptex/core/errors.h"
+#include "adaptex/paint/material_signal.h"
 #include "app.h"
+#include "brush_preset.h"
 
 namespace adaptex::studio {
 
@@ -99,7 +102,81 @@ MaterialStroke App::material_brush_stroke(const Stroke& painted) const {
   m.hardness = painted.hardness;
   m.opacity = brush_.opacity;
   m.dabs = painted.dabs;
+  // Pressure: one per dab when the pen gave any (a mouse stroke keeps none: pressure 1).
+  if (stroke_pressure_.size() == m.dabs.size() &&
+      std::any_of(stroke_pressure_.begin(), stroke_pressure_.end(), [](double p) { return p != 1; }))
+    m.pressure = stroke_pressure_;
+  m.radius_curve = brush_.radius_curve;
+  m.opacity_curve = brush_.opacity_curve;
+  if (painting_mask()) {
+    m.channels = 0;
+    m.mask_value = brush_.mask_value;
+  }
   return m;
+}
+
+void App::pick_channels(const Hit& h) {
+  const Surface* surface = painting_.surface();
+  if (!surface) return;
+  MaterialValue v;
+  try {
+    v = evaluate_material(*surface->mesh, material_file(), {SurfacePoint{h.face, h.b0, h.b1}})[0];
+  } catch (const std::exception& e) {
+    return add_message(e.what(), true);
+  }
+  // The brush's checked channels (all of them when none is checked).
+  const unsigned picked = brush_.channels ? brush_.channels : kAllChannels;
+  if (picked & channel_bit(Channel::BaseColor)) brush_.color = Vec3(v[0], v[1], v[2]);
+  if (picked & channel_bit(Channel::Roughness)) brush_.roughness = v[channel_offset(Channel::Roughness)];
+  if (picked & channel_bit(Channel::Metallic)) brush_.metallic = v[channel_offset(Channel::Metallic)];
+  if (picked & channel_bit(Channel::Height)) brush_.height = v[channel_offset(Channel::Height)];
+}
+
+bool App::save_brush_preset(const std::filesystem::path& path) {
+  try {
+    write_brush_preset(path, brush_);
+  } catch (const std::exception& e) {
+    add_message(e.what(), true);
+    return false;
+  }
+  add_message("saved the brush preset " + path.string(), false);
+  note_folder(path);
+  return true;
+}
+
+bool App::load_brush_preset(const std::filesystem::path& path) {
+  try {
+    brush_ = read_brush_preset(path, brush_);
+  } catch (const std::exception& e) {
+    add_message(e.what(), true);
+    return false;
+  }
+  add_message("loaded the brush preset " + path.string(), false);
+  note_folder(path);
+  return true;
+}
+
+bool App::painting_mask() const {
+  return material_ && brush_.on_mask && material_->file().layers[material_->active()].mask.has_value();
+}
+
+bool App::fill_active(bool mask) {
+  MaterialStroke m = material_brush_stroke(Stroke{});
+  m.type = MaterialStroke::Type::Fill;
+  m.dabs.clear();
+  m.pressure.clear();
+  m.radius_curve = m.opacity_curve = PressureCurve{};
+  if (mask) {
+    m.channels = 0;
+    m.mask_value = brush_.mask_value;
+    return edit_material([&](MaterialDocument& d) { d.add_mask_stroke(m); });
+  }
+  m.channels = brush_.channels;
+  if (brush_.channels == 0) {
+    add_message("the brush paints no channel: choose one in the Material window", true);
+    return false;
+  }
+  return edit_material([&](MaterialDocument& d) { d.add_stroke(m); });
 }
 
 void App::record_stroke(Stroke s) {
@@ -116,7 +193,11 @@ void App::record_stroke(Stroke s) {
   } else {
     m = material_brush_stroke(s);
   }
-  edit_material([&](MaterialDocument& d) { d.add_stroke(std::move(m)); });
+  stroke_pressure_.clear();
+  if (painting_mask() && m.type != MaterialStroke::Type::Decal)
+    edit_material([&](MaterialDocument& d) { d.add_mask_stroke(std::move(m)); });
+  else
+    edit_material([&](MaterialDocument& d) { d.add_stroke(std::move(m)); });
 }
 
 void App::save_material_strokes(const std::filesystem::path& path) {

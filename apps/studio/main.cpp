@@ -24,6 +24,7 @@
 #include "adaptex/core/limits.h"
 #include "app.h"
 #include "gl_renderer.h"
+#include "tablet.h"
 #include "ui.h"
 
 namespace {
@@ -48,10 +49,12 @@ struct WindowContext {
   App* app = nullptr;
   double scale_x = 1, scale_y = 1;  // framebuffer pixels per window unit
   std::vector<MouseEvent> mouse;    // queued since the last frame, in order
+  TabletPressure* tablet = nullptr; // pen pressure of this frame's dabs (none: the test hook's or 1)
 };
 
 /// Gives the queued mouse events to the App, in order.
 void dispatch_mouse(WindowContext& w) {
+  if (w.tablet) w.app->set_pen_pressure(w.tablet->poll());
   for (const MouseEvent& e : w.mouse) {
     switch (e.kind) {
       case MouseEvent::Kind::Button: w.app->on_mouse_button(e.button, e.pressed, e.mods); break;
@@ -498,6 +501,14 @@ int run(GLFWwindow* w, const CommandLine& c, SignalWatcher& signals) {
   WindowContext wctx;
   wctx.app = &app;
   ImGuiLayer imgui(w, wctx);
+  TabletPressure tablet(w);
+  if (const auto p = test_pressure_from_env()) {
+    app.set_pen_pressure(*p);  // the test hook: every dab at this pressure
+    std::cout << "adaptex-studio: test hook: pen pressure " << *p << std::endl;
+  } else if (tablet.available()) {
+    wctx.tablet = &tablet;
+    if (tablet.pens() > 0) std::cout << "adaptex-studio: " << tablet.describe() << std::endl;
+  }
   if (const int rc = configure(app, c)) return rc;
   StudioUi ui;
   Script script(c, ui);

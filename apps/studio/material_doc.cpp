@@ -13,12 +13,6 @@ void check_unit(double v, const char* what) {
   if (!(v >= 0 && v <= 1)) throw InvalidInputError(std::string(what) + " must be in [0, 1]");
 }
 
-/// The stroke-file contract's rules for \p s (the library's parser judges a one-stroke file).
-void validate_material_stroke(const MaterialStroke& s) {
-  MaterialStrokeFile f;
-  f.layers.push_back(MaterialLayer{"check", true, 1, BlendMode::Normal, std::nullopt, {s}});
-  (void)parse_material_strokes(material_strokes_json(f), "painted stroke", ".");
-}
 MaterialEdit make_edit(MaterialEdit::Kind kind, int layer) {
   MaterialEdit e;
   e.kind = kind;
@@ -69,6 +63,9 @@ void MaterialDocument::apply(const MaterialEdit& e) {
     case K::Blend: layers[e.layer].blend = e.blend; break;
     case K::Rename: layers[e.layer].name = e.name; break;
     case K::Stroke: layers[e.layer].strokes.push_back(e.stroke); break;
+    case K::AddMask: layers[e.layer].mask = LayerMask{e.value, {}}; break;
+    case K::RemoveMask: layers[e.layer].mask.reset(); break;
+    case K::MaskStroke: layers[e.layer].mask->strokes.push_back(e.stroke); break;
   }
 }
 
@@ -142,8 +139,32 @@ void MaterialDocument::rename(int layer, const std::string& name) {
 }
 
 void MaterialDocument::add_stroke(MaterialStroke stroke) {
-  validate_material_stroke(stroke);
+  validate_material_stroke(stroke, false, "painted stroke");
   MaterialEdit e = make_edit(MaterialEdit::Kind::Stroke, active_);
+  e.stroke = std::move(stroke);
+  push(std::move(e));
+}
+
+void MaterialDocument::add_mask(int layer, double value) {
+  check_layer(layer, "add mask");
+  check_unit(value, "mask value");
+  if (file_.layers[layer].mask) throw InvalidInputError("add mask: the layer has a mask already");
+  MaterialEdit e = make_edit(MaterialEdit::Kind::AddMask, layer);
+  e.value = value;
+  push(std::move(e));
+}
+
+void MaterialDocument::remove_mask(int layer) {
+  check_layer(layer, "remove mask");
+  if (!file_.layers[layer].mask) return;
+  push(make_edit(MaterialEdit::Kind::RemoveMask, layer));
+}
+
+void MaterialDocument::add_mask_stroke(MaterialStroke stroke) {
+  if (!file_.layers[active_].mask)
+    throw InvalidInputError("painting on the mask: \"" + file_.layers[active_].name + "\" has no mask (Add mask)");
+  validate_material_stroke(stroke, true, "painted mask stroke");
+  MaterialEdit e = make_edit(MaterialEdit::Kind::MaskStroke, active_);
   e.stroke = std::move(stroke);
   push(std::move(e));
 }

@@ -14,15 +14,16 @@ namespace adaptex::studio {
 
 /// One undoable edit of a MaterialDocument.
 struct MaterialEdit {
-  enum class Kind { AddLayer, DeleteLayer, MoveLayer, Visible, Opacity, Blend, Rename, Stroke };
+  enum class Kind { AddLayer, DeleteLayer, MoveLayer, Visible, Opacity, Blend, Rename, Stroke, AddMask, RemoveMask,
+                    MaskStroke };
   Kind kind = Kind::Stroke;
   int layer = 0;       ///< The layer edited (AddLayer: the index the new layer gets).
   int target = 0;      ///< MoveLayer: the index the layer moves to.
   bool flag = false;   ///< Visible.
-  double value = 0;    ///< Opacity.
+  double value = 0;    ///< Opacity; AddMask: the mask's start value.
   BlendMode blend = BlendMode::Normal;
   std::string name;    ///< AddLayer, Rename.
-  MaterialStroke stroke;  ///< Stroke: appended to the layer's strokes.
+  MaterialStroke stroke;  ///< Stroke / MaskStroke: appended to the layer's (mask's) strokes.
 };
 
 class MaterialDocument {
@@ -48,6 +49,12 @@ class MaterialDocument {
   void rename(int layer, const std::string& name);
   /// Appends \p stroke to the active layer.
   void add_stroke(MaterialStroke stroke);
+  /// Gives \p layer a mask of start value \p value (none yet), or removes its mask (with its strokes).
+  void add_mask(int layer, double value);
+  void remove_mask(int layer);
+  /// Appends \p stroke (brush, fill or erase; mask_value painted) to the active layer's mask.
+  /// \throw InvalidInputError the layer has no mask, or the stroke breaks the contract
+  void add_mask_stroke(MaterialStroke stroke);
 
   bool undo();
   bool redo();
@@ -55,7 +62,7 @@ class MaterialDocument {
   bool can_redo() const { return !redo_.empty(); }
   /// Incremented by every change (edits, undo, redo).
   std::uint64_t version() const { return version_; }
-  /// Brush, erase and fill strokes over all layers.
+  /// Brush, erase and fill strokes over all layers (not their masks).
   size_t num_strokes() const;
   /// A name no layer has yet: "Layer N".
   std::string next_layer_name() const;

@@ -13,6 +13,7 @@
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
 #include "adaptex/io/input_file.h"
+#include "brush_preset.h"
 #include "stroke_json.h"
 
 namespace adaptex::studio {
@@ -96,6 +97,9 @@ void write_project(const std::filesystem::path& path, const Project& p) {
   for (int c = 0; c < kNumChannels; ++c)
     if (b.channels & channel_bit(Channel(c))) channels.push_back(channel_name(Channel(c)));
   j["brush"]["channels"] = channels;
+  j["brush"]["mask_value"] = b.mask_value;
+  j["brush"]["on_mask"] = b.on_mask;
+  if (json pressure = pressure_curves_to_json(b); !pressure.empty()) j["brush"]["pressure"] = pressure;
   if (p.material) {
     j["material"] = json::parse(material_strokes_json(*p.material));
     j["active_layer"] = p.active_layer;
@@ -177,6 +181,11 @@ Project read_project(const std::filesystem::path& path) {
           p.brush.channels |= channel_bit(*ch);
         }
       }
+      p.brush.mask_value = b.value("mask_value", p.brush.mask_value);
+      if (!(p.brush.mask_value >= 0 && p.brush.mask_value <= 1))
+        throw InvalidInputError(path.string() + ": brush: mask_value must be in [0, 1]");
+      p.brush.on_mask = b.value("on_mask", p.brush.on_mask);
+      if (b.contains("pressure")) pressure_curves_from_json(b["pressure"], path.string() + ": brush: ", p.brush);
       if (!(p.brush.pixel_radius >= 1 && p.brush.pixel_radius <= 1000))
         throw InvalidInputError(path.string() + ": brush: pixel_radius must be in [1, 1000]");
       // The brush paints strokes: the stroke contract's rules (colour, hardness, opacity in [0, 1],

@@ -40,6 +40,14 @@ struct BrushSettings {
   /// color, and these three (alpha is not painted by the studio's brush).
   unsigned channels = channel_bit(Channel::BaseColor);
   double roughness = 0.2, metallic = 1.0, height = 0.75;
+  /// Strokes paint the active layer's mask (when it has one) with mask_value, not its channels.
+  bool on_mask = false;
+  double mask_value = 0;  ///< In [0,1]: 0 hides the layer where painted, 1 shows it.
+  /// With a decal image loaded: a click stamps the image centred at the cursor, as tall as the brush's
+  /// diameter on the screen, at the brush's opacity (a decal stroke), instead of painting dabs.
+  bool stamp = false;
+  /// Pen pressure -> factor of the radius / the opacity (written to each stroke's "pressure").
+  PressureCurve radius_curve, opacity_curve;
 };
 
 struct ViewSettings {

@@ -2,6 +2,8 @@
 /// Dear ImGui panels (see ui.h).
 #include "ui.h"
 
+#include "brush_panel.h"
+
 #include <imgui.h>
 #include <imgui_internal.h>  // the popup stack: Esc closes the menus and popups above any modal
 #include <imgui_stdlib.h>
@@ -77,15 +79,6 @@ float max_value(const ImageF& m) {
   return mx;
 }
 
-/// A plain-words tooltip for the last widget.
-void tooltip(const char* text) {
-  if (!ImGui::IsItemHovered()) return;
-  ImGui::BeginTooltip();
-  ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28);
-  ImGui::TextUnformatted(text);
-  ImGui::PopTextWrapPos();
-  ImGui::EndTooltip();
-}
 
 /// Opens (once) and begins the modal pop-up \p title, centred; says so on stdout the frame it appears
 /// (scripted tests wait for the line). \return ImGui::BeginPopupModal's answer (EndPopup when true)
@@ -436,6 +429,7 @@ void StudioUi::brush_panel(App& app) {
   ImGui::SameLine();
   ImGui::RadioButton("Pick (I)", &tool, 2);
   b.tool = Tool(tool);
+  stamp_option(app, [this](const char* id) { trace(id); });
   ImGui::Checkbox("Layers and channels", &show_material_);
   tooltip("The Material window: the layers (add, delete, reorder, hide, opacity, blend mode) and the "
           "channels the brush paints (base colour, roughness, metallic, height)");
@@ -465,6 +459,19 @@ void StudioUi::brush_panel(App& app) {
   Vec3 bg = app.history().background();
   float pb[3] = {float(bg.x()), float(bg.y()), float(bg.z())};
   if (ImGui::ColorEdit3("Paper", pb, ImGuiColorEditFlags_NoInputs)) app.set_background_colour(Vec3(pb[0], pb[1], pb[2]));
+  const bool pressure = ImGui::TreeNode("Pen pressure");
+  tooltip("How a tablet pen's pressure scales the radius and the opacity of each dab (a mouse: pressure 1).");
+  trace("Pen pressure");
+  if (pressure) {
+    pressure_panel(b, [this](const char* id) { trace(id); });
+    ImGui::TreePop();
+  }
+  const bool presets = ImGui::TreeNode("Presets");
+  trace("Presets");
+  if (presets) {
+    preset_panel(app, preset_path_, [this](const char* id) { trace(id); });
+    ImGui::TreePop();
+  }
 }
 
 void StudioUi::trace(const char* id) {
@@ -489,6 +496,8 @@ void StudioUi::material_window(App& app, float top) {
   ImGui::PushItemWidth(-ImGui::CalcTextSize("Roughness ").x);
   if (ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen)) layers_panel(app);
   if (ImGui::CollapsingHeader("Brush channels", ImGuiTreeNodeFlags_DefaultOpen)) channels_panel(app);
+  if (ImGui::CollapsingHeader("Mask and fill", ImGuiTreeNodeFlags_DefaultOpen))
+    mask_panel(app, [this](const char* id) { trace(id); });
   ImGui::PopItemWidth();
   ImGui::End();
 }

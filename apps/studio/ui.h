@@ -99,6 +99,7 @@ class StudioUi {
   void* inspect_tex_ = nullptr;
   bool show_material_ = false, shown_layered_ = false;  // the Material window; the document was layered
   bool trace_ = std::getenv("ADAPTEX_STUDIO_UI_TRACE") != nullptr;
+  std::string preset_path_;  // the brush preset file (brush_panel.h)
   std::map<std::string, std::pair<int, int>> traced_;
   void* compare_tex_[2] = {nullptr, nullptr};
   ImageRGBA8 inspect_img_;

@@ -334,6 +334,23 @@ void check_vertex_count(const json& accessors, const json& p, const std::string&
     throw IoError(what + ": " + std::to_string(n) + " vertices do not make whole primitives of mode " + std::to_string(mode));
 }
 
+/// Every image's mimeType is a string with a '/': assimp's importer takes the text after
+/// strchr(mimeType, '/') unchecked, so "image$png" made it strcmp() address 1 (found by fuzz_gltf).
+void check_images(const std::string& corrupt, const json& doc) {
+  const json* images = array_of(corrupt, doc, "images");
+  for (std::size_t i = 0; images && i < images->size(); ++i) {
+    const json& img = (*images)[i];
+    if (!img.is_object()) throw IoError(corrupt + "image " + std::to_string(i) + " is not an object");
+    if (const auto m = img.find("mimeType"); m != img.end())
+      if (!m->is_string() || m->get<std::string>().find('/') == std::string::npos) {
+        std::string shown = m->dump();
+        if (shown.size() > 40) shown = shown.substr(0, 36) + "...";
+        throw IoError(corrupt + "image " + std::to_string(i) + ": mimeType " + shown +
+                      " is not a MIME type (such as \"image/png\")");
+      }
+  }
+}
+
 /// Every reference assimp follows without checking (a primitive without POSITION crashed it): meshes'
 /// attributes and indices, primitive modes, nodes' meshes and children (no cycles: a node has at
 /// most one parent and is not its own ancestor), scenes' nodes.
@@ -463,6 +480,7 @@ CheckedGltf check_gltf(const std::string& name, const std::filesystem::path& bas
     throw IoError(corrupt + "not glTF 2.0 (no \"asset\": {\"version\": \"2.x\"})");
   check_views_and_accessors(corrupt, doc, check_buffers(corrupt, doc, base_dir, bin_length));
   check_references(corrupt, doc);
+  check_images(corrupt, doc);
   try {
     check_index_values(corrupt, doc, bytes, bin_offset, bin_length, base_dir);
   } catch (const json::exception& e) {  // a member the checks above let pass but this one cannot read

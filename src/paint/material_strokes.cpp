@@ -4,6 +4,7 @@
 #include "adaptex/paint/material_strokes.h"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -26,6 +27,82 @@ std::string quoted_list(const char* const* names, int n) {
   return s;
 }
 
+void check_unit(double x, const std::string& field, const Where& w) {
+  if (!(x >= 0 && x <= 1)) w.fail("\"" + field + "\" must be in [0, 1] (got " + num(x) + ")");
+}
+
+/// The values of the channels in \p bits are in [0,1] (messages name "channels.<name>").
+void check_channel_values(unsigned bits, const MaterialValue& v, const Where& w) {
+  for (int c = 0; c < kNumChannels; ++c) {
+    const auto ch = static_cast<Channel>(c);
+    if (!(bits & channel_bit(ch))) continue;
+    const std::string field = std::string("channels.") + kChannelNames[c];
+    const int o = channel_offset(ch);
+    if (ch != Channel::BaseColor) {
+      check_unit(v[o], field, w);
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+      if (!(v[o + k] >= 0 && v[o + k] <= 1))
+        w.fail("\"" + field + "\"[" + std::to_string(k) + "] must be in [0, 1] (got " + num(v[o + k]) + ")");
+  }
+}
+
+/// A pressure curve: none, or points in [0,1]^2 with increasing pressures from 0 to 1.
+void check_curve(const PressureCurve& curve, const std::string& field, const Where& w) {
+  if (curve.points.empty()) return;
+  if (curve.points.size() < 2) w.fail("\"" + field + "\" must have at least 2 [pressure, factor] points");
+  for (size_t k = 0; k < curve.points.size(); ++k) {
+    const std::string f = field + "[" + std::to_string(k) + "]";
+    check_unit(curve.points[k].x(), f + "[0]", w);
+    check_unit(curve.points[k].y(), f + "[1]", w);
+    if (k > 0 && !(curve.points[k].x() > curve.points[k - 1].x()))
+      w.fail("\"" + field + "\" pressures must increase (point " + std::to_string(k) + ")");
+  }
+  if (curve.points.front().x() != 0 || curve.points.back().x() != 1)
+    w.fail("\"" + field + "\" must start at pressure 0 and end at pressure 1");
+}
+
+/// Radius, hardness, dabs, pressures and curves of a brush or an eraser.
+void check_dab_fields(const MaterialStroke& s, const Where& w) {
+  if (!std::isfinite(s.radius)) w.fail("\"radius\" must be finite (got " + num(s.radius) + ")");
+  if (!(s.radius > 0)) w.fail("\"radius\" must be > 0 (got " + num(s.radius) + ")");
+  check_unit(s.hardness, "hardness", w);
+  if (s.dabs.empty()) w.fail("\"dabs\" must not be empty");
+  if (!s.pressure.empty() && s.pressure.size() != s.dabs.size())
+    w.fail("\"dabs\": every dab must have a pressure, or none (" + std::to_string(s.pressure.size()) +
+           " pressures for " + std::to_string(s.dabs.size()) + " dabs)");
+  for (size_t k = 0; k < s.dabs.size(); ++k) {
+    const std::string f = "dabs[" + std::to_string(k) + "]";
+    for (int c = 0; c < 3; ++c)
+      if (!std::isfinite(s.dabs[k][c]))
+        w.fail("\"" + f + "[" + std::to_string(c) + "]\" must be finite (got " + num(s.dabs[k][c]) + ")");
+    if (!s.pressure.empty()) check_unit(s.pressure[k], f + "[3]", w);
+  }
+  check_curve(s.radius_curve, "pressure.radius", w);
+  check_curve(s.opacity_curve, "pressure.opacity", w);
+}
+
+void check_material_stroke(const MaterialStroke& s, bool in_mask, const Where& w) {
+  using T = MaterialStroke::Type;
+  if (s.type == T::Decal) {
+    if (in_mask) w.fail("\"type\" must be \"brush\", \"fill\" or \"erase\" in a mask (got \"decal\")");
+    validate_stroke(s.decal, w.prefix.empty() ? std::string() : w.prefix.substr(0, w.prefix.size() - 2));
+    if (s.opacity != s.decal.opacity) w.fail("\"opacity\" of a decal must equal its image's opacity");
+    return;
+  }
+  check_unit(s.opacity, "opacity", w);
+  if (in_mask) {
+    if (s.type != T::Erase) check_unit(s.mask_value, "value", w);
+  } else {
+    if ((s.channels & kAllChannels) == 0 || (s.channels & ~kAllChannels) != 0)
+      w.fail("\"channels\" must name at least one of " + quoted_list(kChannelNames, kNumChannels) +
+             " and no other");
+    if (s.type != T::Erase) check_channel_values(s.channels, s.value, w);
+  }
+  if (s.type != T::Fill) check_dab_fields(s, w);
+}
+
 /// "channels": {"base_color": [r, g, b], "roughness": 0.3, ...} (at least one channel).
 void parse_channel_values(const json& js, MaterialStroke& s, const Where& w) {
   if (!js.is_object() || js.empty())
@@ -37,10 +114,10 @@ void parse_channel_values(const json& js, MaterialStroke& s, const Where& w) {
     const std::string field = "channels." + it.key();
     const int o = channel_offset(*c);
     if (*c == Channel::BaseColor) {
-      const Vec3 rgb = get_color(*it, field, w);
+      const Vec3 rgb = get_vec3(*it, field, w);
       for (int k = 0; k < 3; ++k) s.value[o + k] = rgb[k];
     } else {
-      s.value[o] = get_in_range(*it, field, 0, 1, w);
+      s.value[o] = get_number(*it, field, w);
     }
     s.channels |= channel_bit(*c);
   }
@@ -66,13 +143,9 @@ PressureCurve parse_curve(const json& js, const std::string& field, const Where&
   for (size_t k = 0; k < js.size(); ++k) {
     const std::string f = field + "[" + std::to_string(k) + "]";
     if (!js[k].is_array() || js[k].size() != 2) w.fail("\"" + f + "\" must be a [pressure, factor] pair");
-    curve.points.emplace_back(get_in_range(js[k][0], f + "[0]", 0, 1, w), get_in_range(js[k][1], f + "[1]", 0, 1, w));
-    if (k > 0 && !(curve.points[k].x() > curve.points[k - 1].x()))
-      w.fail("\"" + field + "\" pressures must increase (point " + std::to_string(k) + ")");
+    curve.points.emplace_back(get_number(js[k][0], f + "[0]", w), get_number(js[k][1], f + "[1]", w));
   }
-  if (curve.points.front().x() != 0 || curve.points.back().x() != 1)
-    w.fail("\"" + field + "\" must start at pressure 0 and end at pressure 1");
-  return curve;
+  return curve;  // the ranges and the order: check_curve()
 }
 
 /// "dabs" of [x, y, z] or [x, y, z, pressure]: all with pressure or all without.
@@ -91,15 +164,14 @@ void parse_dabs(const json& js, MaterialStroke& s, const Where& w) {
     s.dabs.push_back(p);
     if ((d.size() == 4) != (k == 0 ? d.size() == 4 : !s.pressure.empty()))
       w.fail("\"" + f + "\": every dab must have a pressure, or none");
-    if (d.size() == 4) s.pressure.push_back(get_in_range(d[3], f + "[3]", 0, 1, w));
+    if (d.size() == 4) s.pressure.push_back(get_number(d[3], f + "[3]", w));
   }
 }
 
 /// Radius, hardness, opacity, dabs and pressure curves of a brush or an eraser.
 void parse_dab_fields(const json& js, MaterialStroke& s, const Where& w) {
   s.radius = get_number(require(js, "radius", w), "radius", w);
-  if (!(s.radius > 0)) w.fail("\"radius\" must be > 0 (got " + num(s.radius) + ")");
-  if (auto it = js.find("hardness"); it != js.end()) s.hardness = get_in_range(*it, "hardness", 0, 1, w);
+  if (auto it = js.find("hardness"); it != js.end()) s.hardness = get_number(*it, "hardness", w);
   parse_dabs(require(js, "dabs", w), s, w);
   if (auto it = js.find("pressure"); it != js.end()) {
     if (!it->is_object()) w.fail("\"pressure\" must be an object with \"radius\" and/or \"opacity\" curves");
@@ -137,13 +209,13 @@ MaterialStroke parse_material_stroke(const json& js, bool in_mask, const Where& 
     s.channels = channel_bit(Channel::BaseColor);
     return s;
   }
-  if (auto it = js.find("opacity"); it != js.end()) s.opacity = get_in_range(*it, "opacity", 0, 1, w);
+  if (auto it = js.find("opacity"); it != js.end()) s.opacity = get_number(*it, "opacity", w);
   const bool dabs = s.type != MaterialStroke::Type::Fill;
   std::set<std::string> known = {"type", "opacity", in_mask ? "value" : "channels"};
   if (dabs) known.insert({"radius", "hardness", "dabs", "pressure"});
   warn_unknown(js, known, w, warnings);
   if (in_mask) {
-    if (s.type != MaterialStroke::Type::Erase) s.mask_value = get_in_range(require(js, "value", w), "value", 0, 1, w);
+    if (s.type != MaterialStroke::Type::Erase) s.mask_value = get_number(require(js, "value", w), "value", w);
   } else if (s.type == MaterialStroke::Type::Erase) {
     auto it = js.find("channels");
     s.channels = it == js.end() ? kAllChannels : parse_channel_names(*it, w);
@@ -151,6 +223,7 @@ MaterialStroke parse_material_stroke(const json& js, bool in_mask, const Where& 
     parse_channel_values(require(js, "channels", w), s, w);
   }
   if (dabs) parse_dab_fields(js, s, w);
+  check_material_stroke(s, in_mask, w);  // the ranges and rules, as for strokes built in memory
   return s;
 }
 
@@ -211,6 +284,7 @@ MaterialValue parse_background(const json& js, const Where& w) {
   if (!js.is_object()) w.fail("\"background\" must be an object of channel values (got " + describe(js) + ")");
   MaterialStroke values;
   if (!js.empty()) parse_channel_values(js, values, w);
+  check_channel_values(values.channels, values.value, w);
   for (int c = 0; c < kNumChannels; ++c)
     if (values.channels & channel_bit(static_cast<Channel>(c)))
       for (int k = 0; k < channel_components(static_cast<Channel>(c)); ++k)
@@ -261,6 +335,22 @@ long long MaterialStrokeFile::num_dabs() const {
       for (const MaterialStroke& s : l.mask->strokes) n += static_cast<long long>(s.dabs.size());
   }
   return n;
+}
+
+void validate_material_stroke(const MaterialStroke& stroke, bool in_mask, const std::string& where) {
+  check_material_stroke(stroke, in_mask, Where{where.empty() ? std::string() : where + ": "});
+}
+
+void validate_material_layer(const MaterialLayer& layer, const std::string& where) {
+  const std::string prefix = where.empty() ? std::string() : where + ": ";
+  check_unit(layer.opacity, "opacity", Where{prefix});
+  if (layer.mask) {
+    check_unit(layer.mask->value, "mask.value", Where{prefix});
+    for (size_t k = 0; k < layer.mask->strokes.size(); ++k)
+      check_material_stroke(layer.mask->strokes[k], true, Where{prefix + "mask: stroke " + std::to_string(k) + ": "});
+  }
+  for (size_t k = 0; k < layer.strokes.size(); ++k)
+    check_material_stroke(layer.strokes[k], false, Where{prefix + "stroke " + std::to_string(k) + ": "});
 }
 
 MaterialStrokeFile material_from_v1(const StrokeFile& v1) {

@@ -28,6 +28,9 @@
 #if ADAPTEX_FUZZ_PROJECT
 #include "settings.h"
 #endif
+#if ADAPTEX_FUZZ_BRUSH_PRESET
+#include "brush_preset.h"
+#endif
 
 namespace {
 
@@ -72,6 +75,8 @@ void read_file(const std::filesystem::path& path) {
   (void)adaptex::parse_mtl(adaptex::read_input_file(path), path);
 #elif ADAPTEX_FUZZ_PROJECT
   (void)adaptex::studio::read_project(path);
+#elif ADAPTEX_FUZZ_BRUSH_PRESET
+  (void)adaptex::studio::read_brush_preset(path, adaptex::studio::BrushSettings{});
 #else
   (void)adaptex::read_mesh(path, mesh_options());
 #endif
@@ -91,6 +96,8 @@ void read_memory([[maybe_unused]] const std::string& bytes, [[maybe_unused]] con
   (void)adaptex::parse_mtl(bytes, path, &warnings);
 #elif ADAPTEX_FUZZ_PROJECT
   // not reached: via_file()
+#elif ADAPTEX_FUZZ_BRUSH_PRESET
+  (void)adaptex::studio::parse_brush_preset(bytes, path.string(), adaptex::studio::BrushSettings{});
 #else
   try {
     (void)adaptex::read_mesh_from_memory(bytes, ADAPTEX_FUZZ_EXTENSION, path, mesh_options());

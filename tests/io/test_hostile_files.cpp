@@ -219,6 +219,37 @@ TEST(HostileFiles, GltfForgedChunkLengthAndNotGltf) {
   expect_info_rejects(dir.path / "huge.gltf", "larger than the input file limit");
 }
 
+TEST(HostileFiles, GltfImageMimeTypeWithoutSlash) {
+  // Found by fuzz_gltf: an embedded image whose mimeType has no '/' ("image$png") made assimp's glTF
+  // importer strcmp() the address after strchr()'s null (SEGV). The fuzzer's JSON as found; the BIN
+  // chunk is zeros (8 vertices at the origin, 12 indices 0, and the image's 74 bytes).
+  TempDir dir;
+  const std::string json =
+      R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"indices":2,"material":0}]}],)"
+      R"("buffers":[{"byteLength":260}],"bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":96},)"
+      R"({"buffer":0,"byteOffset":96,"byteLength":64},{"buffer":0,"byteOffset":160,"byteLength":24},)"
+      R"({"buffer":0,"byteOffset":184,"byteLength":74}],"accessors":[{"bufferView":0,"componentType":5126,)"
+      R"("count":8,"type":"VEC3"},{"bufferView":1,"componentType":5126,"count":8,"type":"VEC2"},)"
+      R"({"bufferView":2,"componentType":5123,"count":12,"type":"SCALAR"}],)"
+      R"("images":[{"bufferView":3,"mimeType":"MIME"}],"samplers":[{"wrapS":10497,"wrapT":10497}],)"
+      R"("textures":[{"source":0,"sampler":0}],"materials":[{"name":"m","pbrMetallicRoughness":)"
+      R"({"baseColorTexture":{"index":0}},"normalTexture":{"index":0,"scale":0.5}}]})";
+  auto with_mime = [&](const std::string& mime) {
+    std::string j = json;
+    j.replace(j.find("MIME"), 4, mime);
+    return glb(j, std::string(260, '\0'));
+  };
+  test::write_text(dir.path / "mime.glb", with_mime("image$png"));
+  expect_info_rejects(dir.path / "mime.glb", "image 0: mimeType \"image$png\" is not a MIME type");
+  test::write_text(dir.path / "mime2.glb", with_mime("png"));
+  expect_info_rejects(dir.path / "mime2.glb", "image 0: mimeType \"png\" is not a MIME type");
+  // A well-formed MIME type passes the check (the zero image bytes are no PNG; the geometry reads).
+  test::write_text(dir.path / "mime_ok.glb", with_mime("image/png"));
+  const auto ok = run_bounded("info " + q(dir.path / "mime_ok.glb"));
+  EXPECT_EQ(ok.err.find("is not a MIME type"), std::string::npos) << ok.err;
+}
+
 TEST(HostileFiles, OnlyRegularFilesAreRead) {
   TempDir dir;
   std::filesystem::create_symlink("/dev/zero", dir.path / "zero.off");

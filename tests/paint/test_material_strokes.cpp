@@ -2,7 +2,9 @@
 // material it defines at surface points (layers, blend modes, masks, erasers, pressure).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -252,6 +254,94 @@ TEST(MaterialStrokes, ErrorsNameTheLayerStrokeAndField) {
             "m.json: \"version\" must be 1 or 2 (got 3)");
   EXPECT_EQ(error_of(R"({"format": "adaptex.strokes", "version": 2, "layers": [{"name": "x"}]})"),
             "m.json: layer 0: missing required field \"strokes\"");
+}
+
+}  // namespace
+}  // namespace adaptex
+
+namespace adaptex {
+namespace {
+
+std::string validation_error(const MaterialStroke& s, bool in_mask) {
+  try {
+    validate_material_stroke(s, in_mask, "painted");
+  } catch (const InvalidInputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+MaterialStroke valid_brush() {
+  MaterialStroke s;
+  s.channels = channel_bit(Channel::Roughness);
+  s.value[channel_offset(Channel::Roughness)] = 0.3;
+  s.dabs = {Vec3(0, 0, 0), Vec3(0.1, 0, 0)};
+  return s;
+}
+
+TEST(MaterialStrokeValidation, AcceptsValidStrokesAndNamesTheBrokenField) {
+  EXPECT_EQ(validation_error(valid_brush(), false), "");
+  MaterialStroke s = valid_brush();
+  s.value[channel_offset(Channel::Roughness)] = 1.5;
+  EXPECT_EQ(validation_error(s, false), "painted: \"channels.roughness\" must be in [0, 1] (got 1.5)");
+  s = valid_brush();
+  s.channels = 0;
+  EXPECT_NE(validation_error(s, false).find("\"channels\" must name at least one"), std::string::npos);
+  s = valid_brush();
+  s.pressure = {0.5};
+  EXPECT_EQ(validation_error(s, false),
+            "painted: \"dabs\": every dab must have a pressure, or none (1 pressures for 2 dabs)");
+  s.pressure = {0.5, 1.2};
+  EXPECT_EQ(validation_error(s, false), "painted: \"dabs[1][3]\" must be in [0, 1] (got 1.2)");
+  s = valid_brush();
+  s.dabs[1].x() = std::nan("");
+  EXPECT_EQ(validation_error(s, false), "painted: \"dabs[1][0]\" must be finite (got nan)");
+  s = valid_brush();
+  s.radius_curve.points = {Vec2(0, 0.2), Vec2(0.9, 1)};
+  EXPECT_EQ(validation_error(s, false), "painted: \"pressure.radius\" must start at pressure 0 and end at pressure 1");
+  s.radius_curve.points = {Vec2(0, 0.2), Vec2(0, 0.5), Vec2(1, 1)};
+  EXPECT_EQ(validation_error(s, false), "painted: \"pressure.radius\" pressures must increase (point 1)");
+  s = valid_brush();
+  s.radius = -1;
+  EXPECT_EQ(validation_error(s, false), "painted: \"radius\" must be > 0 (got -1)");
+  s.radius = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(validation_error(s, false), "painted: \"radius\" must be finite (got inf)");
+  // A mask's stroke paints its value (the channels are unused) and holds no decal.
+  s = valid_brush();
+  s.channels = 0;
+  s.mask_value = 0.25;
+  EXPECT_EQ(validation_error(s, true), "");
+  s.mask_value = -0.5;
+  EXPECT_EQ(validation_error(s, true), "painted: \"value\" must be in [0, 1] (got -0.5)");
+  s.type = MaterialStroke::Type::Fill;  // a fill needs no dabs
+  s.mask_value = 0;
+  s.dabs.clear();
+  EXPECT_EQ(validation_error(s, true), "");
+  s.type = MaterialStroke::Type::Decal;
+  EXPECT_NE(validation_error(s, true).find("in a mask"), std::string::npos);
+}
+
+TEST(MaterialStrokeValidation, LayerMessagesNameTheMaskAndStroke) {
+  MaterialLayer layer;
+  layer.strokes = {valid_brush()};
+  EXPECT_NO_THROW(validate_material_layer(layer, "layer 0"));
+  layer.mask = LayerMask{0.5, {valid_brush()}};
+  layer.mask->strokes[0].opacity = 2;
+  try {
+    validate_material_layer(layer, "layer 0");
+    ADD_FAILURE() << "a mask stroke of opacity 2 passed";
+  } catch (const InvalidInputError& e) {
+    EXPECT_STREQ(e.what(), "layer 0: mask: stroke 0: \"opacity\" must be in [0, 1] (got 2)");
+  }
+  layer.mask->strokes[0].opacity = 1;
+  layer.opacity = -0.1;
+  EXPECT_THROW(validate_material_layer(layer, "layer 0"), InvalidInputError);
+}
+
+// Every valid file's strokes pass the validator (the parser and the validator agree).
+TEST(MaterialStrokeValidation, ParsedStrokesPass) {
+  const MaterialStrokeFile f = parse(kExample);
+  for (size_t k = 0; k < f.layers.size(); ++k) EXPECT_NO_THROW(validate_material_layer(f.layers[k], "layer"));
 }
 
 }  // namespace

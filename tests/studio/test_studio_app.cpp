@@ -23,6 +23,8 @@
 #include "adaptex/paint/material_paint.h"
 #include "adaptex/paint/painter.h"
 #include "app.h"
+#include "brush_preset.h"
+#include "tablet.h"
 #include "file_browser.h"
 #include "live_adaptation.h"
 #include "test_support.h"
@@ -1958,6 +1960,292 @@ TEST(StudioMaterial, ExportIsAdaptexPaintsForTheSavedVersion2File) {
   for (const char* f : {"ball.obj", "ball.png", "ball_roughness.png", "ball_metallic.png", "ball_normal.png",
                         "ball_height.png"})
     EXPECT_EQ(read_input_file(dir.path / "studio" / f), read_input_file(dir.path / "cli" / f)) << f;
+}
+
+
+TEST(StudioMaterial, MasksAndFillsAreUndoableEditsOfTheDocument) {
+  MaterialDocument d;
+  d.add_stroke(roughness_stroke(0.1, Vec3(1, 0, 0)));
+  const std::string before = material_strokes_json(d.file());
+  MaterialStroke fill;
+  fill.type = MaterialStroke::Type::Fill;
+  fill.channels = channel_bit(Channel::Metallic);
+  fill.value[channel_offset(Channel::Metallic)] = 0.8;
+  d.add_stroke(fill);
+  EXPECT_THROW(d.add_mask_stroke(roughness_stroke(0, Vec3(0, 0, 1))), InvalidInputError);  // no mask yet
+  d.add_mask(0, 1);
+  EXPECT_THROW(d.add_mask(0, 1), InvalidInputError);
+  MaterialStroke m = roughness_stroke(0.5, Vec3(0, 1, 0));
+  m.channels = 0;
+  m.mask_value = 0.25;
+  d.add_mask_stroke(m);
+  m.mask_value = 2;  // out of [0,1]: refused, nothing changes
+  EXPECT_THROW(d.add_mask_stroke(m), InvalidInputError);
+  MaterialStroke mask_fill = fill;
+  mask_fill.channels = 0;
+  mask_fill.mask_value = 0;
+  d.add_mask_stroke(mask_fill);
+  const MaterialLayer& l = d.file().layers[0];
+  ASSERT_TRUE(l.mask.has_value());
+  ASSERT_EQ(l.mask->strokes.size(), 2u);
+  EXPECT_EQ(l.mask->strokes[0].mask_value, 0.25);
+  EXPECT_EQ(l.mask->strokes[1].type, MaterialStroke::Type::Fill);
+  ASSERT_EQ(l.strokes.size(), 2u);
+  EXPECT_EQ(l.strokes[1].type, MaterialStroke::Type::Fill);
+  // The file written and read back is the document (the v2 file holds masks and fills).
+  const std::string full = material_strokes_json(d.file());
+  EXPECT_EQ(material_strokes_json(parse_material_strokes(full, "m.json", ".")), full);
+  d.remove_mask(0);
+  EXPECT_FALSE(d.file().layers[0].mask.has_value());
+  ASSERT_TRUE(d.undo());  // the mask comes back with its strokes
+  EXPECT_EQ(material_strokes_json(d.file()), full);
+  for (int k = 0; k < 4; ++k) ASSERT_TRUE(d.undo());  // mask fill, mask stroke, add mask, fill
+  EXPECT_EQ(material_strokes_json(d.file()), before);
+}
+
+TEST(StudioMaterial, TheBrushPaintsTheMaskAndFillsTheLayerAndTheMask) {
+  Harness h({}, 128);
+  h.app->brush().radius = 0.3;
+  h.app->brush().channels = channel_bit(Channel::BaseColor);
+  h.app->brush().color = Vec3(0.9, 0.1, 0.1);
+  ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) { d.add_layer(""); }));
+  h.app->brush().color = Vec3(0.1, 0.2, 0.9);
+  ASSERT_TRUE(h.app->fill_active(false));  // layer 2 all blue
+  ASSERT_FALSE(h.app->fill_active(true));  // no mask: refused with a message
+  ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) { d.add_mask(1, 1); }));
+  h.app->brush().on_mask = true;
+  h.app->brush().mask_value = 0;
+  EXPECT_TRUE(h.app->painting_mask());
+  h.drag(150, 150, 250, 150);  // hides layer 2 along the drag
+  const MaterialLayer& l = h.app->material()->file().layers[1];
+  ASSERT_EQ(l.strokes.size(), 1u);
+  EXPECT_EQ(l.strokes[0].type, MaterialStroke::Type::Fill);
+  EXPECT_EQ(l.strokes[0].channels, channel_bit(Channel::BaseColor));
+  ASSERT_TRUE(l.mask.has_value());
+  ASSERT_EQ(l.mask->strokes.size(), 1u);
+  EXPECT_EQ(l.mask->strokes[0].type, MaterialStroke::Type::Brush);
+  EXPECT_EQ(l.mask->strokes[0].mask_value, 0);
+  EXPECT_GT(l.mask->strokes[0].dabs.size(), 2u);
+  expect_view_is_the_composite(*h.app);
+  const ImageRGBA8 masked = *h.app->texture();
+  h.app->brush().mask_value = 0.5;
+  ASSERT_TRUE(h.app->fill_active(true));
+  EXPECT_EQ(h.app->material()->file().layers[1].mask->strokes.size(), 2u);
+  expect_view_is_the_composite(*h.app);
+  EXPECT_GT(max_abs_diff(*h.app->texture(), masked), 50);
+  h.app->undo();
+  expect_view_is_the_composite(*h.app);
+  EXPECT_EQ(max_abs_diff(*h.app->texture(), masked), 0);
+}
+
+TEST(StudioMaterial, PenPressureGoesIntoTheDabsAndTheCurvesIntoTheStroke) {
+  Harness h({}, 128);
+  h.app->brush().radius = 0.3;
+  h.app->brush().channels = channel_bit(Channel::Roughness);
+  h.drag(150, 150, 250, 150);  // a mouse: pressure 1, no pressures written
+  ASSERT_TRUE(h.app->layered());
+  const auto& strokes = h.app->material()->file().layers[0].strokes;
+  ASSERT_EQ(strokes.size(), 1u);
+  EXPECT_TRUE(strokes[0].pressure.empty());
+  EXPECT_TRUE(strokes[0].radius_curve.points.empty());
+  h.app->brush().radius_curve.points = {Vec2(0, 0.2), Vec2(0.5, 0.6), Vec2(1, 1)};
+  h.app->brush().opacity_curve.points = {Vec2(0, 0), Vec2(1, 1)};
+  h.app->set_pen_pressure(0.35);
+  h.drag(150, 120, 250, 180);
+  const auto& all = h.app->material()->file().layers[0].strokes;
+  ASSERT_EQ(all.size(), 2u);
+  const MaterialStroke& s = all[1];
+  ASSERT_EQ(s.pressure.size(), s.dabs.size());
+  for (double p : s.pressure) EXPECT_EQ(p, 0.35);
+  EXPECT_EQ(s.radius_curve.points, h.app->brush().radius_curve.points);
+  // In the file: [x, y, z, p] dabs and the "pressure" object; read back equal.
+  const std::string text = material_strokes_json(h.app->material()->file());
+  EXPECT_NE(text.find("\"pressure\": {\"radius\": [[0, 0.2], [0.5, 0.6], [1, 1]], \"opacity\": [[0, 0], [1, 1]]}"),
+            std::string::npos)
+      << text;
+  const MaterialStrokeFile back = parse_material_strokes(text, "m.json", ".");
+  EXPECT_EQ(back.layers[0].strokes[1].pressure, s.pressure);
+  EXPECT_DOUBLE_EQ(back.layers[0].strokes[1].radius_curve(0.35), 0.2 + 0.35 / 0.5 * 0.4);
+  // Pressure curves need the layered document (a version 1 stroke has none): the first stroke with
+  // them makes the single base-colour layer a layered material.
+  Harness g({}, 128);
+  g.app->brush().radius = 0.3;
+  g.app->brush().opacity_curve.points = {Vec2(0, 0.5), Vec2(1, 1)};
+  g.app->set_pen_pressure(0.5);
+  g.drag(150, 150, 250, 150);
+  ASSERT_TRUE(g.app->layered());
+  ASSERT_EQ(g.app->material()->file().layers[0].strokes.size(), 1u);
+  EXPECT_EQ(g.app->material()->file().layers[0].strokes[0].opacity_curve.points.size(), 2u);
+}
+
+
+TEST(StudioBrushPreset, SavesAndLoadsTheBrushAndRefusesBadFilesWithOneLine) {
+  TempDir dir;
+  BrushSettings b;
+  b.channels = channel_bit(Channel::BaseColor) | channel_bit(Channel::Height);
+  b.color = Vec3(0.25, 0.5, 0.75);
+  b.height = 0.9;
+  b.pixel_radius = 42;
+  b.hardness = 0.3;
+  b.opacity = 0.6;
+  b.spacing = 0.5;
+  b.mask_value = 0.25;
+  b.radius_curve.points = {Vec2(0, 0.2), Vec2(0.5, 0.6), Vec2(1, 1)};
+  write_brush_preset(dir.path / "p.json", b);
+  const BrushSettings r = read_brush_preset(dir.path / "p.json", BrushSettings{});
+  EXPECT_EQ(r.channels, b.channels);
+  EXPECT_EQ(r.color, b.color);
+  EXPECT_EQ(r.height, 0.9);
+  EXPECT_EQ(r.pixel_radius, 42);
+  EXPECT_TRUE(r.screen_space);
+  EXPECT_EQ(r.hardness, 0.3);
+  EXPECT_EQ(r.opacity, 0.6);
+  EXPECT_EQ(r.spacing, 0.5);
+  EXPECT_EQ(r.mask_value, 0.25);
+  EXPECT_EQ(r.radius_curve.points, b.radius_curve.points);
+  EXPECT_TRUE(r.opacity_curve.points.empty());
+  EXPECT_EQ(brush_preset_json(r), brush_preset_json(b));
+  const auto error = [](const std::string& text) {
+    try {
+      (void)parse_brush_preset(text, "p.json", BrushSettings{});
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const std::string head = R"({"format": "adaptex.brush-preset", "version": 1, "brush": )";
+  EXPECT_EQ(error(head + R"({"hardness": 1.5}})"), "p.json: brush: \"hardness\" must be in [0, 1] (got 1.5)");
+  EXPECT_EQ(error(head + R"({"pressure": {"radius": [[0, 1], [0.5, 1]]}}})"),
+            "p.json: brush: \"pressure.radius\" must start at pressure 0 and end at pressure 1");
+  EXPECT_EQ(error(head + R"({"channels": {"roughnes": 0.5}}})"), "p.json: brush: unknown brush channel \"roughnes\"");
+  EXPECT_EQ(error(head + R"({"radius_px": "big"}})"), "p.json: brush: \"radius_px\" must be a number (got string)");
+  EXPECT_EQ(error(head + R"({"opacity": 1}, "extra": 1})"), "p.json: unknown field \"extra\"");
+  EXPECT_EQ(error(R"({"format": "adaptex.strokes", "version": 1})"),
+            "p.json: \"format\" must be \"adaptex.brush-preset\" (not a brush preset)");
+  EXPECT_EQ(error("{").find('\n'), std::string::npos);
+  EXPECT_EQ(error("{").rfind("p.json: not valid JSON", 0), 0u);
+  // The App: a bad file leaves the brush as it was, with one error message.
+  Harness h({}, 64);
+  h.app->brush().opacity = 0.4;
+  std::ofstream(dir.path / "bad.json") << head + R"({"opacity": 7}})";
+  EXPECT_FALSE(h.app->load_brush_preset(dir.path / "bad.json"));
+  EXPECT_EQ(h.app->brush().opacity, 0.4);
+  ASSERT_FALSE(h.app->messages().empty());
+  EXPECT_TRUE(h.app->messages().back().error);
+  EXPECT_TRUE(h.app->load_brush_preset(dir.path / "p.json"));
+  EXPECT_EQ(h.app->brush().opacity, 0.6);
+}
+
+TEST(StudioMaterial, TheEyedropperPicksTheCompositedValuesOfTheCheckedChannels) {
+  Harness h({}, 128);
+  h.app->brush().radius = 0.3;
+  h.app->brush().channels = channel_bit(Channel::Roughness) | channel_bit(Channel::Metallic);
+  h.app->brush().roughness = 0.05;
+  h.app->brush().metallic = 0.7;
+  h.drag(150, 150, 250, 150);
+  ASSERT_TRUE(h.app->layered());
+  ASSERT_TRUE(h.app->wait_idle(120));
+  h.app->brush().roughness = 0.9;
+  h.app->brush().metallic = 0.1;
+  h.app->brush().color = Vec3(0, 0, 0);
+  h.app->brush().channels = channel_bit(Channel::Roughness);  // picks roughness only
+  h.app->brush().tool = Tool::Eyedropper;
+  h.click(200, 150);
+  EXPECT_NEAR(h.app->brush().roughness, 0.05, 1e-9);  // the middle of the stroke: fully covered
+  EXPECT_EQ(h.app->brush().metallic, 0.1);
+  EXPECT_EQ(h.app->brush().color, Vec3(0, 0, 0));
+  h.app->brush().channels = channel_bit(Channel::Metallic) | channel_bit(Channel::BaseColor);
+  h.click(200, 150);
+  EXPECT_NEAR(h.app->brush().metallic, 0.7, 1e-9);
+  EXPECT_EQ(h.app->brush().color, Vec3(1, 1, 1));  // the white background
+}
+
+
+TEST(StudioTablet, PressureIsTheNormalisedValuatorAmongThePackedValues) {
+  // Valuators 0 (x), 1 (y) and 2 (pressure, range 0..65535) set; values packed in order.
+  unsigned char mask[2] = {0b00000111, 0};
+  const double values[] = {100, 200, 16383.75};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, values, 2, 0, 65535, 1), 0.25);
+  // Valuator 1 not set: the pressure is the second packed value.
+  mask[0] = 0b00000101;
+  const double packed[] = {100, 65535};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, packed, 2, 0, 65535, 1), 1.0);
+  // The pressure not in the event: unchanged; out of range: clamped; a valuator past the mask: unchanged.
+  mask[0] = 0b00000011;
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, values, 2, 0, 65535, 0.4), 0.4);
+  mask[0] = 0b00000100;
+  const double over[] = {70000};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, over, 2, 0, 65535, 0.4), 1.0);
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, over, 20, 0, 65535, 0.4), 0.4);
+  // A range of 1..2048 (some drivers): the minimum is pressure 0.
+  const double low[] = {1};
+  EXPECT_DOUBLE_EQ(valuator_pressure(mask, 2, low, 2, 1, 2048, 0.4), 0.0);
+}
+
+
+TEST(StudioBrushPreset, ProjectsKeepTheMaskValueAndThePressureCurves) {
+  TempDir dir;
+  Project p;
+  p.mesh_path = "builtin:sphere";
+  p.brush.mask_value = 0.3;
+  p.brush.on_mask = true;
+  p.brush.radius_curve.points = {Vec2(0, 0.1), Vec2(0.5, 0.4), Vec2(1, 1)};
+  write_project(dir.path / "p.adaptex", p);
+  const Project r = read_project(dir.path / "p.adaptex");
+  EXPECT_EQ(r.brush.mask_value, 0.3);
+  EXPECT_TRUE(r.brush.on_mask);
+  EXPECT_EQ(r.brush.radius_curve.points, p.brush.radius_curve.points);
+  EXPECT_TRUE(r.brush.opacity_curve.points.empty());
+  // A broken curve in a project: one line naming the file and the field.
+  std::string text = read_input_file(dir.path / "p.adaptex");
+  const size_t at = text.find("0.1", text.find("\"pressure\""));
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 3, "1.5");
+  std::ofstream(dir.path / "bad.adaptex") << text;
+  try {
+    (void)read_project(dir.path / "bad.adaptex");
+    ADD_FAILURE() << "a pressure factor of 1.5 was read";
+  } catch (const InvalidInputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (dir.path / "bad.adaptex").string() + ": brush: \"pressure.radius[0][1]\" must be in [0, 1] (got 1.5)");
+  }
+}
+
+
+TEST(StudioMaterial, AStampPlacesTheDecalImageAtTheCursorAsTallAsTheBrush) {
+  TempDir dir;
+  Harness h({}, 128);
+  // A green disc on a transparent square: the image's alpha is the stamp's shape.
+  ImageRGBA8 img(32, 32, {0, 0, 0, 0});
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x)
+      if (std::hypot(x - 15.5, y - 15.5) < 14) {
+        std::uint8_t* t = img.texel(x, y);
+        t[0] = 20, t[1] = 200, t[2] = 40, t[3] = 255;
+      }
+  write_png(dir.path / "disc.png", img);
+  h.app->load_decal(dir.path / "disc.png");
+  ASSERT_TRUE(h.app->decal_image());
+  const Stencil stencil = *h.app->stencil();
+  h.app->brush().stamp = true;
+  h.app->brush().screen_space = true;
+  h.app->brush().pixel_radius = 20;  // a disc of radius 14/32 * 40 = 17.5 pixels
+  const ImageRGBA8 before = *h.app->texture();
+  h.click(150, 150);
+  ASSERT_TRUE(h.app->wait_idle(60));
+  ASSERT_EQ(h.app->history().strokes().size(), 1u);
+  EXPECT_EQ(h.app->history().strokes()[0].type, Stroke::Type::Decal);
+  EXPECT_EQ(h.app->stencil()->centre, stencil.centre);  // the stencil stays where it was
+  const auto colour_at = [&](double x, double y) {
+    const auto hit = h.app->pick(x, y);
+    EXPECT_TRUE(hit);
+    return hit ? h.app->sample_colour(*hit) : Vec3(-1, -1, -1);
+  };
+  EXPECT_LT((colour_at(150, 150) - Vec3(20, 200, 40) / 255.0).norm(), 0.05);  // the disc's centre
+  EXPECT_LT((colour_at(150, 162) - Vec3(20, 200, 40) / 255.0).norm(), 0.05);  // inside its radius
+  EXPECT_LT((colour_at(150, 185) - Vec3(1, 1, 1)).norm(), 0.05);              // past the brush: untouched
+  EXPECT_LT((colour_at(150 + 19, 150 + 19) - Vec3(1, 1, 1)).norm(), 0.05);    // the square's corner: alpha 0
+  EXPECT_GT(max_abs_diff(before, *h.app->texture()), 100);
 }
 
 }  // namespace

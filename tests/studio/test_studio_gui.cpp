@@ -1285,54 +1285,95 @@ std::string read_file_bytes(const fs::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
-}  // namespace
-
-TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPaintWrites) {
-  const fs::path mesh = dir.path / "ball.obj", log = dir.path / "app.log", log2 = dir.path / "app2.log",
-                 hist = dir.path / "ball_strokes.json", project = dir.path / "ball.adaptex", glb = dir.path / "ball.glb",
-                 shot = dir.path / "reopened.png", exp = dir.path / "export", cli = dir.path / "cli";
-  adaptex::write_obj(mesh, adaptex::shapes::sphere(32, 16, 1.0), nullptr);
-  std::vector<std::string> env = x->env();
-  env.push_back("ADAPTEX_STUDIO_UI_TRACE=1");
-  const std::vector<std::string> common = {"--window", "1000x650", "--texture-size", "256", "--config-dir",
-                                           (dir.path / "cfg").string(), "--no-recovery"};
-  std::vector<std::string> args = {ADAPTEX_STUDIO_PATH, mesh.string(), "--history-out", hist.string()};
-  args.insert(args.end(), common.begin(), common.end());
-  pid_t app = spawn(args, env, log);
-  ASSERT_GT(app, 0);
-  ASSERT_TRUE(wait_ready(log)) << slurp(log);
-  // 1. Base colour (the default red brush) on layer 1: a horizontal drag across the ball.
-  ASSERT_EQ(xdo(*x, paint_drag(330)), 0);
-  // 2. The Material window (Brush panel: Layers and channels); Add layer: layer 2, active. The brush
-  //    paints roughness only: a vertical drag.
-  ASSERT_TRUE(click_widget(*x, log, "Layers and channels"));
-  ASSERT_TRUE(click_widget(*x, log, "Add layer"));
-  ASSERT_TRUE(wait_for([&] { return widget(log, "layer 2 visible").has_value(); }, 30s)) << slurp(log);
-  std::this_thread::sleep_for(1s);  // the panel settles (its hint line goes)
-  ASSERT_TRUE(click_widget(*x, log, "Base colour"));
-  ASSERT_TRUE(click_widget(*x, log, "Roughness"));
+/// A vertical left drag at x = 520 down the ball (y 240 to 420).
+std::string vertical_drag() {
   std::ostringstream vertical;
   vertical << "mousemove 520 240 sleep 0.3 mousedown 1 sleep 0.2";
   for (int y = 250; y <= 420; y += 10) vertical << " mousemove 520 " << y << " sleep 0.05";
   vertical << " sleep 0.2 mouseup 1 sleep 0.5";
-  ASSERT_EQ(xdo(*x, vertical.str()), 0);
+  return vertical.str();
+}
+
+/// A layered material painted by hand on a ball (1000x650 window, texture 256): its files, the
+/// studio started on the mesh, saved + exported, reopened from the project, and `adaptex paint`.
+struct BallSession {
+  fs::path mesh, log, log2, hist, project, glb, shot, exp, cli;
+  std::vector<std::string> env, common;
+
+  BallSession(const fs::path& dir, const Xvfb& x, const std::vector<std::string>& extra_env)
+      : mesh(dir / "ball.obj"), log(dir / "app.log"), log2(dir / "app2.log"), hist(dir / "ball_strokes.json"),
+        project(dir / "ball.adaptex"), glb(dir / "ball.glb"), shot(dir / "reopened.png"), exp(dir / "export"),
+        cli(dir / "cli"), env(x.env()),
+        common({"--window", "1000x650", "--texture-size", "256", "--config-dir", (dir / "cfg").string(),
+                "--no-recovery"}) {
+    adaptex::write_obj(mesh, adaptex::shapes::sphere(32, 16, 1.0), nullptr);
+    env.push_back("ADAPTEX_STUDIO_UI_TRACE=1");
+    env.insert(env.end(), extra_env.begin(), extra_env.end());
+  }
+  /// The studio on the mesh, writing the strokes to `hist` on exit. \return its pid (<= 0: failed)
+  pid_t start() const {
+    std::vector<std::string> args = {ADAPTEX_STUDIO_PATH, mesh.string(), "--history-out", hist.string()};
+    args.insert(args.end(), common.begin(), common.end());
+    const pid_t app = spawn(args, env, log);
+    return app > 0 && wait_ready(log) ? app : -1;
+  }
+  /// Save As (the suggested ball.adaptex beside the mesh), Export GLB (ball.glb), quit. Clicked again
+  /// if a slow frame lost the click (saving and exporting twice write the same files).
+  bool save_export_quit(const Xvfb& x, pid_t app) const {
+    const auto click_until = [&](const std::string& id, const fs::path& file) {
+      for (int attempt = 0; attempt < 3; ++attempt)
+        if (click_widget(x, log, id) && wait_for([&] { return fs::exists(file); }, 20s)) return true;
+      return false;
+    };
+    return click_until("Save As", project) && click_until("Export GLB", glb) && terminate(app) == 0;
+  }
+  /// Reopens the saved project for 3 frames, exporting OBJ on exit. \return its screenshot
+  std::optional<adaptex::ImageRGBA8> reopen() const {
+    std::vector<std::string> args = {ADAPTEX_STUDIO_PATH, project.string(), "--exit-after-frames", "3",
+                                     "--screenshot",      shot.string(),    "--export-obj",          exp.string()};
+    args.insert(args.end(), common.begin(), common.end());
+    const pid_t app = spawn(args, env, log2);
+    if (app <= 0 || wait_exit(app, 300s) != 0) return std::nullopt;
+    return adaptex::read_image(shot);
+  }
+  /// What `adaptex paint` writes for the saved stroke file: the same GLB and OBJ files, byte for byte.
+  void expect_exports_are_adaptex_paints() const {
+    const auto r = adaptex::test::run_cli("paint '" + mesh.string() + "' --strokes '" + hist.string() +
+                                          "' --size 256 -o '" + cli.string() + "'");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_file_bytes(glb), read_file_bytes(cli / "ball.glb"));
+    for (const char* f : {"ball.obj", "ball.png", "ball_roughness.png", "ball_metallic.png", "ball_normal.png",
+                          "ball_height.png"})
+      EXPECT_EQ(read_file_bytes(exp / f), read_file_bytes(cli / f)) << f;
+  }
+};
+
+}  // namespace
+
+TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPaintWrites) {
+  const BallSession b(dir.path, *x, {});
+  const pid_t app = b.start();
+  ASSERT_GT(app, 0) << slurp(b.log);
+  // 1. Base colour (the default red brush) on layer 1: a horizontal drag across the ball.
+  ASSERT_EQ(xdo(*x, paint_drag(330)), 0);
+  // 2. The Material window (Brush panel: Layers and channels); Add layer: layer 2, active. The brush
+  //    paints roughness only: a vertical drag.
+  ASSERT_TRUE(click_widget(*x, b.log, "Layers and channels"));
+  ASSERT_TRUE(click_widget(*x, b.log, "Add layer"));
+  ASSERT_TRUE(wait_for([&] { return widget(b.log, "layer 2 visible").has_value(); }, 30s)) << slurp(b.log);
+  std::this_thread::sleep_for(1s);  // the panel settles (its hint line goes)
+  ASSERT_TRUE(click_widget(*x, b.log, "Base colour"));
+  ASSERT_TRUE(click_widget(*x, b.log, "Roughness"));
+  ASSERT_EQ(xdo(*x, vertical_drag()), 0);
   // 3. Hide layer 2, then undo (the hide, not the stroke: checked in the saved file below).
-  ASSERT_TRUE(click_widget(*x, log, "layer 2 visible"));
+  ASSERT_TRUE(click_widget(*x, b.log, "layer 2 visible"));
   ASSERT_EQ(xdo(*x, "mousemove 520 500 sleep 0.3 " + hold("ctrl+z") + " sleep 0.5"), 0);
-  // 4. Save As (the suggested ball.adaptex beside the mesh), Export GLB (ball.glb), quit.
-  // Clicked again if a slow frame lost the click (saving and exporting twice write the same files).
-  const auto click_until = [&](const std::string& id, const fs::path& file) {
-    for (int attempt = 0; attempt < 3; ++attempt)
-      if (click_widget(*x, log, id) && wait_for([&] { return fs::exists(file); }, 20s)) return true;
-    return false;
-  };
-  ASSERT_TRUE(click_until("Save As", project)) << slurp(log);
-  ASSERT_TRUE(click_until("Export GLB", glb)) << slurp(log);
-  ASSERT_EQ(terminate(app), 0) << slurp(log);
+  // 4. Save As, Export GLB, quit.
+  ASSERT_TRUE(b.save_export_quit(*x, app)) << slurp(b.log);
 
   // The strokes, as a stroke file of version 2: base colour on layer 1, roughness on layer 2, shown.
-  const nlohmann::json h = read_json(hist);
-  ASSERT_TRUE(h.is_object()) << slurp(log);
+  const nlohmann::json h = read_json(b.hist);
+  ASSERT_TRUE(h.is_object()) << slurp(b.log);
   EXPECT_EQ(h["version"], 2);
   ASSERT_EQ(h["layers"].size(), 2u) << h.dump();
   ASSERT_EQ(h["layers"][0]["strokes"].size(), 1u);
@@ -1340,28 +1381,78 @@ TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPa
   EXPECT_TRUE(h["layers"][0]["strokes"][0]["channels"].contains("base_color"));
   EXPECT_EQ(h["layers"][1]["strokes"][0]["channels"], nlohmann::json({{"roughness", 0.2}}));
   EXPECT_EQ(h["layers"][1]["visible"], true);
-  const nlohmann::json p = read_json(project);
+  const nlohmann::json p = read_json(b.project);
   EXPECT_EQ(p["version"], 2);
   EXPECT_EQ(p["material"]["layers"], h["layers"]);
 
   // 5. Reopened from the project: the same layers; exported as OBJ on exit.
-  args = {ADAPTEX_STUDIO_PATH, project.string(), "--exit-after-frames", "3", "--screenshot", shot.string(),
-          "--export-obj", exp.string()};
-  args.insert(args.end(), common.begin(), common.end());
-  app = spawn(args, env, log2);
-  ASSERT_GT(app, 0);
-  ASSERT_EQ(wait_exit(app, 300s), 0) << slurp(log2);
-  const adaptex::ImageRGBA8 s = adaptex::read_image(shot);
-  const auto red = mean_rgb(s, 420, 450, 326, 334), white = mean_rgb(s, 420, 450, 200, 210);
+  const auto s = b.reopen();
+  ASSERT_TRUE(s.has_value()) << slurp(b.log2);
+  const auto red = mean_rgb(*s, 420, 450, 326, 334), white = mean_rgb(*s, 420, 450, 200, 210);
   EXPECT_GT(red[0] - red[1], 80) << red[0] << " " << red[1];  // layer 1's base colour on the drag
   EXPECT_LT(std::abs(white[0] - white[1]), 25) << white[0] << " " << white[1];  // unpainted above it
 
   // 6. What `adaptex paint` writes for the saved stroke file: the same GLB and OBJ files, byte for byte.
-  const auto r = adaptex::test::run_cli("paint '" + mesh.string() + "' --strokes '" + hist.string() +
-                                        "' --size 256 -o '" + cli.string() + "'");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(read_file_bytes(glb), read_file_bytes(cli / "ball.glb"));
-  for (const char* f : {"ball.obj", "ball.png", "ball_roughness.png", "ball_metallic.png", "ball_normal.png",
-                        "ball_height.png"})
-    EXPECT_EQ(read_file_bytes(exp / f), read_file_bytes(cli / f)) << f;
+  b.expect_exports_are_adaptex_paints();
+}
+
+// Mask and fill by hand, with the pen-pressure test hook: a layer filled red, a mask painted black
+// along a vertical drag (every dab at the hooked pressure 0.5, the radius curve switched on), a mask
+// fill undone; saved, reopened, exported: what `adaptex paint` writes for the saved file.
+TEST_F(StudioGui, MaskPaintingAndFillWithPressureSaveReopenAndExportAsAdaptexPaint) {
+  // The documented test hook: xdotool sends no pressure.
+  const BallSession b(dir.path, *x, {"ADAPTEX_STUDIO_TEST_PRESSURE=0.5"});
+  const pid_t app = b.start();
+  ASSERT_GT(app, 0) << slurp(b.log);
+  EXPECT_EQ(count_in(b.log, "test hook: pen pressure 0.5"), 1) << slurp(b.log);
+  // 1. The pressure curve of the radius (Brush panel, Pen pressure), then the Material window.
+  ASSERT_TRUE(click_widget(*x, b.log, "Pen pressure"));
+  ASSERT_TRUE(click_widget(*x, b.log, "Pressure -> radius"));
+  ASSERT_TRUE(click_widget(*x, b.log, "Layers and channels"));
+  // 2. Add layer (layer 2), Fill layer: layer 2 all red (the default brush).
+  ASSERT_TRUE(click_widget(*x, b.log, "Add layer"));
+  ASSERT_TRUE(wait_for([&] { return widget(b.log, "layer 2 visible").has_value(); }, 30s)) << slurp(b.log);
+  std::this_thread::sleep_for(1s);  // the panel settles (its hint line goes)
+  ASSERT_TRUE(click_widget(*x, b.log, "Fill layer"));
+  // 3. Add mask, Paint on the mask (value 0: hides layer 2), a vertical drag.
+  ASSERT_TRUE(click_widget(*x, b.log, "Add mask"));
+  ASSERT_TRUE(wait_for([&] { return widget(b.log, "Remove mask").has_value(); }, 30s)) << slurp(b.log);
+  ASSERT_TRUE(click_widget(*x, b.log, "Paint on the mask"));
+  ASSERT_EQ(xdo(*x, vertical_drag()), 0);
+  // 4. Fill mask (hides the whole layer), undone.
+  ASSERT_TRUE(click_widget(*x, b.log, "Fill mask"));
+  ASSERT_EQ(xdo(*x, "mousemove 520 500 sleep 0.3 " + hold("ctrl+z") + " sleep 0.5"), 0);
+  // 5. Save As, Export GLB, quit.
+  ASSERT_TRUE(b.save_export_quit(*x, app)) << slurp(b.log);
+
+  const nlohmann::json h = read_json(b.hist);
+  ASSERT_TRUE(h.is_object()) << slurp(b.log);
+  ASSERT_EQ(h["layers"].size(), 2u) << h.dump();
+  const nlohmann::json& l2 = h["layers"][1];
+  ASSERT_EQ(l2["strokes"].size(), 1u) << l2.dump();
+  EXPECT_EQ(l2["strokes"][0]["type"], "fill");
+  EXPECT_TRUE(l2["strokes"][0]["channels"].contains("base_color"));
+  ASSERT_TRUE(l2.contains("mask")) << l2.dump();
+  const nlohmann::json& mask = l2["mask"]["strokes"];
+  ASSERT_EQ(mask.size(), 1u) << l2.dump();  // the mask fill was undone
+  EXPECT_EQ(l2["mask"]["value"], 1);
+  EXPECT_EQ(mask[0]["type"], "brush");
+  EXPECT_EQ(mask[0]["value"], 0);
+  ASSERT_GT(mask[0]["dabs"].size(), 3u);
+  for (const auto& d : mask[0]["dabs"]) {
+    ASSERT_EQ(d.size(), 4u) << d.dump();  // [x, y, z, p]
+    EXPECT_EQ(d[3], 0.5);
+  }
+  EXPECT_EQ(mask[0]["pressure"]["radius"], nlohmann::json::parse("[[0, 0.2], [0.5, 0.6], [1, 1]]"));
+  EXPECT_EQ(read_json(b.project)["material"]["layers"], h["layers"]);
+
+  // 6. Reopened from the project: red (layer 2) beside the drag, the paper (layer 1) along it.
+  const auto s = b.reopen();
+  ASSERT_TRUE(s.has_value()) << slurp(b.log2);
+  const auto red = mean_rgb(*s, 420, 450, 326, 334), band = mean_rgb(*s, 516, 524, 300, 360);
+  EXPECT_GT(red[0] - red[1], 80) << red[0] << " " << red[1];
+  EXPECT_LT(std::abs(band[0] - band[1]), 25) << band[0] << " " << band[1];
+
+  // 7. `adaptex paint` of the saved stroke file: the same GLB and OBJ files, byte for byte.
+  b.expect_exports_are_adaptex_paints();
 }

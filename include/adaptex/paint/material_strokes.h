@@ -100,6 +100,20 @@ struct MaterialStrokeFile {
   long long num_dabs() const;
 };
 
+/// Checks a stroke in memory against the rules of docs/strokes.md, the same rules and messages as
+/// the parser (for strokes built in code, e.g. by the desktop app): values in [0,1], radius > 0 and
+/// finite, finite non-empty dabs, one pressure per dab or none, curves from pressure 0 to 1 with
+/// increasing pressures, at least one channel, no decal in a mask. \p in_mask: a mask's stroke
+/// (mask_value is painted, channels are unused). \p where prefixes the message (e.g. "layer 2:
+/// stroke 3"; empty: no prefix).
+/// \pre nothing (any stroke may be passed)
+/// \throw InvalidInputError the first rule broken, one line naming the field
+void validate_material_stroke(const MaterialStroke& stroke, bool in_mask, const std::string& where);
+/// Checks a layer (opacity, mask value, every stroke of the layer and of its mask) as
+/// validate_material_stroke() does; messages name "mask: stroke k" or "stroke k" after \p where.
+/// \throw InvalidInputError the first rule broken
+void validate_material_layer(const MaterialLayer& layer, const std::string& where);
+
 /// The version 1 file \p v1 as a version 2 file (docs/strokes.md, "Reading version 1 files").
 MaterialStrokeFile material_from_v1(const StrokeFile& v1);
 
