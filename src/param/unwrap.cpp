@@ -254,7 +254,12 @@ void use_free_boundary_if_better(Chart& chart, CutState first) {
   CutState& s = chart.state;
   std::optional<PolygonLayout> u = lscm_layout(s.disk.disk);
   double l2_u = u ? l2_at_aspect(s.disk.disk, u->uv, u->aspect) : 0.0;
-  if (std::optional<PolygonLayout> f = lscm_layout(first.disk.disk)) {
+  // The cut was not augmented: the same disk, whose layout would only tie with u.
+  const bool same_disk = first.disk.wedge_vertex == s.disk.wedge_vertex &&
+                         first.disk.disk.faces == s.disk.disk.faces &&
+                         first.disk.disk.positions == s.disk.disk.positions;
+  if (std::optional<PolygonLayout> f =
+          same_disk ? std::nullopt : lscm_layout(first.disk.disk)) {
     const double l2_f = l2_at_aspect(first.disk.disk, f->uv, f->aspect);
     if (std::isfinite(l2_f) && (!u || f->fill / (l2_f * l2_f) > u->fill / (l2_u * l2_u))) {
       const double l2_c = best_aspect(chart).second;
