@@ -179,7 +179,7 @@ void App::new_scene() {
   pending_ = PendingLoad();
   painting_.clear();
   material_.reset();
-  material_started_.clear();
+  jobs_.stop_material();
   store_.mark_clean(document_version(), {});
   last_cycle_.clear();
   maps_.reset();
@@ -391,8 +391,9 @@ bool App::idle() const {
   if (jobs_.busy() || !pending_.strokes.empty()) return false;
   if (!painting_.surface()) return true;
   if (material_)
-    return material_started_ == material_key() && painting_.surface()->material &&
-           painting_.surface()->generation == material_->version();
+    return jobs_.material_serves(painting_.model().get(), session_, material_generation_) &&
+           painting_.surface()->material && painting_.surface()->settled &&
+           painting_.surface()->generation == material_generation_;
   return painting_.in_sync() && !painting_.stale(session_.texture_size) && !adapt_wanted();
 }
 
@@ -538,6 +539,7 @@ void App::run_command(Command c) {
     case Command::ResizeBrush: start_resize(); break;
     case Command::ProjectStencil: project_decal(decal_opacity_); break;
     case Command::Checker: view_.checker = !view_.checker; break;
+    case Command::PbrPreview: view_.pbr = !view_.pbr; break;
     case Command::FixedLayout: toggle_fixed_layout(); break;
     case Command::Help: view_.show_help = !view_.show_help; break;
     case Command::OpenMeshDialog: open_dialog_requested_ = true; break;
@@ -852,7 +854,8 @@ void App::finish_load(Job<LoadResult>& job) {
     const auto model = r.model;
     if (model->base) session_.texture_size = model->unwrap_size;  // it may have brought its texture's size
     painting_.set_model(model, std::move(r.surface), std::move(strokes), bg);
-    material_started_.clear();
+    jobs_.stop_material();
+    ++material_generation_;
     if (!pending.reload) {
       material_.reset();
       if (pending.material) {
@@ -958,8 +961,10 @@ void App::poll_jobs() {
     }
   }
   if (auto job = jobs_.finished_load()) finish_load(*job);
-  if (auto job = jobs_.finished_rebuild()) material_ ? finish_material(*job) : finish_rebuild(*job);
+  if (auto job = jobs_.finished_rebuild())
+    if (!material_) finish_rebuild(*job);
   finish_live();
+  finish_material();
   maybe_unwrap_again();
   maybe_start_rebuild();
 }
@@ -980,6 +985,7 @@ void App::render() {
   v.wireframe = view_.wireframe;
   v.background = view_.background;
   v.checker = view_.checker;
+  v.pbr = view_.pbr;
   renderer_->draw(v);
 }
 

@@ -203,8 +203,9 @@ class App {
   // ---- the layered material (material_doc.h, docs/studio.md "Layers and channels") ----
   /// The document is a layered material. Until the first layer edit (or a brush painting another
   /// channel than base colour) it is one base-colour layer: the stroke history (history()), painted
-  /// dab by dab and adapted live. Layered, every change composites the material in the background
-  /// (paint_material_history(): `adaptex paint` for the document as a version 2 file) while the open
+  /// dab by dab and adapted live. Layered, a background material session (live_material.h) composites
+  /// and adapts each stroke incrementally, and after a pause settles on paint_material_history()
+  /// (`adaptex paint` for the document as a version 2 file); other edits start a new session. The open
   /// stroke's base colour shows at once on the last composite.
   bool layered() const { return material_.has_value(); }
   /// The layered document (null: not layered).
@@ -322,6 +323,12 @@ class App {
   void settle_adaptation_now() { jobs_.settle_live_now(); }
   /// The live each-stroke session adapting while painting (schedule each-stroke), or null.
   const LiveAdaptation* live_adaptation() const { return jobs_.live(); }
+  /// The layered material's session (null: none), and how many were started (a stroke is fed to the
+  /// running one; a layer edit, undo or redo starts another).
+  const LiveMaterial* live_material() const { return jobs_.live_material(); }
+  int material_sessions_started() const { return jobs_.material_starts(); }
+  /// The surface shown (null: no model).
+  const Surface* surface() const { return painting_.surface(); }
   /// Canvas (texture) generation counter: changes whenever a new texture is swapped in.
   std::uint64_t surface_serial() const { return painting_.serial(); }
   std::filesystem::path recovery_path() const { return store_.recovery_path(); }
@@ -396,13 +403,14 @@ class App {
   MaterialStroke material_brush_stroke(const Stroke& painted) const;
   /// Records a finished stroke: on the history, or on the active layer when layered.
   void record_stroke(Stroke s);
+  /// After an edit of the document other than record_stroke()'s: a new material session for it.
   void material_changed();
-  /// Starts compositing the document when the canvas is not of its version and options. \return layered
+  /// Starts a material session when none serves the model, options and document. \return layered
   bool maybe_start_material();
-  void finish_material(Job<RebuildResult>& job);
+  /// Shows the material session's newest surface.
+  void finish_material();
   /// The document's textures for export (computed now when the canvas is not up to date).
   std::shared_ptr<const MaterialOutcome> material_for_export();
-  std::string material_key() const;
 
   std::unique_ptr<Renderer> renderer_;
   AppOptions options_;
@@ -443,9 +451,9 @@ class App {
   Stats stats_;
   Clock::time_point last_frame_end_ = Clock::now();
   std::optional<MaterialDocument> material_;
+  std::uint64_t material_generation_ = 0;  // changes with every change of the document (or a new one)
   std::vector<double> stroke_pressure_;  // the open stroke's pressure per dab
   double pen_pressure_ = 1;
-  std::string material_started_;  // material_key() of the last composite started (empty: none)
   bool quit_ = false;
 };
 

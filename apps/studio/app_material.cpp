@@ -36,6 +36,7 @@ bool App::edit_material(const std::function<void(MaterialDocument&)>& edit) {
   if (!material_) {  // the history lives on as the first layer
     if (painting_.stroke_open()) painting_.take_stroke();
     jobs_.stop_live();
+    jobs_.cancel_rebuild();
     painting_.history().reset({}, history().background());
     comparison_.reset();
     view_.fixed_layout = false;
@@ -56,32 +57,32 @@ void App::open_material(MaterialStrokeFile file) {
 }
 
 void App::material_changed() {
+  ++material_generation_;
   store_.autosave_soon();
   maybe_start_material();
 }
 
-std::string App::material_key() const {
-  return std::to_string(material_ ? material_->version() : 0) + " " + session_options_key(session_);
-}
-
 bool App::maybe_start_material() {
-  if (!material_) return false;
+  if (!material_) {
+    jobs_.stop_material();
+    return false;
+  }
   const Surface* s = painting_.surface();
   if (!s || jobs_.loading()) return true;
-  // One composite at a time: edits made meanwhile are composited together when it ends.
-  if (jobs_.rebuilding() || material_started_ == material_key()) return true;
-  material_started_ = material_key();
-  jobs_.start_material(*s, material_->version(), material_->file(), session_);
+  // A session for this model, options and document, else a new one (a layer edit, undo, redo).
+  if (!jobs_.material_serves(painting_.model().get(), session_, material_generation_))
+    jobs_.start_material(painting_.model(), material_generation_, material_->file(), session_);
   return true;
 }
 
-void App::finish_material(Job<RebuildResult>& job) {
+void App::finish_material() {
+  if (!material_) return;
   try {
-    RebuildResult r = job.take();
-    auto phases = std::move(r.phase_ms);
-    // An older version is shown too (closer than the last one); the next composite follows.
-    if (painting_.accept_material(std::move(r.surface), session_.texture_size)) last_cycle_ = std::move(phases);
-  } catch (const CancelledError&) {
+    std::optional<RebuildResult> r = jobs_.finished_material();
+    if (!r) return;
+    auto phases = std::move(r->phase_ms);
+    // An older generation is shown too (closer than the last one); the next composite follows.
+    if (painting_.accept_material(std::move(r->surface), session_.texture_size)) last_cycle_ = std::move(phases);
   } catch (const std::exception& e) {
     add_message(e.what(), true);
   }
@@ -194,10 +195,22 @@ void App::record_stroke(Stroke s) {
     m = material_brush_stroke(s);
   }
   stroke_pressure_.clear();
-  if (painting_mask() && m.type != MaterialStroke::Type::Decal)
-    edit_material([&](MaterialDocument& d) { d.add_mask_stroke(std::move(m)); });
-  else
-    edit_material([&](MaterialDocument& d) { d.add_stroke(std::move(m)); });
+  // Appended to the active layer (or its mask): the material session composites and adapts it
+  // incrementally.
+  const bool mask = painting_mask() && m.type != MaterialStroke::Type::Decal;
+  const int layer = material_->active();
+  try {
+    if (mask)
+      material_->add_mask_stroke(m);
+    else
+      material_->add_stroke(m);
+  } catch (const std::exception& e) {
+    return add_message(e.what(), true);
+  }
+  ++material_generation_;
+  store_.autosave_soon();
+  if (!jobs_.feed_material(painting_.model().get(), session_, MaterialFeed{layer, mask, std::move(m), material_generation_}))
+    maybe_start_material();
 }
 
 void App::save_material_strokes(const std::filesystem::path& path) {
@@ -215,8 +228,7 @@ void App::save_material_strokes(const std::filesystem::path& path) {
 std::shared_ptr<const MaterialOutcome> App::material_for_export() {
   const Surface* s = painting_.surface();
   auto o = std::make_shared<MaterialOutcome>();
-  if (s && s->material && material_ && s->generation == material_->version() && !jobs_.rebuilding() &&
-      material_started_ == material_key()) {
+  if (s && s->material && material_ && s->settled && s->generation == material_generation_) {
     o->mesh = s->mesh;
     o->param = s->param;
     o->textures = s->material;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "adaptex/adapt/material_adapt.h"
+#include "adaptex/adapt/material_session.h"
 #include "adaptex/adapt/report_json.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/adapt/shrink.h"
@@ -353,6 +354,60 @@ MaterialOutcome paint_material_history(const std::shared_ptr<const TriMesh>& mes
   o.param = std::make_shared<const Parameterization>(std::move(r.param));
   o.textures = std::make_shared<const MaterialTextures>(std::move(r.textures));
   o.phase_ms.emplace_back("material",
+                          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  return o;
+}
+
+struct MaterialLiveSession::Impl {
+  std::shared_ptr<const TriMesh> mesh;
+  MaterialPaintSession session;
+  MaterialOutcome shown;  // the layout of the last snapshot (textures not kept)
+  Impl(std::shared_ptr<const TriMesh> m, const Parameterization& initial, MaterialStrokeFile f,
+       const MaterialSessionOptions& o)
+      : mesh(std::move(m)), session(*mesh, initial, std::move(f), o) {}
+};
+
+MaterialLiveSession::MaterialLiveSession(std::shared_ptr<const TriMesh> mesh, const Parameterization& initial,
+                                         MaterialStrokeFile file, const PaintSessionOptions& options,
+                                         const ProgressCallback& progress) {
+  MaterialSessionOptions mo;
+  mo.paint.size = options.texture_size;
+  mo.paint.padding = options.padding;
+  mo.adapt = options.adapt;
+  if (mo.adapt.mode != AdaptMode::DensityFlow) mo.adapt.mode = AdaptMode::None;  // as paint_material_history()
+  mo.adapt.progress = progress;
+  impl_ = std::make_unique<Impl>(std::move(mesh), initial, std::move(file), mo);
+}
+MaterialLiveSession::~MaterialLiveSession() = default;
+void MaterialLiveSession::add(int layer, const std::vector<MaterialStroke>& strokes, bool mask) {
+  if (!mask) return impl_->session.add_strokes(layer, strokes);
+  for (const MaterialStroke& s : strokes) impl_->session.add_stroke(layer, s, true);
+}
+const MaterialStrokeFile& MaterialLiveSession::history() const { return impl_->session.history(); }
+
+MaterialOutcome MaterialLiveSession::snapshot() {
+  Impl& m = *impl_;
+  const auto t0 = std::chrono::steady_clock::now();
+  MaterialPaintSession& s = m.session;
+  MaterialOutcome o;
+  o.adapted = s.adapted();
+  if (m.shown.param && s.mesh().num_faces() == m.shown.mesh->num_faces() && s.param().uv == m.shown.param->uv &&
+      s.param().uv_faces == m.shown.param->uv_faces) {
+    o.mesh = m.shown.mesh;
+    o.param = m.shown.param;
+    o.normals = m.shown.normals;
+  } else {
+    const bool refined = !s.parent_face().empty();
+    o.mesh = refined ? std::make_shared<const TriMesh>(s.mesh()) : m.mesh;
+    o.param = std::make_shared<const Parameterization>(s.param());
+    if (refined) o.normals = refined_normals(*m.mesh, *o.mesh, s.parent_face());
+    m.shown.mesh = o.mesh;
+    m.shown.param = o.param;
+    m.shown.normals = o.normals;
+  }
+  o.textures = std::make_shared<const MaterialTextures>(s.textures());
+  if (!s.reports().empty()) o.phase_ms = phase_times(s.reports().back());
+  o.phase_ms.emplace_back("snapshot",
                           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   return o;
 }

@@ -190,6 +190,36 @@ struct MaterialOutcome {
 MaterialOutcome paint_material_history(const std::shared_ptr<const TriMesh>& mesh, const Parameterization& initial,
                                        const MaterialStrokeFile& file, const PaintSessionOptions& options,
                                        const ProgressCallback& progress);
+/// An adaptex::MaterialPaintSession (each-stroke adaptation of a layered material: per-layer point
+/// caches, the min-gain gate) kept across strokes by the studio's live material adaptation
+/// (live_material.h): a stroke costs an incremental composite and one gated cycle, where
+/// paint_material_history() composites and adapts the whole document. Not thread-safe.
+class MaterialLiveSession {
+ public:
+  /// \p file: the document so far (its strokes are painted now). \p options: texture size, padding and
+  /// method (density-flow adapts, any other paints on \p initial, as paint_material_history()).
+  /// \p progress: the cycles' AdaptOptions::progress (false cancels one: CancelledError).
+  /// \pre initial is a parameterization of *mesh. \throw InvalidInputError bad options or file
+  MaterialLiveSession(std::shared_ptr<const TriMesh> mesh, const Parameterization& initial, MaterialStrokeFile file,
+                      const PaintSessionOptions& options, const ProgressCallback& progress);
+  ~MaterialLiveSession();
+  MaterialLiveSession(const MaterialLiveSession&) = delete;
+  MaterialLiveSession& operator=(const MaterialLiveSession&) = delete;
+
+  /// Appends \p strokes to layer \p layer (its mask when \p mask), then one gated cycle
+  /// (MaterialPaintSession::add_strokes; a mask: one cycle per stroke, add_stroke()).
+  /// \throw CancelledError (strokes recorded, layout unchanged); InvalidInputError a bad stroke or layer
+  void add(int layer, const std::vector<MaterialStroke>& strokes, bool mask);
+  const MaterialStrokeFile& history() const;
+  /// The held layout and its textures (a copy); mesh, param and normals are shared with the last
+  /// snapshot while the layout has not changed (the renderer then keeps its geometry).
+  MaterialOutcome snapshot();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
 /// Writes the material as `adaptex paint` does: DIR/NAME.obj/.mtl/.png and the roughness, metallic,
 /// normal and height maps, atomically. \throw OutputError, InvalidInputError a bad name
 void export_material_obj(const std::filesystem::path& dir, const std::string& name, const TriMesh& mesh,

@@ -19,6 +19,7 @@ Command key_command(int key, Mods mods) {
     case 'F': return Command::ResizeBrush;
     case 'P': return Command::ProjectStencil;
     case 'C': return Command::Checker;
+    case 'V': return Command::PbrPreview;
     case 'L': return Command::FixedLayout;
     case '[': return Command::SmallerBrush;
     case ']': return Command::LargerBrush;
@@ -44,6 +45,7 @@ const std::vector<Shortcut>& shortcuts() {
       {"B / E / I", "brush / eraser / eyedropper"},
       {"P", "project the stencil onto the model"},
       {"C", "texel-density checker on the model"},
+      {"V", "lit material preview (roughness, metallic, normal from height)"},
       {"L", "show the fixed layout (hold the same texture size) instead of the adaptive one"},
       {"W", "wireframe"},
       {"Home", "frame the model"},

@@ -16,7 +16,7 @@ enum class Drag { None, Paint, Orbit, Pan, Eyedrop, Stencil };
 /// A keyboard shortcut's meaning.
 enum class Command {
   None, Undo, Redo, Quit, Save, Frame, SmallerBrush, LargerBrush, ResizeBrush, Brush, Eraser, Eyedropper,
-  Wireframe, ProjectStencil, Checker, FixedLayout, Help, OpenMeshDialog
+  Wireframe, ProjectStencil, Checker, FixedLayout, Help, OpenMeshDialog, PbrPreview
 };
 
 /// One shortcut for the menus and the F1 help: its keys and what it does.

@@ -27,18 +27,7 @@ LiveAdaptation::LiveAdaptation(std::shared_ptr<const Model> model, std::uint64_t
   });
 }
 
-LiveAdaptation::~LiveAdaptation() {
-  cancel();
-  if (thread_.joinable()) thread_.join();
-}
-
-void LiveAdaptation::cancel() {
-  {
-    std::lock_guard lock(mutex_);
-    stop_ = true;
-  }
-  wake_.notify_all();
-}
+LiveAdaptation::~LiveAdaptation() { stop_and_join(); }
 
 bool LiveAdaptation::serves(const Model* model, std::uint64_t generation, const std::string& options_key) const {
   return model == model_ && generation == generation_ && options_key == options_key_ && !done_;
@@ -46,31 +35,13 @@ bool LiveAdaptation::serves(const Model* model, std::uint64_t generation, const 
 
 void LiveAdaptation::feed(std::vector<Stroke> strokes) {
   if (strokes.empty()) return;
-  {
-    std::lock_guard lock(mutex_);
-    fed_ += strokes.size();
-    for (Stroke& s : strokes) queue_.push_back(std::move(s));
-  }
-  wake_.notify_all();
+  const size_t n = strokes.size();
+  push(std::move(strokes), [&] { fed_ += n; });
 }
 
 size_t LiveAdaptation::fed() const {
   std::lock_guard lock(mutex_);
   return fed_;
-}
-
-void LiveAdaptation::settle_now() {
-  {
-    std::lock_guard lock(mutex_);
-    settle_now_ = true;
-  }
-  wake_.notify_all();
-}
-
-std::optional<RebuildResult> LiveAdaptation::take_update() {
-  std::lock_guard lock(mutex_);
-  if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
-  return std::exchange(update_, std::nullopt);
 }
 
 bool LiveAdaptation::settled() const {
@@ -81,44 +52,6 @@ bool LiveAdaptation::settled() const {
 bool LiveAdaptation::caught_up() const {
   std::lock_guard lock(mutex_);
   return ((settled_ && adapted_ == fed_) || done_) && !update_ && !error_;
-}
-
-std::optional<std::pair<std::string, double>> LiveAdaptation::progress() const {
-  std::lock_guard lock(mutex_);
-  if (!busy_) return std::nullopt;
-  return std::make_pair(phase_, fraction_.load());
-}
-
-bool LiveAdaptation::keep_going(std::string_view phase, double fraction) {
-  std::lock_guard lock(mutex_);
-  phase_ = phase;
-  fraction_ = fraction;
-  // A settle gives way to new strokes: they are adapted first, and it runs again later.
-  return !stop_ && !(settling_ && !queue_.empty());
-}
-
-std::optional<std::vector<Stroke>> LiveAdaptation::next_batch(bool settled) {
-  std::unique_lock lock(mutex_);
-  busy_ = false;
-  settling_ = false;
-  phase_.clear();
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kSettleDelay);
-  while (true) {
-    if (stop_) return std::nullopt;
-    if (!queue_.empty()) {
-      busy_ = true;
-      return std::exchange(queue_, {});
-    }
-    if (!settled && (settle_now_ || std::chrono::steady_clock::now() >= deadline)) {
-      settle_now_ = false;
-      busy_ = settling_ = true;
-      return std::vector<Stroke>{};
-    }
-    if (settled)
-      wake_.wait(lock);
-    else
-      wake_.wait_until(lock, deadline);
-  }
 }
 
 void LiveAdaptation::publish(const std::shared_ptr<const Model>& model, LiveSession& session) {
@@ -146,7 +79,7 @@ void LiveAdaptation::publish(const std::shared_ptr<const Model>& model, LiveSess
 }
 
 void LiveAdaptation::run(std::shared_ptr<const Model> model, PaintSessionOptions options, Vec3 background) {
-  try {
+  run_guarded([&] {
     LiveSession session(model->mesh, *model->initial, options, background,
                         [this](std::string_view phase, double f) { return keep_going(phase, f); });
     while (std::optional<std::vector<Stroke>> batch = next_batch(session.settled())) {
@@ -161,14 +94,7 @@ void LiveAdaptation::run(std::shared_ptr<const Model> model, PaintSessionOptions
       }
       publish(model, session);
     }
-  } catch (const CancelledError&) {
-  } catch (...) {
-    std::lock_guard lock(mutex_);
-    error_ = std::current_exception();
-  }
-  std::lock_guard lock(mutex_);
-  busy_ = false;
-  done_ = true;
+  });
 }
 
 }  // namespace adaptex::studio

@@ -125,7 +125,7 @@ struct CommandLine {
   std::string recover;  // yes | no | ask; empty: ask, no for scripted runs
   int exit_after = -1, texture_size = 0, orbit_frames = 0;
   bool hide_ui = false, no_vsync = false, no_recovery = false, wireframe = false, no_refine = false;
-  bool checker = false, fixed_layout = false, unwrap = false;
+  bool checker = false, fixed_layout = false, unwrap = false, pbr = false;
   double yaw = 0, pitch = 0;
   int width = 1280, height = 800;
 };
@@ -158,6 +158,7 @@ std::optional<int> parse_command_line(int argc, char** argv, CommandLine& c) {
   cli.add_flag("--hide-ui", c.hide_ui, "Hide the panels (clean screenshots)");
   cli.add_flag("--wireframe", c.wireframe, "Start with the wireframe overlay on");
   cli.add_flag("--checker", c.checker, "Start with the texel-density checker on the model (C)");
+  cli.add_flag("--pbr", c.pbr, "Start with the lit material preview on (V)");
   cli.add_flag("--fixed-layout", c.fixed_layout, "Once loaded, show the fixed layout at the same texture size (L)");
   cli.add_flag("--no-vsync", c.no_vsync, "Do not wait for vertical sync");
   cli.add_option("--texture-size", c.texture_size, "Texture width = height in texels (default 1024)");
@@ -321,6 +322,7 @@ int configure(App& app, const CommandLine& c) {
   app.view().show_ui = !c.hide_ui;
   app.view().wireframe = c.wireframe;
   app.view().checker = c.checker;
+  app.view().pbr = c.pbr;
   PaintSessionOptions& o = app.session_options();
   if (c.texture_size > 0) o.texture_size = std::clamp(c.texture_size, 16, adaptex::kMaxTextureSize);
   app.set_texture_size_from_model(c.texture_size <= 0);

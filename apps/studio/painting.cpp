@@ -160,6 +160,10 @@ void Painting::upload(Renderer& renderer) {
   }
   if (texture_full_upload_) {
     renderer.set_texture(surface_->canvas->texture());
+    if (const MaterialTextures* m = surface_->material.get())
+      renderer.set_material_maps(m->metallic_roughness, m->normal);
+    else
+      renderer.set_material_maps({}, {});
     texture_full_upload_ = false;
     dirty_ = {0, 0, -1, -1};
   } else if (dirty_[2] >= dirty_[0]) {

@@ -25,6 +25,9 @@ struct FrameView {
   /// Texel-density checker over the texture: squares of kCheckerTexels x kCheckerTexels texels, so
   /// smaller squares on the model mean more texels there.
   bool checker = false;
+  /// Lit material preview: the base colour shaded with the roughness, metallic and normal maps
+  /// (set_material_maps()) under a sky/ground environment and one key light (GGX, metallic workflow).
+  bool pbr = false;
 };
 
 class Renderer {
@@ -37,6 +40,10 @@ class Renderer {
   virtual void set_texture(const ImageRGBA8& tex) = 0;
   /// Uploads the texel rectangle (i0, j0, i1, j1), inclusive, of \p tex.
   virtual void update_texture(const ImageRGBA8& tex, const std::array<int, 4>& rect) = 0;
+  /// Uploads a layered material's maps for the lit preview: the glTF metallic-roughness packing
+  /// (G = roughness, B = metallic) and the tangent-space normal map (MaterialTextures), on the layout of
+  /// the last set_mesh(); empty images: a plain dielectric (roughness 0.5, metallic 0, flat normal).
+  virtual void set_material_maps(const ImageRGBA8& metallic_roughness, const ImageRGBA8& normal) = 0;
   /// Draws the 3-D view into the current framebuffer.
   virtual void draw(const FrameView& view) = 0;
   /// Reads the framebuffer back (rows bottom-up, like ImageRGBA8).
@@ -63,6 +70,11 @@ class NullRenderer : public Renderer {
     last_rect = rect;
     last_texture = tex;
   }
+  void set_material_maps(const ImageRGBA8& metallic_roughness, const ImageRGBA8& normal) override {
+    ++material_uploads;
+    last_metallic_roughness = metallic_roughness;
+    last_normal_map = normal;
+  }
   void draw(const FrameView& view) override {
     ++draws;
     last_view = view;
@@ -70,10 +82,10 @@ class NullRenderer : public Renderer {
   ImageRGBA8 read_pixels(int width, int height) override { return ImageRGBA8(width, height, {0, 0, 0, 255}); }
   void* ui_image(int, const ImageRGBA8&) override { return nullptr; }
 
-  int mesh_uploads = 0, texture_uploads = 0, texture_updates = 0, draws = 0;
+  int mesh_uploads = 0, texture_uploads = 0, texture_updates = 0, material_uploads = 0, draws = 0;
   int last_faces = 0, last_wedges = 0;
   std::array<int, 4> last_rect{0, 0, -1, -1};
-  ImageRGBA8 last_texture;
+  ImageRGBA8 last_texture, last_metallic_roughness, last_normal_map;
   std::vector<Vec3> last_normals;  ///< Empty when the renderer was to compute them.
   FrameView last_view;
 };

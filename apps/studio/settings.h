@@ -54,6 +54,7 @@ struct ViewSettings {
   bool wireframe = false;
   bool checker = false;       ///< Texel-density checker on the model (C): one square = a block of texels.
   bool fixed_layout = false;  ///< Show the fixed (initial) layout instead of the adaptive one (L).
+  bool pbr = false;           ///< Lit material preview (V): roughness, metallic and the height's normal.
   bool show_help = false;     ///< The shortcuts window (F1).
   Vec3 background = Vec3(0.22, 0.22, 0.25);
   bool show_ui = true;

@@ -51,7 +51,10 @@ struct Surface {
   /// A layered material's textures on *param (the canvas starts from their base colour); null: a
   /// single base-colour history painted on the canvas.
   std::shared_ptr<const MaterialTextures> material;
-  std::uint64_t generation = 0;  ///< History generation (material: document version) the canvas was built for.
+  std::uint64_t generation = 0;  ///< History generation (material: document generation) the canvas was built for.
+  /// Material: the textures and layout are paint_material_history()'s for the generation (what
+  /// `adaptex paint` writes), not an each-stroke session's.
+  bool settled = false;
   size_t painted = 0;            ///< History strokes painted into the canvas.
   int size = 0;                  ///< Texture width = height.
   std::unique_ptr<Canvas> canvas;  ///< Declared last: destroyed before param / mesh.
@@ -86,6 +89,12 @@ struct RebuildResult {
 /// initial layout when not re-parameterized), with its maps and phase times. The caller sets the
 /// surface's generation, size and painted.
 /// \p caster: picking on o.mesh if already built (else built here when o.mesh is a refinement).
+/// The surface of a layered material's outcome \p o on \p model (generation and settled left to the
+/// caller): the canvas starts from its base colour. \p caster: picking on o.mesh if already built.
+RebuildResult surface_from_material(const std::shared_ptr<const Model>& model, MaterialOutcome o,
+                                    const MaterialValue& background, int size, int padding,
+                                    std::shared_ptr<const RayCaster> caster = nullptr);
+
 RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, SessionOutcome o,
                                    std::shared_ptr<const RayCaster> caster = nullptr);
 

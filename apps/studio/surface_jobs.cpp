@@ -16,6 +16,18 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
+/// The live worker's newest surface (none without a worker); its error is rethrown after \p drop().
+template <class W, class F>
+std::optional<RebuildResult> take_update_or_drop(std::unique_ptr<W>& worker, F drop) {
+  if (!worker) return std::nullopt;
+  try {
+    return worker->take_update();
+  } catch (...) {
+    drop();
+    throw;
+  }
+}
+
 template <class R>
 std::unique_ptr<Job<R>> take_if_ready(std::unique_ptr<Job<R>>& job) {
   if (job && job->ready()) return std::move(job);
@@ -148,17 +160,25 @@ RebuildResult adapt_atlas_surface(const std::shared_ptr<const Model>& model, con
   r.phase_ms.emplace_back("replay", ms_since(t1));
   return r;
 }
-}  // namespace
-
-RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, SessionOutcome o,
-                                   std::shared_ptr<const RayCaster> caster) {
+/// A new surface on \p mesh (the model's or a refinement) with its shading normals (empty: the
+/// renderer's) and picking (\p caster if already built, else built here for a refinement).
+RebuildResult surface_on(const std::shared_ptr<const Model>& model, const std::shared_ptr<const TriMesh>& mesh,
+                         std::vector<Vec3> normals, std::shared_ptr<const RayCaster> caster) {
   RebuildResult r;
   r.surface = std::make_unique<Surface>();
   Surface& s = *r.surface;
   s.model = model;
-  s.mesh = o.mesh;
-  if (!o.normals.empty()) s.normals = std::make_shared<const std::vector<Vec3>>(std::move(o.normals));
-  s.caster = o.mesh == model->mesh ? model->caster : caster ? std::move(caster) : std::make_shared<const RayCaster>(*o.mesh);
+  s.mesh = mesh;
+  if (!normals.empty()) s.normals = std::make_shared<const std::vector<Vec3>>(std::move(normals));
+  s.caster = mesh == model->mesh ? model->caster : caster ? std::move(caster) : std::make_shared<const RayCaster>(*mesh);
+  return r;
+}
+}  // namespace
+
+RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, SessionOutcome o,
+                                   std::shared_ptr<const RayCaster> caster) {
+  RebuildResult r = surface_on(model, o.mesh, std::move(o.normals), std::move(caster));
+  Surface& s = *r.surface;
   // Not re-parameterized, or back on it: the model's own initial layout (the canvas painted an equal copy).
   const bool initial = !o.adapted || (o.mesh == model->mesh && o.param->uv == model->initial->uv &&
                                       o.param->uv_faces == model->initial->uv_faces);
@@ -181,11 +201,26 @@ RebuildResult surface_from_session(const std::shared_ptr<const Model>& model, Se
   return r;
 }
 
+RebuildResult surface_from_material(const std::shared_ptr<const Model>& model, MaterialOutcome o,
+                                    const MaterialValue& bg, int size, int padding,
+                                    std::shared_ptr<const RayCaster> caster) {
+  RebuildResult r = surface_on(model, o.mesh, std::move(o.normals), std::move(caster));
+  Surface& s = *r.surface;
+  s.param = o.adapted ? o.param : model->initial;
+  s.material = o.textures;
+  s.canvas = std::make_unique<Canvas>(*s.mesh, *s.param, size, size, Vec3(bg[0], bg[1], bg[2]), padding,
+                                      &o.textures->base_color);
+  s.size = size;
+  r.phase_ms = std::move(o.phase_ms);
+  return r;
+}
+
 SurfaceJobs::~SurfaceJobs() {
   compare_.reset();
   if (load_) load_->cancel();
   if (rebuild_) rebuild_->cancel();
   if (live_) live_->cancel();
+  if (material_) material_->cancel();
 }
 
 void SurfaceJobs::retire(std::unique_ptr<JobBase> job) {
@@ -212,34 +247,6 @@ void SurfaceJobs::cancel_load() {
 }
 
 std::unique_ptr<Job<LoadResult>> SurfaceJobs::finished_load() { return take_if_ready(load_); }
-
-void SurfaceJobs::start_material(const Surface& current, std::uint64_t version, MaterialStrokeFile file,
-                                 const PaintSessionOptions& options) {
-  if (rebuild_) retire(std::move(rebuild_));
-  rebuild_adapting_ = options.adapt.mode != AdaptMode::None;
-  rebuild_generation_ = version;
-  rebuild_ = std::make_unique<Job<RebuildResult>>(
-      [model = current.model, version, file = std::move(file), options](Job<RebuildResult>& job) {
-        MaterialOutcome o = paint_material_history(model->mesh, *model->initial, file, options,
-                                                   [&job](std::string_view ph, double f) { return job.progress(ph, f); });
-        RebuildResult r;
-        r.surface = std::make_unique<Surface>();
-        Surface& s = *r.surface;
-        s.model = model;
-        s.mesh = o.mesh;
-        s.caster = o.mesh == model->mesh ? model->caster : std::make_shared<const RayCaster>(*o.mesh);
-        if (!o.normals.empty()) s.normals = std::make_shared<const std::vector<Vec3>>(std::move(o.normals));
-        s.param = o.adapted ? o.param : model->initial;
-        s.material = o.textures;
-        const MaterialValue& bg = file.background;
-        s.canvas = std::make_unique<Canvas>(*s.mesh, *s.param, options.texture_size, options.texture_size,
-                                            Vec3(bg[0], bg[1], bg[2]), options.padding, &o.textures->base_color);
-        s.generation = version;
-        s.size = options.texture_size;
-        r.phase_ms = std::move(o.phase_ms);
-        return r;
-      });
-}
 
 void SurfaceJobs::start_rebuild(const Surface& current, std::uint64_t generation, StrokeFile history,
                                 const PaintSessionOptions& options, bool adapt) {
@@ -306,17 +313,38 @@ void SurfaceJobs::stop_live() {
 }
 
 std::optional<RebuildResult> SurfaceJobs::finished_live() {
-  if (!live_) return std::nullopt;
-  try {
-    return live_->take_update();
-  } catch (...) {
-    stop_live();
-    throw;
-  }
+  return take_update_or_drop(live_, [this] { stop_live(); });
 }
 
 void SurfaceJobs::settle_live_now() {
   if (live_) live_->settle_now();
+  if (material_) material_->settle_now();
+}
+
+void SurfaceJobs::start_material(const std::shared_ptr<const Model>& model, std::uint64_t generation,
+                                 MaterialStrokeFile file, const PaintSessionOptions& options) {
+  stop_material();
+  material_ = std::make_unique<LiveMaterial>(model, generation, options, std::move(file));
+  ++material_starts_;
+}
+
+bool SurfaceJobs::material_serves(const Model* model, const PaintSessionOptions& options,
+                                  std::uint64_t generation) const {
+  return material_ && material_->serves(model, session_options_key(options)) && material_->generation() == generation;
+}
+
+bool SurfaceJobs::feed_material(const Model* model, const PaintSessionOptions& options, MaterialFeed stroke) {
+  if (!material_serves(model, options, stroke.generation - 1)) return false;
+  material_->feed(std::move(stroke));
+  return true;
+}
+
+void SurfaceJobs::stop_material() {
+  if (material_) retire(std::move(material_));
+}
+
+std::optional<RebuildResult> SurfaceJobs::finished_material() {
+  return take_update_or_drop(material_, [this] { stop_material(); });
 }
 
 void SurfaceJobs::start_compare(const Surface& current, StrokeFile history) {
@@ -354,6 +382,8 @@ std::optional<std::pair<std::string, double>> SurfaceJobs::progress() const {
                           rebuild_->fraction());
   if (live_)
     if (auto p = live_->progress()) return std::make_pair("Adapting: " + p->first, p->second);
+  if (material_)
+    if (auto p = material_->progress()) return std::make_pair("Material: " + p->first, p->second);
   return std::nullopt;
 }
 

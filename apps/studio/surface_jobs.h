@@ -16,6 +16,7 @@
 #include "adaptex/paint/strokes.h"
 #include "jobs.h"
 #include "live_adaptation.h"
+#include "live_material.h"
 #include "surface.h"
 
 namespace adaptex::studio {
@@ -54,11 +55,6 @@ class SurfaceJobs {
   /// initial layout with \p options (the layout then depends on the history only).
   void start_rebuild(const Surface& current, std::uint64_t generation, StrokeFile history,
                      const PaintSessionOptions& options, bool adapt);
-  /// Starts painting the layered material \p file (document version \p version) in the rebuild slot,
-  /// replacing a running rebuild: paint_material_history() from the model's initial layout with
-  /// \p options (adapted unless options.adapt.mode is none); the canvas starts from its base colour.
-  void start_material(const Surface& current, std::uint64_t version, MaterialStrokeFile file,
-                      const PaintSessionOptions& options);
   bool rebuilding() const { return rebuild_ != nullptr; }
   /// Cancels the running rebuild (retired: never waited for).
   void cancel_rebuild() {
@@ -84,6 +80,22 @@ class SurfaceJobs {
   void settle_live_now();
   const LiveAdaptation* live() const { return live_.get(); }
 
+  /// Layered material (live_material.h): starts a session for \p model's document \p file (generation
+  /// \p generation) with \p options, replacing (retiring) the running one.
+  void start_material(const std::shared_ptr<const Model>& model, std::uint64_t generation, MaterialStrokeFile file,
+                      const PaintSessionOptions& options);
+  /// Feeds \p stroke, appended to the document of generation stroke.generation - 1, to the material
+  /// session. \return false (nothing fed) when none serves \p model, \p options and that generation
+  bool feed_material(const Model* model, const PaintSessionOptions& options, MaterialFeed stroke);
+  /// The material session serves \p model, \p options and document generation \p generation.
+  bool material_serves(const Model* model, const PaintSessionOptions& options, std::uint64_t generation) const;
+  void stop_material();
+  /// The material session's newest surface, if any. \throw its error (the session is then dropped)
+  std::optional<RebuildResult> finished_material();
+  const LiveMaterial* live_material() const { return material_.get(); }
+  /// Material sessions started so far (a stroke is fed to the running one; tests).
+  int material_starts() const { return material_starts_; }
+
   /// Starts the fixed-vs-adaptive comparison of \p current (no-op while one runs).
   void start_compare(const Surface& current, StrokeFile history);
   bool comparing() const { return compare_ != nullptr; }
@@ -91,7 +103,9 @@ class SurfaceJobs {
 
   /// Forgets cancelled jobs that have ended.
   void reap();
-  bool busy() const { return load_ || rebuild_ || compare_ || !live_caught_up(); }
+  bool busy() const {
+    return load_ || rebuild_ || compare_ || !live_caught_up() || (material_ && !material_->caught_up());
+  }
   /// Work in progress: (label, fraction) or nullopt.
   std::optional<std::pair<std::string, double>> progress() const;
 
@@ -105,6 +119,8 @@ class SurfaceJobs {
   bool rebuild_adapting_ = false;
   std::unique_ptr<Job<Comparison>> compare_;
   std::unique_ptr<LiveAdaptation> live_;
+  std::unique_ptr<LiveMaterial> material_;
+  int material_starts_ = 0;
   std::vector<std::unique_ptr<JobBase>> retired_;
 };
 

@@ -126,6 +126,20 @@ ImageF scaled_to_max(const ImageF& m) {
   return out;
 }
 
+/// \p text, shortened with "..." (whole UTF-8 characters) to fit \p width pixels.
+std::string fit_text(const std::string& text, float width) {
+  if (ImGui::CalcTextSize(text.c_str()).x <= width) return text;
+  std::string s = text;
+  while (!s.empty() && ImGui::CalcTextSize((s + "...").c_str()).x > width) {
+    unsigned char last = 0;
+    do {
+      last = static_cast<unsigned char>(s.back());
+      s.pop_back();
+    } while (!s.empty() && (last & 0xC0) == 0x80);
+  }
+  return s + "...";
+}
+
 }  // namespace
 
 void StudioUi::draw(App& app) {
@@ -219,6 +233,7 @@ float StudioUi::menu_bar(App& app) {
     if (ImGui::MenuItem("Frame the model", "Home")) app.frame_model();
     ImGui::MenuItem("Wireframe", "W", &app.view().wireframe);
     ImGui::MenuItem("Texel-density checker", "C", &app.view().checker);
+    ImGui::MenuItem("Lit material preview", "V", &app.view().pbr);
     if (ImGui::MenuItem("Fixed layout", "L", app.view().fixed_layout)) app.toggle_fixed_layout();
     ImGui::MenuItem("Inspect panel", nullptr, &show_inspect_);
     ImGui::MenuItem("Layers and channels", nullptr, &show_material_);
@@ -491,8 +506,12 @@ void StudioUi::material_window(App& app, float top) {
   const float w = kMaterialWidth;
   ImGui::SetNextWindowPos(ImVec2(float(app.camera().width) - w, top), ImGuiCond_Always);
   ImGui::SetNextWindowSize(ImVec2(w, 0), ImGuiCond_Always);
+  // Many layers scroll inside the window instead of running off the screen.
+  const float bottom = ImGui::GetFrameHeight() + 8;  // above the status line, as the side panel
+  ImGui::SetNextWindowSizeConstraints(ImVec2(w, 0), ImVec2(w, std::max(120.f, float(app.camera().height) - top - bottom)));
   ImGui::Begin("Material", &show_material_,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  pbr_checkbox(app.view());
   ImGui::PushItemWidth(-ImGui::CalcTextSize("Roughness ").x);
   if (ImGui::CollapsingHeader("Layers", ImGuiTreeNodeFlags_DefaultOpen)) layers_panel(app);
   if (ImGui::CollapsingHeader("Brush channels", ImGuiTreeNodeFlags_DefaultOpen)) channels_panel(app);
@@ -519,10 +538,12 @@ void StudioUi::layers_panel(App& app) {
     tooltip("Show or hide the layer");
     trace(("layer " + std::to_string(i + 1) + " visible").c_str());
     ImGui::SameLine();
-    char label[160];
-    std::snprintf(label, sizeof label, "%s  (%s, %.0f %%, strokes: %zu)", l.name.c_str(), blend_mode_name(l.blend),
-                  100 * l.opacity, app.material() ? l.strokes.size() : app.history().strokes().size());
-    if (ImGui::Selectable(label, i == active) && i != active)
+    // Two lines that fit the window's width: the name (shortened with "..."), then its settings.
+    char details[96];
+    std::snprintf(details, sizeof details, "%s, %.0f %%, %zu strokes", blend_mode_name(l.blend), 100 * l.opacity,
+                  app.material() ? l.strokes.size() : app.history().strokes().size());
+    const std::string label = fit_text(l.name, ImGui::GetContentRegionAvail().x) + "\n" + details;
+    if (ImGui::Selectable(label.c_str(), i == active) && i != active)
       edit = [i](MaterialDocument& d) { d.set_active(i); };
     trace(("layer " + std::to_string(i + 1)).c_str());
     ImGui::PopID();
@@ -585,9 +606,17 @@ void StudioUi::channels_panel(App& app) {
   if (b.channels == 0) ImGui::TextColored(ImVec4(1, 0.5f, 0.3f, 1), "The brush paints no channel");
 }
 
+void StudioUi::pbr_checkbox(ViewSettings& v) {
+  ImGui::Checkbox("Lit material preview (V)", &v.pbr);
+  tooltip("Shades the base colour with the roughness, metallic and the normal derived from the height, "
+          "under a sky and ground and one key light; off: the base colour alone.");
+  trace("Lit material preview");
+}
+
 void StudioUi::view_panel(App& app) {
   ViewSettings& v = app.view();
   ImGui::Checkbox("Wireframe (W)", &v.wireframe);
+  pbr_checkbox(v);
   float c[3] = {float(v.background.x()), float(v.background.y()), float(v.background.z())};
   if (ImGui::ColorEdit3("Background", c)) v.background = Vec3(c[0], c[1], c[2]);
   if (ImGui::Button("Frame (F)")) app.frame_model();

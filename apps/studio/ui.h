@@ -65,6 +65,7 @@ class StudioUi {
   void trace(const char* id);
   void stencil_controls(App& app);
   void view_panel(App& app);
+  void pbr_checkbox(ViewSettings& v);
   void adapt_panel(App& app);
   void inspect_window(App& app, float top);
   /// Plain-words legend (colour bar and meaning) of the map shown in Inspect.

@@ -1885,6 +1885,58 @@ TEST(StudioMaterial, TheHistoryBecomesLayerOneAndTheBrushPaintsItsChannelsOnTheA
   EXPECT_TRUE(h.app->unsaved());
 }
 
+TEST(StudioMaterial, StrokesGoToTheRunningMaterialSessionAndOtherEditsStartAnother) {
+  Harness h({}, 128, "builtin:sphere", AdaptMode::DensityFlow);
+  h.app->brush().radius = 0.2;
+  h.app->brush().channels = channel_bit(Channel::BaseColor) | channel_bit(Channel::Roughness);
+  h.app->brush().roughness = 0.1;
+  ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) { d.add_layer(""); }));
+  ASSERT_TRUE(h.app->wait_idle(300));
+  ASSERT_NE(h.app->live_material(), nullptr);
+  const int started = h.app->material_sessions_started();
+  const int settles = h.app->live_material()->settles();
+  for (int k = 0; k < 3; ++k) h.drag(140, 120 + 20 * k, 260, 130 + 20 * k);
+  // The session composites the strokes incrementally (no settle yet): every channel of the surface
+  // shown is the library's composite of the whole document on that surface's layout.
+  MaterialPaintOptions o;
+  o.size = 128;
+  o.padding = h.app->session_options().padding;
+  bool shown = false;
+  for (int k = 0; k < 1500 && !shown; ++k) {
+    h.app->begin_frame();
+    const Surface* s = h.app->surface();
+    if (s->material && !s->settled) {
+      const MaterialTextures t = paint_material(*s->mesh, *s->param, h.app->material_file(), o);
+      shown = max_abs_diff(s->material->base_color, t.base_color) == 0 &&
+              max_abs_diff(s->material->roughness, t.roughness) == 0 && max_abs_diff(*h.app->texture(), t.base_color) == 0;
+    }
+    if (!shown) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  EXPECT_TRUE(shown);
+  EXPECT_EQ(h.app->live_material()->settles(), settles);
+  EXPECT_EQ(h.app->material_sessions_started(), started);  // fed, not restarted
+  // After the pause it settles on paint_material_history(): the export's textures.
+  ASSERT_TRUE(h.app->wait_idle(300));
+  EXPECT_TRUE(h.app->surface()->settled);
+  EXPECT_GT(h.app->live_material()->settles(), settles);
+  EXPECT_EQ(h.app->material_sessions_started(), started);
+  expect_view_is_the_composite(*h.app);
+  h.app->undo();  // rewrites the history: a new session
+  EXPECT_EQ(h.app->material_sessions_started(), started + 1);
+  expect_view_is_the_composite(*h.app);
+  EXPECT_EQ(h.app->material()->file().layers[1].strokes.size(), 2u);
+  // A stroke on a mask is fed too.
+  ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) { d.add_mask(1, 1.0); }));
+  ASSERT_TRUE(h.app->wait_idle(300));
+  const int masked = h.app->material_sessions_started();
+  h.app->brush().on_mask = true;
+  h.app->brush().mask_value = 0;
+  h.drag(150, 110, 250, 190);
+  EXPECT_EQ(h.app->material_sessions_started(), masked);
+  ASSERT_EQ(h.app->material()->file().layers[1].mask->strokes.size(), 1u);
+  expect_view_is_the_composite(*h.app);
+}
+
 TEST(StudioMaterial, ProjectsAndRecoveryKeepTheLayersAndOldProjectsOpenAsOneLayer) {
   TempDir dir;
   AppOptions opt;

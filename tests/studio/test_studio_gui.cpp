@@ -1297,12 +1297,13 @@ std::string vertical_drag() {
 /// A layered material painted by hand on a ball (1000x650 window, texture 256): its files, the
 /// studio started on the mesh, saved + exported, reopened from the project, and `adaptex paint`.
 struct BallSession {
-  fs::path mesh, log, log2, hist, project, glb, shot, exp, cli;
+  fs::path mesh, log, log2, log3, hist, project, glb, shot, lit, exp, cli;
   std::vector<std::string> env, common;
 
   BallSession(const fs::path& dir, const Xvfb& x, const std::vector<std::string>& extra_env)
-      : mesh(dir / "ball.obj"), log(dir / "app.log"), log2(dir / "app2.log"), hist(dir / "ball_strokes.json"),
-        project(dir / "ball.adaptex"), glb(dir / "ball.glb"), shot(dir / "reopened.png"), exp(dir / "export"),
+      : mesh(dir / "ball.obj"), log(dir / "app.log"), log2(dir / "app2.log"), log3(dir / "app3.log"),
+        hist(dir / "ball_strokes.json"), project(dir / "ball.adaptex"), glb(dir / "ball.glb"),
+        shot(dir / "reopened.png"), lit(dir / "lit.png"), exp(dir / "export"),
         cli(dir / "cli"), env(x.env()),
         common({"--window", "1000x650", "--texture-size", "256", "--config-dir", (dir / "cfg").string(),
                 "--no-recovery"}) {
@@ -1336,6 +1337,16 @@ struct BallSession {
     if (app <= 0 || wait_exit(app, 300s) != 0) return std::nullopt;
     return adaptex::read_image(shot);
   }
+  /// Reopens the saved project, presses V (the lit material preview) and quits. \return its screenshot
+  std::optional<adaptex::ImageRGBA8> reopen_lit(const Xvfb& x) const {
+    std::vector<std::string> args = {ADAPTEX_STUDIO_PATH, project.string(), "--screenshot", lit.string()};
+    args.insert(args.end(), common.begin(), common.end());
+    const pid_t app = spawn(args, env, log3);
+    if (app <= 0 || !wait_ready(log3)) return std::nullopt;
+    if (xdo(x, "mousemove 520 560 sleep 0.3 " + hold("v") + " sleep 0.5") != 0 || terminate(app) != 0)
+      return std::nullopt;
+    return adaptex::read_image(lit);
+  }
   /// What `adaptex paint` writes for the saved stroke file: the same GLB and OBJ files, byte for byte.
   void expect_exports_are_adaptex_paints() const {
     const auto r = adaptex::test::run_cli("paint '" + mesh.string() + "' --strokes '" + hist.string() +
@@ -1350,20 +1361,21 @@ struct BallSession {
 
 }  // namespace
 
-TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPaintWrites) {
+TEST_F(StudioGui, PaintsBaseColourAndMetalOnTwoLayersShowsThemLitAndExportsWhatAdaptexPaintWrites) {
   const BallSession b(dir.path, *x, {});
   const pid_t app = b.start();
   ASSERT_GT(app, 0) << slurp(b.log);
   // 1. Base colour (the default red brush) on layer 1: a horizontal drag across the ball.
   ASSERT_EQ(xdo(*x, paint_drag(330)), 0);
   // 2. The Material window (Brush panel: Layers and channels); Add layer: layer 2, active. The brush
-  //    paints roughness only: a vertical drag.
+  //    paints roughness and metallic (0.2, 1: a polished metal): a vertical drag.
   ASSERT_TRUE(click_widget(*x, b.log, "Layers and channels"));
   ASSERT_TRUE(click_widget(*x, b.log, "Add layer"));
   ASSERT_TRUE(wait_for([&] { return widget(b.log, "layer 2 visible").has_value(); }, 30s)) << slurp(b.log);
   std::this_thread::sleep_for(1s);  // the panel settles (its hint line goes)
   ASSERT_TRUE(click_widget(*x, b.log, "Base colour"));
   ASSERT_TRUE(click_widget(*x, b.log, "Roughness"));
+  ASSERT_TRUE(click_widget(*x, b.log, "Metallic"));
   ASSERT_EQ(xdo(*x, vertical_drag()), 0);
   // 3. Hide layer 2, then undo (the hide, not the stroke: checked in the saved file below).
   ASSERT_TRUE(click_widget(*x, b.log, "layer 2 visible"));
@@ -1379,7 +1391,7 @@ TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPa
   ASSERT_EQ(h["layers"][0]["strokes"].size(), 1u);
   ASSERT_EQ(h["layers"][1]["strokes"].size(), 1u);
   EXPECT_TRUE(h["layers"][0]["strokes"][0]["channels"].contains("base_color"));
-  EXPECT_EQ(h["layers"][1]["strokes"][0]["channels"], nlohmann::json({{"roughness", 0.2}}));
+  EXPECT_EQ(h["layers"][1]["strokes"][0]["channels"], nlohmann::json({{"roughness", 0.2}, {"metallic", 1.0}}));
   EXPECT_EQ(h["layers"][1]["visible"], true);
   const nlohmann::json p = read_json(b.project);
   EXPECT_EQ(p["version"], 2);
@@ -1394,6 +1406,17 @@ TEST_F(StudioGui, PaintsBaseColourAndRoughnessOnTwoLayersAndExportsWhatAdaptexPa
 
   // 6. What `adaptex paint` writes for the saved stroke file: the same GLB and OBJ files, byte for byte.
   b.expect_exports_are_adaptex_paints();
+
+  // 7. Reopened again, the lit preview toggled with V: the polished metal stroke of layer 2 (white in
+  //    the base colour) mirrors the darker ground, the white paper beside it hardly changes.
+  const auto l = b.reopen_lit(*x);
+  ASSERT_TRUE(l.has_value()) << slurp(b.log3);
+  const auto change = [&](int x0, int x1, int y0, int y1) {  // base colour -> lit, summed over RGB
+    const auto a = mean_rgb(*s, x0, x1, y0, y1), c = mean_rgb(*l, x0, x1, y0, y1);
+    return std::abs(a[0] - c[0]) + std::abs(a[1] - c[1]) + std::abs(a[2] - c[2]);
+  };
+  const double metal = change(512, 524, 365, 405), paper = change(440, 452, 365, 405);
+  EXPECT_GT(metal, paper + 100) << metal << " " << paper;
 }
 
 // Mask and fill by hand, with the pen-pressure test hook: a layer filled red, a mask painted black

@@ -62,6 +62,8 @@ class MaterialPaintSession {
 
   const TriMesh& mesh() const;              ///< The held layout's mesh (the input, or its refinement).
   const Parameterization& param() const;    ///< The held layout.
+  /// The held layout's refined mesh: the input face of every face (size F'); empty: the input mesh.
+  const FaceData<int>& parent_face() const;
   const MaterialTextures& textures();       ///< Every channel on the held layout, the history painted.
   const MaterialStrokeFile& history() const;
   const std::vector<AdaptReport>& reports() const;  ///< One per cycle (skipped ones: AdaptReport::skipped).

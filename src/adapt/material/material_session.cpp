@@ -314,6 +314,7 @@ const AdaptReport& MaterialPaintSession::reparameterize() {
 
 const TriMesh& MaterialPaintSession::mesh() const { return *impl_->current().mesh; }
 const Parameterization& MaterialPaintSession::param() const { return impl_->current().param; }
+const FaceData<int>& MaterialPaintSession::parent_face() const { return impl_->current().parent_face; }
 const MaterialTextures& MaterialPaintSession::textures() { return impl_->textures_of(impl_->current()); }
 const MaterialStrokeFile& MaterialPaintSession::history() const { return impl_->history; }
 const std::vector<AdaptReport>& MaterialPaintSession::reports() const { return impl_->reports; }
