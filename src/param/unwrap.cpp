@@ -55,6 +55,9 @@ struct Component {
   /// The free-boundary layout (lscm_layout()) of the disk of the piece's initial cut, as its last
   /// probe computed it (probe_piece()); null when no probe computed it.
   std::shared_ptr<const std::optional<PolygonLayout>> probe_lscm;
+  /// Its projection layout (projection_layout(), pieces that are disks), as its last probe
+  /// computed it; null when no probe computed it.
+  std::shared_ptr<const std::optional<PolygonLayout>> probe_projection;
 };
 
 std::vector<Component> split_components(const TriMesh& mesh, const MeshTopology& topo) {
@@ -425,7 +428,10 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   if (ctx.layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart);
   if (ctx.layouts == PieceLayouts::Free) {
     // A projection keeps the piece's own boundaries: only a disk may take it (charts are disks).
-    if (disk) use_layout_if_better(comp, chart, projection_layout(comp.mesh));
+    if (disk)
+      use_layout_if_better(comp, chart,
+                           comp.probe_projection ? *comp.probe_projection
+                                                 : projection_layout(comp.mesh));
     use_free_boundary_if_better(chart, std::move(initial), comp.probe_lscm.get());
   }
   chart.cut_length = cut_length(graph, chart.state.cut);
@@ -699,6 +705,7 @@ struct PieceProbe {
   long bad = 0;
   double l2 = 0;
   std::shared_ptr<const std::optional<PolygonLayout>> lscm;  ///< Component::probe_lscm
+  std::shared_ptr<const std::optional<PolygonLayout>> projection;  ///< Component::probe_projection
 };
 
 PieceProbe probe_piece(const Component& piece, const DiskParamOptions& dopt,
@@ -734,7 +741,11 @@ PieceProbe probe_piece(const Component& piece, const DiskParamOptions& dopt,
         p.l2 = l2_u;
       }
     };
-    if (disk) consider(piece.mesh, projection_layout(piece.mesh));
+    if (disk) {
+      p.projection =
+          std::make_shared<const std::optional<PolygonLayout>>(projection_layout(piece.mesh));
+      consider(piece.mesh, *p.projection);
+    }
     p.lscm = std::make_shared<const std::optional<PolygonLayout>>(lscm_layout(sd.disk));
     consider(sd.disk, *p.lscm);
   }
@@ -861,6 +872,7 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
       }
       if (!split) {
         queue[i].probe_lscm = probes[i].lscm;  // build_chart() starts from the same disk
+        queue[i].probe_projection = probes[i].projection;
         done.push_back(std::move(queue[i]));
       }
     }
