@@ -52,6 +52,12 @@ struct Component {
   std::vector<int> faces;     ///< Local face -> input face.
   std::vector<int> vertices;  ///< Local vertex -> input vertex.
   double area = 0;            ///< 3-D surface area.
+  /// The free-boundary layout (lscm_layout()) of the disk of the piece's initial cut, as its last
+  /// probe computed it (probe_piece()); null when no probe computed it.
+  std::shared_ptr<const std::optional<PolygonLayout>> probe_lscm;
+  /// Its projection layout (projection_layout(), pieces that are disks), as its last probe
+  /// computed it; null when no probe computed it.
+  std::shared_ptr<const std::optional<PolygonLayout>> probe_projection;
 };
 
 std::vector<Component> split_components(const TriMesh& mesh, const MeshTopology& topo) {
@@ -249,17 +255,18 @@ void use_unfolding_if_better(const Component& comp, Chart& chart) {
 /// that is valid and its own texel share, UV fill of its rectangle / L2² at its aspect, is higher
 /// than the chart's at its best aspect (the cut, hence the disk and its wedges, stay).
 /// \p first: the cut and disk before the augmentation, tried too (LSCM of a disk may overlap
-/// where that of a shorter cut does not).
-void use_free_boundary_if_better(Chart& chart, CutState first) {
+/// where that of a shorter cut does not); \p first_lscm (if not null): its layout, computed already.
+void use_free_boundary_if_better(Chart& chart, CutState first,
+                                 const std::optional<PolygonLayout>* first_lscm) {
   CutState& s = chart.state;
-  std::optional<PolygonLayout> u = lscm_layout(s.disk.disk);
-  double l2_u = u ? l2_at_aspect(s.disk.disk, u->uv, u->aspect) : 0.0;
+  const auto lscm_of_first = [&] { return first_lscm ? *first_lscm : lscm_layout(first.disk.disk); };
   // The cut was not augmented: the same disk, whose layout would only tie with u.
   const bool same_disk = first.disk.wedge_vertex == s.disk.wedge_vertex &&
                          first.disk.disk.faces == s.disk.disk.faces &&
                          first.disk.disk.positions == s.disk.disk.positions;
-  if (std::optional<PolygonLayout> f =
-          same_disk ? std::nullopt : lscm_layout(first.disk.disk)) {
+  std::optional<PolygonLayout> u = same_disk ? lscm_of_first() : lscm_layout(s.disk.disk);
+  double l2_u = u ? l2_at_aspect(s.disk.disk, u->uv, u->aspect) : 0.0;
+  if (std::optional<PolygonLayout> f = same_disk ? std::nullopt : lscm_of_first()) {
     const double l2_f = l2_at_aspect(first.disk.disk, f->uv, f->aspect);
     if (std::isfinite(l2_f) && (!u || f->fill / (l2_f * l2_f) > u->fill / (l2_u * l2_u))) {
       const double l2_c = best_aspect(chart).second;
@@ -421,8 +428,11 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   if (ctx.layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart);
   if (ctx.layouts == PieceLayouts::Free) {
     // A projection keeps the piece's own boundaries: only a disk may take it (charts are disks).
-    if (disk) use_layout_if_better(comp, chart, projection_layout(comp.mesh));
-    use_free_boundary_if_better(chart, std::move(initial));
+    if (disk)
+      use_layout_if_better(comp, chart,
+                           comp.probe_projection ? *comp.probe_projection
+                                                 : projection_layout(comp.mesh));
+    use_free_boundary_if_better(chart, std::move(initial), comp.probe_lscm.get());
   }
   chart.cut_length = cut_length(graph, chart.state.cut);
   return chart;
@@ -694,6 +704,8 @@ bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
 struct PieceProbe {
   long bad = 0;
   double l2 = 0;
+  std::shared_ptr<const std::optional<PolygonLayout>> lscm;  ///< Component::probe_lscm
+  std::shared_ptr<const std::optional<PolygonLayout>> projection;  ///< Component::probe_projection
 };
 
 PieceProbe probe_piece(const Component& piece, const DiskParamOptions& dopt,
@@ -729,8 +741,13 @@ PieceProbe probe_piece(const Component& piece, const DiskParamOptions& dopt,
         p.l2 = l2_u;
       }
     };
-    if (disk) consider(piece.mesh, projection_layout(piece.mesh));
-    consider(sd.disk, lscm_layout(sd.disk));
+    if (disk) {
+      p.projection =
+          std::make_shared<const std::optional<PolygonLayout>>(projection_layout(piece.mesh));
+      consider(piece.mesh, *p.projection);
+    }
+    p.lscm = std::make_shared<const std::optional<PolygonLayout>>(lscm_layout(sd.disk));
+    consider(sd.disk, *p.lscm);
   }
   return p;
 }
@@ -853,7 +870,11 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
         split = n >= 2;
         if (!split) next.resize(next.size() - n);
       }
-      if (!split) done.push_back(std::move(queue[i]));
+      if (!split) {
+        queue[i].probe_lscm = probes[i].lscm;  // build_chart() starts from the same disk
+        queue[i].probe_projection = probes[i].projection;
+        done.push_back(std::move(queue[i]));
+      }
     }
     queue = std::move(next);
   }
