@@ -388,13 +388,18 @@ bool App::adapt_wanted() const {
 }
 
 bool App::idle() const {
-  if (jobs_.busy() || !pending_.strokes.empty()) return false;
+  if (jobs_.busy() || !pending_.strokes.empty() || exporting()) return false;
   if (!painting_.surface()) return true;
-  if (material_)
-    return jobs_.material_serves(painting_.model().get(), session_, material_generation_) &&
-           painting_.surface()->material && painting_.surface()->settled &&
-           painting_.surface()->generation == material_generation_;
+  if (material_) return material_settled();
   return painting_.in_sync() && !painting_.stale(session_.texture_size) && !adapt_wanted();
+}
+
+std::optional<std::pair<std::string, double>> App::progress() const {
+  auto p = jobs_.progress();
+  if (!exporting()) return p;
+  // The export waits for the settle: its progress (nothing yet: the strokes are composited first).
+  if (p) return std::make_pair("Exporting... waiting for the final layout: " + p->first, p->second);
+  return std::make_pair(std::string("Exporting... waiting for the final layout"), 0.0);
 }
 
 bool App::wait_idle(double timeout_seconds) {
@@ -965,6 +970,7 @@ void App::poll_jobs() {
     if (!material_) finish_rebuild(*job);
   finish_live();
   finish_material();
+  finish_exports();
   maybe_unwrap_again();
   maybe_start_rebuild();
 }
@@ -1044,15 +1050,9 @@ void App::note_export_while_adapting() {
 
 void App::export_obj(const std::filesystem::path& dir) {
   if (!texture()) return add_message("nothing to export", true);
+  if (material_) return export_material({false, dir});
   try {
     const std::string name = std::filesystem::path(mesh_path()).stem().string();
-    if (material_) {
-      const auto m = material_for_export();
-      export_material_obj(dir, name.empty() ? "model" : name, *m->mesh, *m->param, *m->textures);
-      add_message("exported the material as OBJ+MTL+PNG (base colour, roughness, metallic, normal, height) to " +
-                      dir.string(), false);
-      return note_folder(dir);
-    }
     studio::export_obj(dir, name.empty() ? "model" : name, *mesh(), *param(), *texture());
     add_message("exported OBJ+MTL+PNG to " + dir.string(), false);
     note_folder(dir);
@@ -1064,13 +1064,8 @@ void App::export_obj(const std::filesystem::path& dir) {
 
 void App::export_glb(const std::filesystem::path& path) {
   if (!texture()) return add_message("nothing to export", true);
+  if (material_) return export_material({true, path});
   try {
-    if (material_) {
-      const auto m = material_for_export();
-      export_material_glb(path, *m->mesh, *m->param, *m->textures);
-      add_message("exported the material (glTF metallic-roughness) to " + path.string(), false);
-      return note_folder(path);
-    }
     studio::export_glb(path, *mesh(), *param(), *texture());
     add_message("exported " + path.string(), false);
     note_folder(path);

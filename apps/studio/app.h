@@ -160,8 +160,13 @@ class App {
   void redo();
   void frame_model();
   void set_background_colour(const Vec3& bg);  ///< Paint background (eraser colour); rebuilds.
+  /// Exports OBJ+MTL+PNG / binary glTF. A layered material exports its settled result (what
+  /// `adaptex paint` writes for the document): before the settle, the export waits for it without
+  /// blocking (exporting()), the session settles at once, and the files are written when it arrives.
   void export_obj(const std::filesystem::path& dir);
   void export_glb(const std::filesystem::path& path);
+  /// Exports waiting for the material session's settled result (written by a later begin_frame()).
+  bool exporting() const { return !pending_exports_.empty(); }
   void save_history(const std::filesystem::path& path);
   void save_texture(const std::filesystem::path& path);
   /// Screenshot of the window (taken at the end of the current frame, UI included).
@@ -296,7 +301,7 @@ class App {
   void clear_messages() { messages_.clear(); }
   std::string status_line() const;
   /// Background work in progress: (label, fraction) or nullopt.
-  std::optional<std::pair<std::string, double>> progress() const { return jobs_.progress(); }
+  std::optional<std::pair<std::string, double>> progress() const;
   bool load_running() const { return jobs_.loading(); }
   const Stats& stats() const { return stats_; }
   void reset_stats() { stats_ = Stats(); }
@@ -409,8 +414,20 @@ class App {
   bool maybe_start_material();
   /// Shows the material session's newest surface.
   void finish_material();
-  /// The document's textures for export (computed now when the canvas is not up to date).
-  std::shared_ptr<const MaterialOutcome> material_for_export();
+  /// An export of the layered material: OBJ+MTL+PNG to a folder, or a GLB file.
+  struct MaterialExport {
+    bool glb = false;
+    std::filesystem::path path;
+    const Model* model = nullptr;  ///< The model it was asked for (another one drops it).
+  };
+  /// The surface shown is the settled result of the document, its model and options.
+  bool material_settled() const;
+  /// Writes \p e now when material_settled(), else queues it and asks the session to settle now.
+  void export_material(MaterialExport e);
+  /// Writes \p e from the settled surface shown. \pre material_settled()
+  void write_material_export(const MaterialExport& e);
+  /// Writes the queued exports once the settled result is shown (drops them for another model).
+  void finish_exports();
 
   std::unique_ptr<Renderer> renderer_;
   AppOptions options_;
@@ -453,6 +470,7 @@ class App {
   std::optional<MaterialDocument> material_;
   std::uint64_t material_generation_ = 0;  // changes with every change of the document (or a new one)
   std::vector<double> stroke_pressure_;  // the open stroke's pressure per dab
+  std::vector<MaterialExport> pending_exports_;  // waiting for the settled result (export_material)
   double pen_pressure_ = 1;
   bool quit_ = false;
 };

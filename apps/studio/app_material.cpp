@@ -85,6 +85,8 @@ void App::finish_material() {
     if (painting_.accept_material(std::move(r->surface), session_.texture_size)) last_cycle_ = std::move(phases);
   } catch (const std::exception& e) {
     add_message(e.what(), true);
+    for (const MaterialExport& x : std::exchange(pending_exports_, {}))
+      add_message("export to " + x.path.string() + " failed: " + e.what(), true);
   }
 }
 
@@ -211,6 +213,8 @@ void App::record_stroke(Stroke s) {
   store_.autosave_soon();
   if (!jobs_.feed_material(painting_.model().get(), session_, MaterialFeed{layer, mask, std::move(m), material_generation_}))
     maybe_start_material();
+  else if (exporting())
+    jobs_.settle_live_now();  // a waiting export: composited first, then the settle at once
 }
 
 void App::save_material_strokes(const std::filesystem::path& path) {
@@ -225,19 +229,53 @@ void App::save_material_strokes(const std::filesystem::path& path) {
   }
 }
 
-std::shared_ptr<const MaterialOutcome> App::material_for_export() {
+bool App::material_settled() const {
   const Surface* s = painting_.surface();
-  auto o = std::make_shared<MaterialOutcome>();
-  if (s && s->material && material_ && s->settled && s->generation == material_generation_) {
-    o->mesh = s->mesh;
-    o->param = s->param;
-    o->textures = s->material;
-    return o;
+  return material_ && s && s->material && s->settled && s->generation == material_generation_ &&
+         jobs_.material_serves(painting_.model().get(), session_, material_generation_);
+}
+
+void App::export_material(MaterialExport e) {
+  e.model = painting_.model().get();
+  if (material_settled()) return write_material_export(e);
+  // Not settled yet: the session settles at once and finish_exports() writes the files when its
+  // result is shown; the frame never waits for it. The same file asked again is written once.
+  std::erase_if(pending_exports_, [&](const MaterialExport& p) { return p.glb == e.glb && p.path == e.path; });
+  pending_exports_.push_back(e);
+  maybe_start_material();
+  jobs_.settle_live_now();
+  add_message("Exporting... waiting for the final layout (" + e.path.string() + ")", false);
+}
+
+void App::write_material_export(const MaterialExport& e) {
+  const Surface& s = *painting_.surface();
+  try {
+    if (e.glb) {
+      export_material_glb(e.path, *s.mesh, *s.param, *s.material);
+      add_message("exported the material (glTF metallic-roughness) to " + e.path.string(), false);
+    } else {
+      const std::string name = std::filesystem::path(mesh_path()).stem().string();
+      export_material_obj(e.path, name.empty() ? "model" : name, *s.mesh, *s.param, *s.material);
+      add_message("exported the material as OBJ+MTL+PNG (base colour, roughness, metallic, normal, height) to " +
+                      e.path.string(), false);
+    }
+    note_folder(e.path);
+  } catch (const std::exception& ex) {
+    add_message(ex.what(), true);
   }
-  add_message("compositing the material for the export (the view has not caught up yet)", false);
-  *o = paint_material_history(painting_.model()->mesh, *painting_.model()->initial, material_file(), session_,
-                              [](std::string_view, double) { return true; });
-  return o;
+}
+
+void App::finish_exports() {
+  if (pending_exports_.empty()) return;
+  if (!material_ || !has_model() ||
+      std::any_of(pending_exports_.begin(), pending_exports_.end(),
+                  [&](const MaterialExport& e) { return e.model != painting_.model().get(); })) {
+    for (const MaterialExport& e : std::exchange(pending_exports_, {}))
+      add_message("export to " + e.path.string() + " cancelled: the document was closed", true);
+    return;
+  }
+  if (!material_settled()) return;
+  for (const MaterialExport& e : std::exchange(pending_exports_, {})) write_material_export(e);
 }
 
 }  // namespace adaptex::studio

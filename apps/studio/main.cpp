@@ -483,7 +483,14 @@ void write_stats(const App& app, const CommandLine& c) {
 int write_outputs(App& app, const CommandLine& c) {
   if (!c.history_out.empty()) app.save_history(c.history_out);
   if (!c.texture_out.empty()) app.save_texture(c.texture_out);
-  if (!c.export_dir.empty()) app.export_obj(c.export_dir);
+  if (!c.export_dir.empty()) {
+    app.export_obj(c.export_dir);
+    // A layered material not settled yet: its export is written when the settle arrives.
+    if (app.exporting() && !app.wait_idle(3600)) {
+      std::cerr << "adaptex-studio: error: the export to " << c.export_dir << " did not finish\n";
+      return 1;
+    }
+  }
   if (!c.stats_out.empty()) {
     try {
       write_stats(app, c);

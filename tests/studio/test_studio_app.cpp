@@ -2015,6 +2015,66 @@ TEST(StudioMaterial, ExportIsAdaptexPaintsForTheSavedVersion2File) {
 }
 
 
+TEST(StudioMaterial, ExportBeforeTheSettleWaitsForTheWorkerAndWritesWhatAdaptexPaintWrites) {
+  TempDir dir;
+  const auto mesh_path = dir.path / "ball.obj";
+  write_obj(mesh_path, shapes::sphere(32, 16, 1.0), nullptr);
+  Harness h({}, 256, mesh_path.string(), studio_session_options().adapt.mode);
+  h.app->brush().radius = 0.05;
+  h.app->brush().channels = channel_bit(Channel::BaseColor) | channel_bit(Channel::Roughness);
+  ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) { d.add_layer(""); }));
+  h.drag(150, 150, 250, 160);
+  ASSERT_TRUE(h.app->wait_idle(300));
+  const int settles = h.app->live_material()->settles();
+  h.app->brush().channels = channel_bit(Channel::Roughness) | channel_bit(Channel::Height);
+  h.drag(190, 90, 210, 210);  // fed to the session, which would settle after the pause
+  ASSERT_FALSE(h.app->idle());  // the surface shown is not the settled one of this document
+  // Exports now return at once: nothing is computed or written on this thread, they wait for the
+  // worker's settle (asked for now). The same file asked again is written once.
+  h.app->clear_messages();
+  h.app->export_glb(dir.path / "studio.glb");
+  h.app->export_obj(dir.path / "studio");
+  h.app->export_glb(dir.path / "studio.glb");
+  EXPECT_TRUE(h.app->exporting());
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "studio.glb"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "studio"));
+  EXPECT_EQ(h.app->live_material()->settles(), settles);
+  ASSERT_EQ(h.app->messages().size(), 3u);
+  EXPECT_NE(h.app->messages().back().text.find("waiting for the final layout"), std::string::npos);
+  const auto p = h.app->progress();
+  ASSERT_TRUE(p);
+  EXPECT_EQ(p->first.rfind("Exporting... waiting for the final layout", 0), 0u) << p->first;
+  // A stroke during the wait is composited first; the export is of the document with it.
+  h.drag(140, 200, 260, 190);
+  EXPECT_TRUE(h.app->exporting());
+  int frames = 0;
+  for (const auto t0 = std::chrono::steady_clock::now();
+       h.app->exporting() && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(300); ++frames) {
+    EXPECT_FALSE(std::filesystem::exists(dir.path / "studio.glb"));  // until the settled result is shown
+    h.app->begin_frame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_FALSE(h.app->exporting());
+  EXPECT_GT(frames, 1);
+  EXPECT_TRUE(h.app->surface()->settled);
+  EXPECT_GT(h.app->live_material()->settles(), settles);
+  EXPECT_EQ(h.app->messages().size(), 5u);  // 3 waiting, then "exported" GLB and OBJ
+  for (const Message& m : h.app->messages()) EXPECT_FALSE(m.error) << m.text;
+  // The files are `adaptex paint`'s for the saved document, and what an export after the settle writes.
+  h.app->save_history(dir.path / "m.json");
+  h.app->export_glb(dir.path / "settled.glb");
+  EXPECT_FALSE(h.app->exporting());
+  const auto r = test::run_cli("paint '" + mesh_path.string() + "' --strokes '" + (dir.path / "m.json").string() +
+                               "' --size 256 -o '" + (dir.path / "cli").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_input_file(dir.path / "studio.glb"), read_input_file(dir.path / "cli" / "ball.glb"));
+  EXPECT_EQ(read_input_file(dir.path / "settled.glb"), read_input_file(dir.path / "cli" / "ball.glb"));
+  for (const char* f : {"ball.obj", "ball.png", "ball_roughness.png", "ball_metallic.png", "ball_normal.png",
+                        "ball_height.png"})
+    EXPECT_EQ(read_input_file(dir.path / "studio" / f), read_input_file(dir.path / "cli" / f)) << f;
+  EXPECT_EQ(h.app->material()->file().layers[1].strokes.size(), 3u);  // the stroke during the wait included
+}
+
 TEST(StudioMaterial, MasksAndFillsAreUndoableEditsOfTheDocument) {
   MaterialDocument d;
   d.add_stroke(roughness_stroke(0.1, Vec3(1, 0, 0)));
