@@ -271,7 +271,7 @@ void App::finish_exports() {
       std::any_of(pending_exports_.begin(), pending_exports_.end(),
                   [&](const MaterialExport& e) { return e.model != painting_.model().get(); })) {
     for (const MaterialExport& e : std::exchange(pending_exports_, {}))
-      add_message("export to " + e.path.string() + " cancelled: the document was closed", true);
+      add_message("export to " + e.path.string() + " cancelled: the model was closed or reopened", true);
     return;
   }
   if (!material_settled()) return;
