@@ -152,9 +152,6 @@ bool better(const CutScore& a, const CutScore& b, double min_improvement) {
   return a.l2 < b.l2 * (1.0 - min_improvement);
 }
 
-
-/// What every chart of one unwrap() attempt shares: the options, the disk-parameterization
-/// settings, the augmentation budgets and the report being filled.
 /// Which layouts a piece may get besides its disk parameterization.
 enum class PieceLayouts {
   Disk,    ///< the disk parameterization only
@@ -162,6 +159,8 @@ enum class PieceLayouts {
   Free,    ///< also that, and a free-boundary (LSCM) layout (lscm.h; UnwrapOptions::scan_free_boundary)
 };
 
+/// What every chart of one unwrap() attempt shares: the options, the disk-parameterization
+/// settings, the augmentation budgets and the report being filled.
 struct ChartContext {
   const UnwrapOptions& options;
   DiskParamOptions dopt;
@@ -292,6 +291,144 @@ void use_free_boundary_if_better(Chart& chart, CutState first,
   chart.aspect = u->aspect;
 }
 
+/// One piece's cut augmentation in build_chart(): the piece and its edges, the cheap
+/// parameterization the candidate cuts are compared with, its budget cost and progress range.
+struct Augmentation {
+  const Component& comp;
+  const EdgeConnectivity& ec;
+  const EdgeGraph& graph;
+  DiskParamOptions cheap;
+  long eval_cost = 0;
+  double frac0 = 0, frac1 = 0;
+  /// Input vertex -> its wedge in the first evaluated disk when it has only one (-2 when several).
+  std::vector<int> pattern_wedge;
+};
+
+/// Settings of the cheap parameterization that compares candidate cuts (Floater + at most
+/// augment_yoshizawa_iterations Yoshizawa iterations); progress is reported as "augment" at \p frac0.
+DiskParamOptions cheap_param_options(const DiskParamOptions& dopt, const UnwrapOptions& options,
+                                     double frac0) {
+  DiskParamOptions cheap = dopt;
+  cheap.max_iterations = std::min(dopt.max_iterations, options.augment_yoshizawa_iterations);
+  cheap.yoshizawa = cheap.max_iterations > 0;
+  cheap.progress = [&options, frac0](std::string_view, double) {
+    return !options.progress || options.progress("augment", frac0);
+  };
+  return cheap;
+}
+
+/// The cut of \p cur extended by the shortest path from vertex \p from to it (\p on_cut), sliced
+/// and given its cheap parameterization. Solved with the pattern of the first evaluated disk when
+/// there is one: the candidate is the same surface cut along a larger cut.
+CutState augment_candidate(const Augmentation& aug, const CutState& cur,
+                           const std::vector<char>& on_cut, int from) {
+  CutState cand;
+  cand.cut = cur.cut;
+  for (int e : shortest_path_to_cut(aug.graph, on_cut, from)) cand.cut[e] = 1;
+  cand.disk = slice_along_cut(aug.comp.mesh, aug.ec, cand.cut);
+  if (cur.solve_state && !aug.pattern_wedge.empty()) {
+    // Its Tutte systems are solved with the pattern (ordering, pivots) of the first evaluated disk.
+    std::vector<int> to_pattern(cand.disk.wedge_vertex.size());
+    for (size_t w = 0; w < to_pattern.size(); ++w)
+      to_pattern[w] = aug.pattern_wedge[cand.disk.wedge_vertex[w]];
+    cand.param = parameterize_subdisk(cand.disk.disk, cand.disk.boundary_loop, to_pattern,
+                                      *cur.solve_state, aug.cheap, &cand.solve_state);
+  } else {
+    cand.param =
+        parameterize_disk(cand.disk.disk, cand.disk.boundary_loop, aug.cheap, &cand.solve_state);
+  }
+  return cand;
+}
+
+/// Cut augmentation (GGH 2002 §3.2): adds the path from the worst vertex to the cut of \p cur while
+/// the score improves, counting them in \p augmentations. The budgets apply while the current
+/// parameterization is valid; one with degenerate UV triangles (squeezed extremities) is augmented
+/// regardless of them, up to max_augmentations. Returns true if the cut changed.
+bool augment_cut(const Augmentation& aug, ChartContext& ctx, CutState& cur, CutScore cur_score,
+                 int& augmentations) {
+  const UnwrapOptions& options = ctx.options;
+  const auto ta = Clock::now();
+  bool changed = false;
+  for (int a = 0; a < options.max_augmentations; ++a) {
+    if (cur_score.bad == 0 &&
+        (ctx.augment_faces_left < aug.eval_cost || Clock::now() >= ctx.augment_deadline))
+      break;
+    report_progress(options.progress, "augment",
+                    aug.frac0 + (aug.frac1 - aug.frac0) * a / options.max_augmentations);
+    const std::vector<char> on_cut = cut_vertices(aug.comp.mesh, aug.ec, cur.cut);
+    const int from = worst_vertex(aug.comp, aug.graph, cur, on_cut);
+    if (from < 0) break;
+    CutState cand = augment_candidate(aug, cur, on_cut, from);
+    ctx.augment_faces_left -= aug.eval_cost;
+    const CutScore cand_score = score(cand);
+    if (!better(cand_score, cur_score, options.augment_min_improvement)) break;
+    cur = std::move(cand);
+    cur_score = cand_score;
+    ++augmentations;
+    changed = true;
+  }
+  ctx.rep.time_augment += seconds_since(ta);
+  return changed;
+}
+
+/// The first cheap parameterization of the initial cut \p cur, whose solve pattern the candidates
+/// reuse (sets Augmentation::pattern_wedge); charged to the augmentation budget and time.
+void evaluate_initial_cut(Augmentation& aug, ChartContext& ctx, CutState& cur) {
+  const auto t0 = Clock::now();
+  report_progress(ctx.options.progress, "augment", aug.frac0);
+  cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, aug.cheap, &cur.solve_state);
+  aug.pattern_wedge.assign(aug.comp.mesh.num_vertices(), -1);
+  for (size_t w = 0; w < cur.disk.wedge_vertex.size(); ++w) {
+    int& p = aug.pattern_wedge[cur.disk.wedge_vertex[w]];
+    p = p == -1 ? static_cast<int>(w) : -2;
+  }
+  ctx.augment_faces_left -= aug.eval_cost;
+  ctx.rep.time_augment += seconds_since(t0);
+}
+
+/// The full parameterization of the chosen cut (Floater, then Yoshizawa with \p full), its
+/// times added to \p rep; drops the solver state.
+void solve_full(CutState& cur, const DiskParamOptions& full, UnwrapReport& rep) {
+  if (cur.solve_state) {
+    // The chosen cut's cheap parameterization is the start of its full one (same Floater solve,
+    // same first Yoshizawa iterations): continue it.
+    const double t_before = cur.param.time_yoshizawa;
+    cur.param = continue_disk_param(cur.disk.disk, *cur.solve_state, cur.param, full);
+    rep.time_yoshizawa += cur.param.time_yoshizawa - t_before;
+  } else {
+    cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, full);
+    rep.time_floater += cur.param.time_floater;
+    rep.time_yoshizawa += cur.param.time_yoshizawa;
+  }
+  cur.solve_state.reset();
+}
+
+/// Signed UV area of the parameterized disk of \p s (Chart::domain_area), 1 when not positive.
+double uv_domain_area(const CutState& s) {
+  double area2 = 0;
+  for (const Face& t : s.disk.disk.faces) {
+    const Vec2 e1 = s.param.uv[t[1]] - s.param.uv[t[0]];
+    const Vec2 e2 = s.param.uv[t[2]] - s.param.uv[t[0]];
+    area2 += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
+  }
+  return area2 > 0 ? area2 : 1.0;
+}
+
+/// Replaces the disk layout of \p chart by one of the other layouts \p layouts allows when that has
+/// a higher texel share: the unfolding, the projection (only for a piece that is a \p disk: charts
+/// are disks), the free-boundary layout of the final or the \p initial cut.
+void use_other_layouts_if_better(const Component& comp, Chart& chart, PieceLayouts layouts,
+                                  bool disk, CutState initial) {
+  if (layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart);
+  if (layouts != PieceLayouts::Free) return;
+  // A projection keeps the piece's own boundaries: only a disk may take it (charts are disks).
+  if (disk)
+    use_layout_if_better(comp, chart,
+                         comp.probe_projection ? *comp.probe_projection
+                                               : projection_layout(comp.mesh));
+  use_free_boundary_if_better(chart, std::move(initial), comp.probe_lscm.get());
+}
+
 /// Cuts one piece (a component, or a chart of a component) to a disk, augments the cut (GGH 2002
 /// §3.2) and parameterizes the disk (Floater + Yoshizawa). Progress fractions [frac0, frac1].
 Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double frac1) {
@@ -300,7 +437,7 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   UnwrapReport& rep = ctx.rep;
   Chart chart;
   // Initial cut and slicing.
-  auto t0 = Clock::now();
+  const auto t0 = Clock::now();
   report_progress(options.progress, "cut", frac0);
   const EdgeConnectivity ec = build_edges(comp.mesh);
   const EdgeGraph graph = build_edge_graph(comp.mesh, ec);
@@ -314,74 +451,14 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   CutState initial;  // the initial cut, for the free-boundary layout
   if (ctx.layouts == PieceLayouts::Free) initial.cut = cur.cut, initial.disk = cur.disk;
 
-  // Cut augmentation (GGH 2002 §3.2): add the shortest path from the vertex of highest stretch
-  // to the cut while the L2 stretch improves; keep the best. As in the thesis, the candidates are
-  // compared with a cheaper parameterization (Floater + a few Yoshizawa iterations); the full
-  // Yoshizawa solve runs once, on the chosen cut.
-  const long eval_cost = augment_eval_cost(comp.mesh.num_faces(), dopt, options);
-  DiskParamOptions cheap = dopt;
-  cheap.max_iterations = std::min(dopt.max_iterations, options.augment_yoshizawa_iterations);
-  cheap.yoshizawa = cheap.max_iterations > 0;
-  cheap.progress = [&](std::string_view, double) {
-    return !options.progress || options.progress("augment", frac0);
-  };
-  // Adds paths to cur while the score improves. The budgets apply while the current
-  // parameterization is valid; one with degenerate UV triangles (squeezed extremities) is
-  // augmented regardless of them, up to max_augmentations. Returns true if the cut changed.
-  // Input vertex -> its wedge in the first evaluated disk when it has only one (-2 when several).
-  std::vector<int> pattern_wedge;
-  auto augment_loop = [&](CutScore cur_score) {
-    const auto ta = Clock::now();
-    bool changed = false;
-    for (int a = 0; a < options.max_augmentations; ++a) {
-      if (cur_score.bad == 0 &&
-          (ctx.augment_faces_left < eval_cost || Clock::now() >= ctx.augment_deadline))
-        break;
-      report_progress(options.progress, "augment",
-                      frac0 + (frac1 - frac0) * a / options.max_augmentations);
-      const std::vector<char> on_cut = cut_vertices(comp.mesh, ec, cur.cut);
-      const int from = worst_vertex(comp, graph, cur, on_cut);
-      if (from < 0) break;
-      CutState cand;
-      cand.cut = cur.cut;
-      for (int e : shortest_path_to_cut(graph, on_cut, from)) cand.cut[e] = 1;
-      cand.disk = slice_along_cut(comp.mesh, ec, cand.cut);
-      if (cur.solve_state && !pattern_wedge.empty()) {
-        // The candidate is cut from the same surface along a larger cut: its Tutte systems are
-        // solved with the pattern (ordering, pivots) of the first evaluated disk.
-        std::vector<int> to_pattern(cand.disk.wedge_vertex.size());
-        for (size_t w = 0; w < to_pattern.size(); ++w)
-          to_pattern[w] = pattern_wedge[cand.disk.wedge_vertex[w]];
-        cand.param = parameterize_subdisk(cand.disk.disk, cand.disk.boundary_loop, to_pattern,
-                                          *cur.solve_state, cheap, &cand.solve_state);
-      } else {
-        cand.param =
-            parameterize_disk(cand.disk.disk, cand.disk.boundary_loop, cheap, &cand.solve_state);
-      }
-      ctx.augment_faces_left -= eval_cost;
-      const CutScore cand_score = score(cand);
-      if (!better(cand_score, cur_score, options.augment_min_improvement)) break;
-      cur = std::move(cand);
-      cur_score = cand_score;
-      ++chart.augmentations;
-      changed = true;
-    }
-    rep.time_augment += seconds_since(ta);
-    return changed;
-  };
+  // Cut augmentation: as in the thesis, the candidates are compared with a cheaper
+  // parameterization; the full Yoshizawa solve runs once, on the chosen cut.
+  Augmentation aug{comp, ec, graph, cheap_param_options(dopt, options, frac0),
+                   augment_eval_cost(comp.mesh.num_faces(), dopt, options), frac0, frac1, {}};
   bool evaluated = false;
-  if (options.max_augmentations > 0 && ctx.augment_faces_left >= 2 * eval_cost &&
+  if (options.max_augmentations > 0 && ctx.augment_faces_left >= 2 * aug.eval_cost &&
       Clock::now() < ctx.augment_deadline) {
-    t0 = Clock::now();
-    report_progress(options.progress, "augment", frac0);
-    cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, cheap, &cur.solve_state);
-    pattern_wedge.assign(comp.mesh.num_vertices(), -1);
-    for (size_t w = 0; w < cur.disk.wedge_vertex.size(); ++w) {
-      int& p = pattern_wedge[cur.disk.wedge_vertex[w]];
-      p = p == -1 ? static_cast<int>(w) : -2;
-    }
-    ctx.augment_faces_left -= eval_cost;
-    rep.time_augment += seconds_since(t0);
+    evaluate_initial_cut(aug, ctx, cur);
     evaluated = true;
     const CutScore first = score(cur);
     if (ctx.give_up_l2 > 0 && (first.bad > 0 || first.l2 > ctx.give_up_l2)) {
@@ -389,7 +466,7 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
       chart.state = std::move(cur);
       return chart;
     }
-    augment_loop(first);
+    augment_cut(aug, ctx, cur, first, chart.augmentations);
   }
 
   // The parameterization of the disk (Floater, then Yoshizawa).
@@ -397,43 +474,15 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   full.progress = [&](std::string_view phase, double f) {
     return !options.progress || options.progress(phase, frac0 + f * (frac1 - frac0));
   };
-  auto solve_full = [&] {
-    if (cur.solve_state) {
-      // The chosen cut's cheap parameterization is the start of its full one (same Floater solve,
-      // same first Yoshizawa iterations): continue it.
-      const double t_before = cur.param.time_yoshizawa;
-      cur.param = continue_disk_param(cur.disk.disk, *cur.solve_state, cur.param, full);
-      rep.time_yoshizawa += cur.param.time_yoshizawa - t_before;
-    } else {
-      cur.param = parameterize_disk(cur.disk.disk, cur.disk.boundary_loop, full);
-      rep.time_floater += cur.param.time_floater;
-      rep.time_yoshizawa += cur.param.time_yoshizawa;
-    }
-    cur.solve_state.reset();
-  };
-  solve_full();
+  solve_full(cur, full, rep);
   // Rescue: a chart over the budgets whose result has degenerate triangles is augmented anyway.
   if (options.max_augmentations > 0 && !evaluated) {
     const CutScore s = score(cur);
-    if (s.bad > 0 && augment_loop(s)) solve_full();
+    if (s.bad > 0 && augment_cut(aug, ctx, cur, s, chart.augmentations)) solve_full(cur, full, rep);
   }
   chart.state = std::move(cur);
-  double area2 = 0;
-  for (const Face& t : chart.state.disk.disk.faces) {
-    const Vec2 e1 = chart.state.param.uv[t[1]] - chart.state.param.uv[t[0]];
-    const Vec2 e2 = chart.state.param.uv[t[2]] - chart.state.param.uv[t[0]];
-    area2 += 0.5 * (e1.x() * e2.y() - e1.y() * e2.x());
-  }
-  chart.domain_area = area2 > 0 ? area2 : 1.0;
-  if (ctx.layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart);
-  if (ctx.layouts == PieceLayouts::Free) {
-    // A projection keeps the piece's own boundaries: only a disk may take it (charts are disks).
-    if (disk)
-      use_layout_if_better(comp, chart,
-                           comp.probe_projection ? *comp.probe_projection
-                                                 : projection_layout(comp.mesh));
-    use_free_boundary_if_better(chart, std::move(initial), comp.probe_lscm.get());
-  }
+  chart.domain_area = uv_domain_area(chart.state);
+  use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial));
   chart.cut_length = cut_length(graph, chart.state.cut);
   return chart;
 }
@@ -1155,12 +1204,9 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
   keep_better_layout(mesh, comps, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result);
 }
 
-}  // namespace
-
-UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
-  const auto t_start = Clock::now();
-  UnwrapResult result;
-  UnwrapReport& rep = result.report;
+/// Throws InvalidInputError (TopologyError for a mesh without faces) when \p options are out of
+/// range, before any work.
+void check_unwrap_input(const TriMesh& mesh, const UnwrapOptions& options) {
   if (mesh.faces.empty()) throw TopologyError("unwrap: the mesh has no faces");
   if (!(options.chart_padding >= 0 && options.chart_padding < 0.25))
     throw InvalidInputError("unwrap: chart_padding " + std::to_string(options.chart_padding) +
@@ -1186,10 +1232,11 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   if (!(options.min_chart_side_of_gap >= 0 && options.min_chart_side_of_gap <= 4))
     throw InvalidInputError("unwrap: min_chart_side_of_gap " +
                             std::to_string(options.min_chart_side_of_gap) + " is outside [0, 4]");
+}
 
-  auto t0 = Clock::now();
-  report_progress(options.progress, "cut", 0.0);
-  const MeshTopology topo = analyze_topology(mesh);
+/// Throws TopologyError for a mesh without a layout (non-manifold edges, a non-orientable
+/// component). Returns true when it must be split first (pinched vertices, mixed winding).
+bool needs_split(const MeshTopology& topo) {
   if (!topo.nonmanifold_edges.empty())
     throw TopologyError("unwrap: the mesh is not manifold (" +
                         std::to_string(topo.nonmanifold_edges.size()) +
@@ -1201,24 +1248,25 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
                           " faces is not orientable (a Moebius band or similar); it has no layout");
     mixed_winding = mixed_winding || !c.consistently_oriented;
   }
-  if (!topo.nonmanifold_vertices.empty() || mixed_winding) {
-    // Pinched vertices (core/pinched.h) and mixed winding (core/orientation.h): unwrap the split,
-    // consistently wound surface; its wedges and face corners map back to the input.
-    PinchedSplit split = split_pinched_vertices(mesh);
-    const FaceOrientation orientation = orient_faces(split.mesh);
-    apply_orientation(split.mesh, orientation);
-    UnwrapResult r = unwrap(split.mesh, options);
-    for (int& v : r.param.wedge_vertex) v = split.vertex_source[v];
-    for (size_t f = 0; f < mesh.faces.size(); ++f)
-      if (orientation.flip[f]) std::swap(r.param.uv_faces[f][1], r.param.uv_faces[f][2]);
-    return r;
-  }
-  rep.num_components = topo.num_components;
-  rep.genus = topo.total_genus();
-  rep.boundary_loops = topo.total_loops();
-  const std::vector<Component> comps = split_components(mesh, topo);
-  rep.time_cut += seconds_since(t0);
+  return !topo.nonmanifold_vertices.empty() || mixed_winding;
+}
 
+/// Pinched vertices (core/pinched.h) and mixed winding (core/orientation.h): unwraps the split,
+/// consistently wound surface; its wedges and face corners map back to the input \p mesh.
+UnwrapResult unwrap_split(const TriMesh& mesh, const UnwrapOptions& options) {
+  PinchedSplit split = split_pinched_vertices(mesh);
+  const FaceOrientation orientation = orient_faces(split.mesh);
+  apply_orientation(split.mesh, orientation);
+  UnwrapResult r = unwrap(split.mesh, options);
+  for (int& v : r.param.wedge_vertex) v = split.vertex_source[v];
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    if (orientation.flip[f]) std::swap(r.param.uv_faces[f][1], r.param.uv_faces[f][2]);
+  return r;
+}
+
+/// Disk-parameterization settings of \p options for \p mesh (mean-value weights only up to
+/// mean_value_max_faces faces).
+DiskParamOptions disk_param_options(const TriMesh& mesh, const UnwrapOptions& options) {
   DiskParamOptions dopt;
   dopt.weights = options.weights == EmbeddingWeights::MeanValue &&
                          mesh.num_faces() > options.mean_value_max_faces
@@ -1227,7 +1275,58 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
   dopt.eta = options.yoshizawa_eta;
   dopt.max_iterations = options.yoshizawa_max_iterations;
   dopt.yoshizawa = options.yoshizawa_max_iterations > 0;
+  return dopt;
+}
 
+/// ChartMode::Auto when the layout of one chart per component (\p single_built: not abandoned)
+/// is below min_texel_share: segmented layouts, then the single chart, then the scan charts, each
+/// kept in \p result if better.
+void improve_low_share(const TriMesh& mesh, const std::vector<Component>& comps,
+                       const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
+                       const UnwrapOptions& options, bool single_built, UnwrapResult& result) {
+  const UnwrapReport& rep = result.report;
+  segment_until_good(mesh, comps, dopt, gutter, t_start, options, !single_built, result);
+  // No segmentation reached the share: the single chart after all (never below it).
+  if (!single_built && rep.effective_texel_share < options.min_texel_share)
+    keep_better_layout(mesh, comps, dopt, gutter, t_start, options, PieceLayouts::Disk, result);
+  // Still below: the charts of the scan segmentation, split by each piece's own stretch rather
+  // than a count over the whole mesh (a large smooth part no longer draws the charts that rough
+  // parts need), built too and kept if better.
+  // (The top-down segmentation alone: planar charts and free boundaries are for scans.)
+  UnwrapOptions plain = options;
+  plain.scan_planar_angle = 0;
+  plain.scan_free_boundary = false;
+  if (rep.effective_texel_share < options.min_texel_share)
+    keep_better_layout(mesh, timed_scan_pieces(comps, dopt, gutter, plain, result.report), dopt,
+                       gutter, t_start, plain, PieceLayouts::Unfold, result);
+}
+
+/// Last report figures of a finished layout: the seam length of a multi-chart one, the total time.
+void finish_report(const TriMesh& mesh, Clock::time_point t_start, UnwrapResult& result) {
+  UnwrapReport& rep = result.report;
+  if (rep.num_charts > 1) rep.cut_length = seam_length(mesh, result.param);
+  rep.time_total = seconds_since(t_start);
+}
+
+}  // namespace
+
+UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
+  const auto t_start = Clock::now();
+  UnwrapResult result;
+  UnwrapReport& rep = result.report;
+  check_unwrap_input(mesh, options);
+
+  const auto t0 = Clock::now();
+  report_progress(options.progress, "cut", 0.0);
+  const MeshTopology topo = analyze_topology(mesh);
+  if (needs_split(topo)) return unwrap_split(mesh, options);
+  rep.num_components = topo.num_components;
+  rep.genus = topo.total_genus();
+  rep.boundary_loops = topo.total_loops();
+  const std::vector<Component> comps = split_components(mesh, topo);
+  rep.time_cut += seconds_since(t0);
+
+  const DiskParamOptions dopt = disk_param_options(mesh, options);
   // One chart per component (thesis §3.2). Every layout of several charts keeps the gutter.
   const double gutter =
       std::max(options.chart_padding, options.gutter_texels / options.gutter_texture_size);
@@ -1240,31 +1339,15 @@ UnwrapResult unwrap(const TriMesh& mesh, const UnwrapOptions& options) {
       options.charts == ChartMode::Auto && comps.size() == 1 && options.single_probe_l2 > 0;
   if (options.charts == ChartMode::Auto && 2 * comps.size() > static_cast<size_t>(options.max_charts)) {
     unwrap_scan(mesh, comps, dopt, gutter, t_start, options, result);
-    if (rep.num_charts > 1) rep.cut_length = seam_length(mesh, result.param);
-    rep.time_total = seconds_since(t_start);
+    finish_report(mesh, t_start, result);
     return result;
   }
   const bool single_built = unwrap_pieces(mesh, comps, dopt, gutter, t_start, options, result,
                                           comps.size() > 1 ? PieceLayouts::Unfold : PieceLayouts::Disk,
                                           probe ? options.single_probe_l2 : 0);
-  if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share) {
-    segment_until_good(mesh, comps, dopt, gutter, t_start, options, !single_built, result);
-    // No segmentation reached the share: the single chart after all (never below it).
-    if (!single_built && rep.effective_texel_share < options.min_texel_share)
-      keep_better_layout(mesh, comps, dopt, gutter, t_start, options, PieceLayouts::Disk, result);
-    // Still below: the charts of the scan segmentation, split by each piece's own stretch rather
-    // than a count over the whole mesh (a large smooth part no longer draws the charts that rough
-    // parts need), built too and kept if better.
-    // (The top-down segmentation alone: planar charts and free boundaries are for scans.)
-    UnwrapOptions plain = options;
-    plain.scan_planar_angle = 0;
-    plain.scan_free_boundary = false;
-    if (rep.effective_texel_share < options.min_texel_share)
-      keep_better_layout(mesh, timed_scan_pieces(comps, dopt, gutter, plain, rep), dopt, gutter,
-                         t_start, plain, PieceLayouts::Unfold, result);
-  }
-  if (rep.num_charts > 1) rep.cut_length = seam_length(mesh, result.param);
-  rep.time_total = seconds_since(t_start);
+  if (options.charts == ChartMode::Auto && rep.effective_texel_share < options.min_texel_share)
+    improve_low_share(mesh, comps, dopt, gutter, t_start, options, single_built, result);
+  finish_report(mesh, t_start, result);
   return result;
 }
 
