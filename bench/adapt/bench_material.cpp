@@ -14,9 +14,10 @@
 //                              warp, paint again on the new layout, the never-worse check.
 //   BM_MaterialPaint/C/K/W     paint_material() alone (the part of BM_MaterialCycle that runs twice).
 //   BM_MaterialDensity/C/K/W   the material's summed error model alone (part of BM_MaterialCycle).
-//   BM_MaterialSessionCycle/C/K/W/S  MaterialPaintSession (adapt/material_session.h), each-stroke: stroke K
+//   BM_MaterialSessionCycle/C/K/W/S/V  MaterialPaintSession (adapt/material_session.h), each-stroke: stroke K
 //                              and one cycle, the gain gate off (see the function); S = 2 × the surface
-//                              cache's samples per texel (0: off, every candidate replays the history).
+//                              cache's samples per texel (0: off, every candidate replays the history),
+//                              V = the coverage from which it is used (default 4; 0: from the start).
 //
 // Mesh: ADAPTEX_BENCH_MESH (a stem of ADAPTEX_SHARED_DIR/meshes or a path; default spot), unwrapped
 // with the defaults; when absent, a message and the code-built fallback (a 20k-face curved height
@@ -25,7 +26,10 @@
 //   adaptex_bench_material --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // The comparison: --benchmark_filter='SessionCycle' (the version 1 cycle and the material session's).
 // Counters: the phases (ms), cache = surface cache samples, session_MB = heap in use by the session
-// after its setup (glibc mallinfo2), cpu_ms = the timed part's process CPU time.
+// after its setup (glibc mallinfo2), cpu_ms = the timed part's process CPU time; with the surface cache:
+// psnr_db = the held textures (base colour, metallic-roughness; the lower) against exact replay on the
+// held layout, loss_db = their error on the surface (evaluate_material_textures(), 200k samples)
+// over exact replay's, in dB (untimed).
 #include <benchmark/benchmark.h>
 
 #include <malloc.h>
@@ -47,6 +51,7 @@
 #include "adaptex/adapt/material_session.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/allocator.h"
+#include "adaptex/paint/material_eval.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/texel_map.h"
 #include "adaptex/param/unwrap.h"
@@ -208,6 +213,7 @@ void BM_MaterialSessionCycle(benchmark::State& state) {
   o.paint.size = static_cast<int>(state.range(2));
   o.min_gain_db = 0;
   o.surface_cache = 0.5 * static_cast<double>(state.range(3));
+  o.surface_cache_coverage = static_cast<double>(state.range(4));
   std::map<std::string, double> acc;
   int iters = 0;
   for (auto _ : state) {
@@ -226,6 +232,13 @@ void BM_MaterialSessionCycle(benchmark::State& state) {
       const MaterialTextures exact = paint_material(session.mesh(), session.param(), session.history(), o.paint);
       acc["psnr_db"] += std::min(texture_psnr(session.textures().base_color, exact.base_color),
                                  texture_psnr(session.textures().metallic_roughness, exact.metallic_roughness));
+      // What the check measures (every channel, the height through its normal), cached over exact.
+      MaterialEvalOptions eo;
+      eo.data_weight = o.data_weight;
+      const double e_cached =
+          evaluate_material_textures(session.mesh(), session.param(), session.textures(), session.history(), eo).weighted;
+      const double e_exact = evaluate_material_textures(session.mesh(), session.param(), exact, session.history(), eo).weighted;
+      acc["loss_db"] += 10 * std::log10(e_cached / e_exact);
     }
     const AdaptReport& r = session.reports().back();
     acc["density_ms"] += 1e3 * r.time_density;
@@ -285,12 +298,12 @@ void material_args(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_MaterialCycle)->Apply(material_args);
 BENCHMARK(BM_MaterialSessionCycle)
-    ->Args({1, 40, 1024, 2})
-    ->Args({4, 40, 1024, 2})
-    ->Args({4, 40, 1024, 0})
-    ->Args({4, 200, 1024, 2})
-    ->Args({4, 200, 1024, 3})
-    ->Args({4, 200, 1024, 0})
+    ->Args({1, 40, 1024, 3, 4})
+    ->Args({4, 40, 1024, 3, 4})
+    ->Args({4, 40, 1024, 3, 0})
+    ->Args({4, 200, 1024, 3, 4})
+    ->Args({4, 200, 1024, 2, 4})
+    ->Args({4, 200, 1024, 0, 4})
     ->UseManualTime()
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);

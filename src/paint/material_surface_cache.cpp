@@ -69,9 +69,16 @@ void MaterialSurfaceCache::update(const MaterialStrokeFile& file) { impl_->sampl
 std::vector<MaterialValue> MaterialSurfaceCache::texel_values(const MaterialStrokeFile& file, const TexelMap& map,
                                                               const TriMesh& map_mesh,
                                                               const std::vector<int>* parent_face) {
+  std::vector<MaterialValue> out;
+  texel_values(file, map, map_mesh, parent_face, out);
+  return out;
+}
+
+void MaterialSurfaceCache::texel_values(const MaterialStrokeFile& file, const TexelMap& map, const TriMesh& map_mesh,
+                                        const std::vector<int>* parent_face, std::vector<MaterialValue>& out) {
   Impl& m = *impl_;
   m.pack(file);
-  std::vector<MaterialValue> out(map.inside.size());
+  out.resize(map.inside.size());
   m.lattice.for_each_texel(map, map_mesh, parent_face, "material surface cache",
                            [&](int k, const detail::LatticeStencil& st) {
                              const Packed &a = m.packed[st.sample[0]], &b = m.packed[st.sample[1]],
@@ -79,7 +86,6 @@ std::vector<MaterialValue> MaterialSurfaceCache::texel_values(const MaterialStro
                              for (int q = 0; q < kMaterialComponents; ++q)
                                out[k][q] = (st.weight[0] * a[q] + st.weight[1] * b[q] + st.weight[2] * c[q]) / kUnit;
                            });
-  return out;
 }
 
 long long MaterialSurfaceCache::count_samples(const TriMesh& mesh, double spacing) {

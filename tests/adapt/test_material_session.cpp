@@ -11,6 +11,7 @@
 #include "adaptex/adapt/material_session.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
+#include "adaptex/paint/material_eval.h"
 #include "adaptex/paint/material_point_cache.h"
 #include "adaptex/paint/material_surface_cache.h"
 #include "adaptex/paint/material_signal.h"
@@ -197,7 +198,7 @@ double component_psnr(const std::vector<MaterialValue>& got, const std::vector<M
   return 10 * std::log10(ref.size() * n / std::max(s, 1e-30));
 }
 
-// The surface cache at the session's default density (1 sample per texel) against the exact
+// The surface cache at the session's default density (1.5 samples per texel) against the exact
 // material at the texels of a 256² layout, every channel; not exact (it interpolates).
 TEST(MaterialSurfaceCache, TexelValuesAreCloseToTheExactMaterial) {
   const TriMesh mesh = shapes::plane(24);
@@ -216,7 +217,7 @@ TEST(MaterialSurfaceCache, TexelValuesAreCloseToTheExactMaterial) {
     std::printf("%s: cache vs exact PSNR colour %.1f, roughness %.1f, metallic %.1f, height %.1f dB\n", when, colour,
                 rough, metal, height);
     for (double p : {colour, rough, metal, height}) {
-      EXPECT_GT(p, 42.0) << when;  // measured 43.9 dB and more
+      EXPECT_GT(p, 46.0) << when;  // measured 48.2 dB and more
       EXPECT_LT(p, 200.0) << when;  // not vacuous: the cache does interpolate
     }
   };
@@ -310,10 +311,19 @@ TEST(MaterialSession, TexturesFromTheSurfaceCacheAreCloseToExactReplay) {
   std::printf("held textures from the cache vs exact replay: PSNR base colour %.1f, metallic-roughness %.1f, height "
               "%.1f, normal %.1f dB\n", colour, mr, height, normal);
   for (double p : {colour, mr, height}) {
-    EXPECT_GT(p, 44.0);  // measured 46.0 dB and more
+    EXPECT_GT(p, 47.0);  // measured 49.1 dB and more
     EXPECT_LT(p, 200.0);  // not vacuous: interpolated, not replayed
   }
-  EXPECT_GT(normal, 45.0);  // measured 47.2 dB
+  EXPECT_GT(normal, 48.0);  // measured 50.7 dB
+  // What matters is the error against the exact material on the surface (the check's measure):
+  // the cached textures' is within a few tenths of a dB of exact replay's.
+  MaterialEvalOptions eo;
+  eo.data_weight = o.data_weight;
+  const double e_cached = evaluate_material_textures(s.mesh(), s.param(), got, s.history(), eo).weighted;
+  const double e_exact = evaluate_material_textures(s.mesh(), s.param(), ref, s.history(), eo).weighted;
+  std::printf("surface error of the held textures: cached %.3g, exact replay %.3g (%+.2f dB)\n", e_cached, e_exact,
+              10 * std::log10(e_cached / e_exact));
+  EXPECT_LT(std::abs(10 * std::log10(e_cached / e_exact)), 0.3);
 }
 
 TEST(MaterialSession, RefusesBadInput) {

@@ -42,12 +42,12 @@ struct MaterialSessionOptions {
   double check_margin = 0.02;  ///< The adapted layout's error must be < (1 − margin) × the initial's; 0.02.
   double min_gain_db = 0.3;    ///< Skip cycles whose model predicts less gain over the held layout, dB; 0.3.
   /// Candidate layouts' textures from the surface cache (MaterialSurfaceCache): its samples per
-  /// texel of the initial layout (0: off, every candidate replays the history exactly); 1.
-  double surface_cache = 1;
+  /// texel of the initial layout (0: off, every candidate replays the history exactly); 1.5.
+  double surface_cache = 1.5;
   double surface_cache_coverage = 4;  ///< Covers of the surface by the history from which it is used; 4.
 };
 
-/// Largest surface cache of a material session (samples; ~300 bytes each with three layers).
+/// Largest surface cache of a material session (samples; ~250 bytes each with three layers).
 inline constexpr long long kMaxMaterialSurfaceCacheSamples = 12'000'000;
 
 class MaterialPaintSession {

@@ -9,8 +9,8 @@
 ///
 /// Error: exact at the samples (within the point cache's 1e-5); between them the linear
 /// interpolation of the composite, as SurfaceSignalCache's (tests/adapt/test_material_session.cpp
-/// states the PSNR against exact replay). Memory: about (140 + 52 × layers) bytes per sample
-/// (docs/adaptive.md, "Material sessions").
+/// states the PSNR against exact replay). Memory: about 150 bytes per sample with one layer, 48 more
+/// per further layer (docs/adaptive.md, "Material sessions").
 #include <memory>
 #include <vector>
 
@@ -43,6 +43,10 @@ class MaterialSurfaceCache {
   /// \throw InvalidInputError a map face out of range of map_mesh or parent_face
   std::vector<MaterialValue> texel_values(const MaterialStrokeFile& file, const TexelMap& map, const TriMesh& map_mesh,
                                           const std::vector<int>* parent_face = nullptr);
+  /// As above, into \p out (resized; its storage reused: a fresh vector of tens of MB costs a page
+  /// fault per 4 KB, which on a loaded machine costs more than the interpolation).
+  void texel_values(const MaterialStrokeFile& file, const TexelMap& map, const TriMesh& map_mesh,
+                    const std::vector<int>* parent_face, std::vector<MaterialValue>& out);
 
   /// The samples a cache of \p mesh at \p spacing would have (O(faces), nothing allocated).
   /// \throw InvalidInputError spacing <= 0 or not finite

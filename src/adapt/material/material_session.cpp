@@ -53,6 +53,7 @@ struct Layout {
   TexelMap map;
   std::unique_ptr<MaterialPointCache> texels;  // exact values at the texels (unused when from_cache)
   bool from_cache = false;    // the textures are interpolated from the session's surface cache
+  std::vector<MaterialValue> interpolated;  // from_cache: the chart texels' material (storage reused)
   MaterialTextures textures;
   long long painted = -1;     // texels->strokes() (or the surface cache's) when `textures` were made
   ImageF density;             // the model's density that made it (empty: the initial layout)
@@ -154,8 +155,8 @@ struct MaterialPaintSession::Impl {
   const MaterialTextures& cached_textures_of(Layout& l) {
     MaterialSurfaceCache& c = surface_now();
     if (l.painted == c.strokes()) return l.textures;
-    const std::vector<MaterialValue> v =
-        c.texel_values(history, l.map, *l.mesh, l.parent_face.empty() ? nullptr : &l.parent_face);
+    std::vector<MaterialValue>& v = l.interpolated;
+    c.texel_values(history, l.map, *l.mesh, l.parent_face.empty() ? nullptr : &l.parent_face, v);
     l.textures = material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding,
                                                height_scale);
     l.painted = c.strokes();
