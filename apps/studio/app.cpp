@@ -300,6 +300,7 @@ std::filesystem::path App::suggested_path(FileKind kind) const {
       return store_.project_path().empty() ? last_folder() / (stem + ".adaptex") : store_.project_path();
     case FileKind::ExportGlb: return last_folder() / (stem + ".glb");
     case FileKind::Screenshot: return last_folder() / (stem + ".png");
+    case FileKind::SaveBrushPreset: return last_folder() / "brush.json";
     default: return last_folder();
   }
 }
