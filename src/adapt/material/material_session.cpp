@@ -85,11 +85,12 @@ struct MaterialPaintSession::Impl {
   std::unique_ptr<MaterialSurfaceCache> surface;
   bool surface_fits = false;
   double texel_spacing = 0;   // sqrt(surface area / chart texels) of the initial layout
+  double area = 1;            // of the input mesh
   double coverage = 0;        // Σ over brush and erase dabs of π r² / area (a fill or decal: 1)
 
   void add_coverage(const MaterialStroke& s) {
     const bool dabs = s.type == MaterialStroke::Type::Brush || s.type == MaterialStroke::Type::Erase;
-    coverage += dabs ? s.dabs.size() * std::numbers::pi * s.radius * s.radius / surface_area(*initial.mesh) : 1.0;
+    coverage += dabs ? s.dabs.size() * std::numbers::pi * s.radius * s.radius / area : 1.0;
   }
   bool uses_surface_cache() const { return surface_fits && coverage >= opt.surface_cache_coverage; }
   MaterialSurfaceCache& surface_now() {
@@ -325,7 +326,8 @@ MaterialPaintSession::MaterialPaintSession(TriMesh mesh, Parameterization initia
   m.height_scale = material_height_scale(*m.initial.mesh, m.history);
   m.make_layout(m.initial);
   const TriMesh& input = *m.initial.mesh;
-  m.texel_spacing = std::sqrt(surface_area(input) / std::max<size_t>(1, m.initial.map.inside.size()));
+  m.area = std::max(surface_area(input), 1e-300);
+  m.texel_spacing = std::sqrt(m.area / std::max<size_t>(1, m.initial.map.inside.size()));
   m.surface_fits = options.surface_cache > 0 &&
                    MaterialSurfaceCache::count_samples(input, m.texel_spacing / options.surface_cache) <=
                        kMaxMaterialSurfaceCacheSamples;
