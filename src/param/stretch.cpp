@@ -307,6 +307,26 @@ std::vector<std::array<int, 2>> overlapping_triangle_pairs(const Parameterizatio
   return pairs;
 }
 
+std::vector<int> invalid_uv_faces(const Parameterization& param, long max_pairs) {
+  const int nf = static_cast<int>(param.uv_faces.size());
+  std::vector<double> a2(nf);
+  double sum_abs = 0;
+  for (int f = 0; f < nf; ++f) {
+    const Face& t = param.uv_faces[f];
+    a2[f] = 0.5 * signed_area2(param.uv[t[0]], param.uv[t[1]], param.uv[t[2]]);
+    sum_abs += std::abs(a2[f]);
+  }
+  const double mean_abs = nf > 0 ? sum_abs / nf : 0.0;
+  std::vector<int> bad;
+  for (int f = 0; f < nf; ++f)
+    if (is_degenerate(a2[f], mean_abs) || a2[f] < 0) bad.push_back(f);
+  for (const std::array<int, 2>& pr : overlapping_triangle_pairs(param, max_pairs))
+    bad.insert(bad.end(), pr.begin(), pr.end());
+  std::sort(bad.begin(), bad.end());
+  bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+  return bad;
+}
+
 double texel_utilization(const Parameterization& param, int res) {
   if (res <= 0) return 0;
   std::vector<unsigned char> covered(static_cast<size_t>(res) * res, 0);

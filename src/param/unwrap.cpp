@@ -483,6 +483,13 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   chart.state = std::move(cur);
   chart.domain_area = uv_domain_area(chart.state);
   use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial));
+  // Still flipped or degenerate UV triangles (no augmentation allowed or none helped): a valid
+  // layout of the other kinds, whatever its share (unwrap_pieces() splits the piece otherwise).
+  if (ctx.layouts != PieceLayouts::Free && score(chart.state).bad > 0) {
+    CutState same;  // the free-boundary layout of the chart's own disk
+    same.cut = chart.state.cut, same.disk = chart.state.disk;
+    use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same));
+  }
   chart.cut_length = cut_length(graph, chart.state.cut);
   return chart;
 }
@@ -727,6 +734,60 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
   return charts;
 }
 
+/// Splits \p piece into \p k charts (segment_charts()) appended to \p out; returns how many.
+size_t split_piece(const Component& piece, int k, const UnwrapOptions& options,
+                   std::vector<Component>& out) {
+  ChartSegmentOptions so;
+  so.num_charts = k;
+  so.normal_weight = options.chart_normal_weight;
+  const size_t before = out.size();
+  append_pieces(piece, ChartSegmenter(piece.mesh).segment(so), out);
+  return out.size() - before;
+}
+
+/// Rounds of splitting invalid charts in unwrap_pieces() before it gives up (each round halves
+/// them; pieces of at most kFaceSplitFaces faces are split into single faces).
+constexpr int kMaxValidityRounds = 24, kFaceSplitFaces = 8;
+
+/// Replaces every piece \p bad marks (its chart's UV triangles are flipped, degenerate or overlap)
+/// by its two halves (split_piece()), or by its single faces when it has at most kFaceSplitFaces
+/// faces or does not split, and builds their charts: \p pieces and \p charts stay parallel.
+/// \throw SolverError a marked piece of one face (a triangle's own layout is valid; nothing left)
+void split_invalid_charts(std::vector<Component>& pieces, std::vector<Chart>& charts,
+                          const std::vector<char>& bad, const DiskParamOptions& dopt,
+                          Clock::time_point t_start, const UnwrapOptions& options,
+                          UnwrapReport& rep, PieceLayouts layouts) {
+  std::vector<Component> kept, halves;
+  std::vector<Chart> kept_charts;
+  for (size_t c = 0; c < pieces.size(); ++c) {
+    if (!bad[c]) {
+      kept.push_back(std::move(pieces[c]));
+      kept_charts.push_back(std::move(charts[c]));
+      continue;
+    }
+    const Component& p = pieces[c];
+    const int nf = p.mesh.num_faces();
+    if (nf < 2)
+      throw SolverError("unwrap: no valid layout found for a face of the mesh (its UV triangle is "
+                        "flipped, degenerate or overlaps)");
+    if (nf > kFaceSplitFaces) {
+      const size_t n = split_piece(p, 2, options, halves);
+      if (n >= 2) continue;
+      halves.resize(halves.size() - n);
+    }
+    std::vector<int> single(nf);
+    std::iota(single.begin(), single.end(), 0);
+    append_pieces(p, single, halves);
+  }
+  std::vector<Chart> built = build_charts(halves, dopt, t_start, options, rep, layouts);
+  for (size_t i = 0; i < halves.size(); ++i) {
+    kept.push_back(std::move(halves[i]));
+    kept_charts.push_back(std::move(built[i]));
+  }
+  pieces = std::move(kept);
+  charts = std::move(kept_charts);
+}
+
 /// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
 /// \p unfold and \p on_last_started as in build_charts(); \p give_up_l2 as
 /// ChartContext::give_up_l2. Returns false, and
@@ -735,16 +796,29 @@ bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
                    const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
                    const UnwrapOptions& options, UnwrapResult& result, PieceLayouts layouts,
                    double give_up_l2 = 0, const std::function<void()>& on_last_started = {}) {
-  const std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report,
-                                                 layouts, give_up_l2, on_last_started);
+  std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report, layouts,
+                                           give_up_l2, on_last_started);
   for (const Chart& c : charts)
     if (c.abandoned) return false;
-  const auto t0 = Clock::now();
-  report_progress(options.progress, "pack", 0.0);
-  assemble(mesh, pieces, charts, padding, options, result);
-  report_progress(options.progress, "pack", 1.0);
-  result.report.time_pack += seconds_since(t0);
-  return true;
+  std::vector<Component> split;  // the pieces once an invalid chart was split
+  for (int round = 0;; ++round) {
+    const std::vector<Component>& current = round == 0 ? pieces : split;
+    const auto t0 = Clock::now();
+    report_progress(options.progress, "pack", 0.0);
+    assemble(mesh, current, charts, padding, options, result);
+    report_progress(options.progress, "pack", 1.0);
+    result.report.time_pack += seconds_since(t0);
+    const std::vector<int> bad = invalid_uv_faces(result.param);
+    if (bad.empty()) return true;
+    if (round == kMaxValidityRounds)
+      throw SolverError("unwrap: no valid layout found (" + std::to_string(bad.size()) +
+                        " flipped, degenerate or overlapping UV triangles remain)");
+    std::vector<char> bad_chart(current.size(), 0);
+    for (int f : bad) bad_chart[result.param.face_chart[f]] = 1;
+    std::vector<Component> next = round == 0 ? pieces : std::move(split);
+    split_invalid_charts(next, charts, bad_chart, dopt, t_start, options, result.report, layouts);
+    split = std::move(next);
+  }
 }
 
 /// Cheap figures of one piece for the scan segmentation: degenerate + flipped UV triangles and the
@@ -819,17 +893,6 @@ std::vector<PieceProbe> probe_pieces(const std::vector<Component>& pieces,
     probes[i] = probe_piece(pieces[i], dopt, options, progress);
   });
   return probes;
-}
-
-/// Splits \p piece into \p k charts (segment_charts()) appended to \p out; returns how many.
-size_t split_piece(const Component& piece, int k, const UnwrapOptions& options,
-                   std::vector<Component>& out) {
-  ChartSegmentOptions so;
-  so.num_charts = k;
-  so.normal_weight = options.chart_normal_weight;
-  const size_t before = out.size();
-  append_pieces(piece, ChartSegmenter(piece.mesh).segment(so), out);
-  return out.size() - before;
 }
 
 /// Whether splitting a piece in two pays in effective texel share (coverage / L2²), from its probe:
