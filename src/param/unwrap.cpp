@@ -10,6 +10,7 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -668,6 +669,18 @@ void parallel_keep_first_error(int n, std::mutex& mutex, std::atomic<bool>& fail
   if (first_error) std::rethrow_exception(first_error);
 }
 
+/// out[i] filled by \p fill(i, out[i]) for i in [0, n), in parallel (TBB); the first exception
+/// is rethrown once every call has returned. The order of out does not depend on the threads.
+template <class Fill>
+std::vector<std::vector<Component>> parallel_pieces(size_t n, Fill fill) {
+  std::vector<std::vector<Component>> out(n);
+  std::mutex mutex;
+  std::atomic<bool> failed{false};
+  parallel_keep_first_error(static_cast<int>(n), mutex, failed,
+                            [&](int i) { fill(static_cast<size_t>(i), out[i]); });
+  return out;
+}
+
 /// The chart of every piece (build_chart()), phase times added to \p rep. The charts share the
 /// augmentation face budget in piece order; when even the largest use of every chart
 /// ((1 + max_augmentations) cheap evaluations) fits in it, the budget cannot run out, the charts do
@@ -745,6 +758,16 @@ size_t split_piece(const Component& piece, int k, const UnwrapOptions& options,
   return out.size() - before;
 }
 
+/// invalid_uv_faces() of the packed layout of \p charts. Overlaps are looked for only in the charts
+/// of a fixed aspect (free-boundary, projected, unfolded layouts): a disk parameterization maps its
+/// boundary onto a convex curve, so with no flipped or degenerate triangle it is a bijection onto
+/// its rectangle, and the packed rectangles are disjoint.
+std::vector<int> invalid_layout_faces(const Parameterization& param, const std::vector<Chart>& charts) {
+  std::vector<char> free(param.uv_faces.size(), 0);
+  for (size_t f = 0; f < free.size(); ++f) free[f] = charts[param.face_chart[f]].aspect > 0;
+  return invalid_uv_faces(param, &free);
+}
+
 /// Rounds of splitting invalid charts in unwrap_pieces() before it gives up (each round halves
 /// them; pieces of at most kFaceSplitFaces faces are split into single faces).
 constexpr int kMaxValidityRounds = 24, kFaceSplitFaces = 8;
@@ -808,7 +831,7 @@ bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
     assemble(mesh, current, charts, padding, options, result);
     report_progress(options.progress, "pack", 1.0);
     result.report.time_pack += seconds_since(t0);
-    const std::vector<int> bad = invalid_uv_faces(result.param);
+    const std::vector<int> bad = invalid_layout_faces(result.param, charts);
     if (bad.empty()) return true;
     if (round == kMaxValidityRounds)
       throw SolverError("unwrap: no valid layout found (" + std::to_string(bad.size()) +
@@ -915,21 +938,21 @@ bool split_pays(const PieceProbe& probe, double area_fraction, double gap, doubl
 std::vector<Component> planar_pieces(const std::vector<Component>& comps, const UnwrapOptions& options) {
   double total_area = 0;
   for (const Component& c : comps) total_area += c.area;
+  const std::vector<std::vector<Component>> parts =
+      parallel_pieces(comps.size(), [&](size_t i, std::vector<Component>& out) {
+        const Component& c = comps[i];
+        if (c.mesh.num_faces() < 2 || !(c.area > 0)) return;
+        PlanarChartOptions po;
+        po.max_normal_angle = options.scan_planar_angle;
+        po.min_area_fraction = std::min(1.0, options.scan_planar_min_area * total_area / c.area);
+        const PlanarCharts pc = planar_charts(c.mesh, po);
+        if (pc.num_charts > 1) append_pieces(c, pc.label, out);
+      });
   std::vector<Component> out;
-  for (const Component& c : comps) {
-    if (c.mesh.num_faces() < 2 || !(c.area > 0)) {
-      out.push_back(c);
-      continue;
-    }
-    PlanarChartOptions po;
-    po.max_normal_angle = options.scan_planar_angle;
-    po.min_area_fraction = std::min(1.0, options.scan_planar_min_area * total_area / c.area);
-    const PlanarCharts pc = planar_charts(c.mesh, po);
-    if (pc.num_charts == 1) {
-      out.push_back(c);
-      continue;
-    }
-    append_pieces(c, pc.label, out);
+  for (size_t i = 0; i < comps.size(); ++i) {
+    if (parts[i].empty()) out.push_back(comps[i]);
+    out.insert(out.end(), std::make_move_iterator(parts[i].begin()),
+               std::make_move_iterator(parts[i].end()));
   }
   return out;
 }
@@ -952,11 +975,20 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
   std::vector<Component> done, queue, planar;
   const std::vector<Component>& start =
       options.scan_planar_angle > 0 ? (planar = planar_pieces(comps, options)) : comps;
-  for (const Component& c : start) {
+  const std::vector<std::vector<Component>> large =
+      parallel_pieces(start.size(), [&](size_t i, std::vector<Component>& out) {
+        const long long f = start[i].mesh.num_faces();
+        if (f > options.scan_piece_faces)
+          split_piece(start[i],
+                      static_cast<int>((f + options.scan_piece_faces - 1) / options.scan_piece_faces),
+                      options, out);
+      });
+  for (size_t i = 0; i < start.size(); ++i) {
+    const Component& c = start[i];
     const long long f = c.mesh.num_faces();
     if (f > options.scan_piece_faces)
-      split_piece(c, static_cast<int>((f + options.scan_piece_faces - 1) / options.scan_piece_faces),
-                  options, queue);
+      queue.insert(queue.end(), std::make_move_iterator(large[i].begin()),
+                   std::make_move_iterator(large[i].end()));
     else if (f >= min_probe_faces)
       queue.push_back(c);
     else
@@ -967,22 +999,23 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
     const double frac = static_cast<double>(round) / options.scan_max_rounds;
     report_progress(options.progress, "segment", frac);
     const std::vector<PieceProbe> probes = probe_pieces(queue, dopt, options, frac);
+    // The halves of every piece worth splitting (none: the piece is done), split in parallel.
+    std::vector<std::vector<Component>> halves =
+        parallel_pieces(queue.size(), [&](size_t i, std::vector<Component>& out) {
+          const Component& p = queue[i];
+          const PieceProbe& pr = probes[i];
+          const int faces = p.mesh.num_faces();
+          const bool worth =
+              (pr.bad > 0 && faces >= 2 * kMinSplitFaces) ||
+              (faces >= 2 * min_probe_faces &&
+               split_pays(pr, p.area / std::max(total_area, 1e-300), gap, options.scan_chart_l2));
+          if (worth && split_piece(p, 2, options, out) < 2) out.clear();
+        });
     std::vector<Component> next;
     for (size_t i = 0; i < queue.size(); ++i) {
-      const Component& p = queue[i];
-      const PieceProbe& pr = probes[i];
-      const int faces = p.mesh.num_faces();
-      const bool worth =
-          (pr.bad > 0 && faces >= 2 * kMinSplitFaces) ||
-          (faces >= 2 * min_probe_faces &&
-           split_pays(pr, p.area / std::max(total_area, 1e-300), gap, options.scan_chart_l2));
-      bool split = false;
-      if (worth) {
-        const size_t n = split_piece(p, 2, options, next);
-        split = n >= 2;
-        if (!split) next.resize(next.size() - n);
-      }
-      if (!split) {
+      next.insert(next.end(), std::make_move_iterator(halves[i].begin()),
+                  std::make_move_iterator(halves[i].end()));
+      if (halves[i].empty()) {
         queue[i].probe_lscm = probes[i].lscm;  // build_chart() starts from the same disk
         queue[i].probe_projection = probes[i].projection;
         done.push_back(std::move(queue[i]));
