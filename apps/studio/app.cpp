@@ -35,7 +35,13 @@ App::App(std::unique_ptr<Renderer> renderer, AppOptions options)
       store_(options_.config_dir, options_.recovery_dir, options_.autosave_delay,
              [this](const std::string& text, bool error) { add_message(text, error); }) {}
 
-App::~App() { store_.finish(unsaved(), [this] { return snapshot(); }); }
+App::~App() {
+  // A quit without waiting (signal, scripted run, second close): say which exports were dropped.
+  for (const MaterialExport& e : pending_exports_)
+    std::cerr << "adaptex-studio: error: the export to " << e.path.string()
+              << " was not written: the studio quit before the final layout was ready\n";
+  store_.finish(unsaved(), [this] { return snapshot(); });
+}
 
 void App::add_message(std::string text, bool error) {
   (error ? std::cerr : std::cout) << "adaptex-studio: " << (error ? "error: " : "") << text << std::endl;
@@ -94,7 +100,15 @@ void App::ask_or_do(Confirm c) {
 
 void App::perform(const Confirm& c) {
   switch (c.action) {
-    case Confirm::Action::Quit: quit_ = true; break;
+    case Confirm::Action::Quit:
+      // A queued export is written first (finish_exports() quits then); closing again quits now.
+      if (exporting() && !quit_after_exports_) {
+        quit_after_exports_ = true;
+        add_message("finishing the export before quitting (close again to quit without it)", false);
+      } else {
+        quit_ = true;
+      }
+      break;
     case Confirm::Action::OpenMesh: open_mesh(c.path); break;
     case Confirm::Action::OpenProject: open_project(c.path); break;
     case Confirm::Action::New: new_scene(); break;
@@ -102,7 +116,10 @@ void App::perform(const Confirm& c) {
   }
 }
 
-void App::request_quit() { ask_or_do({Confirm::Action::Quit, {}}); }
+void App::request_quit() {
+  if (quit_after_exports_) return perform({Confirm::Action::Quit, {}});  // the second close
+  ask_or_do({Confirm::Action::Quit, {}});
+}
 void App::request_open_mesh(const std::string& path) { ask_or_do({Confirm::Action::OpenMesh, path}); }
 void App::request_open_project(const std::filesystem::path& path) {
   ask_or_do({Confirm::Action::OpenProject, path.string()});
@@ -283,6 +300,7 @@ std::filesystem::path App::suggested_path(FileKind kind) const {
       return store_.project_path().empty() ? last_folder() / (stem + ".adaptex") : store_.project_path();
     case FileKind::ExportGlb: return last_folder() / (stem + ".glb");
     case FileKind::Screenshot: return last_folder() / (stem + ".png");
+    case FileKind::SaveBrushPreset: return last_folder() / "brush.json";
     default: return last_folder();
   }
 }

@@ -109,6 +109,8 @@ class App {
   // ---- unsaved work: these ask Save / Discard / Cancel (confirm()) when unsaved() ----
   /// Strokes that no project file holds (painted, replayed or recovered since the last save / open).
   bool unsaved() const;
+  /// Quits (after Save / Discard / Cancel); a queued export is written first, and a second request
+  /// quits without it.
   void request_quit();
   void request_open_mesh(const std::string& path);
   void request_open_project(const std::filesystem::path& path);
@@ -473,6 +475,7 @@ class App {
   std::vector<MaterialExport> pending_exports_;  // waiting for the settled result (export_material)
   double pen_pressure_ = 1;
   bool quit_ = false;
+  bool quit_after_exports_ = false;  // a quit waits for the queued exports (finish_exports)
 };
 
 }  // namespace adaptex::studio

@@ -272,10 +272,11 @@ void App::finish_exports() {
                   [&](const MaterialExport& e) { return e.model != painting_.model().get(); })) {
     for (const MaterialExport& e : std::exchange(pending_exports_, {}))
       add_message("export to " + e.path.string() + " cancelled: the model was closed or reopened", true);
-    return;
+  } else {
+    if (!material_settled()) return;
+    for (const MaterialExport& e : std::exchange(pending_exports_, {})) write_material_export(e);
   }
-  if (!material_settled()) return;
-  for (const MaterialExport& e : std::exchange(pending_exports_, {})) write_material_export(e);
+  if (quit_after_exports_) quit_ = true;
 }
 
 }  // namespace adaptex::studio

@@ -100,7 +100,8 @@ void stamp_option(App& app, const TraceWidget& trace) {
   trace("Stamp the decal image");
 }
 
-void preset_panel(App& app, std::string& path, const TraceWidget& trace) {
+void preset_panel(App& app, std::string& path, const TraceWidget& trace,
+                  const std::function<void(FileKind)>& choose) {
   if (path.empty()) path = (app.last_folder() / "brush.json").string();
   char buf[1024];
   std::snprintf(buf, sizeof buf, "%s", path.c_str());
@@ -114,6 +115,13 @@ void preset_panel(App& app, std::string& path, const TraceWidget& trace) {
   ImGui::SameLine();
   if (ImGui::Button("Load preset")) app.load_brush_preset(path);
   trace("Load preset");
+  if (ImGui::Button("Open preset...")) choose(FileKind::LoadBrushPreset);
+  tooltip("Choose a brush preset file to load.");
+  trace("Open preset");
+  ImGui::SameLine();
+  if (ImGui::Button("Save preset as...")) choose(FileKind::SaveBrushPreset);
+  tooltip("Choose where to save the brush as a preset.");
+  trace("Save preset as");
 }
 
 }  // namespace adaptex::studio

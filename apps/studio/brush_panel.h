@@ -25,7 +25,8 @@ void pressure_panel(BrushSettings& brush, const TraceWidget& trace);
 void stamp_option(App& app, const TraceWidget& trace);
 
 /// Save / load a brush preset at the path in \p path (edited in place; empty: `brush.json` in the
-/// last folder used).
-void preset_panel(App& app, std::string& path, const TraceWidget& trace);
+/// last folder used), or through a file dialog (\p choose: FileKind::LoadBrushPreset / SaveBrushPreset).
+void preset_panel(App& app, std::string& path, const TraceWidget& trace,
+                  const std::function<void(FileKind)>& choose);
 
 }  // namespace adaptex::studio

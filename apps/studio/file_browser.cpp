@@ -24,6 +24,8 @@ FileRequest file_request(FileKind kind) {
     case FileKind::ExportObjFolder: return {kind, "Export OBJ + MTL + PNG into folder", false, true, {}};
     case FileKind::LoadImage: return {kind, "Load decal image", false, false, {".png", ".jpg", ".jpeg"}};
     case FileKind::Screenshot: return {kind, "Save screenshot", true, false, {".png"}};
+    case FileKind::LoadBrushPreset: return {kind, "Load brush preset", false, false, {".json"}};
+    case FileKind::SaveBrushPreset: return {kind, "Save brush preset as", true, false, {".json"}};
   }
   return {};
 }

@@ -10,7 +10,9 @@
 namespace adaptex::studio {
 
 /// What a dialog is for.
-enum class FileKind { OpenMesh, OpenProject, SaveProject, ExportGlb, ExportObjFolder, LoadImage, Screenshot };
+enum class FileKind {
+  OpenMesh, OpenProject, SaveProject, ExportGlb, ExportObjFolder, LoadImage, Screenshot, LoadBrushPreset, SaveBrushPreset
+};
 
 /// A dialog's title, whether it saves, whether it picks a folder, and the extensions it shows.
 struct FileRequest {

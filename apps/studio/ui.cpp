@@ -292,6 +292,8 @@ void StudioUi::act(App& app, FileKind kind, const std::string& path) {
     case FileKind::ExportObjFolder: export_dir_ = path, app.export_obj(path); break;
     case FileKind::LoadImage: decal_path_ = path, app.load_decal(path); break;
     case FileKind::Screenshot: screenshot_path_ = path, app.screenshot(path); break;
+    case FileKind::LoadBrushPreset: preset_path_ = path, app.load_brush_preset(path); break;
+    case FileKind::SaveBrushPreset: preset_path_ = path, app.save_brush_preset(path); break;
   }
 }
 
@@ -488,7 +490,7 @@ void StudioUi::brush_panel(App& app) {
   const bool presets_opened = ImGui::IsItemToggledOpen();
   trace("Presets");
   if (presets) {
-    preset_panel(app, preset_path_, [this](const char* id) { trace(id); });
+    preset_panel(app, preset_path_, [this](const char* id) { trace(id); }, [&](FileKind k) { choose(app, k); });
     if (presets_opened) ImGui::SetScrollHereY(1.0f);
     ImGui::TreePop();
   }

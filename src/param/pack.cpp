@@ -499,4 +499,312 @@ std::vector<ChartPlacement> pack_charts(const std::vector<double>& areas, double
                           " charts cannot be packed into the unit square");
 }
 
+// ---- Shape packing (pack_shapes) -------------------------------------------------------------
+
+namespace {
+
+/// \p p turned by \p turns quarter turns counter-clockwise.
+Vec2 quarter_turn(const Vec2& p, int turns) {
+  switch (turns & 3) {
+    case 1: return Vec2(-p.y(), p.x());
+    case 2: return Vec2(-p.x(), -p.y());
+    case 3: return Vec2(p.y(), -p.x());
+    default: return p;
+  }
+}
+
+/// In raster cells: a point closer than kCellEps to the edge of a cell marks the cells on both
+/// sides (so rounding in the placed UVs cannot carry a triangle into an unmarked cell), and every
+/// chart starts kShift inside its first cell (no vertex lies on the cell edge below or left of it).
+constexpr double kCellEps = 1e-6;
+constexpr double kShift = 1e-4;
+
+/// A chart rasterized in one orientation at one scale. In raw column j (j in [0, width)) it
+/// occupies rows [bottom[j], top[j]) of its own raster (a superset of the cells its closed
+/// triangles touch). low[e], for the extended columns e in [0, width + 2 g): the lowest raw row
+/// within g columns of raw column e - g (the bottom of the chart dilated by g cells, with its
+/// rows counted from g below the raw ones).
+struct Profile {
+  int width = 0;
+  std::vector<int> bottom, top, low;
+  long low_sum = 0;
+  int max_top = 0;
+  Vec2 origin = Vec2::Zero();  ///< Lower-left corner of the turned and scaled chart (chart units).
+};
+
+/// The range [lo, hi] of y over the triangle (a, b, c) within the slab x0 <= x <= x1; false when
+/// they do not meet.
+bool slab_range(const Vec2& a, const Vec2& b, const Vec2& c, double x0, double x1, double& lo,
+                double& hi) {
+  lo = std::numeric_limits<double>::infinity();
+  hi = -lo;
+  const Vec2* v[3] = {&a, &b, &c};
+  for (int i = 0; i < 3; ++i) {
+    const Vec2& p = *v[i];
+    if (p.x() >= x0 && p.x() <= x1) lo = std::min(lo, p.y()), hi = std::max(hi, p.y());
+    const Vec2& q = *v[(i + 1) % 3];
+    for (double x : {x0, x1})
+      if ((p.x() - x) * (q.x() - x) < 0) {
+        const double y = p.y() + (x - p.x()) / (q.x() - p.x()) * (q.y() - p.y());
+        lo = std::min(lo, y), hi = std::max(hi, y);
+      }
+  }
+  return lo <= hi;
+}
+
+/// Conservative raster of \p chart turned by \p turns and scaled by \p scale, cells of side \p h,
+/// dilated by \p g cells (Profile).
+Profile rasterize(const ChartShape& chart, double scale, int turns, double h, int g) {
+  Profile pr;
+  std::vector<Vec2> p(chart.uv.size());
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (size_t i = 0; i < p.size(); ++i) {
+    p[i] = scale * quarter_turn(chart.uv[i], turns);
+    lo = lo.cwiseMin(p[i]);
+    hi = hi.cwiseMax(p[i]);
+  }
+  if (p.empty()) lo = hi = Vec2::Zero();
+  pr.origin = lo;
+  for (Vec2& q : p) q = (q - lo) / h + Vec2::Constant(kShift);
+  const Vec2 extent = (hi - lo) / h + Vec2::Constant(kShift);
+  pr.width = static_cast<int>(std::floor(extent.x() + kCellEps)) + 1;
+  pr.bottom.assign(pr.width, std::numeric_limits<int>::max());
+  pr.top.assign(pr.width, 0);
+  for (const Face& f : chart.faces) {
+    const Vec2 &a = p[f[0]], &b = p[f[1]], &c = p[f[2]];
+    const int c0 = std::max(0, static_cast<int>(std::floor(std::min({a.x(), b.x(), c.x()}) - kCellEps)));
+    const int c1 = std::min(pr.width - 1,
+                            static_cast<int>(std::floor(std::max({a.x(), b.x(), c.x()}) + kCellEps)));
+    for (int col = c0; col <= c1; ++col) {
+      double ylo, yhi;
+      if (!slab_range(a, b, c, col - kCellEps, col + 1 + kCellEps, ylo, yhi)) continue;
+      pr.bottom[col] = std::min(pr.bottom[col], std::max(0, static_cast<int>(std::floor(ylo - kCellEps))));
+      pr.top[col] = std::max(pr.top[col], static_cast<int>(std::floor(yhi + kCellEps)) + 1);
+    }
+  }
+  for (int j = 0; j < pr.width; ++j) {
+    if (pr.bottom[j] >= pr.top[j]) pr.bottom[j] = 0, pr.top[j] = std::max(1, pr.top[j]);  // a point
+    pr.max_top = std::max(pr.max_top, pr.top[j]);
+  }
+  pr.low.assign(pr.width + 2 * g, std::numeric_limits<int>::max());
+  for (int e = 0; e < pr.width + 2 * g; ++e) {
+    for (int j = std::max(0, e - 2 * g); j <= std::min(pr.width - 1, e); ++j)
+      pr.low[e] = std::min(pr.low[e], pr.bottom[j]);
+    pr.low_sum += pr.low[e];
+  }
+  return pr;
+}
+
+/// The atlas of one packing trial: the horizon, the top of every column (in cells).
+class Horizon {
+ public:
+  explicit Horizon(int n) : h_(n, 0) {}
+  int size() const { return static_cast<int>(h_.size()); }
+
+  /// Best column x (and row y) for \p pr: the lowest score w (1 + alpha) y + (empty area between
+  /// the horizon and the dilated chart's bottom), for the chart's extended width w, then the lowest
+  /// y. Returns -1 when the chart is wider than the atlas, 1 when it found a position with a lower
+  /// score than (\p best_score, \p best_y) (and updated them and \p best_x), else 0.
+  int best_drop(const Profile& pr, long alpha, long& best_score, int& best_x, int& best_y) const {
+    const int w = static_cast<int>(pr.low.size()), n = size();
+    if (w > n) return -1;
+    // The column of the chart's lowest bottom bounds y first (most positions are pruned by it).
+    const int e0 = static_cast<int>(std::min_element(pr.low.begin(), pr.low.end()) - pr.low.begin());
+    const long wy = static_cast<long>(w) * (1 + alpha);
+    long window = 0;  // sum of the horizon over [x, x + w)
+    for (int e = 0; e < w; ++e) window += h_[e];
+    int improved = 0;
+    for (int x = 0; x + w <= n; window += x + w < n ? h_[x + w] - h_[x] : 0, ++x) {
+      // score = wy * y + base, with y = max_e (h[x + e] - low[e]) growing over the loop.
+      const long base = pr.low_sum - window;
+      int y = h_[x + e0] - pr.low[e0];
+      if (wy * y + base > best_score) continue;
+      bool pruned = false;
+      for (int e = 0; e < w && !pruned; ++e) {
+        y = std::max(y, h_[x + e] - pr.low[e]);
+        pruned = wy * y + base > best_score;
+      }
+      if (pruned) continue;
+      const long score = wy * y + base;
+      if (score < best_score || (score == best_score && y < best_y))
+        best_score = score, best_x = x, best_y = y, improved = 1;
+    }
+    return improved;
+  }
+
+  /// Places \p pr at (x, y): its raw column j at x + g + j reaches y + g + top[j].
+  void place(const Profile& pr, int x, int y, int g) {
+    for (int j = 0; j < pr.width; ++j) h_[x + g + j] = std::max(h_[x + g + j], y + g + pr.top[j]);
+  }
+
+ private:
+  std::vector<int> h_;
+};
+
+/// Weight alpha of the height in Horizon::best_drop(): 1 (beside 0, 8 and 1000, the highest coverage
+/// on the charts of docs/bench_unwrap.md; 0, the empty area alone, builds towers).
+constexpr long kHeightWeight = 1;
+
+/// Charts, their order and fixed figures for the trials of pack_shapes().
+struct ShapeSet {
+  const std::vector<ChartShape>& charts;
+  std::vector<double> shorter;  ///< Shorter side of every chart's bounding box (chart units).
+  std::vector<int> order;       ///< Longest bounding-box side first.
+  int turns = 1;                ///< Orientations tried (1 or 4).
+};
+
+/// One packing trial at common scale \p s, raster side \p n cells, gap \p g cells, minimum side
+/// \p min_side (unit square): returns the rows the packing needs (> n: it does not fit) and, if
+/// \p out, the placements. Stops early once it needs more than \p limit rows (and returns that).
+/// Reports progress \p frac every 4096 charts.
+double shape_trial(const ShapeSet& set, double s, int n, int g, double min_side,
+                   const ProgressCallback& progress, double frac, std::vector<ShapePlacement>* out,
+                   double limit) {
+  const double h = 1.0 / n;
+  Horizon horizon(n);
+  double needed = 0;
+  int done = 0;
+  for (int c : set.order) {
+    if ((++done & 4095) == 0) report_progress(progress, "pack", frac);
+    const double sh = set.shorter[c] * s;
+    const double scale = sh > 0 && sh < min_side ? s * min_side / sh : s;
+    long best_waste = std::numeric_limits<long>::max();
+    int bx = -1, by = std::numeric_limits<int>::max(), bt = 0;
+    Profile best;
+    for (int t = 0; t < set.turns; ++t) {
+      Profile pr = rasterize(set.charts[c], scale, t, h, g);
+      const int found = horizon.best_drop(pr, kHeightWeight, best_waste, bx, by);
+      if (found < 0) {  // wider than the atlas: the scale must shrink by about n / width
+        const double w = static_cast<double>(pr.low.size());
+        return std::max(needed, w * w / n);
+      }
+      if (found > 0) best = std::move(pr), bt = t;
+    }
+    horizon.place(best, bx, by, g);
+    needed = std::max(needed, static_cast<double>(by + best.max_top + 2 * g));
+    if (needed > limit) return needed;
+    if (out)
+      (*out)[c] = {Vec2(h * (bx + g + kShift), h * (by + g + kShift)) - best.origin, scale, bt};
+  }
+  return needed;
+}
+
+/// The scale s at which the charts' bounding boxes (areas \p box_area, each side raised to
+/// \p min_side), each with its gap, fill 0.65 of the square (at most \p s_max).
+double first_shape_scale(const std::vector<double>& box_area, double gap, double min_side, double s_max) {
+  const auto filled = [&](double s) {
+    double sum = 0;
+    for (double a : box_area) sum += std::pow(std::max(s * std::sqrt(a), min_side) + gap, 2);
+    return sum;
+  };
+  double lo = 1e-12, hi = s_max;
+  if (filled(hi) <= 0.65) return hi;
+  for (int i = 0; i < 60 && hi > lo * 1.001; ++i) {
+    const double mid = std::sqrt(lo * hi);
+    (filled(mid) <= 0.65 ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+}  // namespace
+
+Vec2 ShapePlacement::apply(const Vec2& uv) const { return offset + scale * quarter_turn(uv, turns); }
+
+std::vector<ShapePlacement> pack_shapes(const std::vector<ChartShape>& charts,
+                                        const ShapePackOptions& options) {
+  const int nc = static_cast<int>(charts.size());
+  if (nc == 0) throw InvalidInputError("pack_shapes: no charts to pack");
+  if (!(options.padding >= 0 && options.padding < 0.25) ||
+      !(options.min_side >= 0 && options.min_side < 0.25))
+    throw InvalidInputError("pack_shapes: padding " + std::to_string(options.padding) +
+                            " or min_side " + std::to_string(options.min_side) +
+                            " is outside [0, 0.25)");
+  if (options.resolution != 0 && (options.resolution < 64 || options.resolution > 16384))
+    throw InvalidInputError("pack_shapes: resolution " + std::to_string(options.resolution) +
+                            " is outside [64, 16384]");
+  if (options.trials < 1) throw InvalidInputError("pack_shapes: trials must be >= 1");
+  ShapeSet set{charts, std::vector<double>(nc, 0.0), std::vector<int>(nc), options.may_turn ? 4 : 1};
+  std::vector<double> box_area(nc, 0.0), longest(nc, 0.0);
+  double area = 0, largest = 0;
+  for (int c = 0; c < nc; ++c) {
+    const ChartShape& ch = charts[c];
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec2& p : ch.uv) {
+      if (!p.allFinite())
+        throw InvalidInputError("pack_shapes: chart " + std::to_string(c) + " has a non-finite uv");
+      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    }
+    for (const Face& f : ch.faces) {
+      for (int k = 0; k < 3; ++k)
+        if (f[k] < 0 || f[k] >= static_cast<int>(ch.uv.size()))
+          throw InvalidInputError("pack_shapes: chart " + std::to_string(c) +
+                                  " has a triangle index out of range");
+      const Vec2 e1 = ch.uv[f[1]] - ch.uv[f[0]], e2 = ch.uv[f[2]] - ch.uv[f[0]];
+      area += 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
+    }
+    if (ch.uv.empty()) continue;
+    set.shorter[c] = (hi - lo).minCoeff();
+    box_area[c] = (hi - lo).prod();
+    longest[c] = (hi - lo).maxCoeff();
+    largest = std::max(largest, (hi - lo).maxCoeff());
+  }
+  std::iota(set.order.begin(), set.order.end(), 0);
+  // Longest side first (on the charts of docs/bench_unwrap.md it beat largest area first and the
+  // shorter side first).
+  std::stable_sort(set.order.begin(), set.order.end(),
+                   [&](int a, int b) { return longest[a] > longest[b]; });
+  const int n = options.resolution ? options.resolution : nc <= 64 ? 1024 : 2048;
+  std::vector<ShapePlacement> out(nc), trial(nc);
+  int reported = 0;
+  double frac = 0;
+  const auto tick = [&] {
+    frac = std::min(1.0, reported++ / (options.trials + 2.0));
+    report_progress(options.progress, "pack", frac);
+  };
+  for (double gap = options.padding, min_side = options.min_side;; gap *= 0.5, min_side *= 0.5) {
+    if (gap < 1e-9) gap = 0;
+    if (min_side < 1e-9) min_side = 0;
+    const int g = static_cast<int>(std::ceil(gap * n - 1e-9));
+    // Gaps and minimum sides alone (every chart a point or raised to min_side) must fit.
+    tick();
+    // (A chart takes at least (1 + g)² cells of the (n + g)² that the square and half a gap
+    // around it hold.)
+    const bool room = static_cast<double>(nc) * (1 + g) * (1 + g) <= static_cast<double>(n + g) * (n + g);
+    if (room && shape_trial(set, 1e-12, n, g, min_side, options.progress, frac, nullptr, n) <= n) {
+      // Scale search: the first scale from the charts' bounding boxes with their gaps filling
+      // 0.65 of the square; then the packed height is taken as a power of the scale (its exponent
+      // from the last two trials, 2 at first) aiming 0.5 % below the top.
+      const double s_max = largest > 0 ? (1.0 - 2 * gap) / largest : 1.0;
+      double s = first_shape_scale(box_area, gap, min_side, s_max);
+      double lo = 0, hi = std::numeric_limits<double>::infinity(), prev_s = 0, prev_needed = 0;
+      for (int t = 0; t < options.trials; ++t) {
+        tick();
+        const double needed = shape_trial(set, s, n, g, min_side, options.progress, frac, &trial, 2.0 * n);
+        if (needed <= n) lo = s, out.swap(trial);
+        else hi = s;
+        // Done when the square is filled to 1 % of its height or the bracket is within 0.3 %.
+        if (needed <= n && needed >= 0.99 * n) break;
+        if (hi < std::numeric_limits<double>::infinity() && hi <= lo * 1.003) break;
+        double k = 2;
+        if (prev_s > 0 && std::abs(std::log(s / prev_s)) > 1e-6 && needed > 0 && prev_needed > 0)
+          k = std::clamp(std::log(needed / prev_needed) / std::log(s / prev_s), 0.5, 3.0);
+        prev_s = s, prev_needed = needed;
+        double next = s * std::pow(0.995 * n / std::max(needed, 1.0), 1.0 / k);
+        if (next >= hi || next <= lo) next = lo > 0 ? std::sqrt(lo * std::min(hi, 4 * lo)) : 0.7 * s;
+        s = std::min(next, s_max);
+      }
+      // Still no fit: shrink until it does (the tiny trial fitted, so this ends).
+      for (int t = 0; lo == 0 && t < 64; ++t) {
+        tick();
+        s *= 0.8;
+        if (shape_trial(set, s, n, g, min_side, options.progress, frac, &trial, n) <= n) lo = s, out.swap(trial);
+      }
+      if (lo > 0) return out;
+    }
+    if (gap == 0 && min_side == 0) break;
+  }
+  throw InvalidInputError("pack_shapes: " + std::to_string(nc) +
+                          " charts cannot be packed into the unit square");
+}
+
 }  // namespace adaptex

@@ -2015,6 +2015,47 @@ TEST(StudioMaterial, ExportIsAdaptexPaintsForTheSavedVersion2File) {
 }
 
 
+TEST(StudioMaterial, QuitWaitsForAQueuedExportAndASecondQuitLeavesIt) {
+  TempDir dir;
+  const auto mesh_path = dir.path / "ball.obj";
+  write_obj(mesh_path, shapes::sphere(32, 16, 1.0), nullptr);
+  Harness h({}, 256, mesh_path.string(), studio_session_options().adapt.mode);
+  h.app->brush().radius = 0.05;
+  ASSERT_TRUE(h.app->edit_material([](MaterialDocument& d) { d.add_layer(""); }));
+  h.app->brush().channels = channel_bit(Channel::Roughness) | channel_bit(Channel::Height);
+  h.drag(190, 90, 210, 210);
+  ASSERT_FALSE(h.app->idle());
+  h.app->export_glb(dir.path / "a.glb");
+  ASSERT_TRUE(h.app->exporting());
+  h.app->request_quit();
+  ASSERT_TRUE(h.app->confirm());  // the unsaved strokes are asked about first
+  h.app->confirm_discard();
+  EXPECT_FALSE(h.app->should_quit());  // the export is written first
+  EXPECT_TRUE(h.app->exporting());
+  for (const auto t0 = std::chrono::steady_clock::now();
+       !h.app->should_quit() && std::chrono::steady_clock::now() - t0 < std::chrono::seconds(300);) {
+    h.app->begin_frame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_TRUE(h.app->should_quit());
+  EXPECT_FALSE(h.app->exporting());
+  EXPECT_TRUE(std::filesystem::exists(dir.path / "a.glb"));
+
+  // A second close while waiting quits at once, and the dropped export is not written.
+  Harness g({}, 256, mesh_path.string(), studio_session_options().adapt.mode);
+  g.app->brush().radius = 0.05;
+  ASSERT_TRUE(g.app->edit_material([](MaterialDocument& d) { d.add_layer(""); }));
+  g.drag(190, 90, 210, 210);
+  g.app->export_glb(dir.path / "b.glb");
+  g.app->request_quit();
+  g.app->confirm_discard();
+  EXPECT_FALSE(g.app->should_quit());
+  g.app->request_quit();
+  EXPECT_TRUE(g.app->should_quit());
+  EXPECT_FALSE(g.app->confirm());
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "b.glb"));
+}
+
 TEST(StudioMaterial, ExportBeforeTheSettleWaitsForTheWorkerAndWritesWhatAdaptexPaintWrites) {
   TempDir dir;
   const auto mesh_path = dir.path / "ball.obj";

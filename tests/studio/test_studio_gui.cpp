@@ -1484,7 +1484,7 @@ TEST_F(StudioGui, MaskPaintingAndFillWithPressureSaveReopenAndExportAsAdaptexPai
 // picks the composited base colour and roughness of an unpainted point (white, 0.5) into the brush;
 // Save preset writes them; a broken preset is one error line and Load preset of a good one applies it.
 TEST_F(StudioGui, EyedropperPicksTheChannelsAndPresetsSaveAndLoadTheBrush) {
-  const BallSession b(dir.path, *x, {});
+  const BallSession b(dir.path, *x, {"ADAPTEX_STUDIO_DIALOG=builtin"});
   const fs::path preset = dir.path / "brush.json";
   const pid_t app = b.start();
   ASSERT_GT(app, 0) << slurp(b.log);
@@ -1521,5 +1521,18 @@ TEST_F(StudioGui, EyedropperPicksTheChannelsAndPresetsSaveAndLoadTheBrush) {
   for (int attempt = 0; attempt < 3 && read_json(preset)["brush"].size() < 3; ++attempt)
     if (click_widget(*x, b.log, "Save preset")) wait_for([&] { return read_json(preset)["brush"].size() >= 3; }, 20s);
   EXPECT_EQ(read_json(preset)["brush"]["opacity"], 0.25) << slurp(b.log);
+  // Open preset... chooses the file in a dialog (the in-app browser here); the path field follows it.
+  const fs::path soft = dir.path / "soft.json";
+  {
+    std::ofstream(soft) << R"({"format": "adaptex.brush-preset", "version": 1, "brush": {"opacity": 0.6}})";
+  }
+  ASSERT_TRUE(click_widget(*x, b.log, "Open preset"));
+  ASSERT_TRUE(wait_for([&] { return count_in(b.log, "file browser: Load brush preset") == 1; }, 30s)) << slurp(b.log);
+  ASSERT_EQ(xdo(*x, "type --delay 40 '" + soft.string() + "'"), 0);
+  ASSERT_EQ(xdo(*x, "sleep 0.3 " + hold("Return")), 0);
+  ASSERT_TRUE(wait_for([&] { return count_in(b.log, "loaded the brush preset") == 2; }, 20s)) << slurp(b.log);
+  for (int attempt = 0; attempt < 3 && read_json(soft)["brush"].size() < 3; ++attempt)
+    if (click_widget(*x, b.log, "Save preset")) wait_for([&] { return read_json(soft)["brush"].size() >= 3; }, 20s);
+  EXPECT_EQ(read_json(soft)["brush"]["opacity"], 0.6) << slurp(b.log);
   EXPECT_EQ(terminate(app), 0);
 }

@@ -93,4 +93,57 @@ std::vector<RectPlacement> pack_rectangles(const std::vector<Vec2>& sizes,
                                            const RectPackOptions& options,
                                            std::vector<char>* turned = nullptr);
 
+/// One chart for pack_shapes(): its UV triangles, in a frame where every chart has the texel
+/// density it should get (only the ratios between the charts' sizes matter).
+struct ChartShape {
+  std::vector<Vec2> uv;     ///< Vertex positions (finite).
+  std::vector<Face> faces;  ///< Triangles, indices into uv (none: the chart is a point).
+};
+
+/// Placement of one shape: uv' = offset + scale * R(turns * 90°) uv (a rotation, never a mirror).
+struct ShapePlacement {
+  Vec2 offset = Vec2::Zero();  ///< Translation in [0,1]^2 units.
+  double scale = 1.0;          ///< Uniform scale (the common one, or larger for min_side).
+  int turns = 0;               ///< Counter-clockwise quarter turns, 0-3.
+  /// The placed position of \p uv.
+  Vec2 apply(const Vec2& uv) const;
+};
+
+/// Settings of pack_shapes().
+struct ShapePackOptions {
+  /// Smallest gap between the triangles of two charts and to the border of [0,1]^2 (a gutter);
+  /// in [0, 0.25). Default 0.
+  double padding = 0;
+  /// Minimum texel floor: a chart whose bounding box would have a side shorter than this is
+  /// enlarged uniformly to it; as RectPackOptions::min_side, and both it and the gap are halved
+  /// while they alone do not fit. In [0, 0.25). Default 0.
+  double min_side = 0;
+  /// Charts may be turned by quarter turns (4 orientations). Default true.
+  bool may_turn = true;
+  /// Side of the atlas raster in cells; 0 (default) = 2048 (1024 up to 64 charts). In [64, 16384].
+  int resolution = 0;
+  /// Packings tried to find the scale (each one O(cells + resolution * chart widths)). Default 6.
+  int trials = 6;
+  /// Progress ("pack", fraction of the trials) and cancel.
+  ProgressCallback progress;
+};
+
+/// Packs charts by their shapes (horizon packing, Lévy et al. 2002, "Least squares conformal maps",
+/// §5): each chart is rasterized conservatively (every raster cell its closed triangles touch,
+/// held as the lowest and highest cell of every column), dilated by the gap, and dropped into the
+/// atlas from above at the column and quarter turn of the lowest score, its height plus the empty
+/// area it leaves between the atlas' horizon (the top of every column) and its bottom; charts of
+/// the longest side first. Irregular charts thus nest where rectangles would not. All charts share one scale, the largest of
+/// \p trials packings (scale search from the filled height, not a bisection). O(trials · (raster
+/// cells + triangles + resolution · Σ chart widths)).
+/// \pre every index in \p charts[i].faces is in [0, uv.size()), every uv finite
+/// \return C placements: the placed triangles of two charts are at least \p padding apart (so
+/// never overlap), inside [padding, 1 - padding]^2, with the charts' relative sizes except those
+/// raised to min_side
+/// \throw InvalidInputError no charts, an option out of range, a bad index or a non-finite uv,
+/// or they cannot be packed
+/// \throw CancelledError the progress callback returned false
+std::vector<ShapePlacement> pack_shapes(const std::vector<ChartShape>& charts,
+                                        const ShapePackOptions& options);
+
 }  // namespace adaptex

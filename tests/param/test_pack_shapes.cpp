@@ -1,0 +1,242 @@
+// Tests of pack_shapes(): placed triangles of different charts are disjoint and at least the gap
+// apart (checked on the triangles themselves, not on the raster), inside the padded square, at one
+// scale; L-shapes nest (more coverage than their bounding rectangles get); thousands of tiny
+// charts, the minimum side, quarter turns, progress, cancel and bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "adaptex/core/errors.h"
+#include "adaptex/param/pack.h"
+
+namespace adaptex {
+namespace {
+
+using Tri = std::array<Vec2, 3>;
+
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// Separating-axis test over the six edge normals: true if the closed triangles share a point.
+bool triangles_meet(const Tri& a, const Tri& b) {
+  for (const Tri* t : {&a, &b})
+    for (int i = 0; i < 3; ++i) {
+      const Vec2 e = (*t)[(i + 1) % 3] - (*t)[i];
+      const Vec2 nrm(-e.y(), e.x());
+      double a0 = 1e300, a1 = -1e300, b0 = 1e300, b1 = -1e300;
+      for (const Vec2& p : a) a0 = std::min(a0, nrm.dot(p)), a1 = std::max(a1, nrm.dot(p));
+      for (const Vec2& p : b) b0 = std::min(b0, nrm.dot(p)), b1 = std::max(b1, nrm.dot(p));
+      if (nrm.squaredNorm() > 0 && (a1 < b0 || b1 < a0)) return false;
+    }
+  return true;
+}
+
+double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (p - (a + t * d)).norm();
+}
+
+/// Distance between two disjoint triangles: the least distance between their edges.
+double triangle_distance(const Tri& a, const Tri& b) {
+  double d = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      d = std::min(d, point_segment(a[i], b[j], b[(j + 1) % 3]));
+      d = std::min(d, point_segment(b[j], a[i], a[(i + 1) % 3]));
+    }
+  return d;
+}
+
+/// Asserts every placed vertex lies in [gap, 1 - gap]² and that triangles of different charts do
+/// not meet and are at least \p gap apart (broad phase: a grid of buckets). Returns the area the
+/// placed triangles cover.
+double check_shapes(const std::vector<ChartShape>& charts, const std::vector<ShapePlacement>& pl,
+                    double gap) {
+  EXPECT_EQ(pl.size(), charts.size());
+  std::vector<Tri> tris;
+  std::vector<int> owner;
+  double covered = 0;
+  for (size_t c = 0; c < charts.size(); ++c) {
+    EXPECT_GE(pl[c].turns, 0);
+    EXPECT_LE(pl[c].turns, 3);
+    for (const Vec2& p : charts[c].uv) {
+      const Vec2 q = pl[c].apply(p);
+      EXPECT_GE(q.minCoeff(), gap - 1e-12) << c;
+      EXPECT_LE(q.maxCoeff(), 1 - gap + 1e-12) << c;
+    }
+    for (const Face& f : charts[c].faces) {
+      const Tri t{pl[c].apply(charts[c].uv[f[0]]), pl[c].apply(charts[c].uv[f[1]]),
+                  pl[c].apply(charts[c].uv[f[2]])};
+      covered += 0.5 * std::abs(cross(t[1] - t[0], t[2] - t[0]));
+      tris.push_back(t);
+      owner.push_back(static_cast<int>(c));
+    }
+  }
+  const int cells = 128;
+  std::unordered_map<long, std::vector<int>> bucket;
+  const auto key = [&](int i, int j) { return static_cast<long>(i) * 1000003L + j; };
+  for (size_t t = 0; t < tris.size(); ++t) {
+    Vec2 lo = tris[t][0].cwiseMin(tris[t][1]).cwiseMin(tris[t][2]) - Vec2::Constant(gap);
+    Vec2 hi = tris[t][0].cwiseMax(tris[t][1]).cwiseMax(tris[t][2]) + Vec2::Constant(gap);
+    for (int i = static_cast<int>(std::floor(lo.x() * cells)); i <= static_cast<int>(hi.x() * cells); ++i)
+      for (int j = static_cast<int>(std::floor(lo.y() * cells)); j <= static_cast<int>(hi.y() * cells); ++j)
+        bucket[key(i, j)].push_back(static_cast<int>(t));
+  }
+  long meeting = 0, close = 0;
+  for (const auto& [k, list] : bucket)
+    for (size_t a = 0; a < list.size(); ++a)
+      for (size_t b = a + 1; b < list.size(); ++b) {
+        const int s = list[a], t = list[b];
+        if (owner[s] == owner[t]) continue;
+        if (triangles_meet(tris[s], tris[t])) ++meeting;
+        else if (gap > 0 && triangle_distance(tris[s], tris[t]) < gap * (1 - 1e-9)) ++close;
+      }
+  EXPECT_EQ(meeting, 0);
+  EXPECT_EQ(close, 0);
+  return covered;
+}
+
+/// A chart of unit squares (two triangles each) at the given integer cells, times \p size.
+ChartShape squares(const std::vector<std::pair<int, int>>& cells, double size) {
+  ChartShape c;
+  for (const auto& [i, j] : cells) {
+    const int v = static_cast<int>(c.uv.size());
+    for (const auto& [di, dj] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}})
+      c.uv.push_back(size * Vec2(i + di, j + dj));
+    c.faces.push_back({v, v + 1, v + 2});
+    c.faces.push_back({v, v + 2, v + 3});
+  }
+  return c;
+}
+
+/// A star-shaped random polygon fanned from its centre, of radius about \p r, irregular.
+ChartShape random_blob(std::mt19937& rng, double r) {
+  std::uniform_real_distribution<double> u(0.3, 1.0);
+  ChartShape c;
+  c.uv.push_back(Vec2(0.1 * r, -0.2 * r));
+  const int k = 3 + static_cast<int>(rng() % 9);
+  for (int i = 0; i < k; ++i) {
+    const double a = 2 * M_PI * (i + 0.5 * u(rng)) / k;
+    c.uv.push_back(r * u(rng) * Vec2(std::cos(a), std::sin(a)) + c.uv[0]);
+  }
+  for (int i = 0; i < k; ++i) c.faces.push_back({0, 1 + i, 1 + (i + 1) % k});
+  return c;
+}
+
+TEST(PackShapes, IrregularChartsAreDisjointPaddedAndAtOneScale) {
+  std::mt19937 rng(7);
+  std::vector<ChartShape> charts;
+  for (int i = 0; i < 300; ++i) charts.push_back(random_blob(rng, std::pow(10.0, -2.0 * (i % 37) / 37.0)));
+  for (int i = 0; i < 40; ++i) charts.push_back(squares({{0, 0}, {1, 0}, {2, 0}, {0, 1}}, 0.3));  // L
+  for (double gap : {0.0, 1.0 / 512}) {
+    SCOPED_TRACE(gap);
+    ShapePackOptions o;
+    o.padding = gap;
+    const std::vector<ShapePlacement> pl = pack_shapes(charts, o);
+    const double covered = check_shapes(charts, pl, gap);
+    EXPECT_GT(covered, 0.4);
+    for (const ShapePlacement& p : pl) EXPECT_DOUBLE_EQ(p.scale, pl[0].scale);  // no min_side
+  }
+}
+
+TEST(PackShapes, LShapesNestTighterThanTheirRectangles) {
+  // L-trominoes fill 3/4 of their bounding box: rectangles cannot cover more than that, turned L's
+  // that interlock can.
+  std::vector<ChartShape> charts(400, squares({{0, 0}, {1, 0}, {0, 1}}, 1.0));
+  const std::vector<ShapePlacement> pl = pack_shapes(charts, {});
+  const double shapes = check_shapes(charts, pl, 0.0);
+  std::vector<Vec2> sizes(charts.size(), Vec2(2, 2));
+  RectPackOptions ro;
+  ro.may_turn = true;
+  double rects = 0;
+  for (const RectPlacement& r : pack_rectangles(sizes, ro)) rects += 0.75 * r.size.prod();
+  EXPECT_GT(shapes, rects + 0.05) << shapes << " against " << rects;
+  std::printf("L-trominoes: shapes cover %.3f, rectangles %.3f\n", shapes, rects);
+  int turned = 0;
+  for (const ShapePlacement& p : pl) turned += p.turns != 0;
+  EXPECT_GT(turned, 0);
+}
+
+TEST(PackShapes, ThousandsOfTinyChartsAndAFewLargeOnes) {
+  std::mt19937 rng(3);
+  std::vector<ChartShape> charts;
+  for (int i = 0; i < 5; ++i) charts.push_back(random_blob(rng, 1.0));
+  for (int i = 0; i < 4000; ++i) charts.push_back(random_blob(rng, 1e-3 * (1 + i % 5)));
+  ShapePackOptions o;
+  o.padding = 1.0 / 2048;
+  o.min_side = 2.0 / 2048;
+  const std::vector<ShapePlacement> pl = pack_shapes(charts, o);
+  check_shapes(charts, pl, o.padding);
+  for (size_t c = 0; c < charts.size(); ++c) {  // the minimum texel floor
+    Vec2 lo = Vec2::Constant(1e300), hi = -lo;
+    for (const Vec2& p : charts[c].uv) lo = lo.cwiseMin(pl[c].apply(p)), hi = hi.cwiseMax(pl[c].apply(p));
+    EXPECT_GE((hi - lo).minCoeff(), o.min_side * (1 - 1e-9)) << c;
+  }
+}
+
+TEST(PackShapes, GapsThatDoNotFitAreHalved) {
+  std::vector<ChartShape> charts(1000, squares({{0, 0}}, 1.0));
+  ShapePackOptions o;
+  o.padding = 0.08;  // 1000 gaps of 0.08 cannot fit in the square
+  check_shapes(charts, pack_shapes(charts, o), 0.0);
+}
+
+TEST(PackShapes, WithoutTurningNoChartIsTurned) {
+  std::mt19937 rng(11);
+  std::vector<ChartShape> charts;
+  for (int i = 0; i < 200; ++i) charts.push_back(random_blob(rng, 0.5 + (i % 4)));
+  ShapePackOptions o;
+  o.may_turn = false;
+  o.padding = 0.004;
+  const std::vector<ShapePlacement> pl = pack_shapes(charts, o);
+  check_shapes(charts, pl, o.padding);
+  for (const ShapePlacement& p : pl) EXPECT_EQ(p.turns, 0);
+}
+
+TEST(PackShapes, ReportsProgressAndCancels) {
+  std::vector<ChartShape> charts(500, squares({{0, 0}, {1, 0}}, 1.0));
+  ShapePackOptions o;
+  int calls = 0;
+  o.progress = [&](std::string_view phase, double f) {
+    EXPECT_EQ(phase, "pack");
+    EXPECT_GE(f, 0.0);
+    EXPECT_LE(f, 1.0);
+    return ++calls < 2;
+  };
+  EXPECT_THROW(pack_shapes(charts, o), CancelledError);
+  EXPECT_EQ(calls, 2);
+}
+
+TEST(PackShapes, BadInputIsRejected) {
+  ShapePackOptions o;
+  EXPECT_THROW(pack_shapes({}, o), InvalidInputError);
+  ChartShape bad_index = squares({{0, 0}}, 1.0);
+  bad_index.faces[0][2] = 7;
+  EXPECT_THROW(pack_shapes({bad_index}, o), InvalidInputError);
+  ChartShape nan = squares({{0, 0}}, 1.0);
+  nan.uv[1].x() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(pack_shapes({nan}, o), InvalidInputError);
+  o.padding = 0.25;
+  EXPECT_THROW(pack_shapes({squares({{0, 0}}, 1.0)}, o), InvalidInputError);
+  o.padding = 0;
+  o.resolution = 10;
+  EXPECT_THROW(pack_shapes({squares({{0, 0}}, 1.0)}, o), InvalidInputError);
+  // A chart without triangles (a point) and one of a single degenerate triangle still pack.
+  ChartShape point;
+  point.uv.push_back(Vec2(3, 4));
+  ChartShape flat;
+  flat.uv = {Vec2(0, 0), Vec2(1, 0), Vec2(2, 0)};
+  flat.faces = {{0, 1, 2}};
+  const std::vector<ChartShape> odd{point, flat, squares({{0, 0}}, 1.0)};
+  check_shapes(odd, pack_shapes(odd, ShapePackOptions{}), 0.0);
+}
+
+}  // namespace
+}  // namespace adaptex
