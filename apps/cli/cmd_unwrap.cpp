@@ -29,6 +29,7 @@ struct UnwrapArgs {
   bool repair = false;
   int layout_size = 1024;
   int max_augmentations = UnwrapOptions{}.max_augmentations;
+  double augment_time_budget = UnwrapOptions{}.augment_time_budget;
   int yoshizawa_iterations = UnwrapOptions{}.yoshizawa_max_iterations;
   bool mean_value = false;
   std::string charts = enum_name(UnwrapOptions{}.charts);
@@ -52,6 +53,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
   // Unwrap, with one progress line per phase (not per chart or per iteration).
   UnwrapOptions opt;
   opt.max_augmentations = a.max_augmentations;
+  opt.augment_time_budget = a.augment_time_budget;
   opt.yoshizawa_max_iterations = a.yoshizawa_iterations;
   if (a.mean_value) opt.weights = EmbeddingWeights::MeanValue;
   opt.charts = parse_enum<ChartMode>(a.charts, "chart mode");
@@ -139,6 +141,11 @@ void add_unwrap_command(CLI::App& app, Context& ctx) {
   sub->add_option("--max-augmentations", args->max_augmentations,
                   "Cut augmentations per chart (0 = off)")
       ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  sub->add_option("--augment-time-budget", args->augment_time_budget,
+                  "Wall seconds from the start after which no new cut augmentation starts (a bound "
+                  "for slow machines; the deterministic face budget decides below it)")
+      ->check(CLI::Range(0.0, 1e9))
       ->capture_default_str();
   sub->add_option("--yoshizawa-iterations", args->yoshizawa_iterations,
                   "Yoshizawa stretch-minimization iterations (0 = Floater only)")

@@ -4,9 +4,9 @@
 // today's single-channel each-stroke cycle of a version 1 session (adapt/session.h).
 //
 // The history: the first K strokes of bench/common/session_history.h (`mixed`, seed 1) on the mesh.
-//   BM_SessionCycle/K/W        PaintSession (each-stroke, v1): K − 1 strokes painted without adaptation
-//                              (untimed), then stroke K and one reparameterize() (timed), as
-//                              adaptex_bench_session's rows.
+//   BM_SessionCycle/K/W        PaintSession (each-stroke, v1, density-flow, its surface cache on as by
+//                              default): K − 1 strokes and two cycles (untimed), then stroke K and its
+//                              cycle (timed, the gain gate off): today's single-channel cycle.
 //   BM_MaterialCycle/C/K/W     adapt_material() on the K strokes as one layer of a version 2 file,
 //                              painting C channels (1: base colour = material_from_v1(); 4: also
 //                              roughness, metallic and height, values varying per stroke): paint every
@@ -14,8 +14,10 @@
 //                              warp, paint again on the new layout, the never-worse check.
 //   BM_MaterialPaint/C/K/W     paint_material() alone (the part of BM_MaterialCycle that runs twice).
 //   BM_MaterialDensity/C/K/W   the material's summed error model alone (part of BM_MaterialCycle).
-//   BM_MaterialSessionCycle/C/K/W  MaterialPaintSession (adapt/material_session.h), each-stroke: stroke K
-//                              and one cycle, the gain gate off (see the function).
+//   BM_MaterialSessionCycle/C/K/W/S/V  MaterialPaintSession (adapt/material_session.h), each-stroke: stroke K
+//                              and one cycle, the gain gate off (see the function); S = 2 × the surface
+//                              cache's samples per texel (0: off, every candidate replays the history),
+//                              V = the coverage from which it is used (default 4; 0: from the start).
 //
 // Mesh: ADAPTEX_BENCH_MESH (a stem of ADAPTEX_SHARED_DIR/meshes or a path; default spot), unwrapped
 // with the defaults; when absent, a message and the code-built fallback (a 20k-face curved height
@@ -23,10 +25,19 @@
 // quote the median of the repetitions.
 //   adaptex_bench_material --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // The comparison: --benchmark_filter='SessionCycle' (the version 1 cycle and the material session's).
+// Counters: the phases (ms), cache = surface cache samples, session_MB = heap in use by the session
+// after its setup (glibc mallinfo2), cpu_ms = the timed part's process CPU time; with the surface cache:
+// psnr_db = the held textures (base colour, metallic-roughness; the lower) against exact replay on the
+// held layout, loss_db = their error on the surface (evaluate_material_textures(), 200k samples)
+// over exact replay's, in dB (untimed).
 #include <benchmark/benchmark.h>
 
+#include <malloc.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -40,6 +51,7 @@
 #include "adaptex/adapt/material_session.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/allocator.h"
+#include "adaptex/paint/material_eval.h"
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/texel_map.h"
 #include "adaptex/param/unwrap.h"
@@ -107,6 +119,26 @@ MaterialStrokeFile material_history(const StrokeFile& history, int k, int channe
   return file;
 }
 
+/// Heap bytes in use (glibc: small blocks and mmapped ones).
+double heap_in_use() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd);
+}
+
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
+/// PSNR of \p a against \p b over RGB, every texel (padding and background included).
+double texture_psnr(const ImageRGBA8& a, const ImageRGBA8& b) {
+  double s = 0;
+  for (size_t k = 0; k < a.data.size(); ++k)
+    if (k % 4 != 3) s += (a.data[k] - b.data[k]) * (a.data[k] - b.data[k]) / (255.0 * 255.0);
+  return 10 * std::log10(0.75 * a.data.size() / std::max(s, 1e-30));
+}
+
 void set_counters(benchmark::State& state, const Scene& sc, const std::map<std::string, double>& acc, int iters) {
   for (const auto& [k, v] : acc) state.counters[k] = v / std::max(1, iters);
   state.counters["faces"] = sc.mesh.num_faces();
@@ -122,17 +154,23 @@ void BM_SessionCycle(benchmark::State& state) {
     PaintSessionOptions o;
     o.texture_size = W;
     o.schedule = ReparamSchedule::EachStroke;
-    o.adapt.mode = AdaptMode::None;  // paint only; reparameterize() uses the default method
+    o.min_gain_db = 0;  // every cycle computes
+    const double heap0 = heap_in_use();
     PaintSession session(sc.mesh, sc.param, o, sc.history.background);
-    for (int i = 0; i + 1 < k; ++i) session.add_stroke(sc.history.strokes[i]);
+    session.add_strokes({sc.history.strokes.begin(), sc.history.strokes.begin() + (k - 1)});  // and one cycle
+    session.reparameterize();  // as the material session's setup: a held layout after two cycles
+    acc["session_MB"] += (heap_in_use() - heap0) / 1e6;
+    const double c0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     session.add_stroke(sc.history.strokes[k - 1]);
-    const AdaptReport& r = session.reparameterize();
     state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    acc["cpu_ms"] += 1e3 * (cpu_seconds() - c0);
+    const AdaptReport& r = session.reports().back();
     acc["density_ms"] += 1e3 * r.time_density;
     acc["flow_ms"] += 1e3 * (r.time_flow + r.time_polish);
     acc["texture_ms"] += 1e3 * r.time_texture_update;
     acc["safeguard_ms"] += 1e3 * r.time_safeguard;
+    acc["cache"] += static_cast<double>(session.surface_cache_samples());
     ++iters;
   }
   set_counters(state, sc, acc, iters);
@@ -164,6 +202,7 @@ void BM_MaterialCycle(benchmark::State& state) {
 /// starts from and two cycles on them (untimed: they build the caches, and leave the session as at
 /// stroke K of an each-stroke session, with a held and a spare layout), then stroke K added (timed):
 /// the stroke into the caches and one full cycle (the gain gate off, so every timed cycle computes).
+/// The surface cache is used from the coverage its options say (as the version 1 session's).
 void BM_MaterialSessionCycle(benchmark::State& state) {
   const int channels = static_cast<int>(state.range(0)), k = static_cast<int>(state.range(1));
   const Scene& sc = scene(k);
@@ -173,15 +212,34 @@ void BM_MaterialSessionCycle(benchmark::State& state) {
   MaterialSessionOptions o;
   o.paint.size = static_cast<int>(state.range(2));
   o.min_gain_db = 0;
+  o.surface_cache = 0.5 * static_cast<double>(state.range(3));
+  o.surface_cache_coverage = static_cast<double>(state.range(4));
   std::map<std::string, double> acc;
   int iters = 0;
   for (auto _ : state) {
+    const double heap0 = heap_in_use();
     MaterialPaintSession session(sc.mesh, sc.param, start, o);
     session.reparameterize();  // builds the caches
     session.reparameterize();  // as at stroke K of a session: a held layout and a spare one
+    acc["session_MB"] += (heap_in_use() - heap0) / 1e6;
+    const double c0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     session.add_stroke(0, file.layers[0].strokes.back());
     state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    acc["cpu_ms"] += 1e3 * (cpu_seconds() - c0);
+    acc["cache"] += static_cast<double>(session.surface_cache_samples());
+    if (session.held_from_cache()) {  // the cached textures against exact replay on the held layout
+      const MaterialTextures exact = paint_material(session.mesh(), session.param(), session.history(), o.paint);
+      acc["psnr_db"] += std::min(texture_psnr(session.textures().base_color, exact.base_color),
+                                 texture_psnr(session.textures().metallic_roughness, exact.metallic_roughness));
+      // What the check measures (every channel, the height through its normal), cached over exact.
+      MaterialEvalOptions eo;
+      eo.data_weight = o.data_weight;
+      const double e_cached =
+          evaluate_material_textures(session.mesh(), session.param(), session.textures(), session.history(), eo).weighted;
+      const double e_exact = evaluate_material_textures(session.mesh(), session.param(), exact, session.history(), eo).weighted;
+      acc["loss_db"] += 10 * std::log10(e_cached / e_exact);
+    }
     const AdaptReport& r = session.reports().back();
     acc["density_ms"] += 1e3 * r.time_density;
     acc["flow_ms"] += 1e3 * (r.time_flow + r.time_polish);
@@ -234,12 +292,21 @@ void BM_MaterialDensity(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(BM_SessionCycle)->Args({40, 1024})->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SessionCycle)->Args({40, 1024})->Args({200, 1024})->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
 void material_args(benchmark::internal::Benchmark* b) {
   b->Args({1, 40, 1024})->Args({4, 40, 1024})->UseManualTime()->Iterations(1)->Unit(benchmark::kMillisecond);
 }
 BENCHMARK(BM_MaterialCycle)->Apply(material_args);
-BENCHMARK(BM_MaterialSessionCycle)->Apply(material_args);
+BENCHMARK(BM_MaterialSessionCycle)
+    ->Args({1, 40, 1024, 3, 4})
+    ->Args({4, 40, 1024, 3, 4})
+    ->Args({4, 40, 1024, 3, 0})
+    ->Args({4, 200, 1024, 3, 4})
+    ->Args({4, 200, 1024, 2, 4})
+    ->Args({4, 200, 1024, 0, 4})
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MaterialPaint)->Apply(material_args);
 BENCHMARK(BM_MaterialDensity)->Apply(material_args);
 

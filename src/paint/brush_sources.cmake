@@ -12,6 +12,7 @@ target_sources(adaptex_paint PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/texel_saving.cpp
   ${CMAKE_CURRENT_LIST_DIR}/asset_eval.cpp       # surface PSNR of shrunk assets, box downsizing
   ${CMAKE_CURRENT_LIST_DIR}/point_transfer.cpp   # sample points carried to a refined mesh
+  ${CMAKE_CURRENT_LIST_DIR}/surface_lattice.cpp    # the surface caches' per-face sample lattice
   ${CMAKE_CURRENT_LIST_DIR}/surface_cache.cpp)
 # The stroke file version 2 (layered materials) and its exact evaluation at surface points.
 target_sources(adaptex_paint PRIVATE
@@ -20,4 +21,5 @@ target_sources(adaptex_paint PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/material_generate.cpp
   ${CMAKE_CURRENT_LIST_DIR}/material_paint.cpp
   ${CMAKE_CURRENT_LIST_DIR}/material_eval.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/material_point_cache.cpp)  # incremental per-layer state at fixed points
+  ${CMAKE_CURRENT_LIST_DIR}/material_point_cache.cpp    # incremental per-layer state at fixed points
+  ${CMAKE_CURRENT_LIST_DIR}/material_surface_cache.cpp)  # ... at the surface lattice's samples

@@ -218,6 +218,11 @@ void MaterialPointCache::update(const MaterialStrokeFile& file) {
 }
 
 const std::vector<MaterialValue>& MaterialPointCache::values(const MaterialStrokeFile& file) {
+  return values(file, nullptr);
+}
+
+const std::vector<MaterialValue>& MaterialPointCache::values(const MaterialStrokeFile& file,
+                                                             const std::function<void(size_t, const MaterialValue&)>& changed) {
   Impl& m = *impl_;
   std::vector<double> look = Impl::look_of(file);
   if (look != m.look || m.layers.size() > file.layers.size()) m.all_dirty = true;
@@ -242,6 +247,7 @@ const std::vector<MaterialValue>& MaterialPointCache::values(const MaterialStrok
       const double mask = layer.mask ? (lc.mask.empty() ? layer.mask->value : double(lc.mask[k])) : 1.0;
       blend_layer(layer, L, a, mask, R);
     }
+    if (changed) changed(k, R);
   });
   m.all_dirty = m.any_dirty = false;
   return m.composite;

@@ -223,7 +223,8 @@ namespace {
 /// Calls \p found(f, g) (f < g, from several threads) for every pair of UV triangles whose interiors
 /// overlap, until it returns false; see count_overlapping_triangles().
 template <class Found>
-void for_overlapping_pairs(const Parameterization& param, Found&& found) {
+void for_overlapping_pairs(const Parameterization& param, Found&& found,
+                           const std::vector<char>* among = nullptr) {
   const int nf = static_cast<int>(param.uv_faces.size());
   if (nf < 2) return;
   struct Tri {
@@ -238,7 +239,7 @@ void for_overlapping_pairs(const Parameterization& param, Found&& found) {
     for (int k = 0; k < 3; ++k) t.p[k] = param.uv[param.uv_faces[f][k]];
     t.lo = t.p[0].cwiseMin(t.p[1]).cwiseMin(t.p[2]);
     t.hi = t.p[0].cwiseMax(t.p[1]).cwiseMax(t.p[2]);
-    t.sign = orient(t.p[0], t.p[1], t.p[2]);
+    t.sign = among && !(*among)[f] ? 0 : orient(t.p[0], t.p[1], t.p[2]);  // 0: not bucketed
     lo = lo.cwiseMin(t.lo);
     hi = hi.cwiseMax(t.hi);
   }
@@ -305,6 +306,36 @@ std::vector<std::array<int, 2>> overlapping_triangle_pairs(const Parameterizatio
   });
   std::sort(pairs.begin(), pairs.end());
   return pairs;
+}
+
+std::vector<int> invalid_uv_faces(const Parameterization& param, const std::vector<char>* overlaps_among,
+                                  long max_pairs) {
+  const int nf = static_cast<int>(param.uv_faces.size());
+  std::vector<double> a2(nf);
+  double sum_abs = 0;
+  for (int f = 0; f < nf; ++f) {
+    const Face& t = param.uv_faces[f];
+    a2[f] = 0.5 * signed_area2(param.uv[t[0]], param.uv[t[1]], param.uv[t[2]]);
+    sum_abs += std::abs(a2[f]);
+  }
+  const double mean_abs = nf > 0 ? sum_abs / nf : 0.0;
+  std::vector<int> bad;
+  for (int f = 0; f < nf; ++f)
+    if (is_degenerate(a2[f], mean_abs) || a2[f] < 0) bad.push_back(f);
+  std::mutex m;
+  long pairs = 0;
+  for_overlapping_pairs(
+      param,
+      [&](int f, int g) {
+        const std::lock_guard<std::mutex> lock(m);
+        bad.push_back(f);
+        bad.push_back(g);
+        return ++pairs < max_pairs;
+      },
+      overlaps_among);
+  std::sort(bad.begin(), bad.end());
+  bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+  return bad;
 }
 
 double texel_utilization(const Parameterization& param, int res) {

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <exception>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -494,6 +495,13 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   chart.domain_area = uv_domain_area(chart.state);
   use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial),
                               options.scan_layout_fill_exponent);
+  // Still flipped or degenerate UV triangles (no augmentation allowed or none helped): a valid
+  // layout of the other kinds, whatever its share (unwrap_pieces() splits the piece otherwise).
+  if (ctx.layouts != PieceLayouts::Free && score(chart.state).bad > 0) {
+    CutState same;  // the free-boundary layout of the chart's own disk
+    same.cut = chart.state.cut, same.disk = chart.state.disk;
+    use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same), 1.0);
+  }
   chart.cut_length = cut_length(graph, chart.state.cut);
   return chart;
 }
@@ -720,6 +728,18 @@ void parallel_keep_first_error(int n, std::mutex& mutex, std::atomic<bool>& fail
   if (first_error) std::rethrow_exception(first_error);
 }
 
+/// out[i] filled by \p fill(i, out[i]) for i in [0, n), in parallel (TBB); the first exception
+/// is rethrown once every call has returned. The order of out does not depend on the threads.
+template <class Fill>
+std::vector<std::vector<Component>> parallel_pieces(size_t n, Fill fill) {
+  std::vector<std::vector<Component>> out(n);
+  std::mutex mutex;
+  std::atomic<bool> failed{false};
+  parallel_keep_first_error(static_cast<int>(n), mutex, failed,
+                            [&](int i) { fill(static_cast<size_t>(i), out[i]); });
+  return out;
+}
+
 /// The chart of every piece (build_chart()), phase times added to \p rep. The charts share the
 /// augmentation face budget in piece order; when even the largest use of every chart
 /// ((1 + max_augmentations) cheap evaluations) fits in it, the budget cannot run out, the charts do
@@ -786,6 +806,71 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
   return charts;
 }
 
+/// Splits \p piece into \p k charts (segment_charts()) appended to \p out; returns how many.
+size_t split_piece(const Component& piece, int k, const UnwrapOptions& options,
+                   std::vector<Component>& out) {
+  ChartSegmentOptions so;
+  so.num_charts = k;
+  so.normal_weight = options.chart_normal_weight;
+  const size_t before = out.size();
+  append_pieces(piece, ChartSegmenter(piece.mesh).segment(so), out);
+  return out.size() - before;
+}
+
+/// invalid_uv_faces() of the packed layout of \p charts. Overlaps are looked for only in the charts
+/// of a fixed aspect (free-boundary, projected, unfolded layouts): a disk parameterization maps its
+/// boundary onto a convex curve, so with no flipped or degenerate triangle it is a bijection onto
+/// its rectangle, and the packed rectangles are disjoint (packed by their shapes, the triangles
+/// of two charts are disjoint: pack_shapes()).
+std::vector<int> invalid_layout_faces(const Parameterization& param, const std::vector<Chart>& charts) {
+  std::vector<char> free(param.uv_faces.size(), 0);
+  for (size_t f = 0; f < free.size(); ++f) free[f] = charts[param.face_chart[f]].aspect > 0;
+  return invalid_uv_faces(param, &free);
+}
+
+/// Rounds of splitting invalid charts in unwrap_pieces() before it gives up (each round halves
+/// them; pieces of at most kFaceSplitFaces faces are split into single faces).
+constexpr int kMaxValidityRounds = 24, kFaceSplitFaces = 8;
+
+/// Replaces every piece \p bad marks (its chart's UV triangles are flipped, degenerate or overlap)
+/// by its two halves (split_piece()), or by its single faces when it has at most kFaceSplitFaces
+/// faces or does not split, and builds their charts: \p pieces and \p charts stay parallel.
+/// \throw SolverError a marked piece of one face (a triangle's own layout is valid; nothing left)
+void split_invalid_charts(std::vector<Component>& pieces, std::vector<Chart>& charts,
+                          const std::vector<char>& bad, const DiskParamOptions& dopt,
+                          Clock::time_point t_start, const UnwrapOptions& options,
+                          UnwrapReport& rep, PieceLayouts layouts) {
+  std::vector<Component> kept, halves;
+  std::vector<Chart> kept_charts;
+  for (size_t c = 0; c < pieces.size(); ++c) {
+    if (!bad[c]) {
+      kept.push_back(std::move(pieces[c]));
+      kept_charts.push_back(std::move(charts[c]));
+      continue;
+    }
+    const Component& p = pieces[c];
+    const int nf = p.mesh.num_faces();
+    if (nf < 2)
+      throw SolverError("unwrap: no valid layout found for a face of the mesh (its UV triangle is "
+                        "flipped, degenerate or overlaps)");
+    if (nf > kFaceSplitFaces) {
+      const size_t n = split_piece(p, 2, options, halves);
+      if (n >= 2) continue;
+      halves.resize(halves.size() - n);
+    }
+    std::vector<int> single(nf);
+    std::iota(single.begin(), single.end(), 0);
+    append_pieces(p, single, halves);
+  }
+  std::vector<Chart> built = build_charts(halves, dopt, t_start, options, rep, layouts);
+  for (size_t i = 0; i < halves.size(); ++i) {
+    kept.push_back(std::move(halves[i]));
+    kept_charts.push_back(std::move(built[i]));
+  }
+  pieces = std::move(kept);
+  charts = std::move(kept_charts);
+}
+
 /// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
 /// \p unfold and \p on_last_started as in build_charts(); \p give_up_l2 as
 /// ChartContext::give_up_l2; \p shapes as in assemble(). Returns false, and
@@ -795,16 +880,29 @@ bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
                    const UnwrapOptions& options, UnwrapResult& result, PieceLayouts layouts,
                    double give_up_l2 = 0, const std::function<void()>& on_last_started = {},
                    bool shapes = false) {
-  const std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report,
-                                                 layouts, give_up_l2, on_last_started);
+  std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report, layouts,
+                                           give_up_l2, on_last_started);
   for (const Chart& c : charts)
     if (c.abandoned) return false;
-  const auto t0 = Clock::now();
-  report_progress(options.progress, "pack", 0.0);
-  assemble(mesh, pieces, charts, padding, options, result, shapes);
-  report_progress(options.progress, "pack", 1.0);
-  result.report.time_pack += seconds_since(t0);
-  return true;
+  std::vector<Component> split;  // the pieces once an invalid chart was split
+  for (int round = 0;; ++round) {
+    const std::vector<Component>& current = round == 0 ? pieces : split;
+    const auto t0 = Clock::now();
+    report_progress(options.progress, "pack", 0.0);
+    assemble(mesh, current, charts, padding, options, result, shapes);
+    report_progress(options.progress, "pack", 1.0);
+    result.report.time_pack += seconds_since(t0);
+    const std::vector<int> bad = invalid_layout_faces(result.param, charts);
+    if (bad.empty()) return true;
+    if (round == kMaxValidityRounds)
+      throw SolverError("unwrap: no valid layout found (" + std::to_string(bad.size()) +
+                        " flipped, degenerate or overlapping UV triangles remain)");
+    std::vector<char> bad_chart(current.size(), 0);
+    for (int f : bad) bad_chart[result.param.face_chart[f]] = 1;
+    std::vector<Component> next = round == 0 ? pieces : std::move(split);
+    split_invalid_charts(next, charts, bad_chart, dopt, t_start, options, result.report, layouts);
+    split = std::move(next);
+  }
 }
 
 /// Cheap figures of one piece for the scan segmentation: degenerate + flipped UV triangles and the
@@ -882,17 +980,6 @@ std::vector<PieceProbe> probe_pieces(const std::vector<Component>& pieces,
   return probes;
 }
 
-/// Splits \p piece into \p k charts (segment_charts()) appended to \p out; returns how many.
-size_t split_piece(const Component& piece, int k, const UnwrapOptions& options,
-                   std::vector<Component>& out) {
-  ChartSegmentOptions so;
-  so.num_charts = k;
-  so.normal_weight = options.chart_normal_weight;
-  const size_t before = out.size();
-  append_pieces(piece, ChartSegmenter(piece.mesh).segment(so), out);
-  return out.size() - before;
-}
-
 /// Whether splitting a piece in two pays in effective texel share (coverage / L2²), from its probe:
 /// the layout's L2² (the area-weighted mean of the pieces' L2², assemble()) drops by about
 /// a (λ² − λ) for a piece of area fraction a and L2 λ (its halves assumed at √λ); the coverage
@@ -913,21 +1000,21 @@ bool split_pays(const PieceProbe& probe, double area_fraction, double gap, doubl
 std::vector<Component> planar_pieces(const std::vector<Component>& comps, const UnwrapOptions& options) {
   double total_area = 0;
   for (const Component& c : comps) total_area += c.area;
+  const std::vector<std::vector<Component>> parts =
+      parallel_pieces(comps.size(), [&](size_t i, std::vector<Component>& out) {
+        const Component& c = comps[i];
+        if (c.mesh.num_faces() < 2 || !(c.area > 0)) return;
+        PlanarChartOptions po;
+        po.max_normal_angle = options.scan_planar_angle;
+        po.min_area_fraction = std::min(1.0, options.scan_planar_min_area * total_area / c.area);
+        const PlanarCharts pc = planar_charts(c.mesh, po);
+        if (pc.num_charts > 1) append_pieces(c, pc.label, out);
+      });
   std::vector<Component> out;
-  for (const Component& c : comps) {
-    if (c.mesh.num_faces() < 2 || !(c.area > 0)) {
-      out.push_back(c);
-      continue;
-    }
-    PlanarChartOptions po;
-    po.max_normal_angle = options.scan_planar_angle;
-    po.min_area_fraction = std::min(1.0, options.scan_planar_min_area * total_area / c.area);
-    const PlanarCharts pc = planar_charts(c.mesh, po);
-    if (pc.num_charts == 1) {
-      out.push_back(c);
-      continue;
-    }
-    append_pieces(c, pc.label, out);
+  for (size_t i = 0; i < comps.size(); ++i) {
+    if (parts[i].empty()) out.push_back(comps[i]);
+    out.insert(out.end(), std::make_move_iterator(parts[i].begin()),
+               std::make_move_iterator(parts[i].end()));
   }
   return out;
 }
@@ -950,11 +1037,20 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
   std::vector<Component> done, queue, planar;
   const std::vector<Component>& start =
       options.scan_planar_angle > 0 ? (planar = planar_pieces(comps, options)) : comps;
-  for (const Component& c : start) {
+  const std::vector<std::vector<Component>> large =
+      parallel_pieces(start.size(), [&](size_t i, std::vector<Component>& out) {
+        const long long f = start[i].mesh.num_faces();
+        if (f > options.scan_piece_faces)
+          split_piece(start[i],
+                      static_cast<int>((f + options.scan_piece_faces - 1) / options.scan_piece_faces),
+                      options, out);
+      });
+  for (size_t i = 0; i < start.size(); ++i) {
+    const Component& c = start[i];
     const long long f = c.mesh.num_faces();
     if (f > options.scan_piece_faces)
-      split_piece(c, static_cast<int>((f + options.scan_piece_faces - 1) / options.scan_piece_faces),
-                  options, queue);
+      queue.insert(queue.end(), std::make_move_iterator(large[i].begin()),
+                   std::make_move_iterator(large[i].end()));
     else if (f >= min_probe_faces)
       queue.push_back(c);
     else
@@ -965,22 +1061,23 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
     const double frac = static_cast<double>(round) / options.scan_max_rounds;
     report_progress(options.progress, "segment", frac);
     const std::vector<PieceProbe> probes = probe_pieces(queue, dopt, options, frac);
+    // The halves of every piece worth splitting (none: the piece is done), split in parallel.
+    std::vector<std::vector<Component>> halves =
+        parallel_pieces(queue.size(), [&](size_t i, std::vector<Component>& out) {
+          const Component& p = queue[i];
+          const PieceProbe& pr = probes[i];
+          const int faces = p.mesh.num_faces();
+          const bool worth =
+              (pr.bad > 0 && faces >= 2 * kMinSplitFaces) ||
+              (faces >= 2 * min_probe_faces &&
+               split_pays(pr, p.area / std::max(total_area, 1e-300), gap, options.scan_chart_l2));
+          if (worth && split_piece(p, 2, options, out) < 2) out.clear();
+        });
     std::vector<Component> next;
     for (size_t i = 0; i < queue.size(); ++i) {
-      const Component& p = queue[i];
-      const PieceProbe& pr = probes[i];
-      const int faces = p.mesh.num_faces();
-      const bool worth =
-          (pr.bad > 0 && faces >= 2 * kMinSplitFaces) ||
-          (faces >= 2 * min_probe_faces &&
-           split_pays(pr, p.area / std::max(total_area, 1e-300), gap, options.scan_chart_l2));
-      bool split = false;
-      if (worth) {
-        const size_t n = split_piece(p, 2, options, next);
-        split = n >= 2;
-        if (!split) next.resize(next.size() - n);
-      }
-      if (!split) {
+      next.insert(next.end(), std::make_move_iterator(halves[i].begin()),
+                  std::make_move_iterator(halves[i].end()));
+      if (halves[i].empty()) {
         queue[i].probe_lscm = probes[i].lscm;  // build_chart() starts from the same disk
         queue[i].probe_projection = probes[i].projection;
         done.push_back(std::move(queue[i]));

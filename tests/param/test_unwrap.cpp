@@ -63,6 +63,55 @@ TEST(Unwrap, WithoutAugmentationOrYoshizawa) {
   check_unwrap("two components mean value", shapes::two_components(), opt);
 }
 
+/// A 17-face pleat of a depth scan (two of its faces lie folded back over their neighbours), with
+/// the scan's float32 coordinates: with shape-preserving weights its disk parameterization has a
+/// degenerate UV triangle (area ~1e-21) that only the cut augmentation removed.
+TriMesh pleated_fragment() {
+  TriMesh m;
+  m.positions = {{8.41003704071045, -0.12906289100646973, 6.491103172302246},
+                 {8.41003704071045, -0.13002562522888184, 6.545981407165527},
+                 {8.386930465698242, -0.12593388557434082, 6.550073146820068},
+                 {8.41003704071045, -0.12497115135192871, 6.62589168548584},
+                 {8.41003704071045, -0.11389923095703125, 6.6080803871154785},
+                 {8.41003704071045, -0.13002562522888184, 6.586899280548096},
+                 {8.41003704071045, -0.11004805564880371, 6.53009557723999},
+                 {8.41003704071045, -0.11991643905639648, 6.531058311462402},
+                 {8.41003704071045, -0.11101078987121582, 6.5700507164001465},
+                 {8.410999298095703, -0.15096592903137207, 6.513006210327148},
+                 {8.41003704071045, -0.11004805564880371, 6.550073146820068},
+                 {8.410999298095703, -0.16492629051208496, 6.571013450622559},
+                 {8.41003704071045, -0.16805529594421387, 6.648998260498047},
+                 {8.398964881896973, -0.13098835945129395, 6.643943786621094}};
+  m.faces = {{0, 1, 2},  {3, 4, 5},  {6, 7, 1},  {8, 6, 1},  {1, 0, 9},   {10, 6, 8},
+             {11, 12, 3}, {5, 1, 11}, {5, 8, 1},  {1, 9, 11}, {11, 3, 5},  {13, 4, 3},
+             {13, 3, 12}, {10, 2, 1}, {10, 1, 7}, {7, 6, 10}, {2, 10, 8}};
+  return m;
+}
+
+TEST(Unwrap, LayoutIsValidWhateverTheOptions) {
+  // Without augmentation nothing removed the pleat's degenerate UV triangle: the validity
+  // fallback (another layout, or a split of the chart) must, in every mode.
+  const TriMesh mesh = pleated_fragment();
+  for (const ChartMode charts : {ChartMode::Single, ChartMode::Auto})
+    for (const int augmentations : {0, 8})
+      for (const EmbeddingWeights w : {EmbeddingWeights::ShapePreserving, EmbeddingWeights::MeanValue}) {
+        SCOPED_TRACE(std::string(enum_name(charts)) + " augmentations " + std::to_string(augmentations) +
+                     (w == EmbeddingWeights::MeanValue ? " mean-value" : " shape-preserving"));
+        UnwrapOptions opt;
+        opt.charts = charts;
+        opt.max_augmentations = augmentations;
+        opt.weights = w;
+        const UnwrapResult r = unwrap(mesh, opt);
+        const StretchStats s = measure_stretch(mesh, r.param);
+        EXPECT_EQ(s.flipped, 0);
+        EXPECT_EQ(s.degenerate, 0);
+        EXPECT_EQ(count_overlapping_triangles(r.param), 0);
+        EXPECT_TRUE(invalid_uv_faces(r.param).empty());
+        EXPECT_GT(r.report.effective_texel_share, 0.05);
+        for (const Vec2& t : r.param.uv) EXPECT_TRUE(t.x() >= 0 && t.x() <= 1 && t.y() >= 0 && t.y() <= 1);
+      }
+}
+
 TEST(Unwrap, AugmentationLowersStretchOnTheSphere) {
   UnwrapOptions none;
   none.max_augmentations = 0;

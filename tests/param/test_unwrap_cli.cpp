@@ -152,6 +152,14 @@ TEST(UnwrapCli, BadInputExitsWithTwoAndLeavesNoFile) {
   EXPECT_FALSE(std::filesystem::exists(rep));
   // Bad options.
   expect_bad("unwrap " + q(dir.path / "ok.off") + " -o " + q(out) + " --layout-size 2", "layout-size");
+  expect_bad("unwrap " + q(dir.path / "ok.off") + " -o " + q(out) + " --augment-time-budget -1",
+             "augment-time-budget");
+  // The budget is an option of the command: 0 (no augmentation after the start) still unwraps.
+  const auto budget = run_cli("-q unwrap " + q(dir.path / "ok.off") + " -o " + q(out) +
+                              " --augment-time-budget 0");
+  EXPECT_EQ(budget.exit_code, 0) << budget.err;
+  EXPECT_TRUE(std::filesystem::exists(out));
+  std::filesystem::remove(out);
   // --repair keeps the bow-tie usable: two charts.
   const auto ok = run_cli("-q unwrap " + q(dir.path / "bowtie.off") + " --repair -o " + q(out) +
                           " --report " + q(rep));

@@ -9,8 +9,11 @@
 ///   - the exact material, per layer and channel, at the initial layout's chart texels, at the error
 ///     model's reference and N/2 points, and at the never-worse check's samples (MaterialPointCache,
 ///     updated with each stroke only);
-///   - the held adapted layout's texels (a MaterialPointCache built when the layout is adopted: the
-///     history replayed once onto the new layout, then stroke by stroke).
+///   - once the history covers the surface surface_cache_coverage times: the surface cache
+///     (MaterialSurfaceCache, per layer, channel and mask on a lattice finer than the texels),
+///     from which each candidate layout's textures are interpolated, whatever the history's length;
+///   - else the candidate's texels (a MaterialPointCache: the history replayed onto the new layout
+///     once, then stroke by stroke).
 ///
 ///   MaterialPaintSession s(mesh, unwrap(mesh).param, file_with_layers, opts);
 ///   s.add_stroke(layer, stroke);  // paints, then one gated cycle
@@ -38,7 +41,14 @@ struct MaterialSessionOptions {
   std::uint64_t check_seed = 17;     ///< Seed of those samples (default 17, as adapt_material()).
   double check_margin = 0.02;  ///< The adapted layout's error must be < (1 − margin) × the initial's; 0.02.
   double min_gain_db = 0.3;    ///< Skip cycles whose model predicts less gain over the held layout, dB; 0.3.
+  /// Candidate layouts' textures from the surface cache (MaterialSurfaceCache): its samples per
+  /// texel of the initial layout (0: off, every candidate replays the history exactly); 1.5.
+  double surface_cache = 1.5;
+  double surface_cache_coverage = 4;  ///< Covers of the surface by the history from which it is used; 4.
 };
+
+/// Largest surface cache of a material session (samples; ~250 bytes each with three layers).
+inline constexpr long long kMaxMaterialSurfaceCacheSamples = 12'000'000;
 
 class MaterialPaintSession {
  public:
@@ -72,6 +82,10 @@ class MaterialPaintSession {
   /// of the held textures, and of the initial layout's with the same history, on the same samples.
   MaterialError held_error();
   MaterialError initial_error();
+  /// Samples of the surface cache (0: not built: off, too large, or the history too short yet).
+  long long surface_cache_samples() const;
+  /// The held layout's textures come from the surface cache (else they are exact).
+  bool held_from_cache() const;
 
  private:
   struct Impl;

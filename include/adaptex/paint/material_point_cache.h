@@ -6,6 +6,7 @@
 /// point plus the work of its dabs, independent of the strokes before it; the composite equals
 /// evaluate_material() up to the single precision of the stored state (tested within 1e-5). The
 /// version 2 analogue of PointSignalCache (signal.h), used by MaterialPaintSession.
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -40,6 +41,9 @@ class MaterialPointCache {
   /// Recomputed only where strokes reached since the last call, unless the layers' blending changed;
   /// valid until the next call.
   const std::vector<MaterialValue>& values(const MaterialStrokeFile& file);
+  /// As values(), calling \p changed(k, value) for every point k recomputed (from several threads).
+  const std::vector<MaterialValue>& values(const MaterialStrokeFile& file,
+                                           const std::function<void(size_t, const MaterialValue&)>& changed);
 
   const std::vector<SurfacePoint>& points() const;  ///< The points, shape [P].
   long long strokes() const;                        ///< Layer and mask strokes added so far.

@@ -73,6 +73,14 @@ long count_overlapping_triangles(const Parameterization& param, long max_pairs =
 /// count_overlapping_triangles(); at most \p max_pairs of them (which ones is then unspecified).
 std::vector<std::array<int, 2>> overlapping_triangle_pairs(const Parameterization& param, long max_pairs = 100000);
 
+/// The faces of \p param whose UV triangle is flipped or degenerate (as measure_stretch() counts
+/// them) or overlaps another (as overlapping_triangle_pairs() finds them, at most \p max_pairs
+/// pairs), sorted and without repeats: empty for a valid layout. \p overlaps_among (F flags, if
+/// not null): overlaps are looked for only between flagged faces.
+std::vector<int> invalid_uv_faces(const Parameterization& param,
+                                  const std::vector<char>* overlaps_among = nullptr,
+                                  long max_pairs = 100000);
+
 /// Fraction of the texels of a \p res x \p res texture whose centre lies inside some UV triangle.
 double texel_utilization(const Parameterization& param, int res);
 

@@ -1,11 +1,12 @@
 /// \file material_session.cpp
 /// MaterialPaintSession (material_session.h): strokes into per-layer point caches, and the cycle:
-/// the summed error model from the caches, the gain gate, the warp, the history replayed onto the
-/// candidate layout, the never-worse check on cached exact values.
+/// the summed error model from the caches, the gain gate, the warp, the candidate layout's textures (from
+/// the surface cache, or the history replayed), the never-worse check on cached exact values.
 #include "adaptex/adapt/material_session.h"
 
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <optional>
 #include <string>
 
@@ -15,6 +16,7 @@
 #include "adaptex/core/timer.h"
 #include "adaptex/paint/material_eval.h"
 #include "adaptex/paint/material_point_cache.h"
+#include "adaptex/paint/material_surface_cache.h"
 #include "adaptex/paint/padding.h"
 #include "adaptex/paint/point_transfer.h"
 
@@ -49,9 +51,11 @@ struct Layout {
   Parameterization param;
   FaceData<int> parent_face;  // refined mesh: input face of every face; empty: the input mesh
   TexelMap map;
-  std::unique_ptr<MaterialPointCache> texels;
+  std::unique_ptr<MaterialPointCache> texels;  // exact values at the texels (unused when from_cache)
+  bool from_cache = false;    // the textures are interpolated from the session's surface cache
+  std::vector<MaterialValue> interpolated;  // from_cache: the chart texels' material (storage reused)
   MaterialTextures textures;
-  long long painted = -1;     // texels->strokes() when `textures` were made
+  long long painted = -1;     // texels->strokes() (or the surface cache's) when `textures` were made
   ImageF density;             // the model's density that made it (empty: the initial layout)
   // The initial layout's textures are updated where strokes changed them: the material they show,
   // the heights and normals of the chart texels (W*H), and the padding.
@@ -76,6 +80,26 @@ struct MaterialPaintSession::Impl {
   MaterialEvalPoints check_points;
   std::unique_ptr<MaterialPointCache> check;            // the exact material at check_points.probes
   std::vector<AdaptReport> reports;
+  // The surface cache (material_surface_cache.h): built once the history covers the surface
+  // opt.surface_cache_coverage times, if its lattice has at most kMaxMaterialSurfaceCacheSamples.
+  std::unique_ptr<MaterialSurfaceCache> surface;
+  bool surface_fits = false;
+  double texel_spacing = 0;   // sqrt(surface area / chart texels) of the initial layout
+  double area = 1;            // of the input mesh
+  double coverage = 0;        // Σ over brush and erase dabs of π r² / area (a fill or decal: 1)
+
+  void add_coverage(const MaterialStroke& s) {
+    const bool dabs = s.type == MaterialStroke::Type::Brush || s.type == MaterialStroke::Type::Erase;
+    coverage += dabs ? s.dabs.size() * std::numbers::pi * s.radius * s.radius / area : 1.0;
+  }
+  bool uses_surface_cache() const { return surface_fits && coverage >= opt.surface_cache_coverage; }
+  MaterialSurfaceCache& surface_now() {
+    if (!surface)
+      surface = std::make_unique<MaterialSurfaceCache>(*initial.mesh, texel_spacing / opt.surface_cache, history,
+                                                       kMaxMaterialSurfaceCacheSamples);
+    surface->update(history);
+    return *surface;
+  }
 
   MaterialEvalOptions eval_options() const {
     MaterialEvalOptions eo;
@@ -88,10 +112,15 @@ struct MaterialPaintSession::Impl {
   Layout& current() { return held ? *held : initial; }
   const Layout& current() const { return held ? *held : initial; }
 
-  void make_layout(Layout& l) {
+  /// \p l's texel map and its material source: the surface cache when \p from_cache, else the
+  /// history replayed onto its texels.
+  void make_layout(Layout& l, bool from_cache = false) {
     const int N = opt.paint.size;
     l.map = build_texel_map(*l.mesh, l.param, N, N);
-    if (l.texels)
+    l.from_cache = from_cache;
+    if (from_cache)
+      l.painted = -1;
+    else if (l.texels)
       l.texels->reset(*l.mesh, texel_points(l.map), history);
     else
       l.texels = std::make_unique<MaterialPointCache>(*l.mesh, texel_points(l.map), history);
@@ -101,6 +130,7 @@ struct MaterialPaintSession::Impl {
   /// The textures of \p l with the whole history: made anew for a new layout, then (the initial
   /// layout) updated where the composite changed.
   const MaterialTextures& textures_of(Layout& l) {
+    if (l.from_cache) return cached_textures_of(l);
     l.texels->update(history);
     if (l.painted == l.texels->strokes()) return l.textures;
     const std::vector<MaterialValue>& v = l.texels->values(history);
@@ -119,6 +149,18 @@ struct MaterialPaintSession::Impl {
       }
     }
     l.painted = l.texels->strokes();
+    return l.textures;
+  }
+
+  /// The textures of a layout of the surface cache, interpolated anew when strokes came since.
+  const MaterialTextures& cached_textures_of(Layout& l) {
+    MaterialSurfaceCache& c = surface_now();
+    if (l.painted == c.strokes()) return l.textures;
+    std::vector<MaterialValue>& v = l.interpolated;
+    c.texel_values(history, l.map, *l.mesh, l.parent_face.empty() ? nullptr : &l.parent_face, v);
+    l.textures = material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding,
+                                               height_scale);
+    l.painted = c.strokes();
     return l.textures;
   }
 
@@ -161,6 +203,7 @@ struct MaterialPaintSession::Impl {
       check = std::make_unique<MaterialPointCache>(*initial.mesh, check_points.probes, history);
     }
     for (MaterialPointCache* c : {reference.get(), half.get(), check.get()}) c->update(history);
+    if (uses_surface_cache()) surface_now();
   }
 
   /// The source of the planes' exact values: the reference and N/2 caches.
@@ -231,7 +274,7 @@ const AdaptReport& MaterialPaintSession::Impl::cycle(bool gated) {
   bool accept = rep.accepted;
   if (accept) {
     t0 = std::chrono::steady_clock::now();
-    make_layout(*cand);  // the history replayed onto the candidate layout
+    make_layout(*cand, uses_surface_cache());  // from the surface cache, or the history replayed
     textures_of(*cand);
     rep.time_texture_update = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
@@ -270,6 +313,9 @@ MaterialPaintSession::MaterialPaintSession(TriMesh mesh, Parameterization initia
                             "] and padding >= 0");
   if (options.check_samples < 1 || options.check_samples > 10'000'000)
     throw InvalidInputError("material session: check_samples must be in [1, 10000000]");
+  if (!(options.surface_cache >= 0) || !std::isfinite(options.surface_cache) ||
+      !(options.surface_cache_coverage >= 0) || !std::isfinite(options.surface_cache_coverage))
+    throw InvalidInputError("material session: surface_cache and surface_cache_coverage must be finite numbers >= 0");
   if (!(options.check_margin >= 0 && options.check_margin < 1) || !(options.min_gain_db >= 0) ||
       !std::isfinite(options.min_gain_db) || !(options.data_weight >= 0) || !std::isfinite(options.data_weight))
     throw InvalidInputError("material session: check_margin must be in [0, 1), min_gain_db and data_weight >= 0");
@@ -279,6 +325,17 @@ MaterialPaintSession::MaterialPaintSession(TriMesh mesh, Parameterization initia
   m.initial.param = std::move(initial);
   m.height_scale = material_height_scale(*m.initial.mesh, m.history);
   m.make_layout(m.initial);
+  const TriMesh& input = *m.initial.mesh;
+  m.area = std::max(surface_area(input), 1e-300);
+  m.texel_spacing = std::sqrt(m.area / std::max<size_t>(1, m.initial.map.inside.size()));
+  m.surface_fits = options.surface_cache > 0 &&
+                   MaterialSurfaceCache::count_samples(input, m.texel_spacing / options.surface_cache) <=
+                       kMaxMaterialSurfaceCacheSamples;
+  for (const MaterialLayer& l : m.history.layers) {
+    for (const MaterialStroke& s : l.strokes) m.add_coverage(s);
+    if (l.mask)
+      for (const MaterialStroke& s : l.mask->strokes) m.add_coverage(s);
+  }
 }
 
 MaterialPaintSession::~MaterialPaintSession() = default;
@@ -291,7 +348,7 @@ void MaterialPaintSession::add_strokes(int layer, const std::vector<MaterialStro
   for (size_t k = 0; k < strokes.size(); ++k)
     check_stroke(strokes[k], "material session: layer " + std::to_string(layer) + ", stroke " + std::to_string(k));
   if (strokes.empty()) return;
-  for (const MaterialStroke& s : strokes) m.history.layers[layer].strokes.push_back(s);
+  for (const MaterialStroke& s : strokes) m.history.layers[layer].strokes.push_back(s), m.add_coverage(s);
   if (m.opt.adapt.mode != AdaptMode::None) m.cycle(true);
 }
 
@@ -303,6 +360,7 @@ void MaterialPaintSession::add_stroke(int layer, const MaterialStroke& stroke, b
   if (stroke.type == MaterialStroke::Type::Decal) throw InvalidInputError("material session: a mask takes no decal");
   check_stroke(stroke, "material session: mask of layer " + std::to_string(layer));
   m.history.layers[layer].mask->strokes.push_back(stroke);
+  m.add_coverage(stroke);
   if (m.opt.adapt.mode != AdaptMode::None) m.cycle(true);
 }
 
@@ -319,6 +377,10 @@ const MaterialTextures& MaterialPaintSession::textures() { return impl_->texture
 const MaterialStrokeFile& MaterialPaintSession::history() const { return impl_->history; }
 const std::vector<AdaptReport>& MaterialPaintSession::reports() const { return impl_->reports; }
 bool MaterialPaintSession::adapted() const { return impl_->held != nullptr; }
+long long MaterialPaintSession::surface_cache_samples() const {
+  return impl_->surface ? impl_->surface->num_samples() : 0;
+}
+bool MaterialPaintSession::held_from_cache() const { return impl_->current().from_cache; }
 
 MaterialError MaterialPaintSession::held_error() {
   Impl& m = *impl_;
