@@ -38,12 +38,24 @@ std::array<Vec3, 2> face_directions(const TriMesh& mesh, int f) {
   return {u, n.normalized().cross(u)};
 }
 
-/// Bilinear sample of the A channel at (u, v), as sample_bilinear() samples RGB.
-double sample_bilinear_alpha(const ImageRGBA8& img, double u, double v) {
-  const BilinearTap x = bilinear_tap(img.width, u), y = bilinear_tap(img.height, v);
+/// The A channel of \p img bilinearly at the taps (x, y) (this file's alpha lookup).
+double bilinear_alpha(const ImageRGBA8& img, const BilinearTap& x, const BilinearTap& y) {
   auto at = [&img](int i, int j) { return img.data[4 * (static_cast<size_t>(j) * img.width + i) + 3] / 255.0; };
   return (1 - y.f) * ((1 - x.f) * at(x.i0, y.i0) + x.f * at(x.i1, y.i0)) +
          y.f * ((1 - x.f) * at(x.i0, y.i1) + x.f * at(x.i1, y.i1));
+}
+
+/// Channel \p c of \p img bilinearly at the taps (x, y), in [0, 1]: sample_bilinear()'s arithmetic,
+/// so that the textures of one size share one pair of taps per point.
+double bilinear_channel(const ImageRGBA8& img, const BilinearTap& x, const BilinearTap& y, int c) {
+  const double a = img.texel(x.i0, y.i0)[c], b = img.texel(x.i1, y.i0)[c];
+  const double d = img.texel(x.i0, y.i1)[c], e = img.texel(x.i1, y.i1)[c];
+  const double bottom = a + (b - a) * x.f, top = d + (e - d) * x.f;
+  return (bottom + (top - bottom) * y.f) / 255.0;
+}
+
+Vec3 bilinear_rgb(const ImageRGBA8& img, const BilinearTap& x, const BilinearTap& y) {
+  return Vec3(bilinear_channel(img, x, y, 0), bilinear_channel(img, x, y, 1), bilinear_channel(img, x, y, 2));
 }
 
 /// True when some stroke of \p file paints or erases height (else the height is flat everywhere).
@@ -123,11 +135,14 @@ MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameteriza
     const Face& t = param.uv_faces[p.face];
     const Vec2 uv = p.b0 * param.uv[t[0]] + p.b1 * param.uv[t[1]] + (1 - p.b0 - p.b1) * param.uv[t[2]];
     const MaterialValue& e = exact[P * k];
-    const Vec3 c = sample_bilinear(textures.base_color, uv.x(), uv.y());
+    // One pair of taps for every map (check_inputs(): one size).
+    const BilinearTap tx = bilinear_tap(textures.base_color.width, uv.x());
+    const BilinearTap ty = bilinear_tap(textures.base_color.height, uv.y());
+    const Vec3 c = bilinear_rgb(textures.base_color, tx, ty);
     const Vec3 ce(e[0], e[1], e[2]);
-    const double a = sample_bilinear_alpha(textures.base_color, uv.x(), uv.y());
-    const double r = sample_bilinear(textures.roughness, uv.x(), uv.y()).x();
-    const double m = sample_bilinear(textures.metallic, uv.x(), uv.y()).x();
+    const double a = bilinear_alpha(textures.base_color, tx, ty);
+    const double r = bilinear_channel(textures.roughness, tx, ty, 0);
+    const double m = bilinear_channel(textures.metallic, tx, ty, 0);
     const Vec3 grad = P == 1 ? Vec3::Zero().eval()
                              : Vec3(scale * ((exact[P * k + 1][6] - e[6]) / eps * dirs[k][0] +
                                              (exact[P * k + 2][6] - e[6]) / eps * dirs[k][1]));
@@ -136,7 +151,7 @@ MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameteriza
       const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, p.face, p.b0, p.b1);
       n_exact = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized();
     }
-    const Vec3 n_tex = sample_bilinear(textures.normal, uv.x(), uv.y());
+    const Vec3 n_tex = bilinear_rgb(textures.normal, tx, ty);
     err[k] = {(c - ce).squaredNorm() / 3,     std::pow(a - e[3], 2), std::pow(r - e[4], 2), std::pow(m - e[5], 2),
               (n_tex - 0.5 * (n_exact + Vec3::Ones())).squaredNorm() / 3, ce.squaredNorm() / 3};
   });

@@ -11,6 +11,7 @@
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/paint/generate.h"
+#include "adaptex/paint/material_paint.h"
 #include "adaptex/paint/painter.h"
 #include "adaptex/paint/signal.h"
 #include "adaptex/param/unwrap.h"
@@ -89,6 +90,53 @@ TEST(ErrorDensity, AReferenceReusedStrokeAfterStrokeSumsOnlyTheChangedRowsAndGiv
                   .predicted_gain_db,
               0.1);
   }
+}
+
+TEST(ErrorDensity, PlanesWithAMemoryGiveTheSameBitsAsAfreshAfterEveryStroke) {
+  // ErrorPlanesMemory keeps each plane's rasters and cell sums and sums again only the changed cell
+  // rows: after every stroke (and a repeated one), the same bits as without it, with two planes of
+  // different weights, and again when the number of planes changes (the memory starts afresh).
+  const test::Scene sc = test::torus_scene(48, 24, StrokeKind::Mixed, 8);
+  const TriMesh& mesh = sc.mesh;
+  const Parameterization& param = sc.param;
+  StrokeFile all = sc.strokes;
+  all.strokes.push_back(all.strokes[1]);
+  const int N = 64;
+  Painter painter(mesh, param, PainterOptions{N, N, 4}, all.background);
+  const ErrorPlaneMaps maps = error_plane_maps(mesh, param, N);
+  StrokeFile history;
+  history.background = all.background;
+  auto exact = [&](const TexelMap& at, bool invert) {
+    std::vector<Vec3f> out(static_cast<size_t>(at.width) * at.height, Vec3f::Zero());
+    const std::vector<SurfacePoint> pts = texel_points(at);
+    for (size_t k = 0; k < pts.size(); ++k) {
+      const Face& f = mesh.faces[pts[k].face];
+      const Vec3 p = pts[k].b0 * mesh.positions[f[0]] + pts[k].b1 * mesh.positions[f[1]] +
+                     (1 - pts[k].b0 - pts[k].b1) * mesh.positions[f[2]];
+      const Vec3 c = evaluate_strokes_reference(history, p);
+      out[at.inside[k]] = (invert ? Vec3(Vec3::Ones() - c) : c).cast<float>();
+    }
+    return out;
+  };
+  ErrorPlanesMemory memory;
+  for (const Stroke& s : all.strokes) {
+    history.strokes.push_back(s);
+    painter.paint_stroke(s);
+    std::vector<ErrorPlane> planes(2);
+    planes[0].texture = painter.texture();
+    planes[0].exact = [&](const TexelMap& at) { return exact(at, false); };
+    planes[1].weight = 0.3;
+    planes[1].texture = painter.texture();
+    planes[1].exact = [&](const TexelMap& at) { return exact(at, true); };
+    if (history.strokes.size() == 5) planes.pop_back();
+    const ErrorDensity a = compute_error_density(mesh, param, painter.texel_map(), planes, maps, memory);
+    const ErrorDensity b = compute_error_density(mesh, param, painter.texel_map(), planes, maps);
+    EXPECT_EQ(a.density.data, b.density.data) << "after stroke " << history.strokes.size();
+    EXPECT_EQ(a.error.data, b.error.data) << "after stroke " << history.strokes.size();
+    EXPECT_EQ(a.exponent.data, b.exponent.data) << "after stroke " << history.strokes.size();
+    EXPECT_EQ(a.predicted_gain_db, b.predicted_gain_db);
+  }
+  EXPECT_GT(compute_error_density(mesh, param, painter.texture(), painter.texel_map(), history).predicted_gain_db, 0.1);
 }
 
 // The uncached path skips texels that no dab can reach (their signal is the background); the cache

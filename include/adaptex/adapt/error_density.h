@@ -124,4 +124,29 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
                                    const std::vector<ErrorPlane>& planes, const ErrorPlaneMaps& maps,
                                    const ErrorDensityOptions& options = {});
 
+/// What compute_error_density() of planes keeps between calls on one layout (as ErrorDensityReference
+/// for a history): each plane's rasters and cell sums of the last call, so that the next call (after a
+/// stroke) sums again only the cell rows whose rasters changed. The result is the same as without it.
+class ErrorPlanesMemory {
+ public:
+  ErrorPlanesMemory();
+  ~ErrorPlanesMemory();
+  ErrorPlanesMemory(ErrorPlanesMemory&&) noexcept;
+  ErrorPlanesMemory& operator=(ErrorPlanesMemory&&) noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  friend ErrorDensity compute_error_density(const TriMesh&, const Parameterization&, const TexelMap&,
+                                            const std::vector<ErrorPlane>&, const ErrorPlaneMaps&, ErrorPlanesMemory&,
+                                            const ErrorDensityOptions&);
+};
+
+/// compute_error_density() of the planes with their maps, remembering in \p memory (used with the same
+/// mesh, layout, maps, texture size, options and number of planes on every call; else it starts afresh).
+/// \throw as above
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                   const std::vector<ErrorPlane>& planes, const ErrorPlaneMaps& maps,
+                                   ErrorPlanesMemory& memory, const ErrorDensityOptions& options = {});
+
 }  // namespace adaptex

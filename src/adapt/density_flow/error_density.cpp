@@ -548,6 +548,31 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
 ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                    const std::vector<ErrorPlane>& planes, const ErrorPlaneMaps& maps,
                                    const ErrorDensityOptions& o) {
+  ErrorPlanesMemory none;
+  return compute_error_density(mesh, param, map, planes, maps, none, o);
+}
+
+/// The last call's rasters and cell sums of each plane (empty: none yet).
+struct ErrorPlanesMemory::Impl {
+  struct Plane {
+    Raster ref, a, b;
+    CellErrors cells;
+  };
+  const ErrorPlaneMaps* maps = nullptr;
+  int cells = 0;
+  ReferenceGrid grid;
+  std::vector<double> ratio;  // surface_per_uv of the layout
+  std::vector<Plane> planes;
+};
+
+ErrorPlanesMemory::ErrorPlanesMemory() : impl_(std::make_unique<Impl>()) {}
+ErrorPlanesMemory::~ErrorPlanesMemory() = default;
+ErrorPlanesMemory::ErrorPlanesMemory(ErrorPlanesMemory&&) noexcept = default;
+ErrorPlanesMemory& ErrorPlanesMemory::operator=(ErrorPlanesMemory&&) noexcept = default;
+
+ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                   const std::vector<ErrorPlane>& planes, const ErrorPlaneMaps& maps,
+                                   ErrorPlanesMemory& memory, const ErrorDensityOptions& o) {
   if (planes.empty()) throw InvalidInputError("error density: no plane");
   for (const ErrorPlane& p : planes) {
     if (!(p.weight > 0) || !std::isfinite(p.weight)) throw InvalidInputError("error density: a plane weight is not > 0");
@@ -560,20 +585,37 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
     throw InvalidInputError("error density: the plane maps are of another texture size or reference grid");
   const TexelMap& ref_map = maps.reference;
   const TexelMap& half_map = maps.half;
-  const std::vector<double> ratio = surface_per_uv(mesh, param);
   const int cells = std::min(o.cells, g.side);
+  ErrorPlanesMemory::Impl& m = *memory.impl_;
+  if (m.maps != &maps || m.cells != cells || !(m.grid == g) || m.planes.size() != planes.size()) {
+    m = ErrorPlanesMemory::Impl{};
+    m.maps = &maps, m.cells = cells, m.grid = g;
+    m.ratio = surface_per_uv(mesh, param);
+    m.planes.resize(planes.size());
+  }
   CellErrors sum;
   for (size_t k = 0; k < planes.size(); ++k) {
     const ErrorPlane& p = planes[k];
-    const Raster ref = plane_raster(ref_map, p.exact(ref_map), false);
-    const Raster level_b = plane_raster(half_map, p.exact(half_map), true);
-    CellErrors c = accumulate(ref, ref_map, g, from_texture(p.texture), level_b, ratio, cells);
+    ErrorPlanesMemory::Impl::Plane now;
+    now.ref = plane_raster(ref_map, p.exact(ref_map), false);
+    now.b = plane_raster(half_map, p.exact(half_map), true);
+    now.a = from_texture(p.texture);
+    // As accumulate() afresh, summing again only the cell rows whose inputs changed since the last call.
+    const ErrorPlanesMemory::Impl::Plane& prev = m.planes[k];
+    const bool again = prev.cells.n == cells && prev.ref.size == now.ref.size && prev.a.size == now.a.size &&
+                       prev.b.size == now.b.size;
+    const std::vector<char> dirty =
+        again ? dirty_cell_rows(g, cells, now.ref, now.a, now.b, prev.ref, prev.a, prev.b) : std::vector<char>{};
+    now.cells = accumulate(now.ref, ref_map, g, now.a, now.b, m.ratio, cells, again ? &prev.cells : nullptr,
+                           again ? &dirty : nullptr);
+    const CellErrors& c = now.cells;
     if (k == 0) {
-      sum = std::move(c);
+      sum = c;
       for (size_t i = 0; i < sum.ea.size(); ++i) sum.ea[i] *= p.weight, sum.eb[i] *= p.weight;
-      continue;
+    } else {
+      for (size_t i = 0; i < sum.ea.size(); ++i) sum.ea[i] += p.weight * c.ea[i], sum.eb[i] += p.weight * c.eb[i];
     }
-    for (size_t i = 0; i < sum.ea.size(); ++i) sum.ea[i] += p.weight * c.ea[i], sum.eb[i] += p.weight * c.eb[i];
+    m.planes[k] = std::move(now);
   }
   ErrorDensity out = solve_density(sum, 1.0, o);
   out.reference_size = g.side;

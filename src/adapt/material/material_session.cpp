@@ -77,6 +77,7 @@ struct MaterialPaintSession::Impl {
   std::unique_ptr<Layout> spare;  // a former candidate, whose storage the next one reuses
   std::optional<ErrorPlaneMaps> plane_maps;
   std::unique_ptr<MaterialPointCache> reference, half;  // the model's exact values, at plane_maps' points
+  ErrorPlanesMemory plane_memory;  // the model's rasters and cell sums of the last cycle
   MaterialEvalPoints check_points;
   std::unique_ptr<MaterialPointCache> check;            // the exact material at check_points.probes
   std::vector<AdaptReport> reports;
@@ -250,7 +251,7 @@ const AdaptReport& MaterialPaintSession::Impl::cycle(bool gated) {
   const ErrorDensity model = compute_error_density(
       *initial.mesh, initial.param, initial.map,
       material_error_planes(*initial.mesh, initial.param, initial.map, base, exact_source(), opt.data_weight),
-      *plane_maps, opt.adapt.density_flow.density);
+      *plane_maps, plane_memory, opt.adapt.density_flow.density);
   AdaptReport gate;
   gate.mode = opt.adapt.mode;
   gate.signal_fraction = model.signal_fraction;
