@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "adaptex/adapt/error_density.h"
+#include "adaptex/adapt/material_adapt.h"
 #include "adaptex/adapt/material_session.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
@@ -139,6 +141,31 @@ TEST(MaterialSession, TexturesEqualPaintMaterialAndTheHeldLayoutIsNeverWorse) {
     expect_paint_material(s, 128);
   }
   EXPECT_GT(adapted, 0);  // the scratches are detail enough to adapt for
+}
+
+TEST(MaterialSession, ItsModelIsTheModelOfTheHistoryAfterEveryStroke) {
+  // The session keeps the model's exact values, the exact height's normals (updated where the height
+  // changed) and the planes' cell sums (summed again where rasters changed): its model after every
+  // stroke is the one computed afresh from the file on the initial layout (up to the caches' single
+  // precision and the textures' 8-bit rounding), for strokes that paint height and strokes that do not.
+  const TriMesh mesh = shapes::plane(24);
+  const Parameterization param = test::planar_param(mesh, 0.9, 0.05);
+  MaterialSessionOptions o = small_options();
+  o.min_gain_db = 0;
+  MaterialPaintSession s(mesh, param, three_layers(), o);
+  const TexelMap map = build_texel_map(mesh, param, 128, 128);
+  for (int k = 0; k < 7; ++k) {
+    s.add_stroke(k % 3 == 2 ? 2 : 0, scratch(k, k % 2 ? kFour : 1u << 2, 0.9));
+    const MaterialTextures tex = paint_material(mesh, param, s.history(), o.paint);
+    const ErrorDensity fresh = compute_error_density(
+        mesh, param, map, material_error_planes(mesh, param, map, s.history(), tex, o.data_weight),
+        o.adapt.density_flow.density);
+    const AdaptReport& r = s.reports().back();
+    EXPECT_NEAR(r.predicted_gain_db, fresh.predicted_gain_db, 0.01 * std::abs(fresh.predicted_gain_db) + 1e-3)
+        << "stroke " << k;
+    EXPECT_NEAR(r.signal_fraction, fresh.signal_fraction, 0.01) << "stroke " << k;
+  }
+  EXPECT_GT(s.reports().back().predicted_gain_db, 0.3);
 }
 
 TEST(MaterialSession, StrokesAfterAnAdoptedLayoutReachItsTextures) {

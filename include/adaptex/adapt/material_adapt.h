@@ -50,12 +50,17 @@ std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Paramet
 /// evaluate_material() at texel_points(map)), owned by the source and valid until its next call.
 using MaterialTexelSource = std::function<const std::vector<MaterialValue>&(const TexelMap&)>;
 
+/// The unit normals of the exact height at every texel of a texel map, W*H (height_normals() of
+/// (exact[6] − 0.5) · height scale at the chart texels), owned by the source and valid until its next call.
+using MaterialNormalSource = std::function<const std::vector<Vec3f>&(const TexelMap&)>;
+
 /// material_error_planes() with the exact material from \p exact (e.g. a session's point caches)
-/// instead of evaluating the file. \p exact must outlive the planes.
+/// instead of evaluating the file, and the exact height's normals from \p normals when given (else
+/// derived from \p exact). The sources must outlive the planes.
 /// \throw InvalidInputError map and textures of different sizes, no source
 std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                               const MaterialTextures& textures, MaterialTexelSource exact,
-                                              double data_weight);
+                                              double data_weight, MaterialNormalSource normals = {});
 
 /// Paints \p file on \p layout, adapts the layout to the material's summed error model, paints again
 /// on the adapted layout, and keeps whichever layout reconstructs every channel better on surface

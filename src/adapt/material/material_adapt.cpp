@@ -78,7 +78,7 @@ std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Paramet
 
 std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                               const MaterialTextures& textures, MaterialTexelSource exact,
-                                              double data_weight) {
+                                              double data_weight, MaterialNormalSource normals) {
   if (map.width != textures.base_color.width || map.height != textures.base_color.height)
     throw InvalidInputError("material_error_planes: the texel map and the textures differ in size");
   if (!exact) throw InvalidInputError("material_error_planes: no exact source");
@@ -100,11 +100,17 @@ std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Paramet
   // The normal map stores (n + 1) / 2: its squared error is |Δn|² / 4, so 4 · albedo² gives Lambert's.
   planes[2].weight = std::max(4 * albedo2, 1e-6);
   planes[2].texture = textures.normal;
-  planes[2].exact = [exact, &mesh, &param, scale](const TexelMap& at) {
-    const std::vector<double> h = on_texels<double>(at, exact(at), 0.0, [scale](const MaterialValue& v) { return (v[6] - 0.5) * scale; });
-    std::vector<Vec3f> normals = height_normals(mesh, param, at, h);
-    for (Vec3f& x : normals) x = 0.5f * (x + Vec3f::Ones());
-    return normals;
+  planes[2].exact = [exact, normals, &mesh, &param, scale](const TexelMap& at) {
+    std::vector<Vec3f> n;
+    if (normals) {
+      n = normals(at);
+    } else {
+      const std::vector<double> h =
+          on_texels<double>(at, exact(at), 0.0, [scale](const MaterialValue& v) { return (v[6] - 0.5) * scale; });
+      n = height_normals(mesh, param, at, h);
+    }
+    for (Vec3f& x : n) x = 0.5f * (x + Vec3f::Ones());
+    return n;
   };
   return planes;
 }

@@ -66,6 +66,15 @@ struct Layout {
   SeamPadding pad;
 };
 
+/// The exact height (world units) and its normals at every texel of a texel map (W*H), updated
+/// where the material changed.
+struct ExactNormals {
+  std::vector<double> height;
+  std::vector<Vec3f> normals;
+  std::vector<char> changed;  // per chart texel (map.inside order)
+  std::vector<char> mark;     // W*H
+};
+
 }  // namespace
 
 struct MaterialPaintSession::Impl {
@@ -78,6 +87,7 @@ struct MaterialPaintSession::Impl {
   std::optional<ErrorPlaneMaps> plane_maps;
   std::unique_ptr<MaterialPointCache> reference, half;  // the model's exact values, at plane_maps' points
   ErrorPlanesMemory plane_memory;  // the model's rasters and cell sums of the last cycle
+  ExactNormals reference_normals, half_normals;  // the exact height's normals at plane_maps' texels
   MaterialEvalPoints check_points;
   std::unique_ptr<MaterialPointCache> check;            // the exact material at check_points.probes
   std::vector<AdaptReport> reports;
@@ -204,7 +214,52 @@ struct MaterialPaintSession::Impl {
       check = std::make_unique<MaterialPointCache>(*initial.mesh, check_points.probes, history);
     }
     for (MaterialPointCache* c : {reference.get(), half.get(), check.get()}) c->update(history);
+    refresh_normals(plane_maps->reference, *reference, reference_normals);
+    refresh_normals(plane_maps->half, *half, half_normals);
     if (uses_surface_cache()) surface_now();
+  }
+
+  /// \p n brought up to the material of \p cache (at \p map's chart texels): all of it at first, then
+  /// the heights that changed and the normals of them and their 4-neighbours (as update_textures()).
+  void refresh_normals(const TexelMap& map, MaterialPointCache& cache, ExactNormals& n) {
+    const TriMesh& mesh = *initial.mesh;
+    if (n.normals.empty()) {
+      const std::vector<MaterialValue>& v = cache.values(history);
+      n.height.assign(static_cast<size_t>(map.width) * map.height, 0.0);
+      for (size_t k = 0; k < v.size(); ++k) n.height[map.inside[k]] = (v[k][6] - 0.5) * height_scale;
+      n.normals = height_normals(mesh, initial.param, map, n.height);
+      n.changed.assign(v.size(), 0);
+      n.mark.assign(n.height.size(), 0);
+      return;
+    }
+    const std::vector<MaterialValue>& v = cache.values(history, [&n](size_t k, const MaterialValue&) { n.changed[k] = 1; });
+    const int W = map.width, H = map.height;
+    std::vector<int> around;
+    for (size_t k = 0; k < v.size(); ++k) {
+      if (!n.changed[k]) continue;
+      n.changed[k] = 0;
+      const int t = map.inside[k];
+      const double h = (v[k][6] - 0.5) * height_scale;
+      if (h == n.height[t]) continue;
+      n.height[t] = h;
+      const int i = t % W, j = t / W;
+      for (const auto& [di, dj] : {std::pair{0, 0}, {-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
+        if (i + di < 0 || i + di >= W || j + dj < 0 || j + dj >= H) continue;
+        const int u = t + di + dj * W;
+        if (map.face[u] >= 0 && !n.mark[u]) n.mark[u] = 1, around.push_back(u);
+      }
+    }
+    update_height_normals(mesh, initial.param, map, n.height, around, n.normals);
+    for (int u : around) n.mark[u] = 0;
+  }
+
+  /// The exact height's normals at the planes' maps.
+  MaterialNormalSource exact_normals() {
+    return [this](const TexelMap& at) -> const std::vector<Vec3f>& {
+      if (&at == &plane_maps->reference) return reference_normals.normals;
+      if (&at == &plane_maps->half) return half_normals.normals;
+      throw Error("material session: the model asked for another texel map");
+    };
   }
 
   /// The source of the planes' exact values: the reference and N/2 caches.
@@ -250,7 +305,8 @@ const AdaptReport& MaterialPaintSession::Impl::cycle(bool gated) {
   const MaterialTextures& base = textures_of(initial);
   const ErrorDensity model = compute_error_density(
       *initial.mesh, initial.param, initial.map,
-      material_error_planes(*initial.mesh, initial.param, initial.map, base, exact_source(), opt.data_weight),
+      material_error_planes(*initial.mesh, initial.param, initial.map, base, exact_source(), opt.data_weight,
+                            exact_normals()),
       *plane_maps, plane_memory, opt.adapt.density_flow.density);
   AdaptReport gate;
   gate.mode = opt.adapt.mode;
