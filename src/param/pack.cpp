@@ -317,7 +317,7 @@ std::vector<Vec2> normalized_sizes(const std::vector<Vec2>& sizes) {
 /// minimum side are halved while even they alone do not fit.
 std::vector<RectPlacement> pack_many(const std::vector<Vec2>& size, double padding, double min_side_0,
                                      bool may_turn, const ProgressCallback& progress,
-                                     std::vector<char>& turned) {
+                                     std::vector<char>& turned, double& gap_used) {
   const int n = static_cast<int>(size.size());
   std::vector<Vec2> landscape(size);
   std::vector<char> flat(n, 0);
@@ -353,6 +353,7 @@ std::vector<RectPlacement> pack_many(const std::vector<Vec2>& size, double paddi
                           : pack_with(sz, shelf[v], best, gap, min_side, false, &out, &turned);
       if (ok) {
         turned = v ? flat : std::vector<char>(n, 0);
+        gap_used = gap;
         return out;
       }
     }
@@ -365,7 +366,7 @@ std::vector<RectPlacement> pack_many(const std::vector<Vec2>& size, double paddi
 /// Body of every pack_rectangles(): up to kMaxRectsLimit rectangles the best of the shelf and
 /// MaxRects strategies, above that pack_many().
 std::vector<RectPlacement> pack_rects(const std::vector<Vec2>& sizes, const RectPackOptions& options,
-                                      std::vector<char>* turned_out) {
+                                      std::vector<char>* turned_out, double* gap_out = nullptr) {
   const double padding = options.padding, min_side_0 = options.min_side;
   const bool may_turn = options.may_turn;
   if (sizes.empty()) throw InvalidInputError("pack_rectangles: no charts to pack");
@@ -378,13 +379,16 @@ std::vector<RectPlacement> pack_rects(const std::vector<Vec2>& sizes, const Rect
   const int n = static_cast<int>(sizes.size());
   std::vector<RectPlacement> out(n);
   std::vector<char> turned(n, 0);
+  if (gap_out) *gap_out = padding;
   if (n == 1) {
     if (turned_out) *turned_out = turned;
     return out;
   }
   const std::vector<Vec2> size = normalized_sizes(sizes);
   if (n > kMaxRectsLimit) {
-    out = pack_many(size, padding, min_side_0, may_turn, options.progress, turned);
+    double gap_used = padding;
+    out = pack_many(size, padding, min_side_0, may_turn, options.progress, turned, gap_used);
+    if (gap_out) *gap_out = gap_used;
     if (turned_out) *turned_out = turned;
     return out;
   }
@@ -428,6 +432,7 @@ std::vector<RectPlacement> pack_rects(const std::vector<Vec2>& sizes, const Rect
                             variant ? false : may_turn, &out, &turned)) {
       if (variant) turned = flat;
       if (turned_out) *turned_out = turned;
+      if (gap_out) *gap_out = gap;
       return out;
     }
     if (gap == 0 && min_side == 0) break;
@@ -454,8 +459,8 @@ std::vector<RectPlacement> pack_rectangles_turning(const std::vector<Vec2>& size
 
 std::vector<RectPlacement> pack_rectangles(const std::vector<Vec2>& sizes,
                                            const RectPackOptions& options,
-                                           std::vector<char>* turned) {
-  return pack_rects(sizes, options, turned);
+                                           std::vector<char>* turned, double* gap_used) {
+  return pack_rects(sizes, options, turned, gap_used);
 }
 
 std::vector<ChartPlacement> pack_charts(const std::vector<double>& areas, double padding) {
@@ -601,28 +606,35 @@ class Horizon {
   explicit Horizon(int n) : h_(n, 0) {}
   int size() const { return static_cast<int>(h_.size()); }
 
-  /// Best column x (and row y) for \p pr: the lowest score w (1 + alpha) y + (empty area between
-  /// the horizon and the dilated chart's bottom), for the chart's extended width w, then the lowest
-  /// y. Returns -1 when the chart is wider than the atlas, 1 when it found a position with a lower
-  /// score than (\p best_score, \p best_y) (and updated them and \p best_x), else 0.
-  int best_drop(const Profile& pr, long alpha, long& best_score, int& best_x, int& best_y) const {
+  /// Best column x (and row y) for \p pr: the lowest score c (y + top) + (empty area between the
+  /// horizon and the dilated chart's bottom), where top is the chart's height, then the lowest y.
+  /// \p c is the same for every orientation of a chart (its widest extended width): a turn that
+  /// stands a sliver on end does not score lower for being narrow. Returns -1 when the chart is
+  /// wider than the atlas, 1 when it found a position with a lower score than (\p best_score,
+  /// \p best_y) (and updated them and \p best_x), else 0.
+  int best_drop(const Profile& pr, long c, long& best_score, int& best_x, int& best_y) const {
     const int w = static_cast<int>(pr.low.size()), n = size();
     if (w > n) return -1;
     // The column of the chart's lowest bottom bounds y first (most positions are pruned by it).
     const int e0 = static_cast<int>(std::min_element(pr.low.begin(), pr.low.end()) - pr.low.begin());
-    const long wy = static_cast<long>(w) * (1 + alpha);
+    const long wy = c + w;  // score = wy * y + base
     long window = 0;  // sum of the horizon over [x, x + w)
     for (int e = 0; e < w; ++e) window += h_[e];
     int improved = 0;
     for (int x = 0; x + w <= n; window += x + w < n ? h_[x + w] - h_[x] : 0, ++x) {
-      // score = wy * y + base, with y = max_e (h[x + e] - low[e]) growing over the loop.
-      const long base = pr.low_sum - window;
+      // y = max_e (h[x + e] - low[e]) grows over the loop.
+      const long base = pr.low_sum - window + c * pr.max_top;
+      // y only grows: a position is given up once it can no longer beat the best (ties included).
+      const auto beaten = [&](int yy) {
+        const long sc = wy * yy + base;
+        return sc > best_score || (sc == best_score && yy >= best_y);
+      };
       int y = h_[x + e0] - pr.low[e0];
-      if (wy * y + base > best_score) continue;
+      if (beaten(y)) continue;
       bool pruned = false;
       for (int e = 0; e < w && !pruned; ++e) {
         y = std::max(y, h_[x + e] - pr.low[e]);
-        pruned = wy * y + base > best_score;
+        pruned = beaten(y);
       }
       if (pruned) continue;
       const long score = wy * y + base;
@@ -641,14 +653,19 @@ class Horizon {
   std::vector<int> h_;
 };
 
-/// Weight alpha of the height in Horizon::best_drop(): 1 (beside 0, 8 and 1000, the highest coverage
-/// on the charts of docs/bench_unwrap.md; 0, the empty area alone, builds towers).
-constexpr long kHeightWeight = 1;
+/// The scale of a chart of bounding-box sides \p shorter <= \p longer at common scale \p s: raised
+/// uniformly until its shorter side reaches \p min_side, but its longer side not past
+/// 16 min_side (slivers).
+double raised_scale(double shorter, double longer, double s, double min_side) {
+  if (!(s * shorter < min_side) || !(shorter > 0)) return s;
+  return std::max(s, std::min(min_side / shorter, 16 * min_side / longer));
+}
 
 /// Charts, their order and fixed figures for the trials of pack_shapes().
 struct ShapeSet {
   const std::vector<ChartShape>& charts;
   std::vector<double> shorter;  ///< Shorter side of every chart's bounding box (chart units).
+  std::vector<double> longer;   ///< Longer side.
   std::vector<int> order;       ///< Longest bounding-box side first.
   int turns = 1;                ///< Orientations tried (1 or 4).
 };
@@ -666,14 +683,15 @@ double shape_trial(const ShapeSet& set, double s, int n, int g, double min_side,
   int done = 0;
   for (int c : set.order) {
     if ((++done & 4095) == 0) report_progress(progress, "pack", frac);
-    const double sh = set.shorter[c] * s;
-    const double scale = sh > 0 && sh < min_side ? s * min_side / sh : s;
+    const double scale = raised_scale(set.shorter[c], set.longer[c], s, min_side);
     long best_waste = std::numeric_limits<long>::max();
     int bx = -1, by = std::numeric_limits<int>::max(), bt = 0;
     Profile best;
+    // Weight of the height in the score: the widest extended width of the chart.
+    const long weight = static_cast<long>(std::ceil(scale * set.longer[c] / h)) + 1 + 2 * g;
     for (int t = 0; t < set.turns; ++t) {
       Profile pr = rasterize(set.charts[c], scale, t, h, g);
-      const int found = horizon.best_drop(pr, kHeightWeight, best_waste, bx, by);
+      const int found = horizon.best_drop(pr, weight, best_waste, bx, by);
       if (found < 0) {  // wider than the atlas: the scale must shrink by about n / width
         const double w = static_cast<double>(pr.low.size());
         return std::max(needed, w * w / n);
@@ -723,7 +741,8 @@ std::vector<ShapePlacement> pack_shapes(const std::vector<ChartShape>& charts,
     throw InvalidInputError("pack_shapes: resolution " + std::to_string(options.resolution) +
                             " is outside [64, 16384]");
   if (options.trials < 1) throw InvalidInputError("pack_shapes: trials must be >= 1");
-  ShapeSet set{charts, std::vector<double>(nc, 0.0), std::vector<int>(nc), options.may_turn ? 4 : 1};
+  ShapeSet set{charts, std::vector<double>(nc, 0.0), std::vector<double>(nc, 0.0), std::vector<int>(nc),
+               options.may_turn ? 4 : 1};
   std::vector<double> box_area(nc, 0.0), longest(nc, 0.0);
   double area = 0, largest = 0;
   for (int c = 0; c < nc; ++c) {
@@ -745,7 +764,7 @@ std::vector<ShapePlacement> pack_shapes(const std::vector<ChartShape>& charts,
     if (ch.uv.empty()) continue;
     set.shorter[c] = (hi - lo).minCoeff();
     box_area[c] = (hi - lo).prod();
-    longest[c] = (hi - lo).maxCoeff();
+    longest[c] = set.longer[c] = (hi - lo).maxCoeff();
     largest = std::max(largest, (hi - lo).maxCoeff());
   }
   std::iota(set.order.begin(), set.order.end(), 0);

@@ -213,14 +213,20 @@ std::pair<double, double> best_aspect(const Chart& chart) {
   return {aspects[best], l2_at_aspect(disk, uv, aspects[best])};
 }
 
+/// A layout's own texel share as the chart choice scores it: fill^e / L2²
+/// (UnwrapOptions::scan_layout_fill_exponent; e = 1: the share of its bounding rectangle).
+double layout_score(double fill, double l2, double e) { return std::pow(fill, e) / (l2 * l2); }
+
 /// Replaces \p chart by \p u, a layout of its whole piece (no cut: an unfolding, a projection),
 /// when its own texel share, UV fill of its rectangle / L2² at its aspect, is higher than the
 /// chart's at its best aspect.
-void use_layout_if_better(const Component& comp, Chart& chart, std::optional<PolygonLayout> u) {
+void use_layout_if_better(const Component& comp, Chart& chart, std::optional<PolygonLayout> u,
+                          double e = 1.0) {
   if (!u) return;
   const double l2_u = l2_at_aspect(comp.mesh, u->uv, u->aspect);
   const double l2_c = best_aspect(chart).second;
-  if (!(std::isfinite(l2_u) && u->fill / (l2_u * l2_u) > chart.domain_area / (l2_c * l2_c))) return;
+  if (!(std::isfinite(l2_u) && layout_score(u->fill, l2_u, e) > layout_score(chart.domain_area, l2_c, e)))
+    return;
   CutState& s = chart.state;
   s.cut.assign(s.cut.size(), 0);
   s.disk.disk = comp.mesh;
@@ -247,8 +253,8 @@ void use_layout_if_better(const Component& comp, Chart& chart, std::optional<Pol
 /// its aspect, is higher than the chart's at its best aspect (tiny_components(200): its 10-face
 /// strips go from L2 1.5 at fill 1 to L2 1 at fill 0.91, its slivers from L2 250 to 1; strips of
 /// two faces keep the square, L2 1.06 at fill 1 against fill 0.71).
-void use_unfolding_if_better(const Component& comp, Chart& chart) {
-  use_layout_if_better(comp, chart, unfold_polygon(comp.mesh));
+void use_unfolding_if_better(const Component& comp, Chart& chart, double e) {
+  use_layout_if_better(comp, chart, unfold_polygon(comp.mesh), e);
 }
 
 /// Replaces the layout of \p chart by a free-boundary conformal layout of its disk (lscm.h) when
@@ -257,7 +263,7 @@ void use_unfolding_if_better(const Component& comp, Chart& chart) {
 /// \p first: the cut and disk before the augmentation, tried too (LSCM of a disk may overlap
 /// where that of a shorter cut does not); \p first_lscm (if not null): its layout, computed already.
 void use_free_boundary_if_better(Chart& chart, CutState first,
-                                 const std::optional<PolygonLayout>* first_lscm) {
+                                 const std::optional<PolygonLayout>* first_lscm, double e) {
   CutState& s = chart.state;
   const auto lscm_of_first = [&] { return first_lscm ? *first_lscm : lscm_layout(first.disk.disk); };
   // The cut was not augmented: the same disk, whose layout would only tie with u.
@@ -268,9 +274,9 @@ void use_free_boundary_if_better(Chart& chart, CutState first,
   double l2_u = u ? l2_at_aspect(s.disk.disk, u->uv, u->aspect) : 0.0;
   if (std::optional<PolygonLayout> f = same_disk ? std::nullopt : lscm_of_first()) {
     const double l2_f = l2_at_aspect(first.disk.disk, f->uv, f->aspect);
-    if (std::isfinite(l2_f) && (!u || f->fill / (l2_f * l2_f) > u->fill / (l2_u * l2_u))) {
+    if (std::isfinite(l2_f) && (!u || layout_score(f->fill, l2_f, e) > layout_score(u->fill, l2_u, e))) {
       const double l2_c = best_aspect(chart).second;
-      if (!(f->fill / (l2_f * l2_f) > chart.domain_area / (l2_c * l2_c))) return;
+      if (!(layout_score(f->fill, l2_f, e) > layout_score(chart.domain_area, l2_c, e))) return;
       s.cut = std::move(first.cut);
       s.disk = std::move(first.disk);
       chart.augmentations = 0;
@@ -280,7 +286,8 @@ void use_free_boundary_if_better(Chart& chart, CutState first,
   }
   if (!u) return;
   const double l2_c = best_aspect(chart).second;
-  if (!(std::isfinite(l2_u) && u->fill / (l2_u * l2_u) > chart.domain_area / (l2_c * l2_c))) return;
+  if (!(std::isfinite(l2_u) && layout_score(u->fill, l2_u, e) > layout_score(chart.domain_area, l2_c, e)))
+    return;
   s.solve_state.reset();
   const StretchStats st = measure_stretch(s.disk.disk, u->uv);
   s.param.uv = std::move(u->uv);
@@ -419,15 +426,18 @@ double uv_domain_area(const CutState& s) {
 /// a higher texel share: the unfolding, the projection (only for a piece that is a \p disk: charts
 /// are disks), the free-boundary layout of the final or the \p initial cut.
 void use_other_layouts_if_better(const Component& comp, Chart& chart, PieceLayouts layouts,
-                                  bool disk, CutState initial) {
-  if (layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart);
+                                  bool disk, CutState initial, double fill_exponent) {
+  // The fill exponent applies to the scan charts (Free) only.
+  const double e = layouts == PieceLayouts::Free ? fill_exponent : 1.0;
+  if (layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart, e);
   if (layouts != PieceLayouts::Free) return;
   // A projection keeps the piece's own boundaries: only a disk may take it (charts are disks).
   if (disk)
     use_layout_if_better(comp, chart,
                          comp.probe_projection ? *comp.probe_projection
-                                               : projection_layout(comp.mesh));
-  use_free_boundary_if_better(chart, std::move(initial), comp.probe_lscm.get());
+                                               : projection_layout(comp.mesh),
+                         e);
+  use_free_boundary_if_better(chart, std::move(initial), comp.probe_lscm.get(), e);
 }
 
 /// Cuts one piece (a component, or a chart of a component) to a disk, augments the cut (GGH 2002
@@ -483,13 +493,14 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   }
   chart.state = std::move(cur);
   chart.domain_area = uv_domain_area(chart.state);
-  use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial));
+  use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial),
+                              options.scan_layout_fill_exponent);
   // Still flipped or degenerate UV triangles (no augmentation allowed or none helped): a valid
   // layout of the other kinds, whatever its share (unwrap_pieces() splits the piece otherwise).
   if (ctx.layouts != PieceLayouts::Free && score(chart.state).bad > 0) {
     CutState same;  // the free-boundary layout of the chart's own disk
     same.cut = chart.state.cut, same.disk = chart.state.disk;
-    use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same));
+    use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same), 1.0);
   }
   chart.cut_length = cut_length(graph, chart.state.cut);
   return chart;
@@ -514,33 +525,16 @@ double seam_length(const TriMesh& mesh, const Parameterization& param) {
   return seams;
 }
 
-/// Packs the charts of \p pieces with gap \p padding and writes the layout and the layout figures
-/// (charts, cut length of the pieces, augmentations, stretch, coverage, effective texel share)
-/// into \p result; unwrap() replaces the cut length of several charts by their seam length.
-void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
-              const std::vector<Chart>& charts, double padding, const UnwrapOptions& options,
-              UnwrapResult& result) {
+/// Writes the layout of \p charts into \p result, chart c's wedge at place(c, its uv in the chart's
+/// frame), and the layout figures (charts, cut length of the pieces, augmentations, stretch,
+/// coverage, effective texel share). \p k[c]: the linear scale of chart c's frame in the square
+/// (for the combined Floater figures).
+template <class Place>
+void write_layout(const TriMesh& mesh, const std::vector<Component>& pieces,
+                  const std::vector<Chart>& charts, const Place& place, const std::vector<double>& k,
+                  UnwrapResult& result) {
   UnwrapReport& rep = result.report;
   const int nc = static_cast<int>(pieces.size());
-  // Rectangles of the chart's best aspect ratio and of area proportional to A3_c * L2_c (3-D area
-  // times the chart's own L2 stretch): of all allocations of the square to the charts this one
-  // gives the lowest layout L2 (it becomes the area-weighted mean of the L2_c instead of their
-  // root mean square; docs/charts.md). The packer may turn a rectangle by 90° (a rotation keeps
-  // the UV orientation).
-  std::vector<Vec2> sizes(nc);
-  for (int c = 0; c < nc; ++c) {
-    const auto [a, l2] = nc > 1 ? best_aspect(charts[c]) : std::pair<double, double>(1.0, 1.0);
-    const double area = std::max(pieces[c].area, 1e-300) * (std::isfinite(l2) && l2 > 0 ? l2 : 1.0);
-    sizes[c] = Vec2(std::sqrt(area * a), std::sqrt(area / a));
-  }
-  // No chart is smaller than the gap (tiny components keep a usable number of texels).
-  RectPackOptions po;
-  po.padding = padding;
-  po.min_side = options.min_chart_side_of_gap * padding;
-  po.may_turn = true;
-  po.progress = options.progress;
-  std::vector<char> turned;
-  const std::vector<RectPlacement> place = pack_rectangles(sizes, po, &turned);
   Parameterization& param = result.param;
   param = Parameterization{};
   param.num_charts = nc;
@@ -554,10 +548,7 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
     const Component& comp = pieces[c];
     const int offset = param.num_wedges();
     for (size_t w = 0; w < chart.state.param.uv.size(); ++w) {
-      const Vec2& t = chart.state.param.uv[w];
-      Vec2 uv = place[c].offset + place[c].size.cwiseProduct(turned[c] ? Vec2(1 - t.y(), t.x()) : t);
-      uv = uv.cwiseMax(0.0).cwiseMin(1.0);
-      param.uv.push_back(uv);
+      param.uv.push_back(place(c, chart.state.param.uv[w]).cwiseMax(0.0).cwiseMin(1.0));
       param.wedge_vertex.push_back(comp.vertices[chart.state.disk.wedge_vertex[w]]);
     }
     for (size_t lf = 0; lf < comp.faces.size(); ++lf) {
@@ -586,13 +577,13 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
   } else {
     double a3 = 0, sum_r = 0, sum_a2 = 0, max_gamma = 0;
     for (int c = 0; c < nc; ++c) {
-      const double k = std::sqrt(place[c].size.x() * place[c].size.y()), A3 = std::max(pieces[c].area, 1e-300);
+      const double A3 = std::max(pieces[c].area, 1e-300);
       const double A2 = charts[c].domain_area;
       const DiskParamResult& r = charts[c].state.param;
       a3 += A3;
-      sum_r += r.floater_l2 * r.floater_l2 * A3 * A3 / (A2 * k * k);
-      sum_a2 += k * k * A2;
-      max_gamma = std::max(max_gamma, r.floater_linf * std::sqrt(A3 / A2) / k);
+      sum_r += r.floater_l2 * r.floater_l2 * A3 * A3 / (A2 * k[c] * k[c]);
+      sum_a2 += k[c] * k[c] * A2;
+      max_gamma = std::max(max_gamma, r.floater_linf * std::sqrt(A3 / A2) / k[c]);
     }
     rep.floater_l2 = std::sqrt(sum_r / a3) * std::sqrt(sum_a2 / a3);
     rep.floater_linf = max_gamma * std::sqrt(sum_a2 / a3);
@@ -603,6 +594,74 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
   rep.effective_texel_share =
       std::isfinite(rep.final_l2) && rep.final_l2 > 0 ? rep.coverage / (rep.final_l2 * rep.final_l2)
                                                       : 0.0;
+}
+
+/// assemble() packs the charts by their shapes too only when they cover less than this part of
+/// their rectangles.
+constexpr double kShapePackingMaxFill = 0.9;
+
+/// Packs the charts of \p pieces with gap \p padding (their rectangles, pack_rectangles(); with
+/// \p shapes also their shapes, pack_shapes(), where they fill less than kShapePackingMaxFill of
+/// their rectangles, keeping the packing of the higher effective texel share) and writes the layout and its figures into \p result (write_layout()); unwrap()
+/// replaces the cut length of several charts by their seam length.
+void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
+              const std::vector<Chart>& charts, double padding, const UnwrapOptions& options,
+              UnwrapResult& result, bool shapes = false) {
+  const int nc = static_cast<int>(pieces.size());
+  // Rectangles of the chart's best aspect ratio and of area proportional to A3_c * L2_c (3-D area
+  // times the chart's own L2 stretch): of all allocations of the square to the charts this one
+  // gives the lowest layout L2 (it becomes the area-weighted mean of the L2_c instead of their
+  // root mean square; docs/charts.md). The packer may turn a rectangle by 90° (a rotation keeps
+  // the UV orientation).
+  std::vector<Vec2> sizes(nc);
+  for (int c = 0; c < nc; ++c) {
+    const auto [a, l2] = nc > 1 ? best_aspect(charts[c]) : std::pair<double, double>(1.0, 1.0);
+    const double area = std::max(pieces[c].area, 1e-300) * (std::isfinite(l2) && l2 > 0 ? l2 : 1.0);
+    sizes[c] = Vec2(std::sqrt(area * a), std::sqrt(area / a));
+  }
+  // No chart is smaller than the gap (tiny components keep a usable number of texels).
+  RectPackOptions po;
+  po.padding = padding;
+  po.min_side = options.min_chart_side_of_gap * padding;
+  po.may_turn = true;
+  po.progress = options.progress;
+  std::vector<char> turned;
+  double gap = padding;
+  const std::vector<RectPlacement> place = pack_rectangles(sizes, po, &turned, &gap);
+  std::vector<double> k(nc);
+  for (int c = 0; c < nc; ++c) k[c] = std::sqrt(place[c].size.x() * place[c].size.y());
+  write_layout(mesh, pieces, charts,
+               [&](int c, const Vec2& t) {
+                 return Vec2(place[c].offset +
+                             place[c].size.cwiseProduct(turned[c] ? Vec2(1 - t.y(), t.x()) : t));
+               },
+               k, result);
+  // Shapes can only pay where the charts leave much of their rectangles empty (on the meshes of
+  // the share table they fill 0.94-0.999 of them and the shapes never won; docs/bench_unwrap.md).
+  double rect_area = 0;
+  for (const RectPlacement& r : place) rect_area += r.size.prod();
+  if (!shapes || nc < 2 || !(result.report.coverage < kShapePackingMaxFill * rect_area)) return;
+  // The shapes: each chart's UVs at the aspect of its rectangle, its UV area (not its
+  // rectangle's) proportional to A3_c * L2_c.
+  std::vector<ChartShape> shape(nc);
+  std::vector<Vec2> stretch(nc);
+  for (int c = 0; c < nc; ++c) {
+    stretch[c] = sizes[c] / std::sqrt(std::max(charts[c].domain_area, 1e-12));
+    for (const Vec2& t : charts[c].state.param.uv) shape[c].uv.push_back(t.cwiseProduct(stretch[c]));
+    shape[c].faces = charts[c].state.disk.disk.faces;
+  }
+  ShapePackOptions so;
+  // The gap (and minimum side) the rectangles kept: both packings are compared at one gap.
+  so.padding = gap;
+  so.min_side = padding > 0 ? po.min_side * gap / padding : 0.0;
+  so.progress = options.progress;
+  const std::vector<ShapePlacement> sp = pack_shapes(shape, so);
+  for (int c = 0; c < nc; ++c) k[c] = sp[c].scale * std::sqrt(stretch[c].x() * stretch[c].y());
+  UnwrapResult alt;
+  alt.report = result.report;
+  write_layout(mesh, pieces, charts,
+               [&](int c, const Vec2& t) { return sp[c].apply(t.cwiseProduct(stretch[c])); }, k, alt);
+  if (alt.report.effective_texel_share > result.report.effective_texel_share) result = std::move(alt);
 }
 
 /// Appends the charts of \p comp given by \p label (F labels, charts.h) to \p pieces, with input
@@ -761,7 +820,8 @@ size_t split_piece(const Component& piece, int k, const UnwrapOptions& options,
 /// invalid_uv_faces() of the packed layout of \p charts. Overlaps are looked for only in the charts
 /// of a fixed aspect (free-boundary, projected, unfolded layouts): a disk parameterization maps its
 /// boundary onto a convex curve, so with no flipped or degenerate triangle it is a bijection onto
-/// its rectangle, and the packed rectangles are disjoint.
+/// its rectangle, and the packed rectangles are disjoint (packed by their shapes, the triangles
+/// of two charts are disjoint: pack_shapes()).
 std::vector<int> invalid_layout_faces(const Parameterization& param, const std::vector<Chart>& charts) {
   std::vector<char> free(param.uv_faces.size(), 0);
   for (size_t f = 0; f < free.size(); ++f) free[f] = charts[param.face_chart[f]].aspect > 0;
@@ -813,12 +873,13 @@ void split_invalid_charts(std::vector<Component>& pieces, std::vector<Chart>& ch
 
 /// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
 /// \p unfold and \p on_last_started as in build_charts(); \p give_up_l2 as
-/// ChartContext::give_up_l2. Returns false, and
+/// ChartContext::give_up_l2; \p shapes as in assemble(). Returns false, and
 /// leaves the layout of \p result alone (only its phase times grow), when a chart was abandoned.
 bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
                    const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
                    const UnwrapOptions& options, UnwrapResult& result, PieceLayouts layouts,
-                   double give_up_l2 = 0, const std::function<void()>& on_last_started = {}) {
+                   double give_up_l2 = 0, const std::function<void()>& on_last_started = {},
+                   bool shapes = false) {
   std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report, layouts,
                                            give_up_l2, on_last_started);
   for (const Chart& c : charts)
@@ -828,7 +889,7 @@ bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
     const std::vector<Component>& current = round == 0 ? pieces : split;
     const auto t0 = Clock::now();
     report_progress(options.progress, "pack", 0.0);
-    assemble(mesh, current, charts, padding, options, result);
+    assemble(mesh, current, charts, padding, options, result, shapes);
     report_progress(options.progress, "pack", 1.0);
     result.report.time_pack += seconds_since(t0);
     const std::vector<int> bad = invalid_layout_faces(result.param, charts);
@@ -877,12 +938,13 @@ PieceProbe probe_piece(const Component& piece, const DiskParamOptions& dopt,
   // The free-boundary layout the chart may get instead (use_free_boundary_if_better()): when it is
   // valid and has the higher share, its stretch is what a split would lower.
   if (options.scan_free_boundary) {
+    const double e = options.scan_layout_fill_exponent;
     double share = p.bad > 0 ? 0.0 : 1 / (p.l2 * p.l2);
     auto consider = [&](const TriMesh& m, const std::optional<PolygonLayout>& u) {
       if (!u) return;
       const double l2_u = l2_at_aspect(m, u->uv, u->aspect);
-      if (std::isfinite(l2_u) && u->fill / (l2_u * l2_u) > share) {
-        share = u->fill / (l2_u * l2_u);
+      if (std::isfinite(l2_u) && layout_score(u->fill, l2_u, e) > share) {
+        share = layout_score(u->fill, l2_u, e);
         p.bad = 0;
         p.l2 = l2_u;
       }
@@ -1242,13 +1304,15 @@ void segment_until_good(const TriMesh& mesh, const std::vector<Component>& comps
 
 /// Builds the layout of \p pieces as a candidate and keeps it in \p result when its effective
 /// texel share is higher, or when \p result has no layout yet (the phase times add up either way).
+/// \p shapes as in assemble().
 void keep_better_layout(const TriMesh& mesh, const std::vector<Component>& pieces,
                         const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
-                        const UnwrapOptions& options, PieceLayouts layouts, UnwrapResult& result) {
+                        const UnwrapOptions& options, PieceLayouts layouts, UnwrapResult& result,
+                        bool shapes = false) {
   UnwrapReport& rep = result.report;
   UnwrapResult candidate;
   candidate.report = rep;
-  if (unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, candidate, layouts) &&
+  if (unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, candidate, layouts, 0, {}, shapes) &&
       (candidate.report.effective_texel_share > rep.effective_texel_share ||
        result.param.uv_faces.empty()))
     result = std::move(candidate);
@@ -1282,22 +1346,23 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
                  const UnwrapOptions& options, UnwrapResult& result) {
   const PieceLayouts scan_layouts =
       options.scan_free_boundary ? PieceLayouts::Free : PieceLayouts::Unfold;
+  const bool shapes = options.scan_pack_shapes;
   std::vector<Component> pieces = timed_scan_pieces(comps, dopt, gutter, options, result.report);
-  unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, scan_layouts);
+  unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, scan_layouts, 0, {}, shapes);
   UnwrapOptions plain = options;
   plain.scan_planar_angle = 0;
   plain.scan_free_boundary = false;
   const bool new_ways = options.scan_planar_angle > 0 || options.scan_free_boundary;
   if (new_ways) {
     pieces = timed_scan_pieces(comps, dopt, gutter, plain, result.report);
-    keep_better_layout(mesh, pieces, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result);
+    keep_better_layout(mesh, pieces, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
   }
   if (mesh.num_faces() > options.scan_single_max_faces) return;
   const std::vector<Component> coarse =
       timed_scan_pieces(comps, dopt, gutter, plain, result.report, kCoarseProbeFaces);
   if (coarse.size() != pieces.size())
-    keep_better_layout(mesh, coarse, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result);
-  keep_better_layout(mesh, comps, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result);
+    keep_better_layout(mesh, coarse, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
+  keep_better_layout(mesh, comps, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
 }
 
 /// Throws InvalidInputError (TopologyError for a mesh without faces) when \p options are out of
@@ -1325,6 +1390,9 @@ void check_unwrap_input(const TriMesh& mesh, const UnwrapOptions& options) {
       !(options.scan_planar_min_area >= 0 && options.scan_planar_min_area <= 1))
     throw InvalidInputError("unwrap: scan_planar_angle must be in [0, 90) and scan_planar_min_area "
                             "in [0, 1]");
+  if (!(options.scan_layout_fill_exponent >= 0 && options.scan_layout_fill_exponent <= 1))
+    throw InvalidInputError("unwrap: scan_layout_fill_exponent " +
+                            std::to_string(options.scan_layout_fill_exponent) + " is outside [0, 1]");
   if (!(options.min_chart_side_of_gap >= 0 && options.min_chart_side_of_gap <= 4))
     throw InvalidInputError("unwrap: min_chart_side_of_gap " +
                             std::to_string(options.min_chart_side_of_gap) + " is outside [0, 4]");

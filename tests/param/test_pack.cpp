@@ -171,5 +171,22 @@ TEST(PackMany, ReportsProgressAndCancels) {
   }
 }
 
+TEST(PackMany, ReportsTheGapItKept) {
+  // 3000 rectangles with a gap of 0.02: the gaps alone take 1.2 of the square, so the gap is
+  // halved (pack.h) and the halved gap is what comes back; a gap that fits comes back unchanged.
+  const std::vector<Vec2> sizes = spread_rectangles(3000);
+  RectPackOptions o;
+  o.padding = 0.02;
+  std::vector<char> turned;
+  double gap = -1;
+  const std::vector<RectPlacement> pl = pack_rectangles(sizes, o, &turned, &gap);
+  EXPECT_LT(gap, o.padding);
+  EXPECT_GT(gap, 0.0);
+  check_layout(sizes, pl, turned, gap, 0.0);
+  o.padding = 1.0 / 4096;
+  pack_rectangles(sizes, o, &turned, &gap);
+  EXPECT_EQ(gap, o.padding);
+}
+
 }  // namespace
 }  // namespace adaptex

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <set>
 #include <string>
@@ -109,9 +110,24 @@ TEST(UnwrapScan, SingleModeAndFewComponentsKeepTheirLayouts) {
   EXPECT_EQ(r.report.time_segment, 0.0);
 }
 
+TEST(UnwrapScan, ShapePackingKeepsTheLayoutValidAndNeverLowersTheShare) {
+  // The charts are also packed by their shapes (pack_shapes()); the packing of the higher share
+  // is kept, and the layout stays free of overlaps (check_unwrap()).
+  const TriMesh mesh = test::scan_like_mesh(30000);
+  UnwrapOptions opt;
+  opt.augment_time_budget = 1e9;
+  UnwrapResult with;
+  test::check_unwrap("shapes", mesh, opt, &with);
+  opt.scan_pack_shapes = false;
+  const UnwrapResult without = unwrap(mesh, opt);
+  std::printf("scan_like_mesh(30000): share %.4f with shape packing, %.4f without\n",
+              with.report.effective_texel_share, without.report.effective_texel_share);
+  EXPECT_GE(with.report.effective_texel_share, without.report.effective_texel_share);
+}
+
 TEST(UnwrapScan, OptionsOutOfRangeAreOneClearError) {
   const TriMesh mesh = test::scan_like_mesh(20000);
-  for (int k = 0; k < 7; ++k) {
+  for (int k = 0; k < 8; ++k) {
     UnwrapOptions o;
     if (k == 0) o.scan_piece_faces = 0;
     if (k == 1) o.scan_max_rounds = -1;
@@ -120,6 +136,7 @@ TEST(UnwrapScan, OptionsOutOfRangeAreOneClearError) {
     if (k == 4) o.scan_planar_angle = 90;
     if (k == 5) o.scan_planar_angle = std::numeric_limits<double>::quiet_NaN();
     if (k == 6) o.scan_planar_min_area = 1.5;
+    if (k == 7) o.scan_layout_fill_exponent = 2;
     EXPECT_THROW(unwrap(mesh, o), InvalidInputError) << k;
   }
 }

@@ -86,12 +86,14 @@ struct RectPackOptions {
 /// by bisection (a fixed number of steps), so the whole packing is O(n log n) (10^4 rectangles in
 /// tens of milliseconds). Non-finite or non-positive sizes get the smallest size.
 /// \param turned if not null, receives C flags (1: placement i has the shape (sizes[i].y(), sizes[i].x()))
+/// \param gap_used if not null, receives the gap the packing kept (padding, or halved)
 /// \return as pack_rectangles(); each rectangle is at least min_side wide and high
 /// \throw InvalidInputError padding or min_side out of range, no charts, or they cannot be packed
 /// \throw CancelledError the progress callback returned false
 std::vector<RectPlacement> pack_rectangles(const std::vector<Vec2>& sizes,
                                            const RectPackOptions& options,
-                                           std::vector<char>* turned = nullptr);
+                                           std::vector<char>* turned = nullptr,
+                                           double* gap_used = nullptr);
 
 /// One chart for pack_shapes(): its UV triangles, in a frame where every chart has the texel
 /// density it should get (only the ratios between the charts' sizes matter).
@@ -115,8 +117,9 @@ struct ShapePackOptions {
   /// in [0, 0.25). Default 0.
   double padding = 0;
   /// Minimum texel floor: a chart whose bounding box would have a side shorter than this is
-  /// enlarged uniformly to it; as RectPackOptions::min_side, and both it and the gap are halved
-  /// while they alone do not fit. In [0, 0.25). Default 0.
+  /// enlarged uniformly to it (a sliver only until its longer side is 16 times this); as
+  /// RectPackOptions::min_side, and both it and the gap are halved while they alone do not fit.
+  /// In [0, 0.25). Default 0.
   double min_side = 0;
   /// Charts may be turned by quarter turns (4 orientations). Default true.
   bool may_turn = true;

@@ -142,6 +142,17 @@ struct UnwrapOptions {
   /// Scans: meshes of at most this many faces also build one chart per component, and the
   /// layout with the higher effective texel share is kept.
   int scan_single_max_faces = 100000;
+  /// Scans: every layout is also packed by the charts' shapes (pack_shapes(), pack.h: irregular
+  /// charts nest) besides their rectangles, and the packing with the higher effective texel share
+  /// is kept (docs/charts.md, "Scans"). true (default).
+  bool scan_pack_shapes = true;
+  /// Scans, with scan_free_boundary: a chart takes the layout (square, free boundary, unfolding,
+  /// projection) of the highest fill^e / L2², where fill is the part of its bounding rectangle the
+  /// layout covers: 1 scores rectangles (what the rectangle packer places), 0 the stretch alone
+  /// (what a shape packer places). 1 (default); 0.5 gains 0.003-0.008 of share on the Matterport
+  /// scans but gives tiny_components(200) 410 charts instead of one per component
+  /// (docs/bench_unwrap.md, "Shape packing"). In [0, 1].
+  double scan_layout_fill_exponent = 1.0;
   /// Progress / cancel callback (phases "cut", "segment", "floater", "yoshizawa", "augment",
   /// "pack").
   ProgressCallback progress;
