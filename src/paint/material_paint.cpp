@@ -2,9 +2,11 @@
 /// Channel textures of a layered material on one layout, and the normal map derived from its height.
 #include "adaptex/paint/material_paint.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "adaptex/core/errors.h"
@@ -169,21 +171,40 @@ void set_material_texel(MaterialTextures& tex, int t, const MaterialValue& v) {
 
 void set_normal_texel(ImageRGBA8& normal_map, int t, const Vec3f& n) { put_normal(normal_map, t, n.cast<double>()); }
 
+namespace {
+
+/// \p img as a w x h image filled with \p rgba, reusing its storage (filled in parallel).
+void fill_image(ImageRGBA8& img, int w, int h, std::array<std::uint8_t, 4> rgba) {
+  img.width = w, img.height = h;
+  img.data.resize(static_cast<size_t>(w) * h * 4);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, static_cast<size_t>(w) * h, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k < r.end(); ++k) std::copy(rgba.begin(), rgba.end(), img.data.begin() + 4 * k);
+  });
+}
+
+}  // namespace
+
 MaterialTextures material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                                const std::vector<MaterialValue>& values,
                                                const MaterialValue& background, int padding, double height_scale) {
+  MaterialTextures out;
+  material_textures_from_values(mesh, param, map, values, background, padding, height_scale, out);
+  return out;
+}
+
+void material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                   const std::vector<MaterialValue>& values, const MaterialValue& background,
+                                   int padding, double height_scale, MaterialTextures& out) {
   if (values.size() != map.inside.size())
     throw InvalidInputError("material textures: one value per chart texel expected");
   if (padding < 0) throw InvalidInputError("material textures: padding must be >= 0");
   const int N = map.width;
-  MaterialTextures out;
   out.height_scale = height_scale;
   const MaterialValue& bg = background;
-  const std::uint8_t bg_rgba[4] = {to_byte(bg[0]), to_byte(bg[1]), to_byte(bg[2]), to_byte(bg[3])};
-  out.base_color = ImageRGBA8(N, map.height, {bg_rgba[0], bg_rgba[1], bg_rgba[2], bg_rgba[3]});
+  fill_image(out.base_color, N, map.height, {to_byte(bg[0]), to_byte(bg[1]), to_byte(bg[2]), to_byte(bg[3])});
   const std::pair<ImageRGBA8*, double> grey_images[] = {{&out.roughness, bg[4]}, {&out.metallic, bg[5]}, {&out.height, bg[6]}};
-  for (const auto& [img, g] : grey_images) *img = ImageRGBA8(N, map.height, {to_byte(g), to_byte(g), to_byte(g), 255});
-  out.metallic_roughness = ImageRGBA8(N, map.height, {255, to_byte(bg[4]), to_byte(bg[5]), 255});
+  for (const auto& [img, g] : grey_images) fill_image(*img, N, map.height, {to_byte(g), to_byte(g), to_byte(g), 255});
+  fill_image(out.metallic_roughness, N, map.height, {255, to_byte(bg[4]), to_byte(bg[5]), 255});
   // Chart texels from their values; padded texels then copy their source texel's bytes (what copying
   // the source's value would give); the normal map reads chart texels' heights only.
   std::vector<double> height(static_cast<size_t>(N) * map.height, (bg[6] - 0.5) * height_scale);
@@ -197,7 +218,6 @@ MaterialTextures material_textures_from_values(const TriMesh& mesh, const Parame
     apply_seam_padding(*img, pad);
   out.normal = normal_map_from_height(mesh, param, map, height);
   apply_seam_padding(out.normal, pad);
-  return out;
 }
 
 }  // namespace adaptex

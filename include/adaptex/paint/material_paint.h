@@ -49,6 +49,10 @@ MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& par
 MaterialTextures material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                                const std::vector<MaterialValue>& values,
                                                const MaterialValue& background, int padding, double height_scale);
+/// As above, into \p out, reusing its storage (a session's next candidate layout). \throw as above
+void material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                                   const std::vector<MaterialValue>& values, const MaterialValue& background,
+                                   int padding, double height_scale, MaterialTextures& out);
 
 /// Writes the material \p v into texel \p t (row-major index) of the 8-bit channel textures of \p tex
 /// (base colour and alpha, roughness, metallic, height, the metallic-roughness packing; not the normal

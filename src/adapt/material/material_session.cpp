@@ -148,8 +148,8 @@ struct MaterialPaintSession::Impl {
     if (l.painted >= 0 && !l.last.empty()) {
       update_textures(l, v);
     } else {
-      l.textures = material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding,
-                                                 height_scale);
+      material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding, height_scale,
+                                    l.textures);
       if (&l == &initial) {  // kept for the updates
         l.last = v;
         l.pad = build_seam_padding(l.map, opt.paint.padding);
@@ -169,8 +169,8 @@ struct MaterialPaintSession::Impl {
     if (l.painted == c.strokes()) return l.textures;
     std::vector<MaterialValue>& v = l.interpolated;
     c.texel_values(history, l.map, *l.mesh, l.parent_face.empty() ? nullptr : &l.parent_face, v);
-    l.textures = material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding,
-                                               height_scale);
+    material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding, height_scale,
+                                  l.textures);
     l.painted = c.strokes();
     return l.textures;
   }
