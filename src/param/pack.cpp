@@ -666,8 +666,10 @@ struct ShapeSet {
   const std::vector<ChartShape>& charts;
   std::vector<double> shorter;  ///< Shorter side of every chart's bounding box (chart units).
   std::vector<double> longer;   ///< Longer side.
+  std::vector<double> box_area; ///< Area of the bounding box.
   std::vector<int> order;       ///< Longest bounding-box side first.
   int turns = 1;                ///< Orientations tried (1 or 4).
+  double largest = 0;           ///< Longest side of all.
 };
 
 /// One packing trial at common scale \p s, raster side \p n cells, gap \p g cells, minimum side
@@ -724,6 +726,99 @@ double first_shape_scale(const std::vector<double>& box_area, double gap, double
   return lo;
 }
 
+/// The charts of pack_shapes() with their bounding boxes, largest first by the longest side.
+/// \throw InvalidInputError a non-finite uv or a triangle index out of range
+ShapeSet make_shape_set(const std::vector<ChartShape>& charts, int turns) {
+  const int nc = static_cast<int>(charts.size());
+  ShapeSet set{charts, std::vector<double>(nc, 0.0), std::vector<double>(nc, 0.0),
+               std::vector<double>(nc, 0.0), std::vector<int>(nc), turns};
+  for (int c = 0; c < nc; ++c) {
+    const ChartShape& ch = charts[c];
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec2& p : ch.uv) {
+      if (!p.allFinite())
+        throw InvalidInputError("pack_shapes: chart " + std::to_string(c) + " has a non-finite uv");
+      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    }
+    for (const Face& f : ch.faces)
+      for (int k = 0; k < 3; ++k)
+        if (f[k] < 0 || f[k] >= static_cast<int>(ch.uv.size()))
+          throw InvalidInputError("pack_shapes: chart " + std::to_string(c) +
+                                  " has a triangle index out of range");
+    if (ch.uv.empty()) continue;
+    set.shorter[c] = (hi - lo).minCoeff();
+    set.longer[c] = (hi - lo).maxCoeff();
+    set.box_area[c] = (hi - lo).prod();
+    set.largest = std::max(set.largest, set.longer[c]);
+  }
+  std::iota(set.order.begin(), set.order.end(), 0);
+  // Longest side first (on the charts of docs/bench_unwrap.md it beat largest area first and the
+  // shorter side first).
+  std::stable_sort(set.order.begin(), set.order.end(),
+                   [&](int a, int b) { return set.longer[a] > set.longer[b]; });
+  return set;
+}
+
+/// The scale search of pack_shapes() on an n² raster, with progress over all its calls.
+struct ShapeSearch {
+  const ShapeSet& set;
+  const ShapePackOptions& options;
+  int n;
+  int reported = 0;
+  double frac = 0;
+
+  void tick() {
+    frac = std::min(1.0, reported++ / (options.trials + 2.0));
+    report_progress(options.progress, "pack", frac);
+  }
+
+  double trial(double s, int g, double min_side, std::vector<ShapePlacement>* out, double limit) {
+    return shape_trial(set, s, n, g, min_side, options.progress, frac, out, limit);
+  }
+
+  /// Packs at gap \p gap and minimum side \p min_side at the largest scale found into \p out;
+  /// false when even the gaps and minimum sides alone (every chart a point or raised to
+  /// min_side) do not fit. The first scale: the charts' bounding boxes with their gaps fill 0.65
+  /// of the square; then the packed height is taken as a power of the scale (its exponent from
+  /// the last two trials, 2 at first), aiming 0.5 % below the top.
+  bool fit(double gap, double min_side, std::vector<ShapePlacement>& out) {
+    const int g = static_cast<int>(std::ceil(gap * n - 1e-9));
+    tick();
+    // A chart takes at least (1 + g)² cells of the (n + g)² that the square and half a gap hold.
+    const double nc = static_cast<double>(set.order.size());
+    if (nc * (1 + g) * (1 + g) > static_cast<double>(n + g) * (n + g) ||
+        trial(1e-12, g, min_side, nullptr, n) > n)
+      return false;
+    const double s_max = set.largest > 0 ? (1.0 - 2 * gap) / set.largest : 1.0;
+    double s = first_shape_scale(set.box_area, gap, min_side, s_max);
+    double lo = 0, hi = std::numeric_limits<double>::infinity(), prev_s = 0, prev_needed = 0;
+    std::vector<ShapePlacement> placed(out.size());
+    for (int t = 0; t < options.trials; ++t) {
+      tick();
+      const double needed = trial(s, g, min_side, &placed, 2.0 * n);
+      if (needed <= n) lo = s, out.swap(placed);
+      else hi = s;
+      // Done when the square is filled to 1 % of its height or the bracket is within 0.3 %.
+      if (needed <= n && needed >= 0.99 * n) break;
+      if (hi < std::numeric_limits<double>::infinity() && hi <= lo * 1.003) break;
+      double k = 2;
+      if (prev_s > 0 && std::abs(std::log(s / prev_s)) > 1e-6 && needed > 0 && prev_needed > 0)
+        k = std::clamp(std::log(needed / prev_needed) / std::log(s / prev_s), 0.5, 3.0);
+      prev_s = s, prev_needed = needed;
+      double next = s * std::pow(0.995 * n / std::max(needed, 1.0), 1.0 / k);
+      if (next >= hi || next <= lo) next = lo > 0 ? std::sqrt(lo * std::min(hi, 4 * lo)) : 0.7 * s;
+      s = std::min(next, s_max);
+    }
+    // Still no fit: shrink until it does (the tiny trial fitted, so this ends).
+    for (int t = 0; lo == 0 && t < 64; ++t) {
+      tick();
+      s *= 0.8;
+      if (trial(s, g, min_side, &placed, n) <= n) lo = s, out.swap(placed);
+    }
+    return lo > 0;
+  }
+};
+
 }  // namespace
 
 Vec2 ShapePlacement::apply(const Vec2& uv) const { return offset + scale * quarter_turn(uv, turns); }
@@ -741,85 +836,14 @@ std::vector<ShapePlacement> pack_shapes(const std::vector<ChartShape>& charts,
     throw InvalidInputError("pack_shapes: resolution " + std::to_string(options.resolution) +
                             " is outside [64, 16384]");
   if (options.trials < 1) throw InvalidInputError("pack_shapes: trials must be >= 1");
-  ShapeSet set{charts, std::vector<double>(nc, 0.0), std::vector<double>(nc, 0.0), std::vector<int>(nc),
-               options.may_turn ? 4 : 1};
-  std::vector<double> box_area(nc, 0.0), longest(nc, 0.0);
-  double area = 0, largest = 0;
-  for (int c = 0; c < nc; ++c) {
-    const ChartShape& ch = charts[c];
-    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (const Vec2& p : ch.uv) {
-      if (!p.allFinite())
-        throw InvalidInputError("pack_shapes: chart " + std::to_string(c) + " has a non-finite uv");
-      lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    }
-    for (const Face& f : ch.faces) {
-      for (int k = 0; k < 3; ++k)
-        if (f[k] < 0 || f[k] >= static_cast<int>(ch.uv.size()))
-          throw InvalidInputError("pack_shapes: chart " + std::to_string(c) +
-                                  " has a triangle index out of range");
-      const Vec2 e1 = ch.uv[f[1]] - ch.uv[f[0]], e2 = ch.uv[f[2]] - ch.uv[f[0]];
-      area += 0.5 * std::abs(e1.x() * e2.y() - e1.y() * e2.x());
-    }
-    if (ch.uv.empty()) continue;
-    set.shorter[c] = (hi - lo).minCoeff();
-    box_area[c] = (hi - lo).prod();
-    longest[c] = set.longer[c] = (hi - lo).maxCoeff();
-    largest = std::max(largest, (hi - lo).maxCoeff());
-  }
-  std::iota(set.order.begin(), set.order.end(), 0);
-  // Longest side first (on the charts of docs/bench_unwrap.md it beat largest area first and the
-  // shorter side first).
-  std::stable_sort(set.order.begin(), set.order.end(),
-                   [&](int a, int b) { return longest[a] > longest[b]; });
+  const ShapeSet set = make_shape_set(charts, options.may_turn ? 4 : 1);
   const int n = options.resolution ? options.resolution : nc <= 64 ? 1024 : 2048;
-  std::vector<ShapePlacement> out(nc), trial(nc);
-  int reported = 0;
-  double frac = 0;
-  const auto tick = [&] {
-    frac = std::min(1.0, reported++ / (options.trials + 2.0));
-    report_progress(options.progress, "pack", frac);
-  };
+  ShapeSearch search{set, options, n};
+  std::vector<ShapePlacement> out(nc);
   for (double gap = options.padding, min_side = options.min_side;; gap *= 0.5, min_side *= 0.5) {
     if (gap < 1e-9) gap = 0;
     if (min_side < 1e-9) min_side = 0;
-    const int g = static_cast<int>(std::ceil(gap * n - 1e-9));
-    // Gaps and minimum sides alone (every chart a point or raised to min_side) must fit.
-    tick();
-    // (A chart takes at least (1 + g)² cells of the (n + g)² that the square and half a gap
-    // around it hold.)
-    const bool room = static_cast<double>(nc) * (1 + g) * (1 + g) <= static_cast<double>(n + g) * (n + g);
-    if (room && shape_trial(set, 1e-12, n, g, min_side, options.progress, frac, nullptr, n) <= n) {
-      // Scale search: the first scale from the charts' bounding boxes with their gaps filling
-      // 0.65 of the square; then the packed height is taken as a power of the scale (its exponent
-      // from the last two trials, 2 at first) aiming 0.5 % below the top.
-      const double s_max = largest > 0 ? (1.0 - 2 * gap) / largest : 1.0;
-      double s = first_shape_scale(box_area, gap, min_side, s_max);
-      double lo = 0, hi = std::numeric_limits<double>::infinity(), prev_s = 0, prev_needed = 0;
-      for (int t = 0; t < options.trials; ++t) {
-        tick();
-        const double needed = shape_trial(set, s, n, g, min_side, options.progress, frac, &trial, 2.0 * n);
-        if (needed <= n) lo = s, out.swap(trial);
-        else hi = s;
-        // Done when the square is filled to 1 % of its height or the bracket is within 0.3 %.
-        if (needed <= n && needed >= 0.99 * n) break;
-        if (hi < std::numeric_limits<double>::infinity() && hi <= lo * 1.003) break;
-        double k = 2;
-        if (prev_s > 0 && std::abs(std::log(s / prev_s)) > 1e-6 && needed > 0 && prev_needed > 0)
-          k = std::clamp(std::log(needed / prev_needed) / std::log(s / prev_s), 0.5, 3.0);
-        prev_s = s, prev_needed = needed;
-        double next = s * std::pow(0.995 * n / std::max(needed, 1.0), 1.0 / k);
-        if (next >= hi || next <= lo) next = lo > 0 ? std::sqrt(lo * std::min(hi, 4 * lo)) : 0.7 * s;
-        s = std::min(next, s_max);
-      }
-      // Still no fit: shrink until it does (the tiny trial fitted, so this ends).
-      for (int t = 0; lo == 0 && t < 64; ++t) {
-        tick();
-        s *= 0.8;
-        if (shape_trial(set, s, n, g, min_side, options.progress, frac, &trial, n) <= n) lo = s, out.swap(trial);
-      }
-      if (lo > 0) return out;
-    }
+    if (search.fit(gap, min_side, out)) return out;
     if (gap == 0 && min_side == 0) break;
   }
   throw InvalidInputError("pack_shapes: " + std::to_string(nc) +
