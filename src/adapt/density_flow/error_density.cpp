@@ -36,9 +36,9 @@ struct Raster {
   }
 };
 
-/// The texture as a raster (square textures as they are; others resampled bilinearly to max(W, H)²).
-Raster from_texture(const ImageRGBA8& tex) {
-  Raster r;
+/// The texture as a raster (square textures as they are; others resampled bilinearly to max(W, H)²),
+/// into \p r (its storage reused).
+void from_texture(const ImageRGBA8& tex, Raster& r) {
   r.size = std::max(tex.width, tex.height);
   r.rgb.resize(static_cast<size_t>(r.size) * r.size);
   if (tex.width == tex.height) {
@@ -46,11 +46,16 @@ Raster from_texture(const ImageRGBA8& tex) {
       for (size_t k = b.begin(); k < b.end(); ++k)
         r.rgb[k] = Vec3f(tex.data[4 * k], tex.data[4 * k + 1], tex.data[4 * k + 2]) / 255.0f;
     });
-    return r;
+    return;
   }
   for (int j = 0; j < r.size; ++j)
     for (int i = 0; i < r.size; ++i)
       r.rgb[static_cast<size_t>(j) * r.size + i] = sample_bilinear(tex, (i + 0.5) / r.size, (j + 0.5) / r.size).cast<float>();
+}
+
+Raster from_texture(const ImageRGBA8& tex) {
+  Raster r;
+  from_texture(tex, r);
   return r;
 }
 
@@ -517,15 +522,16 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
 
 namespace {
 
-/// The raster of \p map holding \p values inside charts, padded outside if \p pad.
-Raster plane_raster(const TexelMap& map, const std::vector<Vec3f>& values, bool pad) {
-  Raster r;
+/// The raster of \p map holding \p values inside charts, padded outside if \p pad, into \p r (its
+/// storage reused).
+void plane_raster(const TexelMap& map, const std::vector<Vec3f>& values, bool pad, Raster& r) {
   r.size = map.width;
   r.rgb.assign(static_cast<size_t>(map.width) * map.height, Vec3f::Zero());
+  for (int t : map.inside) r.rgb[t] = values[t];
+  if (!pad) return;
   std::vector<char> filled(r.rgb.size(), 0);
-  for (int t : map.inside) r.rgb[t] = values[t], filled[t] = 1;
-  if (pad) pad_outside(r, std::move(filled), 4);
-  return r;
+  for (int t : map.inside) filled[t] = 1;
+  pad_outside(r, std::move(filled), 4);
 }
 
 }  // namespace
@@ -563,6 +569,7 @@ struct ErrorPlanesMemory::Impl {
   ReferenceGrid grid;
   std::vector<double> ratio;  // surface_per_uv of the layout
   std::vector<Plane> planes;
+  std::vector<Plane> spare;   // the call before last's: storage for the next call's rasters
 };
 
 ErrorPlanesMemory::ErrorPlanesMemory() : impl_(std::make_unique<Impl>()) {}
@@ -592,14 +599,15 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
     m.maps = &maps, m.cells = cells, m.grid = g;
     m.ratio = surface_per_uv(mesh, param);
     m.planes.resize(planes.size());
+    m.spare.resize(planes.size());
   }
   CellErrors sum;
   for (size_t k = 0; k < planes.size(); ++k) {
     const ErrorPlane& p = planes[k];
-    ErrorPlanesMemory::Impl::Plane now;
-    now.ref = plane_raster(ref_map, p.exact(ref_map), false);
-    now.b = plane_raster(half_map, p.exact(half_map), true);
-    now.a = from_texture(p.texture);
+    ErrorPlanesMemory::Impl::Plane& now = m.spare[k];
+    plane_raster(ref_map, p.exact(ref_map), false, now.ref);
+    plane_raster(half_map, p.exact(half_map), true, now.b);
+    from_texture(p.texture, now.a);
     // As accumulate() afresh, summing again only the cell rows whose inputs changed since the last call.
     const ErrorPlanesMemory::Impl::Plane& prev = m.planes[k];
     const bool again = prev.cells.n == cells && prev.ref.size == now.ref.size && prev.a.size == now.a.size &&
@@ -615,7 +623,7 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
     } else {
       for (size_t i = 0; i < sum.ea.size(); ++i) sum.ea[i] += p.weight * c.ea[i], sum.eb[i] += p.weight * c.eb[i];
     }
-    m.planes[k] = std::move(now);
+    std::swap(m.planes[k], now);
   }
   ErrorDensity out = solve_density(sum, 1.0, o);
   out.reference_size = g.side;
