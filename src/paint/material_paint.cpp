@@ -139,10 +139,12 @@ std::vector<LayerTextures> paint_material_layers(const TriMesh& mesh, const Para
 
 std::vector<SurfacePoint> texel_points(const TexelMap& map) {
   std::vector<SurfacePoint> points(map.inside.size());
-  for (size_t k = 0; k < points.size(); ++k) {
-    const int t = map.inside[k];
-    points[k] = SurfacePoint{map.face[t], map.bary[t].x(), map.bary[t].y()};
-  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k < r.end(); ++k) {
+      const int t = map.inside[k];
+      points[k] = SurfacePoint{map.face[t], map.bary[t].x(), map.bary[t].y()};
+    }
+  });
   return points;
 }
 

@@ -72,15 +72,18 @@ struct MaterialPointCache::Impl {
   void reset(const TriMesh& m, std::vector<SurfacePoint> p) {
     mesh = &m;
     points = std::move(p);
-    assign_with_slack(pos, points.size(), Vec3::Zero().eval());
-    for (size_t k = 0; k < points.size(); ++k) {
-      const SurfacePoint& sp = points[k];
-      if (sp.face < 0 || sp.face >= m.num_faces())
+    for (size_t k = 0; k < points.size(); ++k)
+      if (points[k].face < 0 || points[k].face >= m.num_faces())
         throw InvalidInputError("material point cache: point " + std::to_string(k) + " has face " +
-                                std::to_string(sp.face) + " outside [0, " + std::to_string(m.num_faces()) + ")");
-      const auto& f = m.faces[sp.face];
-      pos[k] = sp.b0 * m.positions[f[0]] + sp.b1 * m.positions[f[1]] + (1 - sp.b0 - sp.b1) * m.positions[f[2]];
-    }
+                                std::to_string(points[k].face) + " outside [0, " + std::to_string(m.num_faces()) + ")");
+    assign_with_slack(pos, points.size(), Vec3::Zero().eval());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t k = r.begin(); k < r.end(); ++k) {
+        const SurfacePoint& sp = points[k];
+        const auto& f = m.faces[sp.face];
+        pos[k] = sp.b0 * m.positions[f[0]] + sp.b1 * m.positions[f[1]] + (1 - sp.b0 - sp.b1) * m.positions[f[2]];
+      }
+    });
     assign_with_slack(dirty, points.size(), char(0));
     double area = 0;
     for (int f = 0; f < m.num_faces(); ++f) area += face_area(m, f);
@@ -103,7 +106,7 @@ struct MaterialPointCache::Impl {
     }
     if (!grid) {
       std::vector<Vec3f> p(pos.size());
-      for (size_t k = 0; k < p.size(); ++k) p[k] = pos[k].cast<float>();
+      tbb::parallel_for(size_t(0), p.size(), [&](size_t k) { p[k] = pos[k].cast<float>(); });
       grid = std::make_unique<detail::TexelGrid>(p, spacing);
       assign_with_slack(alpha, pos.size(), 0.0);
     }
