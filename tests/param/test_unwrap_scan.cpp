@@ -110,19 +110,52 @@ TEST(UnwrapScan, SingleModeAndFewComponentsKeepTheirLayouts) {
   EXPECT_EQ(r.report.time_segment, 0.0);
 }
 
-TEST(UnwrapScan, ShapePackingKeepsTheLayoutValidAndNeverLowersTheShare) {
-  // The charts are also packed by their shapes (pack_shapes()); the packing of the higher share
-  // is kept, and the layout stays free of overlaps (check_unwrap()).
-  const TriMesh mesh = test::scan_like_mesh(30000);
+/// \p n flat L-shaped components (three unit squares each, scaled 1-2.8), spread along z: no
+/// interior vertices, so each is unfolded into an L that fills 3/4 of its rectangle.
+TriMesh l_shaped_components(int n) {
+  TriMesh m;
+  for (int i = 0; i < n; ++i) {
+    const double k = 1.0 + 0.3 * (i % 7);
+    const int v = m.num_vertices();
+    // Grid points (x, y) in {0,1,2}²; the L is the squares (0,0), (1,0), (0,1).
+    for (int y = 0; y <= 2; ++y)
+      for (int x = 0; x <= 2; ++x) m.positions.push_back(Vec3(k * x, k * y, 3.0 * i));
+    const auto id = [&](int x, int y) { return v + 3 * y + x; };
+    for (const auto& [x, y] : {std::pair{0, 0}, {1, 0}, {0, 1}}) {
+      m.faces.push_back({id(x, y), id(x + 1, y), id(x + 1, y + 1)});
+      m.faces.push_back({id(x, y), id(x + 1, y + 1), id(x, y + 1)});
+    }
+  }
+  // Drop the unused corner (2, 2) of every grid: validate-free meshes keep no stray vertex.
+  TriMesh out;
+  std::vector<int> map(m.num_vertices(), -1);
+  for (Face f : m.faces) {
+    for (int& c : f) {
+      if (map[c] < 0) map[c] = out.num_vertices(), out.positions.push_back(m.positions[c]);
+      c = map[c];
+    }
+    out.faces.push_back(f);
+  }
+  return out;
+}
+
+TEST(UnwrapScan, LShapedChartsArePackedByTheirShapes) {
+  // Unfolded L's fill 3/4 of their rectangles: packed by their shapes they nest (pack_shapes()),
+  // the share rises, and the layout stays valid (check_unwrap(): no flips, no overlaps).
+  const TriMesh mesh = l_shaped_components(120);
   UnwrapOptions opt;
   opt.augment_time_budget = 1e9;
+  opt.scan_layout_fill_exponent = 0;  // the L's keep their unfoldings (L2 1) over the square
+  // Measured 0.669 -> 0.695. With the default 8-texel gutter the rectangles win (a wide gap costs
+  // the rounded-up raster more than the nesting gains, docs/bench_unwrap.md) and that is kept.
+  opt.gutter_texels = 2;
   UnwrapResult with;
-  test::check_unwrap("shapes", mesh, opt, &with);
+  test::check_unwrap("L shapes", mesh, opt, &with);
   opt.scan_pack_shapes = false;
   const UnwrapResult without = unwrap(mesh, opt);
-  std::printf("scan_like_mesh(30000): share %.4f with shape packing, %.4f without\n",
+  std::printf("L shapes: share %.4f with shape packing, %.4f without\n",
               with.report.effective_texel_share, without.report.effective_texel_share);
-  EXPECT_GE(with.report.effective_texel_share, without.report.effective_texel_share);
+  EXPECT_GT(with.report.effective_texel_share, without.report.effective_texel_share + 0.01);
 }
 
 TEST(UnwrapScan, OptionsOutOfRangeAreOneClearError) {
