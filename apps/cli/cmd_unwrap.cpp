@@ -145,7 +145,7 @@ void add_unwrap_command(CLI::App& app, Context& ctx) {
   sub->add_option("--augment-time-budget", args->augment_time_budget,
                   "Wall seconds from the start after which no new cut augmentation starts (a bound "
                   "for slow machines; the deterministic face budget decides below it)")
-      ->check(CLI::Range(0.0, 1e9))
+      ->check(cli::kFiniteNonNegative)
       ->capture_default_str();
   sub->add_option("--yoshizawa-iterations", args->yoshizawa_iterations,
                   "Yoshizawa stretch-minimization iterations (0 = Floater only)")

@@ -1390,6 +1390,8 @@ void check_unwrap_input(const TriMesh& mesh, const UnwrapOptions& options) {
       !(options.scan_planar_min_area >= 0 && options.scan_planar_min_area <= 1))
     throw InvalidInputError("unwrap: scan_planar_angle must be in [0, 90) and scan_planar_min_area "
                             "in [0, 1]");
+  if (std::isnan(options.augment_time_budget))
+    throw InvalidInputError("unwrap: augment_time_budget is NaN (<= 0: no time budget)");
   if (!(options.scan_layout_fill_exponent >= 0 && options.scan_layout_fill_exponent <= 1))
     throw InvalidInputError("unwrap: scan_layout_fill_exponent " +
                             std::to_string(options.scan_layout_fill_exponent) + " is outside [0, 1]");

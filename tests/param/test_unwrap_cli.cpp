@@ -154,6 +154,8 @@ TEST(UnwrapCli, BadInputExitsWithTwoAndLeavesNoFile) {
   expect_bad("unwrap " + q(dir.path / "ok.off") + " -o " + q(out) + " --layout-size 2", "layout-size");
   expect_bad("unwrap " + q(dir.path / "ok.off") + " -o " + q(out) + " --augment-time-budget -1",
              "augment-time-budget");
+  expect_bad("unwrap " + q(dir.path / "ok.off") + " -o " + q(out) + " --augment-time-budget nan",
+             "augment-time-budget");
   // The budget is an option of the command: 0 (no augmentation after the start) still unwraps.
   const auto budget = run_cli("-q unwrap " + q(dir.path / "ok.off") + " -o " + q(out) +
                               " --augment-time-budget 0");

@@ -160,7 +160,7 @@ TEST(UnwrapScan, LShapedChartsArePackedByTheirShapes) {
 
 TEST(UnwrapScan, OptionsOutOfRangeAreOneClearError) {
   const TriMesh mesh = test::scan_like_mesh(20000);
-  for (int k = 0; k < 8; ++k) {
+  for (int k = 0; k < 9; ++k) {
     UnwrapOptions o;
     if (k == 0) o.scan_piece_faces = 0;
     if (k == 1) o.scan_max_rounds = -1;
@@ -170,6 +170,7 @@ TEST(UnwrapScan, OptionsOutOfRangeAreOneClearError) {
     if (k == 5) o.scan_planar_angle = std::numeric_limits<double>::quiet_NaN();
     if (k == 6) o.scan_planar_min_area = 1.5;
     if (k == 7) o.scan_layout_fill_exponent = 2;
+    if (k == 8) o.augment_time_budget = std::numeric_limits<double>::quiet_NaN();
     EXPECT_THROW(unwrap(mesh, o), InvalidInputError) << k;
   }
 }

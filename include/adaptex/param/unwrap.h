@@ -55,10 +55,9 @@ struct UnwrapOptions {
   /// embedding) is augmented regardless of both budgets, up to max_augmentations. docs/surgery.md.
   long augment_face_budget = 2000000;
   /// Augmentation budget in seconds of wall time from the start of unwrap(); no new augmentation
-  /// step starts after it (<= 0: none, except as above). A safety bound for very slow machines,
-  /// set high enough that the (deterministic) face budget decides on ordinary ones, even loaded:
-  /// at 30 s a loaded 2-core machine cut the augmentation of a 1M-face scan short (share 0.281
-  /// instead of 0.285).
+  /// step starts after it (<= 0: none, except as above; NaN is refused). A safety bound for very
+  /// slow machines, set high enough that the (deterministic) face budget decides on ordinary ones,
+  /// even loaded (docs/surgery.md).
   double augment_time_budget = 600.0;
   /// An augmentation is kept only if it lowers the chart's L2 stretch by this relative amount;
   /// the first one that does not stops the augmentation of that chart.
