@@ -70,6 +70,35 @@ PaintSessionOptions session_from_json(const json& j) {
   }
   return o;
 }
+
+/// How a project file names a file it refers to (the mesh, a decal image): relative to the project's
+/// folder when the file lies inside it, so that the folder can be moved or sent whole; otherwise the
+/// absolute path, so that a file elsewhere (a shared library of decals) is still found after the
+/// project moves. "builtin:" names and empty paths are kept.
+std::string path_in_project(const std::string& p, const std::filesystem::path& project_dir) {
+  if (p.empty() || p.rfind("builtin:", 0) == 0) return p;
+  const std::filesystem::path abs = std::filesystem::absolute(p).lexically_normal();
+  const std::filesystem::path rel = abs.lexically_relative(std::filesystem::absolute(project_dir).lexically_normal());
+  if (rel.empty() || rel.is_absolute() || *rel.begin() == "..") return abs.string();
+  return rel.generic_string();
+}
+
+/// The absolute path of a file that a project file names (path_in_project()'s inverse).
+std::string path_from_project(const std::string& p, const std::filesystem::path& project_dir) {
+  if (p.empty() || p.rfind("builtin:", 0) == 0 || std::filesystem::path(p).is_absolute()) return p;
+  return std::filesystem::absolute(project_dir / p).lexically_normal().string();
+}
+
+/// Applies \p map to the image path of every decal stroke of \p strokes and \p material.
+template <class Map>
+void map_decal_paths(StrokeFile& strokes, std::optional<MaterialStrokeFile>& material, Map&& map) {
+  for (Stroke& s : strokes.strokes)
+    if (s.type == Stroke::Type::Decal) s.image_path = map(s.image_path);
+  if (!material) return;
+  for (MaterialLayer& l : material->layers)
+    for (MaterialStroke& s : l.strokes)
+      if (s.type == MaterialStroke::Type::Decal) s.decal.image_path = map(s.decal.image_path);
+}
 }  // namespace
 
 std::string session_options_key(const PaintSessionOptions& options) { return session_to_json(options).dump(); }
@@ -80,11 +109,15 @@ PaintSessionOptions studio_session_options() {
   return o;
 }
 
-void write_project(const std::filesystem::path& path, const Project& p) {
+void write_project(const std::filesystem::path& path, const Project& project) {
+  const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
+  Project p = project;
+  const auto in_project = [&dir](const std::string& f) { return path_in_project(f, dir); };
+  map_decal_paths(p.strokes, p.material, in_project);
   json j;
   j["format"] = "adaptex.studio-project";
   j["version"] = p.material ? 2 : 1;  // version 1 readers refuse a layered material, not drop it
-  j["mesh"] = p.mesh_path;
+  j["mesh"] = in_project(p.mesh_path);
   if (!p.project_file.empty()) j["project"] = p.project_file;
   j["strokes"] = strokes_to_json(p.strokes);
   const BrushSettings& b = p.brush;
@@ -135,9 +168,10 @@ Project read_project(const std::filesystem::path& path) {
     throw InvalidInputError(path.string() + ": unsupported project version");
   if (j["version"] == 2 && !j.contains("material"))
     throw InvalidInputError(path.string() + ": a project of version 2 needs \"material\"");
+  const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
   try {
     Project p;
-    p.mesh_path = j.at("mesh").get<std::string>();
+    p.mesh_path = path_from_project(j.at("mesh").get<std::string>(), dir);
     p.project_file = j.value("project", std::string());
     const std::string layout = j.value("layout", std::string("unwrap"));
     if (layout != "unwrap" && layout != "atlas")
@@ -149,6 +183,7 @@ Project read_project(const std::filesystem::path& path) {
       p.active_layer = clamped_int(j, "active_layer", int(p.material->layers.size()) - 1, 0,
                                    std::max(0, int(p.material->layers.size()) - 1));
     }
+    map_decal_paths(p.strokes, p.material, [&dir](const std::string& f) { return path_from_project(f, dir); });
     if (j.contains("adapted_strokes")) {
       const json& a = j["adapted_strokes"];
       if (!a.is_number_unsigned() || a.get<size_t>() > p.strokes.strokes.size())

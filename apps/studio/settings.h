@@ -93,9 +93,12 @@ struct Project {
   std::string project_file;
 };
 
-/// Writes a project file atomically ("format": "adaptex.studio-project", version 1). \throw OutputError
+/// Writes a project file atomically ("format": "adaptex.studio-project", version 1, or 2 with a
+/// material). The mesh and decal images inside the project file's folder are written relative to it
+/// (the folder can be moved whole), files elsewhere as absolute paths. \throw OutputError
 void write_project(const std::filesystem::path& path, const Project& project);
-/// Reads a project file. \throw IoError unreadable / not JSON; InvalidInputError bad content
+/// Reads a project file; relative mesh and decal image paths are resolved against its folder, so the
+/// Project holds absolute paths. \throw IoError unreadable / not JSON; InvalidInputError bad content
 Project read_project(const std::filesystem::path& path);
 
 }  // namespace adaptex::studio

@@ -839,6 +839,52 @@ TEST(StudioApp, SaveAsToAnUnwritablePlaceKeepsTheWorkAndLeavesNoFile) {
   EXPECT_EQ(read_project(good).strokes.strokes.size(), 2u);
 }
 
+TEST(StudioProject, FilesInsideTheProjectFolderAreRelativeSoTheFolderCanMove) {
+  TempDir dir;
+  const auto folder = dir.path / "work", shared = dir.path / "library";
+  std::filesystem::create_directories(folder / "decals");
+  std::filesystem::create_directories(shared);
+  write_png(folder / "decals" / "inside.png", ImageRGBA8(8, 8, {200, 30, 30, 255}));
+  write_png(shared / "outside.png", ImageRGBA8(8, 8, {30, 30, 200, 255}));
+  const auto decal = [](const std::filesystem::path& img) {
+    Stroke s;
+    s.type = Stroke::Type::Decal;
+    s.image_path = img.string();
+    s.image = read_image(img);
+    s.camera.eye = Vec3(0, 0, 3);
+    return s;
+  };
+  Project p;
+  p.mesh_path = (folder / "model.obj").string();
+  p.strokes.strokes = {decal(folder / "decals" / "inside.png"), decal(shared / "outside.png")};
+  p.material = material_from_v1(p.strokes);
+  write_project(folder / "work.adaptex", p);
+  const std::string text = read_input_file(folder / "work.adaptex");
+  EXPECT_NE(text.find("\"mesh\": \"model.obj\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"decals/inside.png\""), std::string::npos);
+  EXPECT_EQ(text.find((folder / "decals").string()), std::string::npos);  // no absolute path into the folder
+  EXPECT_NE(text.find((shared / "outside.png").string()), std::string::npos);
+
+  // The folder moved: the project finds its mesh and decal there, and the library where it was.
+  const auto moved = dir.path / "moved";
+  std::filesystem::rename(folder, moved);
+  const Project q = read_project(moved / "work.adaptex");
+  EXPECT_EQ(q.mesh_path, (moved / "model.obj").string());
+  ASSERT_EQ(q.strokes.strokes.size(), 2u);
+  EXPECT_EQ(q.strokes.strokes[0].image_path, (moved / "decals" / "inside.png").string());
+  EXPECT_EQ(q.strokes.strokes[0].image.data, p.strokes.strokes[0].image.data);
+  EXPECT_EQ(q.strokes.strokes[1].image_path, (shared / "outside.png").string());
+  ASSERT_TRUE(q.material);
+  EXPECT_EQ(q.material->layers[0].strokes[0].decal.image_path, (moved / "decals" / "inside.png").string());
+  EXPECT_EQ(q.material->layers[0].strokes[1].decal.image_path, (shared / "outside.png").string());
+  // Saved again one folder up, the same files are named relative to that folder.
+  write_project(dir.path / "elsewhere.adaptex", q);
+  const Project r = read_project(dir.path / "elsewhere.adaptex");
+  EXPECT_EQ(r.mesh_path, q.mesh_path);
+  EXPECT_EQ(r.strokes.strokes[0].image_path, q.strokes.strokes[0].image_path);
+  EXPECT_NE(read_input_file(dir.path / "elsewhere.adaptex").find("\"moved/model.obj\""), std::string::npos);
+}
+
 TEST(StudioProject, NumbersBeyondAnIntAreClampedAndNotConverted) {
   // fuzz_project (session 8, after 9.1 M executions): "texture_size": 5166...62 (a float of 1e123)
   // was converted straight to int, undefined behaviour (UBSan), in practice INT_MIN -> 16.
