@@ -124,6 +124,7 @@ TexturedSoup read_obj_data(const std::string& text, const std::string& name, con
 }
 
 PolygonSoup read_obj_soup(const std::string& bytes, const SoupSource& source) {
+  if (std::optional<PolygonSoup> plain = read_plain_obj_soup(bytes)) return std::move(*plain);
   return read_obj_data(bytes, source.name, std::string()).soup;
 }
 
