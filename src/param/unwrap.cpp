@@ -1335,111 +1335,34 @@ std::vector<Component> timed_scan_pieces(const std::vector<Component>& comps,
   return pieces;
 }
 
-/// One layout candidate of unwrap_scan(): its segmentation and layouts, and what it built.
-struct ScanCandidate {
-  const UnwrapOptions* options = nullptr;  ///< Segmentation and layout options.
-  PieceLayouts layouts = PieceLayouts::Unfold;
-  int min_probe_faces = 0;   ///< scan_pieces(); 0: the components themselves (one chart each).
-  int same_count_as = -1;    ///< >= 0: skipped when that candidate has as many pieces.
-  std::atomic<size_t> num_pieces{0};  ///< Set once its pieces are made (0: not yet).
-  bool built = false;        ///< result holds a layout.
-  UnwrapResult result;       ///< Its layout; report phase times its own.
-};
-
-/// Builds the layouts of \p cands at the same time (TBB tasks, each isolated so that a thread
-/// waiting inside one candidate takes no other's work). The first exception is rethrown once all
-/// have returned; the others are then cancelled through their progress callbacks. \p base: the
-/// report every candidate starts from (phase times zero).
-void build_scan_candidates(const TriMesh& mesh, const std::vector<Component>& comps,
-                           const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
-                           const UnwrapReport& base, const ProgressCallback& progress, bool shapes,
-                           std::vector<ScanCandidate>& cands) {
-  std::mutex mutex;  // guards first_error and the caller's progress callback
-  std::atomic<bool> failed{false};
-  std::exception_ptr first_error;
-  const ProgressCallback guarded = [&](std::string_view phase, double f) {
-    if (failed.load(std::memory_order_relaxed)) return false;
-    if (!progress) return true;
-    const std::lock_guard<std::mutex> lock(mutex);
-    return progress(phase, f);
-  };
-  const auto build = [&](size_t i) {
-    ScanCandidate& c = cands[i];
-    UnwrapOptions o = *c.options;
-    o.progress = guarded;
-    c.result.report = base;
-    try {
-      tbb::this_task_arena::isolate([&] {
-        std::vector<Component> pieces =
-            c.min_probe_faces > 0
-                ? timed_scan_pieces(comps, dopt, gutter, o, c.result.report, c.min_probe_faces)
-                : comps;
-        c.num_pieces = pieces.size();
-        // Skipped when the other candidate's count is known and the same (else built, and the
-        // merge skips it).
-        if (c.same_count_as >= 0 && cands[c.same_count_as].num_pieces.load() == pieces.size())
-          return;
-        c.built = unwrap_pieces(mesh, pieces, dopt, gutter, t_start, o, c.result, c.layouts, 0, {},
-                                shapes);
-      });
-    } catch (...) {
-      const std::lock_guard<std::mutex> lock(mutex);
-      if (!first_error) first_error = std::current_exception();
-      failed = true;
-    }
-  };
-  tbb::task_group group;
-  for (size_t i = 1; i < cands.size(); ++i) group.run([&build, i] { build(i); });
-  build(0);
-  group.wait();
-  if (first_error) std::rethrow_exception(first_error);
-}
-
 /// ChartMode::Auto on a mesh with more components than max_charts / 2: the charts of
 /// scan_pieces() with planar charts and free-boundary layouts (scan_planar_angle,
 /// scan_free_boundary), and, when either is on, also those of the top-down segmentation alone; on
-/// meshes of at most scan_single_max_faces faces also its split down to 32 faces (when its number
-/// of pieces differs) and one chart per component. The candidates are built at the same time
-/// (build_scan_candidates()) and taken in that order, a later one only when its effective texel
-/// share is higher: the layout of building them one after the other, bit for bit (so no mesh
-/// gets a lower share than the top-down segmentation alone gives it). Phase times add up.
+/// meshes of at most scan_single_max_faces faces also its split down to 32 faces and one chart per
+/// component. The layout with the highest effective texel share is kept (so no mesh gets a lower
+/// share than the top-down segmentation alone gives it).
 void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
                  const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
                  const UnwrapOptions& options, UnwrapResult& result) {
+  const PieceLayouts scan_layouts =
+      options.scan_free_boundary ? PieceLayouts::Free : PieceLayouts::Unfold;
+  const bool shapes = options.scan_pack_shapes;
+  std::vector<Component> pieces = timed_scan_pieces(comps, dopt, gutter, options, result.report);
+  unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, scan_layouts, 0, {}, shapes);
   UnwrapOptions plain = options;
   plain.scan_planar_angle = 0;
   plain.scan_free_boundary = false;
   const bool new_ways = options.scan_planar_angle > 0 || options.scan_free_boundary;
-  const bool small = mesh.num_faces() <= options.scan_single_max_faces;
-  std::vector<ScanCandidate> cands(1 + (new_ways ? 1 : 0) + (small ? 2 : 0));
-  cands[0].options = &options;
-  cands[0].layouts = options.scan_free_boundary ? PieceLayouts::Free : PieceLayouts::Unfold;
-  cands[0].min_probe_faces = kFineProbeFaces;
-  size_t next = 1;
-  if (new_ways) cands[next].options = &plain, cands[next++].min_probe_faces = kFineProbeFaces;
-  if (small) {
-    cands[next].options = &plain, cands[next].min_probe_faces = kCoarseProbeFaces;
-    cands[next].same_count_as = static_cast<int>(next) - 1;
-    cands[++next].options = &plain;  // the components themselves
+  if (new_ways) {
+    pieces = timed_scan_pieces(comps, dopt, gutter, plain, result.report);
+    keep_better_layout(mesh, pieces, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
   }
-  UnwrapReport& rep = result.report;
-  UnwrapReport base = rep;
-  base.time_cut = base.time_segment = base.time_floater = base.time_yoshizawa =
-      base.time_augment = base.time_pack = 0;
-  build_scan_candidates(mesh, comps, dopt, gutter, t_start, base, options.progress,
-                        options.scan_pack_shapes, cands);
-  for (size_t i = 0; i < cands.size(); ++i) {
-    ScanCandidate& c = cands[i];
-    add_phase_times(c.result.report, rep);
-    if (!c.built || (c.same_count_as >= 0 && cands[c.same_count_as].num_pieces == c.num_pieces))
-      continue;
-    if (i == 0 || c.result.report.effective_texel_share > rep.effective_texel_share) {
-      const UnwrapReport times = rep;
-      result.param = std::move(c.result.param);
-      rep = c.result.report;
-      copy_phase_times(times, rep);
-    }
-  }
+  if (mesh.num_faces() > options.scan_single_max_faces) return;
+  const std::vector<Component> coarse =
+      timed_scan_pieces(comps, dopt, gutter, plain, result.report, kCoarseProbeFaces);
+  if (coarse.size() != pieces.size())
+    keep_better_layout(mesh, coarse, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
+  keep_better_layout(mesh, comps, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
 }
 
 /// Throws InvalidInputError (TopologyError for a mesh without faces) when \p options are out of

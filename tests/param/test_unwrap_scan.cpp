@@ -1,7 +1,6 @@
 // Tests of --charts auto on scans (unwrap.h, "Auto on scans"; docs/charts.md, "Scans"): a mesh
 // built in code with over 100 components, handles, hundreds of holes, tiny strips and slivers.
 #include <gtest/gtest.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -174,25 +173,6 @@ TEST(UnwrapScan, OptionsOutOfRangeAreOneClearError) {
     if (k == 8) o.augment_time_budget = std::numeric_limits<double>::quiet_NaN();
     EXPECT_THROW(unwrap(mesh, o), InvalidInputError) << k;
   }
-}
-
-TEST(UnwrapScan, CandidatesBuiltAtOnceGiveTheLayoutOfOneThread) {
-  // The scan candidates (planar + free boundary, the segmentation alone, its coarse split, one
-  // chart per component) are built at the same time and merged in order: on one thread (one after
-  // the other) the layout must be the same, bit for bit.
-  const TriMesh mesh = test::scan_like_mesh(12000);
-  UnwrapOptions opt;
-  ASSERT_GT(analyze_topology(mesh).num_components, opt.max_charts / 2);  // the scan path runs
-  opt.augment_time_budget = 1e9;
-  const UnwrapResult together = unwrap(mesh, opt);
-  UnwrapResult alone;
-  tbb::task_arena(1).execute([&] { alone = unwrap(mesh, opt); });
-  EXPECT_GT(together.report.num_charts, 1);
-  EXPECT_EQ(together.report.num_charts, alone.report.num_charts);
-  EXPECT_EQ(together.report.effective_texel_share, alone.report.effective_texel_share);
-  EXPECT_EQ(together.param.uv_faces, alone.param.uv_faces);
-  ASSERT_EQ(together.param.uv.size(), alone.param.uv.size());
-  for (size_t w = 0; w < alone.param.uv.size(); ++w) ASSERT_EQ(together.param.uv[w], alone.param.uv[w]) << w;
 }
 
 }  // namespace
