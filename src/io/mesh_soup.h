@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,10 @@ struct SoupSource {
 /// Format readers (io/read_*.cpp), on the whole file already in memory (read_input_file() or a
 /// read_mesh_from_memory() caller's bytes). Each throws IoError for corrupt or truncated input.
 PolygonSoup read_obj_soup(const std::string& bytes, const SoupSource& source);
+/// The soup of a plain OBJ file (read_obj_plain.cpp: `v x y z`, `vt`, `vn`, `f`, comments and
+/// `o`/`g`/`s`/`mtllib`/`usemtl` lines), the same as tinyobjloader's path gives; nullopt for
+/// anything else (read_obj_soup() then parses it with tinyobjloader).
+std::optional<PolygonSoup> read_plain_obj_soup(const std::string& text);
 PolygonSoup read_off_soup(const std::string& bytes, const SoupSource& source);
 PolygonSoup read_ply_soup(const std::string& bytes, const SoupSource& source);
 PolygonSoup read_stl_soup(const std::string& bytes, const SoupSource& source);

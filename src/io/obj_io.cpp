@@ -11,6 +11,7 @@
 #define TINYOBJLOADER_USE_DOUBLE
 #endif
 #include <tiny_obj_loader.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <charconv>
@@ -124,6 +125,7 @@ TexturedSoup read_obj_data(const std::string& text, const std::string& name, con
 }
 
 PolygonSoup read_obj_soup(const std::string& bytes, const SoupSource& source) {
+  if (std::optional<PolygonSoup> plain = read_plain_obj_soup(bytes)) return std::move(*plain);
   return read_obj_data(bytes, source.name, std::string()).soup;
 }
 
@@ -222,6 +224,21 @@ void append_int(std::string& out, long x) {
   out.append(buf, res.ptr);
 }
 
+/// Appends the lines of items [0, n) to \p out, formatted by \p line(i, text) in blocks of
+/// kWriteBlock items, the blocks in parallel (TBB) and joined in order: the same text as one loop.
+constexpr std::size_t kWriteBlock = 1 << 15;
+template <class Line>
+void append_lines(std::string& out, std::size_t n, std::size_t bytes_per_item, const Line& line) {
+  std::vector<std::string> blocks((n + kWriteBlock - 1) / kWriteBlock);
+  tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
+    std::string& text = blocks[b];
+    const std::size_t end = std::min(n, (b + 1) * kWriteBlock);
+    text.reserve((end - b * kWriteBlock) * bytes_per_item);
+    for (std::size_t i = b * kWriteBlock; i < end; ++i) line(i, text);
+  });
+  for (const std::string& text : blocks) out += text;
+}
+
 /// write_obj() of both forms: face f uses materials[face_material[f]] (all materials[0] when
 /// face_material is empty); a `usemtl` starts every run of faces of one material.
 void write_obj_materials(const std::filesystem::path& path, const TriMesh& mesh, const Parameterization* param,
@@ -231,49 +248,51 @@ void write_obj_materials(const std::filesystem::path& path, const TriMesh& mesh,
   if (param && param->uv_faces.size() != mesh.faces.size())
     throw InvalidInputError(name + ": write_obj: the parameterization has " + std::to_string(param->uv_faces.size()) +
                             " UV faces but the mesh has " + std::to_string(mesh.faces.size()) + " faces");
+  if (!face_material.empty() && face_material.size() != mesh.faces.size())
+    throw InvalidInputError(name + ": write_obj: " + std::to_string(face_material.size()) + " face materials for " +
+                            std::to_string(mesh.faces.size()) + " faces");
+  const auto material_of = [&](std::size_t f) { return face_material.empty() ? 0 : face_material[f]; };
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+    if (material_of(f) < 0 || material_of(f) >= static_cast<int>(materials.size()))
+      throw InvalidInputError(name + ": write_obj: face " + std::to_string(f) + " has no material");
   std::string out;
   out.reserve(mesh.positions.size() * 64 + mesh.faces.size() * 40 + (param ? param->uv.size() * 40 : 0));
   out += "# written by adaptex: v = input positions (shortest round-trip digits)";
   out += param ? ", vt = UV layout, f v/vt\n" : "\n";
   if (mtllib) out += "mtllib " + *mtllib + "\n";
-  for (const Vec3& p : mesh.positions) {
-    out += "v ";
-    append_number(out, p.x());
-    out += ' ';
-    append_number(out, p.y());
-    out += ' ';
-    append_number(out, p.z());
-    out += '\n';
-  }
+  append_lines(out, mesh.positions.size(), 64, [&](std::size_t i, std::string& text) {
+    const Vec3& p = mesh.positions[i];
+    text += "v ";
+    append_number(text, p.x());
+    text += ' ';
+    append_number(text, p.y());
+    text += ' ';
+    append_number(text, p.z());
+    text += '\n';
+  });
   if (param)
-    for (const Vec2& t : param->uv) {
-      out += "vt ";
-      append_number(out, t.x());
-      out += ' ';
-      append_number(out, t.y());
-      out += '\n';
-    }
-  if (!face_material.empty() && face_material.size() != mesh.faces.size())
-    throw InvalidInputError(name + ": write_obj: " + std::to_string(face_material.size()) + " face materials for " +
-                            std::to_string(mesh.faces.size()) + " faces");
-  int current = -1;
-  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const int m = face_material.empty() ? 0 : face_material[f];
-    if (m < 0 || m >= static_cast<int>(materials.size()))
-      throw InvalidInputError(name + ": write_obj: face " + std::to_string(f) + " has no material");
-    if (mtllib && m != current) out += "usemtl " + materials[m] + "\n";
-    current = m;
-    out += 'f';
+    append_lines(out, param->uv.size(), 40, [&](std::size_t i, std::string& text) {
+      const Vec2& t = param->uv[i];
+      text += "vt ";
+      append_number(text, t.x());
+      text += ' ';
+      append_number(text, t.y());
+      text += '\n';
+    });
+  append_lines(out, mesh.faces.size(), 40, [&](std::size_t f, std::string& text) {
+    const int m = material_of(f);
+    if (mtllib && (f == 0 || m != material_of(f - 1))) text += "usemtl " + materials[m] + "\n";
+    text += 'f';
     for (int k = 0; k < 3; ++k) {
-      out += ' ';
-      append_int(out, mesh.faces[f][k] + 1L);
+      text += ' ';
+      append_int(text, mesh.faces[f][k] + 1L);
       if (param) {
-        out += '/';
-        append_int(out, param->uv_faces[f][k] + 1L);
+        text += '/';
+        append_int(text, param->uv_faces[f][k] + 1L);
       }
     }
-    out += '\n';
-  }
+    text += '\n';
+  });
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
   if (!file) throw OutputError(name + ": cannot open for writing");
   file.write(out.data(), static_cast<std::streamsize>(out.size()));

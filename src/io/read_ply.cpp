@@ -230,10 +230,13 @@ void read_element(const std::string& name, const PlyElement& el, const ElementRo
     Vec3 pos(0, 0, 0);
     for (std::size_t k = 0; k < el.properties.size(); ++k) {
       const PlyProperty& p = el.properties[k];
-      const std::string item = name + ": PLY truncated or corrupt: element '" + el.name + "' item " +
-                               std::to_string(j) + " of " + n_str + " (property '" + p.name + "')";
+      // The message start, made only for an error (not once per item and property).
+      const auto item = [&] {
+        return name + ": PLY truncated or corrupt: element '" + el.name + "' item " + std::to_string(j) +
+               " of " + n_str + " (property '" + p.name + "')";
+      };
       double value = 0;
-      if (!body.read(p.list ? p.count_type : p.type, value)) throw IoError(item + " could not be read");
+      if (!body.read(p.list ? p.count_type : p.type, value)) throw IoError(item() + " could not be read");
       if (!p.list) {
         for (int c = 0; c < 3; ++c)
           if (static_cast<int>(k) == role.xyz[c]) pos[c] = value;
@@ -241,13 +244,13 @@ void read_element(const std::string& name, const PlyElement& el, const ElementRo
       }
       const int min_entry = body.format() == PlyFormat::Ascii ? 2 : p.type.size;
       if (value < 0 || value > static_cast<double>(body.bytes_left() / min_entry))
-        throw IoError(item + ": the list claims " + std::to_string(static_cast<std::int64_t>(value)) +
+        throw IoError(item() + ": the list claims " + std::to_string(static_cast<std::int64_t>(value)) +
                       " entries, more than the " + std::to_string(body.bytes_left()) + " bytes left can hold");
       const auto count = static_cast<std::int64_t>(value);
       const bool keep = static_cast<int>(k) == role.index;
       if (keep) list.clear();
       for (std::int64_t e = 0; e < count; ++e) {
-        if (!body.read(p.type, value)) throw IoError(item + " could not be read");
+        if (!body.read(p.type, value)) throw IoError(item() + " could not be read");
         if (keep) list.push_back(static_cast<std::int64_t>(value));
       }
     }

@@ -3,11 +3,15 @@
 /// rectangles (multi-chart layouts): the best of shelf and MaxRects packings.
 #include "adaptex/param/pack.h"
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <numeric>
 #include <string>
+#include <string_view>
 
 #include "adaptex/core/errors.h"
 
@@ -786,16 +790,29 @@ struct ShapeSearch {
     tick();
     // A chart takes at least (1 + g)² cells of the (n + g)² that the square and half a gap hold.
     const double nc = static_cast<double>(set.order.size());
-    if (nc * (1 + g) * (1 + g) > static_cast<double>(n + g) * (n + g) ||
-        trial(1e-12, g, min_side, nullptr, n) > n)
-      return false;
+    if (nc * (1 + g) * (1 + g) > static_cast<double>(n + g) * (n + g)) return false;
     const double s_max = set.largest > 0 ? (1.0 - 2 * gap) / set.largest : 1.0;
     double s = first_shape_scale(set.box_area, gap, min_side, s_max);
     double lo = 0, hi = std::numeric_limits<double>::infinity(), prev_s = 0, prev_needed = 0;
     std::vector<ShapePlacement> placed(out.size());
+    // Whether the charts fit at all (each a point) and the first trial run at the same time (two
+    // independent packings; the first is wasted when nothing fits).
+    tick();
+    double tiny = 0, first = 0;
+    {
+      std::mutex mutex;
+      const ProgressCallback guarded = [&](std::string_view phase, double f) {
+        const std::lock_guard<std::mutex> lock(mutex);
+        return !options.progress || options.progress(phase, f);
+      };
+      tbb::parallel_invoke(
+          [&] { tiny = shape_trial(set, 1e-12, n, g, min_side, guarded, frac, nullptr, n); },
+          [&] { first = shape_trial(set, s, n, g, min_side, guarded, frac, &placed, 2.0 * n); });
+    }
+    if (tiny > n) return false;
     for (int t = 0; t < options.trials; ++t) {
-      tick();
-      const double needed = trial(s, g, min_side, &placed, 2.0 * n);
+      if (t > 0) tick();
+      const double needed = t == 0 ? first : trial(s, g, min_side, &placed, 2.0 * n);
       if (needed <= n) lo = s, out.swap(placed);
       else hi = s;
       // Done when the square is filled to 1 % of its height or the bracket is within 0.3 %.

@@ -3,6 +3,7 @@
 // scale; L-shapes nest (more coverage than their bounding rectangles get); thousands of tiny
 // charts, the minimum side, quarter turns, progress, cancel and bad input.
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -186,6 +187,28 @@ TEST(PackShapes, GapsThatDoNotFitAreHalved) {
   ShapePackOptions o;
   o.padding = 0.08;  // 1000 gaps of 0.08 cannot fit in the square
   check_shapes(charts, pack_shapes(charts, o), 0.0);
+}
+
+TEST(PackShapes, OneThreadGivesTheSamePlacements) {
+  // The fit test (every chart a point) and the first trial run at the same time: on one thread
+  // (one after the other) every placement must be the same, with gaps that fit and that do not.
+  std::mt19937 rng(5);
+  std::vector<ChartShape> charts;
+  for (int i = 0; i < 200; ++i) charts.push_back(random_blob(rng, std::pow(10.0, -1.5 * (i % 17) / 17.0)));
+  for (double gap : {1.0 / 512, 0.08}) {
+    SCOPED_TRACE(gap);
+    ShapePackOptions o;
+    o.padding = gap;
+    const std::vector<ShapePlacement> together = pack_shapes(charts, o);
+    std::vector<ShapePlacement> alone;
+    tbb::task_arena(1).execute([&] { alone = pack_shapes(charts, o); });
+    ASSERT_EQ(together.size(), alone.size());
+    for (size_t c = 0; c < alone.size(); ++c) {
+      EXPECT_EQ(together[c].offset, alone[c].offset) << c;
+      EXPECT_EQ(together[c].scale, alone[c].scale) << c;
+      EXPECT_EQ(together[c].turns, alone[c].turns) << c;
+    }
+  }
 }
 
 TEST(PackShapes, WithoutTurningNoChartIsTurned) {
