@@ -106,8 +106,9 @@ TEST(ErrorDensity, PlanesWithAMemoryGiveTheSameBitsAsAfreshAfterEveryStroke) {
   const ErrorPlaneMaps maps = error_plane_maps(mesh, param, N);
   StrokeFile history;
   history.background = all.background;
-  auto exact = [&](const TexelMap& at, bool invert) {
-    std::vector<Vec3f> out(static_cast<size_t>(at.width) * at.height, Vec3f::Zero());
+  std::vector<Vec3f> out;  // the planes' values, valid until the next call (as ErrorPlane::exact's)
+  auto exact = [&](const TexelMap& at, bool invert) -> const std::vector<Vec3f>& {
+    out.assign(static_cast<size_t>(at.width) * at.height, Vec3f::Zero());
     const std::vector<SurfacePoint> pts = texel_points(at);
     for (size_t k = 0; k < pts.size(); ++k) {
       const Face& f = mesh.faces[pts[k].face];
@@ -124,10 +125,10 @@ TEST(ErrorDensity, PlanesWithAMemoryGiveTheSameBitsAsAfreshAfterEveryStroke) {
     painter.paint_stroke(s);
     std::vector<ErrorPlane> planes(2);
     planes[0].texture = painter.texture();
-    planes[0].exact = [&](const TexelMap& at) { return exact(at, false); };
+    planes[0].exact = [&](const TexelMap& at) -> const std::vector<Vec3f>& { return exact(at, false); };
     planes[1].weight = 0.3;
     planes[1].texture = painter.texture();
-    planes[1].exact = [&](const TexelMap& at) { return exact(at, true); };
+    planes[1].exact = [&](const TexelMap& at) -> const std::vector<Vec3f>& { return exact(at, true); };
     if (history.strokes.size() == 5) planes.pop_back();
     const ErrorDensity a = compute_error_density(mesh, param, painter.texel_map(), planes, maps, memory);
     const ErrorDensity b = compute_error_density(mesh, param, painter.texel_map(), planes, maps);

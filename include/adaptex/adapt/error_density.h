@@ -92,8 +92,9 @@ ErrorDensity compute_error_density(const TriMesh& mesh, const Parameterization& 
 struct ErrorPlane {
   double weight = 1;   ///< Weight of the plane's mean squared RGB error in the sum (> 0).
   ImageRGBA8 texture;  ///< What the layout holds at h_N (level a), RGB / 255; the size of the texel map.
-  /// The plane's exact values at every texel centre of a texel map (W*H; read inside charts only).
-  std::function<std::vector<Vec3f>(const TexelMap&)> exact;
+  /// The plane's exact values at every texel centre of a texel map (W*H; read inside charts only), owned
+  /// by the plane's source (a session keeps them between cycles) and valid until its next call.
+  std::function<const std::vector<Vec3f>&(const TexelMap&)> exact;
 };
 
 /// Target density from several planes: each plane's per-cell errors at h_N and 2·h_N (as the history's

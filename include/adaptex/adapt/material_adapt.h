@@ -46,21 +46,25 @@ std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Paramet
                                               const MaterialStrokeFile& file, const MaterialTextures& textures,
                                               double data_weight);
 
-/// The exact material at the chart texels of a texel map, shape [map.inside.size()] (as
-/// evaluate_material() at texel_points(map)), owned by the source and valid until its next call.
-using MaterialTexelSource = std::function<const std::vector<MaterialValue>&(const TexelMap&)>;
+/// The planes' exact values at every texel of a texel map, W*H (read at the chart texels): \p plane 0
+/// the base colour, 1 (roughness, metallic, alpha), 2 the exact height's unit normal n stored as
+/// (n + 1) / 2 (height_normals() of (exact[6] − 0.5) · height scale); owned by the source and valid
+/// until its next call. Their values at one texel: material_plane_value(), normal_plane_value().
+using MaterialPlaneSource = std::function<const std::vector<Vec3f>&(int plane, const TexelMap&)>;
 
-/// The unit normals of the exact height at every texel of a texel map, W*H (height_normals() of
-/// (exact[6] − 0.5) · height scale at the chart texels), owned by the source and valid until its next call.
-using MaterialNormalSource = std::function<const std::vector<Vec3f>&(const TexelMap&)>;
+/// Plane 0 (base colour) or 1 (roughness, metallic, alpha) of the material \p v.
+inline Vec3f material_plane_value(int plane, const MaterialValue& v) {
+  return plane == 0 ? Vec3f(float(v[0]), float(v[1]), float(v[2])) : Vec3f(float(v[4]), float(v[5]), float(v[3]));
+}
 
-/// material_error_planes() with the exact material from \p exact (e.g. a session's point caches)
-/// instead of evaluating the file, and the exact height's normals from \p normals when given (else
-/// derived from \p exact). The sources must outlive the planes.
+/// Plane 2's value of the unit normal \p n: (n + 1) / 2, as the normal map stores it.
+inline Vec3f normal_plane_value(const Vec3f& n) { return 0.5f * (n + Vec3f::Ones()); }
+
+/// material_error_planes() with the planes' exact values from \p exact (e.g. a session's, kept between
+/// cycles) instead of evaluating the file. The source must outlive the planes.
 /// \throw InvalidInputError map and textures of different sizes, no source
-std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
-                                              const MaterialTextures& textures, MaterialTexelSource exact,
-                                              double data_weight, MaterialNormalSource normals = {});
+std::vector<ErrorPlane> material_error_planes(const TexelMap& map, const MaterialTextures& textures,
+                                              MaterialPlaneSource exact, double data_weight);
 
 /// Paints \p file on \p layout, adapts the layout to the material's summed error model, paints again
 /// on the adapted layout, and keeps whichever layout reconstructs every channel better on surface

@@ -17,32 +17,39 @@ namespace adaptex {
 
 namespace {
 
-/// The exact material at the chart texels of a texel map, evaluated once per map for all planes.
-class TexelMaterial {
+/// The planes' exact values at the texel maps asked for: the material evaluated once per map for all
+/// planes, each plane's values converted into its own W*H storage.
+class TexelPlanes {
  public:
-  TexelMaterial(const TriMesh& mesh, const MaterialStrokeFile& file) : mesh_(mesh), file_(file) {}
-  const std::vector<MaterialValue>& at(const TexelMap& map) {
+  TexelPlanes(const TriMesh& mesh, const Parameterization& param, const MaterialStrokeFile& file, double height_scale)
+      : mesh_(mesh), param_(param), file_(file), scale_(height_scale) {}
+  const std::vector<Vec3f>& at(int plane, const TexelMap& map) {
     const std::lock_guard lock(mutex_);
-    auto [it, fresh] = cache_.try_emplace(&map);
+    auto [it, fresh] = material_.try_emplace(&map);
     if (fresh) it->second = evaluate_material(mesh_, file_, texel_points(map));
-    return it->second;
+    const std::vector<MaterialValue>& v = it->second;
+    std::vector<Vec3f>& out = planes_[plane];
+    if (plane == 2) {
+      std::vector<double> h(static_cast<size_t>(map.width) * map.height, 0.0);
+      tbb::parallel_for(size_t(0), v.size(), [&](size_t k) { h[map.inside[k]] = (v[k][6] - 0.5) * scale_; });
+      out = height_normals(mesh_, param_, map, h);
+      for (Vec3f& x : out) x = normal_plane_value(x);
+      return out;
+    }
+    out.assign(static_cast<size_t>(map.width) * map.height, Vec3f::Zero());
+    tbb::parallel_for(size_t(0), v.size(), [&](size_t k) { out[map.inside[k]] = material_plane_value(plane, v[k]); });
+    return out;
   }
 
  private:
   const TriMesh& mesh_;
+  const Parameterization& param_;
   const MaterialStrokeFile& file_;
+  double scale_;
   std::mutex mutex_;
-  std::map<const TexelMap*, std::vector<MaterialValue>> cache_;
+  std::map<const TexelMap*, std::vector<MaterialValue>> material_;
+  std::vector<Vec3f> planes_[3];
 };
-
-/// W*H values of \p map: f(value) at the chart texels (\p v in map.inside order), \p zero elsewhere.
-template <class T, class F>
-std::vector<T> on_texels(const TexelMap& map, const std::vector<MaterialValue>& v, const T& zero, F f) {
-  if (v.size() != map.inside.size()) throw Error("material_error_planes: the source gave another number of texels");
-  std::vector<T> out(static_cast<size_t>(map.width) * map.height, zero);
-  tbb::parallel_for(size_t(0), v.size(), [&](size_t k) { out[map.inside[k]] = f(v[k]); });
-  return out;
-}
 
 ImageRGBA8 data_texture(const MaterialTextures& t) {
   ImageRGBA8 img(t.roughness.width, t.roughness.height);
@@ -70,15 +77,14 @@ double sampled_error(const TriMesh& mesh, const Parameterization& param, const M
 std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                               const MaterialStrokeFile& file, const MaterialTextures& textures,
                                               double data_weight) {
-  auto exact = std::make_shared<TexelMaterial>(mesh, file);
-  return material_error_planes(mesh, param, map, textures, [exact](const TexelMap& at) -> const std::vector<MaterialValue>& {
-    return exact->at(at);
+  auto exact = std::make_shared<TexelPlanes>(mesh, param, file, textures.height_scale);
+  return material_error_planes(map, textures, [exact](int plane, const TexelMap& at) -> const std::vector<Vec3f>& {
+    return exact->at(plane, at);
   }, data_weight);
 }
 
-std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
-                                              const MaterialTextures& textures, MaterialTexelSource exact,
-                                              double data_weight, MaterialNormalSource normals) {
+std::vector<ErrorPlane> material_error_planes(const TexelMap& map, const MaterialTextures& textures,
+                                              MaterialPlaneSource exact, double data_weight) {
   if (map.width != textures.base_color.width || map.height != textures.base_color.height)
     throw InvalidInputError("material_error_planes: the texel map and the textures differ in size");
   if (!exact) throw InvalidInputError("material_error_planes: no exact source");
@@ -86,32 +92,15 @@ std::vector<ErrorPlane> material_error_planes(const TriMesh& mesh, const Paramet
   for (int t : map.inside)
     for (int c = 0; c < 3; ++c) albedo2 += std::pow(textures.base_color.data[4 * t + c] / 255.0, 2) / 3;
   albedo2 = map.inside.empty() ? 1 : albedo2 / static_cast<double>(map.inside.size());
-  const double scale = textures.height_scale;
   std::vector<ErrorPlane> planes(3);
   planes[0].texture = textures.base_color;
-  planes[0].exact = [exact](const TexelMap& at) {
-    return on_texels<Vec3f>(at, exact(at), Vec3f::Zero(), [](const MaterialValue& v) { return Vec3f(float(v[0]), float(v[1]), float(v[2])); });
-  };
   planes[1].weight = data_weight;
   planes[1].texture = data_texture(textures);
-  planes[1].exact = [exact](const TexelMap& at) {
-    return on_texels<Vec3f>(at, exact(at), Vec3f::Zero(), [](const MaterialValue& v) { return Vec3f(float(v[4]), float(v[5]), float(v[3])); });
-  };
   // The normal map stores (n + 1) / 2: its squared error is |Δn|² / 4, so 4 · albedo² gives Lambert's.
   planes[2].weight = std::max(4 * albedo2, 1e-6);
   planes[2].texture = textures.normal;
-  planes[2].exact = [exact, normals, &mesh, &param, scale](const TexelMap& at) {
-    std::vector<Vec3f> n;
-    if (normals) {
-      n = normals(at);
-    } else {
-      const std::vector<double> h =
-          on_texels<double>(at, exact(at), 0.0, [scale](const MaterialValue& v) { return (v[6] - 0.5) * scale; });
-      n = height_normals(mesh, param, at, h);
-    }
-    for (Vec3f& x : n) x = 0.5f * (x + Vec3f::Ones());
-    return n;
-  };
+  for (int k = 0; k < 3; ++k)
+    planes[k].exact = [exact, k](const TexelMap& at) -> const std::vector<Vec3f>& { return exact(k, at); };
   return planes;
 }
 

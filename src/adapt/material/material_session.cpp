@@ -4,6 +4,7 @@
 /// the surface cache, or the history replayed), the never-worse check on cached exact values.
 #include "adaptex/adapt/material_session.h"
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -66,9 +67,11 @@ struct Layout {
   SeamPadding pad;
 };
 
-/// The exact height (world units) and its normals at every texel of a texel map (W*H), updated
-/// where the material changed.
-struct ExactNormals {
+/// The error planes' exact values (material_error_planes()) at every texel of a texel map (W*H), with
+/// the exact height (world units) and its normals, kept between cycles and updated where the material
+/// changed.
+struct ExactPlanes {
+  std::array<std::vector<Vec3f>, 3> planes;  // base colour; roughness, metallic, alpha; (normal + 1) / 2
   std::vector<double> height;
   std::vector<Vec3f> normals;
   std::vector<char> changed;  // per chart texel (map.inside order)
@@ -87,7 +90,7 @@ struct MaterialPaintSession::Impl {
   std::optional<ErrorPlaneMaps> plane_maps;
   std::unique_ptr<MaterialPointCache> reference, half;  // the model's exact values, at plane_maps' points
   ErrorPlanesMemory plane_memory;  // the model's rasters and cell sums of the last cycle
-  ExactNormals reference_normals, half_normals;  // the exact height's normals at plane_maps' texels
+  ExactPlanes reference_planes, half_planes;  // the planes' exact values at plane_maps' texels
   MaterialEvalPoints check_points;
   std::unique_ptr<MaterialPointCache> check;            // the exact material at check_points.probes
   std::vector<AdaptReport> reports;
@@ -214,22 +217,27 @@ struct MaterialPaintSession::Impl {
       check = std::make_unique<MaterialPointCache>(*initial.mesh, check_points.probes, history);
     }
     for (MaterialPointCache* c : {reference.get(), half.get(), check.get()}) c->update(history);
-    refresh_normals(plane_maps->reference, *reference, reference_normals);
-    refresh_normals(plane_maps->half, *half, half_normals);
+    refresh_planes(plane_maps->reference, *reference, reference_planes);
+    refresh_planes(plane_maps->half, *half, half_planes);
     if (uses_surface_cache()) surface_now();
   }
 
   /// \p n brought up to the material of \p cache (at \p map's chart texels): all of it at first, then
-  /// the heights that changed and the normals of them and their 4-neighbours (as update_textures()).
-  void refresh_normals(const TexelMap& map, MaterialPointCache& cache, ExactNormals& n) {
+  /// the texels that changed, and the normals of the heights that changed and of their 4-neighbours
+  /// (as update_textures()).
+  void refresh_planes(const TexelMap& map, MaterialPointCache& cache, ExactPlanes& n) {
     const TriMesh& mesh = *initial.mesh;
     if (n.normals.empty()) {
       const std::vector<MaterialValue>& v = cache.values(history);
-      n.height.assign(static_cast<size_t>(map.width) * map.height, 0.0);
-      for (size_t k = 0; k < v.size(); ++k) n.height[map.inside[k]] = (v[k][6] - 0.5) * height_scale;
+      const size_t texels = static_cast<size_t>(map.width) * map.height;
+      n.height.assign(texels, 0.0);
+      for (int p : {0, 1}) n.planes[p].assign(texels, Vec3f::Zero());
+      for (size_t k = 0; k < v.size(); ++k) set_texel(n, map.inside[k], v[k]);
       n.normals = height_normals(mesh, initial.param, map, n.height);
+      n.planes[2].resize(texels);
+      for (size_t t = 0; t < texels; ++t) n.planes[2][t] = normal_plane_value(n.normals[t]);
       n.changed.assign(v.size(), 0);
-      n.mark.assign(n.height.size(), 0);
+      n.mark.assign(texels, 0);
       return;
     }
     const std::vector<MaterialValue>& v = cache.values(history, [&n](size_t k, const MaterialValue&) { n.changed[k] = 1; });
@@ -239,9 +247,9 @@ struct MaterialPaintSession::Impl {
       if (!n.changed[k]) continue;
       n.changed[k] = 0;
       const int t = map.inside[k];
-      const double h = (v[k][6] - 0.5) * height_scale;
+      const double h = n.height[t];
+      set_texel(n, t, v[k]);
       if (h == n.height[t]) continue;
-      n.height[t] = h;
       const int i = t % W, j = t / W;
       for (const auto& [di, dj] : {std::pair{0, 0}, {-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
         if (i + di < 0 || i + di >= W || j + dj < 0 || j + dj >= H) continue;
@@ -250,23 +258,21 @@ struct MaterialPaintSession::Impl {
       }
     }
     update_height_normals(mesh, initial.param, map, n.height, around, n.normals);
-    for (int u : around) n.mark[u] = 0;
+    for (int u : around) n.planes[2][u] = normal_plane_value(n.normals[u]), n.mark[u] = 0;
   }
 
-  /// The exact height's normals at the planes' maps.
-  MaterialNormalSource exact_normals() {
-    return [this](const TexelMap& at) -> const std::vector<Vec3f>& {
-      if (&at == &plane_maps->reference) return reference_normals.normals;
-      if (&at == &plane_maps->half) return half_normals.normals;
-      throw Error("material session: the model asked for another texel map");
-    };
+  /// Texel \p t's base colour, data channels and height from its material \p v.
+  void set_texel(ExactPlanes& n, int t, const MaterialValue& v) const {
+    n.planes[0][t] = material_plane_value(0, v);
+    n.planes[1][t] = material_plane_value(1, v);
+    n.height[t] = (v[6] - 0.5) * height_scale;
   }
 
-  /// The source of the planes' exact values: the reference and N/2 caches.
-  MaterialTexelSource exact_source() {
-    return [this](const TexelMap& at) -> const std::vector<MaterialValue>& {
-      if (&at == &plane_maps->reference) return reference->values(history);
-      if (&at == &plane_maps->half) return half->values(history);
+  /// The source of the planes' exact values: those kept at the reference and N/2 maps.
+  MaterialPlaneSource exact_planes() {
+    return [this](int plane, const TexelMap& at) -> const std::vector<Vec3f>& {
+      if (&at == &plane_maps->reference) return reference_planes.planes[plane];
+      if (&at == &plane_maps->half) return half_planes.planes[plane];
       throw Error("material session: the model asked for another texel map");
     };
   }
@@ -305,8 +311,7 @@ const AdaptReport& MaterialPaintSession::Impl::cycle(bool gated) {
   const MaterialTextures& base = textures_of(initial);
   const ErrorDensity model = compute_error_density(
       *initial.mesh, initial.param, initial.map,
-      material_error_planes(*initial.mesh, initial.param, initial.map, base, exact_source(), opt.data_weight,
-                            exact_normals()),
+      material_error_planes(initial.map, base, exact_planes(), opt.data_weight),
       *plane_maps, plane_memory, opt.adapt.density_flow.density);
   AdaptReport gate;
   gate.mode = opt.adapt.mode;
