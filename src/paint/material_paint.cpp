@@ -45,13 +45,34 @@ std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& p
   return normals;
 }
 
+HeightNormalTerms height_normal_terms(const TriMesh& mesh, const Parameterization& param) {
+  if (param.uv_faces.size() != mesh.faces.size())
+    throw InvalidInputError("height normals: the layout and the mesh have different face counts");
+  HeightNormalTerms out;
+  out.vertex_normals = vertex_normals(mesh);
+  out.tangents = wedge_tangents(mesh, param, out.vertex_normals);
+  out.faces.resize(mesh.faces.size());
+  tbb::parallel_for(size_t(0), mesh.faces.size(), [&](size_t f) {
+    HeightNormalTerms::Face& x = out.faces[f];
+    face_uv_gradients(mesh, param, static_cast<int>(f), x.pu, x.pv);
+    x.normal = face_normal(mesh, static_cast<int>(f));
+    x.a = x.pu.dot(x.pu), x.b = x.pu.dot(x.pv), x.c = x.pv.dot(x.pv), x.det = x.a * x.c - x.b * x.b;
+    x.usable = x.pu.norm() > 0 && x.pv.norm() > 0 && x.det > 0;
+  });
+  return out;
+}
+
 void update_height_normals(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                            const std::vector<double>& height, const std::vector<int>& texels,
                            std::vector<Vec3f>& normals) {
+  update_height_normals(mesh, param, height_normal_terms(mesh, param), map, height, texels, normals);
+}
+
+void update_height_normals(const TriMesh& mesh, const Parameterization& param, const HeightNormalTerms& terms,
+                           const TexelMap& map, const std::vector<double>& height, const std::vector<int>& texels,
+                           std::vector<Vec3f>& normals) {
   if (height.size() != static_cast<size_t>(map.width) * map.height || normals.size() != height.size())
     throw InvalidInputError("normal_map_from_height: one height per texel expected");
-  const std::vector<Vec3> vn = vertex_normals(mesh);
-  const std::vector<Eigen::Vector4d> tangents = wedge_tangents(mesh, param, vn);
   tbb::parallel_for(size_t(0), texels.size(), [&](size_t k) {
     const int t = texels[k], i = t % map.width, j = t / map.width, f = map.face[t];
     normals[t] = Vec3f(0, 0, 1);
@@ -59,15 +80,13 @@ void update_height_normals(const TriMesh& mesh, const Parameterization& param, c
     const double hu = axis_derivative(map, height, t, i, map.width, 1, 1.0 / map.width);
     const double hv = axis_derivative(map, height, t, j, map.height, map.width, 1.0 / map.height);
     if (hu == 0 && hv == 0) return;  // flat height: the surface's own normal, in any frame
-    Vec3 pu, pv;
-    face_uv_gradients(mesh, param, f, pu, pv);
-    if (!(pu.norm() > 0) || !(pv.norm() > 0)) return;  // degenerate UV triangle: flat
+    const HeightNormalTerms::Face& x = terms.faces[f];
+    if (!x.usable) return;  // degenerate UV triangle: flat
     // Surface gradient: ∇H = [pu pv] G⁻¹ (hu, hv), G the metric of the face's UV map.
-    const double a = pu.dot(pu), b = pu.dot(pv), c = pv.dot(pv), det = a * c - b * b;
-    if (!(det > 0)) return;
-    const Vec3 grad = pu * ((c * hu - b * hv) / det) + pv * ((a * hv - b * hu) / det);
+    const Vec3 grad = x.pu * ((x.c * hu - x.b * hv) / x.det) + x.pv * ((x.a * hv - x.b * hu) / x.det);
     // n' = normalize(n − ∇H) in the frame a renderer interpolates from the exported NORMAL and TANGENT.
-    const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, f, map.bary[t].x(), map.bary[t].y());
+    const TangentFrame fr = interpolated_frame(mesh, param, terms.vertex_normals, terms.tangents, f, map.bary[t].x(),
+                                               map.bary[t].y(), x.normal, x.pu);
     normals[t] = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized().cast<float>();
   });
 }

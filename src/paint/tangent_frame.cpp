@@ -103,8 +103,14 @@ std::vector<Eigen::Vector4d> wedge_tangents(const TriMesh& mesh, const Parameter
   return out;
 }
 
-TangentFrame interpolated_frame(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>& normals,
-                                const std::vector<Eigen::Vector4d>& tangents, int f, double b0, double b1) {
+namespace {
+
+/// interpolated_frame() with the face normal given and ∂P/∂u from \p pu_of() (needed only where the
+/// interpolated tangent vanishes).
+template <class PU>
+TangentFrame frame_at(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>& normals,
+                      const std::vector<Eigen::Vector4d>& tangents, int f, double b0, double b1, const Vec3& fn,
+                      PU pu_of) {
   const double bc[3] = {b0, b1, 1 - b0 - b1};
   const Face& F = mesh.faces[f];
   const Face& T = param.uv_faces[f];
@@ -113,12 +119,10 @@ TangentFrame interpolated_frame(const TriMesh& mesh, const Parameterization& par
     n += bc[k] * normals[F[k]];
     t += bc[k] * tangents[T[k]].head<3>();
   }
-  const Vec3 fn = face_normal(mesh, f);
   n = unit_or(n, fn);
   t -= n * n.dot(t);
   if (!(t.norm() > 1e-6)) {  // tangents cancelling inside the face: its own frame
-    Vec3 pu, pv;
-    face_uv_gradients(mesh, param, f, pu, pv);
+    const Vec3 pu = pu_of();
     t = pu - n * n.dot(pu);
   }
   t = unit_or(t, any_orthogonal(n));
@@ -126,6 +130,23 @@ TangentFrame interpolated_frame(const TriMesh& mesh, const Parameterization& par
   for (int k = 0; k < 3; ++k) w += bc[k] * tangents[T[k]].w();
   const double handed = w < 0 ? -1.0 : 1.0;
   return {t, handed * n.cross(t), n};
+}
+
+}  // namespace
+
+TangentFrame interpolated_frame(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>& normals,
+                                const std::vector<Eigen::Vector4d>& tangents, int f, double b0, double b1) {
+  return frame_at(mesh, param, normals, tangents, f, b0, b1, face_normal(mesh, f), [&] {
+    Vec3 pu, pv;
+    face_uv_gradients(mesh, param, f, pu, pv);
+    return pu;
+  });
+}
+
+TangentFrame interpolated_frame(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>& normals,
+                                const std::vector<Eigen::Vector4d>& tangents, int f, double b0, double b1,
+                                const Vec3& face_n, const Vec3& pu) {
+  return frame_at(mesh, param, normals, tangents, f, b0, b1, face_n, [&pu] { return pu; });
 }
 
 }  // namespace adaptex

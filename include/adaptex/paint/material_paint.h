@@ -12,6 +12,7 @@
 #include "adaptex/core/parameterization.h"
 #include "adaptex/paint/material_strokes.h"
 #include "adaptex/paint/signal.h"
+#include "adaptex/paint/tangent_frame.h"
 #include "adaptex/paint/texel_map.h"
 
 namespace adaptex {
@@ -95,6 +96,31 @@ std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& p
 /// \pre height.size() == normals.size() == map.width * map.height
 void update_height_normals(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                            const std::vector<double>& height, const std::vector<int>& texels,
+                           std::vector<Vec3f>& normals);
+
+/// What height_normals() reads per face of one layout, computed once for it: the vertex normals and
+/// wedge tangents of the exported frame, and per face ∂P/∂u, ∂P/∂v, their metric and the face normal.
+struct HeightNormalTerms {
+  struct Face {
+    Vec3 pu, pv;           ///< face_uv_gradients()
+    Vec3 normal;           ///< face_normal()
+    double a, b, c, det;   ///< The metric [a b; b c] of the face's UV map and its determinant.
+    bool usable;           ///< pu, pv non-zero and det > 0 (else the face's texels keep the flat normal)
+  };
+  std::vector<Vec3> vertex_normals;        ///< vertex_normals(mesh)
+  std::vector<Eigen::Vector4d> tangents;   ///< wedge_tangents(mesh, param, vertex_normals)
+  std::vector<Face> faces;                 ///< Shape F.
+};
+
+/// The terms of \p param on \p mesh.
+/// \throw InvalidInputError the layout and the mesh disagree in size
+HeightNormalTerms height_normal_terms(const TriMesh& mesh, const Parameterization& param);
+
+/// update_height_normals() with the layout's terms computed already (height_normal_terms() of the
+/// same mesh and layout): the same normals.
+/// \pre height.size() == normals.size() == map.width * map.height, terms of mesh and param
+void update_height_normals(const TriMesh& mesh, const Parameterization& param, const HeightNormalTerms& terms,
+                           const TexelMap& map, const std::vector<double>& height, const std::vector<int>& texels,
                            std::vector<Vec3f>& normals);
 
 /// The tangent-space normal of a height field H (world units per texel of \p map, W*H values; only

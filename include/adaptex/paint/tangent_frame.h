@@ -40,6 +40,13 @@ struct TangentFrame {
 TangentFrame interpolated_frame(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>& normals,
                                 const std::vector<Eigen::Vector4d>& tangents, int f, double b0, double b1);
 
+/// interpolated_frame() with face \p f's normal \p face_n (face_normal()) and its ∂P/∂u \p pu
+/// (face_uv_gradients()) given: the same frame, for callers that evaluate many points of one face.
+/// \pre as interpolated_frame()
+TangentFrame interpolated_frame(const TriMesh& mesh, const Parameterization& param, const std::vector<Vec3>& normals,
+                                const std::vector<Eigen::Vector4d>& tangents, int f, double b0, double b1,
+                                const Vec3& face_n, const Vec3& pu);
+
 /// ∂P/∂u and ∂P/∂v of face \p f (both zero when its UV triangle is degenerate).
 /// \pre f is a face of mesh and of param
 void face_uv_gradients(const TriMesh& mesh, const Parameterization& param, int f, Vec3& pu, Vec3& pv);

@@ -91,6 +91,7 @@ struct MaterialPaintSession::Impl {
   std::unique_ptr<MaterialPointCache> reference, half;  // the model's exact values, at plane_maps' points
   ErrorPlanesMemory plane_memory;  // the model's rasters and cell sums of the last cycle
   ExactPlanes reference_planes, half_planes;  // the planes' exact values at plane_maps' texels
+  std::optional<HeightNormalTerms> initial_terms;  // the initial layout's, for the normals' updates
   MaterialEvalPoints check_points;
   std::unique_ptr<MaterialPointCache> check;            // the exact material at check_points.probes
   std::vector<AdaptReport> reports;
@@ -141,6 +142,12 @@ struct MaterialPaintSession::Impl {
     l.painted = -1;
   }
 
+  /// The initial layout's per-face terms of the height's normals, computed at first use.
+  const HeightNormalTerms& initial_normal_terms() {
+    if (!initial_terms) initial_terms = height_normal_terms(*initial.mesh, initial.param);
+    return *initial_terms;
+  }
+
   /// The textures of \p l with the whole history: made anew for a new layout, then (the initial
   /// layout) updated where the composite changed.
   const MaterialTextures& textures_of(Layout& l) {
@@ -178,8 +185,9 @@ struct MaterialPaintSession::Impl {
     return l.textures;
   }
 
-  /// The texels whose material changed since the last textures, their channels, and the normals of
-  /// them and their 4-neighbours (the height's differences read the neighbours); then the padding.
+  /// The texels of the initial layout \p l whose material changed since the last textures, their
+  /// channels, and the normals of them and their 4-neighbours (the height's differences read the
+  /// neighbours); then the padding.
   void update_textures(Layout& l, const std::vector<MaterialValue>& v) {
     const TexelMap& map = l.map;
     std::vector<int> changed;
@@ -199,7 +207,7 @@ struct MaterialPaintSession::Impl {
         if (map.face[u] >= 0 && !l.mark[u]) l.mark[u] = 1, around.push_back(u);
       }
     }
-    update_height_normals(*l.mesh, l.param, map, l.height, around, l.normals);
+    update_height_normals(*l.mesh, l.param, initial_normal_terms(), map, l.height, around, l.normals);
     for (int u : around) set_normal_texel(l.textures.normal, u, l.normals[u]), l.mark[u] = 0;
     for (ImageRGBA8* img : {&l.textures.base_color, &l.textures.roughness, &l.textures.metallic, &l.textures.height,
                             &l.textures.metallic_roughness, &l.textures.normal})
@@ -257,7 +265,7 @@ struct MaterialPaintSession::Impl {
         if (map.face[u] >= 0 && !n.mark[u]) n.mark[u] = 1, around.push_back(u);
       }
     }
-    update_height_normals(mesh, initial.param, map, n.height, around, n.normals);
+    update_height_normals(mesh, initial.param, initial_normal_terms(), map, n.height, around, n.normals);
     for (int u : around) n.planes[2][u] = normal_plane_value(n.normals[u]), n.mark[u] = 0;
   }
 
