@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <tuple>
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
@@ -176,18 +177,41 @@ MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& par
   check_paint_options(mesh, param, options);
   const int N = options.size;
   const TexelMap map = build_texel_map(mesh, param, N, N);
-  return material_textures_from_values(mesh, param, map, evaluate_material(mesh, file, texel_points(map)),
-                                       file.background, options.padding, material_height_scale(mesh, file));
+  MaterialTextures out;
+  material_textures_from_values(mesh, param, map, evaluate_material(mesh, file, texel_points(map)), file.background,
+                                options.padding, material_height_scale(mesh, file), out, painted_channels(file));
+  return out;
 }
 
-void set_material_texel(MaterialTextures& tex, int t, const MaterialValue& v) {
+namespace {
+
+bool paints(unsigned painted, Channel c) { return (painted & channel_bit(c)) != 0; }
+
+/// set_material_texel() into the images of the \p painted channels only.
+void set_painted_texel(MaterialTextures& tex, int t, const MaterialValue& v, unsigned painted) {
   const size_t o = 4 * static_cast<size_t>(t);
-  const std::uint8_t rgba[4] = {to_byte(v[0]), to_byte(v[1]), to_byte(v[2]), to_byte(v[3])};
-  std::copy(rgba, rgba + 4, &tex.base_color.data[o]);
-  const std::pair<ImageRGBA8*, double> greys[] = {{&tex.roughness, v[4]}, {&tex.metallic, v[5]}, {&tex.height, v[6]}};
-  for (const auto& [img, g] : greys) std::fill_n(&img->data[o], 3, to_byte(g));
-  const std::uint8_t mr[4] = {255, to_byte(v[4]), to_byte(v[5]), 255};
-  std::copy(mr, mr + 4, &tex.metallic_roughness.data[o]);
+  if (paints(painted, Channel::BaseColor) || paints(painted, Channel::Alpha)) {
+    const std::uint8_t rgba[4] = {to_byte(v[0]), to_byte(v[1]), to_byte(v[2]), to_byte(v[3])};
+    std::copy(rgba, rgba + 4, &tex.base_color.data[o]);
+  }
+  const std::tuple<Channel, ImageRGBA8*, double> greys[] = {
+      {Channel::Roughness, &tex.roughness, v[4]}, {Channel::Metallic, &tex.metallic, v[5]}, {Channel::Height, &tex.height, v[6]}};
+  for (const auto& [c, img, g] : greys)
+    if (paints(painted, c)) std::fill_n(&img->data[o], 3, to_byte(g));
+  if (paints(painted, Channel::Roughness) || paints(painted, Channel::Metallic)) {
+    const std::uint8_t mr[4] = {255, to_byte(v[4]), to_byte(v[5]), 255};
+    std::copy(mr, mr + 4, &tex.metallic_roughness.data[o]);
+  }
+}
+
+}  // namespace
+
+void set_material_texel(MaterialTextures& tex, int t, const MaterialValue& v) { set_painted_texel(tex, t, v, kAllChannels); }
+
+unsigned painted_channels(const MaterialStrokeFile& file) {
+  unsigned bits = 0;
+  for (const MaterialLayer& l : file.layers) bits |= painted_channels(l);
+  return bits;
 }
 
 void set_normal_texel(ImageRGBA8& normal_map, int t, const Vec3f& n) { put_normal(normal_map, t, n.cast<double>()); }
@@ -215,7 +239,7 @@ MaterialTextures material_textures_from_values(const TriMesh& mesh, const Parame
 
 void material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                    const std::vector<MaterialValue>& values, const MaterialValue& background,
-                                   int padding, double height_scale, MaterialTextures& out) {
+                                   int padding, double height_scale, MaterialTextures& out, unsigned painted) {
   if (values.size() != map.inside.size())
     throw InvalidInputError("material textures: one value per chart texel expected");
   if (padding < 0) throw InvalidInputError("material textures: padding must be >= 0");
@@ -227,17 +251,26 @@ void material_textures_from_values(const TriMesh& mesh, const Parameterization& 
   for (const auto& [img, g] : grey_images) fill_image(*img, N, map.height, {to_byte(g), to_byte(g), to_byte(g), 255});
   fill_image(out.metallic_roughness, N, map.height, {255, to_byte(bg[4]), to_byte(bg[5]), 255});
   // Chart texels from their values; padded texels then copy their source texel's bytes (what copying
-  // the source's value would give); the normal map reads chart texels' heights only.
-  std::vector<double> height(static_cast<size_t>(N) * map.height, (bg[6] - 0.5) * height_scale);
+  // the source's value would give); the normal map reads chart texels' heights only. A channel not
+  // painted is its flat fill already, and a flat height's normal is (0, 0, 1) at every texel.
+  const bool height = paints(painted, Channel::Height);
+  std::vector<double> h(height ? static_cast<size_t>(N) * map.height : 0, (bg[6] - 0.5) * height_scale);
   tbb::parallel_for(size_t(0), values.size(), [&](size_t k) {
     const int t = map.inside[k];
-    set_material_texel(out, t, values[k]);
-    height[t] = (values[k][6] - 0.5) * height_scale;
+    set_painted_texel(out, t, values[k], painted);
+    if (height) h[t] = (values[k][6] - 0.5) * height_scale;
   });
   const SeamPadding pad = build_seam_padding(map, padding);
-  for (ImageRGBA8* img : {&out.base_color, &out.roughness, &out.metallic, &out.height, &out.metallic_roughness})
-    apply_seam_padding(*img, pad);
-  out.normal = normal_map_from_height(mesh, param, map, height);
+  const std::pair<ImageRGBA8*, unsigned> images[] = {
+      {&out.base_color, channel_bit(Channel::BaseColor) | channel_bit(Channel::Alpha)},
+      {&out.roughness, channel_bit(Channel::Roughness)},
+      {&out.metallic, channel_bit(Channel::Metallic)},
+      {&out.height, channel_bit(Channel::Height)},
+      {&out.metallic_roughness, channel_bit(Channel::Roughness) | channel_bit(Channel::Metallic)}};
+  for (const auto& [img, bits] : images)
+    if (painted & bits) apply_seam_padding(*img, pad);
+  if (!height) return fill_image(out.normal, N, map.height, {to_byte(0.5), to_byte(0.5), to_byte(1.0), 255});
+  out.normal = normal_map_from_height(mesh, param, map, h);
   apply_seam_padding(out.normal, pad);
 }
 

@@ -69,6 +69,29 @@ TEST_F(PlaneMaterial, TexelsHoldTheExactMaterialAtTheirCentres) {
   EXPECT_EQ(tex.roughness.data[0], byte(0.5));
 }
 
+// Images of channels no layer paints are filled flat without reading the values: the same bytes as
+// writing the values, which are the background there exactly.
+TEST_F(PlaneMaterial, UnpaintedChannelsGiveTheSameImagesFilledFlat) {
+  const unsigned bits = channel_bit(Channel::BaseColor) | channel_bit(Channel::Roughness) |
+                        channel_bit(Channel::Metallic) | channel_bit(Channel::Height);
+  EXPECT_EQ(painted_channels(file), bits);
+  MaterialStrokeFile colour = file;
+  colour.layers.pop_back();
+  colour.layers[0].strokes[0].channels = channel_bit(Channel::BaseColor);
+  ASSERT_EQ(painted_channels(colour), channel_bit(Channel::BaseColor));
+  const TexelMap map = build_texel_map(mesh, param, 64, 64);
+  const std::vector<MaterialValue> v = evaluate_material(mesh, colour, texel_points(map));
+  MaterialTextures flat, all;
+  material_textures_from_values(mesh, param, map, v, colour.background, 2, 0.05, flat, painted_channels(colour));
+  material_textures_from_values(mesh, param, map, v, colour.background, 2, 0.05, all, kAllChannels);
+  EXPECT_EQ(flat.base_color.data, all.base_color.data);
+  for (const auto& [a, b] : {std::pair{&flat.roughness, &all.roughness}, {&flat.metallic, &all.metallic},
+                             {&flat.height, &all.height}, {&flat.metallic_roughness, &all.metallic_roughness},
+                             {&flat.normal, &all.normal}})
+    EXPECT_EQ(a->data, b->data);
+  EXPECT_NE(tex.normal.data, all.normal.data);  // the painted height does change the normal map
+}
+
 TEST_F(PlaneMaterial, LayersAloneCompositeToTheMaterial) {
   const std::vector<LayerTextures> layers = paint_material_layers(mesh, param, file, o);
   ASSERT_EQ(layers.size(), 2u);

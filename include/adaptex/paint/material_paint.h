@@ -50,10 +50,18 @@ MaterialTextures paint_material(const TriMesh& mesh, const Parameterization& par
 MaterialTextures material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                                const std::vector<MaterialValue>& values,
                                                const MaterialValue& background, int padding, double height_scale);
-/// As above, into \p out, reusing its storage (a session's next candidate layout). \throw as above
+/// As above, into \p out, reusing its storage (a session's next candidate layout). \p painted: the
+/// channels whose values may differ from the background (painted_channels()); the images of the others
+/// (the normal map: of the height) are filled flat without reading \p values, the same bytes when their
+/// values are the background exactly (as evaluate_material() gives them). \throw as above
 void material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                    const std::vector<MaterialValue>& values, const MaterialValue& background,
-                                   int padding, double height_scale, MaterialTextures& out);
+                                   int padding, double height_scale, MaterialTextures& out,
+                                   unsigned painted = kAllChannels);
+
+/// The channels some layer of \p file paints (its brush and fill strokes name them; a decal paints
+/// the base colour): every other channel of the composite is the background, exactly.
+unsigned painted_channels(const MaterialStrokeFile& file);
 
 /// Writes the material \p v into texel \p t (row-major index) of the 8-bit channel textures of \p tex
 /// (base colour and alpha, roughness, metallic, height, the metallic-roughness packing; not the normal

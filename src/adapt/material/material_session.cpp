@@ -159,7 +159,7 @@ struct MaterialPaintSession::Impl {
       update_textures(l, v);
     } else {
       material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding, height_scale,
-                                    l.textures);
+                                    l.textures, painted_channels(history));
       if (&l == &initial) {  // kept for the updates
         l.last = v;
         l.pad = build_seam_padding(l.map, opt.paint.padding);
