@@ -30,9 +30,15 @@
 // psnr_db = the held textures (base colour, metallic-roughness; the lower) against exact replay on the
 // held layout, loss_db = their error on the surface (evaluate_material_textures(), 200k samples)
 // over exact replay's, in dB (untimed).
+// Profiling the timed part only: ADAPTEX_PERF_CTL=CTL_FIFO,ACK_FIFO makes the SessionCycle benchmarks
+// send perf's `enable` / `disable` around it (docs/benchmarks.md, "Where the four-channel cycle's time goes"):
+//   mkfifo /tmp/ctl /tmp/ack; ADAPTEX_PERF_CTL=/tmp/ctl,/tmp/ack perf record -e cpu-clock --call-graph dwarf
+//     --control fifo:/tmp/ctl,/tmp/ack -D -1 -- adaptex_bench_material --benchmark_filter=... (one line)
 #include <benchmark/benchmark.h>
 
+#include <fcntl.h>
 #include <malloc.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -40,6 +46,7 @@
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -139,6 +146,44 @@ double texture_psnr(const ImageRGBA8& a, const ImageRGBA8& b) {
   return 10 * std::log10(0.75 * a.data.size() / std::max(s, 1e-30));
 }
 
+/// perf's control fifos named by ADAPTEX_PERF_CTL ("CTL_FIFO,ACK_FIFO"; unset: nothing is sent).
+class PerfControl {
+ public:
+  PerfControl() {
+    const char* env = std::getenv("ADAPTEX_PERF_CTL");
+    if (!env || !*env) return;
+    const std::string s = env;
+    const size_t comma = s.find(',');
+    ctl_ = open(s.substr(0, comma).c_str(), O_WRONLY);
+    if (comma != std::string::npos) ack_ = open(s.substr(comma + 1).c_str(), O_RDONLY);
+    if (ctl_ < 0) std::fprintf(stderr, "adaptex_bench_material: cannot open perf's control fifo in %s\n", env);
+  }
+  ~PerfControl() {
+    for (int fd : {ctl_, ack_})
+      if (fd >= 0) close(fd);
+  }
+  PerfControl(const PerfControl&) = delete;
+  PerfControl& operator=(const PerfControl&) = delete;
+
+  /// Sends \p command ("enable" or "disable") and waits for perf's acknowledgement when there is an ack fifo.
+  void send(const char* command) const {
+    if (ctl_ < 0) return;
+    const std::string line = std::string(command) + "\n";
+    if (write(ctl_, line.data(), line.size()) != static_cast<ssize_t>(line.size())) return;
+    char buf[8];
+    if (ack_ >= 0 && read(ack_, buf, sizeof buf) < 0) std::fprintf(stderr, "adaptex_bench_material: no ack from perf\n");
+  }
+
+ private:
+  int ctl_ = -1, ack_ = -1;
+};
+
+/// The process's perf control (opened at first use).
+const PerfControl& perf_control() {
+  static const PerfControl p;
+  return p;
+}
+
 void set_counters(benchmark::State& state, const Scene& sc, const std::map<std::string, double>& acc, int iters) {
   for (const auto& [k, v] : acc) state.counters[k] = v / std::max(1, iters);
   state.counters["faces"] = sc.mesh.num_faces();
@@ -160,11 +205,13 @@ void BM_SessionCycle(benchmark::State& state) {
     session.add_strokes({sc.history.strokes.begin(), sc.history.strokes.begin() + (k - 1)});  // and one cycle
     session.reparameterize();  // as the material session's setup: a held layout after two cycles
     acc["session_MB"] += (heap_in_use() - heap0) / 1e6;
+    perf_control().send("enable");
     const double c0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     session.add_stroke(sc.history.strokes[k - 1]);
     state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     acc["cpu_ms"] += 1e3 * (cpu_seconds() - c0);
+    perf_control().send("disable");
     const AdaptReport& r = session.reports().back();
     acc["density_ms"] += 1e3 * r.time_density;
     acc["flow_ms"] += 1e3 * (r.time_flow + r.time_polish);
@@ -222,11 +269,13 @@ void BM_MaterialSessionCycle(benchmark::State& state) {
     session.reparameterize();  // builds the caches
     session.reparameterize();  // as at stroke K of a session: a held layout and a spare one
     acc["session_MB"] += (heap_in_use() - heap0) / 1e6;
+    perf_control().send("enable");
     const double c0 = cpu_seconds();
     const auto t0 = std::chrono::steady_clock::now();
     session.add_stroke(0, file.layers[0].strokes.back());
     state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     acc["cpu_ms"] += 1e3 * (cpu_seconds() - c0);
+    perf_control().send("disable");
     acc["cache"] += static_cast<double>(session.surface_cache_samples());
     if (session.held_from_cache()) {  // the cached textures against exact replay on the held layout
       const MaterialTextures exact = paint_material(session.mesh(), session.param(), session.history(), o.paint);
