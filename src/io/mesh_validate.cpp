@@ -168,24 +168,47 @@ bool is_manifold(const TriMesh& mesh, const EdgeConnectivity& ec) {
   return true;
 }
 
+/// Whether the faces of the manifold \p mesh agree in winding with their neighbours: the two faces
+/// of every edge run it in opposite directions (what analyze_topology() reports as every component
+/// consistently_oriented: orient_faces() then flips no face).
+bool consistently_wound(const TriMesh& mesh, const EdgeConnectivity& ec) {
+  std::vector<signed char> forward(ec.edges.size(), 0);  // faces running the edge from a to b (a < b)
+  for (size_t f = 0; f < mesh.faces.size(); ++f)
+    for (int k = 0; k < 3; ++k)
+      forward[ec.face_edges[f][k]] += mesh.faces[f][k] < mesh.faces[f][(k + 1) % 3];
+  for (size_t e = 0; e < forward.size(); ++e)
+    if (ec.edge_faces[e].size() == 2 && forward[e] != 1) return false;
+  return true;
+}
+
+/// What repair_nonmanifold() did and found.
+struct NonmanifoldRepair {
+  int added = 0;            ///< Vertices added.
+  bool manifold = false;    ///< Manifold after the repair.
+  bool consistent = false;  ///< If manifold: consistently_wound().
+};
+
 /// The non-manifold repair of validate_tracked(): rounds of split_nonmanifold(), then
-/// detach_excess_faces() if still needed. Returns the number of vertices added.
-int repair_nonmanifold(TriMesh& mesh, std::vector<int>& vertex_source) {
-  int added = 0;
+/// detach_excess_faces() if still needed. Manifoldness and winding are checked on the last edges
+/// built, so the caller needs no analyze_topology() of a mesh the repair made manifold.
+NonmanifoldRepair repair_nonmanifold(TriMesh& mesh, std::vector<int>& vertex_source) {
+  NonmanifoldRepair r;
   EdgeConnectivity ec = build_edges(mesh);
-  bool manifold = false;  // the caller found the input non-manifold
-  for (int round = 0; round < 4 && !manifold; ++round) {
-    added += split_nonmanifold(mesh, ec, vertex_source);
+  for (int round = 0; round < 4 && !r.manifold; ++round) {  // the caller found it non-manifold
+    r.added += split_nonmanifold(mesh, ec, vertex_source);
     ec = EdgeConnectivity();  // free the old edges before building the new ones (peak memory)
     ec = build_edges(mesh);
-    manifold = is_manifold(mesh, ec);
+    r.manifold = is_manifold(mesh, ec);
   }
-  ec = EdgeConnectivity();
-  if (!manifold) {
-    added += detach_excess_faces(mesh, vertex_source);
-    added += split_nonmanifold(mesh, build_edges(mesh), vertex_source);
+  if (!r.manifold) {
+    ec = EdgeConnectivity();
+    r.added += detach_excess_faces(mesh, vertex_source);
+    r.added += split_nonmanifold(mesh, build_edges(mesh), vertex_source);
+    ec = build_edges(mesh);
+    r.manifold = is_manifold(mesh, ec);
   }
-  return added;
+  if (r.manifold) r.consistent = consistently_wound(mesh, ec);
+  return r;
 }
 
 std::string describe_nonmanifold(const TriMesh& mesh, const MeshTopology& topo) {
@@ -355,20 +378,25 @@ TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOption
                      plural(split.added_vertices, "copy", "copies") + " added at the same position");
     topo = analyze_topology(mesh);
   }
+  bool repaired = false;  // made manifold by the repair: topo is stale, the winding known
+  bool consistent = true;
   if (!topo.is_manifold() && options.repair) {
-    const int added = repair_nonmanifold(mesh, vertex_source);
-    topo = analyze_topology(mesh);
-    report.split_nonmanifold_vertices += added;
-    warn(report, name + ": repair split " + plural(added, "vertex", "vertices") +
+    const NonmanifoldRepair r = repair_nonmanifold(mesh, vertex_source);
+    repaired = r.manifold;
+    consistent = r.consistent;
+    if (!repaired) topo = analyze_topology(mesh);
+    report.split_nonmanifold_vertices += r.added;
+    warn(report, name + ": repair split " + plural(r.added, "vertex", "vertices") +
                      " to make the mesh manifold (non-manifold edges and vertices)");
     drop_unreferenced(false);
   }
-  if (!topo.is_manifold()) throw TopologyError(name + ": " + describe_nonmanifold(mesh, topo));
+  if (!repaired && !topo.is_manifold())
+    throw TopologyError(name + ": " + describe_nonmanifold(mesh, topo));
 
   // 6. Mixed winding: the faces that disagree with the majority of their surface are flipped.
   face_flipped.clear();
-  bool consistent = true;
-  for (const ComponentTopology& c : topo.components) consistent = consistent && c.consistently_oriented;
+  if (!repaired)
+    for (const ComponentTopology& c : topo.components) consistent = consistent && c.consistently_oriented;
   if (consistent) return mesh;
   const FaceOrientation orientation = orient_faces(mesh);
   if (orientation.num_flipped > 0) {

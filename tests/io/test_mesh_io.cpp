@@ -394,6 +394,26 @@ TEST(MeshIo, PinchedVerticesAreSplitWithoutRepair) {
   EXPECT_TRUE(analyze_topology(m).is_manifold());
 }
 
+TEST(MeshIo, RepairedMeshesGetTheirWindingMadeConsistent) {
+  // The repair checks the winding on its own edges (no second topology pass): a mesh it makes
+  // manifold is flipped exactly where its faces disagree, and left alone where none do.
+  ReadOptions repair;
+  repair.repair = true;
+  const TriMesh torus = shapes::torus(16, 8);
+  const TriMesh clean = shapes::disjoint_union({shapes::nonmanifold_fan(), torus});
+  TriMesh mixed = clean;
+  const int fan_faces = shapes::nonmanifold_fan().num_faces();
+  for (int f = fan_faces; f < mixed.num_faces(); f += 5) std::swap(mixed.faces[f][1], mixed.faces[f][2]);
+  ReadReport rc, rm;
+  const TriMesh kept = validate_mesh(clean, "clean", repair, &rc);
+  const TriMesh out = validate_mesh(mixed, "mixed", repair, &rm);
+  EXPECT_GT(rm.split_nonmanifold_vertices, 0);
+  EXPECT_EQ(rc.flipped_faces, 0);
+  EXPECT_EQ(rm.flipped_faces, (torus.num_faces() + 4) / 5);
+  EXPECT_EQ(out.faces, kept.faces);
+  for (const ComponentTopology& c : analyze_topology(out).components) EXPECT_TRUE(c.consistently_oriented);
+}
+
 TEST(MeshIo, MixedWindingIsMadeConsistent) {
   // Some faces wound against their neighbours (as in some scans): flipped back, with a warning.
   const TriMesh ref = shapes::with_pinched_hole(shapes::torus(16, 8));
