@@ -259,6 +259,8 @@ Project read_project(const std::filesystem::path& path) {
     return p;
   } catch (const json::exception& e) {
     throw InvalidInputError(path.string() + ": bad project content (" + std::string(e.what()) + ")");
+  } catch (const std::filesystem::filesystem_error& e) {
+    throw IoError(path.string() + ": cannot resolve a path it names (" + std::string(e.what()) + ")");
   }
 }
 

@@ -796,14 +796,17 @@ struct ShapeSearch {
     double lo = 0, hi = std::numeric_limits<double>::infinity(), prev_s = 0, prev_needed = 0;
     std::vector<ShapePlacement> placed(out.size());
     // Whether the charts fit at all (each a point) and the first trial run at the same time (two
-    // independent packings; the first is wasted when nothing fits).
+    // independent packings; the first is wasted when nothing fits). Their progress is serialised
+    // and never steps back.
     tick();
     double tiny = 0, first = 0;
     {
       std::mutex mutex;
+      double shown = frac;
       const ProgressCallback guarded = [&](std::string_view phase, double f) {
         const std::lock_guard<std::mutex> lock(mutex);
-        return !options.progress || options.progress(phase, f);
+        shown = std::max(shown, f);
+        return !options.progress || options.progress(phase, shown);
       };
       tbb::parallel_invoke(
           [&] { tiny = shape_trial(set, 1e-12, n, g, min_side, guarded, frac, nullptr, n); },

@@ -237,6 +237,19 @@ TEST(PackShapes, ReportsProgressAndCancels) {
   EXPECT_EQ(calls, 2);
 }
 
+TEST(PackShapes, ProgressNeverStepsBackWhileTwoTrialsRunAtOnce) {
+  std::vector<ChartShape> charts(2000, squares({{0, 0}, {1, 0}}, 1.0));
+  ShapePackOptions o;
+  std::vector<double> seen;
+  o.progress = [&](std::string_view, double f) {
+    seen.push_back(f);  // pack_shapes() serialises its calls
+    return true;
+  };
+  pack_shapes(charts, o);
+  ASSERT_GT(seen.size(), 3u);
+  for (size_t i = 1; i < seen.size(); ++i) EXPECT_GE(seen[i], seen[i - 1]) << "call " << i;
+}
+
 TEST(PackShapes, BadInputIsRejected) {
   ShapePackOptions o;
   EXPECT_THROW(pack_shapes({}, o), InvalidInputError);
