@@ -2,6 +2,10 @@
 function(adaptex_set_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<$<CXX_COMPILER_ID:GNU>:-Wshadow=local>
                          -Wno-missing-field-initializers)
+  # In a unity build a source's anonymous-namespace types are "from another file" to GCC: no warning.
+  if(CMAKE_UNITY_BUILD AND CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(${target} PRIVATE -Wno-subobject-linkage)
+  endif()
   if(ADAPTEX_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

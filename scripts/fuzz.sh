@@ -27,7 +27,8 @@ fi
 scripts/setup.sh --fuzz >/dev/null
 CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DADAPTEX_FUZZ=ON \
-  -DADAPTEX_BUILD_TESTS=OFF -DADAPTEX_BUILD_BENCH=OFF -DADAPTEX_BUILD_STUDIO=OFF -DADAPTEX_WITH_CGAL=OFF >/dev/null
+  -DADAPTEX_BUILD_TESTS=OFF -DADAPTEX_BUILD_BENCH=OFF -DADAPTEX_BUILD_STUDIO=OFF -DADAPTEX_WITH_CGAL=OFF \
+  -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16 >/dev/null
 mkdir -p "$build/findings"
 # Targets that write each input to a file (fuzz_project; every target with ADAPTEX_FUZZ_VIA_FILE=1) write
 # it under TMPDIR: a memory file system when there is one (on ext4 each rewrite of the file waits for

@@ -18,9 +18,10 @@ if [ "$sanitize" = 1 ]; then
   # stack traces still name files and lines. Warnings are errors in the build above; here they are
   # only printed, as GCC 12's flow warnings change with the instrumentation (a -Wmaybe-uninitialized
   # inside <regex> that no other build shows).
+  # A unity build (16 sources per compiler run): about half the compile CPU of this pass.
   BUILD_DIR=build-asan scripts/build.sh -DADAPTEX_WERROR=OFF -DADAPTEX_SANITIZE=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
-    -DADAPTEX_BUILD_BENCH=OFF
+    -DADAPTEX_BUILD_BENCH=OFF -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16
   ( cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
       ctest --output-on-failure -j "$jobs" -LE no_sanitize )
   echo "== sanitizer pass done at ${SECONDS} s =="

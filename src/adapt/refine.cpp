@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/predicates.h"
 
 namespace adaptex {
 namespace {
@@ -63,9 +64,6 @@ Edges build_edge_table(const TriMesh& mesh) {
   return e;
 }
 
-double signed_area(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-}
 
 // The mesh being refined, with the warp of every wedge and the bookkeeping of the rounds.
 struct State {
@@ -88,9 +86,9 @@ struct Measure {
 // True if the warp flips face f or makes it degenerate (faces degenerate before the warp excepted).
 bool face_is_bad(const State& s, int f, double min_area) {
   const Face& w = s.param.uv_faces[f];
-  const double a0 = signed_area(s.param.uv[w[0]], s.param.uv[w[1]], s.param.uv[w[2]]);
+  const double a0 = triangle_signed_area(s.param.uv[w[0]], s.param.uv[w[1]], s.param.uv[w[2]]);
   if (std::abs(a0) <= min_area) return false;
-  const double a1 = signed_area(s.warped[w[0]], s.warped[w[1]], s.warped[w[2]]);
+  const double a1 = triangle_signed_area(s.warped[w[0]], s.warped[w[1]], s.warped[w[2]]);
   return a1 * (a0 > 0 ? 1.0 : -1.0) <= min_area;
 }
 

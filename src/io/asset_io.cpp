@@ -14,6 +14,7 @@
 #include "adaptex/io/image_io.h"
 #include "gltf_asset.h"
 #include "mesh_soup.h"
+#include "text_scanner.h"
 #include "uv_atlas.h"
 
 namespace adaptex {
@@ -28,7 +29,6 @@ std::string lower_extension(const std::string& format) {
   return ext;
 }
 
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 /// True when \p a and \p b are the same existing file.
 bool same_file(const fs::path& a, const fs::path& b) {
@@ -48,8 +48,8 @@ std::vector<std::pair<fs::path, std::string>> mtllib_files(const std::string& te
     ++line_no;
     std::size_t p = pos;
     pos = end + 1;
-    while (p < end && is_blank(text[p])) ++p;
-    if (text.compare(p, 6, "mtllib") != 0 || p + 6 >= end || !is_blank(text[p + 6])) continue;
+    while (p < end && io_detail::is_line_blank(text[p])) ++p;
+    if (text.compare(p, 6, "mtllib") != 0 || p + 6 >= end || !io_detail::is_line_blank(text[p + 6])) continue;
     std::string rest = text.substr(p + 7, end - p - 7);
     rest.erase(0, rest.find_first_not_of(" \t\r"));
     rest.erase(rest.find_last_not_of(" \t\r") + 1);

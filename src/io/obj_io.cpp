@@ -23,6 +23,7 @@
 #include "adaptex/core/errors.h"
 #include "adaptex/core/union_find.h"
 #include "mesh_soup.h"
+#include "text_scanner.h"
 
 namespace adaptex {
 namespace io_detail {
@@ -36,7 +37,6 @@ std::string first_line(const std::string& msg) {
   return line;
 }
 
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 /// Re-converts the numbers of every \p key statement ("v" or "vt") of \p text with std::from_chars
 /// into \p values (stride \p stride, at most \p per numbers each). Returns false (values untouched)
@@ -52,17 +52,17 @@ bool refine_numbers(const std::string& name, const std::string& text, const std:
     if (end == std::string::npos) end = text.size();
     std::size_t p = pos;
     pos = end + 1;
-    while (p < end && is_blank(text[p])) ++p;
-    if (text.compare(p, key.size(), key) != 0 || p + key.size() >= end || !is_blank(text[p + key.size()])) continue;
+    while (p < end && io_detail::is_line_blank(text[p])) ++p;
+    if (text.compare(p, key.size(), key) != 0 || p + key.size() >= end || !io_detail::is_line_blank(text[p + key.size()])) continue;
     p += key.size();
     if ((count + 1) * stride > values.size()) return false;
     for (int k = 0; k < per; ++k) {
-      while (p < end && is_blank(text[p])) ++p;
+      while (p < end && io_detail::is_line_blank(text[p])) ++p;
       if (p >= end || text[p] == '#') break;
       if (text[p] == '+') ++p;
       double d = 0;
       const auto res = std::from_chars(text.data() + p, text.data() + end, d);
-      if (res.ec == std::errc::invalid_argument || (res.ptr < text.data() + end && !is_blank(*res.ptr)))
+      if (res.ec == std::errc::invalid_argument || (res.ptr < text.data() + end && !io_detail::is_line_blank(*res.ptr)))
         throw IoError(name + ": line " + std::to_string(line_no) + ": '" + key + "' statement " +
                       std::to_string(count + 1) + " has a non-numeric coordinate");
       if (res.ec == std::errc::result_out_of_range)

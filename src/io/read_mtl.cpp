@@ -49,7 +49,7 @@ bool parse_number(std::string_view t, double& out) {
   return !t.empty() && res.ec == std::errc() && res.ptr == t.data() + t.size() && std::isfinite(out);
 }
 
-bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
+bool is_mtl_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 
 /// A line split into tokens, each remembered with its offset (so that the rest of the line can be taken
 /// verbatim as a file name).
@@ -58,17 +58,17 @@ struct Line {
   std::vector<std::string_view> tokens;
   explicit Line(std::string_view t) : text(t) {
     for (std::size_t p = 0; p < t.size();) {
-      while (p < t.size() && is_blank(t[p])) ++p;
+      while (p < t.size() && is_mtl_blank(t[p])) ++p;
       if (p >= t.size() || t[p] == '#') break;
       const std::size_t start = p;
-      while (p < t.size() && !is_blank(t[p])) ++p;
+      while (p < t.size() && !is_mtl_blank(t[p])) ++p;
       tokens.push_back(t.substr(start, p - start));
     }
   }
   /// The text from token \p k to the end of the line (up to a comment), trimmed.
   std::string rest(std::size_t k) const {
     std::string_view r = text.substr(static_cast<std::size_t>(tokens[k].data() - text.data()));
-    while (!r.empty() && is_blank(r.back())) r.remove_suffix(1);
+    while (!r.empty() && is_mtl_blank(r.back())) r.remove_suffix(1);
     return std::string(r);
   }
 };

@@ -12,6 +12,9 @@
 
 namespace adaptex::io_detail {
 
+/// A blank inside an OBJ or MTL-reference line: space, tab or carriage return.
+inline bool is_line_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
 /// Tokens separated by blanks and line ends; with \p comments, '#' starts a comment to the line end.
 struct TextScanner {
   std::string_view text;  ///< The whole file.

@@ -15,7 +15,6 @@ namespace adaptex {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Dual graph of the faces in CSR form: neighbours across shared (two-face) edges.
 struct DualGraph {

@@ -15,7 +15,6 @@ namespace adaptex {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Dijkstra from \p sources (distance 0). Fills dist and the edge to the parent (-1 at sources).
 /// Stops early once \p stop (if any) returns true for a settled vertex; returns that vertex or -1.

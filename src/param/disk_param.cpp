@@ -8,6 +8,7 @@
 #include <string>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/timer.h"
 #include "adaptex/core/topology.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/yoshizawa.h"
@@ -16,9 +17,6 @@ namespace adaptex {
 
 namespace {
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 /// The boundary loop of a disk, checking that the mesh is a disk.
 std::vector<int> disk_boundary_loop(const TriMesh& disk) {

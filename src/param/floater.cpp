@@ -14,6 +14,7 @@
 #include <string>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/predicates.h"
 #include "amg.h"
 
 #ifdef ADAPTEX_HAVE_UMFPACK
@@ -108,8 +109,6 @@ bool mean_value_row(const TriMesh& m, int v, const std::vector<int>& ring, doubl
   return true;
 }
 
-double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
 /// Floater 1997 shape-preserving row. False when the polar map has an angle >= π or a coordinate
 /// would not be strictly positive (the caller falls back to mean-value weights).
 bool shape_preserving_row(const TriMesh& m, int v, const std::vector<int>& ring, double* out,
@@ -133,9 +132,9 @@ bool shape_preserving_row(const TriMesh& m, int v, const std::vector<int>& ring,
   }
   std::fill(out, out + d, 0.0);
   if (d == 3) {
-    const double area = cross2(polar[1] - polar[0], polar[2] - polar[0]);
+    const double area = cross2d(polar[1] - polar[0], polar[2] - polar[0]);
     for (int i = 0; i < 3; ++i)
-      out[i] = cross2(polar[(i + 1) % 3], polar[(i + 2) % 3]) / area;  // area(O, p_{i+1}, p_{i+2})
+      out[i] = cross2d(polar[(i + 1) % 3], polar[(i + 2) % 3]) / area;  // area(O, p_{i+1}, p_{i+2})
   } else {
     for (int i = 0; i < d; ++i) {
       // Find r with the origin in triangle (p_i, p_r, p_{r+1}): the ray from p_i through O leaves the
@@ -144,7 +143,7 @@ bool shape_preserving_row(const TriMesh& m, int v, const std::vector<int>& ring,
       int r = -1;
       for (int k = 1; k < d - 1; ++k) {
         const int a = (i + k) % d, b = (i + k + 1) % d;
-        if (cross2(polar[a], dir) >= 0 && cross2(dir, polar[b]) > 0) {
+        if (cross2d(polar[a], dir) >= 0 && cross2d(dir, polar[b]) > 0) {
           r = a;
           break;
         }
@@ -152,11 +151,11 @@ bool shape_preserving_row(const TriMesh& m, int v, const std::vector<int>& ring,
       if (r < 0) return false;
       const int r1 = (r + 1) % d;
       const Vec2 &A = polar[i], &B = polar[r], &C = polar[r1];
-      const double area = cross2(B - A, C - A);
+      const double area = cross2d(B - A, C - A);
       if (!(area > 0)) return false;
-      const double la = cross2(B, C) / area;  // area(O,B,C)/area(A,B,C)
-      const double lb = cross2(C, A) / area;
-      const double lc = cross2(A, B) / area;
+      const double la = cross2d(B, C) / area;  // area(O,B,C)/area(A,B,C)
+      const double lb = cross2d(C, A) / area;
+      const double lc = cross2d(A, B) / area;
       if (la < 0 || lb < 0 || lc < 0) return false;
       out[i] += la;
       out[r] += lb;

@@ -18,7 +18,6 @@ namespace adaptex {
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// Twice the signed area of the UV triangle.
 double signed_area2(const Vec2& a, const Vec2& b, const Vec2& c) {

@@ -27,6 +27,7 @@
 #include "adaptex/core/limits.h"
 #include "adaptex/core/orientation.h"
 #include "adaptex/core/pinched.h"
+#include "adaptex/core/timer.h"
 #include "adaptex/core/topology.h"
 #include "adaptex/param/charts.h"
 #include "adaptex/param/cut.h"
@@ -43,9 +44,6 @@ namespace adaptex {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 /// One connected component, extracted with compact vertex ids.
 struct Component {

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "../asan_detect.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
@@ -54,6 +55,10 @@ bool same_layout(PaintSession& a, PaintSession& b) {
 }
 
 TEST(PaintSession, EachStrokeEndsWithinATenthOfADecibelOfEndAfter50Strokes) {
+#ifdef ADAPTEX_TEST_ASAN
+  GTEST_SKIP() << "a quality figure over 50 strokes: checked in the Release pass (about 70 s under the sanitizers, "
+                  "whose code paths the shorter session tests cover)";
+#endif
   const TriMesh mesh = shapes::torus(48, 24);
   const Parameterization param = unwrap(mesh).param;
   const StrokeFile strokes = generated(mesh, StrokeKind::Lines, 50, 3);

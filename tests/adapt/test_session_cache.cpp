@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 
+#include "../asan_detect.h"
 #include "adaptex/adapt/session.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
@@ -204,6 +205,10 @@ TEST(PaintSessionCache, ACancelledCycleKeepsTheLayoutAndFinishRunsItLater) {
 }
 
 TEST(PaintSessionCache, SurfaceCacheQualityIsWithinAFewTenthsOfADecibelOfExactReplay) {
+#ifdef ADAPTEX_TEST_ASAN
+  GTEST_SKIP() << "a quality figure over 30 strokes: checked in the Release pass (about 110 s under the sanitizers, "
+                  "whose code paths the shorter session tests cover)";
+#endif
   const Scene sc = torus_scene(48, 24, 30);
   PaintSessionOptions o = cached_each_stroke();
   o.texture_size = 256;

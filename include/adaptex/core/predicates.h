@@ -23,4 +23,15 @@ inline int orient2d_filtered(const Vec2& a, const Vec2& b, const Vec2& c) {
   return det > bound ? 1 : det < -bound ? -1 : 0;
 }
 
+/// The z component of the cross product of \p a and \p b (twice the signed area of 0, a, b).
+/// \throw nothing
+inline double cross2d(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// Signed area of the triangle \p a, \p b, \p c: positive when counter-clockwise. Unfiltered (see
+/// orient2d_filtered() for a certified sign).
+/// \throw nothing
+inline double triangle_signed_area(const Vec2& a, const Vec2& b, const Vec2& c) {
+  return 0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()));
+}
+
 }  // namespace adaptex

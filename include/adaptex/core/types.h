@@ -5,12 +5,16 @@
 #include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
+#include <limits>
 
 namespace adaptex {
 
 using Vec2 = Eigen::Vector2d;  ///< A point or vector in the (u,v) domain.
 using Vec3 = Eigen::Vector3d;  ///< A point or vector in world space (the mesh's own units).
 using Vec3f = Eigen::Vector3f;
+
+/// Positive infinity (an unreached distance, an unbounded stretch).
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// A triangle: three vertex indices, counter-clockwise seen from the front.
 using Face = std::array<int, 3>;

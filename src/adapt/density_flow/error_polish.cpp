@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/predicates.h"
 
 namespace adaptex {
 
@@ -21,7 +22,6 @@ namespace {
 /// before: 1e-3 relaxes nearly every point (docs/decisions.md, "settle_cells").
 constexpr double kSettleCells = 1e-3;
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// x^e for x > 0: exact at the exponents the error model clamps to (p = 1 and 4: e = 0.5, 2), else in
 /// single precision (relative error ~1e-6, plenty for an energy that is minimized; double exp / log took
@@ -148,7 +148,7 @@ class Polisher {
     double dsum = 0;
     Vec2 gd_sum = Vec2::Zero();
     for (int t = 0; t < 4; ++t) {
-      const double D = nn_ * cross(ex[t], ey[t]);
+      const double D = nn_ * cross2d(ex[t], ey[t]);
       if (!(D > 0)) return false;
       dsum += D;
       const int sx = kS[k][t][0], sy = kS[k][t][1];
@@ -259,7 +259,7 @@ class Polisher {
         double dsum = 0, e = 0, shape = 0;
         bool ok = true;
         for (int t = 0; t < 4; ++t) {
-          const double D = nn_ * cross(ex[t], ey[t]);
+          const double D = nn_ * cross2d(ex[t], ey[t]);
           if (!(D > 0)) ok = false;
           dsum += D;
           if (ok && q > 0) {

@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "adaptex/core/errors.h"
+#include "adaptex/core/predicates.h"
 
 namespace adaptex {
 
 namespace {
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// The m-cell lattice at \p warp's positions (GridWarp::apply_lattice); sides and corners exactly on
 /// the square's.
@@ -50,9 +50,9 @@ std::vector<Vec2> composed_motion(const GridWarp& warp, const GridWarp& before, 
       for (int it = 0; it < 8; ++it) {
         const Vec2 r = (1 - a) * (1 - b) * p00 + a * (1 - b) * p10 + a * b * p11 + (1 - a) * b * p01 - q;
         const Vec2 da = (1 - b) * (p10 - p00) + b * (p11 - p01), db = (1 - a) * (p01 - p00) + a * (p11 - p10);
-        const double det = cross(da, db);
+        const double det = cross2d(da, db);
         if (!(std::abs(det) > 1e-300)) break;
-        const double sa = cross(r, db) / det, sb = cross(da, r) / det;
+        const double sa = cross2d(r, db) / det, sb = cross2d(da, r) / det;
         a -= sa, b -= sb;
         if (std::abs(sa) + std::abs(sb) < 1e-12) break;
       }

@@ -8,6 +8,7 @@
 
 #include "adaptex/adapt/density_flow.h"
 #include "adaptex/paint/asset_eval.h"
+#include "adaptex/core/predicates.h"
 #include "shrink_internal.h"
 
 namespace adaptex::shrink_detail {
@@ -22,9 +23,6 @@ constexpr double kExponent = 2.0 / 3.0;  // area ∝ (error per area)^(2/3): opt
 constexpr double kMinAreaKept = 0.05;    // a face may shrink to 5 % of its area, not below
 constexpr double kNoDetail = 1e-9;       // mean error per sample below which an island stays as it is (90 dB)
 
-double signed_area(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-}
 
 /// The faces and wedges of every island.
 struct IslandParts {
@@ -126,8 +124,8 @@ double damped_warp(const Parameterization& layout, const std::vector<int>& faces
     apply(t);
     for (int f : faces) {
       const Face& tf = layout.uv_faces[f];
-      const double a0 = signed_area(layout.uv[tf[0]], layout.uv[tf[1]], layout.uv[tf[2]]);
-      const double a1 = signed_area(out.uv[tf[0]], out.uv[tf[1]], out.uv[tf[2]]);
+      const double a0 = triangle_signed_area(layout.uv[tf[0]], layout.uv[tf[1]], layout.uv[tf[2]]);
+      const double a1 = triangle_signed_area(out.uv[tf[0]], out.uv[tf[1]], out.uv[tf[2]]);
       if (a0 != 0 && (a0 > 0 ? a1 : -a1) < kMinAreaKept * std::abs(a0)) return false;
     }
     return true;

@@ -7,20 +7,18 @@
 #include <array>
 #include <cmath>
 
+#include "adaptex/core/predicates.h"
 #include "shrink_internal.h"
 
 namespace adaptex::shrink_detail {
 
 namespace {
 
-double signed_area(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return 0.5 * ((b.x() - a.x()) * (c.y() - a.y()) - (b.y() - a.y()) * (c.x() - a.x()));
-}
 
 double face_area(const Parameterization& p, int f, int wedge, const Vec2& at) {
   Vec2 q[3];
   for (int k = 0; k < 3; ++k) q[k] = p.uv_faces[f][k] == wedge ? at : p.uv[p.uv_faces[f][k]];
-  return signed_area(q[0], q[1], q[2]);
+  return triangle_signed_area(q[0], q[1], q[2]);
 }
 
 /// Positions of corner \p k of face \p f that give it signed area \p sign · (at least \p min_area),
@@ -41,7 +39,7 @@ std::vector<Vec2> lifts(const Parameterization& p, int f, int k, double sign, do
     r[k] = q;
     r[(k + 1) % 3] = a;
     r[(k + 2) % 3] = b;
-    if (sign * signed_area(r[0], r[1], r[2]) >= 0.5 * min_area) out.push_back(q);
+    if (sign * triangle_signed_area(r[0], r[1], r[2]) >= 0.5 * min_area) out.push_back(q);
   }
   return out;
 }
