@@ -244,13 +244,10 @@ std::string describe_nonmanifold(const TriMesh& mesh, const MeshTopology& topo) 
   return os.str();
 }
 
-}  // namespace
-
-TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOptions& options,
-                         ReadReport& report, std::vector<int>& face_source,
-                         std::vector<int>& vertex_source, std::vector<char>& face_flipped) {
+/// Step 1 of validate_tracked(): every coordinate finite, every index in range, at least one face.
+/// \throw InvalidInputError naming the first offending vertex or face.
+void check_finite_indices(const TriMesh& mesh, const std::string& name) {
   const int nv = mesh.num_vertices();
-  // 1. Finite coordinates and indices in range.
   for (int v = 0; v < nv; ++v)
     if (!mesh.positions[v].allFinite())
       throw InvalidInputError(name + ": vertex " + std::to_string(v) + " has a non-finite coordinate " +
@@ -263,141 +260,131 @@ TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOption
                                 plural(nv, "vertex", "vertices") + ")");
   if (mesh.faces.empty())
     throw InvalidInputError(name + ": no faces (" + plural(nv, "vertex", "vertices") + ", 0 faces)");
+}
 
-  // 2. Degenerate faces: a repeated vertex or exactly zero area.
-  {
-    std::vector<char> keep(mesh.faces.size(), 1);
-    int dropped = 0, first = -1;
-    for (int f = 0; f < mesh.num_faces(); ++f) {
-      const Face& t = mesh.faces[f];
-      const bool degenerate = t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
-                              (mesh.positions[t[1]] - mesh.positions[t[0]])
-                                      .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
-                                      .squaredNorm() == 0.0;
-      if (degenerate) {
-        keep[f] = 0;
-        if (first < 0) first = face_source.empty() ? f : face_source[f];
-        ++dropped;
-      }
-    }
-    if (dropped > 0) {
-      const int total = mesh.num_faces();
-      filter_faces(mesh, keep, face_source);
-      report.dropped_degenerate_faces += dropped;
-      warn(report, name + ": dropped " + plural(dropped, "degenerate (zero-area) face", "degenerate (zero-area) faces") +
-                       " of " + std::to_string(total) + " (first: face " + std::to_string(first) + ")");
-      if (mesh.faces.empty())
-        throw InvalidInputError(name + ": no faces left: all " + std::to_string(total) +
-                                " faces are degenerate (zero area)");
-    }
-  }
-
-  // 3. Duplicate faces (same vertex set): sort the faces by their sorted corner triple.
-  {
-    std::vector<std::pair<Face, int>> keys(mesh.faces.size());
-    for (int f = 0; f < mesh.num_faces(); ++f) {
-      Face t = mesh.faces[f];
-      std::sort(t.begin(), t.end());
-      keys[f] = {t, f};
-    }
-    std::sort(keys.begin(), keys.end());
-    std::vector<char> keep(mesh.faces.size(), 1);
-    int dropped = 0, first = -1, first_of = -1;
-    for (size_t k = 1; k < keys.size(); ++k) {
-      if (keys[k].first != keys[k - 1].first) continue;
-      // keys[k] repeats an earlier face of the same run; within a run faces are sorted by index.
-      const int f = keys[k].second;
+/// Step 2: drops degenerate faces (a repeated vertex or exactly zero area), with a warning.
+/// \throw InvalidInputError if no face is left.
+void drop_degenerate_faces(TriMesh& mesh, const std::string& name, ReadReport& report,
+                           std::vector<int>& face_source) {
+  std::vector<char> keep(mesh.faces.size(), 1);
+  int dropped = 0, first = -1;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Face& t = mesh.faces[f];
+    const bool degenerate = t[0] == t[1] || t[1] == t[2] || t[0] == t[2] ||
+                            (mesh.positions[t[1]] - mesh.positions[t[0]])
+                                    .cross(mesh.positions[t[2]] - mesh.positions[t[0]])
+                                    .squaredNorm() == 0.0;
+    if (degenerate) {
       keep[f] = 0;
+      if (first < 0) first = face_source.empty() ? f : face_source[f];
       ++dropped;
-      if (first < 0 || f < first) {
-        size_t r = k;
-        while (r > 0 && keys[r - 1].first == keys[k].first) --r;
-        first = f;
-        first_of = keys[r].second;
-      }
-    }
-    if (dropped > 0) {
-      if (!options.repair)
-        throw TopologyError(name + ": " + plural(dropped, "duplicate face", "duplicate faces") + " (first: face " +
-                            std::to_string(first) + " repeats face " + std::to_string(first_of) +
-                            ", vertices " + std::to_string(mesh.faces[first][0]) + " " +
-                            std::to_string(mesh.faces[first][1]) + " " + std::to_string(mesh.faces[first][2]) +
-                            "); rerun with --repair to drop them");
-      filter_faces(mesh, keep, face_source);
-      report.dropped_duplicate_faces += dropped;
-      warn(report, name + ": repair dropped " + plural(dropped, "duplicate face", "duplicate faces"));
     }
   }
+  if (dropped == 0) return;
+  const int total = mesh.num_faces();
+  filter_faces(mesh, keep, face_source);
+  report.dropped_degenerate_faces += dropped;
+  warn(report, name + ": dropped " + plural(dropped, "degenerate (zero-area) face", "degenerate (zero-area) faces") +
+                   " of " + std::to_string(total) + " (first: face " + std::to_string(first) + ")");
+  if (mesh.faces.empty())
+    throw InvalidInputError(name + ": no faces left: all " + std::to_string(total) +
+                            " faces are degenerate (zero area)");
+}
 
-  // 4. Unreferenced vertices are removed (file order kept).
-  auto drop_unreferenced = [&](bool count) {
-    std::vector<int> remap(mesh.positions.size(), -1);
-    for (const Face& t : mesh.faces)
-      for (int v : t) remap[v] = 0;
-    int next = 0, dropped = 0, first = -1;
-    for (size_t v = 0; v < remap.size(); ++v) {
-      if (remap[v] < 0) {
-        if (first < 0) first = static_cast<int>(v);
-        ++dropped;
-        continue;
-      }
-      remap[v] = next;
-      mesh.positions[next] = mesh.positions[v];
-      if (!vertex_source.empty()) vertex_source[next] = vertex_source[v];
-      ++next;
+/// Step 3: duplicate faces (same vertex set), found by sorting the faces by their sorted corners;
+/// dropped with a warning under \p options.repair.
+/// \throw TopologyError naming the first duplicate when not repairing.
+void drop_duplicate_faces(TriMesh& mesh, const std::string& name, const ReadOptions& options, ReadReport& report,
+                          std::vector<int>& face_source) {
+  std::vector<std::pair<Face, int>> keys(mesh.faces.size());
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    Face t = mesh.faces[f];
+    std::sort(t.begin(), t.end());
+    keys[f] = {t, f};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<char> keep(mesh.faces.size(), 1);
+  int dropped = 0, first = -1, first_of = -1;
+  for (size_t k = 1; k < keys.size(); ++k) {
+    if (keys[k].first != keys[k - 1].first) continue;
+    // keys[k] repeats an earlier face of the same run; within a run faces are sorted by index.
+    const int f = keys[k].second;
+    keep[f] = 0;
+    ++dropped;
+    if (first < 0 || f < first) {
+      size_t r = k;
+      while (r > 0 && keys[r - 1].first == keys[k].first) --r;
+      first = f;
+      first_of = keys[r].second;
     }
-    if (dropped == 0) return;
-    mesh.positions.resize(next);
-    if (!vertex_source.empty()) vertex_source.resize(next);
-    for (Face& t : mesh.faces)
-      for (int& v : t) v = remap[v];
-    if (count) {
-      report.dropped_unreferenced_vertices += dropped;
-      warn(report, name + ": dropped " + plural(dropped, "unreferenced vertex", "unreferenced vertices") +
-                       " (used by no face; first: vertex " + std::to_string(first) + ")");
-    }
-  };
-  drop_unreferenced(true);
+  }
+  if (dropped == 0) return;
+  if (!options.repair)
+    throw TopologyError(name + ": " + plural(dropped, "duplicate face", "duplicate faces") + " (first: face " +
+                        std::to_string(first) + " repeats face " + std::to_string(first_of) + ", vertices " +
+                        std::to_string(mesh.faces[first][0]) + " " + std::to_string(mesh.faces[first][1]) + " " +
+                        std::to_string(mesh.faces[first][2]) + "); rerun with --repair to drop them");
+  filter_faces(mesh, keep, face_source);
+  report.dropped_duplicate_faces += dropped;
+  warn(report, name + ": repair dropped " + plural(dropped, "duplicate face", "duplicate faces"));
+}
 
-  // 5. Pinched vertices (several fans of faces at one vertex) are split, one vertex per fan, when the
-  //    edges are manifold; then manifoldness (repair if asked).
+/// Step 4: removes the vertices no face uses (file order kept); with \p count, counted and warned.
+void drop_unreferenced_vertices(TriMesh& mesh, const std::string& name, ReadReport& report,
+                                std::vector<int>& vertex_source, bool count) {
+  std::vector<int> remap(mesh.positions.size(), -1);
+  for (const Face& t : mesh.faces)
+    for (int v : t) remap[v] = 0;
+  int next = 0, dropped = 0, first = -1;
+  for (size_t v = 0; v < remap.size(); ++v) {
+    if (remap[v] < 0) {
+      if (first < 0) first = static_cast<int>(v);
+      ++dropped;
+      continue;
+    }
+    remap[v] = next;
+    mesh.positions[next] = mesh.positions[v];
+    if (!vertex_source.empty()) vertex_source[next] = vertex_source[v];
+    ++next;
+  }
+  if (dropped == 0) return;
+  mesh.positions.resize(next);
+  if (!vertex_source.empty()) vertex_source.resize(next);
+  for (Face& t : mesh.faces)
+    for (int& v : t) v = remap[v];
+  if (count) {
+    report.dropped_unreferenced_vertices += dropped;
+    warn(report, name + ": dropped " + plural(dropped, "unreferenced vertex", "unreferenced vertices") +
+                     " (used by no face; first: vertex " + std::to_string(first) + ")");
+  }
+}
+
+/// Step 5a: pinched vertices (several fans of faces at one vertex) split into one vertex per fan, when
+/// the edges are manifold. Returns the topology of the mesh after it.
+MeshTopology split_pinched_step(TriMesh& mesh, const std::string& name, ReadReport& report,
+                                std::vector<int>& vertex_source) {
   MeshTopology topo = analyze_topology(mesh);
-  if (topo.nonmanifold_edges.empty() && !topo.nonmanifold_vertices.empty()) {
-    const int first = topo.nonmanifold_vertices.front();
-    const std::string where = format_point(mesh.positions[first]);
-    PinchedSplit split = split_pinched_vertices(mesh);
-    if (!vertex_source.empty()) {  // tracked: compose with the file's vertex numbers
-      for (int& v : split.vertex_source) v = vertex_source[v];
-      vertex_source = std::move(split.vertex_source);
-    }
-    mesh = std::move(split.mesh);
-    report.split_pinched_vertices += split.pinched_vertices;
-    warn(report, name + ": split " + plural(split.pinched_vertices, "pinched vertex", "pinched vertices") +
-                     " (separate fans of faces touching at one point; first: vertex " + std::to_string(first) +
-                     " at " + where + ") into one vertex per fan: " +
-                     plural(split.added_vertices, "copy", "copies") + " added at the same position");
-    topo = analyze_topology(mesh);
+  if (!topo.nonmanifold_edges.empty() || topo.nonmanifold_vertices.empty()) return topo;
+  const int first = topo.nonmanifold_vertices.front();
+  const std::string where = format_point(mesh.positions[first]);
+  PinchedSplit split = split_pinched_vertices(mesh);
+  if (!vertex_source.empty()) {  // tracked: compose with the file's vertex numbers
+    for (int& v : split.vertex_source) v = vertex_source[v];
+    vertex_source = std::move(split.vertex_source);
   }
-  bool repaired = false;  // made manifold by the repair: topo is stale, the winding known
-  bool consistent = true;
-  if (!topo.is_manifold() && options.repair) {
-    const NonmanifoldRepair r = repair_nonmanifold(mesh, vertex_source);
-    repaired = r.manifold;
-    consistent = r.consistent;
-    if (!repaired) topo = analyze_topology(mesh);
-    report.split_nonmanifold_vertices += r.added;
-    warn(report, name + ": repair split " + plural(r.added, "vertex", "vertices") +
-                     " to make the mesh manifold (non-manifold edges and vertices)");
-    drop_unreferenced(false);
-  }
-  if (!repaired && !topo.is_manifold())
-    throw TopologyError(name + ": " + describe_nonmanifold(mesh, topo));
+  mesh = std::move(split.mesh);
+  report.split_pinched_vertices += split.pinched_vertices;
+  warn(report, name + ": split " + plural(split.pinched_vertices, "pinched vertex", "pinched vertices") +
+                   " (separate fans of faces touching at one point; first: vertex " + std::to_string(first) +
+                   " at " + where + ") into one vertex per fan: " +
+                   plural(split.added_vertices, "copy", "copies") + " added at the same position");
+  return analyze_topology(mesh);
+}
 
-  // 6. Mixed winding: the faces that disagree with the majority of their surface are flipped.
-  face_flipped.clear();
-  if (!repaired)
-    for (const ComponentTopology& c : topo.components) consistent = consistent && c.consistently_oriented;
-  if (consistent) return mesh;
+/// Step 6: the faces whose winding disagrees with the majority of their surface are flipped
+/// (\p face_flipped marks them), with a warning.
+void fix_winding(TriMesh& mesh, const std::string& name, ReadReport& report, const std::vector<int>& face_source,
+                 std::vector<char>& face_flipped) {
   const FaceOrientation orientation = orient_faces(mesh);
   if (orientation.num_flipped > 0) {
     int first = 0;
@@ -413,6 +400,38 @@ TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOption
   if (orientation.num_non_orientable_faces > 0)
     warn(report, name + ": " + plural(orientation.num_non_orientable_faces, "face lies", "faces lie") +
                      " on a non-orientable surface (a Moebius band or similar): no consistent winding");
+}
+
+}  // namespace
+
+TriMesh validate_tracked(TriMesh mesh, const std::string& name, const ReadOptions& options,
+                         ReadReport& report, std::vector<int>& face_source,
+                         std::vector<int>& vertex_source, std::vector<char>& face_flipped) {
+  check_finite_indices(mesh, name);
+  drop_degenerate_faces(mesh, name, report, face_source);
+  drop_duplicate_faces(mesh, name, options, report, face_source);
+  drop_unreferenced_vertices(mesh, name, report, vertex_source, true);
+  // 5. Pinched vertices, then manifoldness (repaired if asked).
+  MeshTopology topo = split_pinched_step(mesh, name, report, vertex_source);
+  bool repaired = false;  // made manifold by the repair: topo is stale, the winding known
+  bool consistent = true;
+  if (!topo.is_manifold() && options.repair) {
+    const NonmanifoldRepair r = repair_nonmanifold(mesh, vertex_source);
+    repaired = r.manifold;
+    consistent = r.consistent;
+    if (!repaired) topo = analyze_topology(mesh);
+    report.split_nonmanifold_vertices += r.added;
+    warn(report, name + ": repair split " + plural(r.added, "vertex", "vertices") +
+                     " to make the mesh manifold (non-manifold edges and vertices)");
+    drop_unreferenced_vertices(mesh, name, report, vertex_source, false);
+  }
+  if (!repaired && !topo.is_manifold())
+    throw TopologyError(name + ": " + describe_nonmanifold(mesh, topo));
+  // 6. Mixed winding.
+  face_flipped.clear();
+  if (!repaired)
+    for (const ComponentTopology& c : topo.components) consistent = consistent && c.consistently_oriented;
+  if (!consistent) fix_winding(mesh, name, report, face_source, face_flipped);
   return mesh;
 }
 
