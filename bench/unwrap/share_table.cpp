@@ -4,7 +4,7 @@
 // covers on average ("chart fill" = coverage / rect fill), flipped and overlapping triangles,
 // UVs outside [0,1]², and wall / CPU seconds. See docs/benchmarks.md.
 //
-//   bench_share_table [--single] [--detail] [--hash] [--repair] [--speculative S] [--no-probe] [--normal-weight W] [--max-charts K] [--chart-padding P] [--augment-time-budget S] [--no-shape-packing] [--fill-exponent E] NAME...
+//   bench_share_table [--single] [--detail] [--hash] [--repair] [--speculative S] [--no-probe] [--normal-weight W] [--planar-normal-weight W] [--max-charts K] [--chart-padding P] [--augment-time-budget S] [--no-shape-packing] [--fill-exponent E] NAME...
 //
 // NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
 // code: genusG (genus_surface(G)), sphereS,T (sphere(S, T)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
@@ -180,6 +180,8 @@ int main(int argc, char** argv) {
       g_options.scan_layout_fill_exponent = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--normal-weight") == 0 && i + 1 < argc)
       g_options.chart_normal_weight = std::stod(argv[++i]);
+    else if (std::strcmp(argv[i], "--planar-normal-weight") == 0 && i + 1 < argc)
+      g_options.scan_planar_normal_weight = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--chart-padding") == 0 && i + 1 < argc)
       g_options.chart_padding = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--max-charts") == 0 && i + 1 < argc)

@@ -805,11 +805,10 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
 }
 
 /// Splits \p piece into \p k charts (segment_charts()) appended to \p out; returns how many.
-size_t split_piece(const Component& piece, int k, const UnwrapOptions& options,
-                   std::vector<Component>& out) {
+size_t split_piece(const Component& piece, int k, double normal_weight, std::vector<Component>& out) {
   ChartSegmentOptions so;
   so.num_charts = k;
-  so.normal_weight = options.chart_normal_weight;
+  so.normal_weight = normal_weight;
   const size_t before = out.size();
   append_pieces(piece, ChartSegmenter(piece.mesh).segment(so), out);
   return out.size() - before;
@@ -852,7 +851,7 @@ void split_invalid_charts(std::vector<Component>& pieces, std::vector<Chart>& ch
       throw SolverError("unwrap: no valid layout found for a face of the mesh (its UV triangle is "
                         "flipped, degenerate or overlaps)");
     if (nf > kFaceSplitFaces) {
-      const size_t n = split_piece(p, 2, options, halves);
+      const size_t n = split_piece(p, 2, options.chart_normal_weight, halves);
       if (n >= 2) continue;
       halves.resize(halves.size() - n);
     }
@@ -1041,7 +1040,7 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
         if (f > options.scan_piece_faces)
           split_piece(start[i],
                       static_cast<int>((f + options.scan_piece_faces - 1) / options.scan_piece_faces),
-                      options, out);
+                      options.chart_normal_weight, out);
       });
   for (size_t i = 0; i < start.size(); ++i) {
     const Component& c = start[i];
@@ -1055,6 +1054,8 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
       done.push_back(c);
   }
   const double gap = std::max(gutter, 1.0 / 4096);
+  const double halving_weight = options.scan_planar_angle > 0 ? options.scan_planar_normal_weight
+                                                               : options.chart_normal_weight;
   for (int round = 0; round < options.scan_max_rounds && !queue.empty(); ++round) {
     const double frac = static_cast<double>(round) / options.scan_max_rounds;
     report_progress(options.progress, "segment", frac);
@@ -1069,7 +1070,7 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
               (pr.bad > 0 && faces >= 2 * kMinSplitFaces) ||
               (faces >= 2 * min_probe_faces &&
                split_pays(pr, p.area / std::max(total_area, 1e-300), gap, options.scan_chart_l2));
-          if (worth && split_piece(p, 2, options, out) < 2) out.clear();
+          if (worth && split_piece(p, 2, halving_weight, out) < 2) out.clear();
         });
     std::vector<Component> next;
     for (size_t i = 0; i < queue.size(); ++i) {
@@ -1385,9 +1386,10 @@ void check_unwrap_input(const TriMesh& mesh, const UnwrapOptions& options) {
     throw InvalidInputError("unwrap: scan_piece_faces must be >= 64, scan_max_rounds >= 0 and "
                             "scan_chart_l2 >= 1");
   if (!(options.scan_planar_angle >= 0 && options.scan_planar_angle < 90) ||
-      !(options.scan_planar_min_area >= 0 && options.scan_planar_min_area <= 1))
-    throw InvalidInputError("unwrap: scan_planar_angle must be in [0, 90) and scan_planar_min_area "
-                            "in [0, 1]");
+      !(options.scan_planar_min_area >= 0 && options.scan_planar_min_area <= 1) ||
+      !(options.scan_planar_normal_weight >= 0))
+    throw InvalidInputError("unwrap: scan_planar_angle must be in [0, 90), scan_planar_min_area "
+                            "in [0, 1] and scan_planar_normal_weight >= 0");
   if (std::isnan(options.augment_time_budget))
     throw InvalidInputError("unwrap: augment_time_budget is NaN (<= 0: no time budget)");
   if (!(options.scan_layout_fill_exponent >= 0 && options.scan_layout_fill_exponent <= 1))

@@ -136,6 +136,11 @@ struct UnwrapOptions {
   double scan_planar_angle = 20.0;
   /// Scans: planar charts of less than this fraction of the mesh's area are given back to the rest.
   double scan_planar_min_area = 0.001;
+  /// Scans, with scan_planar_angle > 0: normal penalty of the chart growth
+  /// (ChartSegmentOptions::normal_weight) in the halvings of the planar candidate's pieces; the
+  /// top-down candidate and the first split of large components keep chart_normal_weight
+  /// (docs/charts.md, "Scans"). 1 (default); 0: as chart_normal_weight = 0. >= 0.
+  double scan_planar_normal_weight = 1.0;
   /// Scans: rounds of splitting (each round at most doubles the pieces). >= 0.
   int scan_max_rounds = 12;
   /// Scans: meshes of at most this many faces also build one chart per component, and the
