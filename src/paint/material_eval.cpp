@@ -54,8 +54,17 @@ double bilinear_channel(const ImageRGBA8& img, const BilinearTap& x, const Bilin
   return (bottom + (top - bottom) * y.f) / 255.0;
 }
 
+/// bilinear_channel() of channels 0, 1, 2, the four texels located once.
 Vec3 bilinear_rgb(const ImageRGBA8& img, const BilinearTap& x, const BilinearTap& y) {
-  return Vec3(bilinear_channel(img, x, y, 0), bilinear_channel(img, x, y, 1), bilinear_channel(img, x, y, 2));
+  const std::uint8_t *p00 = img.texel(x.i0, y.i0), *p10 = img.texel(x.i1, y.i0);
+  const std::uint8_t *p01 = img.texel(x.i0, y.i1), *p11 = img.texel(x.i1, y.i1);
+  Vec3 out;
+  for (int c = 0; c < 3; ++c) {
+    const double a = p00[c], b = p10[c], d = p01[c], e = p11[c];
+    const double bottom = a + (b - a) * x.f, top = d + (e - d) * x.f;
+    out[c] = (bottom + (top - bottom) * y.f) / 255.0;
+  }
+  return out;
 }
 
 /// True when some stroke of \p file paints or erases height (else the height is flat everywhere).

@@ -20,7 +20,14 @@ namespace adaptex {
 
 namespace {
 
-std::uint8_t to_byte(double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
+/// round(clamp(v, 0, 1) * 255), halves away from zero (std::lround's result, without its call: the
+/// textures convert every texel of every map). NaN gives 0, as lround's out-of-range value does.
+std::uint8_t to_byte(double v) {
+  const double x = std::clamp(v, 0.0, 1.0) * 255.0;
+  if (!(x >= 0)) return 0;
+  const int i = static_cast<int>(x);  // truncation; x - i is exact
+  return static_cast<std::uint8_t>(i + (x - i >= 0.5 ? 1 : 0));
+}
 
 /// Derivative of the height along one texel axis at texel (i, j): central where both neighbours lie in
 /// a chart, one-sided where one does, 0 where none does. \p step is the neighbour offset (1 or W).
@@ -96,7 +103,9 @@ ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& p
                                   const std::vector<double>& height) {
   const std::vector<Vec3f> normals = height_normals(mesh, param, map, height);
   ImageRGBA8 img(map.width, map.height);
-  for (size_t t = 0; t < normals.size(); ++t) put_normal(img, static_cast<int>(t), normals[t].cast<double>());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, normals.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t < r.end(); ++t) put_normal(img, static_cast<int>(t), normals[t].cast<double>());
+  });
   return img;
 }
 

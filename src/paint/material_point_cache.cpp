@@ -51,7 +51,8 @@ struct MaterialPointCache::Impl {
   long long count = 0;
   double spacing = 1;                        // typical distance between neighbouring points
   std::unique_ptr<detail::TexelGrid> grid;   // the points' spatial index, built for the first brush
-  std::vector<double> alpha;                 // P: a brush's coverage, 0 outside the stroke being added
+  std::vector<Vec3> slot_pos;                // P: pos in the grid's slot order (the ball queries' exact test)
+  std::vector<double> alpha;                 // P, by slot: a brush's coverage, 0 outside the stroke being added
   // The composite of the last values() call, recomputed where a stroke reached since (dirty), or
   // everywhere when the layers' blending settings changed (look).
   std::vector<MaterialValue> composite;
@@ -109,6 +110,8 @@ struct MaterialPointCache::Impl {
       tbb::parallel_for(size_t(0), p.size(), [&](size_t k) { p[k] = pos[k].cast<float>(); });
       grid = std::make_unique<detail::TexelGrid>(p, spacing);
       assign_with_slack(alpha, pos.size(), 0.0);
+      assign_with_slack(slot_pos, pos.size(), Vec3::Zero().eval());
+      tbb::parallel_for(size_t(0), pos.size(), [&](size_t g) { slot_pos[g] = pos[grid->order()[g]]; });
     }
     tbb::enumerable_thread_specific<std::vector<int>> touched;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, s.dabs.size(), 4), [&](const tbb::blocked_range<size_t>& rg) {
@@ -118,16 +121,16 @@ struct MaterialPointCache::Impl {
         dab_shape(s, i, r, o);
         if (!(r > 0) || !(o > 0)) continue;
         // The index tests distances in single precision: a slightly wider ball, then the exact test.
+        // Points are read and marked by slot: those of one cell lie side by side.
         grid->for_each_in_ball(s.dabs[i], r * (1 + 1e-5), [&](int slot, float) {
-          const int k = grid->order()[slot];
-          const double t = (pos[k] - s.dabs[i]).norm() / r;
+          const double t = (slot_pos[static_cast<size_t>(slot)] - s.dabs[i]).norm() / r;
           if (!(t < 1)) return;
           const double w = o * brush_falloff(t, s.hardness);
-          std::atomic_ref<double> a(alpha[static_cast<size_t>(k)]);
+          std::atomic_ref<double> a(alpha[static_cast<size_t>(slot)]);
           double cur = a.load(std::memory_order_relaxed);
           while (w > cur)
             if (a.compare_exchange_weak(cur, w, std::memory_order_relaxed)) {
-              if (cur == 0) mine.push_back(k);
+              if (cur == 0) mine.push_back(slot);
               break;
             }
         });
@@ -135,9 +138,9 @@ struct MaterialPointCache::Impl {
     });
     for (auto& list : touched)
       tbb::parallel_for(size_t(0), list.size(), [&](size_t q) {
-        const size_t k = static_cast<size_t>(list[q]);
-        fn(k, alpha[k]);
-        alpha[k] = 0;
+        const size_t slot = static_cast<size_t>(list[q]);
+        fn(static_cast<size_t>(grid->order()[slot]), alpha[slot]);
+        alpha[slot] = 0;
       });
   }
 

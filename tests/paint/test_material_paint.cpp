@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -90,6 +91,25 @@ TEST_F(PlaneMaterial, UnpaintedChannelsGiveTheSameImagesFilledFlat) {
                              {&flat.normal, &all.normal}})
     EXPECT_EQ(a->data, b->data);
   EXPECT_NE(tex.normal.data, all.normal.data);  // the painted height does change the normal map
+}
+
+// Bytes round halves away from zero (std::lround), also at values within an ulp of a half-way point.
+TEST(MaterialPaint, BytesRoundAsLround) {
+  const TriMesh mesh = shapes::plane(2);
+  const Parameterization param = test::planar_param(mesh, 0.9, 0.05);
+  for (const double v : {0.0, 0.5 / 255, 2.5 / 255, 127.5 / 255, std::nextafter(127.5 / 255, 0.0),
+                         std::nextafter(127.5 / 255, 1.0), 200.5 / 255, 254.5 / 255, 1.0}) {
+    MaterialStrokeFile file = two_layers();
+    file.layers.resize(1);
+    MaterialStroke& fill = file.layers[0].strokes[0];
+    fill.type = MaterialStroke::Type::Fill;
+    fill.channels = channel_bit(Channel::Roughness);
+    fill.opacity = 1;
+    fill.value[channel_offset(Channel::Roughness)] = v;
+    const MaterialTextures tex = paint_material(mesh, param, file, {8, 0});
+    const int expected = static_cast<int>(std::lround(v * 255));  // the fill's composite is v exactly
+    EXPECT_EQ(tex.roughness.data[4 * (4 * 8 + 4)], expected) << "v = " << v;
+  }
 }
 
 TEST_F(PlaneMaterial, LayersAloneCompositeToTheMaterial) {
