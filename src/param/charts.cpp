@@ -3,6 +3,7 @@
 #include "adaptex/param/charts.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <memory>
 #include <numeric>
@@ -366,7 +367,8 @@ std::vector<int> ChartSegmenter::segment(const ChartSegmentOptions& options) {
   const TriMesh& mesh = impl_->mesh;
   const DualGraph& g = impl_->g;
   const int nf = mesh.num_faces();
-  if (options.num_charts < 1 || options.lloyd_iterations < 0 || !(options.normal_weight >= 0))
+  if (options.num_charts < 1 || options.lloyd_iterations < 0 || !(options.normal_weight >= 0) ||
+      !std::isfinite(options.normal_weight))
     throw InvalidInputError("segment_charts: num_charts " + std::to_string(options.num_charts) +
                             ", lloyd_iterations " + std::to_string(options.lloyd_iterations) +
                             " or normal_weight out of range");

@@ -1387,9 +1387,10 @@ void check_unwrap_input(const TriMesh& mesh, const UnwrapOptions& options) {
                             "scan_chart_l2 >= 1");
   if (!(options.scan_planar_angle >= 0 && options.scan_planar_angle < 90) ||
       !(options.scan_planar_min_area >= 0 && options.scan_planar_min_area <= 1) ||
-      !(options.scan_planar_normal_weight >= 0))
+      !(options.scan_planar_normal_weight >= 0) || !std::isfinite(options.scan_planar_normal_weight) ||
+      !(options.chart_normal_weight >= 0) || !std::isfinite(options.chart_normal_weight))
     throw InvalidInputError("unwrap: scan_planar_angle must be in [0, 90), scan_planar_min_area "
-                            "in [0, 1] and scan_planar_normal_weight >= 0");
+                            "in [0, 1], and scan_planar_normal_weight and chart_normal_weight finite and >= 0");
   if (std::isnan(options.augment_time_budget))
     throw InvalidInputError("unwrap: augment_time_budget is NaN (<= 0: no time budget)");
   if (!(options.scan_layout_fill_exponent >= 0 && options.scan_layout_fill_exponent <= 1))

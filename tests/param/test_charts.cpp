@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,8 @@ TEST(Charts, SegmentationGivesConnectedChartsWithoutEars) {
     EXPECT_GE(t.total_loops(), 1);
   }
   EXPECT_THROW(segment_charts(mesh, ChartSegmentOptions{0, 3, 4.0}), InvalidInputError);
+  EXPECT_THROW(segment_charts(mesh, ChartSegmentOptions{4, 3, std::numeric_limits<double>::infinity()}),
+               InvalidInputError);
 }
 
 TEST(Charts, SegmenterKeepsTheLabelsOfSegmentCharts) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <tuple>
@@ -232,6 +233,11 @@ TEST(UnwrapScan, PlanarCandidateHalvesAlongCreasesAndTopDownIgnoresTheWeight) {
   UnwrapOptions bad;
   bad.scan_planar_normal_weight = -1;
   EXPECT_THROW(unwrap(shapes::sphere(8, 4), bad), InvalidInputError);
+  bad.scan_planar_normal_weight = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(unwrap(shapes::sphere(8, 4), bad), InvalidInputError);
+  UnwrapOptions bad_chart;
+  bad_chart.chart_normal_weight = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(unwrap(shapes::sphere(8, 4), bad_chart), InvalidInputError);
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ struct ChartSegmentOptions {
 /// \pre mesh has manifold edges (at most two faces per edge) and is connected (one component)
 /// \return F labels in [0, C), C about min(num_charts, F) (more where charts were halved or split
 ///         into parts); every label is used and each chart is connected through edges
-/// \throw InvalidInputError num_charts < 1, lloyd_iterations < 0, normal_weight < 0, no faces
+/// \throw InvalidInputError num_charts < 1, lloyd_iterations < 0, normal_weight < 0 or not finite, no faces
 std::vector<int> segment_charts(const TriMesh& mesh, const ChartSegmentOptions& options = {});
 
 /// segment_charts() for one mesh at several chart counts: keeps the dual graph, the vertex-face

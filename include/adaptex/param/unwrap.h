@@ -102,7 +102,7 @@ struct UnwrapOptions {
   /// of the noise and up to 20 % more CPU time (docs/history/benchmarks.md).
   int speculative_attempts = 1;
   /// Auto: normal penalty of the chart growth (ChartSegmentOptions::normal_weight). 0 (compact
-  /// geodesic charts) gave the highest texel share on every mesh measured (docs/charts.md).
+  /// geodesic charts) gave the highest texel share on every mesh measured (docs/charts.md). Finite, >= 0.
   double chart_normal_weight = 0.0;
   /// Gutter between packed charts (components or segmented charts) in texels of a
   /// gutter_texture_size² texture: the gap is gutter_texels / gutter_texture_size of the unit
@@ -139,7 +139,7 @@ struct UnwrapOptions {
   /// Scans, with scan_planar_angle > 0: normal penalty of the chart growth
   /// (ChartSegmentOptions::normal_weight) in the halvings of the planar candidate's pieces; the
   /// top-down candidate and the first split of large components keep chart_normal_weight
-  /// (docs/charts.md, "Scans"). 1 (default); 0: as chart_normal_weight = 0. >= 0.
+  /// (docs/charts.md, "Scans"). 1 (default); 0: as chart_normal_weight = 0. Finite, >= 0.
   double scan_planar_normal_weight = 1.0;
   /// Scans: rounds of splitting (each round at most doubles the pieces). >= 0.
   int scan_max_rounds = 12;
