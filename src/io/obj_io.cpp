@@ -224,19 +224,25 @@ void append_int(std::string& out, long x) {
   out.append(buf, res.ptr);
 }
 
-/// Appends the lines of items [0, n) to \p out, formatted by \p line(i, text) in blocks of
-/// kWriteBlock items, the blocks in parallel (TBB) and joined in order: the same text as one loop.
+/// Writes the lines of items [0, n) to \p file, formatted by \p line(i, text) in blocks of
+/// kWriteBlock items: kWriteBatch blocks at a time in parallel (TBB), written in order. The same
+/// bytes as one loop, with at most one batch of text in memory (not the whole file).
 constexpr std::size_t kWriteBlock = 1 << 15;
+constexpr std::size_t kWriteBatch = 16;
 template <class Line>
-void append_lines(std::string& out, std::size_t n, std::size_t bytes_per_item, const Line& line) {
-  std::vector<std::string> blocks((n + kWriteBlock - 1) / kWriteBlock);
-  tbb::parallel_for(std::size_t{0}, blocks.size(), [&](std::size_t b) {
-    std::string& text = blocks[b];
-    const std::size_t end = std::min(n, (b + 1) * kWriteBlock);
-    text.reserve((end - b * kWriteBlock) * bytes_per_item);
-    for (std::size_t i = b * kWriteBlock; i < end; ++i) line(i, text);
-  });
-  for (const std::string& text : blocks) out += text;
+void write_lines(std::ofstream& file, std::size_t n, std::size_t bytes_per_item, const Line& line) {
+  std::vector<std::string> blocks(kWriteBatch);
+  for (std::size_t first = 0; first < n; first += kWriteBlock * kWriteBatch) {
+    const std::size_t count = std::min(kWriteBatch, (n - first + kWriteBlock - 1) / kWriteBlock);
+    tbb::parallel_for(std::size_t{0}, count, [&](std::size_t b) {
+      std::string& text = blocks[b];
+      const std::size_t begin = first + b * kWriteBlock, end = std::min(n, begin + kWriteBlock);
+      text.clear();
+      text.reserve((end - begin) * bytes_per_item);
+      for (std::size_t i = begin; i < end; ++i) line(i, text);
+    });
+    for (std::size_t b = 0; b < count; ++b) file.write(blocks[b].data(), static_cast<std::streamsize>(blocks[b].size()));
+  }
 }
 
 /// write_obj() of both forms: face f uses materials[face_material[f]] (all materials[0] when
@@ -255,12 +261,13 @@ void write_obj_materials(const std::filesystem::path& path, const TriMesh& mesh,
   for (std::size_t f = 0; f < mesh.faces.size(); ++f)
     if (material_of(f) < 0 || material_of(f) >= static_cast<int>(materials.size()))
       throw InvalidInputError(name + ": write_obj: face " + std::to_string(f) + " has no material");
-  std::string out;
-  out.reserve(mesh.positions.size() * 64 + mesh.faces.size() * 40 + (param ? param->uv.size() * 40 : 0));
-  out += "# written by adaptex: v = input positions (shortest round-trip digits)";
-  out += param ? ", vt = UV layout, f v/vt\n" : "\n";
-  if (mtllib) out += "mtllib " + *mtllib + "\n";
-  append_lines(out, mesh.positions.size(), 64, [&](std::size_t i, std::string& text) {
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  if (!file) throw OutputError(name + ": cannot open for writing");
+  std::string head = "# written by adaptex: v = input positions (shortest round-trip digits)";
+  head += param ? ", vt = UV layout, f v/vt\n" : "\n";
+  if (mtllib) head += "mtllib " + *mtllib + "\n";
+  file.write(head.data(), static_cast<std::streamsize>(head.size()));
+  write_lines(file, mesh.positions.size(), 64, [&](std::size_t i, std::string& text) {
     const Vec3& p = mesh.positions[i];
     text += "v ";
     append_number(text, p.x());
@@ -271,7 +278,7 @@ void write_obj_materials(const std::filesystem::path& path, const TriMesh& mesh,
     text += '\n';
   });
   if (param)
-    append_lines(out, param->uv.size(), 40, [&](std::size_t i, std::string& text) {
+    write_lines(file, param->uv.size(), 40, [&](std::size_t i, std::string& text) {
       const Vec2& t = param->uv[i];
       text += "vt ";
       append_number(text, t.x());
@@ -279,7 +286,7 @@ void write_obj_materials(const std::filesystem::path& path, const TriMesh& mesh,
       append_number(text, t.y());
       text += '\n';
     });
-  append_lines(out, mesh.faces.size(), 40, [&](std::size_t f, std::string& text) {
+  write_lines(file, mesh.faces.size(), 40, [&](std::size_t f, std::string& text) {
     const int m = material_of(f);
     if (mtllib && (f == 0 || m != material_of(f - 1))) text += "usemtl " + materials[m] + "\n";
     text += 'f';
@@ -293,9 +300,6 @@ void write_obj_materials(const std::filesystem::path& path, const TriMesh& mesh,
     }
     text += '\n';
   });
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  if (!file) throw OutputError(name + ": cannot open for writing");
-  file.write(out.data(), static_cast<std::streamsize>(out.size()));
   file.close();
   if (!file) throw OutputError(name + ": write failed (disk full?)");
 }

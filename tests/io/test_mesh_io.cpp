@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <charconv>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <set>
 
@@ -57,6 +60,34 @@ TEST(MeshIo, ObjRoundTripIsExact) {
   EXPECT_EQ(r.format, "obj");
   EXPECT_EQ(r.welded_vertices, 0);
   expect_same_mesh(m, back, true);
+}
+
+TEST(MeshIo, ObjWriterStreamsTheSameTextAsOneSerialLoop) {
+  // Over 2^19 faces: the writer formats 16 blocks of 2^15 lines at a time and writes each batch;
+  // the file must equal the text of one plain loop (block and batch borders included).
+  TempDir dir;
+  const TriMesh m = shapes::plane(520, 1.37);  // 540,800 faces
+  Parameterization p;
+  for (const Vec3& x : m.positions) p.uv.push_back(Vec2(x.x() / 1.37, x.y() / 1.37));
+  p.uv_faces = m.faces;
+  ASSERT_GT(m.faces.size(), std::size_t{1} << 19);
+  write_obj(dir.path / "big.obj", m, &p);
+  const auto num = [](double x) {
+    char buf[32];
+    return std::string(buf, std::to_chars(buf, buf + sizeof buf, x).ptr);
+  };
+  std::string expect = "# written by adaptex: v = input positions (shortest round-trip digits), vt = UV layout, f v/vt\n";
+  for (const Vec3& x : m.positions) expect += "v " + num(x.x()) + ' ' + num(x.y()) + ' ' + num(x.z()) + '\n';
+  for (const Vec2& t : p.uv) expect += "vt " + num(t.x()) + ' ' + num(t.y()) + '\n';
+  for (const Face& f : m.faces) {
+    expect += 'f';
+    for (int k = 0; k < 3; ++k) expect += ' ' + std::to_string(f[k] + 1) + '/' + std::to_string(f[k] + 1);
+    expect += '\n';
+  }
+  std::ifstream in(dir.path / "big.obj", std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(text.size(), expect.size());
+  EXPECT_TRUE(text == expect);
 }
 
 TEST(MeshIo, ObjShortDecimalsAreCorrectlyRounded) {
