@@ -123,51 +123,70 @@ MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameteriza
   return evaluate_material_textures(mesh, param, textures, pts, evaluate_material(mesh, file, pts.probes), options);
 }
 
-MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
-                                         const MaterialTextures& textures, const MaterialEvalPoints& points,
-                                         const std::vector<MaterialValue>& exact, const MaterialEvalOptions& options) {
-  check_inputs(mesh, param, textures, options);
-  const std::vector<SurfacePoint>& pts = points.samples;
-  const size_t K = pts.size();
-  const int P = points.per_sample;
-  if (exact.size() != P * K || points.directions.size() != K)
+namespace {
+
+/// Per sample: squared errors of base colour, alpha, roughness, metallic, normal; and the albedo².
+using SampleTerms = std::array<double, 6>;
+
+/// What the per-sample terms read besides the textures and the exact values: the mesh's vertex
+/// normals and the layout's wedge tangents (the frames of the exact normals).
+struct FrameTerms {
+  std::vector<Vec3> vn;
+  std::vector<Eigen::Vector4d> tangents;
+};
+
+FrameTerms frame_terms(const TriMesh& mesh, const Parameterization& param) {
+  FrameTerms f;
+  f.vn = vertex_normals(mesh);
+  f.tangents = wedge_tangents(mesh, param, f.vn);
+  return f;
+}
+
+void check_exact(const MaterialEvalPoints& points, const std::vector<MaterialValue>& exact) {
+  const size_t K = points.samples.size();
+  if (exact.size() != points.per_sample * K || points.directions.size() != K)
     throw InvalidInputError("evaluate_material_textures: one exact value per probe point expected");
+}
+
+/// The terms of sample \p k (evaluate_material_textures()).
+SampleTerms sample_terms(const TriMesh& mesh, const Parameterization& param, const MaterialTextures& textures,
+                         const MaterialEvalPoints& points, const std::vector<MaterialValue>& exact,
+                         const FrameTerms& frames, size_t k) {
+  const SurfacePoint& p = points.samples[k];
+  const int P = points.per_sample;
   const double eps = points.step;
   const auto& dirs = points.directions;
-  const std::vector<Vec3> vn = vertex_normals(mesh);
-  const std::vector<Eigen::Vector4d> tangents = wedge_tangents(mesh, param, vn);
+  const Face& t = param.uv_faces[p.face];
+  const Vec2 uv = p.b0 * param.uv[t[0]] + p.b1 * param.uv[t[1]] + (1 - p.b0 - p.b1) * param.uv[t[2]];
+  const MaterialValue& e = exact[P * k];
+  // One pair of taps for every map (check_inputs(): one size).
+  const BilinearTap tx = bilinear_tap(textures.base_color.width, uv.x());
+  const BilinearTap ty = bilinear_tap(textures.base_color.height, uv.y());
+  const Vec3 c = bilinear_rgb(textures.base_color, tx, ty);
+  const Vec3 ce(e[0], e[1], e[2]);
+  const double a = bilinear_alpha(textures.base_color, tx, ty);
+  const double r = bilinear_channel(textures.roughness, tx, ty, 0);
+  const double m = bilinear_channel(textures.metallic, tx, ty, 0);
   const double scale = textures.height_scale;
-  // Per sample: squared errors of base colour, alpha, roughness, metallic, normal; and the albedo².
-  std::vector<std::array<double, 6>> err(K);
-  tbb::parallel_for(size_t(0), K, [&](size_t k) {
-    const SurfacePoint& p = pts[k];
-    const Face& t = param.uv_faces[p.face];
-    const Vec2 uv = p.b0 * param.uv[t[0]] + p.b1 * param.uv[t[1]] + (1 - p.b0 - p.b1) * param.uv[t[2]];
-    const MaterialValue& e = exact[P * k];
-    // One pair of taps for every map (check_inputs(): one size).
-    const BilinearTap tx = bilinear_tap(textures.base_color.width, uv.x());
-    const BilinearTap ty = bilinear_tap(textures.base_color.height, uv.y());
-    const Vec3 c = bilinear_rgb(textures.base_color, tx, ty);
-    const Vec3 ce(e[0], e[1], e[2]);
-    const double a = bilinear_alpha(textures.base_color, tx, ty);
-    const double r = bilinear_channel(textures.roughness, tx, ty, 0);
-    const double m = bilinear_channel(textures.metallic, tx, ty, 0);
-    const Vec3 grad = P == 1 ? Vec3::Zero().eval()
-                             : Vec3(scale * ((exact[P * k + 1][6] - e[6]) / eps * dirs[k][0] +
-                                             (exact[P * k + 2][6] - e[6]) / eps * dirs[k][1]));
-    Vec3 n_exact(0, 0, 1);  // a flat exact height: the surface's own normal, in any frame
-    if (!grad.isZero(0)) {
-      const TangentFrame fr = interpolated_frame(mesh, param, vn, tangents, p.face, p.b0, p.b1);
-      n_exact = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized();
-    }
-    const Vec3 n_tex = bilinear_rgb(textures.normal, tx, ty);
-    err[k] = {(c - ce).squaredNorm() / 3,     std::pow(a - e[3], 2), std::pow(r - e[4], 2), std::pow(m - e[5], 2),
-              (n_tex - 0.5 * (n_exact + Vec3::Ones())).squaredNorm() / 3, ce.squaredNorm() / 3};
-  });
+  const Vec3 grad = P == 1 ? Vec3::Zero().eval()
+                           : Vec3(scale * ((exact[P * k + 1][6] - e[6]) / eps * dirs[k][0] +
+                                           (exact[P * k + 2][6] - e[6]) / eps * dirs[k][1]));
+  Vec3 n_exact(0, 0, 1);  // a flat exact height: the surface's own normal, in any frame
+  if (!grad.isZero(0)) {
+    const TangentFrame fr = interpolated_frame(mesh, param, frames.vn, frames.tangents, p.face, p.b0, p.b1);
+    n_exact = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized();
+  }
+  const Vec3 n_tex = bilinear_rgb(textures.normal, tx, ty);
+  return {(c - ce).squaredNorm() / 3,     std::pow(a - e[3], 2), std::pow(r - e[4], 2), std::pow(m - e[5], 2),
+          (n_tex - 0.5 * (n_exact + Vec3::Ones())).squaredNorm() / 3, ce.squaredNorm() / 3};
+}
+
+/// The means of the per-sample terms, summed in sample order (deterministic), and their weighting.
+MaterialError sum_errors(const std::vector<SampleTerms>& err, const MaterialEvalOptions& options) {
   std::array<double, 6> sum{};
   for (const auto& x : err)  // fixed order: deterministic
     for (int j = 0; j < 6; ++j) sum[j] += x[j];
-  for (double& s : sum) s /= static_cast<double>(K);
+  for (double& s : sum) s /= static_cast<double>(err.size());
   MaterialError out;
   out.base_color = sum[0];
   out.alpha = sum[1];
@@ -178,6 +197,69 @@ MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameteriza
   out.weighted = out.base_color + options.data_weight * (out.alpha + out.roughness + out.metallic) / 3 +
                  out.normal_weight * out.normal;
   return out;
+}
+
+}  // namespace
+
+MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
+                                         const MaterialTextures& textures, const MaterialEvalPoints& points,
+                                         const std::vector<MaterialValue>& exact, const MaterialEvalOptions& options) {
+  check_inputs(mesh, param, textures, options);
+  check_exact(points, exact);
+  const FrameTerms frames = frame_terms(mesh, param);
+  std::vector<SampleTerms> err(points.samples.size());
+  tbb::parallel_for(size_t(0), err.size(), [&](size_t k) {
+    err[k] = sample_terms(mesh, param, textures, points, exact, frames, k);
+  });
+  return sum_errors(err, options);
+}
+
+struct MaterialErrorTracker::Impl {
+  FrameTerms frames;
+  std::vector<SampleTerms> err;
+  bool fresh = true;
+};
+
+MaterialErrorTracker::MaterialErrorTracker() : impl_(std::make_unique<Impl>()) {}
+MaterialErrorTracker::~MaterialErrorTracker() = default;
+MaterialErrorTracker::MaterialErrorTracker(MaterialErrorTracker&&) noexcept = default;
+MaterialErrorTracker& MaterialErrorTracker::operator=(MaterialErrorTracker&&) noexcept = default;
+
+void MaterialErrorTracker::reset() { impl_->fresh = true; }
+
+MaterialError MaterialErrorTracker::evaluate(const TriMesh& mesh, const Parameterization& param,
+                                             const MaterialTextures& textures, const MaterialEvalPoints& points,
+                                             const std::vector<MaterialValue>& exact,
+                                             const std::vector<char>& changed_probes,
+                                             const std::vector<char>& changed_texels, const MaterialEvalOptions& options) {
+  check_inputs(mesh, param, textures, options);
+  check_exact(points, exact);
+  Impl& m = *impl_;
+  const size_t K = points.samples.size(), texels = textures.base_color.data.size() / 4;
+  const int P = points.per_sample;
+  const bool all = m.fresh || m.err.size() != K;
+  if (!all && (changed_probes.size() != exact.size() || changed_texels.size() != texels))
+    throw InvalidInputError("material error tracker: one flag per probe and per texel expected");
+  if (all) m.frames = frame_terms(mesh, param), m.err.resize(K);
+  const int W = textures.base_color.width, H = textures.base_color.height;
+  tbb::parallel_for(size_t(0), K, [&](size_t k) {
+    if (!all) {
+      bool stale = false;
+      for (int q = 0; q < P; ++q) stale = stale || changed_probes[P * k + q];
+      if (!stale) {  // the four texels of the sample's taps (as sample_terms()'s)
+        const SurfacePoint& p = points.samples[k];
+        const Face& t = param.uv_faces[p.face];
+        const Vec2 uv = p.b0 * param.uv[t[0]] + p.b1 * param.uv[t[1]] + (1 - p.b0 - p.b1) * param.uv[t[2]];
+        const BilinearTap tx = bilinear_tap(W, uv.x()), ty = bilinear_tap(H, uv.y());
+        for (int j : {ty.i0, ty.i1})
+          for (int i : {tx.i0, tx.i1}) stale = stale || changed_texels[static_cast<size_t>(j) * W + i];
+      }
+      if (!stale) return;
+    }
+    m.err[k] = sample_terms(mesh, param, textures, points, exact, m.frames, k);
+  });
+  m.fresh = false;
+  return sum_errors(m.err, options);
 }
 
 }  // namespace adaptex

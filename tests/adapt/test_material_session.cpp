@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "adaptex/adapt/error_density.h"
 #include "adaptex/adapt/material_adapt.h"
@@ -215,6 +216,48 @@ MaterialStrokeFile painted_layers(int strokes) {
   mask.radius = 0.05;
   f.layers[1].mask->strokes.push_back(mask);
   return f;
+}
+
+TEST(MaterialSession, TheInitialLayoutsIncrementalCheckEqualsTheFullOne) {
+  // The check of the initial layout recomputes only the samples whose exact values or texels a
+  // stroke changed (padding and the height's normals included): after every stroke it equals the
+  // full evaluation bit for bit, for brush, erase, fill and mask strokes on three layers.
+  const TriMesh mesh = shapes::plane(24);
+  const Parameterization param = test::planar_param(mesh, 0.9, 0.05);
+  MaterialSessionOptions o = small_options();
+  o.adapt.mode = AdaptMode::None;  // the held layout is the initial one: textures() are its textures
+  MaterialEvalOptions eo;
+  eo.samples = o.check_samples;
+  eo.seed = o.check_seed;
+  eo.data_weight = o.data_weight;
+  const MaterialEvalPoints pts = material_eval_points(mesh, true, eo);
+  const MaterialStrokeFile all = painted_layers(9);
+  MaterialPaintSession s(mesh, param, three_layers(), o);
+  MaterialErrorTracker unflagged;  // told of no change: stale after the first stroke
+  int stale = 0;
+  auto expect_full = [&](const std::string& what) {
+    const MaterialError got = s.initial_error();
+    MaterialPointCache exact(mesh, pts.probes, s.history());
+    const MaterialError full = evaluate_material_textures(mesh, param, s.textures(), pts, exact.values(s.history()), eo);
+    EXPECT_EQ(got.weighted, full.weighted) << what;
+    EXPECT_EQ(got.base_color, full.base_color) << what;
+    EXPECT_EQ(got.normal, full.normal) << what;
+    EXPECT_EQ(got.roughness, full.roughness) << what;
+    const std::vector<char> none_p(pts.probes.size(), 0), none_t(128 * 128, 0);
+    stale += unflagged.evaluate(mesh, param, s.textures(), pts, exact.values(s.history()), none_p, none_t, eo).weighted !=
+             full.weighted;
+  };
+  expect_full("no stroke");
+  for (size_t l = 0; l < all.layers.size(); ++l)
+    for (size_t k = 0; k < all.layers[l].strokes.size(); ++k) {
+      MaterialStroke st = all.layers[l].strokes[k];
+      if (k == 1) st.type = MaterialStroke::Type::Erase;
+      s.add_stroke(static_cast<int>(l), st);
+      expect_full("layer " + std::to_string(l) + ", stroke " + std::to_string(k));
+    }
+  s.add_stroke(1, all.layers[1].mask->strokes[0], true);
+  expect_full("mask stroke");
+  EXPECT_GE(stale, 9);  // the strokes change the error: a check told of no change would be wrong
 }
 
 /// PSNR of \p got against \p ref over components [c0, c0 + n) (values in [0, 1]).

@@ -5,6 +5,7 @@
 /// shading normal it derives, combined with the error model's weights (docs/error_model.md §13).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "adaptex/core/mesh.h"
@@ -70,5 +71,34 @@ MaterialEvalPoints material_eval_points(const TriMesh& mesh, bool with_height, c
 MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
                                          const MaterialTextures& textures, const MaterialEvalPoints& points,
                                          const std::vector<MaterialValue>& exact, const MaterialEvalOptions& options = {});
+
+/// evaluate_material_textures() on one layout judged again and again as its textures and exact values
+/// change (a session's initial layout): the per-sample terms are kept, and a call recomputes only
+/// those of the samples whose probes' exact values or whose four bilinear texels changed since the
+/// last call; the sum is then the full one's, in sample order. The result equals
+/// evaluate_material_textures() with the same arguments, bit for bit, when the flags cover every change.
+class MaterialErrorTracker {
+ public:
+  MaterialErrorTracker();
+  ~MaterialErrorTracker();
+  MaterialErrorTracker(MaterialErrorTracker&&) noexcept;
+  MaterialErrorTracker& operator=(MaterialErrorTracker&&) noexcept;
+
+  /// The next call computes every sample (as the first call does).
+  void reset();
+  /// \p mesh, \p param and \p points: the same at every call (until reset()). \p changed_probes: P·K
+  /// flags, the probes whose exact value changed since the last call; \p changed_texels: W·H flags,
+  /// the texels whose bytes changed since the last call in any of the maps judged (base colour,
+  /// roughness, metallic, normal). Both are not read by a call that computes every sample.
+  /// \throw InvalidInputError as evaluate_material_textures(), or flags of other sizes
+  MaterialError evaluate(const TriMesh& mesh, const Parameterization& param, const MaterialTextures& textures,
+                         const MaterialEvalPoints& points, const std::vector<MaterialValue>& exact,
+                         const std::vector<char>& changed_probes, const std::vector<char>& changed_texels,
+                         const MaterialEvalOptions& options = {});
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 }  // namespace adaptex

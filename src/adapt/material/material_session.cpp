@@ -4,6 +4,7 @@
 /// the surface cache, or the history replayed), the never-worse check on cached exact values.
 #include "adaptex/adapt/material_session.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -94,6 +95,10 @@ struct MaterialPaintSession::Impl {
   std::optional<HeightNormalTerms> initial_terms;  // the initial layout's, for the normals' updates
   MaterialEvalPoints check_points;
   std::unique_ptr<MaterialPointCache> check;            // the exact material at check_points.probes
+  // The never-worse check of the initial layout, its samples' terms recomputed only where the exact
+  // values (check_changed, per probe) or the initial textures (initial_changed, W*H) changed since.
+  MaterialErrorTracker initial_check;
+  std::vector<char> check_changed, initial_changed;
   std::vector<AdaptReport> reports;
   // The surface cache (material_surface_cache.h): built once the history covers the surface
   // opt.surface_cache_coverage times, if its lattice has at most kMaxMaterialSurfaceCacheSamples.
@@ -161,6 +166,8 @@ struct MaterialPaintSession::Impl {
       material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding, height_scale,
                                     l.textures, painted_channels(history));
       if (&l == &initial) {  // kept for the updates
+        initial_check.reset();
+        initial_changed.assign(static_cast<size_t>(l.map.width) * l.map.height, 0);
         l.last = v;
         l.pad = build_seam_padding(l.map, opt.paint.padding);
         l.height.assign(static_cast<size_t>(l.map.width) * l.map.height, 0.0);
@@ -198,6 +205,7 @@ struct MaterialPaintSession::Impl {
     for (int k : changed) {
       const int t = map.inside[k];
       set_material_texel(l.textures, t, v[k]);
+      initial_changed[t] = 1;
       l.height[t] = (v[k][6] - 0.5) * height_scale;
       l.last[k] = v[k];
       const int i = t % W, j = t / W;
@@ -208,7 +216,9 @@ struct MaterialPaintSession::Impl {
       }
     }
     update_height_normals(*l.mesh, l.param, initial_normal_terms(), map, l.height, around, l.normals);
-    for (int u : around) set_normal_texel(l.textures.normal, u, l.normals[u]), l.mark[u] = 0;
+    for (int u : around) set_normal_texel(l.textures.normal, u, l.normals[u]), l.mark[u] = 0, initial_changed[u] = 1;
+    for (int u : l.pad.padded)
+      if (initial_changed[l.pad.source[u]]) initial_changed[u] = 1;
     for (ImageRGBA8* img : {&l.textures.base_color, &l.textures.roughness, &l.textures.metallic, &l.textures.height,
                             &l.textures.metallic_roughness, &l.textures.normal})
       apply_seam_padding(*img, l.pad);
@@ -223,6 +233,7 @@ struct MaterialPaintSession::Impl {
       half = std::make_unique<MaterialPointCache>(*initial.mesh, texel_points(plane_maps->half), history);
       check_points = material_eval_points(*initial.mesh, true, eval_options());
       check = std::make_unique<MaterialPointCache>(*initial.mesh, check_points.probes, history);
+      check_changed.assign(check_points.probes.size(), 0);
     }
     for (MaterialPointCache* c : {reference.get(), half.get(), check.get()}) c->update(history);
     refresh_planes(plane_maps->reference, *reference, reference_planes);
@@ -285,7 +296,20 @@ struct MaterialPaintSession::Impl {
     };
   }
 
+  /// The exact material at the check's probes, the probes recomputed since flagged in check_changed.
+  const std::vector<MaterialValue>& check_values() {
+    return check->values(history, [this](size_t k, const MaterialValue&) { check_changed[k] = 1; });
+  }
+
   MaterialError judge(const Layout& l, const MaterialTextures& tex) {
+    const std::vector<MaterialValue>& exact = check_values();
+    if (&l == &initial) {
+      const MaterialError e = initial_check.evaluate(*l.mesh, l.param, tex, check_points, exact, check_changed,
+                                                     initial_changed, eval_options());
+      std::fill(check_changed.begin(), check_changed.end(), char(0));
+      std::fill(initial_changed.begin(), initial_changed.end(), char(0));
+      return e;
+    }
     MaterialEvalPoints pts;
     const MaterialEvalPoints* use = &check_points;
     if (!l.parent_face.empty()) {  // the same 3-D points on the refined mesh: the same exact values
@@ -295,7 +319,7 @@ struct MaterialPaintSession::Impl {
       pts.step = check_points.step;
       use = &pts;
     }
-    return evaluate_material_textures(*l.mesh, l.param, tex, *use, check->values(history), eval_options());
+    return evaluate_material_textures(*l.mesh, l.param, tex, *use, exact, eval_options());
   }
 
   const AdaptReport& cycle(bool gated);
