@@ -44,6 +44,25 @@ void put_normal(ImageRGBA8& img, int t, const Vec3& n) {
   img.data[4 * t + 3] = 255;
 }
 
+/// The unit normal of texel \p t from the height's derivatives ((0, 0, 1) outside the charts, where
+/// the height is flat, or on a degenerate UV triangle).
+Vec3f height_normal_at(const TriMesh& mesh, const Parameterization& param, const HeightNormalTerms& terms,
+                       const TexelMap& map, const std::vector<double>& height, int t) {
+  const int i = t % map.width, j = t / map.width, f = map.face[t];
+  if (f < 0) return Vec3f(0, 0, 1);
+  const double hu = axis_derivative(map, height, t, i, map.width, 1, 1.0 / map.width);
+  const double hv = axis_derivative(map, height, t, j, map.height, map.width, 1.0 / map.height);
+  if (hu == 0 && hv == 0) return Vec3f(0, 0, 1);  // flat height: the surface's own normal, in any frame
+  const HeightNormalTerms::Face& x = terms.faces[f];
+  if (!x.usable) return Vec3f(0, 0, 1);  // degenerate UV triangle: flat
+  // Surface gradient: ∇H = [pu pv] G⁻¹ (hu, hv), G the metric of the face's UV map.
+  const Vec3 grad = x.pu * ((x.c * hu - x.b * hv) / x.det) + x.pv * ((x.a * hv - x.b * hu) / x.det);
+  // n' = normalize(n − ∇H) in the frame a renderer interpolates from the exported NORMAL and TANGENT.
+  const TangentFrame fr = interpolated_frame(mesh, param, terms.vertex_normals, terms.tangents, f, map.bary[t].x(),
+                                             map.bary[t].y(), x.normal, x.pu);
+  return Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized().cast<float>();
+}
+
 }  // namespace
 
 std::vector<Vec3f> height_normals(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
@@ -82,31 +101,30 @@ void update_height_normals(const TriMesh& mesh, const Parameterization& param, c
   if (height.size() != static_cast<size_t>(map.width) * map.height || normals.size() != height.size())
     throw InvalidInputError("normal_map_from_height: one height per texel expected");
   tbb::parallel_for(size_t(0), texels.size(), [&](size_t k) {
-    const int t = texels[k], i = t % map.width, j = t / map.width, f = map.face[t];
-    normals[t] = Vec3f(0, 0, 1);
-    if (f < 0) return;
-    const double hu = axis_derivative(map, height, t, i, map.width, 1, 1.0 / map.width);
-    const double hv = axis_derivative(map, height, t, j, map.height, map.width, 1.0 / map.height);
-    if (hu == 0 && hv == 0) return;  // flat height: the surface's own normal, in any frame
-    const HeightNormalTerms::Face& x = terms.faces[f];
-    if (!x.usable) return;  // degenerate UV triangle: flat
-    // Surface gradient: ∇H = [pu pv] G⁻¹ (hu, hv), G the metric of the face's UV map.
-    const Vec3 grad = x.pu * ((x.c * hu - x.b * hv) / x.det) + x.pv * ((x.a * hv - x.b * hu) / x.det);
-    // n' = normalize(n − ∇H) in the frame a renderer interpolates from the exported NORMAL and TANGENT.
-    const TangentFrame fr = interpolated_frame(mesh, param, terms.vertex_normals, terms.tangents, f, map.bary[t].x(),
-                                               map.bary[t].y(), x.normal, x.pu);
-    normals[t] = Vec3(-grad.dot(fr.t), -grad.dot(fr.b), 1).normalized().cast<float>();
+    const int t = texels[k];
+    normals[t] = height_normal_at(mesh, param, terms, map, height, t);
   });
 }
 
 ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                   const std::vector<double>& height) {
-  const std::vector<Vec3f> normals = height_normals(mesh, param, map, height);
-  ImageRGBA8 img(map.width, map.height);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, normals.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t t = r.begin(); t < r.end(); ++t) put_normal(img, static_cast<int>(t), normals[t].cast<double>());
-  });
+  ImageRGBA8 img;
+  normal_map_from_height(mesh, param, map, height, img);
   return img;
+}
+
+void normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                            const std::vector<double>& height, ImageRGBA8& out) {
+  if (height.size() != static_cast<size_t>(map.width) * map.height)
+    throw InvalidInputError("normal_map_from_height: one height per texel expected");
+  const HeightNormalTerms terms = height_normal_terms(mesh, param);
+  out.width = map.width, out.height = map.height;
+  out.data.resize(height.size() * 4);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, height.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t < r.end(); ++t)
+      put_normal(out, static_cast<int>(t),
+                 height_normal_at(mesh, param, terms, map, height, static_cast<int>(t)).cast<double>());
+  });
 }
 
 namespace {
@@ -279,7 +297,7 @@ void material_textures_from_values(const TriMesh& mesh, const Parameterization& 
   for (const auto& [img, bits] : images)
     if (painted & bits) apply_seam_padding(*img, pad);
   if (!height) return fill_image(out.normal, N, map.height, {to_byte(0.5), to_byte(0.5), to_byte(1.0), 255});
-  out.normal = normal_map_from_height(mesh, param, map, h);
+  normal_map_from_height(mesh, param, map, h, out.normal);  // into the storage of \p out's normal map
   apply_seam_padding(out.normal, pad);
 }
 

@@ -140,5 +140,8 @@ void update_height_normals(const TriMesh& mesh, const Parameterization& param, c
 /// \pre height.size() == map.width * map.height
 ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                   const std::vector<double>& height);
+/// normal_map_from_height() into \p out, reusing its storage (a session's candidate layouts).
+void normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
+                            const std::vector<double>& height, ImageRGBA8& out);
 
 }  // namespace adaptex
