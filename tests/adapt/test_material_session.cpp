@@ -221,7 +221,8 @@ MaterialStrokeFile painted_layers(int strokes) {
 TEST(MaterialSession, TheInitialLayoutsIncrementalCheckEqualsTheFullOne) {
   // The check of the initial layout recomputes only the samples whose exact values or texels a
   // stroke changed (padding and the height's normals included): after every stroke it equals the
-  // full evaluation bit for bit, for brush, erase, fill and mask strokes on three layers.
+  // full evaluation bit for bit, for brush, erase, fill and mask strokes on three layers, and a stroke
+  // along the chart's border.
   const TriMesh mesh = shapes::plane(24);
   const Parameterization param = test::planar_param(mesh, 0.9, 0.05);
   MaterialSessionOptions o = small_options();
@@ -257,6 +258,12 @@ TEST(MaterialSession, TheInitialLayoutsIncrementalCheckEqualsTheFullOne) {
     }
   s.add_stroke(1, all.layers[1].mask->strokes[0], true);
   expect_full("mask stroke");
+  MaterialStroke border = scratch(5, kFour);  // along the chart's border: the samples there read padded texels
+  border.radius = 0.04;
+  border.dabs = {Vec3(0, 0.2, 0), Vec3(0, 0.5, 0), Vec3(0, 0.8, 0), Vec3(1, 0.3, 0), Vec3(1, 0.6, 0)};
+  border.pressure.clear();
+  s.add_stroke(0, border);
+  expect_full("border stroke");
   EXPECT_GE(stale, 9);  // the strokes change the error: a check told of no change would be wrong
 }
 
