@@ -1425,7 +1425,10 @@ void regrow_stretched(const TriMesh& mesh, BuiltPieces built, const DiskParamOpt
   if (fresh.empty()) return;
   UnwrapResult candidate;
   candidate.report = result.report;
-  std::vector<Chart> more = build_charts(fresh, dopt, t_start, options, candidate.report, layouts);
+  // The regrown charts are near-planar patches: no cut augmentation (its budget is not spent).
+  UnwrapOptions no_augment = options;
+  no_augment.max_augmentations = 0;
+  std::vector<Chart> more = build_charts(fresh, dopt, t_start, no_augment, candidate.report, layouts);
   for (size_t i = 0; i < fresh.size(); ++i) {
     pieces.push_back(std::move(fresh[i]));
     charts.push_back(std::move(more[i]));
