@@ -4,7 +4,7 @@
 // covers on average ("chart fill" = coverage / rect fill), flipped and overlapping triangles,
 // UVs outside [0,1]², and wall / CPU seconds. See docs/benchmarks.md.
 //
-//   bench_share_table [--single] [--detail] [--hash] [--repair] [--speculative S] [--no-probe] [--normal-weight W] [--planar-normal-weight W] [--max-charts K] [--chart-padding P] [--augment-time-budget S] [--no-shape-packing] [--fill-exponent E] NAME...
+//   bench_share_table [--single] [--detail] [--hash] [--repair] [--speculative S] [--no-probe] [--normal-weight W] [--planar-normal-weight W] [--regrow-l2 L] [--regrow-angle A] [--max-charts K] [--chart-padding P] [--augment-time-budget S] [--no-shape-packing] [--fill-exponent E] NAME...
 //
 // NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
 // code: genusG (genus_surface(G)), sphereS,T (sphere(S, T)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
@@ -25,6 +25,7 @@
 // the layouts independent of the machine's load).
 // --no-shape-packing: UnwrapOptions::scan_pack_shapes = false (scans: rectangles only).
 // --fill-exponent E: UnwrapOptions::scan_layout_fill_exponent.
+// --regrow-l2 L, --regrow-angle A: UnwrapOptions::scan_regrow_l2, scan_regrow_angle.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -182,6 +183,10 @@ int main(int argc, char** argv) {
       g_options.chart_normal_weight = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--planar-normal-weight") == 0 && i + 1 < argc)
       g_options.scan_planar_normal_weight = std::stod(argv[++i]);
+    else if (std::strcmp(argv[i], "--regrow-l2") == 0 && i + 1 < argc)
+      g_options.scan_regrow_l2 = std::stod(argv[++i]);
+    else if (std::strcmp(argv[i], "--regrow-angle") == 0 && i + 1 < argc)
+      g_options.scan_regrow_angle = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--chart-padding") == 0 && i + 1 < argc)
       g_options.chart_padding = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--max-charts") == 0 && i + 1 < argc)

@@ -868,19 +868,20 @@ void split_invalid_charts(std::vector<Component>& pieces, std::vector<Chart>& ch
   charts = std::move(kept_charts);
 }
 
-/// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
-/// \p unfold and \p on_last_started as in build_charts(); \p give_up_l2 as
-/// ChartContext::give_up_l2; \p shapes as in assemble(). Returns false, and
-/// leaves the layout of \p result alone (only its phase times grow), when a chart was abandoned.
-bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
-                   const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
-                   const UnwrapOptions& options, UnwrapResult& result, PieceLayouts layouts,
-                   double give_up_l2 = 0, const std::function<void()>& on_last_started = {},
-                   bool shapes = false) {
-  std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report, layouts,
-                                           give_up_l2, on_last_started);
-  for (const Chart& c : charts)
-    if (c.abandoned) return false;
+/// The pieces and charts of a valid packed layout, kept so that some charts can be rebuilt.
+struct BuiltPieces {
+  std::vector<Component> pieces;
+  std::vector<Chart> charts;
+};
+
+/// Packs \p charts (parallel to \p pieces) into \p result; while UV triangles are invalid, splits
+/// their charts (split_invalid_charts()) and packs again. \p built (if set) receives the final
+/// pieces and charts.
+/// \throw SolverError still invalid after kMaxValidityRounds rounds
+void pack_valid(const TriMesh& mesh, const std::vector<Component>& pieces, std::vector<Chart> charts,
+                const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
+                const UnwrapOptions& options, UnwrapResult& result, PieceLayouts layouts,
+                bool shapes, BuiltPieces* built) {
   std::vector<Component> split;  // the pieces once an invalid chart was split
   for (int round = 0;; ++round) {
     const std::vector<Component>& current = round == 0 ? pieces : split;
@@ -890,7 +891,10 @@ bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
     report_progress(options.progress, "pack", 1.0);
     result.report.time_pack += seconds_since(t0);
     const std::vector<int> bad = invalid_layout_faces(result.param, charts);
-    if (bad.empty()) return true;
+    if (bad.empty()) {
+      if (built) *built = BuiltPieces{round == 0 ? pieces : std::move(split), std::move(charts)};
+      return;
+    }
     if (round == kMaxValidityRounds)
       throw SolverError("unwrap: no valid layout found (" + std::to_string(bad.size()) +
                         " flipped, degenerate or overlapping UV triangles remain)");
@@ -900,6 +904,25 @@ bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
     split_invalid_charts(next, charts, bad_chart, dopt, t_start, options, result.report, layouts);
     split = std::move(next);
   }
+}
+
+/// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
+/// \p unfold and \p on_last_started as in build_charts(); \p give_up_l2 as
+/// ChartContext::give_up_l2; \p shapes as in assemble(); \p built as in pack_valid(). Returns
+/// false, and leaves the layout of \p result alone (only its phase times grow), when a chart was
+/// abandoned.
+bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
+                   const DiskParamOptions& dopt, double padding, Clock::time_point t_start,
+                   const UnwrapOptions& options, UnwrapResult& result, PieceLayouts layouts,
+                   double give_up_l2 = 0, const std::function<void()>& on_last_started = {},
+                   bool shapes = false, BuiltPieces* built = nullptr) {
+  std::vector<Chart> charts = build_charts(pieces, dopt, t_start, options, result.report, layouts,
+                                           give_up_l2, on_last_started);
+  for (const Chart& c : charts)
+    if (c.abandoned) return false;
+  pack_valid(mesh, pieces, std::move(charts), dopt, padding, t_start, options, result, layouts,
+             shapes, built);
+  return true;
 }
 
 /// Cheap figures of one piece for the scan segmentation: degenerate + flipped UV triangles and the
@@ -1016,15 +1039,45 @@ std::vector<Component> planar_pieces(const std::vector<Component>& comps, const 
   return out;
 }
 
+/// Cuts \p piece into planar charts grown bottom-up (planar_charts(): normal cone \p angle, charts
+/// of under 1/16 of the piece's area given back), the remaining faces joining the chart they reach
+/// first through edges (breadth-first from all charts at once), appended to \p out; returns how
+/// many (nothing appended when fewer than 2 planar charts grow).
+size_t regrow_piece(const Component& piece, double angle, std::vector<Component>& out) {
+  if (!(piece.area > 0)) return 0;
+  PlanarChartOptions po;
+  po.max_normal_angle = angle;
+  po.min_area_fraction = 1.0 / 16;
+  PlanarCharts pc = planar_charts(piece.mesh, po);
+  if (pc.num_planar < 2) return 0;
+  const EdgeConnectivity ec = build_edges(piece.mesh);
+  std::vector<int> queue;
+  for (int f = 0; f < piece.mesh.num_faces(); ++f)
+    if (pc.label[f] < pc.num_planar) queue.push_back(f);
+    else pc.label[f] = -1;
+  for (size_t i = 0; i < queue.size(); ++i)
+    for (int e : ec.face_edges[queue[i]])
+      for (int g : ec.edge_faces[e])
+        if (pc.label[g] < 0) pc.label[g] = pc.label[queue[i]], queue.push_back(g);
+  int next = pc.num_planar;  // faces no chart reaches (none in a piece connected through edges)
+  for (int& l : pc.label)
+    if (l < 0) l = next++;
+  const size_t before = out.size();
+  append_pieces(piece, pc.label, out);
+  return out.size() - before;
+}
+
 /// Segmentation for scans (many components, handles, holes; docs/charts.md, "Scans"): components
 /// of more than scan_piece_faces faces are first split into pieces of about that many faces; then,
 /// round after round, every piece whose cheap parameterization (probe_piece()) has degenerate or
 /// flipped triangles, or an L2 stretch above scan_chart_l2 where split_pays(), is split in two.
 /// The chart count thus follows the stretch and the texel budget: small pieces stay whole.
 /// \p min_probe_faces: pieces of fewer faces are never split (a stretched piece is split down to
-/// twice that).
+/// twice that). \p halving_weight: the normal penalty of the halvings
+/// (ChartSegmentOptions::normal_weight).
 std::vector<Component> scan_pieces(const std::vector<Component>& comps, const DiskParamOptions& dopt,
-                                   double gutter, const UnwrapOptions& options, int min_probe_faces) {
+                                   double gutter, const UnwrapOptions& options, double halving_weight,
+                                   int min_probe_faces) {
   // Pieces with bad UV triangles are split down to this many faces (zero-area scan faces stay
   // degenerate in any chart, so that rule needs a floor); a stretched piece is split whenever
   // split_pays(): a few large, folded faces of a photogrammetry mesh can hold much of the area.
@@ -1054,8 +1107,6 @@ std::vector<Component> scan_pieces(const std::vector<Component>& comps, const Di
       done.push_back(c);
   }
   const double gap = std::max(gutter, 1.0 / 4096);
-  const double halving_weight = options.scan_planar_angle > 0 ? options.scan_planar_normal_weight
-                                                               : options.chart_normal_weight;
   for (int round = 0; round < options.scan_max_rounds && !queue.empty(); ++round) {
     const double frac = static_cast<double>(round) / options.scan_max_rounds;
     report_progress(options.progress, "segment", frac);
@@ -1323,13 +1374,81 @@ void keep_better_layout(const TriMesh& mesh, const std::vector<Component>& piece
 /// estimate is rough for so few faces, so small meshes also try the split down to 32 faces.
 constexpr int kFineProbeFaces = 4, kCoarseProbeFaces = 16;
 
+/// The own L2 stretch of every piece of \p pieces in the layout \p param of \p mesh (as
+/// StretchStats::l2 over the piece's faces: scaled to the piece's own UV / 3-D area ratio).
+std::vector<double> piece_l2(const TriMesh& mesh, const Parameterization& param,
+                             const std::vector<Component>& pieces) {
+  const std::vector<double> face = face_l2_stretch(mesh, param);
+  double a3 = 0, a2 = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) a3 += face_area(mesh, f), a2 += uv_signed_area(param, f);
+  std::vector<double> out(pieces.size(), 0.0);
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    double c3 = 0, c2 = 0, sum = 0;
+    for (int f : pieces[i].faces) {
+      const double a = face_area(mesh, f);
+      c3 += a, c2 += uv_signed_area(param, f);
+      if (a > 0) sum += a * face[f] * face[f];
+    }
+    out[i] = c3 > 0 && c2 > 0 && a2 > 0 ? std::sqrt(sum / c3) * std::sqrt((c2 / c3) / (a2 / a3)) : 0.0;
+  }
+  return out;
+}
+
+/// The layout of \p built (packed in \p result) with every chart whose own L2 is above
+/// scan_regrow_l2 cut by regrow_piece() (normal cone scan_regrow_angle), or halved (normal penalty
+/// \p halving_weight) when that gives fewer than 2, and rebuilt; the other charts are kept as they
+/// are. Kept in \p result when its share is higher (phase times add up either way).
+void regrow_stretched(const TriMesh& mesh, BuiltPieces built, const DiskParamOptions& dopt,
+                      double gutter, Clock::time_point t_start, const UnwrapOptions& options,
+                      double halving_weight, PieceLayouts layouts, bool shapes,
+                      UnwrapResult& result) {
+  const auto t0 = Clock::now();
+  const std::vector<double> l2 = piece_l2(mesh, result.param, built.pieces);
+  const std::vector<std::vector<Component>> parts =
+      parallel_pieces(built.pieces.size(), [&](size_t i, std::vector<Component>& out) {
+        const Component& p = built.pieces[i];
+        if (!(l2[i] > options.scan_regrow_l2) || p.mesh.num_faces() < 2) return;
+        if (regrow_piece(p, options.scan_regrow_angle, out) >= 2) return;
+        if (split_piece(p, 2, halving_weight, out) < 2) out.clear();
+      });
+  std::vector<Component> pieces, fresh;
+  std::vector<Chart> charts;
+  for (size_t i = 0; i < built.pieces.size(); ++i) {
+    if (!parts[i].empty()) {
+      fresh.insert(fresh.end(), parts[i].begin(), parts[i].end());
+      continue;
+    }
+    pieces.push_back(std::move(built.pieces[i]));
+    charts.push_back(std::move(built.charts[i]));
+  }
+  result.report.time_segment += seconds_since(t0);
+  if (fresh.empty()) return;
+  UnwrapResult candidate;
+  candidate.report = result.report;
+  // The regrown charts are near-planar patches: no cut augmentation (its budget is not spent).
+  UnwrapOptions no_augment = options;
+  no_augment.max_augmentations = 0;
+  std::vector<Chart> more = build_charts(fresh, dopt, t_start, no_augment, candidate.report, layouts);
+  for (size_t i = 0; i < fresh.size(); ++i) {
+    pieces.push_back(std::move(fresh[i]));
+    charts.push_back(std::move(more[i]));
+  }
+  pack_valid(mesh, pieces, std::move(charts), dopt, gutter, t_start, options, candidate, layouts,
+             shapes, nullptr);
+  if (candidate.report.effective_texel_share > result.report.effective_texel_share)
+    result = std::move(candidate);
+  else
+    copy_phase_times(candidate.report, result.report);
+}
+
 /// scan_pieces(), its time added to \p rep.time_segment.
 std::vector<Component> timed_scan_pieces(const std::vector<Component>& comps,
                                          const DiskParamOptions& dopt, double gutter,
-                                         const UnwrapOptions& options, UnwrapReport& rep,
-                                         int min_probe_faces = kFineProbeFaces) {
+                                         const UnwrapOptions& options, double halving_weight,
+                                         UnwrapReport& rep, int min_probe_faces = kFineProbeFaces) {
   const auto t0 = Clock::now();
-  std::vector<Component> pieces = scan_pieces(comps, dopt, gutter, options, min_probe_faces);
+  std::vector<Component> pieces =
+      scan_pieces(comps, dopt, gutter, options, halving_weight, min_probe_faces);
   rep.time_segment += seconds_since(t0);
   return pieces;
 }
@@ -1346,19 +1465,31 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
   const PieceLayouts scan_layouts =
       options.scan_free_boundary ? PieceLayouts::Free : PieceLayouts::Unfold;
   const bool shapes = options.scan_pack_shapes;
-  std::vector<Component> pieces = timed_scan_pieces(comps, dopt, gutter, options, result.report);
-  unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, scan_layouts, 0, {}, shapes);
+  // The planar candidate's halvings take scan_planar_normal_weight, the top-down ones
+  // chart_normal_weight (docs/decisions.md, "Scans: a normal penalty ...").
+  const bool planar = options.scan_planar_angle > 0;
+  const double weight = planar ? options.scan_planar_normal_weight : options.chart_normal_weight;
+  std::vector<Component> pieces =
+      timed_scan_pieces(comps, dopt, gutter, options, weight, result.report);
+  const bool regrow = planar && options.scan_regrow_l2 > 0;
+  BuiltPieces built;
+  if (unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, scan_layouts, 0, {},
+                    shapes, regrow ? &built : nullptr) &&
+      regrow)
+    regrow_stretched(mesh, std::move(built), dopt, gutter, t_start, options, weight, scan_layouts,
+                     shapes, result);
   UnwrapOptions plain = options;
   plain.scan_planar_angle = 0;
   plain.scan_free_boundary = false;
+  const double top_down = options.chart_normal_weight;
   const bool new_ways = options.scan_planar_angle > 0 || options.scan_free_boundary;
   if (new_ways) {
-    pieces = timed_scan_pieces(comps, dopt, gutter, plain, result.report);
+    pieces = timed_scan_pieces(comps, dopt, gutter, plain, top_down, result.report);
     keep_better_layout(mesh, pieces, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
   }
   if (mesh.num_faces() > options.scan_single_max_faces) return;
   const std::vector<Component> coarse =
-      timed_scan_pieces(comps, dopt, gutter, plain, result.report, kCoarseProbeFaces);
+      timed_scan_pieces(comps, dopt, gutter, plain, top_down, result.report, kCoarseProbeFaces);
   if (coarse.size() != pieces.size())
     keep_better_layout(mesh, coarse, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
   keep_better_layout(mesh, comps, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
@@ -1388,9 +1519,12 @@ void check_unwrap_input(const TriMesh& mesh, const UnwrapOptions& options) {
   if (!(options.scan_planar_angle >= 0 && options.scan_planar_angle < 90) ||
       !(options.scan_planar_min_area >= 0 && options.scan_planar_min_area <= 1) ||
       !(options.scan_planar_normal_weight >= 0) || !std::isfinite(options.scan_planar_normal_weight) ||
+      !(options.scan_regrow_l2 == 0 || (options.scan_regrow_l2 >= 1 && std::isfinite(options.scan_regrow_l2))) ||
+      !(options.scan_regrow_angle > 0 && options.scan_regrow_angle < 90) ||
       !(options.chart_normal_weight >= 0) || !std::isfinite(options.chart_normal_weight))
     throw InvalidInputError("unwrap: scan_planar_angle must be in [0, 90), scan_planar_min_area "
-                            "in [0, 1], and scan_planar_normal_weight and chart_normal_weight finite and >= 0");
+                            "in [0, 1], scan_planar_normal_weight and chart_normal_weight finite and >= 0, "
+                            "scan_regrow_l2 0 or finite and >= 1, scan_regrow_angle in (0, 90)");
   if (std::isnan(options.augment_time_budget))
     throw InvalidInputError("unwrap: augment_time_budget is NaN (<= 0: no time budget)");
   if (!(options.scan_layout_fill_exponent >= 0 && options.scan_layout_fill_exponent <= 1))
@@ -1464,7 +1598,8 @@ void improve_low_share(const TriMesh& mesh, const std::vector<Component>& comps,
   plain.scan_planar_angle = 0;
   plain.scan_free_boundary = false;
   if (rep.effective_texel_share < options.min_texel_share)
-    keep_better_layout(mesh, timed_scan_pieces(comps, dopt, gutter, plain, result.report), dopt,
+    keep_better_layout(mesh, timed_scan_pieces(comps, dopt, gutter, plain,
+                                               options.chart_normal_weight, result.report), dopt,
                        gutter, t_start, plain, PieceLayouts::Unfold, result);
 }
 

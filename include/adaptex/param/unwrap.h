@@ -141,6 +141,13 @@ struct UnwrapOptions {
   /// top-down candidate and the first split of large components keep chart_normal_weight
   /// (docs/charts.md, "Scans"). 1 (default); 0: as chart_normal_weight = 0. Finite, >= 0.
   double scan_planar_normal_weight = 1.0;
+  /// Scans, with scan_planar_angle > 0: the planar candidate's charts whose own L2 stretch is above
+  /// this are cut by a bottom-up planar growth (normal cone scan_regrow_angle) and that layout is
+  /// built too, kept if its share is higher (docs/decisions.md, "Scans: regrowing stretched
+  /// charts"). 2 (default); 0: never. 0 or finite and >= 1.
+  double scan_regrow_l2 = 2.0;
+  /// Scans: the normal cone of that growth, degrees in (0, 90). 30 (default).
+  double scan_regrow_angle = 30.0;
   /// Scans: rounds of splitting (each round at most doubles the pieces). >= 0.
   int scan_max_rounds = 12;
   /// Scans: meshes of at most this many faces also build one chart per component, and the
