@@ -1471,7 +1471,7 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
   const double weight = planar ? options.scan_planar_normal_weight : options.chart_normal_weight;
   std::vector<Component> pieces =
       timed_scan_pieces(comps, dopt, gutter, options, weight, result.report);
-  const bool regrow = planar && options.scan_regrow_l2 > 0;
+  const bool regrow = planar && options.scan_regrow_l2 > 0 && mesh.num_faces() <= options.scan_regrow_max_faces;
   BuiltPieces built;
   if (unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, scan_layouts, 0, {},
                     shapes, regrow ? &built : nullptr) &&
@@ -1520,11 +1520,11 @@ void check_unwrap_input(const TriMesh& mesh, const UnwrapOptions& options) {
       !(options.scan_planar_min_area >= 0 && options.scan_planar_min_area <= 1) ||
       !(options.scan_planar_normal_weight >= 0) || !std::isfinite(options.scan_planar_normal_weight) ||
       !(options.scan_regrow_l2 == 0 || (options.scan_regrow_l2 >= 1 && std::isfinite(options.scan_regrow_l2))) ||
-      !(options.scan_regrow_angle > 0 && options.scan_regrow_angle < 90) ||
+      !(options.scan_regrow_angle > 0 && options.scan_regrow_angle < 90) || options.scan_regrow_max_faces < 0 ||
       !(options.chart_normal_weight >= 0) || !std::isfinite(options.chart_normal_weight))
     throw InvalidInputError("unwrap: scan_planar_angle must be in [0, 90), scan_planar_min_area "
                             "in [0, 1], scan_planar_normal_weight and chart_normal_weight finite and >= 0, "
-                            "scan_regrow_l2 0 or finite and >= 1, scan_regrow_angle in (0, 90)");
+                            "scan_regrow_l2 0 or finite and >= 1, scan_regrow_angle in (0, 90), scan_regrow_max_faces >= 0");
   if (std::isnan(options.augment_time_budget))
     throw InvalidInputError("unwrap: augment_time_budget is NaN (<= 0: no time budget)");
   if (!(options.scan_layout_fill_exponent >= 0 && options.scan_layout_fill_exponent <= 1))

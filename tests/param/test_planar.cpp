@@ -263,6 +263,12 @@ TEST(UnwrapScan, RegrowingStretchedChartsRaisesTheShareAndLeavesTopDownAlone) {
   EXPECT_GT(regrown.report.effective_texel_share, halved.report.effective_texel_share)
       << halved.report.effective_texel_share << " -> " << regrown.report.effective_texel_share;
   EXPECT_LT(regrown.report.final_l2, halved.report.final_l2);
+  // Above scan_regrow_max_faces the pass is skipped: the layout without it, bit for bit.
+  opt.scan_regrow_max_faces = mesh.num_faces() - 1;
+  const UnwrapResult skipped = unwrap(mesh, opt);
+  EXPECT_EQ(skipped.param.uv, halved.param.uv);
+  EXPECT_EQ(skipped.param.uv_faces, halved.param.uv_faces);
+  opt.scan_regrow_max_faces = UnwrapOptions{}.scan_regrow_max_faces;
   // The top-down candidate (no planar charts) never regrows: the same layout, bit for bit.
   UnwrapOptions plain = opt;
   plain.scan_planar_angle = 0;
@@ -278,6 +284,9 @@ TEST(UnwrapScan, RegrowingStretchedChartsRaisesTheShareAndLeavesTopDownAlone) {
     bad.scan_regrow_l2 = bad_l2;
     EXPECT_THROW(unwrap(shapes::sphere(8, 4), bad), InvalidInputError) << bad_l2;
   }
+  UnwrapOptions bad_max;
+  bad_max.scan_regrow_max_faces = -1;
+  EXPECT_THROW(unwrap(shapes::sphere(8, 4), bad_max), InvalidInputError);
   for (double bad_angle : {0.0, 90.0}) {
     UnwrapOptions bad;
     bad.scan_regrow_angle = bad_angle;

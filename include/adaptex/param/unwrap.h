@@ -148,6 +148,9 @@ struct UnwrapOptions {
   double scan_regrow_l2 = 2.0;
   /// Scans: the normal cone of that growth, degrees in (0, 90). 30 (default).
   double scan_regrow_angle = 30.0;
+  /// Scans: meshes of more faces skip that regrowth (it adds a third layout to build and pack:
+  /// +34 % CPU on a 1.09M-face scan for +0.002 share; docs/decisions.md). 500000 (default); >= 0.
+  int scan_regrow_max_faces = 500000;
   /// Scans: rounds of splitting (each round at most doubles the pieces). >= 0.
   int scan_max_rounds = 12;
   /// Scans: meshes of at most this many faces also build one chart per component, and the
