@@ -25,7 +25,8 @@
 // the layouts independent of the machine's load).
 // --no-shape-packing: UnwrapOptions::scan_pack_shapes = false (scans: rectangles only).
 // --fill-exponent E: UnwrapOptions::scan_layout_fill_exponent.
-// --regrow-l2 L, --regrow-angle A: UnwrapOptions::scan_regrow_l2, scan_regrow_angle.
+// --regrow-l2 L, --regrow-angle A, --regrow-max-faces N: UnwrapOptions::scan_regrow_l2,
+// scan_regrow_angle, scan_regrow_max_faces (a large N runs the regrowth on the largest scans too).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -187,6 +188,8 @@ int main(int argc, char** argv) {
       g_options.scan_regrow_l2 = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--regrow-angle") == 0 && i + 1 < argc)
       g_options.scan_regrow_angle = std::stod(argv[++i]);
+    else if (std::strcmp(argv[i], "--regrow-max-faces") == 0 && i + 1 < argc)
+      g_options.scan_regrow_max_faces = std::stoi(argv[++i]);
     else if (std::strcmp(argv[i], "--chart-padding") == 0 && i + 1 < argc)
       g_options.chart_padding = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--max-charts") == 0 && i + 1 < argc)
