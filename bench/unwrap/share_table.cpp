@@ -27,6 +27,7 @@
 // --fill-exponent E: UnwrapOptions::scan_layout_fill_exponent.
 // --regrow-l2 L, --regrow-angle A, --regrow-max-faces N: UnwrapOptions::scan_regrow_l2,
 // scan_regrow_angle, scan_regrow_max_faces (a large N runs the regrowth on the largest scans too).
+// --slim-iterations N: UnwrapOptions::scan_slim_iterations (0: no SLIM layouts).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -105,7 +106,7 @@ void detail(const TriMesh& mesh, const Parameterization& p) {
     int ears = 0;
     for (int v : valence) ears += v == 1;
     const double own = std::sqrt(sum / c3) * std::sqrt((c2 / c3) / (a2 / a3));
-    std::printf("  chart %d: %d faces, area %.3f, L2 %.3f, genus %d, loops %d, ears %d, aspect %.2f, fill %.2f\n", c,
+    std::printf("  chart %d: %d faces, area %.3e, L2 %.3f, genus %d, loops %d, ears %d, aspect %.2f, fill %.2f\n", c,
                 sub.num_faces(), c3 / a3, own, t.total_genus(), t.total_loops(), ears,
                 (hi - lo).x() / (hi - lo).y(), c2 / (hi - lo).prod());
   }
@@ -190,6 +191,8 @@ int main(int argc, char** argv) {
       g_options.scan_regrow_angle = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--regrow-max-faces") == 0 && i + 1 < argc)
       g_options.scan_regrow_max_faces = std::stoi(argv[++i]);
+    else if (std::strcmp(argv[i], "--slim-iterations") == 0 && i + 1 < argc)
+      g_options.scan_slim_iterations = std::stoi(argv[++i]);
     else if (std::strcmp(argv[i], "--chart-padding") == 0 && i + 1 < argc)
       g_options.chart_padding = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--max-charts") == 0 && i + 1 < argc)

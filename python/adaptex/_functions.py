@@ -231,7 +231,7 @@ def unwrap(V, F, *, progress=None, texture_size=None, padding=None, **options):
         ``components``, ``genus``, ``boundary_loops``, ``charts``, ``cut_length``,
         ``augmentations``, ``yoshizawa_iterations``, ``floater_l2``, ``floater_linf``,
         ``final_l2``, ``final_linf``, ``coverage``, ``effective_texel_share``, ``time`` (seconds
-        per phase: cut, segment, floater, yoshizawa, augment, pack, total; the names of
+        per phase: cut, segment, floater, yoshizawa, augment, layouts, pack, total; the names of
         ``adaptex unwrap --report``) and ``face_chart`` (#F).
 
     Raises

@@ -21,7 +21,8 @@ nlohmann::ordered_json unwrap_report_json(const UnwrapReport& r) {
   j["coverage"] = r.coverage;
   j["effective_texel_share"] = r.effective_texel_share;
   j["time"] = {{"cut", r.time_cut},         {"segment", r.time_segment}, {"floater", r.time_floater},
-               {"yoshizawa", r.time_yoshizawa}, {"augment", r.time_augment}, {"pack", r.time_pack},
+               {"yoshizawa", r.time_yoshizawa}, {"augment", r.time_augment},
+               {"layouts", r.time_layouts},     {"pack", r.time_pack},
                {"total", r.time_total}};
   return j;
 }

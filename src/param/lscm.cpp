@@ -4,13 +4,10 @@
 
 #include <array>
 #include <cmath>
-#include <string>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
-
-#include "adaptex/core/errors.h"
 
 namespace adaptex {
 
@@ -34,14 +31,8 @@ std::array<int, 2> far_pair(const TriMesh& disk) {
 }  // namespace
 
 std::optional<PolygonLayout> lscm_layout(const TriMesh& disk) {
+  check_layout_mesh(disk, "lscm_layout");
   const int nv = disk.num_vertices();
-  for (const Face& t : disk.faces)
-    for (int v : t)
-      if (v < 0 || v >= nv)
-        throw InvalidInputError("lscm_layout: face index " + std::to_string(v) + " is outside [0, " +
-                                std::to_string(nv) + ")");
-  for (const Vec3& p : disk.positions)
-    if (!p.allFinite()) throw InvalidInputError("lscm_layout: a vertex position is not finite");
   if (disk.faces.empty() || nv < 3) return std::nullopt;
   const auto [pa, pb] = far_pair(disk);
   const double d = (disk.positions[pa] - disk.positions[pb]).norm();

@@ -6,6 +6,7 @@ target_sources(adaptex_param PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/pack.cpp
   ${CMAKE_CURRENT_LIST_DIR}/unfold.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lscm.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/slim.cpp
   ${CMAKE_CURRENT_LIST_DIR}/planar.cpp
   ${CMAKE_CURRENT_LIST_DIR}/layout_image.cpp
   ${CMAKE_CURRENT_LIST_DIR}/unwrap.cpp)

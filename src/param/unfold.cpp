@@ -111,15 +111,19 @@ std::vector<Vec2> convex_hull(std::vector<Vec2> p) {
 
 }  // namespace
 
-std::optional<PolygonLayout> unfold_polygon(const TriMesh& disk) {
+void check_layout_mesh(const TriMesh& disk, const char* who) {
   const int nv = disk.num_vertices();
   for (const Face& t : disk.faces)
     for (int v : t)
       if (v < 0 || v >= nv)
-        throw InvalidInputError("unfold_polygon: face index " + std::to_string(v) + " is outside [0, " +
-                                std::to_string(nv) + ")");
+        throw InvalidInputError(std::string(who) + ": face index " + std::to_string(v) +
+                                " is outside [0, " + std::to_string(nv) + ")");
   for (const Vec3& p : disk.positions)
-    if (!p.allFinite()) throw InvalidInputError("unfold_polygon: a vertex position is not finite");
+    if (!p.allFinite()) throw InvalidInputError(std::string(who) + ": a vertex position is not finite");
+}
+
+std::optional<PolygonLayout> unfold_polygon(const TriMesh& disk) {
+  check_layout_mesh(disk, "unfold_polygon");
   // A triangulated polygon has F = V - 2 (V boundary edges, 2E = 3F + V, V - E + F = 1): an O(1)
   // test that turns away every other mesh before its edges are built.
   if (disk.faces.empty() || disk.num_faces() != disk.num_vertices() - 2) return std::nullopt;

@@ -32,6 +32,7 @@
 #include "adaptex/param/charts.h"
 #include "adaptex/param/cut.h"
 #include "adaptex/param/disk_param.h"
+#include "adaptex/param/slim.h"
 #include "adaptex/param/lscm.h"
 #include "adaptex/param/pack.h"
 #include "adaptex/param/planar.h"
@@ -255,6 +256,20 @@ void use_unfolding_if_better(const Component& comp, Chart& chart, double e) {
   use_layout_if_better(comp, chart, unfold_polygon(comp.mesh), e);
 }
 
+/// Gives \p chart the layout \p u of its own disk (cut and disk unchanged).
+void adopt_disk_layout(Chart& chart, PolygonLayout&& u) {
+  CutState& s = chart.state;
+  s.solve_state.reset();
+  const StretchStats st = measure_stretch(s.disk.disk, u.uv);
+  s.param.uv = std::move(u.uv);
+  s.param.floater_l2 = s.param.final_l2 = st.l2;
+  s.param.floater_linf = s.param.final_linf = st.linf;
+  s.param.flipped = s.param.degenerate = 0;
+  s.param.on_square = false;
+  chart.domain_area = u.fill;
+  chart.aspect = u.aspect;
+}
+
 /// Replaces the layout of \p chart by a free-boundary conformal layout of its disk (lscm.h) when
 /// that is valid and its own texel share, UV fill of its rectangle / L2² at its aspect, is higher
 /// than the chart's at its best aspect (the cut, hence the disk and its wedges, stay).
@@ -286,15 +301,33 @@ void use_free_boundary_if_better(Chart& chart, CutState first,
   const double l2_c = best_aspect(chart).second;
   if (!(std::isfinite(l2_u) && layout_score(u->fill, l2_u, e) > layout_score(chart.domain_area, l2_c, e)))
     return;
-  s.solve_state.reset();
-  const StretchStats st = measure_stretch(s.disk.disk, u->uv);
-  s.param.uv = std::move(u->uv);
-  s.param.floater_l2 = s.param.final_l2 = st.l2;
-  s.param.floater_linf = s.param.final_linf = st.linf;
-  s.param.flipped = s.param.degenerate = 0;
-  s.param.on_square = false;
-  chart.domain_area = u->fill;
-  chart.aspect = u->aspect;
+  adopt_disk_layout(chart, std::move(*u));
+}
+
+/// Replaces the layout of \p chart (own L2 above 1.05) by a free-boundary SLIM layout of its disk
+/// (slim.h) started from its own layout at its best aspect, when that has a higher own texel share
+/// (fill of its rectangle / L2²). A layout whose free boundary runs into itself is tried again with
+/// half the iterations, down to one. \p iterations: SlimOptions::max_iterations
+/// (UnwrapOptions::scan_slim_iterations; 0: none).
+void use_slim_if_better(Chart& chart, double e, int iterations) {
+  const CutState& s = chart.state;
+  if (iterations <= 0 || s.param.flipped > 0 || s.param.degenerate > 0) return;
+  const auto [a, l2_c] = best_aspect(chart);
+  // A chart within 5 % of an isometry has little to gain, and re-laying it out only churns the
+  // packing (docs/decisions.md, "Scans: SLIM layouts").
+  if (!(std::isfinite(l2_c) && l2_c > 1.05)) return;
+  const double sx = std::sqrt(a);
+  std::vector<Vec2> start(s.param.uv.size());
+  for (size_t w = 0; w < start.size(); ++w) start[w] = Vec2(s.param.uv[w].x() * sx, s.param.uv[w].y() / sx);
+  SlimOptions sopt;
+  std::optional<PolygonLayout> u;
+  for (sopt.max_iterations = iterations; !u && sopt.max_iterations >= 1; sopt.max_iterations /= 2)
+    u = slim_layout(s.disk.disk, start, sopt);
+  if (!u) return;
+  const double l2_u = l2_at_aspect(s.disk.disk, u->uv, u->aspect);
+  if (!(std::isfinite(l2_u) && layout_score(u->fill, l2_u, e) > layout_score(chart.domain_area, l2_c, e)))
+    return;
+  adopt_disk_layout(chart, std::move(*u));
 }
 
 /// One piece's cut augmentation in build_chart(): the piece and its edges, the cheap
@@ -424,7 +457,8 @@ double uv_domain_area(const CutState& s) {
 /// a higher texel share: the unfolding, the projection (only for a piece that is a \p disk: charts
 /// are disks), the free-boundary layout of the final or the \p initial cut.
 void use_other_layouts_if_better(const Component& comp, Chart& chart, PieceLayouts layouts,
-                                  bool disk, CutState initial, double fill_exponent) {
+                                  bool disk, CutState initial, double fill_exponent,
+                                  int slim_iterations) {
   // The fill exponent applies to the scan charts (Free) only.
   const double e = layouts == PieceLayouts::Free ? fill_exponent : 1.0;
   if (layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart, e);
@@ -436,6 +470,7 @@ void use_other_layouts_if_better(const Component& comp, Chart& chart, PieceLayou
                                                : projection_layout(comp.mesh),
                          e);
   use_free_boundary_if_better(chart, std::move(initial), comp.probe_lscm.get(), e);
+  use_slim_if_better(chart, e, slim_iterations);
 }
 
 /// Cuts one piece (a component, or a chart of a component) to a disk, augments the cut (GGH 2002
@@ -491,14 +526,16 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   }
   chart.state = std::move(cur);
   chart.domain_area = uv_domain_area(chart.state);
+  const auto tl = Clock::now();
   use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial),
-                              options.scan_layout_fill_exponent);
+                              options.scan_layout_fill_exponent, options.scan_slim_iterations);
+  rep.time_layouts += seconds_since(tl);
   // Still flipped or degenerate UV triangles (no augmentation allowed or none helped): a valid
   // layout of the other kinds, whatever its share (unwrap_pieces() splits the piece otherwise).
   if (ctx.layouts != PieceLayouts::Free && score(chart.state).bad > 0) {
     CutState same;  // the free-boundary layout of the chart's own disk
     same.cut = chart.state.cut, same.disk = chart.state.disk;
-    use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same), 1.0);
+    use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same), 1.0, 0);
   }
   chart.cut_length = cut_length(graph, chart.state.cut);
   return chart;
@@ -800,6 +837,7 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
     rep.time_floater += r.time_floater;
     rep.time_yoshizawa += r.time_yoshizawa;
     rep.time_augment += r.time_augment;
+    rep.time_layouts += r.time_layouts;
   }
   return charts;
 }
@@ -1146,6 +1184,7 @@ void copy_phase_times(const UnwrapReport& from, UnwrapReport& to) {
   to.time_floater = from.time_floater;
   to.time_yoshizawa = from.time_yoshizawa;
   to.time_augment = from.time_augment;
+  to.time_layouts = from.time_layouts;
   to.time_pack = from.time_pack;
 }
 
@@ -1170,6 +1209,7 @@ void add_phase_times(const UnwrapReport& from, UnwrapReport& to) {
   to.time_floater += from.time_floater;
   to.time_yoshizawa += from.time_yoshizawa;
   to.time_augment += from.time_augment;
+  to.time_layouts += from.time_layouts;
   to.time_pack += from.time_pack;
 }
 
@@ -1211,7 +1251,7 @@ class CountPipeline {
                                   reordered ? options.probe_first_charts : 0)),
         segmenters_(comps.size()), attempts_(counts_.size()) {
     base_.time_cut = base_.time_floater = base_.time_yoshizawa = base_.time_augment =
-        base_.time_pack = 0;  // each attempt reports its own phase times
+        base_.time_layouts = base_.time_pack = 0;  // each attempt reports its own phase times
   }
   CountPipeline(const CountPipeline&) = delete;
   CountPipeline& operator=(const CountPipeline&) = delete;
@@ -1525,6 +1565,9 @@ void check_unwrap_input(const TriMesh& mesh, const UnwrapOptions& options) {
     throw InvalidInputError("unwrap: scan_planar_angle must be in [0, 90), scan_planar_min_area "
                             "in [0, 1], scan_planar_normal_weight and chart_normal_weight finite and >= 0, "
                             "scan_regrow_l2 0 or finite and >= 1, scan_regrow_angle in (0, 90), scan_regrow_max_faces >= 0");
+  if (options.scan_slim_iterations < 0)
+    throw InvalidInputError("unwrap: scan_slim_iterations " + std::to_string(options.scan_slim_iterations) +
+                            " is negative");
   if (std::isnan(options.augment_time_budget))
     throw InvalidInputError("unwrap: augment_time_budget is NaN (<= 0: no time budget)");
   if (!(options.scan_layout_fill_exponent >= 0 && options.scan_layout_fill_exponent <= 1))

@@ -48,4 +48,9 @@ std::optional<PolygonLayout> unfold_polygon(const TriMesh& disk);
 ///         finite, no area, or a flipped, degenerate or overlapping triangle
 std::optional<PolygonLayout> fit_to_rectangle(const TriMesh& disk, std::vector<Vec2> uv);
 
+/// Throws InvalidInputError, its message starting with \p who, when a face index of \p disk is
+/// outside [0, V) or a position is not finite: the input check of the chart layouts (unfold, LSCM,
+/// SLIM).
+void check_layout_mesh(const TriMesh& disk, const char* who);
+
 }  // namespace adaptex

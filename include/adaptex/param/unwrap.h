@@ -130,6 +130,11 @@ struct UnwrapOptions {
   /// rectangle / L2²) is higher; the probes that decide the splits do the same (docs/charts.md,
   /// "Scans"). true (default); false: the disk parameterization (and unfolding) only.
   bool scan_free_boundary = true;
+  /// Scans, with scan_free_boundary: every chart also tries a free-boundary, locally injective
+  /// layout of low symmetric Dirichlet energy (SLIM, slim.h) started from its chosen one, with at
+  /// most this many iterations, kept when its texel share is higher (docs/charts.md, "Scans").
+  /// 12 (default); 0: none. >= 0.
+  int scan_slim_iterations = 12;
   /// Scans: components are first cut into planar charts (planar.h: faces whose normal is within
   /// this many degrees of the chart's mean normal) and the connected parts of the rest, before the
   /// top-down splitting (docs/charts.md, "Scans"). 20 (default); 0 disables it. In [0, 90).
@@ -193,6 +198,7 @@ struct UnwrapReport {
   /// parallel, so the sum can exceed time_total).
   double time_cut = 0, time_floater = 0, time_yoshizawa = 0, time_augment = 0, time_pack = 0;
   double time_segment = 0;       ///< s, the scan segmentation (scan_pieces: probes and splits).
+  double time_layouts = 0;       ///< s, the scan charts' other layouts (unfolding, projection, LSCM, SLIM).
   double time_total = 0;         ///< s
 };
 
