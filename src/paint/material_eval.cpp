@@ -142,6 +142,12 @@ FrameTerms frame_terms(const TriMesh& mesh, const Parameterization& param) {
   return f;
 }
 
+/// The frames sample_terms() reads: the vertex normals and wedge tangents of \p own or of \p terms.
+struct FrameView {
+  const std::vector<Vec3>& vn;
+  const std::vector<Eigen::Vector4d>& tangents;
+};
+
 void check_exact(const MaterialEvalPoints& points, const std::vector<MaterialValue>& exact) {
   const size_t K = points.samples.size();
   if (exact.size() != points.per_sample * K || points.directions.size() != K)
@@ -151,7 +157,7 @@ void check_exact(const MaterialEvalPoints& points, const std::vector<MaterialVal
 /// The terms of sample \p k (evaluate_material_textures()).
 SampleTerms sample_terms(const TriMesh& mesh, const Parameterization& param, const MaterialTextures& textures,
                          const MaterialEvalPoints& points, const std::vector<MaterialValue>& exact,
-                         const FrameTerms& frames, size_t k) {
+                         const FrameView& frames, size_t k) {
   const SurfacePoint& p = points.samples[k];
   const int P = points.per_sample;
   const double eps = points.step;
@@ -203,10 +209,14 @@ MaterialError sum_errors(const std::vector<SampleTerms>& err, const MaterialEval
 
 MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
                                          const MaterialTextures& textures, const MaterialEvalPoints& points,
-                                         const std::vector<MaterialValue>& exact, const MaterialEvalOptions& options) {
+                                         const std::vector<MaterialValue>& exact, const MaterialEvalOptions& options,
+                                         const HeightNormalTerms* terms) {
   check_inputs(mesh, param, textures, options);
   check_exact(points, exact);
-  const FrameTerms frames = frame_terms(mesh, param);
+  if (terms && (terms->vertex_normals.size() != mesh.positions.size() || terms->tangents.size() != static_cast<size_t>(param.num_wedges())))
+    throw InvalidInputError("evaluate_material_textures: the frame terms are of another mesh or layout");
+  const FrameTerms own = terms ? FrameTerms{} : frame_terms(mesh, param);
+  const FrameView frames = terms ? FrameView{terms->vertex_normals, terms->tangents} : FrameView{own.vn, own.tangents};
   std::vector<SampleTerms> err(points.samples.size());
   tbb::parallel_for(size_t(0), err.size(), [&](size_t k) {
     err[k] = sample_terms(mesh, param, textures, points, exact, frames, k);
@@ -256,7 +266,7 @@ MaterialError MaterialErrorTracker::evaluate(const TriMesh& mesh, const Paramete
       }
       if (!stale) return;
     }
-    m.err[k] = sample_terms(mesh, param, textures, points, exact, m.frames, k);
+    m.err[k] = sample_terms(mesh, param, textures, points, exact, FrameView{m.frames.vn, m.frames.tangents}, k);
   });
   m.fresh = false;
   return sum_errors(m.err, options);

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <optional>
 #include <tuple>
 
 #include "adaptex/core/errors.h"
@@ -114,16 +116,26 @@ ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& p
 }
 
 void normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
-                            const std::vector<double>& height, ImageRGBA8& out) {
+                            const std::vector<double>& height, ImageRGBA8& out, const HeightNormalTerms* terms) {
   if (height.size() != static_cast<size_t>(map.width) * map.height)
     throw InvalidInputError("normal_map_from_height: one height per texel expected");
-  const HeightNormalTerms terms = height_normal_terms(mesh, param);
+  std::optional<HeightNormalTerms> own;
+  if (!terms) terms = &own.emplace(height_normal_terms(mesh, param));
+  if (terms->faces.size() != mesh.faces.size())
+    throw InvalidInputError("normal_map_from_height: the normal terms are of another mesh");
   out.width = map.width, out.height = map.height;
   out.data.resize(height.size() * 4);
+  // Most texels are flat (outside the charts, or a flat height): put_normal()'s bytes of (0, 0, 1), once.
+  ImageRGBA8 flat(1, 1);
+  put_normal(flat, 0, Vec3(0, 0, 1));
   tbb::parallel_for(tbb::blocked_range<size_t>(0, height.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t t = r.begin(); t < r.end(); ++t)
-      put_normal(out, static_cast<int>(t),
-                 height_normal_at(mesh, param, terms, map, height, static_cast<int>(t)).cast<double>());
+    for (size_t t = r.begin(); t < r.end(); ++t) {
+      const Vec3f n = height_normal_at(mesh, param, *terms, map, height, static_cast<int>(t));
+      if (n == Vec3f(0, 0, 1))
+        std::copy_n(flat.data.begin(), 4, out.data.begin() + 4 * t);
+      else
+        put_normal(out, static_cast<int>(t), n.cast<double>());
+    }
   });
 }
 
@@ -214,20 +226,20 @@ namespace {
 
 bool paints(unsigned painted, Channel c) { return (painted & channel_bit(c)) != 0; }
 
-/// set_material_texel() into the images of the \p painted channels only.
+/// set_material_texel() into the images of the \p painted channels only (each component's byte
+/// converted once, written as whole texels).
 void set_painted_texel(MaterialTextures& tex, int t, const MaterialValue& v, unsigned painted) {
   const size_t o = 4 * static_cast<size_t>(t);
-  if (paints(painted, Channel::BaseColor) || paints(painted, Channel::Alpha)) {
-    const std::uint8_t rgba[4] = {to_byte(v[0]), to_byte(v[1]), to_byte(v[2]), to_byte(v[3])};
-    std::copy(rgba, rgba + 4, &tex.base_color.data[o]);
-  }
-  const std::tuple<Channel, ImageRGBA8*, double> greys[] = {
-      {Channel::Roughness, &tex.roughness, v[4]}, {Channel::Metallic, &tex.metallic, v[5]}, {Channel::Height, &tex.height, v[6]}};
-  for (const auto& [c, img, g] : greys)
-    if (paints(painted, c)) std::fill_n(&img->data[o], 3, to_byte(g));
+  std::uint8_t b[kMaterialComponents];
+  for (int c = 0; c < kMaterialComponents; ++c) b[c] = to_byte(v[c]);
+  if (paints(painted, Channel::BaseColor) || paints(painted, Channel::Alpha)) std::memcpy(&tex.base_color.data[o], b, 4);
+  const std::pair<Channel, ImageRGBA8*> greys[] = {
+      {Channel::Roughness, &tex.roughness}, {Channel::Metallic, &tex.metallic}, {Channel::Height, &tex.height}};
+  for (int g = 0; g < 3; ++g)
+    if (paints(painted, greys[g].first)) std::fill_n(&greys[g].second->data[o], 3, b[4 + g]);
   if (paints(painted, Channel::Roughness) || paints(painted, Channel::Metallic)) {
-    const std::uint8_t mr[4] = {255, to_byte(v[4]), to_byte(v[5]), 255};
-    std::copy(mr, mr + 4, &tex.metallic_roughness.data[o]);
+    const std::uint8_t mr[4] = {255, b[4], b[5], 255};
+    std::memcpy(&tex.metallic_roughness.data[o], mr, 4);
   }
 }
 
@@ -245,12 +257,16 @@ void set_normal_texel(ImageRGBA8& normal_map, int t, const Vec3f& n) { put_norma
 
 namespace {
 
-/// \p img as a w x h image filled with \p rgba, reusing its storage (filled in parallel).
+/// \p img as a w x h image filled with \p rgba, reusing its storage (filled in parallel, a texel per
+/// 4-byte store: a copy per texel was a library call).
 void fill_image(ImageRGBA8& img, int w, int h, std::array<std::uint8_t, 4> rgba) {
   img.width = w, img.height = h;
   img.data.resize(static_cast<size_t>(w) * h * 4);
+  std::uint32_t word;
+  std::memcpy(&word, rgba.data(), 4);
+  std::uint8_t* out = img.data.data();
   tbb::parallel_for(tbb::blocked_range<size_t>(0, static_cast<size_t>(w) * h, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t k = r.begin(); k < r.end(); ++k) std::copy(rgba.begin(), rgba.end(), img.data.begin() + 4 * k);
+    for (size_t k = r.begin(); k < r.end(); ++k) std::memcpy(out + 4 * k, &word, 4);
   });
 }
 
@@ -266,7 +282,8 @@ MaterialTextures material_textures_from_values(const TriMesh& mesh, const Parame
 
 void material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                    const std::vector<MaterialValue>& values, const MaterialValue& background,
-                                   int padding, double height_scale, MaterialTextures& out, unsigned painted) {
+                                   int padding, double height_scale, MaterialTextures& out, unsigned painted,
+                                   const HeightNormalTerms* terms) {
   if (values.size() != map.inside.size())
     throw InvalidInputError("material textures: one value per chart texel expected");
   if (padding < 0) throw InvalidInputError("material textures: padding must be >= 0");
@@ -297,7 +314,7 @@ void material_textures_from_values(const TriMesh& mesh, const Parameterization& 
   for (const auto& [img, bits] : images)
     if (painted & bits) apply_seam_padding(*img, pad);
   if (!height) return fill_image(out.normal, N, map.height, {to_byte(0.5), to_byte(0.5), to_byte(1.0), 255});
-  normal_map_from_height(mesh, param, map, h, out.normal);  // into the storage of \p out's normal map
+  normal_map_from_height(mesh, param, map, h, out.normal, terms);  // into the storage of \p out's normal map
   apply_seam_padding(out.normal, pad);
 }
 

@@ -16,6 +16,13 @@ Vec3 unit_or(const Vec3& v, const Vec3& fallback) {
   return len > 0 && std::isfinite(len) ? Vec3(v / len) : fallback;
 }
 
+/// unit_or() with the fallback computed only when used (\p fallback() is called then).
+template <class F>
+Vec3 unit_or_else(const Vec3& v, F&& fallback) {
+  const double len = v.norm();
+  return len > 0 && std::isfinite(len) ? Vec3(v / len) : fallback();
+}
+
 /// A unit vector orthogonal to unit \p n.
 Vec3 any_orthogonal(const Vec3& n) {
   const Vec3 axis = std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
@@ -96,7 +103,7 @@ std::vector<Eigen::Vector4d> wedge_tangents(const TriMesh& mesh, const Parameter
   for (int w = 0; w < nw; ++w) {
     const Vec3 n = vertex[w] >= 0 ? normals[vertex[w]] : Vec3(0, 0, 1);
     const int side = weight[1][w] > weight[0][w] ? 1 : 0;
-    const Vec3 t = unit_or(sum[side][w], any_orthogonal(n));
+    const Vec3 t = unit_or_else(sum[side][w], [&n] { return any_orthogonal(n); });
     const double handed = weight[side][w] > 0 && side == 1 ? -1.0 : 1.0;
     out[w] = Eigen::Vector4d(t.x(), t.y(), t.z(), handed);
   }
@@ -125,7 +132,7 @@ TangentFrame frame_at(const TriMesh& mesh, const Parameterization& param, const 
     const Vec3 pu = pu_of();
     t = pu - n * n.dot(pu);
   }
-  t = unit_or(t, any_orthogonal(n));
+  t = unit_or_else(t, [&n] { return any_orthogonal(n); });
   double w = 0;  // the renderer's handedness: the interpolated w of the wedges
   for (int k = 0; k < 3; ++k) w += bc[k] * tangents[T[k]].w();
   const double handed = w < 0 ? -1.0 : 1.0;

@@ -1,16 +1,19 @@
 // Every channel of a material's textures judged on surface samples (paint/material_eval.h): the
 // shading normal's error falls as the normal map resolves a smooth groove, a normal map with the
-// wrong sign of slope is judged far worse, the weighted sum follows the error model's weights, and the
-// generated detail cases paint only their own channel.
+// wrong sign of slope is judged far worse, the weighted sum follows the error model's weights, a layout's
+// frame terms given give the same normal map and error, and the generated detail cases paint only their
+// own channel.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/paint/eval.h"
 #include "adaptex/paint/material_eval.h"
 #include "adaptex/paint/material_generate.h"
 #include "adaptex/paint/material_signal.h"
+#include "adaptex/paint/texel_map.h"
 #include "brush_test_util.h"
 
 namespace adaptex {
@@ -76,6 +79,35 @@ TEST_F(GrooveOnPlane, WeightedErrorSumsTheChannelsWithTheModelsWeights) {
   EXPECT_GT(e.normal_weight * e.normal, 0.5 * e.weighted);  // the groove dominates
   EXPECT_EQ(psnr_from_mse(0), 200.0);  // exact: the convention of evaluate_texture()
   EXPECT_NEAR(psnr_from_mse(1e-3), 30, 1e-12);
+}
+
+// A session passes a layout's frame terms (height_normal_terms()) to its normal map and its check:
+// the same bytes and the same error as computing them there; terms of another mesh are refused.
+TEST_F(GrooveOnPlane, TheLayoutsFrameTermsGivenShadeAndJudgeTheSame) {
+  const TexelMap map = build_texel_map(mesh, param, 64, 64);
+  const std::vector<MaterialValue> at_texels = evaluate_material(mesh, file, texel_points(map));
+  const HeightNormalTerms terms = height_normal_terms(mesh, param);
+  MaterialTextures own, given;
+  material_textures_from_values(mesh, param, map, at_texels, file.background, 2, 0.05, own);
+  material_textures_from_values(mesh, param, map, at_texels, file.background, 2, 0.05, given, kAllChannels, &terms);
+  EXPECT_EQ(given.normal.data, own.normal.data);
+  int tilted = 0;  // the groove's texels: normals away from (0, 0, 1)
+  for (size_t t = 0; t < own.normal.data.size(); t += 4) tilted += own.normal.data[t] != 128 || own.normal.data[t + 1] != 128;
+  EXPECT_GT(tilted, 100);
+  const MaterialEvalPoints pts = material_eval_points(mesh, true, eo);
+  const std::vector<MaterialValue> exact = evaluate_material(mesh, file, pts.probes);
+  const MaterialError a = evaluate_material_textures(mesh, param, own, pts, exact, eo);
+  const MaterialError b = evaluate_material_textures(mesh, param, own, pts, exact, eo, &terms);
+  EXPECT_GT(a.normal, 0);
+  EXPECT_EQ(b.normal, a.normal);
+  EXPECT_EQ(b.weighted, a.weighted);
+  const TriMesh small = shapes::plane(4);
+  const HeightNormalTerms other = height_normal_terms(small, test::planar_param(small, 0.9, 0.05));
+  EXPECT_THROW(evaluate_material_textures(mesh, param, own, pts, exact, eo, &other), InvalidInputError);
+  MaterialTextures wrong;
+  EXPECT_THROW(material_textures_from_values(mesh, param, map, at_texels, file.background, 2, 0.05, wrong, kAllChannels,
+                                             &other),
+               InvalidInputError);
 }
 
 TEST(MaterialDetail, EachCasePaintsOnlyItsOwnChannel) {

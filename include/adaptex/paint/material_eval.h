@@ -67,10 +67,13 @@ MaterialEvalPoints material_eval_points(const TriMesh& mesh, bool with_height, c
 /// evaluate_material_textures() with the exact material at \p points.probes given (\p exact, shape
 /// [P·K]; e.g. from a MaterialPointCache). \p points.samples lie on \p mesh: a session moves them to
 /// a refined mesh (the same 3-D points, so the same exact values). options.samples and seed are not used.
-/// \throw InvalidInputError as above, or exact of another size
+/// \p terms: the layout's height_normal_terms() when the caller has them (their vertex normals and
+/// wedge tangents are the frames read; the same result), else computed here.
+/// \throw InvalidInputError as above, or exact of another size, or terms of another mesh or layout
 MaterialError evaluate_material_textures(const TriMesh& mesh, const Parameterization& param,
                                          const MaterialTextures& textures, const MaterialEvalPoints& points,
-                                         const std::vector<MaterialValue>& exact, const MaterialEvalOptions& options = {});
+                                         const std::vector<MaterialValue>& exact, const MaterialEvalOptions& options = {},
+                                         const HeightNormalTerms* terms = nullptr);
 
 /// evaluate_material_textures() on one layout judged again and again as its textures and exact values
 /// change (a session's initial layout): the per-sample terms are kept, and a call recomputes only

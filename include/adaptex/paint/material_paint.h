@@ -17,6 +17,8 @@
 
 namespace adaptex {
 
+struct HeightNormalTerms;
+
 /// Settings of paint_material().
 struct MaterialPaintOptions {
   int size = 1024;  ///< Width = height of every texture, in [1, kMaxTextureSize] (default 1024).
@@ -53,11 +55,13 @@ MaterialTextures material_textures_from_values(const TriMesh& mesh, const Parame
 /// As above, into \p out, reusing its storage (a session's next candidate layout). \p painted: the
 /// channels whose values may differ from the background (painted_channels()); the images of the others
 /// (the normal map: of the height) are filled flat without reading \p values, the same bytes when their
-/// values are the background exactly (as evaluate_material() gives them). \throw as above
+/// values are the background exactly (as evaluate_material() gives them). \p terms: the layout's
+/// height_normal_terms() when the caller has them (the same normals), else computed when needed.
+/// \throw as above
 void material_textures_from_values(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                    const std::vector<MaterialValue>& values, const MaterialValue& background,
                                    int padding, double height_scale, MaterialTextures& out,
-                                   unsigned painted = kAllChannels);
+                                   unsigned painted = kAllChannels, const HeightNormalTerms* terms = nullptr);
 
 /// The channels some layer of \p file paints (its brush and fill strokes name them; a decal paints
 /// the base colour): every other channel of the composite is the background, exactly.
@@ -140,8 +144,10 @@ void update_height_normals(const TriMesh& mesh, const Parameterization& param, c
 /// \pre height.size() == map.width * map.height
 ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                                   const std::vector<double>& height);
-/// normal_map_from_height() into \p out, reusing its storage (a session's candidate layouts).
+/// normal_map_from_height() into \p out, reusing its storage (a session's candidate layouts); \p terms:
+/// height_normal_terms() of \p mesh and \p param when the caller has them, else computed here.
 void normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
-                            const std::vector<double>& height, ImageRGBA8& out);
+                            const std::vector<double>& height, ImageRGBA8& out,
+                            const HeightNormalTerms* terms = nullptr);
 
 }  // namespace adaptex

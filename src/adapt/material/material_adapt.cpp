@@ -3,6 +3,7 @@
 /// the new layout, and a measured never-worse check.
 #include "adaptex/adapt/material_adapt.h"
 
+#include <array>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -88,9 +89,15 @@ std::vector<ErrorPlane> material_error_planes(const TexelMap& map, const Materia
   if (map.width != textures.base_color.width || map.height != textures.base_color.height)
     throw InvalidInputError("material_error_planes: the texel map and the textures differ in size");
   if (!exact) throw InvalidInputError("material_error_planes: no exact source");
-  double albedo2 = 0;  // mean square of the base colour over the chart texels
+  // Mean square of the base colour over the chart texels; each byte's term from a table (the same values).
+  static const std::array<double, 256> square = [] {
+    std::array<double, 256> q{};
+    for (int b = 0; b < 256; ++b) q[b] = std::pow(b / 255.0, 2) / 3;
+    return q;
+  }();
+  double albedo2 = 0;
   for (int t : map.inside)
-    for (int c = 0; c < 3; ++c) albedo2 += std::pow(textures.base_color.data[4 * t + c] / 255.0, 2) / 3;
+    for (int c = 0; c < 3; ++c) albedo2 += square[textures.base_color.data[4 * t + c]];
   albedo2 = map.inside.empty() ? 1 : albedo2 / static_cast<double>(map.inside.size());
   std::vector<ErrorPlane> planes(3);
   planes[0].texture = textures.base_color;

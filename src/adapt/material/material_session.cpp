@@ -53,6 +53,7 @@ struct Layout {
   Parameterization param;
   FaceData<int> parent_face;  // refined mesh: input face of every face; empty: the input mesh
   TexelMap map;
+  std::optional<HeightNormalTerms> terms;      // of mesh and param: the normal map's and the check's frames
   std::unique_ptr<MaterialPointCache> texels;  // exact values at the texels (unused when from_cache)
   bool from_cache = false;    // the textures are interpolated from the session's surface cache
   std::vector<MaterialValue> interpolated;  // from_cache: the chart texels' material (storage reused)
@@ -62,6 +63,7 @@ struct Layout {
   // The initial layout's textures are updated where strokes changed them: the material they show,
   // the heights and normals of the chart texels (W*H), and the padding.
   std::vector<MaterialValue> last;
+  std::vector<char> recomputed;  // per chart texel: its value recomputed by the cache since the last update
   std::vector<double> height;
   std::vector<Vec3f> normals;
   std::vector<char> mark;
@@ -92,7 +94,6 @@ struct MaterialPaintSession::Impl {
   std::unique_ptr<MaterialPointCache> reference, half;  // the model's exact values, at plane_maps' points
   ErrorPlanesMemory plane_memory;  // the model's rasters and cell sums of the last cycle
   ExactPlanes reference_planes, half_planes;  // the planes' exact values at plane_maps' texels
-  std::optional<HeightNormalTerms> initial_terms;  // the initial layout's, for the normals' updates
   MaterialEvalPoints check_points;
   std::unique_ptr<MaterialPointCache> check;            // the exact material at check_points.probes
   // The never-worse check of the initial layout, its samples' terms recomputed only where the exact
@@ -137,6 +138,7 @@ struct MaterialPaintSession::Impl {
   void make_layout(Layout& l, bool from_cache = false) {
     const int N = opt.paint.size;
     l.map = build_texel_map(*l.mesh, l.param, N, N);
+    l.terms = height_normal_terms(*l.mesh, l.param);
     l.from_cache = from_cache;
     if (from_cache)
       l.painted = -1;
@@ -147,11 +149,8 @@ struct MaterialPaintSession::Impl {
     l.painted = -1;
   }
 
-  /// The initial layout's per-face terms of the height's normals, computed at first use.
-  const HeightNormalTerms& initial_normal_terms() {
-    if (!initial_terms) initial_terms = height_normal_terms(*initial.mesh, initial.param);
-    return *initial_terms;
-  }
+  /// The initial layout's per-face terms of the height's normals (made with its texel map).
+  const HeightNormalTerms& initial_normal_terms() const { return *initial.terms; }
 
   /// The textures of \p l with the whole history: made anew for a new layout, then (the initial
   /// layout) updated where the composite changed.
@@ -159,12 +158,16 @@ struct MaterialPaintSession::Impl {
     if (l.from_cache) return cached_textures_of(l);
     l.texels->update(history);
     if (l.painted == l.texels->strokes()) return l.textures;
-    const std::vector<MaterialValue>& v = l.texels->values(history);
-    if (l.painted >= 0 && !l.last.empty()) {
+    const bool incremental = l.painted >= 0 && !l.last.empty();
+    if (incremental) l.recomputed.resize(l.last.size(), 0);
+    const std::vector<MaterialValue>& v =
+        incremental ? l.texels->values(history, [&l](size_t k, const MaterialValue&) { l.recomputed[k] = 1; })
+                    : l.texels->values(history);
+    if (incremental) {
       update_textures(l, v);
     } else {
       material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding, height_scale,
-                                    l.textures, painted_channels(history));
+                                    l.textures, painted_channels(history), &*l.terms);
       if (&l == &initial) {  // kept for the updates
         initial_check.reset();
         initial_changed.assign(static_cast<size_t>(l.map.width) * l.map.height, 0);
@@ -172,7 +175,8 @@ struct MaterialPaintSession::Impl {
         l.pad = build_seam_padding(l.map, opt.paint.padding);
         l.height.assign(static_cast<size_t>(l.map.width) * l.map.height, 0.0);
         for (size_t k = 0; k < v.size(); ++k) l.height[l.map.inside[k]] = (v[k][6] - 0.5) * height_scale;
-        l.normals = height_normals(*l.mesh, l.param, l.map, l.height);
+        l.normals.assign(l.height.size(), Vec3f(0, 0, 1));
+        update_height_normals(*l.mesh, l.param, *l.terms, l.map, l.height, l.map.inside, l.normals);
         l.mark.assign(l.height.size(), 0);
       }
     }
@@ -187,19 +191,22 @@ struct MaterialPaintSession::Impl {
     std::vector<MaterialValue>& v = l.interpolated;
     c.texel_values(history, l.map, *l.mesh, l.parent_face.empty() ? nullptr : &l.parent_face, v);
     material_textures_from_values(*l.mesh, l.param, l.map, v, history.background, opt.paint.padding, height_scale,
-                                  l.textures);
+                                  l.textures, kAllChannels, &*l.terms);
     l.painted = c.strokes();
     return l.textures;
   }
 
-  /// The texels of the initial layout \p l whose material changed since the last textures, their
-  /// channels, and the normals of them and their 4-neighbours (the height's differences read the
-  /// neighbours); then the padding.
+  /// The texels of the initial layout \p l whose material changed since the last textures (among those
+  /// its cache recomputed), their channels, and the normals of them and their 4-neighbours (the
+  /// height's differences read the neighbours); then the padding.
   void update_textures(Layout& l, const std::vector<MaterialValue>& v) {
     const TexelMap& map = l.map;
     std::vector<int> changed;
     for (size_t k = 0; k < v.size(); ++k)
-      if (v[k] != l.last[k]) changed.push_back(static_cast<int>(k));
+      if (l.recomputed[k]) {
+        l.recomputed[k] = 0;
+        if (v[k] != l.last[k]) changed.push_back(static_cast<int>(k));
+      }
     std::vector<int> around;
     const int W = map.width, H = map.height;
     for (int k : changed) {
@@ -252,7 +259,8 @@ struct MaterialPaintSession::Impl {
       n.height.assign(texels, 0.0);
       for (int p : {0, 1}) n.planes[p].assign(texels, Vec3f::Zero());
       for (size_t k = 0; k < v.size(); ++k) set_texel(n, map.inside[k], v[k]);
-      n.normals = height_normals(mesh, initial.param, map, n.height);
+      n.normals.assign(texels, Vec3f(0, 0, 1));
+      update_height_normals(mesh, initial.param, initial_normal_terms(), map, n.height, map.inside, n.normals);
       n.planes[2].resize(texels);
       for (size_t t = 0; t < texels; ++t) n.planes[2][t] = normal_plane_value(n.normals[t]);
       n.changed.assign(v.size(), 0);
@@ -319,7 +327,7 @@ struct MaterialPaintSession::Impl {
       pts.step = check_points.step;
       use = &pts;
     }
-    return evaluate_material_textures(*l.mesh, l.param, tex, *use, exact, eval_options());
+    return evaluate_material_textures(*l.mesh, l.param, tex, *use, exact, eval_options(), &*l.terms);
   }
 
   const AdaptReport& cycle(bool gated);
