@@ -314,7 +314,7 @@ void use_slim_if_better(Chart& chart, double e, int iterations) {
   if (iterations <= 0 || s.param.flipped > 0 || s.param.degenerate > 0) return;
   const auto [a, l2_c] = best_aspect(chart);
   // A chart within 5 % of an isometry has little to gain, and re-laying it out only churns the
-  // packing (docs/decisions.md, "Scans: SLIM layouts").
+  // packing (docs/decisions.md, "Scans: a free-boundary SLIM layout for every stretched chart").
   if (!(std::isfinite(l2_c) && l2_c > 1.05)) return;
   const double sx = std::sqrt(a);
   std::vector<Vec2> start(s.param.uv.size());
