@@ -28,6 +28,7 @@
 // --regrow-l2 L, --regrow-angle A, --regrow-max-faces N: UnwrapOptions::scan_regrow_l2,
 // scan_regrow_angle, scan_regrow_max_faces (a large N runs the regrowth on the largest scans too).
 // --slim-iterations N: UnwrapOptions::scan_slim_iterations (0: no SLIM layouts).
+// --slim-second-exponent E: UnwrapOptions::scan_slim_second_exponent (negative: no second build).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -193,6 +194,8 @@ int main(int argc, char** argv) {
       g_options.scan_regrow_max_faces = std::stoi(argv[++i]);
     else if (std::strcmp(argv[i], "--slim-iterations") == 0 && i + 1 < argc)
       g_options.scan_slim_iterations = std::stoi(argv[++i]);
+    else if (std::strcmp(argv[i], "--slim-second-exponent") == 0 && i + 1 < argc)
+      g_options.scan_slim_second_exponent = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--chart-padding") == 0 && i + 1 < argc)
       g_options.chart_padding = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--max-charts") == 0 && i + 1 < argc)

@@ -455,10 +455,11 @@ double uv_domain_area(const CutState& s) {
 
 /// Replaces the disk layout of \p chart by one of the other layouts \p layouts allows when that has
 /// a higher texel share: the unfolding, the projection (only for a piece that is a \p disk: charts
-/// are disks), the free-boundary layout of the final or the \p initial cut.
+/// are disks), the free-boundary layout of the final or the \p initial cut; then the SLIM layout
+/// (scored with \p slim_exponent).
 void use_other_layouts_if_better(const Component& comp, Chart& chart, PieceLayouts layouts,
                                   bool disk, CutState initial, double fill_exponent,
-                                  int slim_iterations) {
+                                  int slim_iterations, double slim_exponent) {
   // The fill exponent applies to the scan charts (Free) only.
   const double e = layouts == PieceLayouts::Free ? fill_exponent : 1.0;
   if (layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart, e);
@@ -470,7 +471,7 @@ void use_other_layouts_if_better(const Component& comp, Chart& chart, PieceLayou
                                                : projection_layout(comp.mesh),
                          e);
   use_free_boundary_if_better(chart, std::move(initial), comp.probe_lscm.get(), e);
-  use_slim_if_better(chart, e, slim_iterations);
+  use_slim_if_better(chart, slim_exponent, slim_iterations);
 }
 
 /// Cuts one piece (a component, or a chart of a component) to a disk, augments the cut (GGH 2002
@@ -528,14 +529,15 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   chart.domain_area = uv_domain_area(chart.state);
   const auto tl = Clock::now();
   use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial),
-                              options.scan_layout_fill_exponent, options.scan_slim_iterations);
+                              options.scan_layout_fill_exponent, options.scan_slim_iterations,
+                              options.scan_slim_fill_exponent);
   rep.time_layouts += seconds_since(tl);
   // Still flipped or degenerate UV triangles (no augmentation allowed or none helped): a valid
   // layout of the other kinds, whatever its share (unwrap_pieces() splits the piece otherwise).
   if (ctx.layouts != PieceLayouts::Free && score(chart.state).bad > 0) {
     CutState same;  // the free-boundary layout of the chart's own disk
     same.cut = chart.state.cut, same.disk = chart.state.disk;
-    use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same), 1.0, 0);
+    use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same), 1.0, 0, 1.0);
   }
   chart.cut_length = cut_length(graph, chart.state.cut);
   return chart;
@@ -1511,13 +1513,33 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
   const double weight = planar ? options.scan_planar_normal_weight : options.chart_normal_weight;
   std::vector<Component> pieces =
       timed_scan_pieces(comps, dopt, gutter, options, weight, result.report);
-  const bool regrow = planar && options.scan_regrow_l2 > 0 && mesh.num_faces() <= options.scan_regrow_max_faces;
-  BuiltPieces built;
-  if (unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, result, scan_layouts, 0, {},
-                    shapes, regrow ? &built : nullptr) &&
-      regrow)
-    regrow_stretched(mesh, std::move(built), dopt, gutter, t_start, options, weight, scan_layouts,
-                     shapes, result);
+  const bool small = mesh.num_faces() <= options.scan_regrow_max_faces;
+  const bool regrow = planar && options.scan_regrow_l2 > 0 && small;
+  // The planar candidate and its regrowth, built with \p o into \p into.
+  const auto planar_candidate = [&](const UnwrapOptions& o, UnwrapResult& into) {
+    BuiltPieces built;
+    const bool ok = unwrap_pieces(mesh, pieces, dopt, gutter, t_start, o, into, scan_layouts, 0, {},
+                                  shapes, regrow ? &built : nullptr);
+    if (ok && regrow)
+      regrow_stretched(mesh, std::move(built), dopt, gutter, t_start, o, weight, scan_layouts, shapes, into);
+    return ok;
+  };
+  planar_candidate(options, result);
+  // Only a layout short of min_texel_share buys the extra seams (auto is conservative: charts.md).
+  if (small && result.report.effective_texel_share < options.min_texel_share &&
+      options.scan_free_boundary && options.scan_slim_iterations > 0 &&
+      options.scan_slim_second_exponent >= 0 &&
+      options.scan_slim_second_exponent != options.scan_slim_fill_exponent) {
+    UnwrapOptions second = options;
+    second.scan_slim_fill_exponent = options.scan_slim_second_exponent;
+    UnwrapResult candidate;
+    candidate.report = result.report;
+    if (planar_candidate(second, candidate) &&
+        candidate.report.effective_texel_share > result.report.effective_texel_share)
+      result = std::move(candidate);
+    else
+      copy_phase_times(candidate.report, result.report);
+  }
   UnwrapOptions plain = options;
   plain.scan_planar_angle = 0;
   plain.scan_free_boundary = false;
@@ -1565,9 +1587,11 @@ void check_unwrap_input(const TriMesh& mesh, const UnwrapOptions& options) {
     throw InvalidInputError("unwrap: scan_planar_angle must be in [0, 90), scan_planar_min_area "
                             "in [0, 1], scan_planar_normal_weight and chart_normal_weight finite and >= 0, "
                             "scan_regrow_l2 0 or finite and >= 1, scan_regrow_angle in (0, 90), scan_regrow_max_faces >= 0");
-  if (options.scan_slim_iterations < 0)
-    throw InvalidInputError("unwrap: scan_slim_iterations " + std::to_string(options.scan_slim_iterations) +
-                            " is negative");
+  if (options.scan_slim_iterations < 0 ||
+      !(options.scan_slim_fill_exponent >= 0 && options.scan_slim_fill_exponent <= 1) ||
+      !(options.scan_slim_second_exponent <= 1) || !std::isfinite(options.scan_slim_second_exponent))
+    throw InvalidInputError("unwrap: scan_slim_iterations must be >= 0, scan_slim_fill_exponent in [0, 1] "
+                            "and scan_slim_second_exponent finite and <= 1");
   if (std::isnan(options.augment_time_budget))
     throw InvalidInputError("unwrap: augment_time_budget is NaN (<= 0: no time budget)");
   if (!(options.scan_layout_fill_exponent >= 0 && options.scan_layout_fill_exponent <= 1))

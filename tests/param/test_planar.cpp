@@ -305,15 +305,33 @@ TEST(UnwrapScan, SlimLayoutsLowerTheStretchOfTheChartsAndKeepThemValid) {
   opt.scan_slim_iterations = UnwrapOptions{}.scan_slim_iterations;
   test::check_unwrap("clutter_slim", mesh, opt, &slim);  // no flips, overlaps; UVs in [0,1]²
   // The charts let their boundaries find their own shape: a lower L2, a higher share (measured:
-  // 267 charts, L2 1.236, share 0.305 -> L2 1.030, 0.436).
+  // 267 charts, L2 1.236, share 0.305 -> L2 1.030, 0.436, before the second build existed).
   EXPECT_LT(slim.report.final_l2, square.report.final_l2 - 0.1)
       << square.report.final_l2 << " -> " << slim.report.final_l2;
   EXPECT_GT(slim.report.effective_texel_share, square.report.effective_texel_share)
       << square.report.effective_texel_share << " -> " << slim.report.effective_texel_share;
   EXPECT_GT(slim.report.time_layouts, 0.0);
+  // Short of min_texel_share, the planar candidate is also built with the SLIM tries scored by
+  // fill^0.5 / L2² and the higher share kept (here the second build wins).
+  ASSERT_LT(slim.report.effective_texel_share, opt.min_texel_share);
+  UnwrapOptions first_only = opt;
+  first_only.scan_slim_second_exponent = -1;
+  const UnwrapResult one = unwrap(mesh, first_only);
+  EXPECT_GT(slim.report.effective_texel_share, one.report.effective_texel_share)
+      << one.report.effective_texel_share << " -> " << slim.report.effective_texel_share;
   UnwrapOptions bad;
   bad.scan_slim_iterations = -1;
   EXPECT_THROW(unwrap(shapes::sphere(8, 4), bad), InvalidInputError);
+  for (double e : {-0.5, 1.5, std::numeric_limits<double>::quiet_NaN()}) {
+    UnwrapOptions bad_e;
+    bad_e.scan_slim_fill_exponent = e;
+    EXPECT_THROW(unwrap(shapes::sphere(8, 4), bad_e), InvalidInputError) << e;
+  }
+  for (double e : {1.5, std::numeric_limits<double>::quiet_NaN(), -std::numeric_limits<double>::infinity()}) {
+    UnwrapOptions bad_e;
+    bad_e.scan_slim_second_exponent = e;
+    EXPECT_THROW(unwrap(shapes::sphere(8, 4), bad_e), InvalidInputError) << e;
+  }
 }
 
 }  // namespace
