@@ -17,6 +17,7 @@
 #include "adaptex/param/planar.h"
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
+#include "../asan_detect.h"
 #include "scan_fixtures.h"
 #include "unwrap_checks.h"
 
@@ -295,6 +296,10 @@ TEST(UnwrapScan, RegrowingStretchedChartsRaisesTheShareAndLeavesTopDownAlone) {
 }
 
 TEST(UnwrapScan, SlimLayoutsLowerTheStretchOfTheChartsAndKeepThemValid) {
+#ifdef ADAPTEX_TEST_ASAN
+  GTEST_SKIP() << "three unwraps of the hall: checked in the Release pass (about 175 s under the "
+                  "sanitizers, whose SLIM and second-build paths the regrowth test and Slim.* run)";
+#endif
   const TriMesh mesh = room_with_double_tori();
   ASSERT_GT(analyze_topology(mesh).num_components, 32);  // the scan segmentation runs
   UnwrapOptions opt = segmentations_compared();
