@@ -537,6 +537,7 @@ struct Profile {
   int width = 0;
   std::vector<int> bottom, top, low;
   long low_sum = 0;
+  int low_min_at = 0;  ///< The first extended column of the lowest low.
   int max_top = 0;
   Vec2 origin = Vec2::Zero();  ///< Lower-left corner of the turned and scaled chart (chart units).
 };
@@ -601,60 +602,83 @@ Profile rasterize(const ChartShape& chart, double scale, int turns, double h, in
       pr.low[e] = std::min(pr.low[e], pr.bottom[j]);
     pr.low_sum += pr.low[e];
   }
+  pr.low_min_at = static_cast<int>(std::min_element(pr.low.begin(), pr.low.end()) - pr.low.begin());
   return pr;
 }
 
-/// The atlas of one packing trial: the horizon, the top of every column (in cells).
+/// The atlas of one packing trial: the horizon, the top of every column (in cells), with its
+/// prefix sums.
 class Horizon {
  public:
-  explicit Horizon(int n) : h_(n, 0) {}
-  int size() const { return static_cast<int>(h_.size()); }
+  explicit Horizon(int n) : n_(n), h_(n, 0), sum_(n + 1, 0) {}
+  int size() const { return n_; }
 
   /// Best column x (and row y) for \p pr: the lowest score c (y + top) + (empty area between the
-  /// horizon and the dilated chart's bottom), where top is the chart's height, then the lowest y.
-  /// \p c is the same for every orientation of a chart (its widest extended width): a turn that
-  /// stands a sliver on end does not score lower for being narrow. Returns -1 when the chart is
-  /// wider than the atlas, 1 when it found a position with a lower score than (\p best_score,
-  /// \p best_y) (and updated them and \p best_x), else 0.
+  /// horizon and the dilated chart's bottom), where top is the chart's height, then the lowest y,
+  /// then the lowest x. \p c is the same for every orientation of a chart (its widest extended
+  /// width): a turn that stands a sliver on end does not score lower for being narrow. Returns -1
+  /// when the chart is wider than the atlas, 1 when it found a position with a lower score than
+  /// (\p best_score, \p best_y) (and updated them and \p best_x), else 0.
   int best_drop(const Profile& pr, long c, long& best_score, int& best_x, int& best_y) const {
-    const int w = static_cast<int>(pr.low.size()), n = size();
-    if (w > n) return -1;
-    // The column of the chart's lowest bottom bounds y first (most positions are pruned by it).
-    const int e0 = static_cast<int>(std::min_element(pr.low.begin(), pr.low.end()) - pr.low.begin());
-    const long wy = c + w;  // score = wy * y + base
-    long window = 0;  // sum of the horizon over [x, x + w)
-    for (int e = 0; e < w; ++e) window += h_[e];
+    const int w = static_cast<int>(pr.low.size());
+    if (w > n_) return -1;
+    const int max_low = *std::max_element(pr.low.begin(), pr.low.end());
     int improved = 0;
-    for (int x = 0; x + w <= n; window += x + w < n ? h_[x + w] - h_[x] : 0, ++x) {
-      // y = max_e (h[x + e] - low[e]) grows over the loop.
-      const long base = pr.low_sum - window + c * pr.max_top;
-      // y only grows: a position is given up once it can no longer beat the best (ties included).
-      const auto beaten = [&](int yy) {
-        const long sc = wy * yy + base;
-        return sc > best_score || (sc == best_score && yy >= best_y);
-      };
-      int y = h_[x + e0] - pr.low[e0];
-      if (beaten(y)) continue;
-      bool pruned = false;
-      for (int e = 0; e < w && !pruned; ++e) {
-        y = std::max(y, h_[x + e] - pr.low[e]);
-        pruned = beaten(y);
+    // The empty area is >= 0 and y >= h[x + e] - max_low, so a column above thr puts the score of
+    // every window holding it above the best: such windows are skipped.
+    // thr only falls (with the best score); a column is judged when it enters the window.
+    long thr = 0, thr_of = -1;
+    int tall = -1;  // the last column judged above thr
+    for (int x = 0, next = 0; x + w <= n_; ++x) {
+      if (best_score != thr_of) thr = best_score / c - pr.max_top + max_low, thr_of = best_score;
+      for (; next < x + w; ++next)
+        if (h_[next] > thr) tall = next;
+      if (tall >= x) {
+        x = tall;
+        continue;
       }
-      if (pruned) continue;
-      const long score = wy * y + base;
-      if (score < best_score || (score == best_score && y < best_y))
-        best_score = score, best_x = x, best_y = y, improved = 1;
+      improved |= drop_at(pr, c, x, best_score, best_x, best_y);
     }
     return improved;
   }
 
   /// Places \p pr at (x, y): its raw column j at x + g + j reaches y + g + top[j].
   void place(const Profile& pr, int x, int y, int g) {
-    for (int j = 0; j < pr.width; ++j) h_[x + g + j] = std::max(h_[x + g + j], y + g + pr.top[j]);
+    const int a = x + g;
+    for (int j = 0; j < pr.width; ++j) h_[a + j] = std::max(h_[a + j], y + g + pr.top[j]);
+    for (int i = a; i < n_; ++i) sum_[i + 1] = sum_[i] + h_[i];
   }
 
  private:
+  /// Updates \p best_score, \p best_x, \p best_y if \p pr at column \p x beats them (1).
+  int drop_at(const Profile& pr, long c, int x, long& best_score, int& best_x, int& best_y) const {
+    const int w = static_cast<int>(pr.low.size());
+    const long wy = c + w;  // score = wy * y + base
+    const long base = pr.low_sum - (sum_[x + w] - sum_[x]) + c * pr.max_top;
+    // y only grows: a position is given up once it can no longer beat the best (ties included).
+    const auto beaten = [&](int yy) {
+      const long sc = wy * yy + base;
+      return sc > best_score || (sc == best_score && yy >= best_y);
+    };
+    // The column of the chart's lowest bottom bounds y first (most positions are pruned by it).
+    int y = h_[x + pr.low_min_at] - pr.low[pr.low_min_at];
+    if (beaten(y)) return 0;
+    // y = max_e (h[x + e] - low[e]), tested every kDropBlock columns (a branch-free inner loop).
+    const int* hx = h_.data() + x;
+    const int* low = pr.low.data();
+    for (int e0 = 0; e0 < w; e0 += kDropBlock) {
+      const int e1 = std::min(w, e0 + kDropBlock);
+      for (int e = e0; e < e1; ++e) y = std::max(y, hx[e] - low[e]);
+      if (beaten(y)) return 0;
+    }
+    best_score = wy * y + base, best_x = x, best_y = y;
+    return 1;
+  }
+
+  static constexpr int kDropBlock = 16;
+  int n_;
   std::vector<int> h_;
+  std::vector<long> sum_;  ///< sum_[i]: the sum of h_[0, i).
 };
 
 /// The scale of a chart of bounding-box sides \p shorter <= \p longer at common scale \p s: raised
