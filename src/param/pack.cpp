@@ -6,6 +6,7 @@
 #include <tbb/parallel_invoke.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -711,23 +712,30 @@ double shape_trial(const ShapeSet& set, double s, int n, int g, double min_side,
   Horizon horizon(n);
   double needed = 0;
   int done = 0;
+  std::array<Profile, 4> turned;
   for (int c : set.order) {
     if ((++done & 4095) == 0) report_progress(progress, "pack", frac);
     const double scale = raised_scale(set.shorter[c], set.longer[c], s, min_side);
     long best_waste = std::numeric_limits<long>::max();
     int bx = -1, by = std::numeric_limits<int>::max(), bt = 0;
-    Profile best;
     // Weight of the height in the score: the widest extended width of the chart.
     const long weight = static_cast<long>(std::ceil(scale * set.longer[c] / h)) + 1 + 2 * g;
     for (int t = 0; t < set.turns; ++t) {
-      Profile pr = rasterize(set.charts[c], scale, t, h, g);
+      Profile& pr = turned[t];
+      pr = rasterize(set.charts[c], scale, t, h, g);
+      // A turn whose bottom and height match an earlier one's scores the same everywhere: it
+      // cannot beat it (ties go to the earlier turn).
+      bool seen = false;
+      for (int u = 0; u < t && !seen; ++u) seen = turned[u].max_top == pr.max_top && turned[u].low == pr.low;
+      if (seen) continue;
       const int found = horizon.best_drop(pr, weight, best_waste, bx, by);
       if (found < 0) {  // wider than the atlas: the scale must shrink by about n / width
         const double w = static_cast<double>(pr.low.size());
         return std::max(needed, w * w / n);
       }
-      if (found > 0) best = std::move(pr), bt = t;
+      if (found > 0) bt = t;
     }
+    const Profile& best = turned[bt];
     horizon.place(best, bx, by, g);
     needed = std::max(needed, static_cast<double>(by + best.max_top + 2 * g));
     if (needed > limit) return needed;
