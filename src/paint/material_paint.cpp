@@ -121,8 +121,10 @@ void normal_map_from_height(const TriMesh& mesh, const Parameterization& param, 
     throw InvalidInputError("normal_map_from_height: one height per texel expected");
   std::optional<HeightNormalTerms> own;
   if (!terms) terms = &own.emplace(height_normal_terms(mesh, param));
-  if (terms->faces.size() != mesh.faces.size())
-    throw InvalidInputError("normal_map_from_height: the normal terms are of another mesh");
+  // A layout's terms hold one tangent per wedge: terms of another layout of the same mesh differ there.
+  if (terms->faces.size() != mesh.faces.size() || terms->vertex_normals.size() != mesh.positions.size() ||
+      terms->tangents.size() != param.uv.size())
+    throw InvalidInputError("normal_map_from_height: the normal terms are of another mesh or layout");
   out.width = map.width, out.height = map.height;
   out.data.resize(height.size() * 4);
   // Most texels are flat (outside the charts, or a flat height): put_normal()'s bytes of (0, 0, 1), once.
