@@ -301,7 +301,9 @@ void material_textures_from_values(const TriMesh& mesh, const Parameterization& 
   // painted is its flat fill already, and a flat height's normal is (0, 0, 1) at every texel.
   const bool height = paints(painted, Channel::Height);
   std::vector<double> h(height ? static_cast<size_t>(N) * map.height : 0, (bg[6] - 0.5) * height_scale);
+  // A texel of the background's value keeps the fill's bytes and height (most texels of a short history).
   tbb::parallel_for(size_t(0), values.size(), [&](size_t k) {
+    if (values[k] == bg) return;
     const int t = map.inside[k];
     set_painted_texel(out, t, values[k], painted);
     if (height) h[t] = (values[k][6] - 0.5) * height_scale;
