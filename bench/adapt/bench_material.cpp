@@ -34,6 +34,10 @@
 // send perf's `enable` / `disable` around it (docs/benchmarks.md, "Where the four-channel cycle's time goes"):
 //   mkfifo /tmp/ctl /tmp/ack; ADAPTEX_PERF_CTL=/tmp/ctl,/tmp/ack perf record -e cpu-clock --call-graph dwarf
 //     --control fifo:/tmp/ctl,/tmp/ack -D -1 -- adaptex_bench_material --benchmark_filter=... (one line)
+// Instructions of the timed part (deterministic, one core: TBB then runs it in the calling thread), e.g.
+//   taskset -c 1 valgrind --tool=callgrind --collect-atstart=no
+//     --toggle-collect='adaptex::MaterialPaintSession::add_stroke(*' adaptex_bench_material
+//     --benchmark_filter='BM_MaterialSessionCycle/4/40/1024/3/4'   (version 1: 'adaptex::PaintSession::add_stroke(*')
 #include <benchmark/benchmark.h>
 
 #include <fcntl.h>

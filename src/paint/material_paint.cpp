@@ -121,8 +121,10 @@ void normal_map_from_height(const TriMesh& mesh, const Parameterization& param, 
     throw InvalidInputError("normal_map_from_height: one height per texel expected");
   std::optional<HeightNormalTerms> own;
   if (!terms) terms = &own.emplace(height_normal_terms(mesh, param));
-  if (terms->faces.size() != mesh.faces.size())
-    throw InvalidInputError("normal_map_from_height: the normal terms are of another mesh");
+  // A layout's terms hold one tangent per wedge: terms of another layout of the same mesh differ there.
+  if (terms->faces.size() != mesh.faces.size() || terms->vertex_normals.size() != mesh.positions.size() ||
+      terms->tangents.size() != param.uv.size())
+    throw InvalidInputError("normal_map_from_height: the normal terms are of another mesh or layout");
   out.width = map.width, out.height = map.height;
   out.data.resize(height.size() * 4);
   // Most texels are flat (outside the charts, or a flat height): put_normal()'s bytes of (0, 0, 1), once.
@@ -299,7 +301,9 @@ void material_textures_from_values(const TriMesh& mesh, const Parameterization& 
   // painted is its flat fill already, and a flat height's normal is (0, 0, 1) at every texel.
   const bool height = paints(painted, Channel::Height);
   std::vector<double> h(height ? static_cast<size_t>(N) * map.height : 0, (bg[6] - 0.5) * height_scale);
+  // A texel of the background's value keeps the fill's bytes and height (most texels of a short history).
   tbb::parallel_for(size_t(0), values.size(), [&](size_t k) {
+    if (values[k] == bg) return;
     const int t = map.inside[k];
     set_painted_texel(out, t, values[k], painted);
     if (height) h[t] = (values[k][6] - 0.5) * height_scale;

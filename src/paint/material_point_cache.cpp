@@ -57,6 +57,9 @@ struct MaterialPointCache::Impl {
   // everywhere when the layers' blending settings changed (look).
   std::vector<MaterialValue> composite;
   std::vector<char> dirty;
+  // P: some paint stroke reached the point since reset(); the others' covers are 0 in every layer, so
+  // their composite is the background (every layer's blend skips a zero cover).
+  std::vector<char> painted;
   bool any_dirty = true, all_dirty = true;
   std::vector<double> look;
 
@@ -86,6 +89,7 @@ struct MaterialPointCache::Impl {
       }
     });
     assign_with_slack(dirty, points.size(), char(0));
+    assign_with_slack(painted, points.size(), char(0));
     double area = 0;
     for (int f = 0; f < m.num_faces(); ++f) area += face_area(m, f);
     spacing = points.empty() || !(area > 0) ? 1.0 : std::sqrt(area / static_cast<double>(points.size()));
@@ -161,6 +165,7 @@ struct MaterialPointCache::Impl {
       for (int c = 0; c < kMaterialComponents; ++c) lv[c] = static_cast<float>(L[c]);
       for (int c = 0; c < kNumChannels; ++c) av[c] = static_cast<float>(a[c]);
       dirty[k] = 1;
+      painted[k] = 1;
     };
     if (s.type == MaterialStroke::Type::Decal) {
       if (!decals) decals = std::make_unique<DecalProjector>(*mesh);
@@ -242,7 +247,7 @@ const std::vector<MaterialValue>& MaterialPointCache::values(const MaterialStrok
     m.dirty[k] = 0;
     MaterialValue& R = m.composite[k];
     R = file.background;
-    for (size_t l = 0; l < layers; ++l) {
+    for (size_t l = 0; l < layers && m.painted[k]; ++l) {
       const LayerCache& lc = m.layers[l];
       const MaterialLayer& layer = file.layers[l];
       if (!layer.visible || lc.value.empty()) continue;

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/io/image_io.h"
 #include "adaptex/io/mesh_io.h"
@@ -184,6 +185,27 @@ TEST(MaterialPaint, NormalMapFollowsTheHeightGradientInTangentSpace) {
   const ImageRGBA8 img = normal_map_from_height(mesh, half, map, h);
   const std::uint8_t* p = img.texel(8, 8);
   EXPECT_LT((Vec3(p[0], p[1], p[2]) / 127.5 - Vec3::Ones() - gentle).norm(), 0.02);
+}
+
+TEST(MaterialPaint, NormalMapRejectsTheTermsOfAnotherLayoutOfTheSameMesh) {
+  const TriMesh mesh = shapes::plane(4);
+  const Parameterization param = test::planar_param(mesh);
+  // The same chart with three wedges per face: the same faces and vertices, more wedges.
+  Parameterization split = param;
+  split.uv.clear(), split.wedge_vertex.clear();
+  for (size_t f = 0; f < param.uv_faces.size(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      split.uv_faces[f][c] = static_cast<int>(split.uv.size());
+      split.uv.push_back(param.uv[param.uv_faces[f][c]]);
+      split.wedge_vertex.push_back(param.wedge_vertex[param.uv_faces[f][c]]);
+    }
+  ASSERT_GT(split.num_wedges(), param.num_wedges());
+  const TexelMap map = build_texel_map(mesh, param, 16, 16);
+  const std::vector<double> h(16 * 16, 0.0);
+  ImageRGBA8 out;
+  const HeightNormalTerms own = height_normal_terms(mesh, param), other = height_normal_terms(mesh, split);
+  EXPECT_NO_THROW(normal_map_from_height(mesh, param, map, h, out, &own));
+  EXPECT_THROW(normal_map_from_height(mesh, param, map, h, out, &other), InvalidInputError);
 }
 
 TEST(MaterialPaint, CliPaintsAVersion2FileIntoAPbrMaterial) {

@@ -146,6 +146,7 @@ ImageRGBA8 normal_map_from_height(const TriMesh& mesh, const Parameterization& p
                                   const std::vector<double>& height);
 /// normal_map_from_height() into \p out, reusing its storage (a session's candidate layouts); \p terms:
 /// height_normal_terms() of \p mesh and \p param when the caller has them, else computed here.
+/// \throw InvalidInputError \p terms are of another mesh or layout (face, vertex or wedge count)
 void normal_map_from_height(const TriMesh& mesh, const Parameterization& param, const TexelMap& map,
                             const std::vector<double>& height, ImageRGBA8& out,
                             const HeightNormalTerms* terms = nullptr);
