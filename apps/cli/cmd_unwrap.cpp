@@ -28,6 +28,7 @@ struct UnwrapArgs {
   std::string input, output, report, layout;
   bool repair = false;
   int layout_size = 1024;
+  int texture_size = UnwrapOptions{}.gutter_texture_size;
   int max_augmentations = UnwrapOptions{}.max_augmentations;
   double augment_time_budget = UnwrapOptions{}.augment_time_budget;
   int yoshizawa_iterations = UnwrapOptions{}.yoshizawa_max_iterations;
@@ -57,6 +58,7 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
   opt.yoshizawa_max_iterations = a.yoshizawa_iterations;
   if (a.mean_value) opt.weights = EmbeddingWeights::MeanValue;
   opt.charts = parse_enum<ChartMode>(a.charts, "chart mode");
+  opt.gutter_texture_size = a.texture_size;
   std::set<std::string, std::less<>> seen;
   opt.progress = [&](std::string_view phase, double) {
     if (seen.find(phase) == seen.end()) {
@@ -116,6 +118,16 @@ void run_unwrap(const UnwrapArgs& a, const Context& ctx) {
        << r.final_linf << ", effective texel share " << std::setprecision(3)
        << r.effective_texel_share << ", " << seconds_since(t_start) << " s";
   ctx.info(line.str());
+  if (r.gutter < r.requested_gutter) {
+    // Thousands of charts (scans) do not fit with the full gutter: say what the paint will get.
+    std::ostringstream w;
+    w << std::setprecision(3) << "unwrap: the " << r.num_charts << " charts fit only with a gutter of "
+      << r.gutter * a.texture_size << " texel(s) at " << a.texture_size << "x" << a.texture_size << " ("
+      << r.requested_gutter * a.texture_size
+      << " requested): paint may bleed between neighbouring charts in mipmaps; a larger --texture-size "
+         "keeps a wider gutter";
+    ctx.warn(w.str());
+  }
 }
 
 }  // namespace
@@ -135,6 +147,12 @@ void add_unwrap_command(CLI::App& app, Context& ctx) {
   sub->add_option("--layout-size", args->layout_size,
                   "Side of the layout PNG in pixels, 16.." + std::to_string(kMaxTextureSize))
       ->check(CLI::Range(16, kMaxTextureSize))
+      ->capture_default_str();
+  sub->add_option("--texture-size", args->texture_size,
+                  "Side of the texture the layout is for: the gutter between charts is " +
+                      std::to_string(static_cast<int>(UnwrapOptions{}.gutter_texels)) +
+                      " texels at this size, narrowed only where the charts do not fit otherwise")
+      ->check(CLI::Range(64, kMaxTextureSize))
       ->capture_default_str();
   sub->add_flag("--repair", args->repair,
                 "Split non-manifold vertices and drop duplicate faces instead of failing");

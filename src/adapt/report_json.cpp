@@ -20,6 +20,8 @@ nlohmann::ordered_json unwrap_report_json(const UnwrapReport& r) {
   j["final_linf"] = r.final_linf;
   j["coverage"] = r.coverage;
   j["effective_texel_share"] = r.effective_texel_share;
+  j["gutter"] = r.gutter;
+  j["requested_gutter"] = r.requested_gutter;
   j["time"] = {{"cut", r.time_cut},         {"segment", r.time_segment}, {"floater", r.time_floater},
                {"yoshizawa", r.time_yoshizawa}, {"augment", r.time_augment},
                {"layouts", r.time_layouts},     {"pack", r.time_pack},

@@ -876,7 +876,7 @@ struct ShapeSearch {
 Vec2 ShapePlacement::apply(const Vec2& uv) const { return offset + scale * quarter_turn(uv, turns); }
 
 std::vector<ShapePlacement> pack_shapes(const std::vector<ChartShape>& charts,
-                                        const ShapePackOptions& options) {
+                                        const ShapePackOptions& options, double* gap_used) {
   const int nc = static_cast<int>(charts.size());
   if (nc == 0) throw InvalidInputError("pack_shapes: no charts to pack");
   if (!(options.padding >= 0 && options.padding < 0.25) ||
@@ -895,7 +895,10 @@ std::vector<ShapePlacement> pack_shapes(const std::vector<ChartShape>& charts,
   for (double gap = options.padding, min_side = options.min_side;; gap *= 0.5, min_side *= 0.5) {
     if (gap < 1e-9) gap = 0;
     if (min_side < 1e-9) min_side = 0;
-    if (search.fit(gap, min_side, out)) return out;
+    if (search.fit(gap, min_side, out)) {
+      if (gap_used) *gap_used = gap;
+      return out;
+    }
     if (gap == 0 && min_side == 0) break;
   }
   throw InvalidInputError("pack_shapes: " + std::to_string(nc) +

@@ -673,6 +673,8 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
                              place[c].size.cwiseProduct(turned[c] ? Vec2(1 - t.y(), t.x()) : t));
                },
                k, result);
+  result.report.gutter = gap;
+  result.report.requested_gutter = padding;
   // Shapes can only pay where the charts leave much of their rectangles empty (on the meshes of
   // the share table they fill 0.94-0.999 of them and the shapes never won; docs/bench_unwrap.md).
   double rect_area = 0;
@@ -692,12 +694,14 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
   so.padding = gap;
   so.min_side = padding > 0 ? po.min_side * gap / padding : 0.0;
   so.progress = options.progress;
-  const std::vector<ShapePlacement> sp = pack_shapes(shape, so);
+  double shape_gap = gap;
+  const std::vector<ShapePlacement> sp = pack_shapes(shape, so, &shape_gap);
   for (int c = 0; c < nc; ++c) k[c] = sp[c].scale * std::sqrt(stretch[c].x() * stretch[c].y());
   UnwrapResult alt;
   alt.report = result.report;
   write_layout(mesh, pieces, charts,
                [&](int c, const Vec2& t) { return sp[c].apply(t.cwiseProduct(stretch[c])); }, k, alt);
+  alt.report.gutter = shape_gap;
   if (alt.report.effective_texel_share > result.report.effective_texel_share) result = std::move(alt);
 }
 

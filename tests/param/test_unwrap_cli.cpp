@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -182,6 +183,44 @@ std::vector<std::pair<Vec2, Vec2>> obj_chart_boxes(const std::filesystem::path& 
       hi = hi.cwiseMax(p.uv[w]);
     }
   return box;
+}
+
+TEST(UnwrapCli, ReportsTheGutterAndWarnsWhenItWasNarrowed) {
+  // 40 squares: at 1024² they fit with the full 8-texel gutter; at 64² (8 texels = 1/8 of the
+  // square each side) they do not, and the gutter they got is in the report and in a warning.
+  std::vector<TriMesh> parts;
+  for (int k = 0; k < 40; ++k) {
+    TriMesh square = shapes::plane(1, 1.0);
+    for (Vec3& p : square.positions) p += Vec3(2.0 * (k % 8), 2.0 * (k / 8), 0);
+    parts.push_back(square);
+  }
+  TempDir dir;
+  write_off(dir.path / "squares.off", shapes::disjoint_union(parts));
+  // The report's requested and kept gutter, and whether a narrowed gutter was warned of.
+  const auto run = [&](int size) {
+    const auto report = dir.path / ("r" + std::to_string(size) + ".json");
+    const auto r = run_cli("unwrap " + q(dir.path / "squares.off") + " --texture-size " +
+                           std::to_string(size) + " -o " + q(dir.path / "out.obj") + " --report " +
+                           q(report));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(report);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    return std::tuple(j.at("requested_gutter").get<double>(), j.at("gutter").get<double>(),
+                      r.err.find("fit only with a gutter of") != std::string::npos);
+  };
+  const auto [requested_1024, kept_1024, warned_1024] = run(1024);
+  EXPECT_DOUBLE_EQ(requested_1024, 8.0 / 1024);
+  EXPECT_DOUBLE_EQ(kept_1024, 8.0 / 1024);
+  EXPECT_FALSE(warned_1024);
+  const auto [requested_64, kept_64, warned_64] = run(64);
+  EXPECT_DOUBLE_EQ(requested_64, 8.0 / 64);
+  EXPECT_LT(kept_64, 8.0 / 64);
+  EXPECT_GT(kept_64, 0);
+  EXPECT_TRUE(warned_64);
+  const auto bad = run_cli("unwrap " + q(dir.path / "squares.off") + " --texture-size 32 -o " +
+                           q(dir.path / "bad.obj"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir.path / "bad.obj"));
 }
 
 TEST(UnwrapCli, PaintUnwrapsWithTheGutterInTexelsOfItsTexture) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
 #include <set>
@@ -156,6 +157,67 @@ TEST(UnwrapScan, LShapedChartsArePackedByTheirShapes) {
   std::printf("L shapes: share %.4f with shape packing, %.4f without\n",
               with.report.effective_texel_share, without.report.effective_texel_share);
   EXPECT_GT(with.report.effective_texel_share, without.report.effective_texel_share + 0.01);
+}
+
+/// Distance from \p p to the segment [a, b].
+double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 d = b - a;
+  const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+  return (a + t * d - p).norm();
+}
+
+/// The smallest distance between UV triangles of two different charts of \p p (disjoint
+/// triangles: the smallest vertex-to-edge distance), over pairs of charts whose bounding boxes are
+/// closer than \p within; \p within when none is.
+double closest_charts(const Parameterization& p, double within) {
+  std::vector<std::vector<int>> faces(p.num_charts);
+  for (int f = 0; f < static_cast<int>(p.face_chart.size()); ++f) faces[p.face_chart[f]].push_back(f);
+  std::vector<Vec2> lo(p.num_charts, Vec2::Constant(2)), hi(p.num_charts, Vec2::Constant(-1));
+  for (int c = 0; c < p.num_charts; ++c)
+    for (int f : faces[c])
+      for (int w : p.uv_faces[f]) lo[c] = lo[c].cwiseMin(p.uv[w]), hi[c] = hi[c].cwiseMax(p.uv[w]);
+  double best = within;
+  for (int a = 0; a < p.num_charts; ++a)
+    for (int b = 0; b < a; ++b) {
+      const Vec2 gap = (lo[b] - hi[a]).cwiseMax(lo[a] - hi[b]);
+      if (std::max(gap.x(), gap.y()) >= best) continue;
+      for (int fa : faces[a])
+        for (int fb : faces[b])
+          for (int k = 0; k < 3; ++k)
+            for (int j = 0; j < 3; ++j) {
+              const Face& s = p.uv_faces[fa];
+              const Face& t = p.uv_faces[fb];
+              best = std::min({best,
+                               point_segment_distance(p.uv[s[k]], p.uv[t[j]], p.uv[t[(j + 1) % 3]]),
+                               point_segment_distance(p.uv[t[k]], p.uv[s[j]], p.uv[s[(j + 1) % 3]])});
+            }
+    }
+  return best;
+}
+
+TEST(UnwrapScan, ReportsTheGutterTheChartsGot) {
+  UnwrapOptions opt;
+  opt.augment_time_budget = 1e9;
+  const double requested = opt.gutter_texels / opt.gutter_texture_size;
+  // Five tori fit with the full gutter of 8 texels at 1024².
+  const UnwrapResult few = unwrap(test::five_tori(), opt);
+  EXPECT_DOUBLE_EQ(few.report.requested_gutter, requested);
+  EXPECT_DOUBLE_EQ(few.report.gutter, requested);
+  EXPECT_GE(closest_charts(few.param, 1.0), requested * (1 - 1e-9));
+  // 6,000 small squares, each at least a gutter wide with a gutter around it, need more than the
+  // square: the gap is halved until they fit, the report says by how much, and the charts keep it.
+  std::vector<TriMesh> parts;
+  for (int k = 0; k < 6000; ++k)
+    parts.push_back(test::flat_patch(1, 0.1 + 0.01 * (k % 5), Vec3(0.5 * (k % 80), 0.5 * (k / 80), 0)));
+  const TriMesh many = shapes::disjoint_union(parts);
+  UnwrapResult r;
+  test::check_unwrap("6000 squares", many, opt, &r);
+  EXPECT_DOUBLE_EQ(r.report.requested_gutter, requested);
+  EXPECT_LT(r.report.gutter, requested);
+  EXPECT_GT(r.report.gutter, 0);
+  const double halvings = std::log2(requested / r.report.gutter);
+  EXPECT_NEAR(halvings, std::round(halvings), 1e-9);
+  EXPECT_GE(closest_charts(r.param, 1.0), r.report.gutter * (1 - 1e-6));
 }
 
 TEST(UnwrapScan, OptionsOutOfRangeAreOneClearError) {

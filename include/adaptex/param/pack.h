@@ -145,8 +145,9 @@ struct ShapePackOptions {
 /// raised to min_side
 /// \throw InvalidInputError no charts, an option out of range, a bad index or a non-finite uv,
 /// or they cannot be packed
+/// \param gap_used if not null, receives the gap the packing kept (padding, or halved)
 /// \throw CancelledError the progress callback returned false
 std::vector<ShapePlacement> pack_shapes(const std::vector<ChartShape>& charts,
-                                        const ShapePackOptions& options);
+                                        const ShapePackOptions& options, double* gap_used = nullptr);
 
 }  // namespace adaptex
