@@ -230,7 +230,9 @@ def unwrap(V, F, *, progress=None, texture_size=None, padding=None, **options):
     report : dict
         ``components``, ``genus``, ``boundary_loops``, ``charts``, ``cut_length``,
         ``augmentations``, ``yoshizawa_iterations``, ``floater_l2``, ``floater_linf``,
-        ``final_l2``, ``final_linf``, ``coverage``, ``effective_texel_share``, ``time`` (seconds
+        ``final_l2``, ``final_linf``, ``coverage``, ``effective_texel_share``, ``gutter`` and
+        ``requested_gutter`` (the gap between charts kept and asked for, fractions of the unit
+        square: many charts are packed with a narrower one), ``time`` (seconds
         per phase: cut, segment, floater, yoshizawa, augment, layouts, pack, total; the names of
         ``adaptex unwrap --report``) and ``face_chart`` (#F).
 

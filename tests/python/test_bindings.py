@@ -48,6 +48,7 @@ def test_unwrap_gives_a_layout_without_flips_in_the_unit_square(sphere):
     assert (signed_areas(UV, FT) > 0).all()
     assert report["genus"] == 0 and report["charts"] >= 1
     assert report["face_chart"].shape == (len(F),)
+    assert report["gutter"] == pytest.approx(8 / 1024) and report["requested_gutter"] == report["gutter"]
     s = adaptex.stretch(V, F, UV, FT)
     assert s["flipped"] == 0 and s["degenerate"] == 0
     assert s["l2"] == pytest.approx(report["final_l2"], rel=1e-9)
