@@ -20,6 +20,7 @@
 #include <string_view>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
@@ -1499,15 +1500,13 @@ std::vector<Component> timed_scan_pieces(const std::vector<Component>& comps,
   return pieces;
 }
 
-/// ChartMode::Auto on a mesh with more components than max_charts / 2: the charts of
-/// scan_pieces() with planar charts and free-boundary layouts (scan_planar_angle,
-/// scan_free_boundary), and, when either is on, also those of the top-down segmentation alone; on
-/// meshes of at most scan_single_max_faces faces also its split down to 32 faces and one chart per
-/// component. The layout with the highest effective texel share is kept (so no mesh gets a lower
-/// share than the top-down segmentation alone gives it).
-void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
-                 const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
-                 const UnwrapOptions& options, UnwrapResult& result) {
+/// The planar candidate of unwrap_scan() into \p result: the charts of scan_pieces() with planar
+/// charts and free-boundary layouts, their regrowth and, short of min_texel_share on meshes of up
+/// to scan_regrow_max_faces faces, its second build with scan_slim_second_exponent. Returns the
+/// number of pieces of its segmentation.
+size_t planar_scan_candidate(const TriMesh& mesh, const std::vector<Component>& comps,
+                           const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
+                           const UnwrapOptions& options, UnwrapResult& result) {
   const PieceLayouts scan_layouts =
       options.scan_free_boundary ? PieceLayouts::Free : PieceLayouts::Unfold;
   const bool shapes = options.scan_pack_shapes;
@@ -1544,19 +1543,56 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
     else
       copy_phase_times(candidate.report, result.report);
   }
+  return pieces.size();
+}
+
+/// ChartMode::Auto on a mesh with more components than max_charts / 2: the charts of
+/// scan_pieces() with planar charts and free-boundary layouts (scan_planar_angle,
+/// scan_free_boundary), and, when either is on, also those of the top-down segmentation alone; on
+/// meshes of at most scan_single_max_faces faces also its split down to 32 faces and one chart per
+/// component. The layout with the highest effective texel share is kept (so no mesh gets a lower
+/// share than the top-down segmentation alone gives it).
+void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
+                 const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
+                 const UnwrapOptions& options, UnwrapResult& result) {
+  const bool shapes = options.scan_pack_shapes;
   UnwrapOptions plain = options;
   plain.scan_planar_angle = 0;
   plain.scan_free_boundary = false;
   const double top_down = options.chart_normal_weight;
   const bool new_ways = options.scan_planar_angle > 0 || options.scan_free_boundary;
+  // The top-down segmentation does not depend on the planar candidate, so it runs beside it (the
+  // candidate's phases leave a core idle much of the time); the callback is called under a mutex.
+  std::mutex progress_mutex;
+  const auto serialized = [&](UnwrapOptions o) {
+    if (o.progress)
+      o.progress = [&progress_mutex, inner = o.progress](std::string_view phase, double f) {
+        const std::lock_guard<std::mutex> lock(progress_mutex);
+        return inner(phase, f);
+      };
+    return o;
+  };
+  std::vector<Component> pieces;
+  size_t num_planar_pieces = 0;
+  double top_down_time = 0;
+  tbb::parallel_invoke(
+      [&] {
+        num_planar_pieces = planar_scan_candidate(mesh, comps, dopt, gutter, t_start, serialized(options), result);
+      },
+      [&] {
+        if (!new_ways) return;
+        const auto t0 = Clock::now();
+        pieces = scan_pieces(comps, dopt, gutter, serialized(plain), top_down, kFineProbeFaces);
+        top_down_time = seconds_since(t0);
+      });
   if (new_ways) {
-    pieces = timed_scan_pieces(comps, dopt, gutter, plain, top_down, result.report);
+    result.report.time_segment += top_down_time;
     keep_better_layout(mesh, pieces, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
   }
   if (mesh.num_faces() > options.scan_single_max_faces) return;
   const std::vector<Component> coarse =
       timed_scan_pieces(comps, dopt, gutter, plain, top_down, result.report, kCoarseProbeFaces);
-  if (coarse.size() != pieces.size())
+  if (coarse.size() != (new_ways ? pieces.size() : num_planar_pieces))
     keep_better_layout(mesh, coarse, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
   keep_better_layout(mesh, comps, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
 }
