@@ -1575,16 +1575,30 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
   std::vector<Component> pieces;
   size_t num_planar_pieces = 0;
   double top_down_time = 0;
+  // Each branch keeps its own exception (a cancel): one escaping into parallel_invoke would cancel
+  // the other branch's nested TBB loops, which then return early, their work half done.
+  std::exception_ptr planar_error, top_down_error;
   tbb::parallel_invoke(
       [&] {
-        num_planar_pieces = planar_scan_candidate(mesh, comps, dopt, gutter, t_start, serialized(options), result);
+        try {
+          num_planar_pieces =
+              planar_scan_candidate(mesh, comps, dopt, gutter, t_start, serialized(options), result);
+        } catch (...) {
+          planar_error = std::current_exception();
+        }
       },
       [&] {
         if (!new_ways) return;
-        const auto t0 = Clock::now();
-        pieces = scan_pieces(comps, dopt, gutter, serialized(plain), top_down, kFineProbeFaces);
-        top_down_time = seconds_since(t0);
+        try {
+          const auto t0 = Clock::now();
+          pieces = scan_pieces(comps, dopt, gutter, serialized(plain), top_down, kFineProbeFaces);
+          top_down_time = seconds_since(t0);
+        } catch (...) {
+          top_down_error = std::current_exception();
+        }
       });
+  if (planar_error) std::rethrow_exception(planar_error);
+  if (top_down_error) std::rethrow_exception(top_down_error);
   if (new_ways) {
     result.report.time_segment += top_down_time;
     keep_better_layout(mesh, pieces, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
