@@ -16,44 +16,15 @@
 
 #include "adaptex/core/errors.h"
 #include "adaptex/param/pack.h"
+#include "triangle_distance.h"
 
 namespace adaptex {
 namespace {
 
-using Tri = std::array<Vec2, 3>;
-
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
-
-/// Separating-axis test over the six edge normals: true if the closed triangles share a point.
-bool triangles_meet(const Tri& a, const Tri& b) {
-  for (const Tri* t : {&a, &b})
-    for (int i = 0; i < 3; ++i) {
-      const Vec2 e = (*t)[(i + 1) % 3] - (*t)[i];
-      const Vec2 nrm(-e.y(), e.x());
-      double a0 = 1e300, a1 = -1e300, b0 = 1e300, b1 = -1e300;
-      for (const Vec2& p : a) a0 = std::min(a0, nrm.dot(p)), a1 = std::max(a1, nrm.dot(p));
-      for (const Vec2& p : b) b0 = std::min(b0, nrm.dot(p)), b1 = std::max(b1, nrm.dot(p));
-      if (nrm.squaredNorm() > 0 && (a1 < b0 || b1 < a0)) return false;
-    }
-  return true;
-}
-
-double point_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (p - (a + t * d)).norm();
-}
-
-/// Distance between two disjoint triangles: the least distance between their edges.
-double triangle_distance(const Tri& a, const Tri& b) {
-  double d = std::numeric_limits<double>::infinity();
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      d = std::min(d, point_segment(a[i], b[j], b[(j + 1) % 3]));
-      d = std::min(d, point_segment(b[j], a[i], a[(i + 1) % 3]));
-    }
-  return d;
-}
+using test::cross;
+using test::triangle_distance;
+using test::triangles_meet;
+using test::Tri;
 
 /// Asserts every placed vertex lies in [gap, 1 - gap]² and that triangles of different charts do
 /// not meet and are at least \p gap apart (broad phase: a grid of buckets). Returns the area the
@@ -186,7 +157,18 @@ TEST(PackShapes, GapsThatDoNotFitAreHalved) {
   std::vector<ChartShape> charts(1000, squares({{0, 0}}, 1.0));
   ShapePackOptions o;
   o.padding = 0.08;  // 1000 gaps of 0.08 cannot fit in the square
-  check_shapes(charts, pack_shapes(charts, o), 0.0);
+  double gap = -1;
+  const std::vector<ShapePlacement> pl = pack_shapes(charts, o, &gap);
+  // The gap kept is a halving of the requested one, and the placed triangles keep it.
+  EXPECT_LT(gap, o.padding);
+  EXPECT_GT(gap, 0.0);
+  EXPECT_DOUBLE_EQ(std::exp2(std::round(std::log2(o.padding / gap))), o.padding / gap);
+  check_shapes(charts, pl, gap);
+  // A gap that fits comes back unchanged.
+  const std::vector<ChartShape> few(20, squares({{0, 0}}, 1.0));
+  o.padding = 1.0 / 512;
+  pack_shapes(few, o, &gap);
+  EXPECT_EQ(gap, o.padding);
 }
 
 TEST(PackShapes, OneThreadGivesTheSamePlacements) {

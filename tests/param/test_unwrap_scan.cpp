@@ -15,6 +15,7 @@
 #include "adaptex/param/stretch.h"
 #include "adaptex/param/unwrap.h"
 #include "scan_fixtures.h"
+#include "triangle_distance.h"
 #include "unwrap_checks.h"
 
 namespace adaptex {
@@ -159,13 +160,6 @@ TEST(UnwrapScan, LShapedChartsArePackedByTheirShapes) {
   EXPECT_GT(with.report.effective_texel_share, without.report.effective_texel_share + 0.01);
 }
 
-/// Distance from \p p to the segment [a, b].
-double point_segment_distance(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double t = d.squaredNorm() > 0 ? std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-  return (a + t * d - p).norm();
-}
-
 /// The smallest distance between UV triangles of two different charts of \p p (disjoint
 /// triangles: the smallest vertex-to-edge distance), over pairs of charts whose bounding boxes are
 /// closer than \p within; \p within when none is.
@@ -181,16 +175,11 @@ double closest_charts(const Parameterization& p, double within) {
     for (int b = 0; b < a; ++b) {
       const Vec2 gap = (lo[b] - hi[a]).cwiseMax(lo[a] - hi[b]);
       if (std::max(gap.x(), gap.y()) >= best) continue;
+      const auto tri = [&](int f) {
+        return test::Tri{p.uv[p.uv_faces[f][0]], p.uv[p.uv_faces[f][1]], p.uv[p.uv_faces[f][2]]};
+      };
       for (int fa : faces[a])
-        for (int fb : faces[b])
-          for (int k = 0; k < 3; ++k)
-            for (int j = 0; j < 3; ++j) {
-              const Face& s = p.uv_faces[fa];
-              const Face& t = p.uv_faces[fb];
-              best = std::min({best,
-                               point_segment_distance(p.uv[s[k]], p.uv[t[j]], p.uv[t[(j + 1) % 3]]),
-                               point_segment_distance(p.uv[t[k]], p.uv[s[j]], p.uv[s[(j + 1) % 3]])});
-            }
+        for (int fb : faces[b]) best = std::min(best, test::triangle_distance(tri(fa), tri(fb)));
     }
   return best;
 }

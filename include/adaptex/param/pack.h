@@ -143,9 +143,9 @@ struct ShapePackOptions {
 /// \return C placements: the placed triangles of two charts are at least \p padding apart (so
 /// never overlap), inside [padding, 1 - padding]^2, with the charts' relative sizes except those
 /// raised to min_side
+/// \param gap_used if not null, receives the gap the packing kept (padding, or halved)
 /// \throw InvalidInputError no charts, an option out of range, a bad index or a non-finite uv,
 /// or they cannot be packed
-/// \param gap_used if not null, receives the gap the packing kept (padding, or halved)
 /// \throw CancelledError the progress callback returned false
 std::vector<ShapePlacement> pack_shapes(const std::vector<ChartShape>& charts,
                                         const ShapePackOptions& options, double* gap_used = nullptr);

@@ -202,11 +202,12 @@ struct UnwrapReport {
   double coverage = 0;           ///< Fraction of [0,1]^2 covered by UV triangles.
   double effective_texel_share = 0;  ///< coverage / final_l2²: the share of texels doing useful
                                      ///< work at the sampling rate of an ideal map.
-  /// Gap between packed charts and to the border, as a fraction of the unit square: the requested
-  /// one (UnwrapOptions::chart_padding or the gutter), halved while the charts did not fit.
+  /// Gap between packed charts (and, with several charts, to the border), as a fraction of the
+  /// unit square: the requested one, halved while the charts did not fit. A single chart fills the
+  /// square and reports the requested gap.
   double gutter = 0;
-  /// The requested gap (a single-chart layout keeps it too); gutter < requested_gutter: the paint
-  /// of neighbouring charts may bleed into each other at that texture size.
+  /// The requested gap (the larger of UnwrapOptions::chart_padding and the gutter); gutter <
+  /// requested_gutter: the paint of neighbouring charts may bleed into each other at that size.
   double requested_gutter = 0;
   int yoshizawa_iterations = 0;  ///< Re-weighting iterations performed (summed over charts).
   /// Phase times in s, summed over charts and attempts (the charts of an attempt may be built in
