@@ -913,6 +913,31 @@ void split_invalid_charts(std::vector<Component>& pieces, std::vector<Chart>& ch
   charts = std::move(kept_charts);
 }
 
+/// Boundary contact, relative to a chart's extent, below which boundary_near_contact() calls its
+/// layout fragile: packed at 1e-4 of the square, a double's rounding moves a UV by ~1e-12 of it.
+constexpr double kContactTolerance = 1e-9;
+
+/// Flags (one per chart) of the charts of a fixed aspect whose own layout has overlapping UV
+/// triangles (in the chart's frame), or is valid only up to rounding at its boundary
+/// (boundary_near_contact(): a zipped cut); invalid_layout_faces() would find the first in any
+/// packing and the second in some.
+std::vector<char> fragile_charts(const std::vector<Chart>& charts) {
+  std::vector<char> bad(charts.size(), 0);
+  tbb::parallel_for(size_t{0}, charts.size(), [&](size_t c) {
+    const Chart& chart = charts[c];
+    if (!(chart.aspect > 0)) return;
+    Parameterization local;
+    local.uv = chart.state.param.uv;
+    local.uv_faces = chart.state.disk.disk.faces;
+    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    for (const Vec2& p : local.uv) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    const double extent = local.uv.empty() ? 0.0 : (hi - lo).maxCoeff();
+    bad[c] = boundary_near_contact(local.uv, local.uv_faces, kContactTolerance * extent) ||
+             count_overlapping_triangles(local, 1) > 0;
+  });
+  return bad;
+}
+
 /// The pieces and charts of a valid packed layout, kept so that some charts can be rebuilt.
 struct BuiltPieces {
   std::vector<Component> pieces;
@@ -928,7 +953,19 @@ void pack_valid(const TriMesh& mesh, const std::vector<Component>& pieces, std::
                 const UnwrapOptions& options, UnwrapResult& result, PieceLayouts layouts,
                 bool shapes, BuiltPieces* built) {
   std::vector<Component> split;  // the pieces once an invalid chart was split
-  for (int round = 0;; ++round) {
+  int round = 0;
+  // Fragile charts are split before the first packing: a packing costs far more than the check,
+  // and the rounds below would find them one packing at a time (docs/decisions.md).
+  for (std::vector<char> bad; round < kMaxValidityRounds; ++round) {
+    const auto t0 = Clock::now();
+    bad = fragile_charts(charts);
+    result.report.time_pack += seconds_since(t0);
+    if (std::find(bad.begin(), bad.end(), 1) == bad.end()) break;
+    std::vector<Component> next = round == 0 ? pieces : std::move(split);
+    split_invalid_charts(next, charts, bad, dopt, t_start, options, result.report, layouts);
+    split = std::move(next);
+  }
+  for (;; ++round) {
     const std::vector<Component>& current = round == 0 ? pieces : split;
     const auto t0 = Clock::now();
     report_progress(options.progress, "pack", 0.0);

@@ -194,3 +194,40 @@ TEST(Stretch, L2OfAspectsEqualsMeasuringTheScaledMap) {
   std::swap(cap.faces[0][1], cap.faces[0][2]);
   for (double x : l2_stretch_of_aspects(cap, uv, aspects)) EXPECT_TRUE(std::isinf(x));
 }
+
+// A unit square with a cut from its centre (wedge 4) to corner (0, 0), which the layout zipped:
+// wedges 0 and 5 are the corner's two sides of the cut.
+std::vector<Vec2> zipped_square_uv(const Vec2& corner_copy) {
+  return {Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1), Vec2(0.5, 0.5), corner_copy};
+}
+const std::vector<Face> kZippedSquare = {{0, 1, 4}, {1, 2, 4}, {2, 3, 4}, {3, 5, 4}};
+
+TEST(BoundaryContact, AnExactlyZippedCutIsNotFragile) {
+  EXPECT_FALSE(boundary_near_contact(zipped_square_uv(Vec2(0, 0)), kZippedSquare, 1e-9));
+  // Two triangles of a square: no contact at any tolerance below their size.
+  EXPECT_FALSE(boundary_near_contact({Vec2(0, 0), Vec2(1, 0), Vec2(1, 1), Vec2(0, 1)},
+                                     {{0, 1, 2}, {0, 2, 3}}, 0.1));
+}
+
+TEST(BoundaryContact, ANearlyZippedCutIsFragile) {
+  // The corner's copy 1e-13 off the cut (a sliver of gap): one side within the tolerance of the other.
+  const std::vector<Vec2> uv = zipped_square_uv(Vec2(0, 1e-13));
+  EXPECT_TRUE(boundary_near_contact(uv, kZippedSquare, 1e-9));
+  EXPECT_FALSE(boundary_near_contact(uv, kZippedSquare, 0.0));
+  // The layout is valid as it stands: only rounding can make it overlap.
+  Parameterization param;
+  param.uv = uv;
+  param.uv_faces = kZippedSquare;
+  EXPECT_TRUE(invalid_uv_faces(param).empty());
+}
+
+TEST(BoundaryContact, AWedgeNearAnotherPartOfTheBoundaryIsFragile) {
+  // A "C": the tip of its lower arm (wedge 6) ends 1e-12 below the upper arm's lower edge.
+  const std::vector<Vec2> uv = {Vec2(0, 0), Vec2(1, 0), Vec2(1, 0.4), Vec2(0.2, 0.4),
+                                Vec2(0.2, 0.6), Vec2(1, 0.6),  Vec2(1, 1),   Vec2(0, 1)};
+  const std::vector<Face> open = {{0, 1, 2}, {0, 2, 3}, {0, 3, 7}, {3, 4, 7}, {4, 6, 7}, {4, 5, 6}};
+  EXPECT_FALSE(boundary_near_contact(uv, open, 1e-9));
+  std::vector<Vec2> closing = uv;
+  closing[2] = Vec2(1, 0.6 - 1e-12);  // the lower arm's tip, just under the upper arm's edge 4-5
+  EXPECT_TRUE(boundary_near_contact(closing, open, 1e-9));
+}
