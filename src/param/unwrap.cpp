@@ -1598,47 +1598,67 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
   plain.scan_free_boundary = false;
   const double top_down = options.chart_normal_weight;
   const bool new_ways = options.scan_planar_angle > 0 || options.scan_free_boundary;
-  // The top-down segmentation does not depend on the planar candidate, so it runs beside it (the
-  // candidate's phases leave a core idle much of the time); the callback is called under a mutex.
+  // The top-down candidate does not depend on the planar one, so it is segmented and built beside
+  // it (either leaves a core idle much of the time). The callback is called under a mutex; once it
+  // returned false or a branch failed, it is not called again and both branches are cancelled.
   std::mutex progress_mutex;
+  std::atomic<bool> stop{false};
   const auto serialized = [&](UnwrapOptions o) {
-    if (o.progress)
-      o.progress = [&progress_mutex, inner = o.progress](std::string_view phase, double f) {
-        const std::lock_guard<std::mutex> lock(progress_mutex);
-        return inner(phase, f);
-      };
+    o.progress = [&progress_mutex, &stop, inner = o.progress](std::string_view phase, double f) {
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      if (stop.load()) return false;
+      if (inner && !inner(phase, f)) stop = true;
+      return !stop.load();
+    };
     return o;
   };
+  // The top-down candidate: its report starts with no phase time (added to the kept one's below).
+  UnwrapResult top_down_result;
+  top_down_result.report = result.report;
+  copy_phase_times(UnwrapReport{}, top_down_result.report);
+  bool top_down_built = false;
   std::vector<Component> pieces;
   size_t num_planar_pieces = 0;
-  double top_down_time = 0;
-  // Each branch keeps its own exception (a cancel): one escaping into parallel_invoke would cancel
-  // the other branch's nested TBB loops, which then return early, their work half done.
-  std::exception_ptr planar_error, top_down_error;
+  // Each branch keeps its own exception: one escaping into parallel_invoke would cancel the other
+  // branch's nested TBB loops, which then return early, their work half done. The first one is
+  // rethrown (the other branch's is then the cancel it caused).
+  std::exception_ptr first_error;
+  std::mutex error_mutex;
+  const auto keep_error = [&] {
+    const std::lock_guard<std::mutex> lock(error_mutex);
+    if (!first_error) first_error = std::current_exception();
+    stop = true;
+  };
   tbb::parallel_invoke(
       [&] {
         try {
           num_planar_pieces =
               planar_scan_candidate(mesh, comps, dopt, gutter, t_start, serialized(options), result);
         } catch (...) {
-          planar_error = std::current_exception();
+          keep_error();
         }
       },
       [&] {
         if (!new_ways) return;
         try {
-          const auto t0 = Clock::now();
-          pieces = scan_pieces(comps, dopt, gutter, serialized(plain), top_down, kFineProbeFaces);
-          top_down_time = seconds_since(t0);
+          const UnwrapOptions o = serialized(plain);
+          pieces = timed_scan_pieces(comps, dopt, gutter, o, top_down, top_down_result.report);
+          top_down_built = unwrap_pieces(mesh, pieces, dopt, gutter, t_start, o, top_down_result,
+                                         PieceLayouts::Unfold, 0, {}, shapes);
         } catch (...) {
-          top_down_error = std::current_exception();
+          keep_error();
         }
       });
-  if (planar_error) std::rethrow_exception(planar_error);
-  if (top_down_error) std::rethrow_exception(top_down_error);
-  if (new_ways) {
-    result.report.time_segment += top_down_time;
-    keep_better_layout(mesh, pieces, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
+  if (first_error) std::rethrow_exception(first_error);
+  if (new_ways) {  // as keep_better_layout(): the planar candidate wins ties
+    if (top_down_built &&
+        (top_down_result.report.effective_texel_share > result.report.effective_texel_share ||
+         result.param.uv_faces.empty())) {
+      add_phase_times(result.report, top_down_result.report);
+      result = std::move(top_down_result);
+    } else {
+      add_phase_times(top_down_result.report, result.report);
+    }
   }
   if (mesh.num_faces() > options.scan_single_max_faces) return;
   const std::vector<Component> coarse =

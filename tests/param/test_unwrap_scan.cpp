@@ -99,6 +99,25 @@ TEST(UnwrapScan, ReportsEveryPhaseAndCancelsInEach) {
   }
 }
 
+TEST(UnwrapScan, ACancelEndsBothCandidates) {
+  // The two candidates run side by side; once the callback returned false it is not called again
+  // (the other candidate stops at its next report instead of running on).
+  const TriMesh mesh = test::scan_like_mesh(20000);
+  for (const char* phase : {"segment", "augment", "pack"}) {
+    SCOPED_TRACE(phase);
+    UnwrapOptions opt;
+    int seen = 0, after = 0;
+    bool cancelled = false;
+    opt.progress = [&](std::string_view p, double) {
+      if (cancelled) return ++after, false;
+      return !(cancelled = p == phase && ++seen >= 2);
+    };
+    EXPECT_THROW(unwrap(mesh, opt), CancelledError);
+    EXPECT_TRUE(cancelled);
+    EXPECT_EQ(after, 0);
+  }
+}
+
 TEST(UnwrapScan, SingleModeAndFewComponentsKeepTheirLayouts) {
   // --charts single is one chart per component, scan or not.
   const TriMesh mesh = test::scan_like_mesh(20000);
