@@ -609,8 +609,10 @@ void App::begin_paint() {
   if (!material_ && (brush_.channels != channel_bit(Channel::BaseColor) || pressure_curves) &&
       !edit_material([](MaterialDocument&) {}))
     return;  // another channel than base colour, or pressure curves: the document becomes a layered material
-  if (brush_.stamp && decal_image_ && brush_.tool == Tool::Brush) return stamp_decal();
-  if (brush_.channels == 0 && !painting_mask()) return add_message("the brush paints no channel: choose one in the Brush panel", true);
+  const bool stamp = brush_.stamp && decal_image_ && brush_.tool == Tool::Brush;
+  if (brush_.channels == 0 && (stamp || !painting_mask()))  // a stamp paints the layer's channels, not its mask
+    return add_message("the brush paints no channel: choose one in the Brush panel", true);
+  if (stamp) return stamp_decal();
   painting_.catch_up();  // paints redone strokes first, so canvas order == history order
   view_.fixed_layout = false;  // paint on (and look at) the adaptive layout
   const auto h = pick(input_.x(), input_.y());
@@ -724,14 +726,15 @@ void App::project_decal(double opacity) {
   add_message(stencil_ ? "projected the stencil" : "projected the decal from the view", false);
 }
 
-void App::record_decal(const DecalCamera& camera, double opacity) {
+void App::record_decal(const DecalCamera& camera, double opacity, unsigned channels) {
   Stroke s;
   s.type = Stroke::Type::Decal;
   s.image = *decal_image_;
   s.image_path = decal_path_;
   s.opacity = opacity;
   s.camera = camera;
-  record_stroke(std::move(s));
+  if (material_) return record_material_stroke(material_decal_stroke(std::move(s), channels));
+  record_stroke(std::move(s));  // a single base-colour layer: the image's colour
 }
 
 void App::stamp_decal() {
@@ -742,7 +745,7 @@ void App::stamp_decal() {
   if (stencil_) st.angle = stencil_->angle;
   st.centre = Vec2(input_.x(), input_.y());
   st.height = 2 * brush_screen_radius(brush_, camera_, h->point, diagonal());
-  record_decal(st.decal_camera(camera_), brush_.opacity);
+  record_decal(st.decal_camera(camera_), brush_.opacity, brush_.channels);
 }
 
 void App::clear_decal() {

@@ -378,8 +378,9 @@ class App {
   void paint_dab_at(const Hit& h, const Ray& ray);
   void end_paint();
   void eyedrop(double x, double y);
-  /// A decal stroke of the loaded image through \p camera (project_decal, stamp_decal).
-  void record_decal(const DecalCamera& camera, double opacity);
+  /// A decal stroke of the loaded image through \p camera (project_decal, stamp_decal); on a layered
+  /// material it paints \p channels (material_decal_stroke()).
+  void record_decal(const DecalCamera& camera, double opacity, unsigned channels = channel_bit(Channel::BaseColor));
   /// BrushSettings::stamp: the loaded image stamped at the cursor. \pre a decal image is loaded
   void stamp_decal();
   void update_cursor();
@@ -408,8 +409,14 @@ class App {
 
   // layered material (app_material.cpp)
   MaterialStroke material_brush_stroke(const Stroke& painted) const;
+  /// The decal \p decal as a layer stroke painting \p channels: base colour from the image, roughness,
+  /// metallic and height at the brush's values.
+  MaterialStroke material_decal_stroke(Stroke decal, unsigned channels) const;
   /// Records a finished stroke: on the history, or on the active layer when layered.
   void record_stroke(Stroke s);
+  /// Records \p m on the active layer (or its mask, for a brush stroke while painting the mask).
+  /// \pre layered
+  void record_material_stroke(MaterialStroke m);
   /// After an edit of the document other than record_stroke()'s: a new material session for it.
   void material_changed();
   /// Starts a material session when none serves the model, options and document. \return layered

@@ -188,14 +188,25 @@ void App::record_stroke(Stroke s) {
     store_.autosave_soon();
     return history_changed();
   }
+  record_material_stroke(s.type == Stroke::Type::Decal ? material_decal_stroke(std::move(s), channel_bit(Channel::BaseColor))
+                                                       : material_brush_stroke(s));
+}
+
+MaterialStroke App::material_decal_stroke(Stroke decal, unsigned channels) const {
   MaterialStroke m;
-  if (s.type == Stroke::Type::Decal) {
-    m.type = MaterialStroke::Type::Decal;
-    m.opacity = s.opacity;
-    m.decal = std::move(s);
-  } else {
-    m = material_brush_stroke(s);
-  }
+  m.type = MaterialStroke::Type::Decal;
+  m.channels = channels;
+  m.image_color = true;
+  m.value[channel_offset(Channel::Alpha)] = 1;
+  m.value[channel_offset(Channel::Roughness)] = brush_.roughness;
+  m.value[channel_offset(Channel::Metallic)] = brush_.metallic;
+  m.value[channel_offset(Channel::Height)] = brush_.height;
+  m.opacity = decal.opacity;
+  m.decal = std::move(decal);
+  return m;
+}
+
+void App::record_material_stroke(MaterialStroke m) {
   stroke_pressure_.clear();
   // Appended to the active layer (or its mask): the material session composites and adapts it
   // incrementally.

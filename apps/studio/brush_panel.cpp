@@ -96,7 +96,9 @@ void stamp_option(App& app, const TraceWidget& trace) {
   ImGui::EndDisabled();
   tooltip("An alpha stamp: a click places the loaded decal image (Load decal; its alpha is the stamp's "
           "shape) centred at the cursor, as tall as the brush's diameter, at the brush's opacity: a decal "
-          "stroke on the active layer's base colour.");
+          "stroke on the active layer that paints the brush's checked channels, base colour from the image's "
+          "colours, roughness, metallic and height at the brush's values (an engraving into height, a worn "
+          "patch into roughness).");
   trace("Stamp the decal image");
 }
 

@@ -44,7 +44,8 @@ struct BrushSettings {
   bool on_mask = false;
   double mask_value = 0;  ///< In [0,1]: 0 hides the layer where painted, 1 shows it.
   /// With a decal image loaded: a click stamps the image centred at the cursor, as tall as the brush's
-  /// diameter on the screen, at the brush's opacity (a decal stroke), instead of painting dabs.
+  /// diameter on the screen, at the brush's opacity (a decal stroke painting the brush's channels: base
+  /// colour from the image, the others at the brush's values), instead of painting dabs.
   bool stamp = false;
   /// Pen pressure -> factor of the radius / the opacity (written to each stroke's "pressure").
   PressureCurve radius_curve, opacity_curve;

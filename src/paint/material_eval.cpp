@@ -71,7 +71,7 @@ Vec3 bilinear_rgb(const ImageRGBA8& img, const BilinearTap& x, const BilinearTap
 bool paints_height(const MaterialStrokeFile& file) {
   for (const MaterialLayer& layer : file.layers)
     for (const MaterialStroke& s : layer.strokes)
-      if (s.type != MaterialStroke::Type::Decal && (s.channels & channel_bit(Channel::Height))) return true;
+      if (s.channels & channel_bit(Channel::Height)) return true;
   return false;
 }
 

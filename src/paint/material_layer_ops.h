@@ -73,8 +73,8 @@ class DabGrid {
   std::unordered_map<std::uint64_t, std::vector<int>> cells_;
 };
 
-/// Applies a paint (value \p v with coverage \p alpha; \p rgb: a decal's colour, else null) or an
-/// erase to one point's layer state (L, a).
+/// Applies a paint (the stroke's values with coverage \p alpha; \p rgb: a decal's image colour, painted
+/// as base colour when MaterialStroke::image_color, else null) or an erase to one point's layer state (L, a).
 void apply_stroke(const MaterialStroke& s, double alpha, const double* rgb, MaterialValue& L,
                   std::array<double, kNumChannels>& a);
 /// Blends one layer's point state (L, a, mask) over the result \p R.

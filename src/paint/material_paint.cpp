@@ -151,13 +151,11 @@ void check_paint_options(const TriMesh& mesh, const Parameterization& param, con
     throw InvalidInputError("paint_material: the layout and the mesh have different face counts");
 }
 
-/// The channels layer \p l paints: those its brush and fill strokes name, base colour for a decal.
+/// The channels layer \p l paints: those its brush, fill and decal strokes name.
 unsigned painted_channels(const MaterialLayer& l) {
   unsigned bits = 0;
-  for (const MaterialStroke& s : l.strokes) {
-    if (s.type == MaterialStroke::Type::Brush || s.type == MaterialStroke::Type::Fill) bits |= s.channels;
-    if (s.type == MaterialStroke::Type::Decal) bits |= channel_bit(Channel::BaseColor);
-  }
+  for (const MaterialStroke& s : l.strokes)
+    if (s.type != MaterialStroke::Type::Erase) bits |= s.channels;
   return bits;
 }
 

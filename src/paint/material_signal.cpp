@@ -31,7 +31,7 @@ void apply_stroke(const MaterialStroke& s, double alpha, const double* rgb, Mate
     const double cover = a[c] * (1 - alpha) + alpha;
     const int o = channel_offset(ch);
     for (int k = 0; k < channel_components(ch); ++k) {
-      const double v = rgb && ch == Channel::BaseColor ? rgb[k] : s.value[o + k];
+      const double v = rgb && s.image_color && ch == Channel::BaseColor ? rgb[k] : s.value[o + k];
       L[o + k] = cover > 0 ? (L[o + k] * a[c] * (1 - alpha) + v * alpha) / cover : 0;
     }
     a[c] = cover;

@@ -83,28 +83,36 @@ void check_dab_fields(const MaterialStroke& s, const Where& w) {
   check_curve(s.opacity_curve, "pressure.opacity", w);
 }
 
+/// At least one channel bit and no other.
+void check_channel_bits(unsigned bits, const Where& w) {
+  if ((bits & kAllChannels) == 0 || (bits & ~kAllChannels) != 0)
+    w.fail("\"channels\" must name at least one of " + quoted_list(kChannelNames, kNumChannels) + " and no other");
+}
+
 void check_material_stroke(const MaterialStroke& s, bool in_mask, const Where& w) {
   using T = MaterialStroke::Type;
   if (s.type == T::Decal) {
     if (in_mask) w.fail("\"type\" must be \"brush\", \"fill\" or \"erase\" in a mask (got \"decal\")");
     validate_stroke(s.decal, w.prefix.empty() ? std::string() : w.prefix.substr(0, w.prefix.size() - 2));
     if (s.opacity != s.decal.opacity) w.fail("\"opacity\" of a decal must equal its image's opacity");
+    check_channel_bits(s.channels, w);
+    // A base colour from the image has no value of its own to check.
+    check_channel_values(s.image_color ? s.channels & ~channel_bit(Channel::BaseColor) : s.channels, s.value, w);
     return;
   }
   check_unit(s.opacity, "opacity", w);
   if (in_mask) {
     if (s.type != T::Erase) check_unit(s.mask_value, "value", w);
   } else {
-    if ((s.channels & kAllChannels) == 0 || (s.channels & ~kAllChannels) != 0)
-      w.fail("\"channels\" must name at least one of " + quoted_list(kChannelNames, kNumChannels) +
-             " and no other");
+    check_channel_bits(s.channels, w);
     if (s.type != T::Erase) check_channel_values(s.channels, s.value, w);
   }
   if (s.type != T::Fill) check_dab_fields(s, w);
 }
 
-/// "channels": {"base_color": [r, g, b], "roughness": 0.3, ...} (at least one channel).
-void parse_channel_values(const json& js, MaterialStroke& s, const Where& w) {
+/// "channels": {"base_color": [r, g, b], "roughness": 0.3, ...} (at least one channel). \p decal: a
+/// decal's, whose "base_color" may also be the string "image" (MaterialStroke::image_color).
+void parse_channel_values(const json& js, MaterialStroke& s, const Where& w, bool decal = false) {
   if (!js.is_object() || js.empty())
     w.fail("\"channels\" must be an object with at least one of " + quoted_list(kChannelNames, kNumChannels) +
            " (got " + (js.is_object() ? std::string("an empty object") : describe(js)) + ")");
@@ -113,9 +121,14 @@ void parse_channel_values(const json& js, MaterialStroke& s, const Where& w) {
     if (!c) w.fail("unknown channel \"" + it.key() + "\"");
     const std::string field = "channels." + it.key();
     const int o = channel_offset(*c);
-    if (*c == Channel::BaseColor) {
+    if (*c == Channel::BaseColor && decal && it->is_string()) {
+      if (it->get<std::string>() != "image")
+        w.fail("\"" + field + "\" must be \"image\" or an array of 3 numbers in [0, 1] (got " + describe(*it) + ")");
+      s.image_color = true;
+    } else if (*c == Channel::BaseColor) {
       const Vec3 rgb = get_vec3(*it, field, w);
       for (int k = 0; k < 3; ++k) s.value[o + k] = rgb[k];
+      if (decal) s.image_color = false;
     } else {
       s.value[o] = get_number(*it, field, w);
     }
@@ -204,9 +217,16 @@ MaterialStroke parse_material_stroke(const json& js, bool in_mask, const Where& 
   MaterialStroke s;
   s.type = parse_type(js, in_mask, w);
   if (s.type == MaterialStroke::Type::Decal) {
-    s.decal = parse_v1_stroke(js, w, base_dir, warnings);
+    // "channels" (version 2's) before the image is read, so that the fuzzer reaches them without one.
+    if (auto it = js.find("channels"); it != js.end())
+      parse_channel_values(*it, s, w, true);
+    else
+      s.channels = channel_bit(Channel::BaseColor);  // {"base_color": "image"}
+    json camera = js;  // the version 1 decal's fields
+    camera.erase("channels");
+    s.decal = parse_v1_stroke(camera, w, base_dir, warnings);
     s.opacity = s.decal.opacity;
-    s.channels = channel_bit(Channel::BaseColor);
+    check_material_stroke(s, in_mask, w);
     return s;
   }
   if (auto it = js.find("opacity"); it != js.end()) s.opacity = get_number(*it, "opacity", w);
@@ -429,7 +449,8 @@ MaterialStrokeFile read_material_strokes(const std::filesystem::path& path) {
 
 namespace {
 
-void put_channels(std::ostream& os, unsigned bits, const MaterialValue& v) {
+/// \p image_color: a decal's base colour, written as "image".
+void put_channels(std::ostream& os, unsigned bits, const MaterialValue& v, bool image_color = false) {
   os << '{';
   bool first = true;
   for (int c = 0; c < kNumChannels; ++c) {
@@ -438,7 +459,9 @@ void put_channels(std::ostream& os, unsigned bits, const MaterialValue& v) {
     os << (first ? "" : ", ") << '"' << channel_name(ch) << "\": ";
     first = false;
     const int o = channel_offset(ch);
-    if (ch == Channel::BaseColor)
+    if (ch == Channel::BaseColor && image_color)
+      os << "\"image\"";
+    else if (ch == Channel::BaseColor)
       put_vec(os, Vec3(v[o], v[o + 1], v[o + 2]));
     else
       os << num(v[o]);
@@ -476,6 +499,10 @@ void put_stroke(std::ostream& os, const MaterialStroke& s, bool in_mask) {
   if (s.type == T::Decal) {
     os << '{';
     put_decal(os, s.decal);
+    if (s.channels != channel_bit(Channel::BaseColor) || !s.image_color) {  // else the default: not written
+      os << ", \"channels\": ";
+      put_channels(os, s.channels, s.value, s.image_color);
+    }
     os << '}';
     return;
   }

@@ -17,6 +17,7 @@
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/material_paint.h"
 #include "adaptex/paint/material_signal.h"
+#include "adaptex/paint/signal.h"
 #include "brush_test_util.h"
 #include "test_support.h"
 
@@ -206,6 +207,107 @@ TEST(MaterialPaint, NormalMapRejectsTheTermsOfAnotherLayoutOfTheSameMesh) {
   const HeightNormalTerms own = height_normal_terms(mesh, param), other = height_normal_terms(mesh, split);
   EXPECT_NO_THROW(normal_map_from_height(mesh, param, map, h, out, &own));
   EXPECT_THROW(normal_map_from_height(mesh, param, map, h, out, &other), InvalidInputError);
+}
+
+/// A one-decal file: the opaque green 4 x 4 "d.png" (written to \p dir) projected straight down onto
+/// the middle of the unit plane (fov 20: [0.15, 0.85]^2), with \p channels (empty: none given).
+MaterialStrokeFile green_decal(const test::TempDir& dir, const std::string& channels) {
+  write_png(dir.path / "d.png", ImageRGBA8(4, 4, {20, 200, 40, 255}));
+  return parse_material_strokes(
+      R"({"format": "adaptex.strokes", "version": 2, "height_scale": 0.05, "layers": [{"strokes": [
+      {"type": "decal", "image": "d.png", "eye": [0.5, 0.5, 2], "target": [0.5, 0.5, 0], "fov": 20)" +
+          (channels.empty() ? std::string() : ", \"channels\": " + channels) + "}]}]}",
+      "m.json", dir.path);
+}
+
+/// Every face centre of \p mesh, sorted into those under the middle of the decal and those outside its frustum.
+void decal_points(const TriMesh& mesh, std::vector<SurfacePoint>& inside, std::vector<SurfacePoint>& outside) {
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    Vec3 c = Vec3::Zero();
+    for (int k = 0; k < 3; ++k) c += mesh.positions[mesh.faces[f][k]] / 3;
+    const double d = std::max(std::abs(c.x() - 0.5), std::abs(c.y() - 0.5));
+    if (d < 0.25) inside.push_back({f, 1.0 / 3, 1.0 / 3});
+    if (d > 0.4) outside.push_back({f, 1.0 / 3, 1.0 / 3});
+  }
+}
+
+/// How many bytes of \p a and \p b (of one size) differ by more than \p by.
+long bytes_apart(const ImageRGBA8& a, const ImageRGBA8& b, int by) {
+  long n = 0;
+  for (size_t k = 0; k < a.data.size(); ++k) n += std::abs(int(a.data[k]) - int(b.data[k])) > by;
+  return n;
+}
+
+TEST(MaterialPaint, DecalChannelsPaintTheirValuesWithTheImagesCoverage) {
+  const test::TempDir dir;
+  const TriMesh mesh = shapes::plane(10);
+  const Parameterization param = test::planar_param(mesh);
+  std::vector<SurfacePoint> inside, outside;
+  decal_points(mesh, inside, outside);
+  ASSERT_FALSE(inside.empty());
+  ASSERT_FALSE(outside.empty());
+  const Vec3 green = Vec3(20, 200, 40) / 255.0;
+  // Height only: height where the decal covers (and nowhere else), base colour untouched.
+  const MaterialStrokeFile height = green_decal(dir, R"({"height": 0.9})");
+  for (const MaterialValue& v : evaluate_material(mesh, height, inside)) {
+    EXPECT_NEAR(v[channel_offset(Channel::Height)], 0.9, 1e-12);
+    EXPECT_EQ(Vec3(v[0], v[1], v[2]), Vec3(1, 1, 1));
+  }
+  for (const MaterialValue& v : evaluate_material(mesh, height, outside)) EXPECT_EQ(v[channel_offset(Channel::Height)], 0.5);
+  MaterialStrokeFile empty = height;
+  empty.layers[0].strokes.clear();
+  const MaterialPaintOptions o = {64, 2};
+  const MaterialTextures flat = paint_material(mesh, param, empty, o), raised = paint_material(mesh, param, height, o);
+  EXPECT_EQ(raised.base_color.data, flat.base_color.data);
+  EXPECT_EQ(raised.roughness.data, flat.roughness.data);
+  EXPECT_GT(bytes_apart(raised.height, flat.height, 100), 0);
+  EXPECT_GT(bytes_apart(raised.normal, flat.normal, 20), 0);  // the decal's rim slopes
+  // The image's colour and a roughness: both, with the same coverage.
+  const MaterialStrokeFile both = green_decal(dir, R"({"base_color": "image", "roughness": 0.2})");
+  for (const MaterialValue& v : evaluate_material(mesh, both, inside)) {
+    EXPECT_LT((Vec3(v[0], v[1], v[2]) - green).norm(), 1e-9);
+    EXPECT_NEAR(v[channel_offset(Channel::Roughness)], 0.2, 1e-12);
+    EXPECT_EQ(v[channel_offset(Channel::Height)], 0.5);
+  }
+  for (const MaterialValue& v : evaluate_material(mesh, both, outside)) {
+    EXPECT_EQ(Vec3(v[0], v[1], v[2]), Vec3(1, 1, 1));
+    EXPECT_EQ(v[channel_offset(Channel::Roughness)], 0.5);
+  }
+  // No "channels": the version 1 decal's colour (StrokeSignal, the version 1 path) and the same bytes
+  // as {"base_color": "image"} written out.
+  const MaterialStrokeFile plain = green_decal(dir, ""), image = green_decal(dir, R"({"base_color": "image"})");
+  const MaterialTextures a = paint_material(mesh, param, plain, o), b = paint_material(mesh, param, image, o);
+  for (const auto& [x, y] : {std::pair{&a.base_color, &b.base_color}, {&a.roughness, &b.roughness},
+                             {&a.metallic, &b.metallic}, {&a.height, &b.height}, {&a.normal, &b.normal}})
+    EXPECT_EQ(x->data, y->data);
+  EXPECT_EQ(a.normal.data, flat.normal.data);
+  StrokeFile v1;
+  v1.strokes = {plain.layers[0].strokes[0].decal};
+  std::vector<SurfacePoint> all = inside;
+  all.insert(all.end(), outside.begin(), outside.end());
+  const std::vector<Vec3> expected = StrokeSignal(mesh, v1).evaluate(all);
+  const std::vector<MaterialValue> got = evaluate_material(mesh, plain, all);
+  for (size_t k = 0; k < all.size(); ++k)
+    EXPECT_LT((Vec3(got[k][0], got[k][1], got[k][2]) - expected[k]).norm(), 1e-12) << k;
+}
+
+TEST(MaterialPaint, CliRejectsBadDecalChannelsWithOneLine) {
+  test::TempDir tmp;
+  write_obj(tmp.path / "p.obj", shapes::plane(4), nullptr);
+  write_png(tmp.path / "d.png", ImageRGBA8(4, 4, {20, 200, 40, 255}));
+  std::ofstream(tmp.path / "bad.json") << R"({"format": "adaptex.strokes", "version": 2, "layers": [{"strokes": [
+      {"type": "decal", "image": "d.png", "eye": [0.5, 0.5, 2], "target": [0.5, 0.5, 0], "channels": {"height": 2}}]}]})";
+  for (const std::string& cmd : {"strokes check " + q(tmp.path / "bad.json"),
+                                 "paint " + q(tmp.path / "p.obj") + " --strokes " + q(tmp.path / "bad.json") +
+                                     " --size 32 -o " + q(tmp.path / "out")}) {
+    const auto r = test::run_cli(cmd);
+    EXPECT_EQ(r.exit_code, 2) << cmd;
+    EXPECT_EQ(r.err, "adaptex: error: " + (tmp.path / "bad.json").string() +
+                         ": layer 0: stroke 0: \"channels.height\" must be in [0, 1] (got 2)\n")
+        << cmd;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+  }
+  EXPECT_FALSE(std::filesystem::exists(tmp.path / "out" / "p.glb"));
 }
 
 TEST(MaterialPaint, CliPaintsAVersion2FileIntoAPbrMaterial) {

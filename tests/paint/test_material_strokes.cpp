@@ -11,6 +11,7 @@
 
 #include "adaptex/core/errors.h"
 #include "adaptex/core/shapes.h"
+#include "adaptex/io/image_io.h"
 #include "adaptex/paint/material_signal.h"
 #include "adaptex/paint/material_strokes.h"
 #include "adaptex/paint/signal.h"
@@ -50,6 +51,15 @@ std::string error_of(const std::string& text) {
     return e.what();
   }
   return "(no error)";
+}
+
+std::string validation_error_of(const MaterialStroke& s) {
+  try {
+    validate_material_stroke(s, false, "d");
+  } catch (const InvalidInputError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 std::string v2_with_stroke(const std::string& stroke) {
@@ -254,6 +264,86 @@ TEST(MaterialStrokes, ErrorsNameTheLayerStrokeAndField) {
             "m.json: \"version\" must be 1 or 2 (got 3)");
   EXPECT_EQ(error_of(R"({"format": "adaptex.strokes", "version": 2, "layers": [{"name": "x"}]})"),
             "m.json: layer 0: missing required field \"strokes\"");
+}
+
+/// A version 2 file in \p dir whose one layer holds \p strokes; decals there use the 4 x 4 "d.png".
+std::string decal_file(const test::TempDir& dir, const std::string& strokes) {
+  write_png(dir.path / "d.png", ImageRGBA8(4, 4, {20, 200, 40, 255}));
+  return R"({"format": "adaptex.strokes", "version": 2, "layers": [{"strokes": [)" + strokes + "]}]}";
+}
+
+std::string decal_with(const std::string& channels) {
+  return R"({"type": "decal", "image": "d.png", "eye": [0.5, 0.5, 2], "target": [0.5, 0.5, 0])" +
+         (channels.empty() ? std::string() : ", \"channels\": " + channels) + "}";
+}
+
+TEST(MaterialStrokes, DecalChannelsReadWriteAndReadBackTheSame) {
+  const test::TempDir dir;
+  const std::string text = decal_file(dir, decal_with("") + ", " + decal_with(R"({"base_color": "image", "roughness": 0.2})") +
+                                               ", " + decal_with(R"({"height": 0.9})") + ", " +
+                                               decal_with(R"({"base_color": [0.1, 0.2, 0.3], "metallic": 1})"));
+  const MaterialStrokeFile f = parse_material_strokes(text, "m.json", dir.path);
+  ASSERT_EQ(f.layers[0].strokes.size(), 4u);
+  const auto& s = f.layers[0].strokes;
+  for (const MaterialStroke& d : s) EXPECT_EQ(d.type, MaterialStroke::Type::Decal);
+  EXPECT_EQ(s[0].channels, channel_bit(Channel::BaseColor));  // missing: {"base_color": "image"}
+  EXPECT_TRUE(s[0].image_color);
+  EXPECT_EQ(s[1].channels, channel_bit(Channel::BaseColor) | channel_bit(Channel::Roughness));
+  EXPECT_TRUE(s[1].image_color);
+  EXPECT_EQ(s[1].value[channel_offset(Channel::Roughness)], 0.2);
+  EXPECT_EQ(s[2].channels, channel_bit(Channel::Height));
+  EXPECT_EQ(s[2].value[channel_offset(Channel::Height)], 0.9);
+  EXPECT_EQ(s[3].channels, channel_bit(Channel::BaseColor) | channel_bit(Channel::Metallic));
+  EXPECT_FALSE(s[3].image_color);
+  EXPECT_EQ(s[3].value[2], 0.3);
+  for (size_t k = 0; k < s.size(); ++k) EXPECT_NO_THROW(validate_material_stroke(s[k], false, "stroke"));
+  // Written: the default is left out, the others as read; read back and written again: the same text.
+  const std::string written = material_strokes_json(f);
+  const MaterialStrokeFile g = parse_material_strokes(written, "w.json", dir.path);
+  EXPECT_EQ(material_strokes_json(g), written);
+  for (size_t k = 0; k < s.size(); ++k) {
+    EXPECT_EQ(g.layers[0].strokes[k].channels, s[k].channels) << k;
+    EXPECT_EQ(g.layers[0].strokes[k].image_color, s[k].image_color) << k;
+    EXPECT_EQ(g.layers[0].strokes[k].value, s[k].value) << k;
+  }
+  EXPECT_EQ(written.find("\"channels\": {\"base_color\": \"image\"}"), std::string::npos) << written;
+  EXPECT_NE(written.find("\"channels\": {\"base_color\": \"image\", \"roughness\": 0.2}"), std::string::npos) << written;
+  EXPECT_NE(written.find("\"channels\": {\"height\": 0.9}"), std::string::npos) << written;
+  EXPECT_TRUE(parse_material_strokes(written, "w.json", dir.path).warnings.empty());  // "channels" is known
+  // A decal built in code checks its channels as the parser does.
+  MaterialStroke none = s[0];
+  none.channels = 0;
+  EXPECT_NE(validation_error_of(none).find("\"channels\" must name at least one"), std::string::npos);
+  MaterialStroke high = s[2];
+  high.value[channel_offset(Channel::Height)] = 1.5;
+  EXPECT_EQ(validation_error_of(high), "d: \"channels.height\" must be in [0, 1] (got 1.5)");
+}
+
+TEST(MaterialStrokes, BadDecalChannelsAreOneLineErrors) {
+  const test::TempDir dir;
+  const auto error = [&](const std::string& channels) {
+    try {
+      parse_material_strokes(decal_file(dir, decal_with(channels)), "m.json", dir.path);
+    } catch (const InvalidInputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  EXPECT_EQ(error(R"({"rougness": 0.5})"), "m.json: layer 0: stroke 0: unknown channel \"rougness\"");
+  EXPECT_EQ(error(R"({"height": 1.5})"), "m.json: layer 0: stroke 0: \"channels.height\" must be in [0, 1] (got 1.5)");
+  EXPECT_EQ(error(R"({"base_color": [0, 2, 0]})"),
+            "m.json: layer 0: stroke 0: \"channels.base_color\"[1] must be in [0, 1] (got 2)");
+  EXPECT_EQ(error("{}"), "m.json: layer 0: stroke 0: \"channels\" must be an object with at least one of \"base_color\", "
+                         "\"alpha\", \"roughness\", \"metallic\", \"height\" (got an empty object)");
+  EXPECT_EQ(error(R"(["height"])"), "m.json: layer 0: stroke 0: \"channels\" must be an object with at least one of "
+                                    "\"base_color\", \"alpha\", \"roughness\", \"metallic\", \"height\" (got array)");
+  EXPECT_EQ(error(R"({"base_color": "picture"})"),
+            "m.json: layer 0: stroke 0: \"channels.base_color\" must be \"image\" or an array of 3 numbers in [0, 1] "
+            "(got string \"picture\")");
+  // "image" is a decal's only: a brush's base colour is an array.
+  EXPECT_EQ(error_of(v2_with_stroke(R"({"channels": {"base_color": "image"}, "radius": 0.1, "dabs": [[0, 0, 0]]})")),
+            "m.json: layer 0: stroke 1: \"channels.base_color\" must be an array of 3 finite numbers (got string "
+            "\"image\")");
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "adaptex/io/mesh_io.h"
 #include "adaptex/paint/asset_eval.h"
 #include "adaptex/paint/material_paint.h"
+#include "adaptex/paint/material_signal.h"
 #include "adaptex/paint/painter.h"
 #include "app.h"
 #include "brush_preset.h"
@@ -2411,10 +2412,9 @@ TEST(StudioBrushPreset, ProjectsKeepTheMaskValueAndThePressureCurves) {
 }
 
 
-TEST(StudioMaterial, AStampPlacesTheDecalImageAtTheCursorAsTallAsTheBrush) {
-  TempDir dir;
-  Harness h({}, 128);
-  // A green disc on a transparent square: the image's alpha is the stamp's shape.
+/// Loads a green disc on a transparent 32 x 32 square (the image's alpha is the stamp's shape) as the
+/// decal image and turns stamping on with a brush 20 pixels in radius (a disc of radius 14/32 * 40 = 17.5).
+void load_disc_stamp(Harness& h, const TempDir& dir) {
   ImageRGBA8 img(32, 32, {0, 0, 0, 0});
   for (int y = 0; y < 32; ++y)
     for (int x = 0; x < 32; ++x)
@@ -2425,10 +2425,17 @@ TEST(StudioMaterial, AStampPlacesTheDecalImageAtTheCursorAsTallAsTheBrush) {
   write_png(dir.path / "disc.png", img);
   h.app->load_decal(dir.path / "disc.png");
   ASSERT_TRUE(h.app->decal_image());
-  const Stencil stencil = *h.app->stencil();
   h.app->brush().stamp = true;
   h.app->brush().screen_space = true;
-  h.app->brush().pixel_radius = 20;  // a disc of radius 14/32 * 40 = 17.5 pixels
+  h.app->brush().pixel_radius = 20;
+}
+
+TEST(StudioMaterial, AStampPlacesTheDecalImageAtTheCursorAsTallAsTheBrush) {
+  TempDir dir;
+  Harness h({}, 128);
+  load_disc_stamp(h, dir);
+  ASSERT_TRUE(h.app->stencil());
+  const Stencil stencil = *h.app->stencil();
   const ImageRGBA8 before = *h.app->texture();
   h.click(150, 150);
   ASSERT_TRUE(h.app->wait_idle(60));
@@ -2445,6 +2452,54 @@ TEST(StudioMaterial, AStampPlacesTheDecalImageAtTheCursorAsTallAsTheBrush) {
   EXPECT_LT((colour_at(150, 185) - Vec3(1, 1, 1)).norm(), 0.05);              // past the brush: untouched
   EXPECT_LT((colour_at(150 + 19, 150 + 19) - Vec3(1, 1, 1)).norm(), 0.05);    // the square's corner: alpha 0
   EXPECT_GT(max_abs_diff(before, *h.app->texture()), 100);
+}
+
+TEST(StudioMaterial, AStampPaintsTheBrushsHeightAndRoughnessWithTheImagesCoverage) {
+  TempDir dir;
+  Harness h({}, 128);
+  load_disc_stamp(h, dir);
+  h.app->brush().channels = channel_bit(Channel::Height) | channel_bit(Channel::Roughness);
+  h.app->brush().height = 0.9;
+  h.app->brush().roughness = 0.1;
+  h.click(150, 150);
+  ASSERT_TRUE(h.app->wait_idle(60));
+  ASSERT_TRUE(h.app->layered());  // a channel other than base colour: a layered material
+  const auto material_at = [&](double x, double y) {
+    const auto hit = h.app->pick(x, y);
+    EXPECT_TRUE(hit);
+    return hit ? evaluate_material(*h.app->mesh(), h.app->material_file(), {SurfacePoint{hit->face, hit->b0, hit->b1}})[0]
+               : MaterialValue{};
+  };
+  const std::vector<MaterialStroke>& strokes = h.app->material()->file().layers[h.app->material()->active()].strokes;
+  ASSERT_EQ(strokes.size(), 1u);
+  EXPECT_EQ(strokes[0].type, MaterialStroke::Type::Decal);
+  EXPECT_EQ(strokes[0].channels, channel_bit(Channel::Height) | channel_bit(Channel::Roughness));
+  MaterialValue v = material_at(150, 150);  // the disc's centre: height and roughness, base colour untouched
+  EXPECT_NEAR(v[channel_offset(Channel::Height)], 0.9, 1e-6);
+  EXPECT_NEAR(v[channel_offset(Channel::Roughness)], 0.1, 1e-6);
+  EXPECT_EQ(Vec3(v[0], v[1], v[2]), Vec3(1, 1, 1));
+  v = material_at(150 + 19, 150 + 19);  // the square's corner: alpha 0
+  EXPECT_EQ(v[channel_offset(Channel::Height)], 0.5);
+  EXPECT_EQ(v[channel_offset(Channel::Roughness)], 0.5);
+  // With base colour checked too: the image's colour and the brush's height.
+  h.app->brush().channels = channel_bit(Channel::BaseColor) | channel_bit(Channel::Height);
+  h.click(250, 150);
+  ASSERT_TRUE(h.app->wait_idle(60));
+  v = material_at(250, 150);
+  EXPECT_LT((Vec3(v[0], v[1], v[2]) - Vec3(20, 200, 40) / 255.0).norm(), 0.02);
+  EXPECT_NEAR(v[channel_offset(Channel::Height)], 0.9, 1e-6);
+  EXPECT_NEAR(v[channel_offset(Channel::Roughness)], 0.5, 1e-6);
+  // The saved version 2 file holds the stamps' channels.
+  h.app->save_material_strokes(dir.path / "m.json");
+  const MaterialStrokeFile saved = read_material_strokes(dir.path / "m.json");
+  const MaterialStroke& last = saved.layers[h.app->material()->active()].strokes.back();
+  EXPECT_EQ(last.channels, channel_bit(Channel::BaseColor) | channel_bit(Channel::Height));
+  EXPECT_TRUE(last.image_color);
+  EXPECT_EQ(last.value[channel_offset(Channel::Height)], 0.9);
+  // No channel checked: nothing is stamped, a message says why.
+  h.app->brush().channels = 0;
+  h.click(200, 120);
+  EXPECT_EQ(h.app->material()->file().layers[h.app->material()->active()].strokes.size(), 2u);
 }
 
 }  // namespace

@@ -59,6 +59,9 @@ struct MaterialStroke {
   Type type = Type::Brush;
   unsigned channels = 0;      ///< Channel bits painted (or erased) by the stroke; unused in masks.
   MaterialValue value{};      ///< Values of the painted channels (other components unused).
+  /// Decal only: a painted base colour is the image's RGB at each point (`"base_color": "image"`),
+  /// not value's. A parsed decal without "channels" paints base colour from the image.
+  bool image_color = true;
   double mask_value = 1;      ///< Mask brush / fill only: the value painted into the mask, in [0,1].
   double radius = 0.01;       ///< Brush and erase: world units, > 0.
   double hardness = 0.5;      ///< Brush and erase: in [0,1].
@@ -103,7 +106,7 @@ struct MaterialStrokeFile {
 /// Checks a stroke in memory against the rules of docs/strokes.md, the same rules and messages as
 /// the parser (for strokes built in code, e.g. by the desktop app): values in [0,1], radius > 0 and
 /// finite, finite non-empty dabs, one pressure per dab or none, curves from pressure 0 to 1 with
-/// increasing pressures, at least one channel, no decal in a mask. \p in_mask: a mask's stroke
+/// increasing pressures, at least one channel (a decal too), no decal in a mask. \p in_mask: a mask's stroke
 /// (mask_value is painted, channels are unused). \p where prefixes the message (e.g. "layer 2:
 /// stroke 3"; empty: no prefix).
 /// \pre nothing (any stroke may be passed)

@@ -31,10 +31,10 @@ bool in_unit(double v) { return v >= 0 && v <= 1; }
 /// The rules of docs/strokes.md for one stroke added to a session (the parser's, for a stroke built in code).
 void check_stroke(const MaterialStroke& s, const std::string& where) {
   auto bad = [&](const std::string& what) { throw InvalidInputError(where + ": " + what); };
-  if (s.type == MaterialStroke::Type::Decal) return validate_stroke(s.decal, where);
   if ((s.channels & ~kAllChannels) != 0) bad("unknown channel bits");
   for (double v : s.value)
     if (!in_unit(v)) bad("channel values must be in [0, 1]");
+  if (s.type == MaterialStroke::Type::Decal) return validate_stroke(s.decal, where);
   if (!in_unit(s.opacity) || !in_unit(s.mask_value)) bad("opacity and mask value must be in [0, 1]");
   if (s.type == MaterialStroke::Type::Fill) return;
   if (!(s.radius > 0) || !std::isfinite(s.radius)) bad("radius must be positive and finite");
