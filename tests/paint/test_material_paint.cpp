@@ -291,6 +291,42 @@ TEST(MaterialPaint, DecalChannelsPaintTheirValuesWithTheImagesCoverage) {
     EXPECT_LT((Vec3(got[k][0], got[k][1], got[k][2]) - expected[k]).norm(), 1e-12) << k;
 }
 
+/// FNV-1a (64 bits) of \p bytes.
+std::uint64_t fnv1a(const std::vector<std::uint8_t>& bytes) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (std::uint8_t b : bytes) h = (h ^ b) * 1099511628211ull;
+  return h;
+}
+
+// Decals without "channels" paint the bytes they painted before decals had channels: the hashes were
+// taken from the code of d58db5f (the parent of the change); a brush, two decals of an image with
+// varying colour and alpha, a multiply layer.
+TEST(MaterialPaint, DecalsWithoutChannelsPaintTheBytesOfBefore) {
+  const test::TempDir dir;
+  ImageRGBA8 img(8, 8);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) {
+      std::uint8_t* t = img.texel(x, y);
+      t[0] = std::uint8_t(x * 30), t[1] = std::uint8_t(y * 30), t[2] = std::uint8_t(x * y * 13);
+      t[3] = (x + y) % 3 ? 255 : 128;
+    }
+  write_png(dir.path / "d.png", img);
+  const MaterialStrokeFile file = parse_material_strokes(
+      R"({"format": "adaptex.strokes", "version": 2, "height_scale": 0.05, "layers": [
+      {"strokes": [{"channels": {"base_color": [0.2, 0.3, 0.9], "roughness": 0.3}, "radius": 0.2,
+                    "dabs": [[0.3, 0.3, 0], [0.4, 0.35, 0]]},
+                   {"type": "decal", "image": "d.png", "eye": [0.5, 0.5, 2], "target": [0.5, 0.5, 0], "fov": 25,
+                    "opacity": 0.8}]},
+      {"blend": "multiply", "opacity": 0.7, "strokes": [
+        {"type": "decal", "image": "d.png", "eye": [0.6, 0.4, 1.5], "target": [0.5, 0.5, 0], "fov": 30}]}]})",
+      "m.json", dir.path);
+  const TriMesh mesh = shapes::plane(10);
+  const MaterialTextures t = paint_material(mesh, test::planar_param(mesh, 0.9, 0.05), file, {64, 2});
+  EXPECT_EQ(fnv1a(t.base_color.data), 10273555214825857542ull);
+  EXPECT_EQ(fnv1a(t.roughness.data), 17547118136741545469ull);
+  EXPECT_EQ(fnv1a(t.normal.data), 14166859361396507429ull);
+}
+
 TEST(MaterialPaint, CliRejectsBadDecalChannelsWithOneLine) {
   test::TempDir tmp;
   write_obj(tmp.path / "p.obj", shapes::plane(4), nullptr);
