@@ -2500,6 +2500,13 @@ TEST(StudioMaterial, AStampPaintsTheBrushsHeightAndRoughnessWithTheImagesCoverag
   h.app->brush().channels = 0;
   h.click(200, 120);
   EXPECT_EQ(h.app->material()->file().layers[h.app->material()->active()].strokes.size(), 2u);
+  // A projected decal (P) paints the image's colour on the layer, whatever the brush's channels.
+  h.app->project_decal(1.0);
+  ASSERT_TRUE(h.app->wait_idle(60));
+  const auto& layer = h.app->material()->file().layers[h.app->material()->active()];
+  ASSERT_EQ(layer.strokes.size(), 3u);
+  EXPECT_EQ(layer.strokes[2].channels, channel_bit(Channel::BaseColor));
+  EXPECT_TRUE(layer.strokes[2].image_color);
 }
 
 }  // namespace
