@@ -25,7 +25,8 @@
 // quote the median of the repetitions.
 //   adaptex_bench_material --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 // The comparison: --benchmark_filter='SessionCycle' (the version 1 cycle and the material session's).
-// Counters: the phases (ms), cache = surface cache samples, session_MB = heap in use by the session
+// Counters: the phases (ms; flow_ms = flow + polish, polish_ms the polish alone), flow_steps and polish_sweeps
+// (AdaptReport's), faults = the timed part's page faults (getrusage), cache = surface cache samples, session_MB = heap in use by the session
 // after its setup (glibc mallinfo2), cpu_ms = the timed part's process CPU time; with the surface cache:
 // psnr_db = the held textures (base colour, metallic-roughness; the lower) against exact replay on the
 // held layout, loss_db = their error on the surface (evaluate_material_textures(), 200k samples)
@@ -42,6 +43,7 @@
 
 #include <fcntl.h>
 #include <malloc.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -188,6 +190,22 @@ const PerfControl& perf_control() {
   return p;
 }
 
+/// Page faults of the process so far (minor + major).
+double page_faults() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_minflt + u.ru_majflt);
+}
+
+/// The flow's and the polish's figures of \p r (the same code in both sessions' cycles).
+void add_flow_counters(std::map<std::string, double>& acc, const AdaptReport& r) {
+  acc["density_ms"] += 1e3 * r.time_density;
+  acc["flow_ms"] += 1e3 * (r.time_flow + r.time_polish);
+  acc["polish_ms"] += 1e3 * r.time_polish;
+  acc["flow_steps"] += static_cast<double>(r.flow_steps);
+  acc["polish_sweeps"] += r.polish_sweeps;
+}
+
 void set_counters(benchmark::State& state, const Scene& sc, const std::map<std::string, double>& acc, int iters) {
   for (const auto& [k, v] : acc) state.counters[k] = v / std::max(1, iters);
   state.counters["faces"] = sc.mesh.num_faces();
@@ -210,15 +228,15 @@ void BM_SessionCycle(benchmark::State& state) {
     session.reparameterize();  // as the material session's setup: a held layout after two cycles
     acc["session_MB"] += (heap_in_use() - heap0) / 1e6;
     perf_control().send("enable");
-    const double c0 = cpu_seconds();
+    const double c0 = cpu_seconds(), f0 = page_faults();
     const auto t0 = std::chrono::steady_clock::now();
     session.add_stroke(sc.history.strokes[k - 1]);
     state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     acc["cpu_ms"] += 1e3 * (cpu_seconds() - c0);
+    acc["faults"] += page_faults() - f0;
     perf_control().send("disable");
     const AdaptReport& r = session.reports().back();
-    acc["density_ms"] += 1e3 * r.time_density;
-    acc["flow_ms"] += 1e3 * (r.time_flow + r.time_polish);
+    add_flow_counters(acc, r);
     acc["texture_ms"] += 1e3 * r.time_texture_update;
     acc["safeguard_ms"] += 1e3 * r.time_safeguard;
     acc["cache"] += static_cast<double>(session.surface_cache_samples());
@@ -274,11 +292,12 @@ void BM_MaterialSessionCycle(benchmark::State& state) {
     session.reparameterize();  // as at stroke K of a session: a held layout and a spare one
     acc["session_MB"] += (heap_in_use() - heap0) / 1e6;
     perf_control().send("enable");
-    const double c0 = cpu_seconds();
+    const double c0 = cpu_seconds(), f0 = page_faults();
     const auto t0 = std::chrono::steady_clock::now();
     session.add_stroke(0, file.layers[0].strokes.back());
     state.SetIterationTime(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     acc["cpu_ms"] += 1e3 * (cpu_seconds() - c0);
+    acc["faults"] += page_faults() - f0;
     perf_control().send("disable");
     acc["cache"] += static_cast<double>(session.surface_cache_samples());
     if (session.held_from_cache()) {  // the cached textures against exact replay on the held layout
@@ -294,8 +313,7 @@ void BM_MaterialSessionCycle(benchmark::State& state) {
       acc["loss_db"] += 10 * std::log10(e_cached / e_exact);
     }
     const AdaptReport& r = session.reports().back();
-    acc["density_ms"] += 1e3 * r.time_density;
-    acc["flow_ms"] += 1e3 * (r.time_flow + r.time_polish);
+    add_flow_counters(acc, r);
     acc["texture_ms"] += 1e3 * r.time_texture_update;
     acc["check_ms"] += 1e3 * r.time_safeguard;
     acc["adapted"] += session.adapted();
