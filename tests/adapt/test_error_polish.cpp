@@ -534,6 +534,31 @@ TEST(ErrorPolish, EdgeTensorTablesHoldExactBoxSums) {
   }
 }
 
+TEST(ErrorPolish, EdgeTensorIntoUsedStorageIsTheFreshOne) {
+  // A session's density-flow method keeps one EdgeTensor between cycles: written over a tensor of a
+  // larger, then of a smaller texture, it must equal a fresh one bit for bit.
+  auto noisy = [](int W, int H, unsigned state) {
+    ImageRGBA8 tex(W, H);
+    for (auto& c : tex.data) c = static_cast<std::uint8_t>((state = state * 1103515245u + 12345u) >> 24);
+    return tex;
+  };
+  const ImageRGBA8 large = noisy(90, 70, 7), small = noisy(40, 50, 8);
+  EdgeTensor kept;
+  for (const ImageRGBA8* tex : {&large, &small}) {
+    edge_tensor(*tex, kept);
+    const EdgeTensor fresh = edge_tensor(*tex);
+    EXPECT_EQ(kept.xx.width, tex->width);
+    EXPECT_EQ(kept.xx.height, tex->height);
+    EXPECT_EQ(kept.xx.data, fresh.xx.data);
+    EXPECT_EQ(kept.xy.data, fresh.xy.data);
+    EXPECT_EQ(kept.yy.data, fresh.yy.data);
+    EXPECT_EQ(kept.sum_xx, fresh.sum_xx);
+    EXPECT_EQ(kept.sum_xy, fresh.sum_xy);
+    EXPECT_EQ(kept.sum_yy, fresh.sum_yy);
+  }
+  EXPECT_THROW(edge_tensor(ImageRGBA8(), kept), InvalidInputError);
+}
+
 TEST(ErrorPolish, EdgeTensorOfAStripeFollowsItsEdges) {
   // A vertical stripe (texels 12..19 of 32 red): the gradient is along u at its two edges, zero
   // elsewhere.

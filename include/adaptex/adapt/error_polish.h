@@ -61,6 +61,11 @@ struct EdgeTensor {
 /// \pre texture not empty \throw InvalidInputError it is empty
 EdgeTensor edge_tensor(const ImageRGBA8& texture);
 
+/// The same into \p out, reusing its storage: a session's cycles then write the same pages again
+/// instead of taking fresh ones from the kernel (docs/benchmarks.md, "the four-channel cycle").
+/// \pre texture not empty \throw InvalidInputError it is empty
+void edge_tensor(const ImageRGBA8& texture, EdgeTensor& out);
+
 /// Sets \p fields' txx, txy, tyy for a lattice over [lo, hi]: \p edges summed over each cell and its
 /// ring, normalized to trace 1, T = (1 − isotropy)·T_edges + isotropy·I/2 (I/2 where the sum is 0).
 /// \pre isotropy in (0, 1]; lo < hi in [0,1]²; \p edges from edge_tensor() \throw InvalidInputError otherwise

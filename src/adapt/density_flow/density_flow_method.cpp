@@ -73,7 +73,7 @@ struct DensityFlowMethod::State {
     rep.flow_steps = st.total_steps;
     rep.flow_advected_points = st.advected_points;
     rep.time_flow = seconds_since(t0);
-    polish(o, ed, in.texture, moves, lattices, res);
+    polish(o, ed, in.texture, moves, lattices, res, edges);
     res.warp = std::make_shared<const LatticeWarp>(std::move(lattices), std::move(moves));
   }
 
@@ -117,6 +117,7 @@ struct DensityFlowMethod::State {
   std::optional<ErrorDensity> model;                 // predict_gain()'s, for the next compute()
   size_t model_strokes = 0;                          // the history's length it saw
   ImageF held_density;                               // hold(): the held layout's density, empty: fixed
+  EdgeTensor edges;  // the polish's, its storage kept between cycles (no fresh pages: docs/benchmarks.md)
 
   /// Polishes lattice \p c of \p lattices (coarse to fine, ErrorPolishOptions::prepass_sweeps) with
   /// \p progress; \p cell gets the area of one of its cells in cells of the density raster.
@@ -182,13 +183,15 @@ struct DensityFlowMethod::State {
   /// Every flow lattice polished by the anisotropic error model (error_polish.h). The charts' lattices
   /// are polished in parallel (each polish is also parallel inside): an atlas has many small lattices
   /// whose own sweeps cannot keep two cores busy (armadillo, 1024²: 15 charts of 16–55 polish cells).
-  /// Each lattice's result does not depend on the others or on the threads.
+  /// Each lattice's result does not depend on the others or on the threads. \p edges: storage for the
+  /// texture's edge tensor.
   static void polish(const AdaptOptions& o, const ErrorDensity& ed, const ImageRGBA8& texture,
-                     const std::vector<ChartMove>& moves, std::vector<GridWarp>& lattices, AdaptResult& res) {
+                     const std::vector<ChartMove>& moves, std::vector<GridWarp>& lattices, AdaptResult& res,
+                     EdgeTensor& edges) {
     if (o.density_flow.polish.sweeps <= 0 || (!moves.empty() && !o.density_flow.polish.charts)) return;
     const auto t0 = std::chrono::steady_clock::now();
     report_progress(o.progress, "polish", 0);
-    const EdgeTensor edges = o.density_flow.polish.isotropy < 1 ? edge_tensor(texture) : EdgeTensor{};
+    if (o.density_flow.polish.isotropy < 1) edge_tensor(texture, edges);  // else not read
     // The caller's callback is called by one thread at a time: with one lattice, with its sweeps'
     // fraction; with several, with the fraction of lattices done.
     const ProgressCallback& user = o.density_flow.polish.progress ? o.density_flow.polish.progress : o.progress;

@@ -63,9 +63,18 @@ PolishFields polish_fields(const ImageF& error, const ImageF& exponent, const Im
 }
 
 EdgeTensor edge_tensor(const ImageRGBA8& texture) {
+  EdgeTensor t;
+  edge_tensor(texture, t);
+  return t;
+}
+
+void edge_tensor(const ImageRGBA8& texture, EdgeTensor& t) {
   const int W = texture.width, H = texture.height;
   if (texture.empty()) throw InvalidInputError("edge_tensor: the texture is empty");
-  EdgeTensor t{ImageF(W, H), ImageF(W, H), ImageF(W, H)};
+  for (ImageF* img : {&t.xx, &t.xy, &t.yy}) {  // every texel is written below
+    img->width = W, img->height = H;
+    img->data.resize(static_cast<size_t>(W) * H);
+  }
   tbb::parallel_for(0, H, [&](int j) {
     const int j0 = std::max(0, j - 1), j1 = std::min(H - 1, j + 1);
     for (int i = 0; i < W; ++i) {
@@ -99,7 +108,6 @@ EdgeTensor edge_tensor(const ImageRGBA8& texture) {
     });
   };
   tbb::parallel_invoke([&] { table(t.xx, t.sum_xx); }, [&] { table(t.xy, t.sum_xy); }, [&] { table(t.yy, t.sum_yy); });
-  return t;
 }
 
 void add_edge_directions(PolishFields& fields, const EdgeTensor& edges, const Vec2& lo, const Vec2& hi,

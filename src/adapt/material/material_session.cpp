@@ -13,6 +13,7 @@
 #include <string>
 
 #include "adaptex/adapt/error_density.h"
+#include "adaptex/adapt/method.h"
 #include "adaptex/core/errors.h"
 #include "adaptex/core/limits.h"
 #include "adaptex/core/timer.h"
@@ -101,6 +102,9 @@ struct MaterialPaintSession::Impl {
   MaterialErrorTracker initial_check;
   std::vector<char> check_changed, initial_changed;
   std::vector<AdaptReport> reports;
+  // The adaptation's method, kept between cycles as a version 1 session's (its buffers then keep their
+  // pages); made at the first cycle.
+  std::unique_ptr<AdaptMethod> method;
   // The surface cache (material_surface_cache.h): built once the history covers the surface
   // opt.surface_cache_coverage times, if its lattice has at most kMaxMaterialSurfaceCacheSamples.
   std::unique_ptr<MaterialSurfaceCache> surface;
@@ -364,7 +368,9 @@ const AdaptReport& MaterialPaintSession::Impl::cycle(bool gated) {
   gate.time_density = seconds_since(t0);
   if (gated && opt.min_gain_db > 0 && at_held >= 0 && gate.gain_over_held_db < opt.min_gain_db) return skip(gate, t_all);
 
-  AdaptResult res = adapt_parameterization(*initial.mesh, initial.param, base.base_color, initial.map, model, opt.adapt);
+  if (!method) method = make_adapt_method(opt.adapt.mode);
+  const WarpInput in{*initial.mesh, initial.param, base.base_color, initial.map, nullptr, opt.adapt, &model};
+  AdaptResult res = adapt_with(*method, in);
   AdaptReport& rep = res.report;
   rep.time_density += gate.time_density;
   rep.gain_over_held_db = gate.gain_over_held_db;
