@@ -347,21 +347,27 @@ double squared_distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) 
   return (a + t * d - p).squaredNorm();
 }
 
+/// A boundary edge (wedges a < b) and the one triangle it belongs to.
+struct BoundaryEdge {
+  int a, b, face;
+};
+
 /// The boundary edges (wedge pairs of one triangle only) of \p faces.
-std::vector<std::array<int, 2>> boundary_edges(const std::vector<Face>& faces) {
-  std::vector<std::array<int, 2>> half;
+std::vector<BoundaryEdge> boundary_edges(const std::vector<Face>& faces) {
+  std::vector<BoundaryEdge> half;
   half.reserve(3 * faces.size());
-  for (const Face& t : faces)
-    for (int k = 0; k < 3; ++k) half.push_back({t[k], t[(k + 1) % 3]});
-  std::vector<std::array<int, 2>> sorted = half;
-  for (auto& e : sorted)
-    if (e[0] > e[1]) std::swap(e[0], e[1]);
-  std::sort(sorted.begin(), sorted.end());
-  std::vector<std::array<int, 2>> out;
-  for (size_t i = 0; i < sorted.size();) {
+  for (size_t f = 0; f < faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = faces[f][k], b = faces[f][(k + 1) % 3];
+      half.push_back({std::min(a, b), std::max(a, b), static_cast<int>(f)});
+    }
+  const auto key = [](const BoundaryEdge& e) { return std::pair(e.a, e.b); };
+  std::sort(half.begin(), half.end(), [&](const BoundaryEdge& x, const BoundaryEdge& y) { return key(x) < key(y); });
+  std::vector<BoundaryEdge> out;
+  for (size_t i = 0; i < half.size();) {
     size_t j = i;
-    while (j < sorted.size() && sorted[j] == sorted[i]) ++j;
-    if (j - i == 1) out.push_back(sorted[i]);
+    while (j < half.size() && key(half[j]) == key(half[i])) ++j;
+    if (j - i == 1) out.push_back(half[i]);
     i = j;
   }
   return out;
@@ -370,10 +376,10 @@ std::vector<std::array<int, 2>> boundary_edges(const std::vector<Face>& faces) {
 }  // namespace
 
 bool boundary_near_contact(const std::vector<Vec2>& uv, const std::vector<Face>& faces, double tol) {
-  const std::vector<std::array<int, 2>> edges = boundary_edges(faces);
+  const std::vector<BoundaryEdge> edges = boundary_edges(faces);
   if (edges.empty()) return false;
   Vec2 lo = Vec2::Constant(kInf), hi = Vec2::Constant(-kInf);
-  for (const auto& e : edges) lo = lo.cwiseMin(uv[e[0]]).cwiseMin(uv[e[1]]), hi = hi.cwiseMax(uv[e[0]]).cwiseMax(uv[e[1]]);
+  for (const BoundaryEdge& e : edges) lo = lo.cwiseMin(uv[e.a]).cwiseMin(uv[e.b]), hi = hi.cwiseMax(uv[e.a]).cwiseMax(uv[e.b]);
   // Uniform grid with about one edge per cell; an edge is listed in every cell its box, grown by
   // tol, touches, so a wedge need only look in its own cell.
   const int n = std::clamp(static_cast<int>(std::sqrt(static_cast<double>(edges.size()))), 1, 1024);
@@ -383,23 +389,25 @@ bool boundary_near_contact(const std::vector<Vec2>& uv, const std::vector<Face>&
   };
   std::vector<std::vector<int>> bucket(static_cast<size_t>(n) * n);
   for (size_t i = 0; i < edges.size(); ++i) {
-    const Vec2 a = uv[edges[i][0]].cwiseMin(uv[edges[i][1]]) - Vec2::Constant(tol);
-    const Vec2 b = uv[edges[i][0]].cwiseMax(uv[edges[i][1]]) + Vec2::Constant(tol);
+    const Vec2 a = uv[edges[i].a].cwiseMin(uv[edges[i].b]) - Vec2::Constant(tol);
+    const Vec2 b = uv[edges[i].a].cwiseMax(uv[edges[i].b]) + Vec2::Constant(tol);
     for (int y = cell(a.y(), lo.y(), ext.y()); y <= cell(b.y(), lo.y(), ext.y()); ++y)
       for (int x = cell(a.x(), lo.x(), ext.x()); x <= cell(b.x(), lo.x(), ext.x()); ++x)
         bucket[static_cast<size_t>(y) * n + x].push_back(static_cast<int>(i));
   }
   std::vector<int> wedges;
-  for (const auto& e : edges) wedges.push_back(e[0]), wedges.push_back(e[1]);
+  for (const BoundaryEdge& e : edges) wedges.push_back(e.a), wedges.push_back(e.b);
   std::sort(wedges.begin(), wedges.end());
   wedges.erase(std::unique(wedges.begin(), wedges.end()), wedges.end());
   for (int w : wedges) {
     const Vec2& p = uv[w];
     for (int i : bucket[static_cast<size_t>(cell(p.y(), lo.y(), ext.y())) * n + cell(p.x(), lo.x(), ext.x())]) {
-      const auto& e = edges[i];
-      // A wedge on an endpoint (a zipped cut) stays on it under any transform: not fragile.
-      if (e[0] == w || e[1] == w || p == uv[e[0]] || p == uv[e[1]]) continue;
-      if (squared_distance_to_segment(p, uv[e[0]], uv[e[1]]) <= tol * tol) return true;
+      const BoundaryEdge& e = edges[i];
+      // A wedge of the edge's own triangle is that triangle's shape (a sliver), not a contact; a
+      // wedge on an endpoint (a zipped cut) stays on it under any transform: not fragile.
+      const Face& t = faces[e.face];
+      if (t[0] == w || t[1] == w || t[2] == w || p == uv[e.a] || p == uv[e.b]) continue;
+      if (squared_distance_to_segment(p, uv[e.a], uv[e.b]) <= tol * tol) return true;
     }
   }
   return false;

@@ -231,3 +231,13 @@ TEST(BoundaryContact, AWedgeNearAnotherPartOfTheBoundaryIsFragile) {
   closing[2] = Vec2(1, 0.6 - 1e-12);  // the lower arm's tip, just under the upper arm's edge 4-5
   EXPECT_TRUE(boundary_near_contact(closing, open, 1e-9));
 }
+
+TEST(BoundaryContact, ASliversApexNearItsOwnBaseIsNotAContact) {
+  // One triangle 1e-12 high: rounding may flip it (the check after packing sees that), but it has
+  // nothing to touch; splitting it is impossible, so it must not count as fragile.
+  const std::vector<Vec2> uv = {Vec2(0, 0), Vec2(1, 0), Vec2(0.5, 1e-12)};
+  EXPECT_FALSE(boundary_near_contact(uv, {{0, 1, 2}}, 1e-9));
+  // The same sliver beside a square: still only its own base is near its apex.
+  const std::vector<Vec2> strip = {Vec2(0, 0), Vec2(1, 0), Vec2(0.5, -1e-12), Vec2(1, 1), Vec2(0, 1)};
+  EXPECT_FALSE(boundary_near_contact(strip, {{0, 2, 1}, {0, 1, 3}, {0, 3, 4}}, 1e-9));
+}

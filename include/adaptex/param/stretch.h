@@ -82,9 +82,11 @@ std::vector<int> invalid_uv_faces(const Parameterization& param,
                                   long max_pairs = 100000);
 
 /// Whether the layout \p uv / \p faces (U wedge coordinates, F triangles of one chart) is valid
-/// only up to rounding at its boundary: a boundary wedge lies within \p tol of a boundary edge not
-/// incident to it (a zipped cut, a vertex on another part of the boundary). Moved and scaled into a
-/// packing, such a layout can gain overlapping triangles. Boundary edges: those of one triangle.
+/// only up to rounding at its boundary: a boundary wedge lies within \p tol of a boundary edge
+/// of another triangle (a zipped cut, a vertex on another part of the boundary). Moved and scaled
+/// into a packing, such a layout can gain overlapping triangles. Boundary edges: those of one
+/// triangle; a wedge on an endpoint of the edge is no contact (it stays there under any transform),
+/// nor is a sliver's apex near its own base (a single triangle is never in contact).
 /// \pre every index of \p faces is in [0, uv.size()), tol >= 0
 bool boundary_near_contact(const std::vector<Vec2>& uv, const std::vector<Face>& faces, double tol);
 
