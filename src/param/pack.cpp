@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <numeric>
 #include <string>
@@ -607,6 +608,84 @@ Profile rasterize(const ChartShape& chart, double scale, int turns, double h, in
   return pr;
 }
 
+/// Empty rectangles under the horizon that later charts fill: no chart's raster cell lies in one,
+/// and a chart goes in when its raster dilated by the gap (a box of low.size() by max_top + 2 g
+/// cells) fits, so it keeps the gap to whatever lies around the hole.
+class Holes {
+ public:
+  struct Rect {
+    int x0, y0, x1, y1;
+    long area() const { return static_cast<long>(x1 - x0) * (y1 - y0); }
+  };
+  using Map = std::multimap<long, Rect>;
+
+  /// Holes narrower or lower than \p min_side cells are not kept (they hold no dilated chart).
+  explicit Holes(int min_side) : min_side_(min_side) {}
+
+  /// Records the cells enclosed in columns x0 + j, j in [0, floor.size()), between the old
+  /// horizon floor[j] and the bottom ceil[j] of the chart just placed there.
+  void enclose(int x0, const std::vector<int>& floor, const std::vector<int>& ceil) {
+    split(x0, floor.data(), ceil.data(), 0, static_cast<int>(floor.size()));
+  }
+
+  /// The smallest of the first kScan holes (by area) that hold a \p w by \p h box, or end().
+  Map::const_iterator find(int w, int h) const {
+    int scanned = 0;
+    for (auto it = by_area_.lower_bound(static_cast<long>(w) * h); it != by_area_.end(); ++it) {
+      if (it->second.x1 - it->second.x0 >= w && it->second.y1 - it->second.y0 >= h) return it;
+      if (++scanned == kScan) break;
+    }
+    return by_area_.end();
+  }
+  Map::const_iterator end() const { return by_area_.end(); }
+
+  /// Puts a \p w by \p h box (its raster \p g inside it) at the lower-left corner of \p hole
+  /// and keeps the two rectangles left around it (the larger one whole; neighbouring boxes
+  /// share their g-cell margins, so rasters stay g apart).
+  void fill(Map::const_iterator hole, int w, int h, int g) {
+    const Rect r = hole->second;
+    by_area_.erase(hole);
+    const int xr = r.x0 + w - g, yt = r.y0 + h - g;
+    const Rect right_tall{xr, r.y0, r.x1, r.y1}, top_short{r.x0, yt, xr, r.y1};
+    const Rect right_short{xr, r.y0, r.x1, yt}, top_wide{r.x0, yt, r.x1, r.y1};
+    if (std::max(right_tall.area(), top_short.area()) >= std::max(right_short.area(), top_wide.area()))
+      add(right_tall), add(top_short);
+    else
+      add(right_short), add(top_wide);
+  }
+
+ private:
+  void add(const Rect& r) {
+    if (r.x1 - r.x0 >= min_side_ && r.y1 - r.y0 >= min_side_) by_area_.emplace(r.area(), r);
+  }
+
+  /// The largest rectangle between floor and ceil over columns [j0, j1) (at most kWidest wide),
+  /// then the same on either side of it.
+  void split(int x0, const int* floor, const int* ceil, int j0, int j1) {
+    if (j1 - j0 < min_side_) return;
+    long best = 0;
+    Rect r{};
+    for (int a = j0; a < j1; ++a) {
+      int f = floor[a], c = ceil[a];
+      for (int b = a; b < std::min(j1, a + kWidest); ++b) {
+        f = std::max(f, floor[b]), c = std::min(c, ceil[b]);
+        if (c - f < min_side_) break;
+        const long area = static_cast<long>(b - a + 1) * (c - f);
+        if (b - a + 1 >= min_side_ && area > best) best = area, r = {a, f, b + 1, c};
+      }
+    }
+    if (best == 0) return;
+    add({x0 + r.x0, r.y0, x0 + r.x1, r.y1});
+    split(x0, floor, ceil, j0, r.x0);
+    split(x0, floor, ceil, r.x1, j1);
+  }
+
+  static constexpr int kScan = 64;
+  static constexpr int kWidest = 512;
+  int min_side_;
+  Map by_area_;
+};
+
 /// The atlas of one packing trial: the horizon, the top of every column (in cells), with its
 /// prefix sums.
 class Horizon {
@@ -643,9 +722,13 @@ class Horizon {
     return improved;
   }
 
-  /// Places \p pr at (x, y): its raw column j at x + g + j reaches y + g + top[j].
-  void place(const Profile& pr, int x, int y, int g) {
+  /// Places \p pr at (x, y): its raw column j at x + g + j reaches y + g + top[j]. The cells
+  /// it encloses between the horizon and its bottom go to \p holes.
+  void place(const Profile& pr, int x, int y, int g, Holes& holes) {
     const int a = x + g;
+    std::vector<int> ceil(pr.width);
+    for (int j = 0; j < pr.width; ++j) ceil[j] = y + g + pr.bottom[j];
+    holes.enclose(a, std::vector<int>(h_.begin() + a, h_.begin() + a + pr.width), ceil);
     for (int j = 0; j < pr.width; ++j) h_[a + j] = std::max(h_[a + j], y + g + pr.top[j]);
     for (int i = a; i < n_; ++i) sum_[i + 1] = sum_[i] + h_[i];
   }
@@ -712,22 +795,43 @@ double shape_trial(const ShapeSet& set, double s, int n, int g, double min_side,
   Horizon horizon(n);
   double needed = 0;
   int done = 0;
+  Holes holes(1 + 2 * g);  // the smallest dilated chart: one cell and its gap around
   std::array<Profile, 4> turned;
+  std::array<bool, 4> repeat{};
   for (int c : set.order) {
     if ((++done & 4095) == 0) report_progress(progress, "pack", frac);
     const double scale = raised_scale(set.shorter[c], set.longer[c], s, min_side);
+    // A turn whose bottom and height match an earlier one's fits and scores the same everywhere:
+    // it cannot beat it (ties go to the earlier turn).
+    for (int t = 0; t < set.turns; ++t) {
+      Profile& pr = turned[t];
+      pr = rasterize(set.charts[c], scale, t, h, g);
+      repeat[t] = false;
+      for (int u = 0; u < t && !repeat[t]; ++u)
+        repeat[t] = turned[u].max_top == pr.max_top && turned[u].low == pr.low;
+    }
+    // A hole left under the horizon first (the smallest that holds the chart in some turn).
+    Holes::Map::const_iterator hole = holes.end();
+    int ht = 0;
+    for (int t = 0; t < set.turns; ++t) {
+      if (repeat[t]) continue;
+      const auto it = holes.find(static_cast<int>(turned[t].low.size()), turned[t].max_top + 2 * g);
+      if (it != holes.end() && (hole == holes.end() || it->first < hole->first)) hole = it, ht = t;
+    }
+    if (hole != holes.end()) {
+      const Profile& pr = turned[ht];
+      const int x = hole->second.x0, y = hole->second.y0;
+      holes.fill(hole, static_cast<int>(pr.low.size()), pr.max_top + 2 * g, g);
+      if (out) (*out)[c] = {Vec2(h * (x + g + kShift), h * (y + g + kShift)) - pr.origin, scale, ht};
+      continue;
+    }
     long best_waste = std::numeric_limits<long>::max();
     int bx = -1, by = std::numeric_limits<int>::max(), bt = 0;
     // Weight of the height in the score: the widest extended width of the chart.
     const long weight = static_cast<long>(std::ceil(scale * set.longer[c] / h)) + 1 + 2 * g;
     for (int t = 0; t < set.turns; ++t) {
-      Profile& pr = turned[t];
-      pr = rasterize(set.charts[c], scale, t, h, g);
-      // A turn whose bottom and height match an earlier one's scores the same everywhere: it
-      // cannot beat it (ties go to the earlier turn).
-      bool seen = false;
-      for (int u = 0; u < t && !seen; ++u) seen = turned[u].max_top == pr.max_top && turned[u].low == pr.low;
-      if (seen) continue;
+      if (repeat[t]) continue;
+      const Profile& pr = turned[t];
       const int found = horizon.best_drop(pr, weight, best_waste, bx, by);
       if (found < 0) {  // wider than the atlas: the scale must shrink by about n / width
         const double w = static_cast<double>(pr.low.size());
@@ -736,7 +840,7 @@ double shape_trial(const ShapeSet& set, double s, int n, int g, double min_side,
       if (found > 0) bt = t;
     }
     const Profile& best = turned[bt];
-    horizon.place(best, bx, by, g);
+    horizon.place(best, bx, by, g, holes);
     needed = std::max(needed, static_cast<double>(by + best.max_top + 2 * g));
     if (needed > limit) return needed;
     if (out)

@@ -153,6 +153,31 @@ TEST(PackShapes, ThousandsOfTinyChartsAndAFewLargeOnes) {
   }
 }
 
+TEST(PackShapes, SmallChartsFillTheHoleUnderAnArch) {
+  // An arch (legs at columns 0 and 9, a crossbar on rows 6-7) dropped from above leaves its
+  // 8 x 6 inside empty under the horizon; without turning, the four unit squares that follow can
+  // only go there or on top of the arch. They go inside: none reaches the crossbar.
+  std::vector<std::pair<int, int>> arch;
+  for (int j = 0; j < 6; ++j) arch.push_back({0, j}), arch.push_back({9, j});
+  for (int i = 0; i < 10; ++i) arch.push_back({i, 6}), arch.push_back({i, 7});
+  std::vector<ChartShape> charts{squares(arch, 1.0)};
+  for (int i = 0; i < 4; ++i) charts.push_back(squares({{0, 0}}, 1.0));
+  ShapePackOptions o;
+  o.padding = 1.0 / 512;
+  o.may_turn = false;
+  const std::vector<ShapePlacement> pl = pack_shapes(charts, o);
+  check_shapes(charts, pl, o.padding);
+  const double crossbar = pl[0].apply(Vec2(0, 6)).y();
+  const double left = pl[0].apply(Vec2(1, 0)).x(), right = pl[0].apply(Vec2(9, 0)).x();
+  for (size_t c = 1; c < charts.size(); ++c)
+    for (const Vec2& p : charts[c].uv) {
+      const Vec2 q = pl[c].apply(p);
+      EXPECT_LT(q.y(), crossbar) << c;
+      EXPECT_GT(q.x(), left) << c;
+      EXPECT_LT(q.x(), right) << c;
+    }
+}
+
 TEST(PackShapes, GapsThatDoNotFitAreHalved) {
   std::vector<ChartShape> charts(1000, squares({{0, 0}}, 1.0));
   ShapePackOptions o;

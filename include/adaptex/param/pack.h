@@ -136,7 +136,10 @@ struct ShapePackOptions {
 /// held as the lowest and highest cell of every column), dilated by the gap, and dropped into the
 /// atlas from above at the column and quarter turn of the lowest score, its height plus the empty
 /// area it leaves between the atlas' horizon (the top of every column) and its bottom; charts of
-/// the longest side first. Irregular charts thus nest where rectangles would not. All charts share one scale, the largest of
+/// the longest side first. Irregular charts thus nest where rectangles would not. The empty cells a
+/// chart encloses between the horizon and its bottom are kept as rectangles (holes, each the
+/// largest in its columns), and a later chart whose dilated raster fits one goes into the
+/// smallest such hole instead of onto the horizon. All charts share one scale, the largest of
 /// \p trials packings (scale search from the filled height, not a bisection). O(trials · (raster
 /// cells + triangles + resolution · Σ chart widths)).
 /// \pre every index in \p charts[i].faces is in [0, uv.size()), every uv finite
