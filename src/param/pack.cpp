@@ -975,6 +975,20 @@ struct ShapeSearch {
   }
 };
 
+/// The raster side of pack_shapes() for \p nc charts (ShapePackOptions::resolution = 0): 1024 up
+/// to 64 charts, else the power of two in [2048, 8192] at which a chart of the mean size is at least
+/// 32 cells across (a conservative raster adds about a cell around each chart; at 2,048 cells the
+/// 13-16k charts of a million-face scan are about 16 cells across and lost a sixth of the square to
+/// it: docs/decisions.md, "Packing: a finer raster for many charts"). Powers of two keep a gap of
+/// whole texels a whole number of cells.
+int default_shape_resolution(int nc) {
+  if (nc <= 64) return 1024;
+  const double wanted = 32.0 * std::sqrt(static_cast<double>(nc));
+  int n = 2048;
+  while (n < wanted && n < 8192) n *= 2;
+  return n;
+}
+
 }  // namespace
 
 Vec2 ShapePlacement::apply(const Vec2& uv) const { return offset + scale * quarter_turn(uv, turns); }
@@ -993,7 +1007,7 @@ std::vector<ShapePlacement> pack_shapes(const std::vector<ChartShape>& charts,
                             " is outside [64, 16384]");
   if (options.trials < 1) throw InvalidInputError("pack_shapes: trials must be >= 1");
   const ShapeSet set = make_shape_set(charts, options.may_turn ? 4 : 1);
-  const int n = options.resolution ? options.resolution : nc <= 64 ? 1024 : 2048;
+  const int n = options.resolution ? options.resolution : default_shape_resolution(nc);
   ShapeSearch search{set, options, n};
   std::vector<ShapePlacement> out(nc);
   for (double gap = options.padding, min_side = options.min_side;; gap *= 0.5, min_side *= 0.5) {

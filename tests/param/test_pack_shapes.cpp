@@ -178,6 +178,21 @@ TEST(PackShapes, SmallChartsFillTheHoleUnderAnArch) {
     }
 }
 
+TEST(PackShapes, ManyChartsGetAFinerRasterByDefault) {
+  // 5,000 charts: the default raster (4,096 cells, a chart of the mean size 32 cells across)
+  // rounds each chart up by less than 2,048 cells do, so the same charts cover more of the square.
+  std::mt19937 rng(13);
+  std::vector<ChartShape> charts;
+  for (int i = 0; i < 5000; ++i) charts.push_back(random_blob(rng, 1.0 + 0.5 * (i % 3)));
+  ShapePackOptions o;
+  o.padding = 1.0 / 1024;
+  const double fine = check_shapes(charts, pack_shapes(charts, o), o.padding);
+  o.resolution = 2048;
+  const double coarse = check_shapes(charts, pack_shapes(charts, o), o.padding);
+  EXPECT_GT(fine, coarse * 1.03) << coarse << " -> " << fine;
+  std::printf("5,000 charts: 2,048 cells cover %.3f, the default %.3f\n", coarse, fine);
+}
+
 TEST(PackShapes, GapsThatDoNotFitAreHalved) {
   std::vector<ChartShape> charts(1000, squares({{0, 0}}, 1.0));
   ShapePackOptions o;
