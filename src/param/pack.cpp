@@ -625,7 +625,7 @@ class Holes {
   /// Records the cells enclosed in columns x0 + j, j in [0, floor.size()), between the old
   /// horizon floor[j] and the bottom ceil[j] of the chart just placed there.
   void enclose(int x0, const std::vector<int>& floor, const std::vector<int>& ceil) {
-    split(x0, floor.data(), ceil.data(), 0, static_cast<int>(floor.size()));
+    split(x0, floor.data(), ceil.data(), 0, static_cast<int>(floor.size()), 0);
   }
 
   /// The smallest of the first kScan holes (by area) that hold a \p w by \p h box, or end().
@@ -660,9 +660,10 @@ class Holes {
   }
 
   /// The largest rectangle between floor and ceil over columns [j0, j1) (at most kWidest wide),
-  /// then the same on either side of it.
-  void split(int x0, const int* floor, const int* ceil, int j0, int j1) {
-    if (j1 - j0 < min_side_) return;
+  /// then the same on either side of it, kDeepest levels down at most (each level costs at most
+  /// kWidest times the chart's width, however the rectangles fall).
+  void split(int x0, const int* floor, const int* ceil, int j0, int j1, int depth) {
+    if (j1 - j0 < min_side_ || depth == kDeepest) return;
     long best = 0;
     Rect r{};
     for (int a = j0; a < j1; ++a) {
@@ -676,12 +677,13 @@ class Holes {
     }
     if (best == 0) return;
     add({x0 + r.x0, r.y0, x0 + r.x1, r.y1});
-    split(x0, floor, ceil, j0, r.x0);
-    split(x0, floor, ceil, r.x1, j1);
+    split(x0, floor, ceil, j0, r.x0, depth + 1);
+    split(x0, floor, ceil, r.x1, j1, depth + 1);
   }
 
   static constexpr int kScan = 64;
   static constexpr int kWidest = 512;
+  static constexpr int kDeepest = 16;
   int min_side_;
   Map by_area_;
 };
