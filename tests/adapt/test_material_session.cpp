@@ -413,6 +413,25 @@ TEST(MaterialSession, RefusesBadInput) {
   MaterialStroke bad = scratch(0, kFour);
   bad.radius = -1;
   EXPECT_THROW(s.add_stroke(0, bad), InvalidInputError);
+  // A stroke built in code that paints no channel, a decal too, would paint nothing: refused with
+  // the parser's message, as the studio's strokes are.
+  bad = scratch(0, 0);
+  EXPECT_THROW(s.add_stroke(0, bad), InvalidInputError);
+  MaterialStroke decal;
+  decal.type = MaterialStroke::Type::Decal;
+  decal.decal.type = Stroke::Type::Decal;
+  decal.decal.camera.eye = Vec3(0.5, 0.5, 2);
+  decal.decal.camera.target = Vec3(0.5, 0.5, 0);
+  decal.decal.image = ImageRGBA8(4, 4, {255, 0, 0, 255});
+  try {
+    s.add_stroke(0, decal);
+    ADD_FAILURE() << "a decal without channels was taken";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("material session: layer 0, stroke 0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("channel"), std::string::npos) << e.what();
+  }
+  decal.channels = channel_bit(Channel::BaseColor);
+  EXPECT_NO_THROW(validate_material_stroke(decal, false, "")) << "the decal is valid with a channel";
   EXPECT_TRUE(s.history().layers[0].strokes.empty());
   o.adapt.mode = AdaptMode::Single;
   EXPECT_THROW(MaterialPaintSession(mesh, param, three_layers(), o), InvalidInputError);

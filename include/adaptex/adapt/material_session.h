@@ -63,7 +63,8 @@ class MaterialPaintSession {
 
   /// Appends \p stroke to layer \p layer (its mask when \p to_mask), then runs one gated cycle.
   /// \throw InvalidInputError layer out of range, no mask, a stroke breaking docs/strokes.md's rules
-  ///        (checked first: nothing changes)
+  ///        (validate_material_stroke(): a stroke or decal with no channel too; checked first:
+  ///        nothing changes)
   void add_stroke(int layer, const MaterialStroke& stroke, bool to_mask = false);
   /// Appends several strokes to layer \p layer, then one gated cycle. \throw as add_stroke()
   void add_strokes(int layer, const std::vector<MaterialStroke>& strokes);

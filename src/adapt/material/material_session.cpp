@@ -27,27 +27,6 @@ namespace adaptex {
 
 namespace {
 
-bool in_unit(double v) { return v >= 0 && v <= 1; }
-
-/// The rules of docs/strokes.md for one stroke added to a session (the parser's, for a stroke built in code).
-void check_stroke(const MaterialStroke& s, const std::string& where) {
-  auto bad = [&](const std::string& what) { throw InvalidInputError(where + ": " + what); };
-  if ((s.channels & ~kAllChannels) != 0) bad("unknown channel bits");
-  for (double v : s.value)
-    if (!in_unit(v)) bad("channel values must be in [0, 1]");
-  if (s.type == MaterialStroke::Type::Decal) return validate_stroke(s.decal, where);
-  if (!in_unit(s.opacity) || !in_unit(s.mask_value)) bad("opacity and mask value must be in [0, 1]");
-  if (s.type == MaterialStroke::Type::Fill) return;
-  if (!(s.radius > 0) || !std::isfinite(s.radius)) bad("radius must be positive and finite");
-  if (!in_unit(s.hardness)) bad("hardness must be in [0, 1]");
-  if (s.dabs.empty()) bad("a brush or erase stroke needs dabs");
-  for (const Vec3& d : s.dabs)
-    if (!d.allFinite()) bad("dab positions must be finite");
-  if (!s.pressure.empty() && s.pressure.size() != s.dabs.size()) bad("one pressure per dab, or none");
-  for (double p : s.pressure)
-    if (!in_unit(p)) bad("pressures must be in [0, 1]");
-}
-
 /// A layout with its mesh, texel map and the history's material at its chart texels.
 struct Layout {
   std::shared_ptr<const TriMesh> mesh;
@@ -454,7 +433,8 @@ void MaterialPaintSession::add_strokes(int layer, const std::vector<MaterialStro
     throw InvalidInputError("material session: layer " + std::to_string(layer) + " of " +
                             std::to_string(m.history.layers.size()));
   for (size_t k = 0; k < strokes.size(); ++k)
-    check_stroke(strokes[k], "material session: layer " + std::to_string(layer) + ", stroke " + std::to_string(k));
+    validate_material_stroke(strokes[k], false,
+                             "material session: layer " + std::to_string(layer) + ", stroke " + std::to_string(k));
   if (strokes.empty()) return;
   for (const MaterialStroke& s : strokes) m.history.layers[layer].strokes.push_back(s), m.add_coverage(s);
   if (m.opt.adapt.mode != AdaptMode::None) m.cycle(true);
@@ -465,8 +445,7 @@ void MaterialPaintSession::add_stroke(int layer, const MaterialStroke& stroke, b
   if (!to_mask) return add_strokes(layer, {stroke});
   if (layer < 0 || layer >= static_cast<int>(m.history.layers.size()) || !m.history.layers[layer].mask)
     throw InvalidInputError("material session: layer " + std::to_string(layer) + " has no mask");
-  if (stroke.type == MaterialStroke::Type::Decal) throw InvalidInputError("material session: a mask takes no decal");
-  check_stroke(stroke, "material session: mask of layer " + std::to_string(layer));
+  validate_material_stroke(stroke, true, "material session: mask of layer " + std::to_string(layer));
   m.history.layers[layer].mask->strokes.push_back(stroke);
   m.add_coverage(stroke);
   if (m.opt.adapt.mode != AdaptMode::None) m.cycle(true);
