@@ -622,11 +622,9 @@ class Holes {
   /// Holes narrower or lower than \p min_side cells are not kept (they hold no dilated chart).
   explicit Holes(int min_side) : min_side_(min_side) {}
 
-  /// Records the cells enclosed in columns x0 + j, j in [0, floor.size()), between the old
-  /// horizon floor[j] and the bottom ceil[j] of the chart just placed there.
-  void enclose(int x0, const std::vector<int>& floor, const std::vector<int>& ceil) {
-    split(x0, floor.data(), ceil.data(), 0, static_cast<int>(floor.size()), 0);
-  }
+  /// Records the cells enclosed in columns x0 + j, j in [0, width), between the old horizon
+  /// floor[j] and the bottom ceil[j] of the chart just placed there.
+  void enclose(int x0, const int* floor, const int* ceil, int width) { split(x0, floor, ceil, 0, width, 0); }
 
   /// The smallest of the first kScan holes (by area) that hold a \p w by \p h box, or end().
   Map::const_iterator find(int w, int h) const {
@@ -728,9 +726,9 @@ class Horizon {
   /// it encloses between the horizon and its bottom go to \p holes.
   void place(const Profile& pr, int x, int y, int g, Holes& holes) {
     const int a = x + g;
-    std::vector<int> ceil(pr.width);
-    for (int j = 0; j < pr.width; ++j) ceil[j] = y + g + pr.bottom[j];
-    holes.enclose(a, std::vector<int>(h_.begin() + a, h_.begin() + a + pr.width), ceil);
+    ceil_.resize(pr.width);
+    for (int j = 0; j < pr.width; ++j) ceil_[j] = y + g + pr.bottom[j];
+    holes.enclose(a, h_.data() + a, ceil_.data(), pr.width);
     for (int j = 0; j < pr.width; ++j) h_[a + j] = std::max(h_[a + j], y + g + pr.top[j]);
     for (int i = a; i < n_; ++i) sum_[i + 1] = sum_[i] + h_[i];
   }
@@ -765,6 +763,7 @@ class Horizon {
   int n_;
   std::vector<int> h_;
   std::vector<long> sum_;  ///< sum_[i]: the sum of h_[0, i).
+  std::vector<int> ceil_;  ///< place(): the placed chart's bottom row in each of its columns.
 };
 
 /// The scale of a chart of bounding-box sides \p shorter <= \p longer at common scale \p s: raised
