@@ -2,8 +2,8 @@
 // chart rectangles spread over three decades of size: the MaxRects strategies up to 200
 // rectangles, FFDH and next-fit shelves above (O(n log n) per scale tried). docs/bench_unwrap.md.
 // BM_PackShapes: pack_shapes() (horizon packing of rasterized charts, holes filled; 4,096 raster cells
-// from 4,097 charts, 8,192 from 16,385) for 1000 to 20000 irregular charts (fans of 3-11
-// triangles) of the same spread of sizes, gap of 2 texels at 1024.
+// from 4,097 charts) for 1000 to 20000 irregular charts (fans of 3-11 triangles) of the same
+// spread of sizes, gap of 2 texels at 1024.
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -977,18 +977,12 @@ struct ShapeSearch {
 };
 
 /// The raster side of pack_shapes() for \p nc charts (ShapePackOptions::resolution = 0): 1024 up
-/// to 64 charts, else the power of two in [2048, 8192] at which a chart of the mean size is at least
-/// 32 cells across (a conservative raster adds about a cell around each chart; at 2,048 cells the
-/// 13-16k charts of a million-face scan are about 16 cells across and lost a sixth of the square to
-/// it: docs/decisions.md, "Packing: a finer raster for many charts"). Powers of two keep a gap of
-/// whole texels a whole number of cells.
-int default_shape_resolution(int nc) {
-  if (nc <= 64) return 1024;
-  const double wanted = 32.0 * std::sqrt(static_cast<double>(nc));
-  int n = 2048;
-  while (n < wanted && n < 8192) n *= 2;
-  return n;
-}
+/// to 64 charts, 2048 up to 4096 charts, 4096 above (a chart of the mean size at least 32 cells
+/// across up to 16k charts). A conservative raster adds about a cell around each chart; at 2,048
+/// cells the 13-16k charts of a million-face scan are about 16 cells across and lost a sixth of the
+/// square to it. 8,192 cells cost about 4.6 times as much packing (docs/decisions.md, "Packing: a
+/// finer raster for many charts"). Powers of two keep a gap of whole texels a whole number of cells.
+int default_shape_resolution(int nc) { return nc <= 64 ? 1024 : nc <= 4096 ? 2048 : 4096; }
 
 }  // namespace
 

@@ -123,8 +123,8 @@ struct ShapePackOptions {
   double min_side = 0;
   /// Charts may be turned by quarter turns (4 orientations). Default true.
   bool may_turn = true;
-  /// Side of the atlas raster in cells; 0 (default) = 1024 up to 64 charts, else the power of two
-  /// in [2048, 8192] that makes a chart of the mean size at least 32 cells across. In [64, 16384].
+  /// Side of the atlas raster in cells; 0 (default) = 1024 up to 64 charts, 2048 up to 4096
+  /// charts, 4096 above. In [64, 16384].
   int resolution = 0;
   /// Packings tried to find the scale (each one O(cells + resolution * chart widths)). Default 6.
   int trials = 6;
