@@ -107,6 +107,9 @@ struct Chart {
   /// The chart was given up after its first cheap parameterization (ChartContext::give_up_l2):
   /// only `state.param` (that parameterization) is meaningful.
   bool abandoned = false;
+  /// A valid SLIM layout of the chart's disk that its own score rejected and the alternative
+  /// exponent accepts (use_slim_if_better()); pack_valid() packs the charts with these too.
+  std::optional<PolygonLayout> alternative;
 };
 
 /// Input vertex (of the component) with the largest stretch that is not on the cut yet: the
@@ -309,8 +312,9 @@ void use_free_boundary_if_better(Chart& chart, CutState first,
 /// (slim.h) started from its own layout at its best aspect, when that has a higher own texel share
 /// (fill of its rectangle / L2²). A layout whose free boundary runs into itself is tried again with
 /// half the iterations, down to one. \p iterations: SlimOptions::max_iterations
-/// (UnwrapOptions::scan_slim_iterations; 0: none).
-void use_slim_if_better(Chart& chart, double e, int iterations) {
+/// (UnwrapOptions::scan_slim_iterations; 0: none). A layout rejected under \p e but better under
+/// \p e_alt (when 0 <= e_alt < e) is kept as Chart::alternative.
+void use_slim_if_better(Chart& chart, double e, int iterations, double e_alt) {
   const CutState& s = chart.state;
   if (iterations <= 0 || s.param.flipped > 0 || s.param.degenerate > 0) return;
   const auto [a, l2_c] = best_aspect(chart);
@@ -326,9 +330,12 @@ void use_slim_if_better(Chart& chart, double e, int iterations) {
     u = slim_layout(s.disk.disk, start, sopt);
   if (!u) return;
   const double l2_u = l2_at_aspect(s.disk.disk, u->uv, u->aspect);
-  if (!(std::isfinite(l2_u) && layout_score(u->fill, l2_u, e) > layout_score(chart.domain_area, l2_c, e)))
-    return;
-  adopt_disk_layout(chart, std::move(*u));
+  if (!std::isfinite(l2_u)) return;
+  if (layout_score(u->fill, l2_u, e) > layout_score(chart.domain_area, l2_c, e))
+    adopt_disk_layout(chart, std::move(*u));
+  else if (e_alt >= 0 && e_alt < e &&
+           layout_score(u->fill, l2_u, e_alt) > layout_score(chart.domain_area, l2_c, e_alt))
+    chart.alternative = std::move(*u);
 }
 
 /// One piece's cut augmentation in build_chart(): the piece and its edges, the cheap
@@ -457,10 +464,11 @@ double uv_domain_area(const CutState& s) {
 /// Replaces the disk layout of \p chart by one of the other layouts \p layouts allows when that has
 /// a higher texel share: the unfolding, the projection (only for a piece that is a \p disk: charts
 /// are disks), the free-boundary layout of the final or the \p initial cut; then the SLIM layout
-/// (scored with \p slim_exponent).
+/// (scored with \p slim_exponent; \p slim_alt_exponent as in use_slim_if_better()).
 void use_other_layouts_if_better(const Component& comp, Chart& chart, PieceLayouts layouts,
                                   bool disk, CutState initial, double fill_exponent,
-                                  int slim_iterations, double slim_exponent) {
+                                  int slim_iterations, double slim_exponent,
+                                  double slim_alt_exponent = -1) {
   // The fill exponent applies to the scan charts (Free) only.
   const double e = layouts == PieceLayouts::Free ? fill_exponent : 1.0;
   if (layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart, e);
@@ -472,7 +480,7 @@ void use_other_layouts_if_better(const Component& comp, Chart& chart, PieceLayou
                                                : projection_layout(comp.mesh),
                          e);
   use_free_boundary_if_better(chart, std::move(initial), comp.probe_lscm.get(), e);
-  use_slim_if_better(chart, slim_exponent, slim_iterations);
+  use_slim_if_better(chart, slim_exponent, slim_iterations, slim_alt_exponent);
 }
 
 /// Cuts one piece (a component, or a chart of a component) to a disk, augments the cut (GGH 2002
@@ -531,7 +539,7 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   const auto tl = Clock::now();
   use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial),
                               options.scan_layout_fill_exponent, options.scan_slim_iterations,
-                              options.scan_slim_fill_exponent);
+                              options.scan_slim_fill_exponent, options.scan_slim_second_exponent);
   rep.time_layouts += seconds_since(tl);
   // Still flipped or degenerate UV triangles (no augmentation allowed or none helped): a valid
   // layout of the other kinds, whatever its share (unwrap_pieces() splits the piece otherwise).
@@ -917,25 +925,73 @@ void split_invalid_charts(std::vector<Component>& pieces, std::vector<Chart>& ch
 /// layout fragile: packed at 1e-4 of the square, a double's rounding moves a UV by ~1e-12 of it.
 constexpr double kContactTolerance = 1e-9;
 
-/// Flags (one per chart) of the charts of a fixed aspect whose own layout has overlapping UV
-/// triangles (in the chart's frame), or is valid only up to rounding at its boundary
-/// (boundary_near_contact(): a zipped cut); invalid_layout_faces() would find the first in any
-/// packing and the second in some.
+/// Whether \p chart is of a fixed aspect and its own layout has overlapping UV triangles (in the
+/// chart's frame), or is valid only up to rounding at its boundary (boundary_near_contact(): a
+/// zipped cut); invalid_layout_faces() would find the first in any packing and the second in some.
+bool fragile_chart(const Chart& chart) {
+  if (!(chart.aspect > 0)) return false;
+  Parameterization local;
+  local.uv = chart.state.param.uv;
+  local.uv_faces = chart.state.disk.disk.faces;
+  Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Vec2& p : local.uv) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const double extent = local.uv.empty() ? 0.0 : (hi - lo).maxCoeff();
+  return boundary_near_contact(local.uv, local.uv_faces, kContactTolerance * extent) ||
+         count_overlapping_triangles(local, 1) > 0;
+}
+
+/// fragile_chart() of every chart, in parallel.
 std::vector<char> fragile_charts(const std::vector<Chart>& charts) {
   std::vector<char> bad(charts.size(), 0);
-  tbb::parallel_for(size_t{0}, charts.size(), [&](size_t c) {
-    const Chart& chart = charts[c];
-    if (!(chart.aspect > 0)) return;
-    Parameterization local;
-    local.uv = chart.state.param.uv;
-    local.uv_faces = chart.state.disk.disk.faces;
-    Vec2 lo = Vec2::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-    for (const Vec2& p : local.uv) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    const double extent = local.uv.empty() ? 0.0 : (hi - lo).maxCoeff();
-    bad[c] = boundary_near_contact(local.uv, local.uv_faces, kContactTolerance * extent) ||
-             count_overlapping_triangles(local, 1) > 0;
-  });
+  tbb::parallel_for(size_t{0}, charts.size(), [&](size_t c) { bad[c] = fragile_chart(charts[c]); });
   return bad;
+}
+
+/// A chart's layout before it took its Chart::alternative.
+struct KeptLayout {
+  size_t chart = 0;
+  DiskParamResult param;
+  double domain_area = 1, aspect = 0;
+};
+
+/// Gives every chart of \p charts (parallel to \p pieces) its Chart::alternative (a SLIM layout
+/// its own score rejected: near-isometric but filling less of its rectangle, which packed by
+/// shape may still nest), packs them (assemble()) and keeps that layout in \p result when it is
+/// valid and its effective texel share is higher; otherwise every chart gets its layout back.
+/// The alternatives are used up either way (docs/decisions.md, "Scans: the rejected SLIM layouts
+/// are packed too"). \p shapes as in assemble().
+void pack_alternatives(const TriMesh& mesh, const std::vector<Component>& pieces,
+                       std::vector<Chart>& charts, double padding, const UnwrapOptions& options,
+                       UnwrapResult& result, bool shapes) {
+  std::vector<KeptLayout> kept;
+  for (size_t c = 0; c < charts.size(); ++c) {
+    if (!charts[c].alternative) continue;
+    PolygonLayout u = std::move(*charts[c].alternative);
+    charts[c].alternative.reset();
+    kept.push_back({c, charts[c].state.param, charts[c].domain_area, charts[c].aspect});
+    adopt_disk_layout(charts[c], std::move(u));
+  }
+  const auto restore = [&](const KeptLayout& k) {
+    charts[k.chart].state.param = k.param;
+    charts[k.chart].domain_area = k.domain_area;
+    charts[k.chart].aspect = k.aspect;
+  };
+  std::vector<char> fragile(kept.size(), 0);
+  tbb::parallel_for(size_t{0}, kept.size(),
+                    [&](size_t i) { fragile[i] = fragile_chart(charts[kept[i].chart]); });
+  for (size_t i = 0; i < kept.size(); ++i)
+    if (fragile[i]) restore(kept[i]);
+  if (std::find(fragile.begin(), fragile.end(), 0) == fragile.end()) return;
+  UnwrapResult alt;
+  alt.report = result.report;
+  assemble(mesh, pieces, charts, padding, options, alt, shapes);
+  if (alt.report.effective_texel_share > result.report.effective_texel_share &&
+      invalid_layout_faces(alt.param, charts).empty()) {
+    result = std::move(alt);
+    return;
+  }
+  for (size_t i = 0; i < kept.size(); ++i)
+    if (!fragile[i]) restore(kept[i]);
 }
 
 /// The pieces and charts of a valid packed layout, kept so that some charts can be rebuilt.
@@ -974,6 +1030,9 @@ void pack_valid(const TriMesh& mesh, const std::vector<Component>& pieces, std::
     result.report.time_pack += seconds_since(t0);
     const std::vector<int> bad = invalid_layout_faces(result.param, charts);
     if (bad.empty()) {
+      const auto t1 = Clock::now();
+      pack_alternatives(mesh, current, charts, padding, options, result, shapes);
+      result.report.time_pack += seconds_since(t1);
       if (built) *built = BuiltPieces{round == 0 ? pieces : std::move(split), std::move(charts)};
       return;
     }
@@ -1436,19 +1495,32 @@ void segment_until_good(const TriMesh& mesh, const std::vector<Component>& comps
   }
 }
 
+/// Whether unwrap_scan() keeps a layout of report \p a over one of report \p b. `auto` is
+/// conservative (docs/charts.md): one chart per component (\p components charts) that reaches
+/// \p min_share wins over any other layout; otherwise the higher effective texel share (a tie
+/// keeps \p b).
+bool scan_prefers(const UnwrapReport& a, const UnwrapReport& b, size_t components, double min_share) {
+  const auto one_each = [&](const UnwrapReport& r) {
+    return static_cast<size_t>(r.num_charts) == components && r.effective_texel_share >= min_share;
+  };
+  if (one_each(a) != one_each(b)) return one_each(a);
+  return a.effective_texel_share > b.effective_texel_share;
+}
+
 /// Builds the layout of \p pieces as a candidate and keeps it in \p result when its effective
 /// texel share is higher, or when \p result has no layout yet (the phase times add up either way).
-/// \p shapes as in assemble().
+/// \p shapes as in assemble(). \p components > 0: compared by scan_prefers() instead.
 void keep_better_layout(const TriMesh& mesh, const std::vector<Component>& pieces,
                         const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
                         const UnwrapOptions& options, PieceLayouts layouts, UnwrapResult& result,
-                        bool shapes = false) {
+                        bool shapes = false, size_t components = 0) {
   UnwrapReport& rep = result.report;
   UnwrapResult candidate;
   candidate.report = rep;
   if (unwrap_pieces(mesh, pieces, dopt, gutter, t_start, options, candidate, layouts, 0, {}, shapes) &&
-      (candidate.report.effective_texel_share > rep.effective_texel_share ||
-       result.param.uv_faces.empty()))
+      (result.param.uv_faces.empty() ||
+       (components > 0 ? scan_prefers(candidate.report, rep, components, options.min_texel_share)
+                       : candidate.report.effective_texel_share > rep.effective_texel_share)))
     result = std::move(candidate);
   else
     copy_phase_times(candidate.report, rep);
@@ -1587,7 +1659,8 @@ size_t planar_scan_candidate(const TriMesh& mesh, const std::vector<Component>& 
 /// scan_pieces() with planar charts and free-boundary layouts (scan_planar_angle,
 /// scan_free_boundary), and, when either is on, also those of the top-down segmentation alone; on
 /// meshes of at most scan_single_max_faces faces also its split down to 32 faces and one chart per
-/// component. The layout with the highest effective texel share is kept (so no mesh gets a lower
+/// component. The layout kept is the first by scan_prefers(): one chart per component when that
+/// reaches min_texel_share, otherwise the highest effective texel share (so no mesh gets a lower
 /// share than the top-down segmentation alone gives it).
 void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
                  const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
@@ -1652,7 +1725,7 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
   if (first_error) std::rethrow_exception(first_error);
   if (new_ways) {  // as keep_better_layout(): the planar candidate wins ties
     if (top_down_built &&
-        (top_down_result.report.effective_texel_share > result.report.effective_texel_share ||
+        (scan_prefers(top_down_result.report, result.report, comps.size(), options.min_texel_share) ||
          result.param.uv_faces.empty())) {
       add_phase_times(result.report, top_down_result.report);
       result = std::move(top_down_result);
@@ -1664,8 +1737,10 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
   const std::vector<Component> coarse =
       timed_scan_pieces(comps, dopt, gutter, plain, top_down, result.report, kCoarseProbeFaces);
   if (coarse.size() != (new_ways ? pieces.size() : num_planar_pieces))
-    keep_better_layout(mesh, coarse, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
-  keep_better_layout(mesh, comps, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes);
+    keep_better_layout(mesh, coarse, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result,
+                       shapes, comps.size());
+  keep_better_layout(mesh, comps, dopt, gutter, t_start, plain, PieceLayouts::Unfold, result, shapes,
+                     comps.size());
 }
 
 /// Throws InvalidInputError (TopologyError for a mesh without faces) when \p options are out of

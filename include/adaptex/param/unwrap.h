@@ -138,11 +138,13 @@ struct UnwrapOptions {
   /// Scans: the SLIM try is kept when its fill^this / L2² beats the chart's (the other layouts are
   /// scored with scan_layout_fill_exponent). 1 (default). In [0, 1].
   double scan_slim_fill_exponent = 1.0;
-  /// Scans, meshes of up to scan_regrow_max_faces faces whose planar candidate (and its regrowth)
-  /// is short of min_texel_share: it is built a second time with scan_slim_fill_exponent = this,
-  /// and kept if its share is higher:
-  /// near-isometric SLIM charts that fill little of their rectangle nest when packed by shape, but
-  /// not on every mesh (docs/decisions.md). 0.5 (default); negative: not built. At most 1.
+  /// Scans: near-isometric SLIM charts that fill little of their rectangle nest when packed by
+  /// shape, but not on every mesh (docs/decisions.md). (1) Every layout of the planar candidate is
+  /// also packed with the SLIM tries that fill^this / L2² takes and fill^scan_slim_fill_exponent
+  /// rejects, kept if its share is higher (same charts, no new seams). (2) On meshes of up to
+  /// scan_regrow_max_faces faces whose planar candidate (and its regrowth) is short of
+  /// min_texel_share, the candidate is built a second time with scan_slim_fill_exponent = this,
+  /// kept if its share is higher. 0.5 (default); negative: neither. At most 1.
   double scan_slim_second_exponent = 0.5;
   /// Scans: components are first cut into planar charts (planar.h: faces whose normal is within
   /// this many degrees of the chart's mean normal) and the connected parts of the rest, before the
