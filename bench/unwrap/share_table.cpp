@@ -4,7 +4,7 @@
 // covers on average ("chart fill" = coverage / rect fill), flipped and overlapping triangles,
 // UVs outside [0,1]², and wall / CPU seconds. See docs/benchmarks.md.
 //
-//   bench_share_table [--single] [--detail] [--hash] [--repair] [--speculative S] [--no-probe] [--normal-weight W] [--planar-normal-weight W] [--regrow-l2 L] [--regrow-angle A] [--max-charts K] [--chart-padding P] [--augment-time-budget S] [--no-shape-packing] [--fill-exponent E] NAME...
+//   bench_share_table [--single] [--detail] [--hash] [--repair] [--speculative S] [--no-probe] [--normal-weight W] [--planar-normal-weight W] [--regrow-l2 L] [--regrow-angle A] [--max-charts K] [--chart-padding P] [--augment-time-budget S] [--no-shape-packing] [--no-top-down-free] [--fill-exponent E] NAME...
 //
 // NAME: a mesh file (read like the CLI, pinched vertices split), or one of the meshes built in
 // code: genusG (genus_surface(G)), sphereS,T (sphere(S, T)), holesK (sphere_with_holes(K)), pinched (genus_surface(3) with a
@@ -24,6 +24,8 @@
 // --augment-time-budget S: UnwrapOptions::augment_time_budget (wall seconds; a large value keeps
 // the layouts independent of the machine's load).
 // --no-shape-packing: UnwrapOptions::scan_pack_shapes = false (scans: rectangles only).
+// --no-top-down-free: UnwrapOptions::scan_top_down_free_layouts = false (the top-down candidate's
+// charts keep their disk layouts).
 // --fill-exponent E: UnwrapOptions::scan_layout_fill_exponent.
 // --regrow-l2 L, --regrow-angle A, --regrow-max-faces N: UnwrapOptions::scan_regrow_l2,
 // scan_regrow_angle, scan_regrow_max_faces (a large N runs the regrowth on the largest scans too).
@@ -180,6 +182,7 @@ int main(int argc, char** argv) {
       g_options.speculative_attempts = std::stoi(argv[++i]);
     else if (std::strcmp(argv[i], "--no-probe") == 0) g_options.single_probe_l2 = 0;
     else if (std::strcmp(argv[i], "--no-shape-packing") == 0) g_options.scan_pack_shapes = false;
+    else if (std::strcmp(argv[i], "--no-top-down-free") == 0) g_options.scan_top_down_free_layouts = false;
     else if (std::strcmp(argv[i], "--fill-exponent") == 0 && i + 1 < argc)
       g_options.scan_layout_fill_exponent = std::stod(argv[++i]);
     else if (std::strcmp(argv[i], "--normal-weight") == 0 && i + 1 < argc)

@@ -95,6 +95,14 @@ struct CutState {
   DiskParamStatePtr solve_state;  ///< Where the cheap parameterization stopped (continued by the full one).
 };
 
+/// One layout of a chart: its cut, disk and parameterization, with the figures packing reads.
+struct ChartLayout {
+  CutState state;
+  double domain_area = 1;
+  double aspect = 0;
+  double cut_length = 0;
+};
+
 /// The chart of one component after the surgery and augmentation.
 struct Chart {
   CutState state;
@@ -110,7 +118,21 @@ struct Chart {
   /// A valid SLIM layout of the chart's disk that its own score rejected and the alternative
   /// exponent accepts (use_slim_if_better()); pack_valid() packs the charts with these too.
   std::optional<PolygonLayout> alternative;
+  /// The layout its disk parameterization and unfolding gave (not flipped or degenerate), kept
+  /// when the free-boundary layouts replaced it on a segmentation that did not judge the pieces
+  /// by them (the top-down candidate of unwrap_scan()); pack_valid() packs the charts with these
+  /// too.
+  std::unique_ptr<ChartLayout> unfolded;
 };
+
+/// Swaps the layout of \p chart with its Chart::unfolded one.
+void swap_unfolded(Chart& chart) {
+  ChartLayout& u = *chart.unfolded;
+  std::swap(chart.state, u.state);
+  std::swap(chart.domain_area, u.domain_area);
+  std::swap(chart.aspect, u.aspect);
+  std::swap(chart.cut_length, u.cut_length);
+}
 
 /// Input vertex (of the component) with the largest stretch that is not on the cut yet: the
 /// per-wedge stretch σ (yoshizawa.h: area-weighted face L2 around the wedge), maximum over wedges.
@@ -537,6 +559,20 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   chart.state = std::move(cur);
   chart.domain_area = uv_domain_area(chart.state);
   const auto tl = Clock::now();
+  // Free layouts on pieces split by the disk layouts' stretch (the top-down candidate): the chart
+  // as the Unfold layouts leave it is kept too (Chart::unfolded), packed in its place if that wins.
+  std::unique_ptr<ChartLayout> unfolded;
+  if (ctx.layouts == PieceLayouts::Free && !options.scan_free_boundary) {
+    use_other_layouts_if_better(comp, chart, PieceLayouts::Unfold, disk, {}, 1.0, 0, 1.0);
+    if (score(chart.state).bad == 0) {
+      unfolded = std::make_unique<ChartLayout>();
+      unfolded->state.cut = chart.state.cut;
+      unfolded->state.disk = chart.state.disk;
+      unfolded->state.param = chart.state.param;
+      unfolded->domain_area = chart.domain_area;
+      unfolded->aspect = chart.aspect;
+    }
+  }
   use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial),
                               options.scan_layout_fill_exponent, options.scan_slim_iterations,
                               options.scan_slim_fill_exponent, options.scan_slim_second_exponent);
@@ -549,6 +585,10 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
     use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same), 1.0, 0, 1.0);
   }
   chart.cut_length = cut_length(graph, chart.state.cut);
+  if (unfolded && (unfolded->state.param.uv != chart.state.param.uv || unfolded->state.cut != chart.state.cut)) {
+    unfolded->cut_length = cut_length(graph, unfolded->state.cut);
+    chart.unfolded = std::move(unfolded);
+  }
   return chart;
 }
 
@@ -994,6 +1034,39 @@ void pack_alternatives(const TriMesh& mesh, const std::vector<Component>& pieces
     if (!fragile[i]) restore(kept[i]);
 }
 
+/// Gives every chart of \p charts (parallel to \p pieces) with a Chart::unfolded layout that
+/// layout (fragile ones excepted), packs them (assemble()) and keeps that layout in \p result when
+/// it is valid and its effective texel share is higher (those charts drop their
+/// Chart::alternative, a layout of the other disk); otherwise every chart gets its layout back.
+/// Runs before pack_alternatives(), so that the free layouts are weighed against the unfolded ones
+/// alone (docs/decisions.md, "Scans: free-boundary layouts for the top-down candidate"). The
+/// unfolded layouts are used up either way. \p shapes as in assemble().
+void pack_unfolded(const TriMesh& mesh, const std::vector<Component>& pieces, std::vector<Chart>& charts,
+                   double padding, const UnwrapOptions& options, UnwrapResult& result, bool shapes) {
+  std::vector<size_t> swapped;
+  for (size_t c = 0; c < charts.size(); ++c)
+    if (charts[c].unfolded) swap_unfolded(charts[c]), swapped.push_back(c);
+  std::vector<char> fragile(swapped.size(), 0);
+  tbb::parallel_for(size_t{0}, swapped.size(),
+                    [&](size_t i) { fragile[i] = fragile_chart(charts[swapped[i]]); });
+  for (size_t i = 0; i < swapped.size(); ++i)
+    if (fragile[i]) swap_unfolded(charts[swapped[i]]);
+  if (std::find(fragile.begin(), fragile.end(), 0) != fragile.end()) {
+    UnwrapResult alt;
+    alt.report = result.report;
+    assemble(mesh, pieces, charts, padding, options, alt, shapes);
+    const bool wins = alt.report.effective_texel_share > result.report.effective_texel_share &&
+                      invalid_layout_faces(alt.param, charts).empty();
+    if (wins) result = std::move(alt);
+    for (size_t i = 0; i < swapped.size(); ++i) {
+      if (fragile[i]) continue;
+      if (wins) charts[swapped[i]].alternative.reset();  // a layout of the other disk
+      else swap_unfolded(charts[swapped[i]]);
+    }
+  }
+  for (Chart& chart : charts) chart.unfolded.reset();  // used up either way
+}
+
 /// The pieces and charts of a valid packed layout, kept so that some charts can be rebuilt.
 struct BuiltPieces {
   std::vector<Component> pieces;
@@ -1031,6 +1104,7 @@ void pack_valid(const TriMesh& mesh, const std::vector<Component>& pieces, std::
     const std::vector<int> bad = invalid_layout_faces(result.param, charts);
     if (bad.empty()) {
       const auto t1 = Clock::now();
+      pack_unfolded(mesh, current, charts, padding, options, result, shapes);
       pack_alternatives(mesh, current, charts, padding, options, result, shapes);
       result.report.time_pack += seconds_since(t1);
       if (built) *built = BuiltPieces{round == 0 ? pieces : std::move(split), std::move(charts)};
@@ -1657,11 +1731,11 @@ size_t planar_scan_candidate(const TriMesh& mesh, const std::vector<Component>& 
 
 /// ChartMode::Auto on a mesh with more components than max_charts / 2: the charts of
 /// scan_pieces() with planar charts and free-boundary layouts (scan_planar_angle,
-/// scan_free_boundary), and, when either is on, also those of the top-down segmentation alone; on
-/// meshes of at most scan_single_max_faces faces also its split down to 32 faces and one chart per
-/// component. The layout kept is the first by scan_prefers(): one chart per component when that
-/// reaches min_texel_share, otherwise the highest effective texel share (so no mesh gets a lower
-/// share than the top-down segmentation alone gives it).
+/// scan_free_boundary), and, when either is on, also those of the top-down segmentation alone (with
+/// the free-boundary layouts when scan_top_down_free_layouts); on meshes of at most
+/// scan_single_max_faces faces also its split down to 32 faces and one chart per component. The
+/// layout kept is the first by scan_prefers(): one chart per component when that reaches
+/// min_texel_share, otherwise the highest effective texel share.
 void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
                  const DiskParamOptions& dopt, double gutter, Clock::time_point t_start,
                  const UnwrapOptions& options, UnwrapResult& result) {
@@ -1671,6 +1745,10 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
   plain.scan_free_boundary = false;
   const double top_down = options.chart_normal_weight;
   const bool new_ways = options.scan_planar_angle > 0 || options.scan_free_boundary;
+  // The top-down candidate's charts take the free-boundary layouts too (its segmentation does not).
+  const PieceLayouts top_down_layouts =
+      options.scan_free_boundary && options.scan_top_down_free_layouts ? PieceLayouts::Free
+                                                                       : PieceLayouts::Unfold;
   // The top-down candidate does not depend on the planar one, so it is segmented and built beside
   // it (either leaves a core idle much of the time). The callback is called under a mutex; once it
   // returned false or a branch failed, it is not called again and both branches are cancelled.
@@ -1717,7 +1795,7 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
           const UnwrapOptions o = serialized(plain);
           pieces = timed_scan_pieces(comps, dopt, gutter, o, top_down, top_down_result.report);
           top_down_built = unwrap_pieces(mesh, pieces, dopt, gutter, t_start, o, top_down_result,
-                                         PieceLayouts::Unfold, 0, {}, shapes);
+                                         top_down_layouts, 0, {}, shapes);
         } catch (...) {
           keep_error();
         }

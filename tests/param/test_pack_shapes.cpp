@@ -179,23 +179,36 @@ TEST(PackShapes, SmallChartsFillTheHoleUnderAnArch) {
     }
 }
 
+/// Coverage of \p count random blobs (seed \p seed) packed with gap \p padding at the default
+/// raster and at \p resolution cells (each packing checked by check_shapes()).
+std::pair<double, double> default_and_coarse_cover(int count, unsigned seed, double padding,
+                                                   int resolution) {
+  std::mt19937 rng(seed);
+  std::vector<ChartShape> charts;
+  for (int i = 0; i < count; ++i) charts.push_back(random_blob(rng, 1.0 + 0.5 * (i % 3)));
+  ShapePackOptions o;
+  o.padding = padding;
+  const double fine = check_shapes(charts, pack_shapes(charts, o), o.padding);
+  o.resolution = resolution;
+  return {fine, check_shapes(charts, pack_shapes(charts, o), o.padding)};
+}
+
 TEST(PackShapes, ManyChartsGetAFinerRasterByDefault) {
 #ifdef ADAPTEX_TEST_ASAN
-  GTEST_SKIP() << "two packings of 5,000 charts and their triangle checks: a layout property, "
-                  "checked in the Release pass (the other PackShapes tests run the same code here)";
+  GTEST_SKIP() << "packings of 5,000 and 8,000 charts and their triangle checks: a layout "
+                  "property, checked in the Release pass (the other PackShapes tests run the same "
+                  "code here)";
 #endif
   // 5,000 charts: the default raster (4,096 cells, a chart of the mean size 32 cells across)
   // rounds each chart up by less than 2,048 cells do, so the same charts cover more of the square.
-  std::mt19937 rng(13);
-  std::vector<ChartShape> charts;
-  for (int i = 0; i < 5000; ++i) charts.push_back(random_blob(rng, 1.0 + 0.5 * (i % 3)));
-  ShapePackOptions o;
-  o.padding = 1.0 / 1024;
-  const double fine = check_shapes(charts, pack_shapes(charts, o), o.padding);
-  o.resolution = 2048;
-  const double coarse = check_shapes(charts, pack_shapes(charts, o), o.padding);
+  const auto [fine, coarse] = default_and_coarse_cover(5000, 13, 1.0 / 1024, 2048);
   EXPECT_GT(fine, coarse * 1.03) << coarse << " -> " << fine;
   std::printf("5,000 charts: 2,048 cells cover %.3f, the default %.3f\n", coarse, fine);
+  // From 7,169 to 12,288 charts the default is 8,192 cells (a chart of the mean size about 90
+  // cells across instead of 45).
+  const auto [finest, fine_8k] = default_and_coarse_cover(8000, 17, 1.0 / 2048, 4096);
+  EXPECT_GT(finest, fine_8k * 1.01) << fine_8k << " -> " << finest;
+  std::printf("8,000 charts: 4,096 cells cover %.3f, the default %.3f\n", fine_8k, finest);
 }
 
 TEST(PackShapes, GapsThatDoNotFitAreHalved) {

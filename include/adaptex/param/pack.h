@@ -124,7 +124,7 @@ struct ShapePackOptions {
   /// Charts may be turned by quarter turns (4 orientations). Default true.
   bool may_turn = true;
   /// Side of the atlas raster in cells; 0 (default) = 1024 up to 64 charts, 2048 up to 4096
-  /// charts, 4096 above. In [64, 16384].
+  /// charts, 8192 from 7169 to 12288 charts, 4096 otherwise. In [64, 16384].
   int resolution = 0;
   /// Packings tried to find the scale (each one O(cells + resolution * chart widths)). Default 6.
   int trials = 6;

@@ -130,6 +130,11 @@ struct UnwrapOptions {
   /// rectangle / L2²) is higher; the probes that decide the splits do the same (docs/charts.md,
   /// "Scans"). true (default); false: the disk parameterization (and unfolding) only.
   bool scan_free_boundary = true;
+  /// Scans, with scan_free_boundary: the top-down candidate (unwrap_scan()) also gives its charts
+  /// those layouts and the SLIM tries; its segmentation stays that of the disk layouts
+  /// (docs/decisions.md, "Scans: free-boundary layouts for the top-down candidate"). true
+  /// (default); false: its charts keep the disk layouts and unfoldings.
+  bool scan_top_down_free_layouts = true;
   /// Scans, with scan_free_boundary: every chart also tries a free-boundary, locally injective
   /// layout of low symmetric Dirichlet energy (SLIM, slim.h) started from its chosen one, with at
   /// most this many iterations, kept when its texel share is higher (docs/charts.md, "Scans").
