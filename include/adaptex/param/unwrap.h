@@ -247,7 +247,7 @@ struct UnwrapResult {
 /// \throw SolverError the sparse solve failed, or no valid layout was found (never happens on the
 ///        meshes measured: a chart with a flipped, degenerate or overlapping UV triangle gets another
 ///        layout or is split, down to single faces; docs/surgery.md, "Validity")
-/// Memory: O(F). On scans the peak resident set grows by about 0.3 KB per face during the unwrap
+/// Memory: O(F). On scans the peak resident set grows by about 0.65 KB per face during the unwrap
 /// (bound 1 KB per face, test UnwrapMemory); no chart of a scan is solved whole above
 /// scan_piece_faces faces.
 /// \throw CancelledError the progress callback returned false
