@@ -95,9 +95,13 @@ struct CutState {
   DiskParamStatePtr solve_state;  ///< Where the cheap parameterization stopped (continued by the full one).
 };
 
-/// One layout of a chart: its cut, disk and parameterization, with the figures packing reads.
+/// One layout of a chart: its parameterization with the figures packing reads, and its cut and
+/// disk when they differ from the chart's (own_disk).
 struct ChartLayout {
-  CutState state;
+  bool own_disk = false;
+  std::vector<char> cut;
+  SlicedDisk disk;
+  DiskParamResult param;
   double domain_area = 1;
   double aspect = 0;
   double cut_length = 0;
@@ -128,7 +132,8 @@ struct Chart {
 /// Swaps the layout of \p chart with its Chart::unfolded one.
 void swap_unfolded(Chart& chart) {
   ChartLayout& u = *chart.unfolded;
-  std::swap(chart.state, u.state);
+  if (u.own_disk) std::swap(chart.state.cut, u.cut), std::swap(chart.state.disk, u.disk);
+  std::swap(chart.state.param, u.param);
   std::swap(chart.domain_area, u.domain_area);
   std::swap(chart.aspect, u.aspect);
   std::swap(chart.cut_length, u.cut_length);
@@ -566,9 +571,9 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
     use_other_layouts_if_better(comp, chart, PieceLayouts::Unfold, disk, {}, 1.0, 0, 1.0);
     if (score(chart.state).bad == 0) {
       unfolded = std::make_unique<ChartLayout>();
-      unfolded->state.cut = chart.state.cut;
-      unfolded->state.disk = chart.state.disk;
-      unfolded->state.param = chart.state.param;
+      unfolded->cut = chart.state.cut;
+      unfolded->disk = chart.state.disk;
+      unfolded->param = chart.state.param;
       unfolded->domain_area = chart.domain_area;
       unfolded->aspect = chart.aspect;
     }
@@ -585,8 +590,14 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
     use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same), 1.0, 0, 1.0);
   }
   chart.cut_length = cut_length(graph, chart.state.cut);
-  if (unfolded && (unfolded->state.param.uv != chart.state.param.uv || unfolded->state.cut != chart.state.cut)) {
-    unfolded->cut_length = cut_length(graph, unfolded->state.cut);
+  if (unfolded && (unfolded->param.uv != chart.state.param.uv || unfolded->cut != chart.state.cut)) {
+    unfolded->cut_length = cut_length(graph, unfolded->cut);
+    // A SLIM layout keeps the disk: then only the parameterization is kept (memory).
+    const SlicedDisk& d = chart.state.disk;
+    unfolded->own_disk = unfolded->cut != chart.state.cut || unfolded->disk.disk.faces != d.disk.faces ||
+                         unfolded->disk.wedge_vertex != d.wedge_vertex ||
+                         unfolded->disk.boundary_loop != d.boundary_loop;
+    if (!unfolded->own_disk) std::vector<char>().swap(unfolded->cut), unfolded->disk = SlicedDisk();
     chart.unfolded = std::move(unfolded);
   }
   return chart;
