@@ -510,6 +510,32 @@ void use_other_layouts_if_better(const Component& comp, Chart& chart, PieceLayou
   use_slim_if_better(chart, slim_exponent, slim_iterations, slim_alt_exponent);
 }
 
+/// Gives \p chart (its disk parameterization done) the unfolding if better, as the Unfold layouts
+/// do, and returns a copy of that layout, or null when it has flipped or degenerate triangles.
+std::unique_ptr<ChartLayout> unfolded_layout(const Component& comp, Chart& chart, bool disk) {
+  use_other_layouts_if_better(comp, chart, PieceLayouts::Unfold, disk, {}, 1.0, 0, 1.0);
+  if (score(chart.state).bad > 0) return nullptr;
+  auto u = std::make_unique<ChartLayout>();
+  u->cut = chart.state.cut;
+  u->disk = chart.state.disk;
+  u->param = chart.state.param;
+  u->domain_area = chart.domain_area;
+  u->aspect = chart.aspect;
+  return u;
+}
+
+/// Keeps \p u (unfolded_layout()) as \p chart's Chart::unfolded when the chart's final layout
+/// differs from it; its cut and disk only when they differ too (memory). \p graph: the piece's.
+void keep_unfolded(Chart& chart, std::unique_ptr<ChartLayout> u, const EdgeGraph& graph) {
+  if (u->param.uv == chart.state.param.uv && u->cut == chart.state.cut) return;
+  u->cut_length = cut_length(graph, u->cut);
+  const SlicedDisk& d = chart.state.disk;
+  u->own_disk = u->cut != chart.state.cut || u->disk.disk.faces != d.disk.faces ||
+                u->disk.wedge_vertex != d.wedge_vertex || u->disk.boundary_loop != d.boundary_loop;
+  if (!u->own_disk) std::vector<char>().swap(u->cut), u->disk = SlicedDisk();
+  chart.unfolded = std::move(u);
+}
+
 /// Cuts one piece (a component, or a chart of a component) to a disk, augments the cut (GGH 2002
 /// §3.2) and parameterizes the disk (Floater + Yoshizawa). Progress fractions [frac0, frac1].
 Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double frac1) {
@@ -567,17 +593,8 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   // Free layouts on pieces split by the disk layouts' stretch (the top-down candidate): the chart
   // as the Unfold layouts leave it is kept too (Chart::unfolded), packed in its place if that wins.
   std::unique_ptr<ChartLayout> unfolded;
-  if (ctx.layouts == PieceLayouts::Free && !options.scan_free_boundary) {
-    use_other_layouts_if_better(comp, chart, PieceLayouts::Unfold, disk, {}, 1.0, 0, 1.0);
-    if (score(chart.state).bad == 0) {
-      unfolded = std::make_unique<ChartLayout>();
-      unfolded->cut = chart.state.cut;
-      unfolded->disk = chart.state.disk;
-      unfolded->param = chart.state.param;
-      unfolded->domain_area = chart.domain_area;
-      unfolded->aspect = chart.aspect;
-    }
-  }
+  if (ctx.layouts == PieceLayouts::Free && !options.scan_free_boundary)
+    unfolded = unfolded_layout(comp, chart, disk);
   use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial),
                               options.scan_layout_fill_exponent, options.scan_slim_iterations,
                               options.scan_slim_fill_exponent, options.scan_slim_second_exponent);
@@ -590,16 +607,7 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
     use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same), 1.0, 0, 1.0);
   }
   chart.cut_length = cut_length(graph, chart.state.cut);
-  if (unfolded && (unfolded->param.uv != chart.state.param.uv || unfolded->cut != chart.state.cut)) {
-    unfolded->cut_length = cut_length(graph, unfolded->cut);
-    // A SLIM layout keeps the disk: then only the parameterization is kept (memory).
-    const SlicedDisk& d = chart.state.disk;
-    unfolded->own_disk = unfolded->cut != chart.state.cut || unfolded->disk.disk.faces != d.disk.faces ||
-                         unfolded->disk.wedge_vertex != d.wedge_vertex ||
-                         unfolded->disk.boundary_loop != d.boundary_loop;
-    if (!unfolded->own_disk) std::vector<char>().swap(unfolded->cut), unfolded->disk = SlicedDisk();
-    chart.unfolded = std::move(unfolded);
-  }
+  if (unfolded) keep_unfolded(chart, std::move(unfolded), graph);
   return chart;
 }
 
