@@ -1280,6 +1280,17 @@ bool click_widget(const Xvfb& x, const fs::path& log, const std::string& id) {
   return xdo(x, cmd.str()) == 0;
 }
 
+/// Clicks the collapsing header \p header until widget \p inside is traced (up to three clicks, 10 s
+/// apart): a click in the first frames after the start can miss while the panels still move.
+bool open_section(const Xvfb& x, const fs::path& log, const std::string& header,
+                  const std::string& inside) {
+  for (int i = 0; i < 3; ++i) {
+    if (!click_widget(x, log, header)) return false;
+    if (wait_for([&] { return widget(log, inside).has_value(); }, 10s)) return true;
+  }
+  return false;
+}
+
 std::string read_file_bytes(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
@@ -1488,7 +1499,7 @@ TEST_F(StudioGui, EyedropperPicksTheChannelsAndPresetsSaveAndLoadTheBrush) {
   const fs::path preset = dir.path / "brush.json";
   const pid_t app = b.start();
   ASSERT_GT(app, 0) << slurp(b.log);
-  ASSERT_TRUE(click_widget(*x, b.log, "Layers and channels"));
+  ASSERT_TRUE(open_section(*x, b.log, "Layers and channels", "Add layer")) << slurp(b.log);
   ASSERT_TRUE(click_widget(*x, b.log, "Add layer"));
   ASSERT_TRUE(wait_for([&] { return widget(b.log, "layer 2 visible").has_value(); }, 30s)) << slurp(b.log);
   std::this_thread::sleep_for(1s);
