@@ -1270,14 +1270,22 @@ std::optional<std::pair<int, int>> widget(const fs::path& log, const std::string
   return std::make_pair(x, y);
 }
 
-/// Clicks widget \p id where it is now (held across frames, as keys are).
+/// Clicks widget \p id where it is now (held across frames, as keys are). The press waits until the
+/// traced position has stayed put for 0.5 s with the pointer on it: panels still move in the first
+/// frames after the start, and a press on where a widget was misses it.
 bool click_widget(const Xvfb& x, const fs::path& log, const std::string& id) {
   std::optional<std::pair<int, int>> w;
   if (!wait_for([&] { return (w = widget(log, id)).has_value(); }, 30s)) return false;
-  std::ostringstream cmd;
+  const auto settled = [&] {
+    const auto before = widget(log, id);
+    std::ostringstream move;
+    move << "mousemove " << before->first << " " << before->second << " sleep 0.6";
+    if (xdo(x, move.str()) != 0) return false;
+    return (w = widget(log, id)) == before;
+  };
+  if (!wait_for(settled, 30s)) return false;
   // Long enough that a slow frame (llvmpipe, a composite running) sees the press and the release apart.
-  cmd << "mousemove " << w->first << " " << w->second << " sleep 0.6 mousedown 1 sleep 1.0 mouseup 1 sleep 0.8";
-  return xdo(x, cmd.str()) == 0;
+  return xdo(x, "mousedown 1 sleep 1.0 mouseup 1 sleep 0.8") == 0;
 }
 
 /// Clicks the collapsing header \p header until widget \p inside is traced (up to three clicks, 10 s
@@ -1380,7 +1388,7 @@ TEST_F(StudioGui, PaintsBaseColourAndMetalOnTwoLayersShowsThemLitAndExportsWhatA
   ASSERT_EQ(xdo(*x, paint_drag(330)), 0);
   // 2. The Material window (Brush panel: Layers and channels); Add layer: layer 2, active. The brush
   //    paints roughness and metallic (0.2, 1: a polished metal): a vertical drag.
-  ASSERT_TRUE(click_widget(*x, b.log, "Layers and channels"));
+  ASSERT_TRUE(open_section(*x, b.log, "Layers and channels", "Add layer")) << slurp(b.log);
   ASSERT_TRUE(click_widget(*x, b.log, "Add layer"));
   ASSERT_TRUE(wait_for([&] { return widget(b.log, "layer 2 visible").has_value(); }, 30s)) << slurp(b.log);
   std::this_thread::sleep_for(1s);  // the panel settles (its hint line goes)
@@ -1440,9 +1448,9 @@ TEST_F(StudioGui, MaskPaintingAndFillWithPressureSaveReopenAndExportAsAdaptexPai
   ASSERT_GT(app, 0) << slurp(b.log);
   EXPECT_EQ(count_in(b.log, "test hook: pen pressure 0.5"), 1) << slurp(b.log);
   // 1. The pressure curve of the radius (Brush panel, Pen pressure), then the Material window.
-  ASSERT_TRUE(click_widget(*x, b.log, "Pen pressure"));
+  ASSERT_TRUE(open_section(*x, b.log, "Pen pressure", "Pressure -> radius")) << slurp(b.log);
   ASSERT_TRUE(click_widget(*x, b.log, "Pressure -> radius"));
-  ASSERT_TRUE(click_widget(*x, b.log, "Layers and channels"));
+  ASSERT_TRUE(open_section(*x, b.log, "Layers and channels", "Add layer")) << slurp(b.log);
   // 2. Add layer (layer 2), Fill layer: layer 2 all red (the default brush).
   ASSERT_TRUE(click_widget(*x, b.log, "Add layer"));
   ASSERT_TRUE(wait_for([&] { return widget(b.log, "layer 2 visible").has_value(); }, 30s)) << slurp(b.log);
@@ -1508,7 +1516,7 @@ TEST_F(StudioGui, EyedropperPicksTheChannelsAndPresetsSaveAndLoadTheBrush) {
   ASSERT_EQ(xdo(*x, "mousemove 500 330 sleep 0.3 " + hold("i") + " sleep 0.3 mousedown 1 sleep 0.3 mouseup 1 sleep 0.5 " +
                         hold("b")),
             0);
-  ASSERT_TRUE(click_widget(*x, b.log, "Presets"));
+  ASSERT_TRUE(open_section(*x, b.log, "Presets", "Save preset")) << slurp(b.log);
   for (int attempt = 0; attempt < 3 && !fs::exists(preset); ++attempt)
     if (click_widget(*x, b.log, "Save preset")) wait_for([&] { return fs::exists(preset); }, 20s);
   ASSERT_TRUE(fs::exists(preset)) << slurp(b.log);
