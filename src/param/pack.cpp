@@ -932,27 +932,9 @@ struct ShapeSearch {
     double s = first_shape_scale(set.box_area, gap, min_side, s_max);
     double lo = 0, hi = std::numeric_limits<double>::infinity(), prev_s = 0, prev_needed = 0;
     std::vector<ShapePlacement> placed(out.size());
-    // Whether the charts fit at all (each a point) and the first trial run at the same time (two
-    // independent packings; the first is wasted when nothing fits). Their progress is serialised
-    // and never steps back.
-    tick();
-    double tiny = 0, first = 0;
-    {
-      std::mutex mutex;
-      double shown = frac;
-      const ProgressCallback guarded = [&](std::string_view phase, double f) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        shown = std::max(shown, f);
-        return !options.progress || options.progress(phase, shown);
-      };
-      tbb::parallel_invoke(
-          [&] { tiny = shape_trial(set, 1e-12, n, g, min_side, guarded, frac, nullptr, n); },
-          [&] { first = shape_trial(set, s, n, g, min_side, guarded, frac, &placed, 2.0 * n); });
-    }
-    if (tiny > n) return false;
     for (int t = 0; t < options.trials; ++t) {
-      if (t > 0) tick();
-      const double needed = t == 0 ? first : trial(s, g, min_side, &placed, 2.0 * n);
+      tick();
+      const double needed = trial(s, g, min_side, &placed, 2.0 * n);
       if (needed <= n) lo = s, out.swap(placed);
       else hi = s;
       // Done when the square is filled to 1 % of its height or the bracket is within 0.3 %.
@@ -966,7 +948,12 @@ struct ShapeSearch {
       if (next >= hi || next <= lo) next = lo > 0 ? std::sqrt(lo * std::min(hi, 4 * lo)) : 0.7 * s;
       s = std::min(next, s_max);
     }
-    // Still no fit: shrink until it does (the tiny trial fitted, so this ends).
+    if (lo > 0) return true;
+    // No fit yet: whether the charts fit at all (each a point, raised to min_side; about as costly
+    // as a trial, so only asked here), then shrink until they do (the tiny trial fitted, so this
+    // ends).
+    tick();
+    if (trial(1e-12, g, min_side, nullptr, n) > n) return false;
     for (int t = 0; lo == 0 && t < 64; ++t) {
       tick();
       s *= 0.8;
