@@ -1013,76 +1013,82 @@ struct KeptLayout {
   double domain_area = 1, aspect = 0;
 };
 
+/// The repacking step of pack_alternatives() and pack_unfolded(): the charts \p swapped of
+/// \p charts have just been given other layouts; \p swap_back(i) gives chart swapped[i] its
+/// layout back. Fragile ones get theirs back at once; the rest are packed (assemble()) and that
+/// layout replaces \p result when it is valid and its effective texel share is higher, otherwise
+/// they get theirs back too. \p kept_new[i] (resized): chart swapped[i] keeps its new layout.
+/// Returns whether the new layouts won (false as well when every one was fragile).
+bool repack_swapped(const TriMesh& mesh, const std::vector<Component>& pieces,
+                    std::vector<Chart>& charts, const std::vector<size_t>& swapped,
+                    const std::function<void(size_t)>& swap_back, double padding,
+                    const UnwrapOptions& options, UnwrapResult& result, bool shapes,
+                    std::vector<char>& kept_new) {
+  std::vector<char> fragile(swapped.size(), 0);
+  tbb::parallel_for(size_t{0}, swapped.size(),
+                    [&](size_t i) { fragile[i] = fragile_chart(charts[swapped[i]]); });
+  for (size_t i = 0; i < swapped.size(); ++i)
+    if (fragile[i]) swap_back(i);
+  kept_new.assign(swapped.size(), 0);
+  if (std::find(fragile.begin(), fragile.end(), 0) == fragile.end()) return false;
+  UnwrapResult alt;
+  alt.report = result.report;
+  assemble(mesh, pieces, charts, padding, options, alt, shapes);
+  const bool wins = alt.report.effective_texel_share > result.report.effective_texel_share &&
+                    invalid_layout_faces(alt.param, charts).empty();
+  if (wins) result = std::move(alt);
+  for (size_t i = 0; i < swapped.size(); ++i)
+    if (!fragile[i]) {
+      if (wins) kept_new[i] = 1;
+      else swap_back(i);
+    }
+  return wins;
+}
+
 /// Gives every chart of \p charts (parallel to \p pieces) its Chart::alternative (a SLIM layout
 /// its own score rejected: near-isometric but filling less of its rectangle, which packed by
-/// shape may still nest), packs them (assemble()) and keeps that layout in \p result when it is
-/// valid and its effective texel share is higher; otherwise every chart gets its layout back.
-/// The alternatives are used up either way (docs/decisions.md, "Scans: the rejected SLIM layouts
-/// are packed too"). \p shapes as in assemble().
+/// shape may still nest) and keeps that packing when it wins (repack_swapped()). The
+/// alternatives are used up either way (docs/decisions.md, "Scans: the rejected SLIM layouts are
+/// packed too"). \p shapes as in assemble().
 void pack_alternatives(const TriMesh& mesh, const std::vector<Component>& pieces,
                        std::vector<Chart>& charts, double padding, const UnwrapOptions& options,
                        UnwrapResult& result, bool shapes) {
   std::vector<KeptLayout> kept;
+  std::vector<size_t> swapped;
   for (size_t c = 0; c < charts.size(); ++c) {
     if (!charts[c].alternative) continue;
     PolygonLayout u = std::move(*charts[c].alternative);
     charts[c].alternative.reset();
     kept.push_back({c, charts[c].state.param, charts[c].domain_area, charts[c].aspect});
+    swapped.push_back(c);
     adopt_disk_layout(charts[c], std::move(u));
   }
-  const auto restore = [&](const KeptLayout& k) {
+  const auto restore = [&](size_t i) {
+    const KeptLayout& k = kept[i];
     charts[k.chart].state.param = k.param;
     charts[k.chart].domain_area = k.domain_area;
     charts[k.chart].aspect = k.aspect;
   };
-  std::vector<char> fragile(kept.size(), 0);
-  tbb::parallel_for(size_t{0}, kept.size(),
-                    [&](size_t i) { fragile[i] = fragile_chart(charts[kept[i].chart]); });
-  for (size_t i = 0; i < kept.size(); ++i)
-    if (fragile[i]) restore(kept[i]);
-  if (std::find(fragile.begin(), fragile.end(), 0) == fragile.end()) return;
-  UnwrapResult alt;
-  alt.report = result.report;
-  assemble(mesh, pieces, charts, padding, options, alt, shapes);
-  if (alt.report.effective_texel_share > result.report.effective_texel_share &&
-      invalid_layout_faces(alt.param, charts).empty()) {
-    result = std::move(alt);
-    return;
-  }
-  for (size_t i = 0; i < kept.size(); ++i)
-    if (!fragile[i]) restore(kept[i]);
+  std::vector<char> kept_new;
+  repack_swapped(mesh, pieces, charts, swapped, restore, padding, options, result, shapes, kept_new);
 }
 
 /// Gives every chart of \p charts (parallel to \p pieces) with a Chart::unfolded layout that
-/// layout (fragile ones excepted), packs them (assemble()) and keeps that layout in \p result when
-/// it is valid and its effective texel share is higher (those charts drop their
-/// Chart::alternative, a layout of the other disk); otherwise every chart gets its layout back.
-/// Runs before pack_alternatives(), so that the free layouts are weighed against the unfolded ones
-/// alone (docs/decisions.md, "Scans: free-boundary layouts for the top-down candidate"). The
-/// unfolded layouts are used up either way. \p shapes as in assemble().
+/// layout and keeps that packing when it wins (repack_swapped(); those charts then drop their
+/// Chart::alternative, a layout of the other disk). Runs before pack_alternatives(), so that the
+/// free layouts are weighed against the unfolded ones alone (docs/decisions.md, "Scans:
+/// free-boundary layouts for the top-down candidate"). The unfolded layouts are used up either
+/// way. \p shapes as in assemble().
 void pack_unfolded(const TriMesh& mesh, const std::vector<Component>& pieces, std::vector<Chart>& charts,
                    double padding, const UnwrapOptions& options, UnwrapResult& result, bool shapes) {
   std::vector<size_t> swapped;
   for (size_t c = 0; c < charts.size(); ++c)
     if (charts[c].unfolded) swap_unfolded(charts[c]), swapped.push_back(c);
-  std::vector<char> fragile(swapped.size(), 0);
-  tbb::parallel_for(size_t{0}, swapped.size(),
-                    [&](size_t i) { fragile[i] = fragile_chart(charts[swapped[i]]); });
+  std::vector<char> kept_new;
+  repack_swapped(mesh, pieces, charts, swapped, [&](size_t i) { swap_unfolded(charts[swapped[i]]); },
+                 padding, options, result, shapes, kept_new);
   for (size_t i = 0; i < swapped.size(); ++i)
-    if (fragile[i]) swap_unfolded(charts[swapped[i]]);
-  if (std::find(fragile.begin(), fragile.end(), 0) != fragile.end()) {
-    UnwrapResult alt;
-    alt.report = result.report;
-    assemble(mesh, pieces, charts, padding, options, alt, shapes);
-    const bool wins = alt.report.effective_texel_share > result.report.effective_texel_share &&
-                      invalid_layout_faces(alt.param, charts).empty();
-    if (wins) result = std::move(alt);
-    for (size_t i = 0; i < swapped.size(); ++i) {
-      if (fragile[i]) continue;
-      if (wins) charts[swapped[i]].alternative.reset();  // a layout of the other disk
-      else swap_unfolded(charts[swapped[i]]);
-    }
-  }
+    if (kept_new[i]) charts[swapped[i]].alternative.reset();
   for (Chart& chart : charts) chart.unfolded.reset();  // used up either way
 }
 
