@@ -188,7 +188,15 @@ enum class PieceLayouts {
   Disk,    ///< the disk parameterization only
   Unfold,  ///< also the isometric unfolding of a piece without interior vertices (unfold.h)
   Free,    ///< also that, and a free-boundary (LSCM) layout (lscm.h; UnwrapOptions::scan_free_boundary)
+  /// as Free, and the layout as Unfold leaves it is kept too (Chart::unfolded, pack_unfolded()):
+  /// the top-down candidate of unwrap_scan() (UnwrapOptions::scan_top_down_free_layouts)
+  FreeKeepUnfolded,
 };
+
+/// Whether \p l gives the pieces free-boundary layouts (Free or FreeKeepUnfolded).
+bool free_layouts(PieceLayouts l) {
+  return l == PieceLayouts::Free || l == PieceLayouts::FreeKeepUnfolded;
+}
 
 /// What every chart of one unwrap() attempt shares: the options, the disk-parameterization
 /// settings, the augmentation budgets and the report being filled.
@@ -497,9 +505,9 @@ void use_other_layouts_if_better(const Component& comp, Chart& chart, PieceLayou
                                   int slim_iterations, double slim_exponent,
                                   double slim_alt_exponent = -1) {
   // The fill exponent applies to the scan charts (Free) only.
-  const double e = layouts == PieceLayouts::Free ? fill_exponent : 1.0;
+  const double e = free_layouts(layouts) ? fill_exponent : 1.0;
   if (layouts != PieceLayouts::Disk) use_unfolding_if_better(comp, chart, e);
-  if (layouts != PieceLayouts::Free) return;
+  if (!free_layouts(layouts)) return;
   // A projection keeps the piece's own boundaries: only a disk may take it (charts are disks).
   if (disk)
     use_layout_if_better(comp, chart,
@@ -556,7 +564,7 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   cur.disk = slice_along_cut(comp.mesh, ec, cur.cut);
   rep.time_cut += seconds_since(t0);
   CutState initial;  // the initial cut, for the free-boundary layout
-  if (ctx.layouts == PieceLayouts::Free) initial.cut = cur.cut, initial.disk = cur.disk;
+  if (free_layouts(ctx.layouts)) initial.cut = cur.cut, initial.disk = cur.disk;
 
   // Cut augmentation: as in the thesis, the candidates are compared with a cheaper
   // parameterization; the full Yoshizawa solve runs once, on the chosen cut.
@@ -590,10 +598,10 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   chart.state = std::move(cur);
   chart.domain_area = uv_domain_area(chart.state);
   const auto tl = Clock::now();
-  // Free layouts on pieces split by the disk layouts' stretch (the top-down candidate): the chart
-  // as the Unfold layouts leave it is kept too (Chart::unfolded), packed in its place if that wins.
+  // The top-down candidate: the chart as the Unfold layouts leave it is kept too (Chart::unfolded),
+  // packed in its place if that wins.
   std::unique_ptr<ChartLayout> unfolded;
-  if (ctx.layouts == PieceLayouts::Free && !options.scan_free_boundary)
+  if (ctx.layouts == PieceLayouts::FreeKeepUnfolded)
     unfolded = unfolded_layout(comp, chart, disk);
   use_other_layouts_if_better(comp, chart, ctx.layouts, disk, std::move(initial),
                               options.scan_layout_fill_exponent, options.scan_slim_iterations,
@@ -601,7 +609,7 @@ Chart build_chart(const Component& comp, ChartContext& ctx, double frac0, double
   rep.time_layouts += seconds_since(tl);
   // Still flipped or degenerate UV triangles (no augmentation allowed or none helped): a valid
   // layout of the other kinds, whatever its share (unwrap_pieces() splits the piece otherwise).
-  if (ctx.layouts != PieceLayouts::Free && score(chart.state).bad > 0) {
+  if (!free_layouts(ctx.layouts) && score(chart.state).bad > 0) {
     CutState same;  // the free-boundary layout of the chart's own disk
     same.cut = chart.state.cut, same.disk = chart.state.disk;
     use_other_layouts_if_better(comp, chart, PieceLayouts::Free, disk, std::move(same), 1.0, 0, 1.0);
@@ -1772,7 +1780,7 @@ void unwrap_scan(const TriMesh& mesh, const std::vector<Component>& comps,
   const bool new_ways = options.scan_planar_angle > 0 || options.scan_free_boundary;
   // The top-down candidate's charts take the free-boundary layouts too (its segmentation does not).
   const PieceLayouts top_down_layouts =
-      options.scan_free_boundary && options.scan_top_down_free_layouts ? PieceLayouts::Free
+      options.scan_free_boundary && options.scan_top_down_free_layouts ? PieceLayouts::FreeKeepUnfolded
                                                                        : PieceLayouts::Unfold;
   // The top-down candidate does not depend on the planar one, so it is segmented and built beside
   // it (either leaves a core idle much of the time). The callback is called under a mutex; once it
