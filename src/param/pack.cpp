@@ -3,14 +3,11 @@
 /// rectangles (multi-chart layouts): the best of shelf and MaxRects packings.
 #include "adaptex/param/pack.h"
 
-#include <tbb/parallel_invoke.h>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 #include <map>
-#include <mutex>
 #include <numeric>
 #include <string>
 #include <string_view>

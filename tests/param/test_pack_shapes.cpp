@@ -230,8 +230,8 @@ TEST(PackShapes, GapsThatDoNotFitAreHalved) {
 }
 
 TEST(PackShapes, OneThreadGivesTheSamePlacements) {
-  // The fit test (every chart a point) and the first trial run at the same time: on one thread
-  // (one after the other) every placement must be the same, with gaps that fit and that do not.
+  // The placements do not depend on the threads: on one thread every placement must be the same,
+  // with gaps that fit and that do not (0.08: the gap is halved).
   std::mt19937 rng(5);
   std::vector<ChartShape> charts;
   for (int i = 0; i < 200; ++i) charts.push_back(random_blob(rng, std::pow(10.0, -1.5 * (i % 17) / 17.0)));
@@ -277,7 +277,23 @@ TEST(PackShapes, ReportsProgressAndCancels) {
   EXPECT_EQ(calls, 2);
 }
 
-TEST(PackShapes, ProgressNeverStepsBackWhileTwoTrialsRunAtOnce) {
+TEST(PackShapes, WhenNoTrialFitsTheScaleShrinksUntilItDoes) {
+  // Five equal squares: at the first scale (about where their boxes fill 0.65 of the square, side
+  // 0.35-0.36) two fit in a row and three rows do not fit; with one trial, the fit test then runs
+  // and the scale shrinks by steps of 0.8 until three fit in a row (measured 0.276).
+  const std::vector<ChartShape> charts(5, squares({{0, 0}}, 1.0));
+  ShapePackOptions o;
+  o.trials = 1;
+  const std::vector<ShapePlacement> pl = pack_shapes(charts, o);
+  check_shapes(charts, pl, 0.0);
+  for (const ShapePlacement& p : pl) {
+    EXPECT_EQ(p.scale, pl[0].scale);
+    EXPECT_GT(p.scale, 0.25);
+    EXPECT_LT(p.scale, 1.0 / 3);
+  }
+}
+
+TEST(PackShapes, ProgressNeverStepsBack) {
   std::vector<ChartShape> charts(2000, squares({{0, 0}, {1, 0}}, 1.0));
   ShapePackOptions o;
   std::vector<double> seen;
