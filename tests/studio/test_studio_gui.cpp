@@ -1271,7 +1271,7 @@ std::optional<std::pair<int, int>> widget(const fs::path& log, const std::string
 }
 
 /// Clicks widget \p id where it is now (held across frames, as keys are). The press waits until the
-/// traced position has stayed put for 0.5 s with the pointer on it: panels still move in the first
+/// traced position has stayed put for 0.6 s with the pointer on it: panels still move in the first
 /// frames after the start, and a press on where a widget was misses it.
 bool click_widget(const Xvfb& x, const fs::path& log, const std::string& id) {
   std::optional<std::pair<int, int>> w;
