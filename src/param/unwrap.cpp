@@ -1025,20 +1025,20 @@ struct KeptLayout {
 /// \p charts have just been given other layouts; \p swap_back(i) gives chart swapped[i] its
 /// layout back. Fragile ones get theirs back at once; the rest are packed (assemble()) and that
 /// layout replaces \p result when it is valid and its effective texel share is higher, otherwise
-/// they get theirs back too. \p kept_new[i] (resized): chart swapped[i] keeps its new layout.
-/// Returns whether the new layouts won (false as well when every one was fragile).
-bool repack_swapped(const TriMesh& mesh, const std::vector<Component>& pieces,
+/// they get theirs back too. \p kept_new (if not null; resized): kept_new[i] when chart swapped[i]
+/// keeps its new layout.
+void repack_swapped(const TriMesh& mesh, const std::vector<Component>& pieces,
                     std::vector<Chart>& charts, const std::vector<size_t>& swapped,
                     const std::function<void(size_t)>& swap_back, double padding,
                     const UnwrapOptions& options, UnwrapResult& result, bool shapes,
-                    std::vector<char>& kept_new) {
+                    std::vector<char>* kept_new = nullptr) {
   std::vector<char> fragile(swapped.size(), 0);
   tbb::parallel_for(size_t{0}, swapped.size(),
                     [&](size_t i) { fragile[i] = fragile_chart(charts[swapped[i]]); });
   for (size_t i = 0; i < swapped.size(); ++i)
     if (fragile[i]) swap_back(i);
-  kept_new.assign(swapped.size(), 0);
-  if (std::find(fragile.begin(), fragile.end(), 0) == fragile.end()) return false;
+  if (kept_new) kept_new->assign(swapped.size(), 0);
+  if (std::find(fragile.begin(), fragile.end(), 0) == fragile.end()) return;
   UnwrapResult alt;
   alt.report = result.report;
   assemble(mesh, pieces, charts, padding, options, alt, shapes);
@@ -1047,10 +1047,9 @@ bool repack_swapped(const TriMesh& mesh, const std::vector<Component>& pieces,
   if (wins) result = std::move(alt);
   for (size_t i = 0; i < swapped.size(); ++i)
     if (!fragile[i]) {
-      if (wins) kept_new[i] = 1;
-      else swap_back(i);
+      if (!wins) swap_back(i);
+      else if (kept_new) (*kept_new)[i] = 1;
     }
-  return wins;
 }
 
 /// Gives every chart of \p charts (parallel to \p pieces) its Chart::alternative (a SLIM layout
@@ -1077,8 +1076,7 @@ void pack_alternatives(const TriMesh& mesh, const std::vector<Component>& pieces
     charts[k.chart].domain_area = k.domain_area;
     charts[k.chart].aspect = k.aspect;
   };
-  std::vector<char> kept_new;
-  repack_swapped(mesh, pieces, charts, swapped, restore, padding, options, result, shapes, kept_new);
+  repack_swapped(mesh, pieces, charts, swapped, restore, padding, options, result, shapes);
 }
 
 /// Gives every chart of \p charts (parallel to \p pieces) with a Chart::unfolded layout that
@@ -1094,7 +1092,7 @@ void pack_unfolded(const TriMesh& mesh, const std::vector<Component>& pieces, st
     if (charts[c].unfolded) swap_unfolded(charts[c]), swapped.push_back(c);
   std::vector<char> kept_new;
   repack_swapped(mesh, pieces, charts, swapped, [&](size_t i) { swap_unfolded(charts[swapped[i]]); },
-                 padding, options, result, shapes, kept_new);
+                 padding, options, result, shapes, &kept_new);
   for (size_t i = 0; i < swapped.size(); ++i)
     if (kept_new[i]) charts[swapped[i]].alternative.reset();
   for (Chart& chart : charts) chart.unfolded.reset();  // used up either way
