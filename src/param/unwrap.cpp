@@ -360,9 +360,8 @@ void use_slim_if_better(Chart& chart, double e, int iterations, double e_alt) {
   std::vector<Vec2> start(s.param.uv.size());
   for (size_t w = 0; w < start.size(); ++w) start[w] = Vec2(s.param.uv[w].x() * sx, s.param.uv[w].y() / sx);
   SlimOptions sopt;
-  std::optional<PolygonLayout> u;
-  for (sopt.max_iterations = iterations; !u && sopt.max_iterations >= 1; sopt.max_iterations /= 2)
-    u = slim_layout(s.disk.disk, start, sopt);
+  sopt.max_iterations = iterations;
+  std::optional<PolygonLayout> u = slim_layout_halving(s.disk.disk, start, sopt);
   if (!u) return;
   const double l2_u = l2_at_aspect(s.disk.disk, u->uv, u->aspect);
   if (!std::isfinite(l2_u)) return;

@@ -113,3 +113,51 @@ TEST(Slim, AFlippedStartComesBackUnchangedAndBadInputIsOneError) {
 
 }  // namespace
 }  // namespace adaptex
+
+namespace adaptex {
+namespace {
+
+/// A fan of \p n triangles around a saddle vertex, slit open between its first and last ring
+/// vertex (a disk), with an angle sum above 2π at the centre: its near-isometric layouts overlap
+/// themselves. The start layout squeezes the fan into \p squeeze of a turn (flip-free).
+struct Saddle {
+  TriMesh mesh;
+  std::vector<Vec2> start;
+};
+
+Saddle saddle_fan(int n, double squeeze) {
+  Saddle s;
+  s.mesh.positions.push_back(Vec3::Zero());
+  s.start.push_back(Vec2::Zero());
+  for (int k = 0; k <= n; ++k) {
+    const double t = 2 * M_PI * k / n;
+    s.mesh.positions.push_back(Vec3(std::cos(t), std::sin(t), 0.6 * std::sin(3 * t)));
+    s.start.push_back(Vec2(std::cos(squeeze * t), std::sin(squeeze * t)));
+  }
+  for (int k = 1; k <= n; ++k) s.mesh.faces.push_back({0, k, k + 1});
+  return s;
+}
+
+TEST(Slim, HalvingGivesTheFirstValidLayoutOfFewerIterationsFromOneRun) {
+  const Saddle s = saddle_fan(24, 0.7);
+  SlimOptions full;
+  full.max_iterations = 12;
+  full.tolerance = 0;
+  // Precondition: the full run overlaps itself, so the halving must fall back.
+  ASSERT_FALSE(slim_layout(s.mesh, s.start, full).has_value());
+  std::optional<PolygonLayout> expected;
+  SlimOptions o = full;
+  for (o.max_iterations = full.max_iterations; !expected && o.max_iterations >= 1; o.max_iterations /= 2)
+    expected = slim_layout(s.mesh, s.start, o);
+  ASSERT_TRUE(expected.has_value());
+  const std::optional<PolygonLayout> got = slim_layout_halving(s.mesh, s.start, full);
+  ASSERT_TRUE(got.has_value());
+  EXPECT_EQ(got->uv, expected->uv);  // bit for bit: the same iterations
+  EXPECT_EQ(got->fill, expected->fill);
+  EXPECT_EQ(got->aspect, expected->aspect);
+  full.max_iterations = 0;
+  EXPECT_FALSE(slim_layout_halving(s.mesh, s.start, full).has_value());
+}
+
+}  // namespace
+}  // namespace adaptex

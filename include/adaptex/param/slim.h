@@ -46,4 +46,13 @@ std::vector<Vec2> slim_relax(const TriMesh& disk, const std::vector<Vec2>& start
 std::optional<PolygonLayout> slim_layout(const TriMesh& disk, const std::vector<Vec2>& start,
                                          const SlimOptions& options = {});
 
+/// The first valid slim_layout() of \p start with options.max_iterations, then half as many, and
+/// so on down to one (a free boundary may run into itself only after many iterations); all from
+/// one run of the iterations, the same layouts as separate calls.
+/// \pre as slim_relax()
+/// \return the layout, or std::nullopt when none is valid or options.max_iterations < 1
+/// \throw InvalidInputError as slim_relax()
+std::optional<PolygonLayout> slim_layout_halving(const TriMesh& disk, const std::vector<Vec2>& start,
+                                                 const SlimOptions& options = {});
+
 }  // namespace adaptex
