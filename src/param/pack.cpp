@@ -706,6 +706,7 @@ class Horizon {
     // thr only falls (with the best score); a column is judged when it enters the window.
     long thr = 0, thr_of = -1;
     int tall = -1;  // the last column judged above thr
+    int witness = -1;  // the column that last ruled a position out (likely to rule out the next)
     for (int x = 0, next = 0; x + w <= n_; ++x) {
       if (best_score != thr_of) thr = best_score / c - pr.max_top + max_low, thr_of = best_score;
       for (; next < x + w; ++next)
@@ -714,7 +715,7 @@ class Horizon {
         x = tall;
         continue;
       }
-      improved |= drop_at(pr, c, x, best_score, best_x, best_y);
+      improved |= drop_at(pr, c, x, best_score, best_x, best_y, witness);
     }
     return improved;
   }
@@ -732,7 +733,10 @@ class Horizon {
 
  private:
   /// Updates \p best_score, \p best_x, \p best_y if \p pr at column \p x beats them (1).
-  int drop_at(const Profile& pr, long c, int x, long& best_score, int& best_x, int& best_y) const {
+  /// \p witness: a column (absolute) tried first when it lies under the chart; set to the column
+  /// that rules this position out. Only the order of the tests depends on it, not the result.
+  int drop_at(const Profile& pr, long c, int x, long& best_score, int& best_x, int& best_y,
+              int& witness) const {
     const int w = static_cast<int>(pr.low.size());
     const long wy = c + w;  // score = wy * y + base
     const long base = pr.low_sum - (sum_[x + w] - sum_[x]) + c * pr.max_top;
@@ -741,16 +745,26 @@ class Horizon {
       const long sc = wy * yy + base;
       return sc > best_score || (sc == best_score && yy >= best_y);
     };
-    // The column of the chart's lowest bottom bounds y first (most positions are pruned by it).
+    // The column of the chart's lowest bottom bounds y first (most positions are pruned by it),
+    // then the column that ruled out the last position (y is the max over columns: any one of them
+    // gives a lower bound).
     int y = h_[x + pr.low_min_at] - pr.low[pr.low_min_at];
     if (beaten(y)) return 0;
+    if (witness >= x && witness < x + w) {
+      y = std::max(y, h_[witness] - pr.low[witness - x]);
+      if (beaten(y)) return 0;
+    }
     // y = max_e (h[x + e] - low[e]), tested every kDropBlock columns (a branch-free inner loop).
     const int* hx = h_.data() + x;
     const int* low = pr.low.data();
     for (int e0 = 0; e0 < w; e0 += kDropBlock) {
       const int e1 = std::min(w, e0 + kDropBlock);
       for (int e = e0; e < e1; ++e) y = std::max(y, hx[e] - low[e]);
-      if (beaten(y)) return 0;
+      if (beaten(y)) {
+        for (int e = e0; e < e1; ++e)
+          if (hx[e] - low[e] == y) witness = x + e;
+        return 0;
+      }
     }
     best_score = wy * y + base, best_x = x, best_y = y;
     return 1;
