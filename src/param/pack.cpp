@@ -733,8 +733,9 @@ class Horizon {
 
  private:
   /// Updates \p best_score, \p best_x, \p best_y if \p pr at column \p x beats them (1).
-  /// \p witness: a column (absolute) tried first when it lies under the chart; set to the column
-  /// that rules this position out. Only the order of the tests depends on it, not the result.
+  /// \p witness: a column (absolute) tried right after the chart's lowest column when it lies
+  /// under the chart; set to the column that rules this position out. Only the order of the tests
+  /// depends on it, not the result.
   int drop_at(const Profile& pr, long c, int x, long& best_score, int& best_x, int& best_y,
               int& witness) const {
     const int w = static_cast<int>(pr.low.size());
