@@ -316,7 +316,10 @@ std::optional<PolygonLayout> slim_layout_halving(const TriMesh& disk, const std:
                                                  const SlimOptions& options) {
   std::vector<int> caps;
   for (int n = options.max_iterations; n >= 1; n /= 2) caps.push_back(n);
-  if (caps.empty()) return std::nullopt;
+  if (caps.empty()) {
+    check_slim_input(disk, start);  // bad input is an error whatever the iteration count
+    return std::nullopt;
+  }
   std::vector<std::vector<Vec2>> runs = relax_capped(disk, start, options.tolerance, caps);
   // A run that stopped before a cap gives the next lower cap's layout too (rejected already).
   std::vector<char> repeat(runs.size(), 0);

@@ -357,7 +357,7 @@ TEST(PackShapes, PruningTheDropsKeepsThePlacements) {
   // on a 4,096-cell raster are pinned to their hash (the same before the last of those pruning
   // rules, and different when its bound is off by one row). Update the value only with an
   // intended change of the packing (docs/decisions.md, "Packing: the column that ruled out the
-  // last position is tried first").
+  // last position is tried early").
   std::mt19937 rng(11);
   std::vector<ChartShape> charts;
   for (int i = 0; i < 3000; ++i) charts.push_back(random_blob(rng, std::pow(10.0, -1.2 * (i % 13) / 13.0)));

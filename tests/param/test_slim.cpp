@@ -157,6 +157,14 @@ TEST(Slim, HalvingGivesTheFirstValidLayoutOfFewerIterationsFromOneRun) {
   EXPECT_EQ(got->aspect, expected->aspect);
   full.max_iterations = 0;
   EXPECT_FALSE(slim_layout_halving(s.mesh, s.start, full).has_value());
+  // Bad input is one error, with or without iterations to run.
+  std::vector<Vec2> nan_start = s.start;
+  nan_start[2].y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(slim_layout_halving(s.mesh, nan_start, full), InvalidInputError);
+  full.max_iterations = 12;
+  EXPECT_THROW(slim_layout_halving(s.mesh, nan_start, full), InvalidInputError);
+  std::vector<Vec2> short_start(s.start.begin(), s.start.end() - 1);
+  EXPECT_THROW(slim_layout_halving(s.mesh, short_start, full), InvalidInputError);
 }
 
 }  // namespace
