@@ -3,13 +3,30 @@
 #include <exception>
 #include <new>
 #include <iostream>
+#include <string_view>
 
 #include "adaptex/core/allocator.h"
 #include "adaptex/core/errors.h"
 #include "cli_common.h"
 
+namespace {
+
+/// The subcommand of the command line: its first argument that is not an option (the global
+/// options take no values), or "" when there is none.
+std::string_view subcommand_of(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (argv[i][0] != '-') return argv[i];
+  return {};
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
-  adaptex::keep_freed_memory_in_process_unless_disabled();
+  // `unwrap` builds no painter and allocates small blocks in every thread: per-thread heaps
+  // (docs/decisions.md, "Scans: the unwrap command allocates from per-thread heaps").
+  adaptex::keep_freed_memory_in_process_unless_disabled(subcommand_of(argc, argv) == "unwrap"
+                                                            ? adaptex::ArenaPolicy::PerThread
+                                                            : adaptex::ArenaPolicy::Shared);
   CLI::App app{"adaptex: signal-adaptive parameterization for painting on 3-D meshes"};
   app.require_subcommand(1);
   adaptex::cli::Context ctx;

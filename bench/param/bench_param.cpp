@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "adaptex/param/disk_param.h"
+#include "adaptex/param/stretch.h"
 #include "bench_disks.h"
 
 using namespace adaptex;
@@ -32,6 +33,25 @@ static void run(benchmark::State& state, const std::string& name, bool yoshizawa
   state.counters["t_yoshizawa_s"] = r.time_yoshizawa;
 }
 
+// The overlap checks of a packed layout: the Floater layout of a generated disk, whose neighbours
+// share edges and vertices (the pairs the grid hands to the separating-axis test).
+static void overlaps(benchmark::State& state, const std::string& name, bool invalid_faces) {
+  const TriMesh& m = bench::disk(name);
+  DiskParamOptions opt;
+  opt.yoshizawa = false;
+  Parameterization p;
+  p.uv = parameterize_disk(m, {}, opt).uv;
+  p.uv_faces = m.faces;
+  long found = 0;
+  for (auto _ : state) {
+    found = invalid_faces ? static_cast<long>(invalid_uv_faces(p).size())
+                          : count_overlapping_triangles(p, 1);
+    benchmark::DoNotOptimize(found);
+  }
+  state.counters["faces"] = m.num_faces();
+  state.counters["found"] = static_cast<double>(found);
+}
+
 int main(int argc, char** argv) {
   using B = TutteSolver::Backend;
   struct Case {
@@ -52,6 +72,14 @@ int main(int argc, char** argv) {
     const std::string label = std::string("Backend/") + n + "/bump100k";
     benchmark::RegisterBenchmark(label.c_str(), [b = b](benchmark::State& s) { run(s, "bump100k", true, b); })
         ->Unit(benchmark::kMillisecond)->Iterations(1)->UseRealTime();
+  }
+  for (const char* name : {"bump10k", "bump100k"}) {
+    benchmark::RegisterBenchmark((std::string("Overlaps/count/") + name).c_str(),
+                                 [=](benchmark::State& s) { overlaps(s, name, false); })
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark((std::string("Overlaps/invalid_faces/") + name).c_str(),
+                                 [=](benchmark::State& s) { overlaps(s, name, true); })
+        ->Unit(benchmark::kMillisecond);
   }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

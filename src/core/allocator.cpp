@@ -10,7 +10,7 @@
 
 namespace adaptex {
 
-bool keep_freed_memory_in_process() {
+bool keep_freed_memory_in_process(ArenaPolicy arenas) {
 #if defined(__GLIBC__)
   // 32 MiB is glibc's largest accepted mmap threshold on 64-bit (DEFAULT_MMAP_THRESHOLD_MAX);
   // setting either value also turns off glibc's dynamic adjustment of both.
@@ -20,15 +20,16 @@ bool keep_freed_memory_in_process() {
   // are at most 64 MiB each and are unmapped when they empty, so the blocks that TBB's workers
   // allocate (a painter's index and padding built side by side) were paid in page faults again
   // (2048² Painter: 314 ms with thread arenas, 196 ms with one).
-  const bool arena_ok = mallopt(M_ARENA_MAX, 1) == 1;
+  const bool arena_ok = arenas == ArenaPolicy::PerThread || mallopt(M_ARENA_MAX, 1) == 1;
   return mmap_ok && trim_ok && arena_ok;
 #else
+  (void)arenas;
   return false;
 #endif
 }
 
-bool keep_freed_memory_in_process_unless_disabled() {
-  return std::getenv("ADAPTEX_DEFAULT_MALLOC") == nullptr && keep_freed_memory_in_process();
+bool keep_freed_memory_in_process_unless_disabled(ArenaPolicy arenas) {
+  return std::getenv("ADAPTEX_DEFAULT_MALLOC") == nullptr && keep_freed_memory_in_process(arenas);
 }
 
 }  // namespace adaptex

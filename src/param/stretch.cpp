@@ -230,6 +230,7 @@ void for_overlapping_pairs(const Parameterization& param, Found&& found,
     std::array<Vec2, 3> p;
     Vec2 lo, hi;
     int sign;
+    int x0, y0, x1, y1;  ///< The grid cells of the bounding box's corners.
   };
   std::vector<Tri> tris(nf);
   Vec2 lo = Vec2::Constant(kInf), hi = Vec2::Constant(-kInf);
@@ -248,12 +249,14 @@ void for_overlapping_pairs(const Parameterization& param, Found&& found,
   auto cell_of = [&](double x, double lo_, double ext_) {
     return std::clamp(static_cast<int>((x - lo_) / ext_ * n), 0, n - 1);
   };
+  for (Tri& t : tris) {
+    t.x0 = cell_of(t.lo.x(), lo.x(), ext.x()), t.x1 = cell_of(t.hi.x(), lo.x(), ext.x());
+    t.y0 = cell_of(t.lo.y(), lo.y(), ext.y()), t.y1 = cell_of(t.hi.y(), lo.y(), ext.y());
+  }
   std::vector<int> count(static_cast<size_t>(n) * n + 1, 0);
   auto for_cells = [&](const Tri& t, auto&& fn) {
-    const int x0 = cell_of(t.lo.x(), lo.x(), ext.x()), x1 = cell_of(t.hi.x(), lo.x(), ext.x());
-    const int y0 = cell_of(t.lo.y(), lo.y(), ext.y()), y1 = cell_of(t.hi.y(), lo.y(), ext.y());
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) fn(static_cast<size_t>(y) * n + x);
+    for (int y = t.y0; y <= t.y1; ++y)
+      for (int x = t.x0; x <= t.x1; ++x) fn(static_cast<size_t>(y) * n + x);
   };
   for (int f = 0; f < nf; ++f)
     if (tris[f].sign != 0) for_cells(tris[f], [&](size_t c) { ++count[c + 1]; });
@@ -274,11 +277,10 @@ void for_overlapping_pairs(const Parameterization& param, Found&& found,
         for (int j = i + 1; j < count[c + 1]; ++j) {
           const Tri& a = tris[items[i]];
           const Tri& b = tris[items[j]];
+          // Count each pair once: in the cell holding the low corner of the boxes' intersection
+          // (cell_of() is monotone, so that cell is the larger of the two boxes' low cells).
+          if (std::max(a.x0, b.x0) != cx || std::max(a.y0, b.y0) != cy) continue;
           if (a.hi.x() < b.lo.x() || b.hi.x() < a.lo.x() || a.hi.y() < b.lo.y() || b.hi.y() < a.lo.y())
-            continue;
-          // Count each pair once: in the cell holding the low corner of the boxes' intersection.
-          if (cell_of(std::max(a.lo.x(), b.lo.x()), lo.x(), ext.x()) != cx ||
-              cell_of(std::max(a.lo.y(), b.lo.y()), lo.y(), ext.y()) != cy)
             continue;
           if (interiors_overlap(a.p, a.sign, b.p, b.sign) &&
               !found(std::min(items[i], items[j]), std::max(items[i], items[j])))

@@ -41,6 +41,24 @@ TEST(Allocator, LargeBlocksComeFromTheHeapAndStayInTheProcess) {
   EXPECT_GE(after.fordblks, bytes);
 }
 
+/// How far apart (bytes) a block of \p bytes that a worker thread allocated, wrote and freed and a
+/// block of the same size that the main thread then allocates are.
+std::uintptr_t distance_of_thread_and_main_blocks(size_t bytes) {
+  std::uintptr_t b = 0;  // the addresses, taken before each free
+  std::thread([&] {
+    void* in_thread = std::malloc(bytes);
+    if (in_thread) std::memset(in_thread, 1, bytes);
+    b = reinterpret_cast<std::uintptr_t>(in_thread);
+    std::free(in_thread);
+  }).join();
+  void* in_main = std::malloc(bytes);
+  const auto a = reinterpret_cast<std::uintptr_t>(in_main);
+  std::free(in_main);
+  EXPECT_NE(a, 0u);
+  EXPECT_NE(b, 0u);
+  return a > b ? a - b : b - a;
+}
+
 TEST(Allocator, AWorkerThreadsFreedBlockIsReusedByTheMainThread) {
 #if defined(ADAPTEX_TEST_ASAN)
   GTEST_SKIP() << "AddressSanitizer's allocator replaces glibc's";
@@ -52,19 +70,20 @@ TEST(Allocator, AWorkerThreadsFreedBlockIsReusedByTheMainThread) {
   // of the same program started could already own arenas.)
   ASSERT_TRUE(keep_freed_memory_in_process());
   const size_t bytes = 16u << 20;
-  void* in_thread = nullptr;
-  std::thread([&] {
-    in_thread = std::malloc(bytes);
-    ASSERT_NE(in_thread, nullptr);
-    std::memset(in_thread, 1, bytes);
-    std::free(in_thread);
-  }).join();
-  void* in_main = std::malloc(bytes);
-  ASSERT_NE(in_main, nullptr);
   // The two blocks overlap (the thread's own bookkeeping may shift the start by a few hundred bytes).
-  const auto a = reinterpret_cast<std::uintptr_t>(in_main), b = reinterpret_cast<std::uintptr_t>(in_thread);
-  EXPECT_LT(a > b ? a - b : b - a, bytes);
-  std::free(in_main);
+  EXPECT_LT(distance_of_thread_and_main_blocks(bytes), bytes);
+}
+
+TEST(Allocator, PerThreadArenasKeepAWorkerThreadsBlockInItsOwnHeap) {
+#if defined(ADAPTEX_TEST_ASAN)
+  GTEST_SKIP() << "AddressSanitizer's allocator replaces glibc's";
+#endif
+  // ArenaPolicy::PerThread leaves glibc's thread arenas on: the worker's block is in its own
+  // arena's heap, so the main thread's request of the same size is served far from it (the
+  // opposite of the test above; its own process, as above).
+  ASSERT_TRUE(keep_freed_memory_in_process(ArenaPolicy::PerThread));
+  const size_t bytes = 16u << 20;
+  EXPECT_GE(distance_of_thread_and_main_blocks(bytes), bytes);
 }
 #else
 TEST(Allocator, DoesNothingWithoutGlibc) { EXPECT_FALSE(keep_freed_memory_in_process()); }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "adaptex/core/predicates.h"
 #include "adaptex/core/shapes.h"
 #include "adaptex/param/stretch.h"
 #include "disk_fixtures.h"
@@ -140,6 +141,57 @@ TEST(Overlap, CrossingEdgesWithoutContainedVertices) {
   p.uv = {{0, 0}, {1, 0}, {0, 1}, {-1, 0}, {0, -1}};
   p.uv_faces = {{0, 1, 2}, {0, 3, 4}};
   EXPECT_EQ(count_overlapping_triangles(p), 0);
+}
+
+namespace {
+
+/// Reference: every pair of non-degenerate triangles tested by the plain separating-axis test on
+/// coordinates alone (no shared-vertex shortcuts), O(F²).
+std::vector<std::array<int, 2>> brute_force_pairs(const Parameterization& p) {
+  const auto corners = [&](int f) {
+    const Face& t = p.uv_faces[f];
+    return std::array<Vec2, 3>{p.uv[t[0]], p.uv[t[1]], p.uv[t[2]]};
+  };
+  const auto separated = [](const std::array<Vec2, 3>& t, int s, const std::array<Vec2, 3>& o) {
+    for (int k = 0; k < 3; ++k) {
+      bool out = true;
+      for (int j = 0; j < 3 && out; ++j) out = s * orient2d_filtered(t[k], t[(k + 1) % 3], o[j]) <= 0;
+      if (out) return true;
+    }
+    return false;
+  };
+  std::vector<std::array<int, 2>> pairs;
+  const int nf = static_cast<int>(p.uv_faces.size());
+  for (int f = 0; f < nf; ++f)
+    for (int g = f + 1; g < nf; ++g) {
+      const auto a = corners(f), b = corners(g);
+      const int sa = orient2d_filtered(a[0], a[1], a[2]), sb = orient2d_filtered(b[0], b[1], b[2]);
+      if (sa != 0 && sb != 0 && !separated(a, sa, b) && !separated(b, sb, a)) pairs.push_back({f, g});
+    }
+  return pairs;
+}
+
+}  // namespace
+
+TEST(Overlap, NeighboursAreJudgedAsByThePlainSeparatingAxisTest) {
+  // Grids whose vertices are moved by up to a few cells: neighbours share edges and vertices, and
+  // many fold over each other. The shared-vertex ordering must find exactly the reference pairs.
+  for (unsigned seed : {1u, 2u, 3u}) {
+    TriMesh m = shapes::plane(12);
+    std::vector<Vec2> uv;
+    unsigned state = seed;
+    const auto rnd = [&] {
+      state = state * 1664525u + 1013904223u;
+      return (state >> 8) / double(1u << 24) - 0.5;
+    };
+    const double amp = 0.05 * seed;
+    for (const Vec3& q : m.positions) uv.push_back(Vec2(q.x() + amp * rnd(), q.y() + amp * rnd()));
+    const Parameterization p = as_param(m, uv);
+    const auto expected = brute_force_pairs(p);
+    EXPECT_FALSE(expected.empty());
+    EXPECT_EQ(overlapping_triangle_pairs(p, 1000000), expected) << "seed " << seed;
+    EXPECT_EQ(count_overlapping_triangles(p, 1000000), static_cast<long>(expected.size()));
+  }
 }
 
 TEST(Texels, UtilizationOfSquareAndHalf) {
