@@ -22,9 +22,10 @@ std::string_view subcommand_of(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // `unwrap` builds no painter and allocates small blocks in every thread: per-thread heaps
-  // (docs/decisions.md, "Scans: the unwrap command allocates from per-thread heaps").
-  adaptex::keep_freed_memory_in_process_unless_disabled(subcommand_of(argc, argv) == "unwrap"
+  // The commands that unwrap a mesh allocate small blocks in every thread: per-thread heaps
+  // (docs/decisions.md, "Scans: unwrap and paint allocate from per-thread heaps").
+  const std::string_view command = subcommand_of(argc, argv);
+  adaptex::keep_freed_memory_in_process_unless_disabled(command == "unwrap" || command == "paint"
                                                             ? adaptex::ArenaPolicy::PerThread
                                                             : adaptex::ArenaPolicy::Shared);
   CLI::App app{"adaptex: signal-adaptive parameterization for painting on 3-D meshes"};

@@ -3,6 +3,7 @@
 #include "adaptex/core/allocator.h"
 
 #include <cstdlib>
+#include <cstring>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -29,6 +30,10 @@ bool keep_freed_memory_in_process(ArenaPolicy arenas) {
 }
 
 bool keep_freed_memory_in_process_unless_disabled(ArenaPolicy arenas) {
+  if (const char* a = std::getenv("ADAPTEX_MALLOC_ARENAS")) {
+    if (std::strcmp(a, "shared") == 0) arenas = ArenaPolicy::Shared;
+    if (std::strcmp(a, "per-thread") == 0) arenas = ArenaPolicy::PerThread;
+  }
   return std::getenv("ADAPTEX_DEFAULT_MALLOC") == nullptr && keep_freed_memory_in_process(arenas);
 }
 

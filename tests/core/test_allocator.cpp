@@ -85,6 +85,17 @@ TEST(Allocator, PerThreadArenasKeepAWorkerThreadsBlockInItsOwnHeap) {
   const size_t bytes = 16u << 20;
   EXPECT_GE(distance_of_thread_and_main_blocks(bytes), bytes);
 }
+TEST(Allocator, TheEnvironmentChoosesTheHeaps) {
+#if defined(ADAPTEX_TEST_ASAN)
+  GTEST_SKIP() << "AddressSanitizer's allocator replaces glibc's";
+#endif
+  // ADAPTEX_MALLOC_ARENAS=per-thread overrides a program's one heap (its own process, as above).
+  ASSERT_EQ(unsetenv("ADAPTEX_DEFAULT_MALLOC"), 0);
+  ASSERT_EQ(setenv("ADAPTEX_MALLOC_ARENAS", "per-thread", 1), 0);
+  ASSERT_TRUE(keep_freed_memory_in_process_unless_disabled(ArenaPolicy::Shared));
+  const size_t bytes = 16u << 20;
+  EXPECT_GE(distance_of_thread_and_main_blocks(bytes), bytes);
+}
 #else
 TEST(Allocator, DoesNothingWithoutGlibc) { EXPECT_FALSE(keep_freed_memory_in_process()); }
 #endif

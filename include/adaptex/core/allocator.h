@@ -13,8 +13,8 @@ enum class ArenaPolicy {
   Shared,
   /// glibc's own arenas, up to 8 per core: no lock shared by the threads, but a worker thread's
   /// large blocks live in heaps that are unmapped when they empty (many small allocations from
-  /// every thread: the scan unwrap, docs/decisions.md, "Scans: the unwrap command allocates
-  /// from per-thread heaps").
+  /// every thread: the scan unwrap, docs/decisions.md, "Scans: unwrap and paint allocate from
+  /// per-thread heaps").
   PerThread,
 };
 
@@ -33,6 +33,7 @@ bool keep_freed_memory_in_process(ArenaPolicy arenas = ArenaPolicy::Shared);
 
 /// keep_freed_memory_in_process() unless the environment variable ADAPTEX_DEFAULT_MALLOC is set
 /// (to anything): the adaptex programs call this, so that glibc's defaults can be measured against.
+/// ADAPTEX_MALLOC_ARENAS=shared or per-thread overrides \p arenas (other values are ignored).
 /// \param arenas as in keep_freed_memory_in_process().
 /// \return true if the settings were applied.
 bool keep_freed_memory_in_process_unless_disabled(ArenaPolicy arenas = ArenaPolicy::Shared);
