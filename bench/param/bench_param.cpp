@@ -1,5 +1,6 @@
 // Floater and Floater + Yoshizawa (parameterize_disk) on generated disks of ~10k, 100k and 1M faces
 // and on the open shared meshes. Counters: mesh L2 stretch before/after Yoshizawa, iterations.
+// Overlaps/*: the overlap checks (count_overlapping_triangles, invalid_uv_faces) of a Floater layout.
 // Run: build/bench/param/bench_param --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
