@@ -19,10 +19,18 @@ namespace adaptex {
 namespace {
 
 #if defined(__GLIBC__)
-TEST(Allocator, LargeBlocksComeFromTheHeapAndStayInTheProcess) {
+// AddressSanitizer's allocator replaces glibc's: the tests of glibc's settings do not apply.
 #if defined(ADAPTEX_TEST_ASAN)
-  GTEST_SKIP() << "AddressSanitizer's allocator replaces glibc's";
+#define SKIP_UNDER_ASAN() GTEST_SKIP() << "AddressSanitizer's allocator replaces glibc's"
+#else
+#define SKIP_UNDER_ASAN() static_cast<void>(0)
 #endif
+
+/// The block size of the tests below: over the default mmap threshold, under the kept one.
+constexpr size_t kBlock = 16u << 20;
+
+TEST(Allocator, LargeBlocksComeFromTheHeapAndStayInTheProcess) {
+  SKIP_UNDER_ASAN();
   ASSERT_TRUE(keep_freed_memory_in_process());
   const size_t bytes = 8u << 20;  // 8 MiB: over glibc's default mmap threshold (128 KiB, dynamic to 32 MiB)
   const struct mallinfo2 before = mallinfo2();
@@ -41,17 +49,17 @@ TEST(Allocator, LargeBlocksComeFromTheHeapAndStayInTheProcess) {
   EXPECT_GE(after.fordblks, bytes);
 }
 
-/// How far apart (bytes) a block of \p bytes that a worker thread allocated, wrote and freed and a
-/// block of the same size that the main thread then allocates are.
-std::uintptr_t distance_of_thread_and_main_blocks(size_t bytes) {
+/// How far apart (bytes) a block of kBlock bytes that a worker thread allocated, wrote and freed
+/// and a block of the same size that the main thread then allocates are.
+std::uintptr_t distance_of_thread_and_main_blocks() {
   std::uintptr_t b = 0;  // the addresses, taken before each free
   std::thread([&] {
-    void* in_thread = std::malloc(bytes);
-    if (in_thread) std::memset(in_thread, 1, bytes);
+    void* in_thread = std::malloc(kBlock);
+    if (in_thread) std::memset(in_thread, 1, kBlock);
     b = reinterpret_cast<std::uintptr_t>(in_thread);
     std::free(in_thread);
   }).join();
-  void* in_main = std::malloc(bytes);
+  void* in_main = std::malloc(kBlock);
   const auto a = reinterpret_cast<std::uintptr_t>(in_main);
   std::free(in_main);
   EXPECT_NE(a, 0u);
@@ -60,41 +68,34 @@ std::uintptr_t distance_of_thread_and_main_blocks(size_t bytes) {
 }
 
 TEST(Allocator, AWorkerThreadsFreedBlockIsReusedByTheMainThread) {
-#if defined(ADAPTEX_TEST_ASAN)
-  GTEST_SKIP() << "AddressSanitizer's allocator replaces glibc's";
-#endif
+  SKIP_UNDER_ASAN();
   // One arena (M_ARENA_MAX 1): a block that another thread allocated and freed goes back to the
   // heap the main thread allocates from, so the same request gets (nearly) the same memory. With glibc's
   // thread arenas the thread's block lives in its own arena's heap and the main thread's request
   // is served elsewhere. (CTest runs this test in a process of its own: threads that earlier tests
   // of the same program started could already own arenas.)
   ASSERT_TRUE(keep_freed_memory_in_process());
-  const size_t bytes = 16u << 20;
   // The two blocks overlap (the thread's own bookkeeping may shift the start by a few hundred bytes).
-  EXPECT_LT(distance_of_thread_and_main_blocks(bytes), bytes);
+  EXPECT_LT(distance_of_thread_and_main_blocks(), kBlock);
 }
 
 TEST(Allocator, PerThreadArenasKeepAWorkerThreadsBlockInItsOwnHeap) {
-#if defined(ADAPTEX_TEST_ASAN)
-  GTEST_SKIP() << "AddressSanitizer's allocator replaces glibc's";
-#endif
+  SKIP_UNDER_ASAN();
   // ArenaPolicy::PerThread leaves glibc's thread arenas on: the worker's block is in its own
   // arena's heap, so the main thread's request of the same size is served far from it (the
   // opposite of the test above; its own process, as above).
   ASSERT_TRUE(keep_freed_memory_in_process(ArenaPolicy::PerThread));
-  const size_t bytes = 16u << 20;
-  EXPECT_GE(distance_of_thread_and_main_blocks(bytes), bytes);
+  EXPECT_GE(distance_of_thread_and_main_blocks(), kBlock);
 }
+
 TEST(Allocator, TheEnvironmentChoosesTheHeaps) {
-#if defined(ADAPTEX_TEST_ASAN)
-  GTEST_SKIP() << "AddressSanitizer's allocator replaces glibc's";
-#endif
-  // ADAPTEX_MALLOC_ARENAS=per-thread overrides a program's one heap (its own process, as above).
+  SKIP_UNDER_ASAN();
+  // ADAPTEX_MALLOC_ARENAS=per-thread overrides a program's one heap: as the test above (its own
+  // process).
   ASSERT_EQ(unsetenv("ADAPTEX_DEFAULT_MALLOC"), 0);
   ASSERT_EQ(setenv("ADAPTEX_MALLOC_ARENAS", "per-thread", 1), 0);
   ASSERT_TRUE(keep_freed_memory_in_process_unless_disabled(ArenaPolicy::Shared));
-  const size_t bytes = 16u << 20;
-  EXPECT_GE(distance_of_thread_and_main_blocks(bytes), bytes);
+  EXPECT_GE(distance_of_thread_and_main_blocks(), kBlock);
 }
 #else
 TEST(Allocator, DoesNothingWithoutGlibc) { EXPECT_FALSE(keep_freed_memory_in_process()); }
