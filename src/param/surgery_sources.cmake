@@ -9,4 +9,7 @@ target_sources(adaptex_param PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/slim.cpp
   ${CMAKE_CURRENT_LIST_DIR}/planar.cpp
   ${CMAKE_CURRENT_LIST_DIR}/layout_image.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/unwrap.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/unwrap.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/unwrap_chart.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/unwrap_pack.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/unwrap_scan.cpp)

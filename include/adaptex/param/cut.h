@@ -4,7 +4,7 @@
 /// an initial cut graph by face peeling (a dual spanning tree of faces; the edges it does not cross
 /// form the cut) with dangling-edge pruning, a short cut for closed genus-0 surfaces, slicing along
 /// the cut (cut vertices are duplicated into wedges), and the shortest paths that the iterative
-/// cut augmentation adds (see unwrap.cpp). docs/surgery.md describes the algorithm and its choices.
+/// cut augmentation adds (see src/param/unwrap_chart.cpp). docs/surgery.md describes the algorithm and its choices.
 ///
 /// A *cut* is a per-edge flag vector indexed like EdgeConnectivity::edges (1 = the edge is cut).
 /// Boundary edges of the input are never flagged: they are open already.
