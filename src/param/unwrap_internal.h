@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <exception>
 #include <functional>
@@ -170,8 +171,9 @@ void adopt_disk_layout(Chart& chart, PolygonLayout&& u);
 /// augmentation face budget in piece order; when even the largest use of every chart
 /// ((1 + max_augmentations) cheap evaluations) fits in it, the budget cannot run out, the charts do
 /// not depend on each other, and they are built in parallel (TBB) with the same result. The
-/// progress callback is then called under a mutex with a non-decreasing fraction. \p unfold: a
-/// piece without interior vertices may be unfolded (ChartContext::unfold_polygons).
+/// progress callback is then called under a mutex with a non-decreasing fraction. \p layouts: the
+/// layouts a piece may take besides its disk parameterization; \p give_up_l2 as
+/// ChartContext::give_up_l2.
 /// \p on_last_started (if set) is called once, when the last chart starts (segment_until_good()
 /// then starts the next chart count on the threads this attempt no longer needs).
 std::vector<Chart> build_charts(const std::vector<Component>& pieces, const DiskParamOptions& dopt,
@@ -220,8 +222,7 @@ void pack_valid(const TriMesh& mesh, const std::vector<Component>& pieces, std::
                 bool shapes, BuiltPieces* built);
 
 /// Builds the chart of every piece and packs them into \p result (one unwrap() attempt).
-/// \p unfold and \p on_last_started as in build_charts(); \p give_up_l2 as
-/// ChartContext::give_up_l2; \p shapes as in assemble(); \p built as in pack_valid(). Returns
+/// \p layouts, \p give_up_l2 and \p on_last_started as in build_charts(); \p shapes as in assemble(); \p built as in pack_valid(). Returns
 /// false, and leaves the layout of \p result alone (only its phase times grow), when a chart was
 /// abandoned.
 bool unwrap_pieces(const TriMesh& mesh, const std::vector<Component>& pieces,
