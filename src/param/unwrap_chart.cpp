@@ -32,6 +32,11 @@ void swap_unfolded(Chart& chart) {
 
 namespace {
 
+/// Whether \p l gives the pieces free-boundary layouts (Free or FreeKeepUnfolded).
+bool free_layouts(PieceLayouts l) {
+  return l == PieceLayouts::Free || l == PieceLayouts::FreeKeepUnfolded;
+}
+
 /// Input vertex (of the component) with the largest stretch that is not on the cut yet: the
 /// per-wedge stretch σ (yoshizawa.h: area-weighted face L2 around the wedge), maximum over wedges.
 /// Vertices next to a degenerate UV triangle (σ = inf: an extremity squeezed to nothing by the

@@ -96,11 +96,6 @@ enum class PieceLayouts {
   FreeKeepUnfolded,
 };
 
-/// Whether \p l gives the pieces free-boundary layouts (Free or FreeKeepUnfolded).
-inline bool free_layouts(PieceLayouts l) {
-  return l == PieceLayouts::Free || l == PieceLayouts::FreeKeepUnfolded;
-}
-
 /// Runs \p body(i) for i in [0, n) in parallel (TBB, one index per task). An exception must not
 /// leave a body: TBB would cancel the task group, and nested parallel algorithms still running
 /// would return with part of their work undone. The first exception is kept, \p failed is set
@@ -124,27 +119,15 @@ void parallel_keep_first_error(int n, std::mutex& mutex, std::atomic<bool>& fail
   if (first_error) std::rethrow_exception(first_error);
 }
 
-/// out[i] filled by \p fill(i, out[i]) for i in [0, n), in parallel (TBB); the first exception
-/// is rethrown once every call has returned. The order of out does not depend on the threads.
-template <class Fill>
-std::vector<std::vector<Component>> parallel_pieces(size_t n, Fill fill) {
-  std::vector<std::vector<Component>> out(n);
-  std::mutex mutex;
-  std::atomic<bool> failed{false};
-  parallel_keep_first_error(static_cast<int>(n), mutex, failed,
-                            [&](int i) { fill(static_cast<size_t>(i), out[i]); });
-  return out;
-}
-
 /// The pieces and charts of a valid packed layout, kept so that some charts can be rebuilt.
 struct BuiltPieces {
   std::vector<Component> pieces;
   std::vector<Chart> charts;
 };
 
-/// Pieces of a few large folded faces are split down to 8 faces when split_pays() says so; its
-/// estimate is rough for so few faces, so small meshes also try the split down to 32 faces.
-constexpr int kFineProbeFaces = 4, kCoarseProbeFaces = 16;
+/// Pieces of a few large folded faces are split down to 8 faces when split_pays() says so
+/// (timed_scan_pieces()'s default min_probe_faces).
+constexpr int kFineProbeFaces = 4;
 
 // unwrap_chart.cpp: one chart per piece.
 
@@ -186,31 +169,6 @@ std::vector<Chart> build_charts(const std::vector<Component>& pieces, const Disk
 /// Total 3-D length of the seams of \p param: input edges whose two faces do not share both UV
 /// corners.
 double seam_length(const TriMesh& mesh, const Parameterization& param);
-
-/// Packs the charts of \p pieces with gap \p padding (their rectangles, pack_rectangles(); with
-/// \p shapes also their shapes, pack_shapes(), where they fill less than kShapePackingMaxFill of
-/// their rectangles, keeping the packing of the higher effective texel share) and writes the
-/// layout and its figures into \p result (write_layout()); unwrap() replaces the cut length of
-/// several charts by their seam length.
-void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
-              const std::vector<Chart>& charts, double padding, const UnwrapOptions& options,
-              UnwrapResult& result, bool shapes = false);
-
-/// invalid_uv_faces() of the packed layout of \p charts. Overlaps are looked for only in the charts
-/// of a fixed aspect (free-boundary, projected, unfolded layouts): a disk parameterization maps its
-/// boundary onto a convex curve, so with no flipped or degenerate triangle it is a bijection onto
-/// its rectangle, and the packed rectangles are disjoint (packed by their shapes, the triangles
-/// of two charts are disjoint: pack_shapes()).
-std::vector<int> invalid_layout_faces(const Parameterization& param, const std::vector<Chart>& charts);
-
-/// Replaces every piece \p bad marks (its chart's UV triangles are flipped, degenerate or overlap)
-/// by its two halves (split_piece()), or by its single faces when it has at most kFaceSplitFaces
-/// faces or does not split, and builds their charts: \p pieces and \p charts stay parallel.
-/// \throw SolverError a marked piece of one face (a triangle's own layout is valid; nothing left)
-void split_invalid_charts(std::vector<Component>& pieces, std::vector<Chart>& charts,
-                          const std::vector<char>& bad, const DiskParamOptions& dopt,
-                          Clock::time_point t_start, const UnwrapOptions& options,
-                          UnwrapReport& rep, PieceLayouts layouts);
 
 /// Packs \p charts (parallel to \p pieces) into \p result; while UV triangles are invalid, splits
 /// their charts (split_invalid_charts()) and packs again. \p built (if set) receives the final

@@ -112,11 +112,14 @@ void write_layout(const TriMesh& mesh, const std::vector<Component>& pieces,
 /// their rectangles.
 constexpr double kShapePackingMaxFill = 0.9;
 
-}  // namespace
-
+/// Packs the charts of \p pieces with gap \p padding (their rectangles, pack_rectangles(); with
+/// \p shapes also their shapes, pack_shapes(), where they fill less than kShapePackingMaxFill of
+/// their rectangles, keeping the packing of the higher effective texel share) and writes the
+/// layout and its figures into \p result (write_layout()); unwrap() replaces the cut length of
+/// several charts by their seam length.
 void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
               const std::vector<Chart>& charts, double padding, const UnwrapOptions& options,
-              UnwrapResult& result, bool shapes) {
+              UnwrapResult& result, bool shapes = false) {
   const int nc = static_cast<int>(pieces.size());
   // Rectangles of the chart's best aspect ratio and of area proportional to A3_c * L2_c (3-D area
   // times the chart's own L2 stretch): of all allocations of the square to the charts this one
@@ -178,20 +181,25 @@ void assemble(const TriMesh& mesh, const std::vector<Component>& pieces,
   if (alt.report.effective_texel_share > result.report.effective_texel_share) result = std::move(alt);
 }
 
+/// invalid_uv_faces() of the packed layout of \p charts. Overlaps are looked for only in the charts
+/// of a fixed aspect (free-boundary, projected, unfolded layouts): a disk parameterization maps its
+/// boundary onto a convex curve, so with no flipped or degenerate triangle it is a bijection onto
+/// its rectangle, and the packed rectangles are disjoint (packed by their shapes, the triangles
+/// of two charts are disjoint: pack_shapes()).
 std::vector<int> invalid_layout_faces(const Parameterization& param, const std::vector<Chart>& charts) {
   std::vector<char> free(param.uv_faces.size(), 0);
   for (size_t f = 0; f < free.size(); ++f) free[f] = charts[param.face_chart[f]].aspect > 0;
   return invalid_uv_faces(param, &free);
 }
 
-namespace {
-
 /// Rounds of splitting invalid charts in unwrap_pieces() before it gives up (each round halves
 /// them; pieces of at most kFaceSplitFaces faces are split into single faces).
 constexpr int kMaxValidityRounds = 24, kFaceSplitFaces = 8;
 
-}  // namespace
-
+/// Replaces every piece \p bad marks (its chart's UV triangles are flipped, degenerate or overlap)
+/// by its two halves (split_piece()), or by its single faces when it has at most kFaceSplitFaces
+/// faces or does not split, and builds their charts: \p pieces and \p charts stay parallel.
+/// \throw SolverError a marked piece of one face (a triangle's own layout is valid; nothing left)
 void split_invalid_charts(std::vector<Component>& pieces, std::vector<Chart>& charts,
                           const std::vector<char>& bad, const DiskParamOptions& dopt,
                           Clock::time_point t_start, const UnwrapOptions& options,
@@ -226,8 +234,6 @@ void split_invalid_charts(std::vector<Component>& pieces, std::vector<Chart>& ch
   pieces = std::move(kept);
   charts = std::move(kept_charts);
 }
-
-namespace {
 
 /// Boundary contact, relative to a chart's extent, below which boundary_near_contact() calls its
 /// layout fragile: packed at 1e-4 of the square, a double's rounding moves a UV by ~1e-12 of it.

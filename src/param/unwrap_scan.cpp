@@ -25,6 +25,18 @@ namespace adaptex::unwrap_detail {
 
 namespace {
 
+/// out[i] filled by \p fill(i, out[i]) for i in [0, n), in parallel (TBB); the first exception
+/// is rethrown once every call has returned. The order of out does not depend on the threads.
+template <class Fill>
+std::vector<std::vector<Component>> parallel_pieces(size_t n, Fill fill) {
+  std::vector<std::vector<Component>> out(n);
+  std::mutex mutex;
+  std::atomic<bool> failed{false};
+  parallel_keep_first_error(static_cast<int>(n), mutex, failed,
+                            [&](int i) { fill(static_cast<size_t>(i), out[i]); });
+  return out;
+}
+
 /// Cheap figures of one piece for the scan segmentation: degenerate + flipped UV triangles and the
 /// L2 stretch, at the best rectangle aspect, of its first cheap parameterization (the cut, then
 /// Floater + augment_yoshizawa_iterations Yoshizawa iterations, as build_chart() starts).
@@ -270,6 +282,10 @@ void keep_better_layout(const TriMesh& mesh, const std::vector<Component>& piece
 }
 
 namespace {
+
+/// Small meshes also try the split down to 32 faces: split_pays()'s estimate is rough for so few
+/// faces (kFineProbeFaces, in unwrap_internal.h, is the default floor).
+constexpr int kCoarseProbeFaces = 16;
 
 /// The own L2 stretch of every piece of \p pieces in the layout \p param of \p mesh (as
 /// StretchStats::l2 over the piece's faces: scaled to the piece's own UV / 3-D area ratio).
